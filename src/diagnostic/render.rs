@@ -1,0 +1,159 @@
+//! Rendering diagnostics: codespan-reporting for people (with or without colour), plain text
+//! for snapshots, JSON for tools. The only module that imports codespan-reporting.
+//!
+//! Sources are bytes; codespan needs text. Rendering goes through [`DisplayText`], which
+//! replaces bytes that are not UTF-8 with U+FFFD and maps every span across the change, so a
+//! label on a Shift-JIS program still underlines the right characters.
+
+use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label, Severity as CsSeverity};
+use codespan_reporting::files::{Files, SimpleFile};
+use codespan_reporting::term::{self, Config};
+use serde::Serialize;
+
+use super::{Diagnostic, Severity};
+use crate::source::{DisplayText, Span};
+
+/// A source prepared for rendering: its name and its display text.
+pub struct RenderSource<'a> {
+    name: &'a str,
+    display: DisplayText,
+}
+
+impl<'a> RenderSource<'a> {
+    pub fn new(name: &'a str, source: &[u8]) -> RenderSource<'a> {
+        RenderSource { name, display: DisplayText::new(source) }
+    }
+
+    fn range(&self, span: Span) -> std::ops::Range<usize> {
+        let start = self.display.offset(span.start);
+        let end = self.display.offset(span.end).max(start);
+        start..end
+    }
+
+    fn file(&self) -> SimpleFile<&str, &str> {
+        SimpleFile::new(self.name, self.display.text.as_str())
+    }
+
+    /// 1-based line and character column of a source offset.
+    pub fn location(&self, offset: u32) -> (usize, usize) {
+        let file = self.file();
+        match file.location((), self.display.offset(offset)) {
+            Ok(location) => (location.line_number, location.column_number),
+            Err(_) => (1, 1),
+        }
+    }
+}
+
+fn to_codespan(diagnostic: &Diagnostic, source: &RenderSource<'_>) -> CsDiagnostic<()> {
+    let severity = match diagnostic.severity {
+        Severity::Note => CsSeverity::Note,
+        Severity::Warning => CsSeverity::Warning,
+        Severity::Error => CsSeverity::Error,
+    };
+    let mut labels = vec![Label::primary((), source.range(diagnostic.span)).with_message(diagnostic.label())];
+    for (span, message) in &diagnostic.related {
+        labels.push(Label::secondary((), source.range(*span)).with_message(message.clone()));
+    }
+    let mut notes = Vec::new();
+    if let Some(hint) = diagnostic.hint() {
+        notes.push(format!("hint: {hint}"));
+    }
+    CsDiagnostic::new(severity)
+        .with_code(diagnostic.code())
+        .with_message(diagnostic.message())
+        .with_labels(labels)
+        .with_notes(notes)
+}
+
+/// Plain text, as the terminal shows it without colour; used for snapshots.
+pub fn render_plain(source: &RenderSource<'_>, diagnostics: &[Diagnostic]) -> String {
+    let file = source.file();
+    let config = Config::default();
+    let mut out = String::new();
+    for diagnostic in diagnostics {
+        let cs = to_codespan(diagnostic, source);
+        match term::emit_into_string(&config, &file, &cs) {
+            Ok(text) => out.push_str(&text),
+            Err(error) => out.push_str(&format!("{diagnostic} (could not render: {error})\n")),
+        }
+    }
+    out
+}
+
+/// Terminal output, with ANSI colour when `color` is set (the CLI sets it on a TTY only).
+pub fn render_terminal(source: &RenderSource<'_>, diagnostics: &[Diagnostic], color: bool) -> Vec<u8> {
+    if !color {
+        return render_plain(source, diagnostics).into_bytes();
+    }
+    let file = source.file();
+    let config = Config::default();
+    let mut buffer = term::termcolor::Buffer::ansi();
+    for diagnostic in diagnostics {
+        let cs = to_codespan(diagnostic, source);
+        if term::emit_to_write_style(&mut buffer, &config, &file, &cs).is_err() {
+            return render_plain(source, diagnostics).into_bytes();
+        }
+    }
+    buffer.into_inner()
+}
+
+#[derive(Debug, Serialize)]
+pub struct JsonPosition {
+    pub line: usize,
+    pub column: usize,
+    pub offset: u32,
+}
+
+#[derive(Debug, Serialize)]
+pub struct JsonRange {
+    pub start: JsonPosition,
+    pub end: JsonPosition,
+}
+
+#[derive(Debug, Serialize)]
+pub struct JsonRelated {
+    pub range: JsonRange,
+    pub message: String,
+}
+
+/// One diagnostic for tools: file, range, severity, code, message, hint.
+#[derive(Debug, Serialize)]
+pub struct JsonDiagnostic {
+    pub file: String,
+    pub range: JsonRange,
+    pub severity: &'static str,
+    pub code: &'static str,
+    pub message: String,
+    pub label: String,
+    pub hint: Option<String>,
+    pub related: Vec<JsonRelated>,
+}
+
+fn json_range(source: &RenderSource<'_>, span: Span) -> JsonRange {
+    let (line, column) = source.location(span.start);
+    let (end_line, end_column) = source.location(span.end);
+    JsonRange {
+        start: JsonPosition { line, column, offset: span.start },
+        end: JsonPosition { line: end_line, column: end_column, offset: span.end },
+    }
+}
+
+pub fn to_json(source: &RenderSource<'_>, diagnostics: &[Diagnostic]) -> Vec<JsonDiagnostic> {
+    diagnostics
+        .iter()
+        .map(|d| JsonDiagnostic {
+            file: source.name.to_string(),
+            range: json_range(source, d.span),
+            severity: d.severity.as_str(),
+            code: d.code(),
+            message: d.message(),
+            label: d.label(),
+            hint: d.hint(),
+            related: d
+                .related
+                .iter()
+                .map(|(span, message)| JsonRelated { range: json_range(source, *span), message: message.clone() })
+                .collect(),
+        })
+        .collect()
+}

@@ -1,0 +1,412 @@
+//! `--dialect auto`: decide the dialect from the text, and say why.
+//!
+//! A light scan over every line collects evidence (an Okuma `$…%` header, LAP calls, named
+//! variables; Fanuc `#` variables, two-block G71 with P/Q, U/W moves, R arcs …). Strong
+//! features weigh more than weak ones. When both sides have evidence the larger score wins
+//! and the parser reports a warning naming the blocks on each side.
+//!
+//! The scan runs before parsing because the block grammar depends on the dialect (`NAT00`
+//! is a label on OSP and an error on Fanuc).
+
+use std::fmt;
+
+use crate::source::{LineIndex, Span};
+
+use super::{Dialect, MachineKind};
+
+/// What pointed where.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Feature {
+    OspHeader,
+    AlphanumericSequence,
+    LapCall,
+    NamedVariable,
+    EqualsValue,
+    OspKeyword,
+    IfWithoutGoto,
+    SixDigitTool,
+    HashVariable,
+    TwoBlockRoughing,
+    IncrementalMove,
+    ArcRadiusR,
+    ColonProgramNumber,
+    PackedSequence,
+    SubprogramCall,
+    WorkOffset,
+    ToolChange,
+    ToolLengthOffset,
+    HolePattern,
+    MachiningCentreName,
+}
+
+impl Feature {
+    /// Which way the feature points: a dialect, or (for OSP) the machining-centre kind.
+    pub fn leaning(self) -> Leaning {
+        use Feature::*;
+        match self {
+            OspHeader | AlphanumericSequence | LapCall | NamedVariable | EqualsValue | OspKeyword | IfWithoutGoto
+            | SixDigitTool => Leaning::Dialect(Dialect::Osp),
+            HashVariable | TwoBlockRoughing | IncrementalMove | ArcRadiusR | ColonProgramNumber | PackedSequence
+            | SubprogramCall | WorkOffset => Leaning::Dialect(Dialect::Fanuc),
+            ToolChange | ToolLengthOffset | HolePattern | MachiningCentreName => Leaning::MachiningCentre,
+        }
+    }
+
+    fn weight(self) -> u32 {
+        use Feature::*;
+        match self {
+            OspHeader | LapCall | NamedVariable | OspKeyword | HashVariable | TwoBlockRoughing | ColonProgramNumber => {
+                10
+            }
+            AlphanumericSequence | IfWithoutGoto | EqualsValue | PackedSequence => 5,
+            _ => 2,
+        }
+    }
+
+    pub fn description(self) -> &'static str {
+        use Feature::*;
+        match self {
+            OspHeader => "`$NAME.MIN%` file header",
+            AlphanumericSequence => "alphanumeric sequence name (`NAT00`)",
+            LapCall => "LAP call (`G85 N…`)",
+            NamedVariable => "named variable assignment (`NAME=`)",
+            EqualsValue => "word with `=` value (`X=…`)",
+            OspKeyword => "`CALL`, `RTS` or `MODIN`",
+            IfWithoutGoto => "`IF [...] N…` jump",
+            SixDigitTool => "six-digit tool word (`T010101`)",
+            HashVariable => "`#` macro variable",
+            TwoBlockRoughing => "G71/G72/G73 with P and Q",
+            IncrementalMove => "`U`/`W` incremental move",
+            ArcRadiusR => "arc with `R` radius",
+            ColonProgramNumber => "`:` program number",
+            PackedSequence => "sequence number packed against a word (`N1G0`)",
+            SubprogramCall => "`M98 P` subprogram call",
+            WorkOffset => "G54-G59 work offset",
+            ToolChange => "`M6` tool change",
+            ToolLengthOffset => "`G56 … H` tool length offset",
+            HolePattern => "hole pattern statement (`BHC`, `LAA` …)",
+            MachiningCentreName => "machining-centre control named in a comment",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Leaning {
+    Dialect(Dialect),
+    MachiningCentre,
+}
+
+/// A feature, how often it occurs, and where it occurs first.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Evidence {
+    pub feature: Feature,
+    pub count: u32,
+    pub first: Span,
+}
+
+/// How the dialect was chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Choice {
+    /// Given on the command line or in the machine settings.
+    Given,
+    /// Decided from the evidence.
+    Detected,
+    /// No evidence either way: the default.
+    Default,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Detection {
+    pub dialect: Dialect,
+    pub machine_kind: MachineKind,
+    pub choice: Choice,
+    pub evidence: Vec<Evidence>,
+}
+
+impl Detection {
+    pub fn score(&self, dialect: Dialect) -> u32 {
+        self.evidence
+            .iter()
+            .filter(|e| e.feature.leaning() == Leaning::Dialect(dialect))
+            .map(|e| e.feature.weight() * e.count.min(20))
+            .sum()
+    }
+
+    /// Evidence for `leaning`, strongest first.
+    pub fn evidence_for(&self, leaning: Leaning) -> Vec<&Evidence> {
+        let mut list: Vec<&Evidence> = self.evidence.iter().filter(|e| e.feature.leaning() == leaning).collect();
+        list.sort_by_key(|e| (std::cmp::Reverse(e.feature.weight()), e.first.start));
+        list
+    }
+
+    pub fn is_conflicted(&self) -> bool {
+        self.choice == Choice::Detected
+            && !self.evidence_for(Leaning::Dialect(Dialect::Osp)).is_empty()
+            && !self.evidence_for(Leaning::Dialect(Dialect::Fanuc)).is_empty()
+    }
+
+    /// The explanation `check --verbose` prints.
+    pub fn explain(&self, lines: &LineIndex) -> String {
+        let mut out = String::new();
+        let how = match self.choice {
+            Choice::Given => "given by option or machine settings",
+            Choice::Detected => "detected from the text",
+            Choice::Default => "no evidence either way; the default",
+        };
+        out.push_str(&format!("dialect: {} ({how})\n", self.dialect));
+        for dialect in [Dialect::Osp, Dialect::Fanuc] {
+            let list = self.evidence_for(Leaning::Dialect(dialect));
+            if list.is_empty() {
+                continue;
+            }
+            out.push_str(&format!("  {} evidence (score {}):\n", dialect, self.score(dialect)));
+            for e in list {
+                out.push_str(&format!(
+                    "    {} × {}, first at line {}\n",
+                    e.count,
+                    e.feature.description(),
+                    lines.position(e.first.start).0
+                ));
+            }
+        }
+        if self.dialect == Dialect::Osp {
+            let list = self.evidence_for(Leaning::MachiningCentre);
+            let kind = if self.machine_kind == MachineKind::MachiningCentre { "machining centre" } else { "lathe" };
+            out.push_str(&format!("machine: {kind}\n"));
+            for e in list {
+                out.push_str(&format!(
+                    "    {} × {}, first at line {}\n",
+                    e.count,
+                    e.feature.description(),
+                    lines.position(e.first.start).0
+                ));
+            }
+        }
+        out
+    }
+}
+
+impl fmt::Display for Feature {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.description())
+    }
+}
+
+/// Whether a line is an Okuma `$NAME.EXT%` header.
+pub fn is_osp_header(line: &[u8]) -> bool {
+    let Some(rest) = line.strip_prefix(b"$") else { return false };
+    let name_len = rest.iter().take_while(|c| c.is_ascii_alphanumeric() || matches!(c, b'_' | b'-')).count();
+    if name_len == 0 {
+        return false;
+    }
+    let Some(rest) = rest[name_len..].strip_prefix(b".") else { return false };
+    let ext_len = rest.iter().take_while(|c| c.is_ascii_alphanumeric()).count();
+    if ext_len == 0 || ext_len > 3 {
+        return false;
+    }
+    let Some(rest) = rest[ext_len..].strip_prefix(b"%") else { return false };
+    rest.iter().all(|c| matches!(c, b' ' | b'\t'))
+}
+
+struct Collector {
+    evidence: Vec<Evidence>,
+}
+
+impl Collector {
+    fn add(&mut self, feature: Feature, start: usize, end: usize) {
+        match self.evidence.iter_mut().find(|e| e.feature == feature) {
+            Some(e) => e.count += 1,
+            None => self.evidence.push(Evidence { feature, count: 1, first: Span::new(start as u32, end as u32) }),
+        }
+    }
+}
+
+/// Scan the whole source for evidence.
+pub fn scan(source: &[u8]) -> Vec<Evidence> {
+    let mut collector = Collector { evidence: Vec::new() };
+    let mut pos = 0;
+    while pos < source.len() {
+        let (end, next) = match memchr::memchr2(b'\n', b'\r', &source[pos..]) {
+            Some(i) => {
+                let at = pos + i;
+                let next = if source[at] == b'\r' && source.get(at + 1) == Some(&b'\n') { at + 2 } else { at + 1 };
+                (at, next)
+            }
+            None => (source.len(), source.len()),
+        };
+        scan_line(source, pos, end, &mut collector);
+        pos = next;
+    }
+    collector.evidence
+}
+
+fn scan_line(source: &[u8], start: usize, end: usize, out: &mut Collector) {
+    let line = &source[start..end];
+    if is_osp_header(line) {
+        out.add(Feature::OspHeader, start, end);
+        return;
+    }
+    let mut i = line.iter().take_while(|c| matches!(c, b' ' | b'\t' | b'/')).count();
+    let mut first = true;
+    let mut motion: Option<u32> = None;
+    let mut cycle: Option<u32> = None;
+    let (mut has_uw, mut has_r, mut has_p, mut has_q, mut has_label, mut has_any_g) =
+        (false, false, false, false, false, false);
+    while i < line.len() {
+        let c = line[i];
+        let at = start + i;
+        match c {
+            b'(' => {
+                let close = line[i..].iter().position(|&b| b == b')').map_or(line.len(), |p| i + p + 1);
+                let text = &line[i..close];
+                if let Some(p) = text.windows(3).position(|w| w == b"OSP") {
+                    let digits = text[p + 3..].iter().take_while(|c| c.is_ascii_digit()).count();
+                    if digits > 0 && text.get(p + 3 + digits) == Some(&b'M') {
+                        out.add(Feature::MachiningCentreName, at, start + close);
+                    }
+                }
+                i = close;
+                continue;
+            }
+            b'#' => out.add(Feature::HashVariable, at, at + 1),
+            b':' if first => out.add(Feature::ColonProgramNumber, at, at + 1),
+            b'A'..=b'Z' => {
+                let letters = line[i..].iter().take_while(|c| c.is_ascii_uppercase()).count();
+                let name_len = line[i..].iter().take_while(|c| c.is_ascii_uppercase() || c.is_ascii_digit()).count();
+                let name = &line[i..i + name_len];
+                let after = line.get(i + name_len).copied();
+                if letters >= 2 {
+                    if first && c == b'N' && name_len <= 5 {
+                        out.add(Feature::AlphanumericSequence, at, at + name_len);
+                    } else {
+                        match name {
+                            b"CALL" | b"RTS" | b"MODIN" | b"MODOUT" => out.add(Feature::OspKeyword, at, at + name_len),
+                            b"BHC" | b"LAA" | b"SQRX" | b"SQRY" | b"GRDX" | b"GRDY" | b"DMDX" | b"DMDY" => {
+                                out.add(Feature::HolePattern, at, at + name_len)
+                            }
+                            b"IF" => {
+                                if let Some(close) = line[i..].iter().rposition(|&b| b == b']') {
+                                    let tail = &line[i + close + 1..];
+                                    let tail = &tail[tail.iter().take_while(|c| **c == b' ').count()..];
+                                    if tail.first() == Some(&b'N') {
+                                        out.add(Feature::IfWithoutGoto, at, at + 2);
+                                    }
+                                }
+                            }
+                            _ if after == Some(b'=') || after == Some(b'[') => {
+                                let assigned = after == Some(b'=')
+                                    || line[i + name_len..]
+                                        .iter()
+                                        .position(|&b| b == b']')
+                                        .is_some_and(|p| line.get(i + name_len + p + 1) == Some(&b'='));
+                                if assigned {
+                                    out.add(Feature::NamedVariable, at, at + name_len);
+                                }
+                            }
+                            _ => {}
+                        }
+                    }
+                    i += name_len;
+                    first = false;
+                    continue;
+                }
+                // One letter and its value.
+                let value = &line[i + 1..];
+                if value.first() == Some(&b'=') {
+                    out.add(Feature::EqualsValue, at, at + 2);
+                } else if c == b'V'
+                    && value.first().is_some_and(u8::is_ascii_digit)
+                    && value.iter().find(|c| !c.is_ascii_digit()) == Some(&b'=')
+                {
+                    out.add(Feature::NamedVariable, at, at + name_len);
+                }
+                let digits = value.iter().take_while(|c| c.is_ascii_digit()).count();
+                let number = std::str::from_utf8(&value[..digits]).ok().and_then(|s| s.parse::<u32>().ok());
+                match c {
+                    b'N' if first && digits > 0 && value.get(digits).is_some_and(u8::is_ascii_uppercase) => {
+                        out.add(Feature::PackedSequence, at, at + 1 + digits)
+                    }
+                    b'N' if !first => has_label = true,
+                    b'G' => {
+                        has_any_g = true;
+                        match number {
+                            Some(n @ 0..=3) => motion = Some(n),
+                            Some(n @ (54..=59)) => {
+                                if n != 56 {
+                                    out.add(Feature::WorkOffset, at, at + 1 + digits);
+                                }
+                                if n == 56 && line.contains(&b'H') {
+                                    out.add(Feature::ToolLengthOffset, at, at + 1 + digits);
+                                }
+                            }
+                            Some(n @ (70..=76 | 85..=88 | 90 | 92 | 94)) => cycle = Some(n),
+                            _ => {}
+                        }
+                    }
+                    b'T' if digits == 6 => out.add(Feature::SixDigitTool, at, at + 7),
+                    b'M' if number == Some(6) && digits > 0 => out.add(Feature::ToolChange, at, at + 1 + digits),
+                    b'M' if number == Some(98) && line.contains(&b'P') => {
+                        out.add(Feature::SubprogramCall, at, at + 1 + digits)
+                    }
+                    b'U' | b'W' => has_uw = true,
+                    b'R' => has_r = true,
+                    b'P' => has_p = true,
+                    b'Q' => has_q = true,
+                    _ => {}
+                }
+                first = false;
+                i += 1 + digits;
+                continue;
+            }
+            _ => {}
+        }
+        if !matches!(c, b' ' | b'\t' | b'%') {
+            first = false;
+        }
+        i += 1;
+    }
+    let line_span = (start, end);
+    if cycle.is_none() && has_uw && (motion.is_some() || !has_any_g) {
+        out.add(Feature::IncrementalMove, line_span.0, line_span.1);
+    }
+    if matches!(motion, Some(2 | 3)) && has_r {
+        out.add(Feature::ArcRadiusR, line_span.0, line_span.1);
+    }
+    match cycle {
+        Some(71..=73) if has_p && has_q => out.add(Feature::TwoBlockRoughing, line_span.0, line_span.1),
+        Some(85..=88) if has_label => out.add(Feature::LapCall, line_span.0, line_span.1),
+        _ => {}
+    }
+}
+
+/// Decide the dialect (when not given) and, for OSP, the machine kind.
+pub fn decide(source: &[u8], given: Option<Dialect>, kind: Option<MachineKind>) -> Detection {
+    let evidence = scan(source);
+    let mut detection =
+        Detection { dialect: Dialect::Fanuc, machine_kind: MachineKind::Lathe, choice: Choice::Default, evidence };
+    match given {
+        Some(dialect) => {
+            detection.dialect = dialect;
+            detection.choice = Choice::Given;
+        }
+        None => {
+            let osp = detection.score(Dialect::Osp);
+            let fanuc = detection.score(Dialect::Fanuc);
+            if osp > 0 || fanuc > 0 {
+                detection.choice = Choice::Detected;
+                detection.dialect = if osp > fanuc { Dialect::Osp } else { Dialect::Fanuc };
+            }
+        }
+    }
+    detection.machine_kind = match kind {
+        Some(kind) => kind,
+        None if detection.dialect == Dialect::Osp && !detection.evidence_for(Leaning::MachiningCentre).is_empty() => {
+            MachineKind::MachiningCentre
+        }
+        None => MachineKind::Lathe,
+    };
+    detection
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,779 @@
+//! The dialect tables of `grammar/*.toml`, compiled once into lookup structures.
+//!
+//! The TOML files are the normative statement of each dialect; this module only reads them.
+//! Lookups on the parser's hot path (address letters, G-codes) are array indexes.
+
+use std::collections::{BTreeMap, HashMap};
+use std::fmt;
+use std::str::FromStr;
+use std::sync::OnceLock;
+
+use serde::Deserialize;
+
+use super::{Dialect, DialectConfig, GCodeSystem, MachineKind};
+
+const FANUC_TOML: &str = include_str!("../../grammar/fanuc.toml");
+const OSP_TOML: &str = include_str!("../../grammar/osp.toml");
+
+/// An address: a letter `A`–`Z`, or an OSP two-letter extended address such as `XA`.
+///
+/// Stored as one `u16` so that words stay small: 0–25 are letters, from 26 on a letter pair.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Address(u16);
+
+impl Address {
+    pub const fn letter(letter: u8) -> Address {
+        Address((letter - b'A') as u16)
+    }
+
+    pub const fn extended(first: u8, second: u8) -> Address {
+        Address(26 + (first - b'A') as u16 * 26 + (second - b'A') as u16)
+    }
+
+    pub fn is_letter(self) -> bool {
+        self.0 < 26
+    }
+
+    /// The letter of a one-letter address.
+    pub fn as_letter(self) -> Option<u8> {
+        if self.is_letter() { Some(b'A' + self.0 as u8) } else { None }
+    }
+
+    /// The address as it is written: one or two bytes.
+    pub fn bytes(self) -> ([u8; 2], usize) {
+        if self.0 < 26 {
+            ([b'A' + self.0 as u8, 0], 1)
+        } else {
+            let pair = self.0 - 26;
+            ([b'A' + (pair / 26) as u8, b'A' + (pair % 26) as u8], 2)
+        }
+    }
+
+    pub fn name(self) -> String {
+        let (bytes, len) = self.bytes();
+        String::from_utf8_lossy(&bytes[..len]).into_owned()
+    }
+
+    pub const A: Address = Address::letter(b'A');
+    pub const B: Address = Address::letter(b'B');
+    pub const C: Address = Address::letter(b'C');
+    pub const D: Address = Address::letter(b'D');
+    pub const E: Address = Address::letter(b'E');
+    pub const F: Address = Address::letter(b'F');
+    pub const G: Address = Address::letter(b'G');
+    pub const H: Address = Address::letter(b'H');
+    pub const I: Address = Address::letter(b'I');
+    pub const J: Address = Address::letter(b'J');
+    pub const K: Address = Address::letter(b'K');
+    pub const L: Address = Address::letter(b'L');
+    pub const M: Address = Address::letter(b'M');
+    pub const N: Address = Address::letter(b'N');
+    pub const O: Address = Address::letter(b'O');
+    pub const P: Address = Address::letter(b'P');
+    pub const Q: Address = Address::letter(b'Q');
+    pub const R: Address = Address::letter(b'R');
+    pub const S: Address = Address::letter(b'S');
+    pub const T: Address = Address::letter(b'T');
+    pub const U: Address = Address::letter(b'U');
+    pub const V: Address = Address::letter(b'V');
+    pub const W: Address = Address::letter(b'W');
+    pub const X: Address = Address::letter(b'X');
+    pub const Y: Address = Address::letter(b'Y');
+    pub const Z: Address = Address::letter(b'Z');
+}
+
+impl fmt::Debug for Address {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.name())
+    }
+}
+
+impl fmt::Display for Address {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.name())
+    }
+}
+
+impl FromStr for Address {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.as_bytes() {
+            [a] if a.is_ascii_uppercase() => Ok(Address::letter(*a)),
+            [a, b] if a.is_ascii_uppercase() && b.is_ascii_uppercase() => Ok(Address::extended(*a, *b)),
+            _ => Err(format!("`{s}` is not an address")),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Address {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let text = String::deserialize(deserializer)?;
+        text.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+/// A G or M code in tenths, so `G12.1` is 121 and `G01` is 10.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Code(pub u16);
+
+impl Code {
+    pub const fn whole(number: u16) -> Code {
+        Code(number * 10)
+    }
+
+    pub fn major(self) -> u16 {
+        self.0 / 10
+    }
+
+    pub fn minor(self) -> u16 {
+        self.0 % 10
+    }
+
+    /// The code written the way machinists write it: at least two digits, `G01`, `G12.1`.
+    pub fn display(self, letter: char) -> String {
+        if self.minor() == 0 {
+            format!("{letter}{:02}", self.major())
+        } else {
+            format!("{letter}{:02}.{}", self.major(), self.minor())
+        }
+    }
+
+    /// The largest code the tables can hold: three digits and a tenth.
+    pub const MAX: u16 = 9999;
+}
+
+impl fmt::Debug for Code {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.display('#'))
+    }
+}
+
+fn parse_code(text: &str) -> Result<(char, Code), String> {
+    let mut chars = text.chars();
+    let letter = chars.next().ok_or("empty code")?;
+    let rest = chars.as_str();
+    let (major, minor) = match rest.split_once('.') {
+        Some((major, minor)) => (major, minor),
+        None => (rest, "0"),
+    };
+    let major: u16 = major.parse().map_err(|_| format!("bad code `{text}`"))?;
+    let minor: u16 = minor.parse().map_err(|_| format!("bad code `{text}`"))?;
+    if major > 999 || minor > 9 {
+        return Err(format!("code `{text}` out of range"));
+    }
+    Ok((letter, Code(major * 10 + minor)))
+}
+
+/// How a value of an address reads (decimal point meaning, canonical format).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AddressKind {
+    /// A length: decimal point meaningful, scaled by the least increment when absent on
+    /// least-increment controls.
+    Length,
+    Feed,
+    Angle,
+    Speed,
+    Tool,
+    Code,
+    /// A count, a sequence number or a value in least increments: no decimal point.
+    Integer,
+    /// Depends on the command.
+    Number,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+pub struct AddressSpec {
+    pub kind: AddressKind,
+    #[serde(default = "default_max_digits")]
+    pub max_digits: usize,
+    pub meaning: String,
+}
+
+fn default_max_digits() -> usize {
+    8
+}
+
+/// The typed role of a word in a command, as the schemas of `grammar/` name it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    AllowanceX,
+    AllowanceZ,
+    BottomRelief,
+    Chamfer,
+    ConditionDepthA,
+    ConditionDepthB,
+    ConditionFeedA,
+    ConditionFeedB,
+    ConditionXA,
+    ConditionXB,
+    ConditionZA,
+    ConditionZB,
+    ContourFeed,
+    ContourName,
+    CornerSize,
+    DepthOfCut,
+    Divisions,
+    DwellMilliseconds,
+    DwellSeconds,
+    EndC,
+    EndOffset,
+    EndX,
+    EndY,
+    EndZ,
+    Feed,
+    FinishAllowance,
+    FirstDepth,
+    IncrementalC,
+    IncrementalX,
+    IncrementalY,
+    IncrementalZ,
+    InfeedAngle,
+    InfeedMode,
+    InfeedPattern,
+    Lead,
+    LeadChange,
+    MaxSpindleSpeed,
+    MinDepth,
+    NoReturn,
+    OffsetGroup,
+    PeckDepth,
+    PeckRetract,
+    Phase,
+    ProfileEnd,
+    ProfileStart,
+    ReferenceNumber,
+    Relief,
+    ReliefX,
+    ReliefZ,
+    Retract,
+    RoughAllowanceX,
+    RoughAllowanceZ,
+    ShiftAngle,
+    ShiftX,
+    ShiftZ,
+    Speed,
+    StartShift,
+    Starts,
+    StepX,
+    StepZ,
+    Taper,
+    TaperAngle,
+    ThreadChamfer,
+    ThreadHeight,
+    ThreadParameters,
+    ThreadsPerInch,
+    Tool,
+    ToolAngle,
+    ToolGroup,
+    TypeIi,
+    WorkCoordinateNumber,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ModalGroup {
+    Motion,
+    OneShot,
+    Plane,
+    Units,
+    Distance,
+    FeedMode,
+    SpindleMode,
+    NoseRadius,
+    WorkOffset,
+    Polar,
+    StrokeCheck,
+    SpindleCheck,
+    PathMode,
+    MacroModal,
+    Drilling,
+    ReturnLevel,
+    Turret,
+    Droop,
+    Corner,
+    Lap,
+    ToolLength,
+    CssTurret,
+    SpindleSelect,
+    LiveToolCycle,
+}
+
+/// What a G-code does to the block it is in; the statement of a block follows from it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GKind {
+    Motion,
+    ThreadMove,
+    Cycle,
+    LapCall,
+    LapMarker,
+    Dwell,
+    OneShot,
+    Modal,
+    Corner,
+}
+
+impl GKind {
+    /// Which G-code names a block's statement when several share the block: a cycle outranks
+    /// a one-shot, which outranks a plain motion.
+    pub fn rank(self) -> u8 {
+        match self {
+            GKind::Cycle | GKind::LapCall | GKind::LapMarker => 5,
+            GKind::Dwell => 4,
+            GKind::OneShot => 3,
+            GKind::ThreadMove => 2,
+            GKind::Motion => 1,
+            GKind::Modal | GKind::Corner => 0,
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct GInfo {
+    pub code: Code,
+    pub group: ModalGroup,
+    pub kind: GKind,
+    pub schema: Option<SchemaId>,
+    pub meaning: String,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SchemaId(pub u16);
+
+/// Where a code this configuration lacks does exist.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Elsewhere {
+    pub meaning: String,
+    pub place: Place,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Place {
+    GCodeSystem(GCodeSystem),
+    OspMachiningCentre,
+    OspLathe,
+}
+
+#[derive(Debug, Clone)]
+pub struct Schema {
+    pub name: String,
+    pub forms: Vec<Form>,
+}
+
+/// One form of a command: which words select it, and the role of each word.
+#[derive(Debug, Clone, Deserialize)]
+pub struct Form {
+    pub name: String,
+    #[serde(default)]
+    pub when_all: Vec<Address>,
+    #[serde(default)]
+    pub when_any: Vec<Address>,
+    #[serde(default)]
+    pub words: BTreeMap<Address, Role>,
+    #[serde(default)]
+    pub integer: Vec<Address>,
+    #[serde(default)]
+    pub required: Vec<Address>,
+    #[serde(default)]
+    pub required_any: Vec<Vec<Address>>,
+    /// M codes that are parameters of the command (`M32` infeed mode in an OSP G71), by number.
+    #[serde(default)]
+    pub m_words: BTreeMap<String, Role>,
+    #[serde(default)]
+    pub g_words: Vec<String>,
+    /// The role of an `N` operand (`G85 N0207`).
+    #[serde(default)]
+    pub labels: Option<Role>,
+    /// Commands whose arguments are free (`G65 P9010 A1 B2`).
+    #[serde(default)]
+    pub any_words: bool,
+}
+
+impl Form {
+    pub fn role_of(&self, address: Address) -> Option<Role> {
+        self.words.get(&address).copied()
+    }
+
+    pub fn m_role(&self, m_code: u16) -> Option<Role> {
+        self.m_words.iter().find(|(k, _)| k.parse::<u16>().ok() == Some(m_code)).map(|(_, r)| *r)
+    }
+
+    pub fn takes_integer(&self, address: Address) -> bool {
+        self.integer.contains(&address)
+    }
+
+    /// Whether the words present (by address) select this form.
+    pub fn matches(&self, present: impl Fn(Address) -> bool) -> bool {
+        self.when_all.iter().all(|&a| present(a))
+            && (self.when_any.is_empty() || self.when_any.iter().any(|&a| present(a)))
+    }
+
+    /// The allowed addresses, for "it takes …" hints.
+    pub fn allowed_list(&self) -> String {
+        let mut names: Vec<String> = self.words.keys().map(|a| format!("`{a}`")).collect();
+        if self.labels.is_some() {
+            names.insert(0, "`N`".to_string());
+        }
+        names.join(", ")
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum KeywordKind {
+    If,
+    Goto,
+    Then,
+    While,
+    Do,
+    EndLoop,
+    Call,
+    Return,
+    ModalCall,
+    ModalCallEnd,
+    Io,
+    Schedule,
+    Graphics,
+    Pattern,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum KeywordArgs {
+    #[default]
+    Words,
+    Verbatim,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MachineScope {
+    Lathe,
+    Mc,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+pub struct KeywordInfo {
+    pub kind: KeywordKind,
+    #[serde(default)]
+    pub args: KeywordArgs,
+    #[serde(default)]
+    pub machine: Option<MachineScope>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SequenceStyle {
+    Numeric,
+    Osp,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SemicolonRule {
+    EndOfBlock,
+    NotAComment,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VariableStyle {
+    Hash,
+    Osp,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+pub struct Lexical {
+    pub sequence: SequenceStyle,
+    pub sequence_max: usize,
+    pub program_name: SequenceStyle,
+    pub program_name_max: usize,
+    pub semicolon: SemicolonRule,
+    pub continuation: bool,
+    pub variables: VariableStyle,
+    pub extended_addresses: bool,
+    pub space_before_value: bool,
+    pub block_delete_levels: bool,
+    pub mid_block_skip: bool,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+pub struct ExpressionRules {
+    pub functions: Vec<String>,
+    pub comparisons: Vec<String>,
+    pub logic: Vec<String>,
+    pub arithmetic_words: Vec<String>,
+    pub max_depth: usize,
+}
+
+#[derive(Debug, Deserialize)]
+struct RawG {
+    code: Option<String>,
+    a: Option<String>,
+    b: Option<String>,
+    c: Option<String>,
+    group: ModalGroup,
+    kind: GKind,
+    schema: Option<String>,
+    meaning: String,
+    machine: Option<MachineScope>,
+}
+
+#[derive(Debug, Deserialize)]
+struct RawSchema {
+    form: Vec<Form>,
+}
+
+#[derive(Debug, Deserialize)]
+struct RawDialect {
+    #[allow(dead_code)]
+    dialect: Dialect,
+    title: String,
+    lexical: Lexical,
+    address: BTreeMap<String, AddressSpec>,
+    #[serde(default)]
+    extended: BTreeMap<String, AddressSpec>,
+    expression: ExpressionRules,
+    keywords: BTreeMap<String, KeywordInfo>,
+    g: Vec<RawG>,
+    m: BTreeMap<String, String>,
+    #[serde(default)]
+    foreign_g: BTreeMap<String, String>,
+    schema: BTreeMap<String, RawSchema>,
+}
+
+/// The compiled tables of one dialect configuration.
+#[derive(Debug)]
+pub struct Tables {
+    pub config: DialectConfig,
+    pub title: String,
+    pub lexical: Lexical,
+    pub expression: ExpressionRules,
+    letters: [Option<AddressSpec>; 26],
+    extended: Vec<(Address, AddressSpec)>,
+    keywords: Vec<(String, KeywordInfo)>,
+    g_index: Vec<u16>,
+    g_infos: Vec<GInfo>,
+    /// Codes this configuration lacks but a sibling has (another G-code system, or the other
+    /// OSP machine kind), for hints.
+    g_elsewhere: HashMap<Code, Elsewhere>,
+    /// Codes of the other dialect, with a note on what to write instead.
+    foreign_g: HashMap<Code, String>,
+    m: HashMap<u16, String>,
+    schemas: Vec<Schema>,
+}
+
+impl Tables {
+    pub fn address(&self, address: Address) -> Option<&AddressSpec> {
+        if let Some(letter) = address.as_letter() {
+            self.letters[(letter - b'A') as usize].as_ref()
+        } else {
+            self.extended.iter().find(|(a, _)| *a == address).map(|(_, spec)| spec)
+        }
+    }
+
+    pub fn extended_address(&self, name: &[u8]) -> Option<Address> {
+        if let [a, b] = name {
+            let address = Address::extended(*a, *b);
+            if self.extended.iter().any(|(x, _)| *x == address) {
+                return Some(address);
+            }
+        }
+        None
+    }
+
+    pub fn keyword(&self, name: &[u8]) -> Option<(usize, &KeywordInfo)> {
+        let index = self.keywords.binary_search_by(|(k, _)| k.as_bytes().cmp(name)).ok()?;
+        Some((index, &self.keywords[index].1))
+    }
+
+    pub fn keyword_name(&self, index: usize) -> &str {
+        &self.keywords[index].0
+    }
+
+    pub fn keyword_info(&self, index: usize) -> &KeywordInfo {
+        &self.keywords[index].1
+    }
+
+    pub fn g(&self, code: Code) -> Option<&GInfo> {
+        let slot = *self.g_index.get(code.0 as usize)?;
+        if slot == 0 { None } else { Some(&self.g_infos[slot as usize - 1]) }
+    }
+
+    pub fn g_elsewhere(&self, code: Code) -> Option<&Elsewhere> {
+        self.g_elsewhere.get(&code)
+    }
+
+    pub fn foreign_g(&self, code: Code) -> Option<&str> {
+        self.foreign_g.get(&code).map(String::as_str)
+    }
+
+    pub fn m_meaning(&self, code: u16) -> Option<&str> {
+        self.m.get(&code).map(String::as_str)
+    }
+
+    pub fn schema(&self, id: SchemaId) -> &Schema {
+        &self.schemas[id.0 as usize]
+    }
+
+    pub fn function_index(&self, name: &[u8]) -> Option<usize> {
+        self.expression.functions.iter().position(|f| f.as_bytes() == name)
+    }
+
+    pub fn g_infos(&self) -> &[GInfo] {
+        &self.g_infos
+    }
+}
+
+/// The tables of a configuration, compiled on first use.
+pub fn tables(config: DialectConfig) -> &'static Tables {
+    static CACHE: [OnceLock<Tables>; 5] = [const { OnceLock::new() }; 5];
+    let (slot, normalised) = match config.dialect {
+        Dialect::Fanuc => {
+            let slot = match config.gcode_system {
+                GCodeSystem::A => 0,
+                GCodeSystem::B => 1,
+                GCodeSystem::C => 2,
+            };
+            (slot, DialectConfig::new(Dialect::Fanuc, config.gcode_system, MachineKind::Lathe))
+        }
+        Dialect::Osp => {
+            let slot = if config.machine_kind == MachineKind::Lathe { 3 } else { 4 };
+            (slot, DialectConfig::new(Dialect::Osp, GCodeSystem::A, config.machine_kind))
+        }
+    };
+    CACHE[slot].get_or_init(|| compile(normalised))
+}
+
+fn compile(config: DialectConfig) -> Tables {
+    let text = match config.dialect {
+        Dialect::Fanuc => FANUC_TOML,
+        Dialect::Osp => OSP_TOML,
+    };
+    // The grammar files are part of the program, not input; `tests::tables_load` proves
+    // every configuration compiles, so a failure here is a build defect.
+    #[allow(clippy::expect_used)]
+    let raw: RawDialect = toml::from_str(text).expect("grammar TOML is valid (tested)");
+
+    let mut letters: [Option<AddressSpec>; 26] = Default::default();
+    for (name, spec) in &raw.address {
+        if let [letter] = name.as_bytes() {
+            letters[(letter - b'A') as usize] = Some(spec.clone());
+        }
+    }
+    let extended = raw
+        .extended
+        .iter()
+        .filter_map(|(name, spec)| name.parse::<Address>().ok().map(|a| (a, spec.clone())))
+        .collect();
+
+    let scope_applies = |machine: Option<MachineScope>| {
+        matches!(
+            (machine, config.machine_kind),
+            (None, _)
+                | (Some(MachineScope::Lathe), MachineKind::Lathe)
+                | (Some(MachineScope::Mc), MachineKind::MachiningCentre)
+        )
+    };
+    let mut keywords: Vec<(String, KeywordInfo)> = raw
+        .keywords
+        .iter()
+        .filter(|(_, info)| scope_applies(info.machine))
+        .map(|(name, info)| (name.clone(), info.clone()))
+        .collect();
+    keywords.sort_by(|a, b| a.0.cmp(&b.0));
+
+    let schema_names: Vec<&String> = raw.schema.keys().collect();
+    let schemas: Vec<Schema> =
+        raw.schema.iter().map(|(name, s)| Schema { name: name.clone(), forms: s.form.clone() }).collect();
+
+    let code_for = |g: &RawG, system: GCodeSystem| -> Option<String> {
+        if let Some(code) = &g.code {
+            return Some(code.clone());
+        }
+        match system {
+            GCodeSystem::A => g.a.clone(),
+            GCodeSystem::B => g.b.clone(),
+            GCodeSystem::C => g.c.clone(),
+        }
+    };
+
+    let mut g_index = vec![0u16; Code::MAX as usize + 1];
+    let mut g_infos = Vec::new();
+    let mut g_elsewhere = HashMap::new();
+    for g in &raw.g {
+        let mine = if config.dialect == Dialect::Fanuc {
+            code_for(g, config.gcode_system)
+        } else if scope_applies(g.machine) {
+            g.code.clone()
+        } else {
+            None
+        };
+        match mine {
+            Some(text) => {
+                let Ok((_, code)) = parse_code(&text) else { continue };
+                let schema = g
+                    .schema
+                    .as_ref()
+                    .and_then(|s| schema_names.iter().position(|n| *n == s))
+                    .map(|i| SchemaId(i as u16));
+                g_infos.push(GInfo { code, group: g.group, kind: g.kind, schema, meaning: g.meaning.clone() });
+                g_index[code.0 as usize] = g_infos.len() as u16;
+            }
+            None => {
+                // Remember where else this function lives, for hints on foreign codes.
+                let others: Vec<(String, Place)> = if config.dialect == Dialect::Fanuc {
+                    [GCodeSystem::A, GCodeSystem::B, GCodeSystem::C]
+                        .into_iter()
+                        .filter_map(|s| code_for(g, s).map(|c| (c, Place::GCodeSystem(s))))
+                        .collect()
+                } else {
+                    let place = match g.machine {
+                        Some(MachineScope::Mc) => Place::OspMachiningCentre,
+                        _ => Place::OspLathe,
+                    };
+                    g.code.iter().map(|c| (c.clone(), place)).collect()
+                };
+                for (text, place) in others {
+                    if let Ok((_, code)) = parse_code(&text) {
+                        g_elsewhere.entry(code).or_insert(Elsewhere { meaning: g.meaning.clone(), place });
+                    }
+                }
+            }
+        }
+    }
+    // A code that this configuration has is not "elsewhere".
+    g_elsewhere.retain(|code, _| g_index[code.0 as usize] == 0);
+
+    let foreign_g = raw
+        .foreign_g
+        .iter()
+        .filter_map(|(name, note)| parse_code(name).ok().map(|(_, code)| (code, note.clone())))
+        .collect();
+    let m = raw
+        .m
+        .iter()
+        .filter_map(|(name, meaning)| parse_code(name).ok().map(|(_, code)| (code.major(), meaning.clone())))
+        .collect();
+
+    Tables {
+        config,
+        title: raw.title,
+        lexical: raw.lexical,
+        expression: raw.expression,
+        letters,
+        extended,
+        keywords,
+        g_index,
+        g_infos,
+        g_elsewhere,
+        foreign_g,
+        m,
+        schemas,
+    }
+}
+
+#[cfg(test)]
+mod tests;

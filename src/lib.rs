@@ -1,0 +1,20 @@
+//! turnpass: a compiler pass for CNC lathe programs in the Okuma OSP and Fanuc-compatible
+//! dialects.
+//!
+//! ```txt
+//! bytes ─ syntax::parse ─▶ Program (typed AST, spans) ─ printer ─▶ bytes
+//!                              │
+//!                              └─ diagnostics ─ diagnostic::render (codespan, JSON, plain)
+//! ```
+//!
+//! The library does no I/O: the binary (`main.rs`, `cli.rs`) reads and writes files, and
+//! `clippy.toml` bans file-system and environment calls here.
+
+#![deny(clippy::disallowed_methods)]
+
+pub mod diagnostic;
+pub mod dialect;
+pub mod machine;
+pub mod printer;
+pub mod source;
+pub mod syntax;

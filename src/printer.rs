@@ -1,0 +1,199 @@
+//! The back end: a program back to text, changing only what was edited.
+//!
+//! **Invariant: untouched blocks print byte-identical.** [`print`] copies every block that no
+//! edit replaced, with its own line terminator, straight from the source; only the blocks in
+//! [`Edits`] are written anew, in the program's [`ProgramStyle`]. With no edits the output is
+//! the input, whatever its encoding, line endings or damage.
+//!
+//! [`canonical::print_canonical`] is the other mode: every parsed block rewritten in one
+//! normal form (`fmt --canonical`).
+
+pub mod canonical;
+pub mod edit;
+pub mod number;
+pub mod style;
+
+pub use canonical::{CanonicalOptions, print_canonical};
+pub use edit::{Edits, NewBlock, NewWord};
+pub use style::ProgramStyle;
+
+use crate::dialect::{Address, AddressKind, Dialect};
+use crate::syntax::{CodeLetter, Number, Program};
+
+use number::{Style as NumberStyle, write_number};
+use style::WholeNumbers;
+
+/// Print `program` with `edits` applied.
+pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
+    let source = program.source();
+    let mut out = Vec::with_capacity(source.len() + source.len() / 16);
+    if edits.is_empty() {
+        for (index, block) in program.blocks().iter().enumerate() {
+            let next = program.blocks().get(index + 1).map_or(source.len(), |b| b.span.start as usize);
+            out.extend_from_slice(&source[block.span.start as usize..next]);
+        }
+        return out;
+    }
+    let style = ProgramStyle::infer(program);
+    let mut writer = Writer { program, style: &style, out: &mut out, open_line: false };
+    for (index, block) in program.blocks().iter().enumerate() {
+        let edit = edits.get(index);
+        if let Some(edit) = edit {
+            for new in &edit.before {
+                writer.new_line(new);
+            }
+        }
+        match edit.and_then(|e| e.replacement.as_ref()) {
+            None => writer.original(block.span.range(), program.terminator(index)),
+            Some(replacement) => {
+                for (k, new) in replacement.iter().enumerate() {
+                    if k + 1 == replacement.len() {
+                        writer.start_line();
+                        writer.block_text(new);
+                        writer.end_with(program.terminator(index));
+                    } else {
+                        writer.new_line(new);
+                    }
+                }
+            }
+        }
+        if let Some(edit) = edit {
+            for new in &edit.after {
+                writer.new_line(new);
+            }
+        }
+    }
+    out
+}
+
+/// Print `program` with `edits` applied, as text (lossy where the source is not UTF-8).
+pub fn print_string(program: &Program<'_>, edits: &Edits) -> String {
+    String::from_utf8_lossy(&print(program, edits)).into_owned()
+}
+
+struct Writer<'w, 'p, 'src> {
+    program: &'p Program<'src>,
+    style: &'w ProgramStyle,
+    out: &'w mut Vec<u8>,
+    /// The last line written has no terminator yet (the source's last line had none).
+    open_line: bool,
+}
+
+impl Writer<'_, '_, '_> {
+    fn start_line(&mut self) {
+        if self.open_line {
+            self.out.extend_from_slice(self.style.line_ending.as_bytes());
+            self.open_line = false;
+        }
+    }
+
+    fn original(&mut self, range: std::ops::Range<usize>, terminator: &[u8]) {
+        self.start_line();
+        self.out.extend_from_slice(&self.program.source()[range]);
+        self.end_with(terminator);
+    }
+
+    fn end_with(&mut self, terminator: &[u8]) {
+        self.out.extend_from_slice(terminator);
+        self.open_line = terminator.is_empty();
+    }
+
+    fn new_line(&mut self, block: &NewBlock) {
+        self.start_line();
+        self.block_text(block);
+        self.out.extend_from_slice(self.style.line_ending.as_bytes());
+    }
+
+    fn block_text(&mut self, block: &NewBlock) {
+        let mut text = String::new();
+        write_new_block(&mut text, self.program, self.style, block);
+        self.out.extend_from_slice(text.as_bytes());
+    }
+}
+
+/// Write a new block in `style`.
+pub fn write_new_block(out: &mut String, program: &Program<'_>, style: &ProgramStyle, block: &NewBlock) {
+    let separator = style.word_separator();
+    let mut first = true;
+    if let Some(sequence) = &block.sequence {
+        out.push_str(sequence);
+        // OSP requires a blank after the sequence name.
+        out.push_str(if style.dialect == Dialect::Osp { " " } else { separator });
+        first = true;
+    }
+    for word in &block.words {
+        if !first {
+            out.push_str(separator);
+        }
+        first = false;
+        match word {
+            NewWord::Code(letter, code) => write_code(out, *letter, code.major(), code.minor(), style.two_digit_codes),
+            NewWord::Number(address, number) => write_address_number(out, program, style, *address, *number),
+            NewWord::Copy(id) => out.push_str(&String::from_utf8_lossy(program.text(program.word(*id).span))),
+            NewWord::Comment(text) => {
+                out.push('(');
+                out.push_str(text);
+                out.push(')');
+            }
+        }
+    }
+}
+
+pub(crate) fn write_code(out: &mut String, letter: CodeLetter, major: u16, minor: u16, two_digits: bool) {
+    out.push(letter.as_char());
+    if two_digits {
+        out.push_str(&format!("{major:02}"));
+    } else {
+        out.push_str(&major.to_string());
+    }
+    if minor != 0 {
+        out.push('.');
+        out.push_str(&minor.to_string());
+    }
+}
+
+fn write_address_number(
+    out: &mut String,
+    program: &Program<'_>,
+    style: &ProgramStyle,
+    address: Address,
+    number: Number,
+) {
+    out.push_str(&address.name());
+    if !address.is_letter() {
+        out.push('=');
+    }
+    let kind = program.config().tables().address(address).map(|s| s.kind);
+    match kind {
+        Some(AddressKind::Length | AddressKind::Angle | AddressKind::Feed) => {
+            let mut number = number;
+            let is_length = kind != Some(AddressKind::Feed);
+            if is_length
+                && let Some(places) = style.fixed_decimals
+                && number.scale < places
+            {
+                let extra = (places - number.scale) as u32;
+                number.mantissa = number.mantissa.saturating_mul(10i64.pow(extra));
+                number.scale = places;
+            }
+            let whole = number.scale == 0 || number.mantissa % 10i64.pow(number.scale as u32) == 0;
+            let fixed = is_length && style.fixed_decimals.is_some();
+            let number_style = NumberStyle {
+                leading_zero: !style.suppress_leading_zero,
+                force_point: !(whole && style.whole_numbers == WholeNumbers::NoPoint && !fixed),
+                as_written: false,
+                trim_zeros: !fixed,
+            };
+            write_number(out, number, number_style);
+            if whole && !fixed && style.whole_numbers == WholeNumbers::PointZero {
+                out.push('0');
+            }
+        }
+        Some(AddressKind::Tool) => {
+            let digits = number.mantissa.unsigned_abs().to_string();
+            let width = if digits.len() <= 4 { 4 } else { 6 };
+            out.push_str(&format!("{digits:0>width$}"));
+        }
+        _ => write_number(out, number, NumberStyle::AS_WRITTEN),
+    }
+}

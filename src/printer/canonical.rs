@@ -1,0 +1,266 @@
+//! `fmt --canonical`: every parsed block in one normal form.
+//!
+//! One word order (sequence, G-codes, contour label, axes, centre and radius, other
+//! parameters, F S T, M codes, assignments, comments), one space between words, two-digit
+//! codes, and a decimal point on every length, angle and feed. On a least-increment Fanuc
+//! control a length written without a point counts increments, so `X105` becomes `X0.105`
+//! at 0.001 mm: the normal form says what the machine reads. Invalid blocks, headers and the
+//! text after the closing `%` are copied as they are. Printing the output again gives the
+//! same output (idempotence is tested).
+//!
+//! Words after a Fanuc mid-block `/` stay after it: the slash skips them when block delete
+//! is on, so moving a word across it would change the program.
+
+use crate::dialect::{Address, AddressKind, DecimalInput, Dialect, Tables};
+use crate::syntax::{
+    CodeLetter, CommentKind, ExprId, ExprKind, Number, NumberFlags, Program, Statement, UnaryOp, Variable, Word,
+    WordKind,
+};
+
+use super::number::{Style as NumberStyle, write_number};
+use super::write_code;
+
+/// Machine settings the normal form depends on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CanonicalOptions {
+    pub decimal_input: DecimalInput,
+    /// Decimal places of the least increment (3 for 0.001 mm, 4 for 0.0001 in).
+    pub increment_places: u8,
+}
+
+pub fn print_canonical(program: &Program<'_>, options: &CanonicalOptions) -> Vec<u8> {
+    let source = program.source();
+    let mut out = Vec::with_capacity(source.len());
+    let mut line = String::new();
+    for (index, block) in program.blocks().iter().enumerate() {
+        match block.statement {
+            Statement::Invalid | Statement::Trailing | Statement::Header => {
+                out.extend_from_slice(block.span.text(source));
+            }
+            _ => {
+                line.clear();
+                write_block(&mut line, program, program.words_of(block), options);
+                out.extend_from_slice(line.as_bytes());
+            }
+        }
+        out.extend_from_slice(program.terminator(index));
+    }
+    out
+}
+
+/// Sort key of a word in the normal form.
+fn rank(word: &Word) -> (u8, u16) {
+    match word.kind {
+        WordKind::TapeMark | WordKind::Header => (0, 0),
+        WordKind::ProgramName => (0, 1),
+        WordKind::BlockDelete { .. } => (1, 0),
+        WordKind::Sequence { .. } => (2, 0),
+        WordKind::Code { letter: CodeLetter::G, .. } => (3, 0),
+        WordKind::Label { .. } => (4, 0),
+        WordKind::Number { address, .. } | WordKind::Expr { address, .. } => (5, address_order(address)),
+        WordKind::Code { letter: CodeLetter::M, .. } => (6, 0),
+        WordKind::Assign { .. } => (7, 0),
+        WordKind::Comment(CommentKind::Paren) => (8, 0),
+        WordKind::Comment(CommentKind::Semicolon) => (9, 0),
+        // Keyword statements keep their order; see `write_block`.
+        WordKind::Keyword { .. } | WordKind::Operand { .. } | WordKind::ProgramRef | WordKind::Verbatim => (3, 0),
+        WordKind::OptionalSkip { .. } => (10, 0),
+    }
+}
+
+/// Axes first (X U Y V Z W C H A B), then centre and radius (I J K R L), then the remaining
+/// letters, the two-letter addresses, and F S T last.
+fn address_order(address: Address) -> u16 {
+    const ORDER: &[u8] = b"XUYVZWCHABIJKRLDEPQ";
+    match address.as_letter() {
+        Some(b'F') => 900,
+        Some(b'S') => 901,
+        Some(b'T') => 902,
+        Some(letter) => match ORDER.iter().position(|&c| c == letter) {
+            Some(p) => p as u16,
+            None => 100 + letter as u16,
+        },
+        None => {
+            let (bytes, _) = address.bytes();
+            500 + (bytes[0] - b'A') as u16 * 26 + (bytes[1] - b'A') as u16
+        }
+    }
+}
+
+fn write_block(out: &mut String, program: &Program<'_>, words: &[Word], options: &CanonicalOptions) {
+    let keyword_statement = words.iter().any(|w| matches!(w.kind, WordKind::Keyword { .. }));
+    // Split at a mid-block skip: each part is ordered on its own.
+    let split = words.iter().position(|w| matches!(w.kind, WordKind::OptionalSkip { .. })).unwrap_or(words.len());
+    let mut first = true;
+    for part in [&words[..split], &words[split..]] {
+        let mut ordered: Vec<&Word> = part.iter().collect();
+        if keyword_statement {
+            ordered.sort_by_key(|w| match w.kind {
+                WordKind::Comment(_) => rank(w),
+                _ => (rank(w).0.min(3), 0),
+            });
+        } else {
+            ordered.sort_by_key(|w| rank(w));
+        }
+        // The skip itself leads its part.
+        ordered.sort_by_key(|w| !matches!(w.kind, WordKind::OptionalSkip { .. }));
+        for word in ordered {
+            if !first {
+                out.push(' ');
+            }
+            first = false;
+            write_word(out, program, word, options);
+        }
+    }
+}
+
+fn write_word(out: &mut String, program: &Program<'_>, word: &Word, options: &CanonicalOptions) {
+    let tables = program.config().tables();
+    let text = || String::from_utf8_lossy(program.text(word.span)).into_owned();
+    match word.kind {
+        WordKind::Sequence { number } => match (program.config().dialect, number) {
+            (Dialect::Fanuc, Some(n)) => out.push_str(&format!("N{n}")),
+            _ => out.push_str(&text()),
+        },
+        WordKind::BlockDelete { level } | WordKind::OptionalSkip { level } => {
+            out.push('/');
+            if level > 1 {
+                out.push_str(&level.to_string());
+            }
+        }
+        WordKind::TapeMark => out.push('%'),
+        WordKind::Comment(CommentKind::Semicolon) => out.push_str(text().trim_end()),
+        WordKind::Header
+        | WordKind::ProgramName
+        | WordKind::Comment(_)
+        | WordKind::Label { .. }
+        | WordKind::ProgramRef
+        | WordKind::Verbatim => out.push_str(&text()),
+        WordKind::Code { letter, code } => write_code(out, letter, code.major(), code.minor(), true),
+        WordKind::Number { address, number } => {
+            let kind = tables.address(address).map(|s| s.kind);
+            if matches!(kind, Some(AddressKind::Length | AddressKind::Angle | AddressKind::Feed | AddressKind::Speed)) {
+                out.push_str(&address.name());
+                if !address.is_letter() {
+                    out.push('=');
+                }
+                write_canonical_number(out, tables, address, number, options);
+            } else {
+                // Tool words, counts and codes keep their digits as written (`T0101`,
+                // `P010060`): leading zeros carry meaning to the people who read them.
+                out.extend(text().chars().filter(|c| !c.is_whitespace()));
+            }
+        }
+        WordKind::Expr { address, expr } => {
+            out.push_str(&address.name());
+            if program.config().dialect == Dialect::Osp {
+                out.push('=');
+            }
+            write_expr(out, program, expr);
+        }
+        WordKind::Keyword { index } => out.push_str(tables.keyword_name(index as usize)),
+        WordKind::Operand { expr } => write_expr(out, program, expr),
+        WordKind::Assign { target, value } => {
+            write_expr(out, program, target);
+            out.push('=');
+            write_expr(out, program, value);
+        }
+    }
+}
+
+fn write_canonical_number(
+    out: &mut String,
+    tables: &Tables,
+    address: Address,
+    number: Number,
+    options: &CanonicalOptions,
+) {
+    let kind = tables.address(address).map(|s| s.kind);
+    match kind {
+        Some(AddressKind::Length | AddressKind::Angle | AddressKind::Feed) => {
+            let mut number = number;
+            let increments = tables.config.dialect == Dialect::Fanuc
+                && options.decimal_input == DecimalInput::Increment
+                && kind != Some(AddressKind::Feed);
+            if increments && !number.has_point() {
+                number.scale = number.scale.saturating_add(options.increment_places);
+            }
+            if number.mantissa == 0 {
+                // `-0.` reads as zero; the normal form has one zero.
+                number = Number::new(0, 0, true);
+            }
+            let style = NumberStyle { leading_zero: true, force_point: true, as_written: false, trim_zeros: true };
+            write_number(out, number, style);
+        }
+        Some(AddressKind::Speed) => {
+            let mut number = number;
+            number.flags = NumberFlags::default();
+            if number.mantissa < 0 {
+                number.flags.insert(NumberFlags::MINUS);
+            }
+            let style = NumberStyle { leading_zero: true, force_point: false, as_written: false, trim_zeros: true };
+            write_number(out, number, style);
+        }
+        _ => out.push_str(&super::number::plain(number)),
+    }
+}
+
+/// An expression in normal form: symbols unspaced, word operators spaced, brackets kept.
+pub(crate) fn write_expr(out: &mut String, program: &Program<'_>, id: ExprId) {
+    let tables = program.config().tables();
+    let expr = program.expr(id);
+    match expr.kind {
+        ExprKind::Number(number) => out.push_str(&super::number::plain(number)),
+        ExprKind::Variable(variable) => match variable {
+            Variable::Common(n) => out.push_str(&format!("V{n}")),
+            Variable::Named => out.push_str(&String::from_utf8_lossy(program.text(expr.span))),
+            Variable::Indexed { name, index } => {
+                out.push_str(&String::from_utf8_lossy(program.text(name)));
+                out.push('[');
+                write_expr(out, program, index);
+                out.push(']');
+            }
+            Variable::Hash { index } => {
+                out.push('#');
+                write_expr(out, program, index);
+            }
+        },
+        ExprKind::Unary { op, operand } => {
+            out.push_str(match op {
+                UnaryOp::Minus => "-",
+                UnaryOp::Plus => "+",
+                UnaryOp::Not => "NOT ",
+            });
+            write_expr(out, program, operand);
+        }
+        ExprKind::Binary { op, lhs, rhs } => {
+            write_expr(out, program, lhs);
+            let xor = if program.config().dialect == Dialect::Osp { "EOR" } else { "XOR" };
+            let symbol = op.symbol(xor);
+            if op.is_word() {
+                out.push(' ');
+                out.push_str(symbol);
+                out.push(' ');
+            } else {
+                out.push_str(symbol);
+            }
+            write_expr(out, program, rhs);
+        }
+        ExprKind::Call { function, args, arg_count } => {
+            out.push_str(tables.expression.functions.get(function as usize).map_or("?", String::as_str));
+            out.push('[');
+            for (i, arg) in args.iter().take(arg_count as usize).enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                write_expr(out, program, *arg);
+            }
+            out.push(']');
+        }
+        ExprKind::Group(inner) => {
+            out.push('[');
+            write_expr(out, program, inner);
+            out.push(']');
+        }
+    }
+}
