@@ -86,8 +86,13 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
         exprs: Vec::new(),
         commands: Vec::new(),
     };
-    let mut builder = Builder { program: &mut program, diagnostics: &mut diagnostics, warnings: Vec::new() };
+    let mut builder =
+        Builder { program: &mut program, diagnostics: &mut diagnostics, warnings: Vec::new(), codes: Vec::new() };
     builder.run();
+    // Growth doubles the arenas; give back what the program does not use.
+    program.blocks.shrink_to_fit();
+    program.words.shrink_to_fit();
+    program.exprs.shrink_to_fit();
     diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
     Parsed { program, diagnostics, detection }
 }
@@ -131,17 +136,53 @@ struct Builder<'p, 'src> {
     program: &'p mut Program<'src>,
     diagnostics: &'p mut Vec<Diagnostic>,
     warnings: Vec<Diagnostic>,
+    codes: Vec<(usize, &'static crate::dialect::GInfo)>,
 }
 
-/// The end of the line that starts at `pos` and the start of the next one.
-fn line_end(source: &[u8], pos: usize) -> (usize, usize) {
-    match memchr::memchr2(b'\n', b'\r', &source[pos..]) {
-        Some(i) => {
-            let at = pos + i;
-            let next = if source[at] == b'\r' && source.get(at + 1) == Some(&b'\n') { at + 2 } else { at + 1 };
-            (at, next)
+/// The lines of a source, from one SIMD pass over its line terminators. A line ends at LF, CR
+/// LF, or a CR no LF follows.
+struct Lines<'s> {
+    source: &'s [u8],
+    terminators: memchr::Memchr2<'s>,
+    pos: usize,
+    peeked: Option<(usize, usize, usize)>,
+}
+
+impl<'s> Lines<'s> {
+    fn new(source: &'s [u8]) -> Lines<'s> {
+        Lines { source, terminators: memchr::memchr2_iter(b'\n', b'\r', source), pos: 0, peeked: None }
+    }
+
+    /// The next line as (start, end of text, start of the following line).
+    fn next_line(&mut self) -> Option<(usize, usize, usize)> {
+        if let Some(line) = self.peeked.take() {
+            return Some(line);
         }
-        None => (source.len(), source.len()),
+        let start = self.pos;
+        if start >= self.source.len() {
+            return None;
+        }
+        // The LF of a CR LF pair was consumed with its CR; skip it here.
+        let at = loop {
+            match self.terminators.next() {
+                Some(at) if at < start => continue,
+                other => break other,
+            }
+        };
+        let (end, next) = match at {
+            Some(at) => {
+                let next =
+                    if self.source[at] == b'\r' && self.source.get(at + 1) == Some(&b'\n') { at + 2 } else { at + 1 };
+                (at, next)
+            }
+            None => (self.source.len(), self.source.len()),
+        };
+        self.pos = next;
+        Some((start, end, next))
+    }
+
+    fn unread(&mut self, line: (usize, usize, usize)) {
+        self.peeked = Some(line);
     }
 }
 
@@ -150,30 +191,29 @@ impl<'src> Builder<'_, 'src> {
         let source = self.program.source;
         let tables = self.program.config.tables();
         let osp = self.program.config.dialect == Dialect::Osp;
-        let mut pos = 0;
+        let mut lines = Lines::new(source);
         let mut tape_open = false;
-        while pos < source.len() {
-            let (mut end, mut next) = line_end(source, pos);
-            let line = &source[pos..end];
-            if detect::is_osp_header(line) {
-                self.header(pos, end, osp);
+        while let Some((start, mut end, mut next)) = lines.next_line() {
+            let line = &source[start..end];
+            if line.first() == Some(&b'$') && detect::is_osp_header(line) {
+                self.header(start, end, osp);
                 tape_open = true;
-                pos = next;
                 continue;
             }
             // OSP: lines that start with `$` continue this block.
             if tables.lexical.continuation {
-                while next < source.len() && source[next] == b'$' {
-                    let (continued_end, continued_next) = line_end(source, next);
-                    if detect::is_osp_header(&source[next..continued_end]) {
+                while let Some(following) = lines.next_line() {
+                    let text = &source[following.0..following.1];
+                    if text.first() != Some(&b'$') || detect::is_osp_header(text) {
+                        lines.unread(following);
                         break;
                     }
-                    end = continued_end;
-                    next = continued_next;
+                    end = following.1;
+                    next = following.2;
                 }
             }
             let tape_mark = line.first() == Some(&b'%');
-            self.block(pos, end);
+            self.block(start, end);
             if tape_mark {
                 if tape_open {
                     // Controls stop reading at the closing `%`; keep the rest verbatim.
@@ -184,7 +224,6 @@ impl<'src> Builder<'_, 'src> {
                 }
                 tape_open = true;
             }
-            pos = next;
         }
     }
 
@@ -237,8 +276,12 @@ impl<'src> Builder<'_, 'src> {
             if words.len() > u16::MAX as usize {
                 return Err(Diagnostic::error(DiagnosticKind::SourceTooLarge, span));
             }
-            let mut classifier =
-                Classifier { tables, commands: &mut self.program.commands, warnings: &mut self.warnings };
+            let mut classifier = Classifier {
+                tables,
+                commands: &mut self.program.commands,
+                warnings: &mut self.warnings,
+                codes: &mut self.codes,
+            };
             classifier.classify(words, first_word as u32)
         });
         match result {

@@ -208,6 +208,22 @@ pub fn is_osp_header(line: &[u8]) -> bool {
     rest.iter().all(|c| matches!(c, b' ' | b'\t'))
 }
 
+/// Bytes the scan can pass over without looking: digits, `.`, `-`, `+` and blanks.
+static QUIET: [bool; 256] = {
+    let mut table = [false; 256];
+    let mut c = b'0';
+    while c <= b'9' {
+        table[c as usize] = true;
+        c += 1;
+    }
+    table[b'.' as usize] = true;
+    table[b'-' as usize] = true;
+    table[b'+' as usize] = true;
+    table[b' ' as usize] = true;
+    table[b'\t' as usize] = true;
+    table
+};
+
 struct Collector {
     evidence: Vec<Evidence>,
 }
@@ -242,22 +258,29 @@ pub fn scan(source: &[u8]) -> Vec<Evidence> {
 
 fn scan_line(source: &[u8], start: usize, end: usize, out: &mut Collector) {
     let line = &source[start..end];
-    if is_osp_header(line) {
+    if line.first() == Some(&b'$') && is_osp_header(line) {
         out.add(Feature::OspHeader, start, end);
         return;
     }
-    let mut i = line.iter().take_while(|c| matches!(c, b' ' | b'\t' | b'/')).count();
-    let mut first = true;
+    let first_token = line.iter().position(|c| !matches!(c, b' ' | b'\t' | b'/')).unwrap_or(line.len());
     let mut motion: Option<u32> = None;
     let mut cycle: Option<u32> = None;
     let (mut has_uw, mut has_r, mut has_p, mut has_q, mut has_label, mut has_any_g) =
         (false, false, false, false, false, false);
-    while i < line.len() {
+    let n = line.len();
+    let mut i = first_token;
+    while i < n {
+        // Digits, points, signs and blanks carry no evidence: jump to the next byte that might.
+        match line[i..].iter().position(|&b| !QUIET[b as usize]) {
+            Some(skip) => i += skip,
+            None => break,
+        }
         let c = line[i];
         let at = start + i;
+        let first = i == first_token;
         match c {
             b'(' => {
-                let close = line[i..].iter().position(|&b| b == b')').map_or(line.len(), |p| i + p + 1);
+                let close = line[i..].iter().position(|&b| b == b')').map_or(n, |p| i + p + 1);
                 let text = &line[i..close];
                 if let Some(p) = text.windows(3).position(|w| w == b"OSP") {
                     let digits = text[p + 3..].iter().take_while(|c| c.is_ascii_digit()).count();
@@ -268,120 +291,129 @@ fn scan_line(source: &[u8], start: usize, end: usize, out: &mut Collector) {
                 i = close;
                 continue;
             }
+            b';' => break,
             b'#' => out.add(Feature::HashVariable, at, at + 1),
             b':' if first => out.add(Feature::ColonProgramNumber, at, at + 1),
             b'A'..=b'Z' => {
-                let letters = line[i..].iter().take_while(|c| c.is_ascii_uppercase()).count();
-                let name_len = line[i..].iter().take_while(|c| c.is_ascii_uppercase() || c.is_ascii_digit()).count();
-                let name = &line[i..i + name_len];
-                let after = line.get(i + name_len).copied();
-                if letters >= 2 {
-                    if first && c == b'N' && name_len <= 5 {
-                        out.add(Feature::AlphanumericSequence, at, at + name_len);
-                    } else {
-                        match name {
-                            b"CALL" | b"RTS" | b"MODIN" | b"MODOUT" => out.add(Feature::OspKeyword, at, at + name_len),
-                            b"BHC" | b"LAA" | b"SQRX" | b"SQRY" | b"GRDX" | b"GRDY" | b"DMDX" | b"DMDY" => {
-                                out.add(Feature::HolePattern, at, at + name_len)
-                            }
-                            b"IF" => {
-                                if let Some(close) = line[i..].iter().rposition(|&b| b == b']') {
-                                    let tail = &line[i + close + 1..];
-                                    let tail = &tail[tail.iter().take_while(|c| **c == b' ').count()..];
-                                    if tail.first() == Some(&b'N') {
-                                        out.add(Feature::IfWithoutGoto, at, at + 2);
-                                    }
-                                }
-                            }
-                            _ if after == Some(b'=') || after == Some(b'[') => {
-                                let assigned = after == Some(b'=')
-                                    || line[i + name_len..]
-                                        .iter()
-                                        .position(|&b| b == b']')
-                                        .is_some_and(|p| line.get(i + name_len + p + 1) == Some(&b'='));
-                                if assigned {
-                                    out.add(Feature::NamedVariable, at, at + name_len);
-                                }
-                            }
-                            _ => {}
-                        }
-                    }
-                    i += name_len;
-                    first = false;
+                let next = line.get(i + 1).copied().unwrap_or(b' ');
+                if next.is_ascii_uppercase() {
+                    i += scan_name(line, i, first, start, out);
                     continue;
                 }
-                // One letter and its value.
-                let value = &line[i + 1..];
-                if value.first() == Some(&b'=') {
+                if next == b'=' {
                     out.add(Feature::EqualsValue, at, at + 2);
-                } else if c == b'V'
-                    && value.first().is_some_and(u8::is_ascii_digit)
-                    && value.iter().find(|c| !c.is_ascii_digit()) == Some(&b'=')
-                {
-                    out.add(Feature::NamedVariable, at, at + name_len);
                 }
-                let digits = value.iter().take_while(|c| c.is_ascii_digit()).count();
-                let number = std::str::from_utf8(&value[..digits]).ok().and_then(|s| s.parse::<u32>().ok());
-                match c {
-                    b'N' if first && digits > 0 && value.get(digits).is_some_and(u8::is_ascii_uppercase) => {
-                        out.add(Feature::PackedSequence, at, at + 1 + digits)
-                    }
-                    b'N' if !first => has_label = true,
-                    b'G' => {
-                        has_any_g = true;
-                        match number {
-                            Some(n @ 0..=3) => motion = Some(n),
-                            Some(n @ (54..=59)) => {
-                                if n != 56 {
-                                    out.add(Feature::WorkOffset, at, at + 1 + digits);
-                                }
-                                if n == 56 && line.contains(&b'H') {
-                                    out.add(Feature::ToolLengthOffset, at, at + 1 + digits);
-                                }
-                            }
-                            Some(n @ (70..=76 | 85..=88 | 90 | 92 | 94)) => cycle = Some(n),
-                            _ => {}
+                if matches!(c, b'G' | b'M' | b'T' | b'N' | b'V') {
+                    let mut digits = 0;
+                    let mut number: u32 = 0;
+                    while let Some(&d) = line.get(i + 1 + digits) {
+                        if !d.is_ascii_digit() {
+                            break;
                         }
+                        number = number.saturating_mul(10).saturating_add((d - b'0') as u32);
+                        digits += 1;
                     }
-                    b'T' if digits == 6 => out.add(Feature::SixDigitTool, at, at + 7),
-                    b'M' if number == Some(6) && digits > 0 => out.add(Feature::ToolChange, at, at + 1 + digits),
-                    b'M' if number == Some(98) && line.contains(&b'P') => {
-                        out.add(Feature::SubprogramCall, at, at + 1 + digits)
+                    let number = (digits > 0).then_some(number);
+                    let word_end = at + 1 + digits;
+                    match c {
+                        b'V' if digits > 0 && line.get(i + 1 + digits) == Some(&b'=') => {
+                            out.add(Feature::NamedVariable, at, word_end)
+                        }
+                        b'N' if first && digits > 0 && line.get(i + 1 + digits).is_some_and(u8::is_ascii_uppercase) => {
+                            out.add(Feature::PackedSequence, at, word_end)
+                        }
+                        b'N' if !first => has_label = true,
+                        b'G' => {
+                            has_any_g = true;
+                            match number {
+                                Some(n @ 0..=3) => motion = Some(n),
+                                Some(56) if line.contains(&b'H') => out.add(Feature::ToolLengthOffset, at, word_end),
+                                Some(54..=59) => out.add(Feature::WorkOffset, at, word_end),
+                                Some(n @ (70..=76 | 85..=88 | 90 | 92 | 94)) => cycle = Some(n),
+                                _ => {}
+                            }
+                        }
+                        b'T' if digits == 6 => out.add(Feature::SixDigitTool, at, word_end),
+                        b'M' if number == Some(6) => out.add(Feature::ToolChange, at, word_end),
+                        b'M' if number == Some(98) && line.contains(&b'P') => {
+                            out.add(Feature::SubprogramCall, at, word_end)
+                        }
+                        _ => {}
                     }
+                    i += 1 + digits;
+                    continue;
+                }
+                match c {
                     b'U' | b'W' => has_uw = true,
                     b'R' => has_r = true,
                     b'P' => has_p = true,
                     b'Q' => has_q = true,
                     _ => {}
                 }
-                first = false;
-                i += 1 + digits;
-                continue;
             }
             _ => {}
         }
-        if !matches!(c, b' ' | b'\t' | b'%') {
-            first = false;
-        }
         i += 1;
     }
-    let line_span = (start, end);
     if cycle.is_none() && has_uw && (motion.is_some() || !has_any_g) {
-        out.add(Feature::IncrementalMove, line_span.0, line_span.1);
+        out.add(Feature::IncrementalMove, start, end);
     }
     if matches!(motion, Some(2 | 3)) && has_r {
-        out.add(Feature::ArcRadiusR, line_span.0, line_span.1);
+        out.add(Feature::ArcRadiusR, start, end);
     }
     match cycle {
-        Some(71..=73) if has_p && has_q => out.add(Feature::TwoBlockRoughing, line_span.0, line_span.1),
-        Some(85..=88) if has_label => out.add(Feature::LapCall, line_span.0, line_span.1),
+        Some(71..=73) if has_p && has_q => out.add(Feature::TwoBlockRoughing, start, end),
+        Some(85..=88) if has_label => out.add(Feature::LapCall, start, end),
         _ => {}
     }
 }
 
+/// A run of letters at `i` (`NAT00`, `CALL`, `FLAN=`, `IF`): records its evidence and returns
+/// its length.
+fn scan_name(line: &[u8], i: usize, first: bool, start: usize, out: &mut Collector) -> usize {
+    let at = start + i;
+    let name_len = line[i..].iter().take_while(|c| c.is_ascii_uppercase() || c.is_ascii_digit()).count();
+    let name = &line[i..i + name_len];
+    let after = line.get(i + name_len).copied();
+    if first && name[0] == b'N' && name_len <= 5 {
+        out.add(Feature::AlphanumericSequence, at, at + name_len);
+        return name_len;
+    }
+    match name {
+        b"CALL" | b"RTS" | b"MODIN" | b"MODOUT" => out.add(Feature::OspKeyword, at, at + name_len),
+        b"BHC" | b"LAA" | b"SQRX" | b"SQRY" | b"GRDX" | b"GRDY" | b"DMDX" | b"DMDY" => {
+            out.add(Feature::HolePattern, at, at + name_len)
+        }
+        _ if name.starts_with(b"IF") && !name[2..].iter().any(u8::is_ascii_uppercase) => {
+            if let Some(close) = line[i..].iter().rposition(|&b| b == b']') {
+                let tail = &line[i + close + 1..];
+                let tail = &tail[tail.iter().take_while(|c| **c == b' ').count()..];
+                if tail.first() == Some(&b'N') {
+                    out.add(Feature::IfWithoutGoto, at, at + 2);
+                }
+            }
+        }
+        _ if after == Some(b'=') => out.add(Feature::NamedVariable, at, at + name_len),
+        _ if after == Some(b'[') => {
+            let assigned = line[i + name_len..]
+                .iter()
+                .position(|&b| b == b']')
+                .is_some_and(|p| line.get(i + name_len + p + 1) == Some(&b'='));
+            if assigned {
+                out.add(Feature::NamedVariable, at, at + name_len);
+            }
+        }
+        _ => {}
+    }
+    name_len
+}
+
 /// Decide the dialect (when not given) and, for OSP, the machine kind.
 pub fn decide(source: &[u8], given: Option<Dialect>, kind: Option<MachineKind>) -> Detection {
-    let evidence = scan(source);
+    // The scan costs a pass over the text; skip it when there is nothing to decide (a Fanuc
+    // program has no machine kind to tell apart).
+    let needed = given.is_none() || (given == Some(Dialect::Osp) && kind.is_none());
+    let evidence = if needed { scan(source) } else { Vec::new() };
     let mut detection =
         Detection { dialect: Dialect::Fanuc, machine_kind: MachineKind::Lathe, choice: Choice::Default, evidence };
     match given {

@@ -574,6 +574,13 @@ impl Tables {
         }
     }
 
+    /// The digit limit of a one-letter address, or `None` if the dialect lacks the letter.
+    #[inline]
+    pub fn max_digits(&self, address: Address) -> Option<usize> {
+        let letter = address.as_letter()?;
+        self.letters[(letter - b'A') as usize].as_ref().map(|spec| spec.max_digits)
+    }
+
     pub fn extended_address(&self, name: &[u8]) -> Option<Address> {
         if let [a, b] = name {
             let address = Address::extended(*a, *b);

@@ -13,7 +13,7 @@ use crate::dialect::tables::{KeywordArgs, KeywordKind, SemicolonRule, SequenceSt
 use crate::dialect::{Address, Code, Tables};
 use crate::source::Span;
 
-use super::ast::{CodeLetter, CommentKind, Expr, ExprKind, Word, WordKind};
+use super::ast::{CodeLetter, CommentKind, Expr, ExprKind, Number, NumberFlags, Word, WordKind};
 use super::expr::ExprParser;
 use super::lexer::{
     Input, RawNumber, is_line_break, is_word_boundary, lex_name, lex_number, lex_paren_comment, lex_spaces,
@@ -71,8 +71,12 @@ impl<'a, 's> BlockParser<'a, 's> {
 
     /// Skip spaces, tabs and (OSP) a line break followed by the `$` of a continuation line.
     fn skip_blank(&self, mut input: Input<'s>) -> Input<'s> {
+        if !matches!(input.first(), Some(b' ' | b'\t' | b'\r' | b'\n')) {
+            return input;
+        }
         loop {
-            input = lex_spaces(input).map_or(input, |(rest, _)| rest);
+            let blanks = input.iter().position(|&c| c != b' ' && c != b'\t').unwrap_or(input.len());
+            input = &input[blanks..];
             match input {
                 [b'\r', b'\n', b'$', rest @ ..] | [b'\n', b'$', rest @ ..] | [b'\r', b'$', rest @ ..]
                     if self.tables.lexical.continuation =>
@@ -368,13 +372,10 @@ impl<'a, 's> BlockParser<'a, 's> {
                 DiagnosticKind::InvalidProgramName { max: self.tables.lexical.program_name_max },
             ));
         }
-        if !osp
-            && let Ok((after, name)) = lex_name(input)
-            && after.first() == Some(&b'=')
-        {
-            return Err(self.foreign_assignment(input, name));
-        }
         let address = Address::letter(letter);
+        if let Some(rest) = self.fast_literal(input, address) {
+            return Ok((rest, false));
+        }
         if self.tables.address(address).is_none() {
             return Err(self.error(
                 input,
@@ -385,9 +386,91 @@ impl<'a, 's> BlockParser<'a, 's> {
         Ok((self.address_value(input, &input[1..], address)?, false))
     }
 
+    /// The common word, `X12.345` or `G01`: a literal right after the letter, ending at a word
+    /// boundary, within the address's digit limit. Lexes, converts and checks in one pass.
+    /// Returns `None` for anything else, and the general path (which also reports errors)
+    /// takes over from the start of the word.
+    #[inline]
+    fn fast_literal(&mut self, word: Input<'s>, address: Address) -> Option<Input<'s>> {
+        let bytes = word;
+        let n = bytes.len();
+        let mut i = 1;
+        let negative = match bytes.get(1) {
+            Some(b'-') => {
+                i = 2;
+                true
+            }
+            Some(b'0'..=b'9' | b'.') => false,
+            _ => return None,
+        };
+        // Up to 18 digits cannot overflow an i64; longer numbers take the general path.
+        let mut mantissa: i64 = 0;
+        let integer_start = i;
+        while i < n && bytes[i].is_ascii_digit() {
+            mantissa = mantissa.wrapping_mul(10).wrapping_add((bytes[i] - b'0') as i64);
+            i += 1;
+        }
+        let integer_len = i - integer_start;
+        let point = i < n && bytes[i] == b'.';
+        let mut scale = 0usize;
+        if point {
+            i += 1;
+            while i < n && bytes[i].is_ascii_digit() {
+                mantissa = mantissa.wrapping_mul(10).wrapping_add((bytes[i] - b'0') as i64);
+                i += 1;
+                scale += 1;
+            }
+        }
+        let digits = integer_len + scale;
+        if digits > 18 || digits == 0 {
+            return None;
+        }
+        if i < n {
+            let c = bytes[i];
+            if c == b'O' || !is_word_boundary(c) {
+                return None;
+            }
+        }
+        let leading_zero = integer_len > 0 && bytes[integer_start] == b'0';
+        let leading_zeros = if leading_zero {
+            bytes[integer_start..integer_start + integer_len].iter().take_while(|&&d| d == b'0').count()
+        } else {
+            0
+        };
+        let significant = digits - leading_zeros;
+        let kind = if address == Address::G || address == Address::M {
+            if negative || scale > 1 || (point && scale == 0) || integer_len == 0 || significant - scale > 3 {
+                return None;
+            }
+            let letter = if address == Address::G { CodeLetter::G } else { CodeLetter::M };
+            let tenths = if scale == 0 { mantissa * 10 } else { mantissa };
+            WordKind::Code { letter, code: Code(tenths as u16) }
+        } else {
+            if significant > self.tables.max_digits(address)? {
+                return None;
+            }
+            let mut flags = NumberFlags::default();
+            if point {
+                flags.insert(NumberFlags::POINT);
+            }
+            if negative {
+                mantissa = -mantissa;
+                flags.insert(NumberFlags::MINUS);
+            }
+            if integer_len == 0 {
+                flags.insert(NumberFlags::NO_INTEGER_DIGITS);
+            } else if integer_len > 1 && leading_zero {
+                flags.insert(NumberFlags::LEADING_ZEROS);
+            }
+            WordKind::Number { address, number: Number { mantissa, scale: scale as u8, flags } }
+        };
+        let start = self.offset(word);
+        self.words.push(Word { span: Span::new(start, start + i as u32), kind });
+        Some(&bytes[i..])
+    }
+
     /// The value after an address: `X10.`, `X=FLAN+5`, `X[#1]`, `X#1`, `X-#1`, `TG=01`.
     fn address_value(&mut self, word: Input<'s>, after: Input<'s>, address: Address) -> WordResult<'s> {
-        let name = address.name();
         let mut value = after;
         if self.tables.lexical.space_before_value {
             value = lex_spaces(value).map_or(value, |(r, _)| r);
@@ -426,13 +509,21 @@ impl<'a, 's> BlockParser<'a, 's> {
             }
             _ => {
                 let Ok((rest, raw)) = lex_number(value) else {
-                    return Err(self.missing_value(word, value, &name));
+                    if value.first() == Some(&b'=') {
+                        return Err(self.foreign_assignment(word, &word[..word.len() - value.len()]));
+                    }
+                    return Err(self.missing_value(word, value, &address.name()));
                 };
                 if !raw.has_digits() {
-                    return Err(self.no_digits(word, value, rest, &name));
+                    return Err(self.no_digits(word, value, rest, &address.name()));
                 }
-                if rest.first() == Some(&b'O') {
-                    return Err(self.letter_o_for_zero(word, word.len() - rest.len()));
+                match rest.first() {
+                    Some(b'O') => return Err(self.letter_o_for_zero(word, word.len() - rest.len())),
+                    // `V1=2` on Fanuc: an OSP variable.
+                    Some(b'=') if !self.is_osp() => {
+                        return Err(self.foreign_assignment(word, &word[..word.len() - rest.len()]));
+                    }
+                    _ => {}
                 }
                 self.expect_boundary(rest)?;
                 let kind = if is_code {

@@ -14,6 +14,8 @@ pub(super) struct Classifier<'a> {
     pub tables: &'static Tables,
     pub commands: &'a mut Vec<Command>,
     pub warnings: &'a mut Vec<Diagnostic>,
+    /// Scratch space for the block's G-codes, reused from block to block.
+    pub codes: &'a mut Vec<(usize, &'static GInfo)>,
 }
 
 /// Addresses that move the tool when a block has no explicit motion G-code.
@@ -40,12 +42,23 @@ impl Classifier<'_> {
     }
 
     pub fn classify(&mut self, words: &[Word], first_word: WordId) -> Result<Statement, Diagnostic> {
+        // The G-codes of the block, with their table entries.
+        let mut codes = std::mem::take(self.codes);
+        codes.clear();
+        let result = self.classify_with(words, first_word, &mut codes);
+        *self.codes = codes;
+        result
+    }
+
+    fn classify_with(
+        &mut self,
+        words: &[Word],
+        first_word: WordId,
+        codes: &mut Vec<(usize, &'static GInfo)>,
+    ) -> Result<Statement, Diagnostic> {
         let tables = self.tables;
         let dialect = tables.config.dialect;
         let machining_centre = tables.config.machine_kind == MachineKind::MachiningCentre && dialect == Dialect::Osp;
-
-        // The G-codes of the block, with their table entries.
-        let mut codes: Vec<(usize, &'static GInfo)> = Vec::new();
         let mut keyword: Option<KeywordKind> = None;
         let mut has_assign = false;
         let mut has_other = false;
@@ -53,6 +66,9 @@ impl Classifier<'_> {
         let mut program_name = false;
         let mut tape_mark = false;
         let mut first_significant: Option<usize> = None;
+        let mut seen_letters: u32 = 0;
+        let mut duplicate: Option<usize> = None;
+        let mut has_extended = false;
 
         for (i, word) in words.iter().enumerate() {
             match word.kind {
@@ -68,6 +84,16 @@ impl Classifier<'_> {
                     first_significant.get_or_insert(i);
                 }
                 WordKind::Number { address, .. } | WordKind::Expr { address, .. } => {
+                    match address.as_letter() {
+                        Some(letter) => {
+                            let bit = 1u32 << (letter - b'A');
+                            if seen_letters & bit != 0 && duplicate.is_none() {
+                                duplicate = Some(i);
+                            }
+                            seen_letters |= bit;
+                        }
+                        None => has_extended = true,
+                    }
                     has_axis |= is_axis(dialect, address);
                     has_motion_word |= is_motion_word(dialect, address);
                     has_tool |= address == Address::T;
@@ -101,9 +127,20 @@ impl Classifier<'_> {
             return Err(Diagnostic::error(DiagnosticKind::ProgramNameNotAlone, word.span));
         }
 
+        // The same address twice in a block is an alarm, except in hole patterns, which repeat
+        // their words (`LAA … I25 I76 I25`), and in machining-centre programs.
+        let relaxed = machining_centre || keyword == Some(KeywordKind::Pattern);
+        if !relaxed {
+            if let Some(i) = duplicate {
+                let address = word_address(&words[i]).map_or_else(String::new, |a| a.name());
+                return Err(Diagnostic::error(DiagnosticKind::DuplicateWord { address }, words[i].span));
+            }
+            if has_extended {
+                self.check_duplicates(words, false)?;
+            }
+        }
+
         if let Some(kind) = keyword {
-            // Hole patterns repeat their words (`LAA … I25 I76 I25`).
-            self.check_duplicates(words, kind == KeywordKind::Pattern)?;
             return Ok(match kind {
                 KeywordKind::Graphics => Statement::Graphics,
                 KeywordKind::Pattern => Statement::Pattern,
@@ -113,7 +150,9 @@ impl Classifier<'_> {
 
         // The command that names the block, and conflicts between commands.
         let primary = codes.iter().copied().max_by_key(|(_, info)| info.kind.rank());
-        self.check_code_conflicts(words, &codes)?;
+        if codes.len() > 1 {
+            self.check_code_conflicts(words, codes)?;
+        }
 
         if let Some((index, info)) = primary
             && info.kind.rank() >= 3
@@ -130,7 +169,7 @@ impl Classifier<'_> {
         }
 
         // OSP automatic chamfer / rounding needs its size.
-        for &(index, info) in &codes {
+        for &(index, info) in codes.iter() {
             if info.kind == GKind::Corner && !words.iter().any(|w| word_address(w) == Some(Address::L)) {
                 return Err(Diagnostic::error(
                     DiagnosticKind::MissingWord { command: self.command_name(info), words: "`L`".into() },
@@ -138,8 +177,6 @@ impl Classifier<'_> {
                 ));
             }
         }
-        self.check_duplicates(words, machining_centre)?;
-
         let explicit_motion = primary.map(|(_, info)| info.kind);
         let statement = match explicit_motion {
             Some(GKind::ThreadMove) => Statement::ThreadMove,
@@ -233,13 +270,32 @@ impl Classifier<'_> {
         Ok(())
     }
 
+    /// The same address twice in one block. Linear in the block's length (a bit per letter),
+    /// since a single line may hold millions of words.
     fn check_duplicates(&self, words: &[Word], relaxed: bool) -> Result<(), Diagnostic> {
         if relaxed {
             return Ok(());
         }
-        for (i, word) in words.iter().enumerate() {
+        let mut letters: u32 = 0;
+        let mut extended: Vec<Address> = Vec::new();
+        for word in words {
             let Some(address) = word_address(word) else { continue };
-            if words[..i].iter().any(|w| word_address(w) == Some(address)) {
+            let seen = match address.as_letter() {
+                Some(letter) => {
+                    let bit = 1u32 << (letter - b'A');
+                    let seen = letters & bit != 0;
+                    letters |= bit;
+                    seen
+                }
+                None => {
+                    let seen = extended.contains(&address);
+                    if !seen {
+                        extended.push(address);
+                    }
+                    seen
+                }
+            };
+            if seen {
                 return Err(Diagnostic::error(DiagnosticKind::DuplicateWord { address: address.name() }, word.span));
             }
         }
@@ -314,9 +370,6 @@ impl Classifier<'_> {
                 },
                 _ => {}
             }
-        }
-        if !form.any_words {
-            self.check_duplicates(words, false)?;
         }
         let missing: Vec<String> = form.required.iter().filter(|&&a| !present(a)).map(|a| format!("`{a}`")).collect();
         if !missing.is_empty() {
