@@ -432,7 +432,9 @@ pub fn decide(source: &[u8], given: Option<Dialect>, kind: Option<MachineKind>) 
     }
     detection.machine_kind = match kind {
         Some(kind) => kind,
-        None if detection.dialect == Dialect::Osp && !detection.evidence_for(Leaning::MachiningCentre).is_empty() => {
+        // One machining-centre feature can occur on a lathe (a Y-axis turret uses G56-like
+        // words on some controls); two different ones are a machining-centre program.
+        None if detection.dialect == Dialect::Osp && detection.evidence_for(Leaning::MachiningCentre).len() >= 2 => {
             MachineKind::MachiningCentre
         }
         None => MachineKind::Lathe,

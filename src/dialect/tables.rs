@@ -337,6 +337,7 @@ pub struct GInfo {
     pub kind: GKind,
     pub schema: Option<SchemaId>,
     pub meaning: String,
+    pub note: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -370,8 +371,10 @@ pub struct Form {
     pub when_all: Vec<Address>,
     #[serde(default)]
     pub when_any: Vec<Address>,
-    #[serde(default)]
-    pub words: BTreeMap<Address, Role>,
+    /// Each address and its role, in the order the schema lists them, which is also the
+    /// order `fmt --canonical` writes them in.
+    #[serde(default, deserialize_with = "ordered_map")]
+    pub words: Vec<(Address, Role)>,
     #[serde(default)]
     pub integer: Vec<Address>,
     #[serde(default)]
@@ -391,9 +394,33 @@ pub struct Form {
     pub any_words: bool,
 }
 
+/// A TOML table read as a list of pairs in document order.
+fn ordered_map<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Vec<(Address, Role)>, D::Error> {
+    struct Visitor;
+    impl<'de> serde::de::Visitor<'de> for Visitor {
+        type Value = Vec<(Address, Role)>;
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            f.write_str("a table of address = role")
+        }
+        fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+            let mut out = Vec::new();
+            while let Some((address, role)) = map.next_entry::<Address, Role>()? {
+                out.push((address, role));
+            }
+            Ok(out)
+        }
+    }
+    deserializer.deserialize_map(Visitor)
+}
+
 impl Form {
     pub fn role_of(&self, address: Address) -> Option<Role> {
-        self.words.get(&address).copied()
+        self.words.iter().find(|(a, _)| *a == address).map(|(_, role)| *role)
+    }
+
+    /// Position of `address` in the schema's word list.
+    pub fn position_of(&self, address: Address) -> Option<usize> {
+        self.words.iter().position(|(a, _)| *a == address)
     }
 
     pub fn m_role(&self, m_code: u16) -> Option<Role> {
@@ -412,7 +439,7 @@ impl Form {
 
     /// The allowed addresses, for "it takes …" hints.
     pub fn allowed_list(&self) -> String {
-        let mut names: Vec<String> = self.words.keys().map(|a| format!("`{a}`")).collect();
+        let mut names: Vec<String> = self.words.iter().map(|(a, _)| format!("`{a}`")).collect();
         if self.labels.is_some() {
             names.insert(0, "`N`".to_string());
         }
@@ -518,6 +545,8 @@ struct RawG {
     kind: GKind,
     schema: Option<String>,
     meaning: String,
+    /// A remark for readers and hovers, kept out of diagnostics.
+    note: Option<String>,
     machine: Option<MachineScope>,
 }
 
@@ -582,7 +611,10 @@ impl Tables {
     }
 
     pub fn extended_address(&self, name: &[u8]) -> Option<Address> {
-        if let [a, b] = name {
+        if let [a, b] = name
+            && a.is_ascii_uppercase()
+            && b.is_ascii_uppercase()
+        {
             let address = Address::extended(*a, *b);
             if self.extended.iter().any(|(x, _)| *x == address) {
                 return Some(address);
@@ -726,7 +758,14 @@ fn compile(config: DialectConfig) -> Tables {
                     .as_ref()
                     .and_then(|s| schema_names.iter().position(|n| *n == s))
                     .map(|i| SchemaId(i as u16));
-                g_infos.push(GInfo { code, group: g.group, kind: g.kind, schema, meaning: g.meaning.clone() });
+                g_infos.push(GInfo {
+                    code,
+                    group: g.group,
+                    kind: g.kind,
+                    schema,
+                    meaning: g.meaning.clone(),
+                    note: g.note.clone(),
+                });
                 g_index[code.0 as usize] = g_infos.len() as u16;
             }
             None => {

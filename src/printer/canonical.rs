@@ -11,7 +11,7 @@
 //! Words after a Fanuc mid-block `/` stay after it: the slash skips them when block delete
 //! is on, so moving a word across it would change the program.
 
-use crate::dialect::{Address, AddressKind, DecimalInput, Dialect, Tables};
+use crate::dialect::{Address, AddressKind, DecimalInput, Dialect, Form, Tables};
 use crate::syntax::{
     CodeLetter, CommentKind, ExprId, ExprKind, Number, NumberFlags, Program, Statement, UnaryOp, Variable, Word,
     WordKind,
@@ -37,9 +37,10 @@ pub fn print_canonical(program: &Program<'_>, options: &CanonicalOptions) -> Vec
             Statement::Invalid | Statement::Trailing | Statement::Header => {
                 out.extend_from_slice(block.span.text(source));
             }
-            _ => {
+            statement => {
                 line.clear();
-                write_block(&mut line, program, program.words_of(block), options);
+                let form = command_form(program, statement);
+                write_block(&mut line, program, program.words_of(block), form, options);
                 out.extend_from_slice(line.as_bytes());
             }
         }
@@ -48,8 +49,33 @@ pub fn print_canonical(program: &Program<'_>, options: &CanonicalOptions) -> Vec
     out
 }
 
-/// Sort key of a word in the normal form.
-fn rank(word: &Word) -> (u8, u16) {
+/// The schema form of a command block, whose word list gives the canonical order.
+fn command_form(program: &Program<'_>, statement: Statement) -> Option<&'static Form> {
+    let id = match statement {
+        Statement::Cycle(id)
+        | Statement::LapCall(id)
+        | Statement::LapMarker(id)
+        | Statement::Dwell(id)
+        | Statement::OneShot(id) => id,
+        _ => return None,
+    };
+    let command = program.command(id);
+    let tables: &'static Tables = program.config().tables();
+    tables.schema(command.schema).forms.get(command.form as usize)
+}
+
+/// Sort key of a word in the normal form. In a command block the schema's own word order
+/// comes first (`G71 P20 Q40 U0.4 W0.1 F0.3`, as machinists write it).
+fn rank(word: &Word, form: Option<&Form>) -> (u8, u16) {
+    if let (Some(form), WordKind::Number { address, .. } | WordKind::Expr { address, .. }) = (form, word.kind)
+        && let Some(position) = form.position_of(address)
+    {
+        return (5, position as u16);
+    }
+    rank_plain(word)
+}
+
+fn rank_plain(word: &Word) -> (u8, u16) {
     match word.kind {
         WordKind::TapeMark | WordKind::Header => (0, 0),
         WordKind::ProgramName => (0, 1),
@@ -57,7 +83,7 @@ fn rank(word: &Word) -> (u8, u16) {
         WordKind::Sequence { .. } => (2, 0),
         WordKind::Code { letter: CodeLetter::G, .. } => (3, 0),
         WordKind::Label { .. } => (4, 0),
-        WordKind::Number { address, .. } | WordKind::Expr { address, .. } => (5, address_order(address)),
+        WordKind::Number { address, .. } | WordKind::Expr { address, .. } => (5, 100 + address_order(address)),
         WordKind::Code { letter: CodeLetter::M, .. } => (6, 0),
         WordKind::Assign { .. } => (7, 0),
         WordKind::Comment(CommentKind::Paren) => (8, 0),
@@ -87,7 +113,13 @@ fn address_order(address: Address) -> u16 {
     }
 }
 
-fn write_block(out: &mut String, program: &Program<'_>, words: &[Word], options: &CanonicalOptions) {
+fn write_block(
+    out: &mut String,
+    program: &Program<'_>,
+    words: &[Word],
+    form: Option<&Form>,
+    options: &CanonicalOptions,
+) {
     let keyword_statement = words.iter().any(|w| matches!(w.kind, WordKind::Keyword { .. }));
     // Split at a mid-block skip: each part is ordered on its own.
     let split = words.iter().position(|w| matches!(w.kind, WordKind::OptionalSkip { .. })).unwrap_or(words.len());
@@ -96,11 +128,11 @@ fn write_block(out: &mut String, program: &Program<'_>, words: &[Word], options:
         let mut ordered: Vec<&Word> = part.iter().collect();
         if keyword_statement {
             ordered.sort_by_key(|w| match w.kind {
-                WordKind::Comment(_) => rank(w),
-                _ => (rank(w).0.min(3), 0),
+                WordKind::Comment(_) => rank_plain(w),
+                _ => (rank_plain(w).0.min(3), 0),
             });
         } else {
-            ordered.sort_by_key(|w| rank(w));
+            ordered.sort_by_key(|w| rank(w, form));
         }
         // The skip itself leads its part.
         ordered.sort_by_key(|w| !matches!(w.kind, WordKind::OptionalSkip { .. }));
@@ -205,12 +237,21 @@ fn write_canonical_number(
     }
 }
 
+/// An expression in normal form, as a string.
+pub fn write_expr_string(program: &Program<'_>, id: ExprId) -> String {
+    let mut out = String::new();
+    write_expr(&mut out, program, id);
+    out
+}
+
 /// An expression in normal form: symbols unspaced, word operators spaced, brackets kept.
 pub(crate) fn write_expr(out: &mut String, program: &Program<'_>, id: ExprId) {
     let tables = program.config().tables();
     let expr = program.expr(id);
     match expr.kind {
-        ExprKind::Number(number) => out.push_str(&super::number::plain(number)),
+        // Literals keep their spelling: `TL8=0609` names tool 06, offset 09.
+        ExprKind::Number(number) if expr.span.is_synthetic() => out.push_str(&super::number::plain(number)),
+        ExprKind::Number(_) => out.push_str(&String::from_utf8_lossy(program.text(expr.span))),
         ExprKind::Variable(variable) => match variable {
             Variable::Common(n) => out.push_str(&format!("V{n}")),
             Variable::Named => out.push_str(&String::from_utf8_lossy(program.text(expr.span))),

@@ -142,11 +142,6 @@ impl<'a, 's> BlockParser<'a, 's> {
                     self.hash(rest)?
                 }
                 b'0'..=b'9' | b'-' | b'+' | b'.' => return Err(self.number_without_address(rest)),
-                b'a'..=b'z' => {
-                    return Err(self.error(rest, 1, DiagnosticKind::LowerCaseLetter { found: c as char }));
-                }
-                0 => return Err(self.error(rest, 1, DiagnosticKind::NulByte)),
-                0x80..=0xFF => return Err(self.error(rest, 1, DiagnosticKind::NonAsciiByte { byte: c })),
                 b'$' if !self.is_osp() => {
                     return Err(self.error(
                         rest,
@@ -158,19 +153,22 @@ impl<'a, 's> BlockParser<'a, 's> {
                         },
                     ));
                 }
-                b']' => return Err(self.error(rest, 1, DiagnosticKind::UnmatchedBracket)),
                 _ => return Err(self.invalid_character(rest)),
             };
         }
     }
 
+    /// A byte that cannot be where it is, reported by what it is.
     fn invalid_character(&self, at: Input<'s>) -> Diagnostic {
         let c = at.first().copied().unwrap_or(b' ');
-        if is_line_break(c) {
-            // A line break inside a block only happens where a continuation was expected.
-            return self.error(at, 1, DiagnosticKind::InvalidCharacter { found: c as char });
-        }
-        self.error(at, 1, DiagnosticKind::InvalidCharacter { found: c as char })
+        let kind = match c {
+            0 => DiagnosticKind::NulByte,
+            0x80..=0xFF => DiagnosticKind::NonAsciiByte { byte: c },
+            b'a'..=b'z' => DiagnosticKind::LowerCaseLetter { found: c as char },
+            b']' => DiagnosticKind::UnmatchedBracket,
+            _ => DiagnosticKind::InvalidCharacter { found: c as char },
+        };
+        self.error(at, 1, kind)
     }
 
     fn paren_comment(&mut self, input: Input<'s>) -> WordResult<'s> {

@@ -1,0 +1,15 @@
+(turnpass: dialect=fanuc)
+:0100( FLANGE OP.2 )
+#501=350.(FLANGE DIA.)
+#502=-23
+#1=#501/2+[#502*SIN[30.]]
+#[#1+2]=ABS[#502]
+G0G96X[#501]Z[#502+50.]S250M3M8(ROUGH)
+G1X-#1F0.2
+IF [#1 GT 10.] GOTO 100
+IF [#1 EQ #2] THEN #3=0
+WHILE [#3 LT 5] DO1
+#3=#3+1
+END1
+GOTO #4
+N100 M30

@@ -1,0 +1,107 @@
+//! Every program of `../shared/corpus/` (read in place): detected as the dialect it was
+//! written in, parsed with zero errors except its real faults (listed in
+//! `tests/corpus.toml`), printed back byte-identical, and in canonical form idempotently.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
+use turnpass::printer::{CanonicalOptions, Edits, print, print_canonical};
+use turnpass::source::LineIndex;
+use turnpass::syntax::{ParseOptions, Statement, parse};
+
+use crate::support::{check_spans, render, repo, with_snapshots};
+
+#[derive(Deserialize)]
+struct Manifest {
+    file: Vec<Entry>,
+}
+
+#[derive(Deserialize)]
+struct Entry {
+    path: String,
+    dialect: String,
+    #[serde(default)]
+    gcode_system: Option<String>,
+    #[serde(default)]
+    faults: Vec<Fault>,
+}
+
+#[derive(Deserialize, PartialEq, Debug)]
+struct Fault {
+    line: usize,
+    code: String,
+}
+
+fn corpus_dir() -> PathBuf {
+    let dir = repo().join("../shared/corpus");
+    assert!(dir.is_dir(), "the corpus is read in place from {}; it is missing", dir.display());
+    dir
+}
+
+fn programs(dir: &Path, out: &mut Vec<String>, root: &Path) {
+    for entry in std::fs::read_dir(dir).unwrap().flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            programs(&path, out, root);
+        } else if path.file_name().is_some_and(|n| n != "SOURCES.md") {
+            out.push(path.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/"));
+        }
+    }
+}
+
+#[test]
+fn every_corpus_program_parses_prints_back_and_reports_only_its_real_faults() {
+    let dir = corpus_dir();
+    let manifest: Manifest =
+        toml::from_str(&std::fs::read_to_string(repo().join("tests/corpus.toml")).unwrap()).unwrap();
+    let mut found = Vec::new();
+    programs(&dir, &mut found, &dir);
+    found.sort();
+    let mut listed: Vec<String> = manifest.file.iter().map(|e| e.path.clone()).collect();
+    listed.sort();
+    assert_eq!(found, listed, "tests/corpus.toml lists every corpus program");
+
+    for entry in &manifest.file {
+        let source = std::fs::read(dir.join(&entry.path)).unwrap();
+        let gcode_system: GCodeSystem = entry.gcode_system.as_deref().unwrap_or("A").parse().unwrap();
+        // The dialect is detected, not given: detection must agree with the manifest.
+        let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system, machine_kind: None };
+        let parsed = parse(&source, &options);
+        check_spans(&parsed);
+        assert_eq!(parsed.detection.dialect.cli_name(), entry.dialect, "{}: detected dialect", entry.path);
+        let lines = LineIndex::new(&source);
+        let errors: Vec<Fault> = parsed
+            .diagnostics
+            .iter()
+            .filter(|d| d.is_error())
+            .map(|d| Fault { line: lines.position(d.span.start).0, code: d.code().to_string() })
+            .collect();
+        assert_eq!(errors, entry.faults, "{}:\n{}", entry.path, render(&entry.path, &source, &parsed.diagnostics));
+        let invalid = parsed.program.blocks().iter().filter(|b| b.statement == Statement::Invalid).count();
+        assert_eq!(invalid, entry.faults.len(), "{}: only the faulty blocks are invalid", entry.path);
+
+        assert_eq!(print(&parsed.program, &Edits::new()), source, "{}: lossless", entry.path);
+        let canonical_options = CanonicalOptions { decimal_input: DecimalInput::Calculator, increment_places: 3 };
+        let canonical = print_canonical(&parsed.program, &canonical_options);
+        let reparsed = parse(&canonical, &options);
+        assert_eq!(reparsed.error_count(), parsed.error_count(), "{}: canonical form parses", entry.path);
+        assert_eq!(
+            print_canonical(&reparsed.program, &canonical_options),
+            canonical,
+            "{}: canonical is idempotent",
+            entry.path
+        );
+
+        let name = entry.path.replace('/', "__");
+        let summary = format!(
+            "dialect: {} ({:?}), machine: {:?}, blocks: {}\n{}",
+            parsed.detection.dialect,
+            parsed.detection.choice,
+            parsed.detection.machine_kind,
+            parsed.program.blocks().len(),
+            render(&entry.path, &source, &parsed.diagnostics)
+        );
+        with_snapshots("corpus", || insta::assert_snapshot!(name, summary));
+    }
+}

@@ -1,0 +1,15 @@
+//! The one integration-test binary (see ARCHITECTURE.md, "Tests are data").
+//!
+//! Cases live under `tests/cases/`, expected output under `snapshots/`; every test that
+//! parses checks the span invariants of `support::check_spans`.
+
+#![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+mod cli;
+mod corpus;
+mod parse;
+mod print;
+mod robustness;
+mod roundtrip;
+mod support;
+mod thesis;

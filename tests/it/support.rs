@@ -1,0 +1,259 @@
+//! The test harness: reading cases, the AST dump, diagnostics rendering, span invariants.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use turnpass::diagnostic::Diagnostic;
+use turnpass::diagnostic::render::{RenderSource, render_plain};
+use turnpass::dialect::{Address, DialectChoice, GCodeSystem, MachineKind};
+use turnpass::printer::canonical::write_expr_string;
+use turnpass::printer::number::plain;
+use turnpass::syntax::{ParseOptions, Parsed, Program, Statement, Word, WordKind};
+
+pub fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Options from a first-line pragma comment, `(turnpass: dialect=osp gcode_system=B)`.
+/// Without one, the dialect is detected and the G-code system is A.
+pub fn options_for(source: &[u8]) -> ParseOptions {
+    let mut options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let first_line = source.split(|&c| c == b'\n' || c == b'\r').next().unwrap_or(b"");
+    let text = String::from_utf8_lossy(first_line);
+    if let Some(rest) = text.trim().strip_prefix("(turnpass:") {
+        for setting in rest.trim_end_matches(')').split_whitespace() {
+            match setting.split_once('=') {
+                Some(("dialect", value)) => options.dialect = value.parse().unwrap(),
+                Some(("gcode_system", value)) => options.gcode_system = value.parse().unwrap(),
+                Some(("machine", "lathe")) => options.machine_kind = Some(MachineKind::Lathe),
+                Some(("machine", "mc")) => options.machine_kind = Some(MachineKind::MachiningCentre),
+                _ => panic!("unknown pragma setting `{setting}`"),
+            }
+        }
+    }
+    options
+}
+
+pub fn render(name: &str, source: &[u8], diagnostics: &[Diagnostic]) -> String {
+    render_plain(&RenderSource::new(name, source), diagnostics)
+}
+
+/// The span invariants every parse must keep:
+/// * blocks tile the source: the first starts at 0, the bytes between blocks are exactly one
+///   line terminator (inside OSP continuations too), the last runs to the end or its
+///   terminator, and only a `Trailing` block may hold several lines;
+/// * every word lies inside its block, words are in order and do not overlap;
+/// * every expression node lies inside the word that holds it;
+/// * every command parameter names a word of its own block.
+pub fn check_spans(parsed: &Parsed<'_>) {
+    let program = &parsed.program;
+    let source = program.source();
+    let blocks = program.blocks();
+    if source.is_empty() {
+        assert!(blocks.is_empty());
+        return;
+    }
+    assert_eq!(blocks[0].span.start, 0, "the first block starts at 0");
+    for (index, block) in blocks.iter().enumerate() {
+        assert!(block.span.start <= block.span.end && block.span.end as usize <= source.len());
+        let terminator = program.terminator(index);
+        let last = index + 1 == blocks.len();
+        if block.statement != Statement::Trailing {
+            assert!(
+                matches!(terminator, b"\n" | b"\r\n" | b"\r") || (last && terminator.is_empty()),
+                "block {index} ends with {terminator:?}"
+            );
+        }
+        let mut previous_end = block.span.start;
+        for word in program.words_of(block) {
+            assert!(block.span.contains(word.span), "word {:?} outside block {:?}", word.span, block.span);
+            assert!(word.span.start >= previous_end, "words overlap or are out of order in block {index}");
+            assert!(word.span.start < word.span.end || matches!(word.kind, WordKind::Comment(_)), "empty word");
+            previous_end = word.span.end;
+            for expr in expr_ids(word) {
+                check_expr(program, expr, word.span);
+            }
+        }
+        let command = match block.statement {
+            Statement::Cycle(id)
+            | Statement::LapCall(id)
+            | Statement::LapMarker(id)
+            | Statement::Dwell(id)
+            | Statement::OneShot(id) => Some(program.command(id)),
+            _ => None,
+        };
+        if let Some(command) = command {
+            let range = block.word_ids();
+            assert!(range.contains(&command.code_word));
+            for param in &command.params {
+                assert!(range.contains(&param.word), "parameter outside its block");
+            }
+        }
+    }
+    for d in &parsed.diagnostics {
+        assert!(d.span.end as usize <= source.len(), "diagnostic span out of the source");
+    }
+}
+
+fn expr_ids(word: &Word) -> Vec<u32> {
+    match word.kind {
+        WordKind::Expr { expr, .. } | WordKind::Operand { expr } => vec![expr],
+        WordKind::Assign { target, value } => vec![target, value],
+        _ => Vec::new(),
+    }
+}
+
+fn check_expr(program: &Program<'_>, id: u32, within: turnpass::source::Span) {
+    use turnpass::syntax::{ExprKind, Variable};
+    let expr = program.expr(id);
+    assert!(within.contains(expr.span), "expression {:?} outside {:?}", expr.span, within);
+    let children: Vec<u32> = match expr.kind {
+        ExprKind::Unary { operand, .. } => vec![operand],
+        ExprKind::Binary { lhs, rhs, .. } => vec![lhs, rhs],
+        ExprKind::Call { args, arg_count, .. } => args[..arg_count as usize].to_vec(),
+        ExprKind::Group(inner) => vec![inner],
+        ExprKind::Variable(Variable::Indexed { index, .. } | Variable::Hash { index }) => vec![index],
+        _ => Vec::new(),
+    };
+    for child in children {
+        check_expr(program, child, expr.span);
+    }
+}
+
+/// A compact, readable dump of the AST: one line per block.
+pub fn dump(program: &Program<'_>) -> String {
+    let tables = program.config().tables();
+    let source = program.source();
+    let lines = turnpass::source::LineIndex::new(source);
+    let mut out = String::new();
+    for block in program.blocks() {
+        let line = lines.position(block.span.start).0;
+        let statement = match block.statement {
+            Statement::Cycle(_) => "Cycle",
+            Statement::LapCall(_) => "LapCall",
+            Statement::LapMarker(_) => "LapMarker",
+            Statement::Dwell(_) => "Dwell",
+            Statement::OneShot(_) => "OneShot",
+            other => match other {
+                Statement::Empty => "Empty",
+                Statement::TapeMark => "TapeMark",
+                Statement::Header => "Header",
+                Statement::ProgramName => "ProgramName",
+                Statement::Motion => "Motion",
+                Statement::ThreadMove => "ThreadMove",
+                Statement::ToolCall => "ToolCall",
+                Statement::Spindle => "Spindle",
+                Statement::Control => "Control",
+                Statement::Assignment => "Assignment",
+                Statement::Graphics => "Graphics",
+                Statement::Pattern => "Pattern",
+                Statement::Settings => "Settings",
+                Statement::Invalid => "Invalid",
+                Statement::Trailing => "Trailing",
+                _ => unreachable!(),
+            },
+        };
+        let _ = write!(out, "{line:>4} {statement:<12}");
+        for word in program.words_of(block) {
+            out.push(' ');
+            out.push_str(&word_text(program, word));
+        }
+        if let Statement::Cycle(id)
+        | Statement::LapCall(id)
+        | Statement::LapMarker(id)
+        | Statement::Dwell(id)
+        | Statement::OneShot(id) = block.statement
+        {
+            let command = program.command(id);
+            let schema = tables.schema(command.schema);
+            let form = &schema.forms[command.form as usize];
+            let _ = write!(out, "  => {}/{}", schema.name, form.name);
+            if !command.params.is_empty() {
+                let params: Vec<String> = command
+                    .params
+                    .iter()
+                    .map(|p| {
+                        format!("{:?}={}", p.role, String::from_utf8_lossy(program.text(program.word(p.word).span)))
+                    })
+                    .collect();
+                let _ = write!(out, " {{{}}}", params.join(", "));
+            }
+        }
+        out.push('\n');
+    }
+    out
+}
+
+fn word_text(program: &Program<'_>, word: &Word) -> String {
+    let text = || String::from_utf8_lossy(program.text(word.span)).into_owned();
+    let tables = program.config().tables();
+    match word.kind {
+        WordKind::Sequence { .. } => format!("seq:{}", text()),
+        WordKind::BlockDelete { level } => format!("delete/{level}"),
+        WordKind::OptionalSkip { level } => format!("skip/{level}"),
+        WordKind::TapeMark => "%".into(),
+        WordKind::Header => format!("header:{}", text()),
+        WordKind::ProgramName => format!("name:{}", text()),
+        WordKind::Comment(_) => format!("comment:{}", text()),
+        WordKind::Code { letter, code } => code.display(letter.as_char()),
+        WordKind::Number { address, number } if number.flags.contains(turnpass::syntax::NumberFlags::LEADING_ZEROS) => {
+            format!(
+                "{}={}",
+                address_name(address),
+                text().trim_start_matches(|c: char| c.is_ascii_uppercase() || c == '=')
+            )
+        }
+        WordKind::Number { address, number } => format!("{}={}", address_name(address), plain(number)),
+        WordKind::Expr { address, expr } => {
+            format!("{}=expr:{}", address_name(address), write_expr_string(program, expr))
+        }
+        WordKind::Label { .. } => format!("label:{}", text()),
+        WordKind::ProgramRef => format!("ref:{}", text()),
+        WordKind::Keyword { index } => format!("kw:{}", tables.keyword_name(index as usize)),
+        WordKind::Operand { expr } => format!("operand:{}", write_expr_string(program, expr)),
+        WordKind::Assign { target, value } => {
+            format!("{}:={}", write_expr_string(program, target), write_expr_string(program, value))
+        }
+        WordKind::Verbatim => format!("verbatim:{:?}", text()),
+    }
+}
+
+fn address_name(address: Address) -> String {
+    address.name()
+}
+
+/// The case files under `tests/cases/<dir>`, sorted.
+pub fn case_files(dir: &str) -> Vec<PathBuf> {
+    let root = repo().join("tests/cases").join(dir);
+    let mut files = Vec::new();
+    collect(&root, &mut files);
+    files.sort();
+    files
+}
+
+fn collect(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            collect(&path, out);
+        } else if path.extension().is_some_and(|e| e != "toml") {
+            out.push(path);
+        }
+    }
+}
+
+/// A snapshot name from a case path: `parse/err/fanuc/damage.nc` → `parse__err__fanuc__damage.nc`.
+pub fn snapshot_name(path: &Path) -> String {
+    let relative = path.strip_prefix(repo().join("tests/cases")).unwrap_or(path);
+    relative.to_string_lossy().replace(['/', '\\'], "__")
+}
+
+/// Run `body` with insta writing to `snapshots/<dir>`.
+pub fn with_snapshots(dir: &str, body: impl FnOnce()) {
+    let mut settings = insta::Settings::clone_current();
+    settings.set_snapshot_path(repo().join("snapshots").join(dir));
+    settings.set_prepend_module_to_snapshot(false);
+    settings.set_omit_expression(true);
+    settings.bind(body);
+}
