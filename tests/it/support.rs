@@ -1,7 +1,7 @@
 //! The test harness: reading cases, the AST dump, diagnostics rendering, span invariants.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use turnpass::diagnostic::Diagnostic;
 use turnpass::diagnostic::render::{RenderSource, render_plain};
@@ -220,33 +220,6 @@ fn word_text(program: &Program<'_>, word: &Word) -> String {
 
 fn address_name(address: Address) -> String {
     address.name()
-}
-
-/// The case files under `tests/cases/<dir>`, sorted.
-pub fn case_files(dir: &str) -> Vec<PathBuf> {
-    let root = repo().join("tests/cases").join(dir);
-    let mut files = Vec::new();
-    collect(&root, &mut files);
-    files.sort();
-    files
-}
-
-fn collect(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(entries) = std::fs::read_dir(dir) else { return };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() {
-            collect(&path, out);
-        } else if path.extension().is_some_and(|e| e != "toml") {
-            out.push(path);
-        }
-    }
-}
-
-/// A snapshot name from a case path: `parse/err/fanuc/damage.nc` → `parse__err__fanuc__damage.nc`.
-pub fn snapshot_name(path: &Path) -> String {
-    let relative = path.strip_prefix(repo().join("tests/cases")).unwrap_or(path);
-    relative.to_string_lossy().replace(['/', '\\'], "__")
 }
 
 /// Run `body` with insta writing to `snapshots/<dir>`.
