@@ -135,6 +135,7 @@ pub fn write_new_block(out: &mut String, program: &Program<'_>, style: &ProgramS
                 out.push_str(text);
                 out.push(')');
             }
+            NewWord::TapeMark => out.push('%'),
         }
     }
 }

@@ -40,7 +40,7 @@ pub fn print_canonical(program: &Program<'_>, options: &CanonicalOptions) -> Vec
             statement => {
                 line.clear();
                 let form = command_form(program, statement);
-                write_block(&mut line, program, program.words_of(block), form, options);
+                write_continued_block(&mut line, program, block.span, program.words_of(block), form, options);
                 out.extend_from_slice(line.as_bytes());
             }
         }
@@ -110,6 +110,39 @@ fn address_order(address: Address) -> u16 {
             let (bytes, _) = address.bytes();
             500 + (bytes[0] - b'A') as u16 * 26 + (bytes[1] - b'A') as u16
         }
+    }
+}
+
+/// A block that may run over OSP `$` continuation lines: each line's words are put in order
+/// on their own line, and the line break and `$` stay where they were (condition changes
+/// of a LAP call belong on `$` lines).
+fn write_continued_block(
+    out: &mut String,
+    program: &Program<'_>,
+    span: crate::source::Span,
+    words: &[Word],
+    form: Option<&Form>,
+    options: &CanonicalOptions,
+) {
+    let text = program.text(span);
+    let mut from = 0;
+    let mut line_start = span.start;
+    loop {
+        let rest = &text[(line_start - span.start) as usize..];
+        let Some(line_break) = rest.iter().position(|&c| c == b'\n' || c == b'\r') else {
+            write_block(out, program, &words[from..], form, options);
+            return;
+        };
+        let line_end = line_start + line_break as u32;
+        let until = words[from..].iter().position(|w| w.span.start >= line_end).map_or(words.len(), |p| from + p);
+        write_block(out, program, &words[from..until], form, options);
+        // Copy the line break and the `$` of the continuation line as they are.
+        let after = &rest[line_break..];
+        let dollar = after.iter().position(|&c| c == b'$').map_or(after.len(), |p| p + 1);
+        out.push_str(&String::from_utf8_lossy(&after[..dollar]));
+        out.push(' ');
+        line_start = line_end + dollar as u32;
+        from = until;
     }
 }
 
@@ -211,10 +244,15 @@ fn write_canonical_number(
     match kind {
         Some(AddressKind::Length | AddressKind::Angle | AddressKind::Feed) => {
             let mut number = number;
-            let increments = tables.config.dialect == Dialect::Fanuc
-                && options.decimal_input == DecimalInput::Increment
-                && kind != Some(AddressKind::Feed);
+            let increments =
+                tables.config.dialect == Dialect::Fanuc && options.decimal_input == DecimalInput::Increment;
             if increments && !number.has_point() {
+                if kind == Some(AddressKind::Feed) {
+                    // A feed without a point counts the feed's own increment, which depends on
+                    // the feed mode; writing a point would change the value, so keep it.
+                    out.push_str(&super::number::plain(number));
+                    return;
+                }
                 number.scale = number.scale.saturating_add(options.increment_places);
             }
             if number.mantissa == 0 {

@@ -20,6 +20,8 @@ pub enum NewWord {
     Copy(WordId),
     /// A `( … )` comment; the text goes between the parentheses.
     Comment(String),
+    /// `%`, the tape mark that opens or closes a program.
+    TapeMark,
 }
 
 /// A block to write.

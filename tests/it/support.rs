@@ -18,20 +18,43 @@ pub fn repo() -> PathBuf {
 /// Without one, the dialect is detected and the G-code system is A.
 pub fn options_for(source: &[u8]) -> ParseOptions {
     let mut options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let first_line = source.split(|&c| c == b'\n' || c == b'\r').next().unwrap_or(b"");
-    let text = String::from_utf8_lossy(first_line);
-    if let Some(rest) = text.trim().strip_prefix("(turnpass:") {
-        for setting in rest.trim_end_matches(')').split_whitespace() {
-            match setting.split_once('=') {
-                Some(("dialect", value)) => options.dialect = value.parse().unwrap(),
-                Some(("gcode_system", value)) => options.gcode_system = value.parse().unwrap(),
-                Some(("machine", "lathe")) => options.machine_kind = Some(MachineKind::Lathe),
-                Some(("machine", "mc")) => options.machine_kind = Some(MachineKind::MachiningCentre),
-                _ => panic!("unknown pragma setting `{setting}`"),
-            }
+    for (key, value) in pragma(source) {
+        match (key.as_str(), value.as_str()) {
+            ("dialect", value) => options.dialect = value.parse().unwrap(),
+            ("gcode_system", value) => options.gcode_system = value.parse().unwrap(),
+            ("machine", "lathe") => options.machine_kind = Some(MachineKind::Lathe),
+            ("machine", "mc") => options.machine_kind = Some(MachineKind::MachiningCentre),
+            ("decimal_input" | "increment_places", _) => {}
+            _ => panic!("unknown pragma setting `{key}={value}`"),
         }
     }
     options
+}
+
+/// Canonical-form settings from the same pragma: `decimal_input=increment increment_places=4`.
+pub fn canonical_options_for(source: &[u8]) -> turnpass::printer::CanonicalOptions {
+    let mut options = turnpass::printer::CanonicalOptions {
+        decimal_input: turnpass::dialect::DecimalInput::Calculator,
+        increment_places: 3,
+    };
+    for (key, value) in pragma(source) {
+        match (key.as_str(), value.as_str()) {
+            ("decimal_input", "increment") => options.decimal_input = turnpass::dialect::DecimalInput::Increment,
+            ("increment_places", places) => options.increment_places = places.parse().unwrap(),
+            _ => {}
+        }
+    }
+    options
+}
+
+fn pragma(source: &[u8]) -> Vec<(String, String)> {
+    let first_line = source.split(|&c| c == b'\n' || c == b'\r').next().unwrap_or(b"");
+    let text = String::from_utf8_lossy(first_line).into_owned();
+    let Some(rest) = text.trim().strip_prefix("(turnpass:") else { return Vec::new() };
+    rest.trim_end_matches(')')
+        .split_whitespace()
+        .filter_map(|s| s.split_once('=').map(|(k, v)| (k.to_string(), v.to_string())))
+        .collect()
 }
 
 pub fn render(name: &str, source: &[u8], diagnostics: &[Diagnostic]) -> String {

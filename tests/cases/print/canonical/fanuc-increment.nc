@@ -1,0 +1,10 @@
+(turnpass: dialect=fanuc decimal_input=increment increment_places=3)
+N0010G00X105Z5T0101
+N0020G01X100.Z0F.2
+N0030 X-0.000 ;EOB
+G71U2000R500
+G71P40Q50U400W100F.3
+/G00X3.1Z.1/M08
+#1=[#2+1.5]*SIN[30.]
+IF[#1GT10]GOTO100
+G99 G01 Z-1. F2
