@@ -310,6 +310,10 @@ fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     let error = |source| CliError::Write { path: path.display().to_string(), source };
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        let message = format!("the directory {} does not exist", dir.display());
+        return Err(error(std::io::Error::new(std::io::ErrorKind::NotFound, message)));
+    }
     let mut temp = tempfile::NamedTempFile::new_in(dir).map_err(error)?;
     temp.write_all(bytes).map_err(error)?;
     temp.flush().map_err(error)?;

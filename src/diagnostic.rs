@@ -162,6 +162,10 @@ pub enum DiagnosticKind {
     MachiningCentreProgram,
     /// The source is too large to address with 32-bit offsets.
     SourceTooLarge,
+    /// A block with more words than the AST holds per block.
+    TooManyWords { max: usize },
+    /// An OSP `$` continuation line with no block before it.
+    OrphanContinuation,
 }
 
 impl DiagnosticKind {
@@ -209,6 +213,8 @@ impl DiagnosticKind {
             DialectConflict { .. } => "dialect-conflict",
             MachiningCentreProgram => "machining-centre-program",
             SourceTooLarge => "source-too-large",
+            TooManyWords { .. } => "too-many-words",
+            OrphanContinuation => "orphan-continuation",
         }
     }
 
@@ -271,6 +277,8 @@ impl DiagnosticKind {
             }
             MachiningCentreProgram => "this is an OSP machining-centre program; only its syntax is checked".to_string(),
             SourceTooLarge => "the program is 4 GiB or larger".to_string(),
+            TooManyWords { max } => format!("the block has more than {max} words"),
+            OrphanContinuation => "continuation line with no block before it".to_string(),
         }
     }
 
@@ -317,6 +325,8 @@ impl DiagnosticKind {
             DialectConflict { chosen, .. } => format!("evidence for {chosen}"),
             MachiningCentreProgram => "machining-centre evidence".to_string(),
             SourceTooLarge => "too large".to_string(),
+            TooManyWords { .. } => "this block".to_string(),
+            OrphanContinuation => "`$`".to_string(),
         }
     }
 
@@ -396,6 +406,8 @@ impl DiagnosticKind {
             }
             MachiningCentreProgram => None,
             SourceTooLarge => None,
+            TooManyWords { .. } => Some("no control reads a block this long; split it".to_string()),
+            OrphanContinuation => Some("a `$` line continues the block on the line before it".to_string()),
         }
     }
 }

@@ -274,7 +274,7 @@ impl<'src> Builder<'_, 'src> {
         .and_then(|()| {
             let words = &self.program.words[first_word..];
             if words.len() > u16::MAX as usize {
-                return Err(Diagnostic::error(DiagnosticKind::SourceTooLarge, span));
+                return Err(Diagnostic::error(DiagnosticKind::TooManyWords { max: u16::MAX as usize }, span));
             }
             let mut classifier = Classifier {
                 tables,

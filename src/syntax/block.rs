@@ -164,6 +164,7 @@ impl<'a, 's> BlockParser<'a, 's> {
         let kind = match c {
             0 => DiagnosticKind::NulByte,
             0x80..=0xFF => DiagnosticKind::NonAsciiByte { byte: c },
+            b'$' if self.tables.lexical.continuation => DiagnosticKind::OrphanContinuation,
             b'a'..=b'z' => DiagnosticKind::LowerCaseLetter { found: c as char },
             b']' => DiagnosticKind::UnmatchedBracket,
             _ => DiagnosticKind::InvalidCharacter { found: c as char },

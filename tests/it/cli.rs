@@ -1,1 +1,95 @@
-//! Placeholder.
+//! The command line, driven by `tests/cases/cli.toml`.
+
+use std::collections::BTreeMap;
+use std::process::{Command, Stdio};
+
+use serde::Deserialize;
+
+use crate::support::{repo, with_snapshots};
+
+#[derive(Deserialize)]
+struct Cases {
+    case: Vec<Case>,
+}
+
+#[derive(Deserialize)]
+struct Case {
+    name: String,
+    args: Vec<String>,
+    code: i32,
+    #[serde(default)]
+    stdin: Option<String>,
+    #[serde(default)]
+    setup: BTreeMap<String, String>,
+    #[serde(default)]
+    expect_files: BTreeMap<String, bool>,
+}
+
+#[test]
+fn command_line_cases() {
+    let cases: Cases = toml::from_str(&std::fs::read_to_string(repo().join("tests/cases/cli.toml")).unwrap()).unwrap();
+    for case in cases.case {
+        let tmp = tempfile::tempdir().unwrap();
+        let tmp_text = tmp.path().to_string_lossy().into_owned();
+        for (from, to) in &case.setup {
+            let target = tmp.path().join(to);
+            std::fs::create_dir_all(target.parent().unwrap()).unwrap();
+            std::fs::copy(repo().join(from), target).unwrap();
+        }
+        let args: Vec<String> = case.args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect();
+        let mut command = Command::new(env!("CARGO_BIN_EXE_turnpass"));
+        command.args(&args).current_dir(repo()).env("NO_COLOR", "1");
+        command.stdin(match &case.stdin {
+            Some(path) => Stdio::from(std::fs::File::open(repo().join(path)).unwrap()),
+            None => Stdio::null(),
+        });
+        let output = command.output().unwrap();
+        let stdout = String::from_utf8_lossy(&output.stdout).replace(&tmp_text, "{tmp}");
+        let stderr = String::from_utf8_lossy(&output.stderr).replace(&tmp_text, "{tmp}");
+        assert_eq!(
+            output.status.code(),
+            Some(case.code),
+            "{}: exit code\nstdout:\n{stdout}\nstderr:\n{stderr}",
+            case.name
+        );
+        for (file, present) in &case.expect_files {
+            assert_eq!(tmp.path().join(file).exists(), *present, "{}: {file}", case.name);
+        }
+        // No temporary file may be left behind by a failed write.
+        let leftovers: Vec<_> = walk(tmp.path())
+            .into_iter()
+            .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with(".tmp")))
+            .collect();
+        assert!(leftovers.is_empty(), "{}: leftovers {leftovers:?}", case.name);
+        let text = format!(
+            "$ turnpass {}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
+            args.join(" ").replace(&tmp_text, "{tmp}"),
+            case.code
+        );
+        with_snapshots("cli", || insta::assert_snapshot!(case.name.clone(), text));
+    }
+}
+
+fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            out.extend(walk(&path));
+        } else {
+            out.push(path);
+        }
+    }
+    out
+}
+
+/// `fmt` with no edits prints every program back byte for byte.
+#[test]
+fn fmt_is_lossless_on_every_case_file() {
+    for dir in ["tests/cases/parse", "tests/cases/thesis", "examples/programs"] {
+        for path in walk(&repo().join(dir)) {
+            let output = Command::new(env!("CARGO_BIN_EXE_turnpass")).arg("fmt").arg(&path).output().unwrap();
+            assert_eq!(output.stdout, std::fs::read(&path).unwrap(), "{}", path.display());
+        }
+    }
+}
