@@ -86,7 +86,7 @@ fn hostile_inputs() {
     report += &summary("CR only", b"G00 X1.\rG01 Z-1. F0.1\rM30\r", Dialect::Fanuc);
     report += &summary("mixed endings", b"G00 X1.\r\nG01 Z-1.\nG01 X2.\rM30", Dialect::Fanuc);
     report += &summary("BOM", b"\xEF\xBB\xBFG00 X1.\n", Dialect::Fanuc);
-    report += &summary("NUL and tabs", b"\tG00\tX1.\n\0\0\0\nG00 X\01.\n(\0)\nM30\n", Dialect::Fanuc);
+    report += &summary("NUL and tabs", b"\tG00\tX1.\n\0\0\0\nG00 X\x001.\n(\0)\nM30\n", Dialect::Fanuc);
     report += &summary(
         "Shift-JIS and Latin-1",
         b"(\x83e\x83X\x83g)\nG00 X1. (\xe9t\xe9)\nG00 X\x82\xa0\nNAT00 (\x93\xfa\x96\x7b)\nM02\n",
