@@ -194,7 +194,10 @@ impl<'src> Builder<'_, 'src> {
         let mut lines = Lines::new(source);
         let mut tape_open = false;
         while let Some((start, mut end, mut next)) = lines.next_line() {
-            let line = &source[start..end];
+            let mut line = &source[start..end];
+            if start == 0 && line.starts_with(BYTE_ORDER_MARK) {
+                line = &line[BYTE_ORDER_MARK.len()..];
+            }
             if line.first() == Some(&b'$') && detect::is_osp_header(line) {
                 self.header(start, end, osp);
                 tape_open = true;
@@ -212,7 +215,8 @@ impl<'src> Builder<'_, 'src> {
                     next = following.2;
                 }
             }
-            let tape_mark = line.first() == Some(&b'%');
+            // A tape mark is `%` as the first thing on its line (blanks allowed before it).
+            let tape_mark = line.iter().find(|&&c| c != b' ' && c != b'\t') == Some(&b'%');
             self.block(start, end);
             if tape_mark {
                 if tape_open {
@@ -232,10 +236,15 @@ impl<'src> Builder<'_, 'src> {
     }
 
     fn header(&mut self, start: usize, end: usize, osp: bool) {
+        if start == 0 && self.program.source.starts_with(BYTE_ORDER_MARK) {
+            self.diagnostics.push(Diagnostic::warning(DiagnosticKind::ByteOrderMark, Span::new(0, 3)));
+        }
         let span = Span::new(start as u32, end as u32);
         if osp {
             let first_word = self.program.words.len() as u32;
-            self.program.words.push(ast::Word { span, kind: WordKind::Header });
+            let bom = if start == 0 && self.program.source.starts_with(BYTE_ORDER_MARK) { 3 } else { 0 };
+            let word = Span::new(span.start + bom, span.end);
+            self.program.words.push(ast::Word { span: word, kind: WordKind::Header });
             self.push_block(span, ast::Statement::Header, first_word, 1);
         } else {
             self.diagnostics.push(Diagnostic::error(

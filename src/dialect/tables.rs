@@ -520,7 +520,6 @@ pub struct Lexical {
     pub semicolon: SemicolonRule,
     pub continuation: bool,
     pub variables: VariableStyle,
-    pub extended_addresses: bool,
     pub space_before_value: bool,
     pub block_delete_levels: bool,
     pub mid_block_skip: bool,

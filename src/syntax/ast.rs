@@ -89,6 +89,14 @@ impl Number {
         self.mantissa as f64 / 10f64.powi(self.scale as i32)
     }
 
+    /// Significant digits as the address limits count them: the integer part without
+    /// leading zeros, plus every digit after the point (`0.05` has 2, `12.5` has 3).
+    pub fn significant_digits(self) -> usize {
+        let mantissa = self.mantissa;
+        let digits = if mantissa == 0 { 0 } else { mantissa.unsigned_abs().ilog10() as usize + 1 };
+        digits.max(self.scale as usize)
+    }
+
     /// The value if it is a whole number that fits `u32` (sequence numbers, codes, counts).
     pub fn as_whole(self) -> Option<u32> {
         if self.mantissa < 0 {

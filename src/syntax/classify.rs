@@ -6,7 +6,7 @@
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::tables::{KeywordKind, Place};
-use crate::dialect::{Address, Dialect, GInfo, GKind, MachineKind, ModalGroup, Tables};
+use crate::dialect::{Address, Dialect, Form, GInfo, GKind, MachineKind, ModalGroup, Tables};
 
 use super::ast::{CodeLetter, Command, CommandId, Param, Statement, Word, WordId, WordKind};
 
@@ -168,15 +168,19 @@ impl Classifier<'_> {
             });
         }
 
-        // OSP automatic chamfer / rounding needs its size.
+        // Modal codes with a schema (OSP `G75`/`G76` corners need `L`, `G15` needs `H`) check
+        // their words without becoming the block's command.
         for &(index, info) in codes.iter() {
-            if info.kind == GKind::Corner && !words.iter().any(|w| word_address(w) == Some(Address::L)) {
-                return Err(Diagnostic::error(
-                    DiagnosticKind::MissingWord { command: self.command_name(info), words: "`L`".into() },
-                    words[index].span,
-                ));
+            if info.kind.rank() < 3
+                && let Some(schema) = info.schema
+            {
+                let schema = tables.schema(schema);
+                if let Some(form) = schema.forms.iter().find(|f| f.matches(|a| present(words, a))) {
+                    self.check_required(words, index, info, form)?;
+                }
             }
         }
+
         let explicit_motion = primary.map(|(_, info)| info.kind);
         let statement = match explicit_motion {
             Some(GKind::ThreadMove) => Statement::ThreadMove,
@@ -371,22 +375,7 @@ impl Classifier<'_> {
                 _ => {}
             }
         }
-        let missing: Vec<String> = form.required.iter().filter(|&&a| !present(a)).map(|a| format!("`{a}`")).collect();
-        if !missing.is_empty() {
-            return Err(Diagnostic::error(
-                DiagnosticKind::MissingWord { command: command(), words: missing.join(" and ") },
-                words[code_index].span,
-            ));
-        }
-        for group in &form.required_any {
-            if !group.iter().any(|&a| present(a)) {
-                let names: Vec<String> = group.iter().map(|a| format!("`{a}`")).collect();
-                return Err(Diagnostic::error(
-                    DiagnosticKind::MissingWord { command: command(), words: format!("one of {}", names.join(", ")) },
-                    words[code_index].span,
-                ));
-            }
-        }
+        self.check_required(words, code_index, info, form)?;
         self.commands.push(Command {
             code_word: first_word + code_index as WordId,
             schema: schema_id,
@@ -394,6 +383,31 @@ impl Classifier<'_> {
             params,
         });
         Ok((self.commands.len() - 1) as CommandId)
+    }
+
+    /// The words a form requires (`required`), and one of each `required_any` group.
+    fn check_required(&self, words: &[Word], code_index: usize, info: &GInfo, form: &Form) -> Result<(), Diagnostic> {
+        let missing: Vec<String> =
+            form.required.iter().filter(|&&a| !present(words, a)).map(|a| format!("`{a}`")).collect();
+        if !missing.is_empty() {
+            return Err(Diagnostic::error(
+                DiagnosticKind::MissingWord { command: self.command_name(info), words: missing.join(" and ") },
+                words[code_index].span,
+            ));
+        }
+        for group in &form.required_any {
+            if !group.iter().any(|&a| present(words, a)) {
+                let names: Vec<String> = group.iter().map(|a| format!("`{a}`")).collect();
+                return Err(Diagnostic::error(
+                    DiagnosticKind::MissingWord {
+                        command: self.command_name(info),
+                        words: format!("one of {}", names.join(", ")),
+                    },
+                    words[code_index].span,
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Words a command block may carry besides its schema's: M codes with most commands, and
@@ -415,6 +429,13 @@ impl Classifier<'_> {
             word.span,
         )
     }
+}
+
+/// Whether the block has a word with this address (an `N` operand counts as `N`).
+fn present(words: &[Word], address: Address) -> bool {
+    words.iter().any(|w| {
+        word_address(w) == Some(address) || (address == Address::N && matches!(w.kind, WordKind::Label { .. }))
+    })
 }
 
 fn word_address(word: &Word) -> Option<Address> {

@@ -145,7 +145,12 @@ impl<'a, 's> ExprParser<'a, 's> {
         let op = match input.first() {
             Some(b'-') => Some((UnaryOp::Minus, 1)),
             Some(b'+') => Some((UnaryOp::Plus, 1)),
-            Some(b'N') if input.starts_with(b"NOT") && self.tables.expression.logic.iter().any(|w| w == "NOT") => {
+            Some(b'N')
+                if input.starts_with(b"NOT")
+                    && !input.get(3).is_some_and(u8::is_ascii_alphanumeric)
+                    && !(self.brackets == 0 && self.space_ends)
+                    && self.tables.expression.logic.iter().any(|w| w == "NOT") =>
+            {
                 Some((UnaryOp::Not, 3))
             }
             _ => None,

@@ -102,7 +102,7 @@ pub fn lex_number(input: Input<'_>) -> IResult<Input<'_>, RawNumber<'_>> {
     Ok((&input[i..], RawNumber { text: &input[..i], sign, integer, point, fraction }))
 }
 
-/// An upper-case name: a letter, then letters and digits (`FLAN`, `VTOFX`, `DIA1`, `NAT00`).
+/// An upper-case name: a letter, then letters and digits (`FLAN`, `VTOFX`, `DIA1`, `CALL`).
 pub fn lex_name(input: Input<'_>) -> IResult<Input<'_>, Input<'_>> {
     recognize((
         take_while1(|c: u8| c.is_ascii_uppercase()),

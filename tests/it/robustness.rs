@@ -92,6 +92,8 @@ fn hostile_inputs() {
         b"(\x83e\x83X\x83g)\nG00 X1. (\xe9t\xe9)\nG00 X\x82\xa0\nNAT00 (\x93\xfa\x96\x7b)\nM02\n",
         Dialect::Osp,
     );
+    report += &summary("BOM before an OSP header", b"\xEF\xBB\xBF$A.MIN%\nG00 X1\n%\nafter the tape\n", Dialect::Osp);
+    report += &summary("tape marks after blanks", b" %\nG00 X1.\n\t%\nafter the tape\n", Dialect::Fanuc);
     report += &summary("only line breaks", b"\n\r\n\r\n\n", Dialect::Osp);
     report += &summary("empty", b"", Dialect::Osp);
     report += &summary("lone percent signs", b"%\n%\n%\n", Dialect::Fanuc);
