@@ -4,6 +4,7 @@
 //! address rules, keywords and cycle word schemas; [`tables`] compiles them once into lookup
 //! structures the parser and the semantic pass share.
 
+pub mod address;
 pub mod detect;
 pub mod tables;
 
