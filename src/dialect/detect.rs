@@ -104,6 +104,18 @@ pub struct Evidence {
     pub first: Span,
 }
 
+impl Evidence {
+    /// One line of `check --verbose`: how often, what, and where first.
+    fn describe(&self, lines: &LineIndex) -> String {
+        format!(
+            "    {} × {}, first at line {}\n",
+            self.count,
+            self.feature.description(),
+            lines.position(self.first.start).0
+        )
+    }
+}
+
 /// How the dialect was chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Choice {
@@ -161,12 +173,7 @@ impl Detection {
             }
             out.push_str(&format!("  {} evidence (score {}):\n", dialect, self.score(dialect)));
             for e in list {
-                out.push_str(&format!(
-                    "    {} × {}, first at line {}\n",
-                    e.count,
-                    e.feature.description(),
-                    lines.position(e.first.start).0
-                ));
+                out.push_str(&e.describe(lines));
             }
         }
         if self.dialect == Dialect::Osp {
@@ -174,12 +181,7 @@ impl Detection {
             let kind = if self.machine_kind == MachineKind::MachiningCentre { "machining centre" } else { "lathe" };
             out.push_str(&format!("machine: {kind}\n"));
             for e in list {
-                out.push_str(&format!(
-                    "    {} × {}, first at line {}\n",
-                    e.count,
-                    e.feature.description(),
-                    lines.position(e.first.start).0
-                ));
+                out.push_str(&e.describe(lines));
             }
         }
         out

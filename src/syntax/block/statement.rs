@@ -92,12 +92,10 @@ impl<'s> BlockParser<'_, 's> {
             }
             return self.label(start);
         }
-        let (rest, expr) = self.exprs(false).operand(start)?;
-        self.push(start, rest, WordKind::Operand { expr });
-        Ok(rest)
+        self.loop_number(start)
     }
 
-    /// Fanuc `DO1`, `END1`: the loop number.
+    /// Fanuc `DO1`, `END1`: the loop number (and the operand of a Fanuc `GOTO`).
     pub(super) fn loop_number(&mut self, input: Input<'s>) -> WordResult<'s> {
         let start = lex_spaces(input).map_or(input, |(r, _)| r);
         let (rest, expr) = self.exprs(false).operand(start)?;
