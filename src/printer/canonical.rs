@@ -174,12 +174,12 @@ fn write_block(
                 out.push(' ');
             }
             first = false;
-            write_word(out, program, word, options);
+            write_word(out, program, word, form, options);
         }
     }
 }
 
-fn write_word(out: &mut String, program: &Program<'_>, word: &Word, options: &CanonicalOptions) {
+fn write_word(out: &mut String, program: &Program<'_>, word: &Word, form: Option<&Form>, options: &CanonicalOptions) {
     let tables = program.config().tables();
     let text = || String::from_utf8_lossy(program.text(word.span)).into_owned();
     match word.kind {
@@ -204,7 +204,15 @@ fn write_word(out: &mut String, program: &Program<'_>, word: &Word, options: &Ca
         WordKind::Code { letter, code } => write_code(out, letter, code.major(), code.minor(), true),
         WordKind::Number { address, number } => {
             let kind = tables.address(address).map(|s| s.kind);
-            if matches!(kind, Some(AddressKind::Length | AddressKind::Angle | AddressKind::Feed | AddressKind::Speed)) {
+            // A command may take a count where the address is usually a length (`G73 R3`
+            // divisions): its schema says so, and a point would make it an error.
+            let integer = form.is_some_and(|f| f.takes_integer(address));
+            if !integer
+                && matches!(
+                    kind,
+                    Some(AddressKind::Length | AddressKind::Angle | AddressKind::Feed | AddressKind::Speed)
+                )
+            {
                 out.push_str(&address.name());
                 if !address.is_letter() {
                     out.push('=');

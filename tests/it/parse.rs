@@ -2,10 +2,10 @@
 //! must report at least one problem and still parse their last block (every err case ends
 //! with a valid block). Each case's AST dump and diagnostics are a snapshot.
 
-use turnpass::printer::{Edits, print};
+use turnpass::printer::{Edits, print, print_canonical};
 use turnpass::syntax::{Statement, parse};
 
-use crate::support::{check_spans, dump, options_for, render, with_snapshots};
+use crate::support::{canonical_options_for, check_spans, dump, options_for, render, with_snapshots};
 
 fn run_case(path: &std::path::Path) -> String {
     let source = std::fs::read(path).unwrap();
@@ -20,6 +20,19 @@ fn run_case(path: &std::path::Path) -> String {
         assert!(last.is_some_and(|b| b.statement != Statement::Invalid), "{}: parsing stopped early", path.display());
     } else {
         assert_eq!(parsed.error_count(), 0, "{}:\n{}", path.display(), render("case", &source, &parsed.diagnostics));
+        // Its canonical form reads as cleanly and is a fixed point.
+        let canonical_options = canonical_options_for(&source);
+        let canonical = print_canonical(&parsed.program, &canonical_options);
+        let reparsed = parse(&canonical, &options);
+        check_spans(&reparsed);
+        assert_eq!(
+            reparsed.error_count(),
+            0,
+            "{}:\n{}",
+            path.display(),
+            render("canonical", &canonical, &reparsed.diagnostics)
+        );
+        assert_eq!(print_canonical(&reparsed.program, &canonical_options), canonical, "{}", path.display());
     }
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
     format!(
