@@ -60,16 +60,20 @@ fn front_end(c: &mut Criterion) {
     let blocks = parsed.program.blocks().len();
     let per_block = parsed.program.heap_bytes() as f64 / blocks as f64;
     let mb = bytes.len() as f64 / 1e6;
+    assert!(per_block <= 150.0, "the AST budget is 150 bytes per block; it is {per_block:.1}");
     let ours = median_seconds(|| drop(black_box(parse(black_box(&bytes), &options))), 7);
+    let scan = median_seconds(|| drop(black_box(turnpass::dialect::detect::scan(black_box(&bytes)))), 7);
     let printing = median_seconds(|| drop(black_box(print(&parsed.program, &Edits::new()))), 7);
     let peer = median_seconds(|| drop(black_box(gcode::parse(black_box(text)))), 7);
     println!(
         "\nturnpass-bench: {mb:.1} MB, {blocks} blocks, AST {per_block:.1} bytes/block\n\
-         turnpass-bench: turnpass parse {:.0} MB/s, lossless print {:.0} MB/s, gcode 0.7 parse {:.0} MB/s, parse ratio {:.2}x\n",
+         turnpass-bench: turnpass parse {:.0} MB/s, lossless print {:.0} MB/s, gcode 0.7 parse {:.0} MB/s, parse ratio {:.2}x\n\
+         turnpass-bench: dialect auto-detection scan {:.0} MB/s (runs before parsing when the dialect is not given)\n",
         mb / ours,
         mb / printing,
         mb / peer,
-        peer / ours
+        peer / ours,
+        mb / scan
     );
     drop(parsed);
 
