@@ -169,13 +169,7 @@ impl<'s> BlockParser<'_, 's> {
                 // A literal after `=` (`TG=01`) is a literal word; only expressions stay expressions.
                 let kind = match self.exprs[expr as usize].kind {
                     ExprKind::Number(number) if !is_code => {
-                        let max_digits = self.tables.address(address).map_or(8, |spec| spec.max_digits);
-                        let digits = number.significant_digits();
-                        if digits > max_digits {
-                            let len = word.len() - rest.len();
-                            let kind = DiagnosticKind::NumberOutOfRange { address: address.name(), digits, max_digits };
-                            return Err(self.error(word, len, kind));
-                        }
+                        self.check_digits(word, rest, address, number.significant_digits())?;
                         self.exprs.truncate(expr as usize);
                         WordKind::Number { address, number }
                     }
@@ -236,17 +230,32 @@ impl<'s> BlockParser<'_, 's> {
         address: Address,
         raw: RawNumber<'s>,
     ) -> Result<WordKind, Diagnostic> {
-        let max_digits = self.tables.address(address).map_or(8, |spec| spec.max_digits);
         let digits = raw.significant_digits();
-        let number = raw.to_number().filter(|_| digits <= max_digits);
-        match number {
+        self.check_digits(word, rest, address, digits)?;
+        match raw.to_number() {
             Some(number) => Ok(WordKind::Number { address, number }),
-            None => Err(self.error(
-                word,
-                word.len() - rest.len(),
-                DiagnosticKind::NumberOutOfRange { address: address.name(), digits, max_digits },
-            )),
+            // More than an i64 mantissa holds: out of range whatever the address allows.
+            None => {
+                let kind = DiagnosticKind::NumberOutOfRange { address: address.name(), digits, max_digits: 18 };
+                Err(self.error(word, word.len() - rest.len(), kind))
+            }
         }
+    }
+
+    /// The address's digit limit (`[address] max_digits` in `grammar/`).
+    fn check_digits(
+        &self,
+        word: Input<'s>,
+        rest: Input<'s>,
+        address: Address,
+        digits: usize,
+    ) -> Result<(), Diagnostic> {
+        let max_digits = self.tables.address(address).map_or(8, |spec| spec.max_digits);
+        if digits > max_digits {
+            let kind = DiagnosticKind::NumberOutOfRange { address: address.name(), digits, max_digits };
+            return Err(self.error(word, word.len() - rest.len(), kind));
+        }
+        Ok(())
     }
 
     pub(super) fn code(
