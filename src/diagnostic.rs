@@ -166,6 +166,14 @@ pub enum DiagnosticKind {
     TooManyWords { max: usize },
     /// An OSP `$` continuation line with no block before it.
     OrphanContinuation,
+    /// A move whose coordinates, feed or time are not finite numbers.
+    NonFiniteMove,
+    /// An arc whose end point is not on the circle through its start.
+    ArcEndOffCircle { start_radius: f64, end_radius: f64 },
+    /// A move that ends before it starts, or before the previous move ended.
+    TimeGoesBack,
+    /// A point of the toolpath outside the machine's travel.
+    OutsideTravel { x_mm: f64, z_mm: f64 },
 }
 
 impl DiagnosticKind {
@@ -215,6 +223,10 @@ impl DiagnosticKind {
             SourceTooLarge => "source-too-large",
             TooManyWords { .. } => "too-many-words",
             OrphanContinuation => "orphan-continuation",
+            NonFiniteMove => "non-finite-move",
+            ArcEndOffCircle { .. } => "arc-end-off-circle",
+            TimeGoesBack => "time-goes-back",
+            OutsideTravel { .. } => "outside-travel",
         }
     }
 
@@ -279,6 +291,14 @@ impl DiagnosticKind {
             SourceTooLarge => "the program is 4 GiB or larger".to_string(),
             TooManyWords { max } => format!("the block has more than {max} words"),
             OrphanContinuation => "continuation line with no block before it".to_string(),
+            NonFiniteMove => "a move of this block has no finite position, feed or time".to_string(),
+            ArcEndOffCircle { start_radius, end_radius } => format!(
+                "the arc's end is not on its circle: radius {start_radius:.4} mm at the start, {end_radius:.4} mm at the end"
+            ),
+            TimeGoesBack => "a move of this block ends before it starts".to_string(),
+            OutsideTravel { x_mm, z_mm } => {
+                format!("the tool leaves the machine's travel at X{:.3} Z{z_mm:.3} (diameter, mm)", 2.0 * x_mm)
+            }
         }
     }
 
@@ -327,6 +347,7 @@ impl DiagnosticKind {
             SourceTooLarge => "too large".to_string(),
             TooManyWords { .. } => "this block".to_string(),
             OrphanContinuation => "`$`".to_string(),
+            NonFiniteMove | ArcEndOffCircle { .. } | TimeGoesBack | OutsideTravel { .. } => "this block".to_string(),
         }
     }
 
@@ -408,6 +429,9 @@ impl DiagnosticKind {
             SourceTooLarge => None,
             TooManyWords { .. } => Some("no control reads a block this long; split it".to_string()),
             OrphanContinuation => Some("a `$` line continues the block on the line before it".to_string()),
+            NonFiniteMove | TimeGoesBack => None,
+            ArcEndOffCircle { .. } => Some("check the end point and the centre (I K) or radius of the arc".to_string()),
+            OutsideTravel { .. } => Some("check the coordinates, the work offset and the travel limits in the machine settings".to_string()),
         }
     }
 }

@@ -14,7 +14,9 @@
 
 pub mod diagnostic;
 pub mod dialect;
+pub mod geometry;
 pub mod machine;
 pub mod printer;
 pub mod source;
 pub mod syntax;
+pub mod toolpath;

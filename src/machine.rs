@@ -29,6 +29,60 @@ pub struct MachineSettings {
     pub diameter_programming: Option<bool>,
     /// Least input increment in the machine's units (0.001 mm, 0.0001 in).
     pub least_increment: Option<f64>,
+    /// The reference position `G28` returns to, in the machine's units with X as the
+    /// machine programs it (a diameter on diameter-programmed lathes).
+    pub home: Option<AxisPair>,
+    /// Travel limits of the tool reference point, same convention as `home`.
+    pub travel: Option<Travel>,
+    /// Rapid traverse rate of each axis, machine units per minute.
+    pub rapid_rate: Option<AxisPair>,
+    /// The spindle's top speed, rpm; constant surface speed never exceeds it.
+    pub max_spindle_rpm: Option<f64>,
+    /// The block-delete switch: `true` skips blocks that start with `/`.
+    pub block_delete: Option<bool>,
+    /// The tool table.
+    #[serde(default)]
+    pub tool: Vec<ToolSettings>,
+}
+
+/// An X and a Z value.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AxisPair {
+    pub x: f64,
+    pub z: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Travel {
+    pub x_min: f64,
+    pub x_max: f64,
+    pub z_min: f64,
+    pub z_max: f64,
+}
+
+/// One tool of the table: `[[machine.tool]]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToolSettings {
+    /// Turret station (`T04xx` selects station 4).
+    pub station: u32,
+    /// Offset number; the station's number when absent (`T0404`).
+    pub offset: Option<u32>,
+    /// Geometry offset, machine units, X as programmed.
+    #[serde(default)]
+    pub x: f64,
+    #[serde(default)]
+    pub z: f64,
+    /// Nose radius, machine units.
+    #[serde(default)]
+    pub nose_radius: f64,
+    /// Imaginary tip direction 0-9 (3 for an outside turning tool cutting toward the chuck).
+    #[serde(default)]
+    pub tip: u8,
+    /// Minor cutting edge angle, degrees, for the roughness estimate (eq. 9.1 of the thesis).
+    pub minor_edge_angle: Option<f64>,
 }
 
 /// A machine model file. Only `[machine]` is read here; the error-model tables that later

@@ -1,0 +1,164 @@
+//! Plane geometry in the toolpath frame (X radius, Z axial, mm), with nalgebra.
+//!
+//! **Arc sense.** Seen from +Y (the ZX plane of `G18`, Z to the right and X up), `G02` turns
+//! clockwise and `G03` counter-clockwise. With the angle of a point about a centre measured
+//! as `atan2(x − cx, z − cz)`, `G03` is the direction of increasing angle.
+//!
+//! ```txt
+//!   X ▲        G03 (ccw): angle grows
+//!     │   ╭─╮
+//!     │  ╱   ╲
+//!     └──────────▶ Z
+//! ```
+
+use std::f64::consts::{PI, TAU};
+
+use nalgebra::{Matrix2, Vector2};
+
+use crate::toolpath::Xz;
+
+fn v(p: Xz) -> Vector2<f64> {
+    Vector2::new(p.z, p.x)
+}
+
+fn p(v: Vector2<f64>) -> Xz {
+    Xz::new(v.y, v.x)
+}
+
+/// The angle of `point` about `centre` (radians, from +Z toward +X).
+pub fn angle(point: Xz, centre: Xz) -> f64 {
+    (point.x - centre.x).atan2(point.z - centre.z)
+}
+
+/// The point at `angle` on the circle of `radius` about `centre`.
+pub fn on_circle(centre: Xz, radius: f64, angle: f64) -> Xz {
+    Xz::new(centre.x + radius * angle.sin(), centre.z + radius * angle.cos())
+}
+
+/// The swept angle from `start` to `end` about `centre`, positive, in `(0, 2π]`: an arc whose
+/// end meets its start is a full circle.
+pub fn sweep(start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
+    let a0 = angle(start, centre);
+    let a1 = angle(end, centre);
+    let raw = if ccw { a1 - a0 } else { a0 - a1 };
+    let mut s = raw.rem_euclid(TAU);
+    // A chord shorter than a nanometre is a full circle, not an empty arc.
+    if s < 1e-12 || (start.distance(end) < 1e-9 && s > TAU - 1e-9) {
+        s = TAU;
+    }
+    s
+}
+
+pub fn arc_length(start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
+    start.distance(centre) * sweep(start, end, centre, ccw)
+}
+
+/// The points where an arc is furthest along ±X and ±Z (inside its sweep), for limit checks.
+pub fn arc_extremes(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Vec<Xz> {
+    let radius = start.distance(centre);
+    let a0 = angle(start, centre);
+    let total = sweep(start, end, centre, ccw);
+    let mut out = Vec::new();
+    for k in 0..4 {
+        let target = k as f64 * PI / 2.0;
+        let delta = if ccw { (target - a0).rem_euclid(TAU) } else { (a0 - target).rem_euclid(TAU) };
+        if delta > 0.0 && delta < total {
+            out.push(on_circle(centre, radius, target));
+        }
+    }
+    out
+}
+
+/// The centre of the arc from `start` to `end` with radius `radius`: the shorter arc for a
+/// positive radius, the longer for a negative one (the Fanuc `R` rule). `None` when the
+/// radius cannot reach: shorter than half the chord by more than `tolerance`.
+pub fn centre_from_radius(start: Xz, end: Xz, radius: f64, ccw: bool, tolerance: f64) -> Option<Xz> {
+    let a = v(start);
+    let b = v(end);
+    let chord = b - a;
+    let half = chord.norm() / 2.0;
+    let r = radius.abs();
+    if half < 1e-12 || r + tolerance < half {
+        return None;
+    }
+    let h = (r * r - half * half).max(0.0).sqrt();
+    let mid = (a + b) / 2.0;
+    let unit = chord / chord.norm();
+    // Perpendicular to the chord, to the left of the direction start → end in (z, x).
+    let left = Vector2::new(-unit.y, unit.x);
+    // A counter-clockwise minor arc has its centre to the left of the chord.
+    let minor = radius > 0.0;
+    let side = if ccw == minor { 1.0 } else { -1.0 };
+    Some(p(mid + left * (h * side)))
+}
+
+/// Where the line through `a1`, `a2` meets the line through `b1`, `b2`; `None` if parallel.
+pub fn line_line(a1: Xz, a2: Xz, b1: Xz, b2: Xz) -> Option<Xz> {
+    let d1 = v(a2) - v(a1);
+    let d2 = v(b2) - v(b1);
+    let m = Matrix2::new(d1.x, -d2.x, d1.y, -d2.y);
+    let rhs = v(b1) - v(a1);
+    let t = m.try_inverse()? * rhs;
+    Some(p(v(a1) + d1 * t.x))
+}
+
+/// Where the line through `a`, `b` meets the circle; parameters along `a → b` (0 at `a`,
+/// 1 at `b`), in increasing order.
+pub fn line_circle(a: Xz, b: Xz, centre: Xz, radius: f64) -> Vec<f64> {
+    let d = v(b) - v(a);
+    let f = v(a) - v(centre);
+    let qa = d.dot(&d);
+    if qa < 1e-24 {
+        return Vec::new();
+    }
+    let qb = 2.0 * f.dot(&d);
+    let qc = f.dot(&f) - radius * radius;
+    let disc = qb * qb - 4.0 * qa * qc;
+    if disc < 0.0 {
+        return Vec::new();
+    }
+    let root = disc.sqrt();
+    let t1 = (-qb - root) / (2.0 * qa);
+    let t2 = (-qb + root) / (2.0 * qa);
+    if root == 0.0 { vec![t1] } else { vec![t1, t2] }
+}
+
+/// Where two circles meet.
+pub fn circle_circle(c1: Xz, r1: f64, c2: Xz, r2: f64) -> Vec<Xz> {
+    let d = v(c2) - v(c1);
+    let dist = d.norm();
+    if dist < 1e-12 || dist > r1 + r2 + 1e-9 || dist < (r1 - r2).abs() - 1e-9 {
+        return Vec::new();
+    }
+    let a = (r1 * r1 - r2 * r2 + dist * dist) / (2.0 * dist);
+    let h = (r1 * r1 - a * a).max(0.0).sqrt();
+    let unit = d / dist;
+    let base = v(c1) + unit * a;
+    let perp = Vector2::new(-unit.y, unit.x);
+    if h < 1e-12 { vec![p(base)] } else { vec![p(base + perp * h), p(base - perp * h)] }
+}
+
+/// Whether the angle of `point` about `centre` lies inside the sweep of the arc.
+pub fn angle_within(point: Xz, start: Xz, end: Xz, centre: Xz, ccw: bool) -> bool {
+    let total = sweep(start, end, centre, ccw);
+    let a0 = angle(start, centre);
+    let a = angle(point, centre);
+    let delta = if ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+    delta <= total + 1e-12
+}
+
+/// The unit direction from `a` to `b` (zero for coincident points).
+pub fn direction(a: Xz, b: Xz) -> Xz {
+    let d = v(b) - v(a);
+    let n = d.norm();
+    if n < 1e-15 { Xz::default() } else { p(d / n) }
+}
+
+/// The unit normal to the left of the direction `a → b`, in the (Z, X) view.
+pub fn left_normal(a: Xz, b: Xz) -> Xz {
+    let d = direction(a, b);
+    Xz::new(d.z, -d.x)
+}
+
+#[cfg(test)]
+mod tests;

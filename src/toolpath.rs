@@ -1,0 +1,235 @@
+//! The toolpath IR: the moves a lathe really makes.
+//!
+//! **The frame.** Millimetres; X is a *radius* (distance from the spindle axis), Z runs
+//! along the axis; absolute coordinates in the work coordinate system; XZ plane. Units,
+//! diameter programming and incremental words are converted at the boundary (the semantic
+//! pass reading a program, the expand printer writing one), never inside.
+//!
+//! **The moves.** A move starts where the previous one ended (the toolpath's `start` for
+//! the first), so a move stores only its end. Arcs store their absolute centre. Every move
+//! carries its feed in mm/min (feed per revolution and constant surface speed already
+//! resolved), the spindle speed, its start and end time, the tool and offset in effect, the
+//! nose-radius compensation state, whether it cuts, and the spans of the block it comes from
+//! and of the cycle call that produced it.
+//!
+//! **Two paths.** `end` is the tool's reference point after nose-radius compensation;
+//! `contour` is the programmed contour point the move was made for. The error model needs
+//! both: the machine moves the reference point, the part takes the contour.
+//!
+//! **Validation.** [`validate`] checks finite coordinates, arc end points on their circle
+//! (within 0.001 mm), non-decreasing time, and the travel limits when the machine gives
+//! them. Later passes take a [`ValidToolpath`], which only `validate` can make.
+
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::source::Span;
+
+/// A point in the toolpath frame: `x` is the radius, `z` the axial position, both in mm.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Xz {
+    pub x: f64,
+    pub z: f64,
+}
+
+impl Xz {
+    pub const fn new(x: f64, z: f64) -> Xz {
+        Xz { x, z }
+    }
+
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.z.is_finite()
+    }
+
+    pub fn distance(self, other: Xz) -> f64 {
+        (self.x - other.x).hypot(self.z - other.z)
+    }
+}
+
+/// What a move does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Motion {
+    /// Positioning at the rapid rate; the axes move independently.
+    Rapid,
+    /// A straight cut at the feed.
+    Feed,
+    /// An arc clockwise as seen in the program's G02 sense.
+    Cw,
+    /// An arc counter-clockwise (G03).
+    Ccw,
+    /// The tool stands still for a time.
+    Dwell,
+}
+
+impl Motion {
+    pub fn name(self) -> &'static str {
+        match self {
+            Motion::Rapid => "rapid",
+            Motion::Feed => "feed",
+            Motion::Cw => "cw",
+            Motion::Ccw => "ccw",
+            Motion::Dwell => "dwell",
+        }
+    }
+
+    pub fn is_arc(self) -> bool {
+        matches!(self, Motion::Cw | Motion::Ccw)
+    }
+}
+
+/// Tool nose radius compensation state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Compensation {
+    Off,
+    /// G41: the tool is left of the path.
+    Left,
+    /// G42: the tool is right of the path.
+    Right,
+}
+
+/// One move. See the module documentation for the frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Move {
+    pub motion: Motion,
+    pub compensation: Compensation,
+    /// Part of a cutting pass (a feed or arc inside a cycle's cut, or any programmed feed).
+    pub cutting: bool,
+    /// Feed synchronised with the spindle (thread cutting).
+    pub threading: bool,
+    /// Turret station and offset number in effect.
+    pub tool: u16,
+    pub offset: u16,
+    /// The tool reference point at the end of the move.
+    pub end: Xz,
+    /// The arc centre (arcs only; NaN otherwise).
+    pub centre: Xz,
+    /// The programmed contour point the move ends at.
+    pub contour: Xz,
+    /// Feed, mm/min (0 for rapids and dwells).
+    pub feed: f64,
+    /// Spindle speed, rpm.
+    pub rpm: f64,
+    pub t_start: f64,
+    pub t_end: f64,
+    /// The block the move comes from; for a cycle, its call block.
+    pub source: Span,
+    /// The cycle call block that produced the move, or `Span::SYNTHETIC`.
+    pub cycle: Span,
+}
+
+impl Move {
+    pub fn is_arc(&self) -> bool {
+        self.motion.is_arc()
+    }
+}
+
+/// The moves of a program, from `start`.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Toolpath {
+    /// Where the tool is before the first move.
+    pub start: Xz,
+    pub moves: Vec<Move>,
+}
+
+impl Toolpath {
+    /// Where move `index` starts.
+    pub fn start_of(&self, index: usize) -> Xz {
+        if index == 0 { self.start } else { self.moves[index - 1].end }
+    }
+
+    pub fn duration(&self) -> f64 {
+        self.moves.last().map_or(0.0, |m| m.t_end)
+    }
+}
+
+/// Travel limits of the tool reference point in the toolpath frame (X radius, mm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    pub x_min: f64,
+    pub x_max: f64,
+    pub z_min: f64,
+    pub z_max: f64,
+}
+
+impl Limits {
+    fn contains(&self, p: Xz) -> bool {
+        // A micrometre of slack keeps rounding at a limit from reading as a violation.
+        const SLACK: f64 = 0.001;
+        p.x >= self.x_min - SLACK && p.x <= self.x_max + SLACK && p.z >= self.z_min - SLACK && p.z <= self.z_max + SLACK
+    }
+}
+
+/// A toolpath that passed [`validate`]. Only `validate` makes one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidToolpath(Toolpath);
+
+impl ValidToolpath {
+    pub fn toolpath(&self) -> &Toolpath {
+        &self.0
+    }
+
+    pub fn into_inner(self) -> Toolpath {
+        self.0
+    }
+}
+
+impl std::ops::Deref for ValidToolpath {
+    type Target = Toolpath;
+    fn deref(&self) -> &Toolpath {
+        &self.0
+    }
+}
+
+/// Arc end points must lie on their circle within this distance, mm.
+pub const ARC_TOLERANCE: f64 = 0.001;
+
+/// Check the IR's invariants. Returns the valid toolpath, or the problems found (each on
+/// the source block of the offending move).
+pub fn validate(toolpath: Toolpath, limits: Option<Limits>) -> Result<ValidToolpath, Vec<Diagnostic>> {
+    let mut problems = Vec::new();
+    let mut previous_time = 0.0;
+    for (index, m) in toolpath.moves.iter().enumerate() {
+        let start = toolpath.start_of(index);
+        let span = m.source;
+        if !m.end.is_finite() || !m.contour.is_finite() || !m.t_end.is_finite() || !m.feed.is_finite() {
+            problems.push(Diagnostic::error(DiagnosticKind::NonFiniteMove, span));
+            continue;
+        }
+        if m.is_arc() {
+            let r_start = start.distance(m.centre);
+            let r_end = m.end.distance(m.centre);
+            if !m.centre.is_finite() || (r_start - r_end).abs() > ARC_TOLERANCE {
+                problems.push(Diagnostic::error(
+                    DiagnosticKind::ArcEndOffCircle { start_radius: r_start, end_radius: r_end },
+                    span,
+                ));
+            }
+        }
+        if m.t_start + 1e-9 < previous_time || m.t_end + 1e-9 < m.t_start {
+            problems.push(Diagnostic::error(DiagnosticKind::TimeGoesBack, span));
+        }
+        previous_time = m.t_end;
+        if let Some(limits) = limits
+            && let Some(outside) = first_point_outside(start, m, &limits)
+        {
+            problems.push(Diagnostic::error(DiagnosticKind::OutsideTravel { x_mm: outside.x, z_mm: outside.z }, span));
+        }
+    }
+    if problems.is_empty() { Ok(ValidToolpath(toolpath)) } else { Err(problems) }
+}
+
+/// The end point, or for an arc the extreme point of its sweep, that leaves the limits.
+fn first_point_outside(start: Xz, m: &Move, limits: &Limits) -> Option<Xz> {
+    if !limits.contains(m.end) {
+        return Some(m.end);
+    }
+    if m.is_arc() {
+        for extreme in crate::geometry::arc_extremes(start, m.end, m.centre, m.motion == Motion::Ccw) {
+            if !limits.contains(extreme) {
+                return Some(extreme);
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,61 @@
+use super::*;
+
+fn feed(end: Xz) -> Move {
+    Move {
+        motion: Motion::Feed,
+        compensation: Compensation::Off,
+        cutting: true,
+        threading: false,
+        tool: 1,
+        offset: 1,
+        end,
+        centre: Xz::new(f64::NAN, f64::NAN),
+        contour: end,
+        feed: 100.0,
+        rpm: 1000.0,
+        t_start: 0.0,
+        t_end: 1.0,
+        source: Span::new(0, 1),
+        cycle: Span::SYNTHETIC,
+    }
+}
+
+#[test]
+fn a_clean_path_validates() {
+    let path = Toolpath { start: Xz::new(0.0, 0.0), moves: vec![feed(Xz::new(1.0, 0.0))] };
+    assert!(validate(path, None).is_ok());
+}
+
+#[test]
+fn an_arc_whose_end_is_off_its_circle_is_rejected() {
+    let mut arc = feed(Xz::new(2.0, 0.0));
+    arc.motion = Motion::Ccw;
+    arc.centre = Xz::new(0.0, 0.0);
+    let path = Toolpath { start: Xz::new(1.0, 0.0), moves: vec![arc] };
+    let problems = validate(path, None).unwrap_err();
+    assert!(matches!(problems[0].kind, DiagnosticKind::ArcEndOffCircle { .. }));
+}
+
+#[test]
+fn travel_limits_catch_an_arc_bulging_out() {
+    let mut arc = feed(Xz::new(0.0, -2.0));
+    arc.motion = Motion::Ccw;
+    arc.centre = Xz::new(0.0, -1.0);
+    // From Z0 to Z-2 about Z-1 counter-clockwise bulges to X+1 at the top.
+    let path = Toolpath { start: Xz::new(0.0, 0.0), moves: vec![arc] };
+    let limits = Limits { x_min: -0.5, x_max: 0.5, z_min: -10.0, z_max: 10.0 };
+    let problems = validate(path, Some(limits)).unwrap_err();
+    assert!(matches!(problems[0].kind, DiagnosticKind::OutsideTravel { .. }));
+}
+
+#[test]
+fn non_finite_points_and_time_running_back_are_rejected() {
+    let mut bad = feed(Xz::new(f64::NAN, 0.0));
+    bad.t_end = 2.0;
+    let mut back = feed(Xz::new(1.0, 0.0));
+    back.t_start = 0.5;
+    back.t_end = 0.4;
+    let path = Toolpath { start: Xz::default(), moves: vec![bad, back] };
+    let problems = validate(path, None).unwrap_err();
+    assert_eq!(problems.len(), 2);
+}
