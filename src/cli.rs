@@ -14,6 +14,8 @@ use turnpass::diagnostic::render::{RenderSource, render_terminal, to_json};
 use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::printer::{self, CanonicalOptions, Edits};
+use turnpass::semantic::{self, LowerOptions, Machine};
+use turnpass::simulation;
 use turnpass::source::LineIndex;
 use turnpass::syntax::{self, ParseOptions, Statement};
 
@@ -45,6 +47,55 @@ enum Command {
     Check(CheckArgs),
     /// Print a program back: losslessly, or in canonical form.
     Fmt(FmtArgs),
+    /// Print the program with every cycle replaced by the moves it performs.
+    Expand(ExpandArgs),
+    /// Print the toolpath the machine moves, and a summary (times, length, roughness).
+    Simulate(SimulateArgs),
+}
+
+#[derive(Args)]
+struct ExpandArgs {
+    /// Program file; `-` reads standard input.
+    file: PathBuf,
+    /// Output file (default: standard output).
+    #[arg(short, long, value_name = "OUT")]
+    output: Option<PathBuf>,
+    #[command(flatten)]
+    read: ReadArgs,
+    #[command(flatten)]
+    run: RunArgs,
+}
+
+#[derive(Args)]
+struct SimulateArgs {
+    /// Program file; `-` reads standard input.
+    file: PathBuf,
+    #[arg(long, value_enum, default_value = "csv")]
+    format: SimulateFormat,
+    #[command(flatten)]
+    read: ReadArgs,
+    #[command(flatten)]
+    run: RunArgs,
+}
+
+#[derive(Args)]
+struct RunArgs {
+    /// The block-delete switch: `on` skips blocks starting with `/` (default: the machine
+    /// settings, else off).
+    #[arg(long, value_enum)]
+    block_delete: Option<Switch>,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum Switch {
+    On,
+    Off,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum SimulateFormat {
+    Csv,
+    Json,
 }
 
 #[derive(Args)]
@@ -130,6 +181,8 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Check(args) => check(args),
         Command::Fmt(args) => fmt(args),
+        Command::Expand(args) => expand(args),
+        Command::Simulate(args) => simulate(args),
     };
     match result {
         Ok(code) => code,
@@ -178,6 +231,7 @@ struct Resolved {
     options: ParseOptions,
     decimal_input: DecimalInput,
     increment_places: u8,
+    settings: MachineSettings,
 }
 
 fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
@@ -193,6 +247,7 @@ fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         options: ParseOptions { dialect, gcode_system, machine_kind: None },
         decimal_input,
         increment_places: settings.increment_places(),
+        settings: MachineSettings { decimal_input: Some(decimal_input), ..settings },
     })
 }
 
@@ -303,6 +358,139 @@ fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
             .map_err(|source| CliError::Write { path: "<stdout>".into(), source })?,
     }
     Ok(if parsed.has_errors() { ExitCode::from(1) } else { ExitCode::SUCCESS })
+}
+
+/// Parse and lower a program; diagnostics go to standard error. Returns the program text,
+/// the parse, the lowering and whether anything was an error.
+fn lower_file(
+    path: &Path,
+    read: &ReadArgs,
+    run: &RunArgs,
+    compensation: bool,
+) -> Result<(Vec<u8>, Resolved), CliError> {
+    let resolved = resolve(read, path)?;
+    let bytes = read_input(path)?;
+    let _ = (run, compensation);
+    Ok((bytes, resolved))
+}
+
+fn lower_options(run: &RunArgs, settings: &MachineSettings, compensation: bool) -> LowerOptions {
+    let block_delete = match run.block_delete {
+        Some(Switch::On) => true,
+        Some(Switch::Off) => false,
+        None => settings.block_delete.unwrap_or(false),
+    };
+    LowerOptions { nose_radius_compensation: compensation, ..LowerOptions::new(block_delete) }
+}
+
+fn report(name: &str, bytes: &[u8], diagnostics: &[turnpass::diagnostic::Diagnostic]) {
+    if diagnostics.is_empty() {
+        return;
+    }
+    let render = RenderSource::new(name, bytes);
+    let text = render_terminal(&render, diagnostics, std::io::stderr().is_terminal());
+    let _ = std::io::stderr().write_all(&text);
+}
+
+fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
+    let (bytes, resolved) = lower_file(&args.file, &args.read, &args.run, false)?;
+    let name = display_name(&args.file);
+    let parsed = syntax::parse(&bytes, &resolved.options);
+    let machine = Machine::from_settings(&resolved.settings);
+    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(&args.run, &resolved.settings, false));
+    let mut diagnostics = parsed.diagnostics.clone();
+    diagnostics.extend(lowered.diagnostics.iter().cloned());
+    diagnostics.sort_by_key(|d| d.span.start);
+    report(&name, &bytes, &diagnostics);
+    let errors = diagnostics.iter().any(|d| d.is_error());
+    if errors {
+        // A program that does not lower cleanly is not expanded: no partial output.
+        return Ok(ExitCode::from(1));
+    }
+    let (edits, notes) = turnpass::expand::expansion_edits(&parsed.program, &lowered);
+    report(&name, &bytes, &notes);
+    let output = printer::print(&parsed.program, &edits);
+    match &args.output {
+        Some(path) if path != Path::new("-") => write_atomically(path, &output)?,
+        _ => std::io::stdout()
+            .lock()
+            .write_all(&output)
+            .map_err(|source| CliError::Write { path: "<stdout>".into(), source })?,
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
+    let (bytes, resolved) = lower_file(&args.file, &args.read, &args.run, true)?;
+    let name = display_name(&args.file);
+    let parsed = syntax::parse(&bytes, &resolved.options);
+    let machine = Machine::from_settings(&resolved.settings);
+    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(&args.run, &resolved.settings, true));
+    let mut diagnostics = parsed.diagnostics.clone();
+    diagnostics.extend(lowered.diagnostics.iter().cloned());
+    let valid = match turnpass::toolpath::validate(lowered.toolpath.clone(), machine.limits) {
+        Ok(valid) => Some(valid),
+        Err(problems) => {
+            diagnostics.extend(problems);
+            None
+        }
+    };
+    diagnostics.sort_by_key(|d| d.span.start);
+    report(&name, &bytes, &diagnostics);
+    let Some(valid) = valid else { return Ok(ExitCode::from(1)) };
+    let rows = simulation::rows(&parsed.program, &valid);
+    let summary = simulation::summary(&parsed.program, &lowered, &valid, &machine);
+    let output = match args.format {
+        SimulateFormat::Csv => {
+            let mut text = simulation::csv(&rows).map_err(|e| CliError::Write {
+                path: "<stdout>".into(),
+                source: std::io::Error::other(e.to_string()),
+            })?;
+            // The summary goes to standard error so that standard output stays one CSV table.
+            let _ = writeln!(std::io::stderr(), "{}", summary_text(&summary));
+            text.shrink_to_fit();
+            text
+        }
+        SimulateFormat::Json => {
+            let value = serde_json::json!({ "moves": rows, "summary": summary });
+            let mut text = serde_json::to_vec_pretty(&value).unwrap_or_default();
+            text.push(b'\n');
+            text
+        }
+    };
+    std::io::stdout()
+        .lock()
+        .write_all(&output)
+        .map_err(|source| CliError::Write { path: "<stdout>".into(), source })?;
+    Ok(if diagnostics.iter().any(|d| d.is_error()) { ExitCode::from(1) } else { ExitCode::SUCCESS })
+}
+
+fn summary_text(summary: &simulation::Summary) -> String {
+    let mut out = format!(
+        "cycle time {:.1} s, cutting time {:.1} s, path {:.1} mm ({:.1} mm cutting), {} moves",
+        summary.cycle_time_s, summary.cutting_time_s, summary.path_length_mm, summary.cutting_length_mm, summary.moves
+    );
+    if summary.rapid_rate_assumed {
+        out.push_str(" (rapid rate not in the machine settings: 10 m/min assumed)");
+    }
+    for pass in &summary.finishing_passes {
+        match pass.roughness_mm {
+            Some(rt) => out.push_str(&format!(
+                "\nfinishing pass at line {}: tool {}, {:.4} mm/rev, nose {:.3} mm, Rt {:.2} µm ({})",
+                pass.line,
+                pass.tool,
+                pass.feed_per_rev_mm,
+                pass.nose_radius_mm,
+                rt * 1000.0,
+                pass.formula
+            )),
+            None => out.push_str(&format!(
+                "\nfinishing pass at line {}: tool {}, {:.4} mm/rev, no nose radius in the tool table",
+                pass.line, pass.tool, pass.feed_per_rev_mm
+            )),
+        }
+    }
+    out
 }
 
 /// Write `bytes` to `path` through a temporary file in the same directory and a rename, so

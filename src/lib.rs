@@ -14,9 +14,12 @@
 
 pub mod diagnostic;
 pub mod dialect;
+pub mod expand;
 pub mod geometry;
 pub mod machine;
 pub mod printer;
+pub mod semantic;
+pub mod simulation;
 pub mod source;
 pub mod syntax;
 pub mod toolpath;

@@ -94,6 +94,8 @@ pub struct Move {
     pub cutting: bool,
     /// Feed synchronised with the spindle (thread cutting).
     pub threading: bool,
+    /// `f_word` is per revolution (`G99`/`G95`) rather than per minute.
+    pub per_revolution: bool,
     /// Turret station and offset number in effect.
     pub tool: u16,
     pub offset: u16,
@@ -105,6 +107,10 @@ pub struct Move {
     pub contour: Xz,
     /// Feed, mm/min (0 for rapids and dwells).
     pub feed: f64,
+    /// The F and S words in effect as the program writes them (program units; per
+    /// revolution or per minute, rpm or surface speed), for printing the move back.
+    pub f_word: f64,
+    pub s_word: f64,
     /// Spindle speed, rpm.
     pub rpm: f64,
     pub t_start: f64,

@@ -182,6 +182,70 @@ impl GKind {
     }
 }
 
+/// What a G-code does, whatever its number in a dialect or G-code system. The semantic pass
+/// dispatches on this, so the numbers stay in `grammar/`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GFunction {
+    Absolute,
+    AtcHome,
+    Ccw,
+    ChamferCorner,
+    CompensationLeft,
+    CompensationOff,
+    CompensationRight,
+    CompoundThreadFace,
+    CompoundThreadLongitudinal,
+    CoordinateSetOrClamp,
+    Cw,
+    DiameterGrooving,
+    Drilling,
+    DrillingCancel,
+    Dwell,
+    FacePeck,
+    FacingCycle,
+    FeedPerMinute,
+    FeedPerRev,
+    Finishing,
+    Inch,
+    Incremental,
+    LapBlank,
+    LapCondition,
+    LapContourLongitudinal,
+    LapContourTransverse,
+    LapCopy,
+    LapEnd,
+    LapFinish,
+    LapRough,
+    LapThread,
+    Linear,
+    LocalShift,
+    MachineCoordinates,
+    MacroCall,
+    Metric,
+    MultipleThreading,
+    OspFaceCutting,
+    OspGrooving,
+    PatternRepeat,
+    Rapid,
+    ReferenceCheck,
+    ReferenceReturn,
+    RoundCorner,
+    Rpm,
+    SecondReferenceReturn,
+    StockRemovalFacing,
+    StockRemovalTurning,
+    SurfaceSpeed,
+    Tapping,
+    ThreadCycle,
+    ThreadMove,
+    ThreadSingle,
+    ThreadSingleFace,
+    TurningCycle,
+    VariableLeadThreadMove,
+    WorkOffset,
+}
+
 #[derive(Debug, Clone)]
 pub struct GInfo {
     pub code: Code,
@@ -190,6 +254,7 @@ pub struct GInfo {
     pub schema: Option<SchemaId>,
     pub meaning: String,
     pub note: Option<String>,
+    pub function: Option<GFunction>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -398,6 +463,7 @@ struct RawG {
     meaning: String,
     /// A remark for readers and hovers, kept out of diagnostics.
     note: Option<String>,
+    function: Option<GFunction>,
     machine: Option<MachineScope>,
 }
 
@@ -421,7 +487,17 @@ struct RawDialect {
     m: BTreeMap<String, String>,
     #[serde(default)]
     foreign_g: BTreeMap<String, String>,
+    m_functions: MFunctions,
     schema: BTreeMap<String, RawSchema>,
+}
+
+/// The M codes the semantic pass acts on.
+#[derive(Debug, Clone, Default, Deserialize)]
+pub struct MFunctions {
+    pub end: Vec<u16>,
+    pub subprogram_call: Vec<u16>,
+    pub subprogram_return: Vec<u16>,
+    pub spindle_stop: Vec<u16>,
 }
 
 /// The compiled tables of one dialect configuration.
@@ -442,6 +518,7 @@ pub struct Tables {
     /// Codes of the other dialect, with a note on what to write instead.
     foreign_g: HashMap<Code, String>,
     m: HashMap<u16, String>,
+    pub m_functions: MFunctions,
     schemas: Vec<Schema>,
 }
 
@@ -490,6 +567,11 @@ impl Tables {
     pub fn g(&self, code: Code) -> Option<&GInfo> {
         let slot = *self.g_index.get(code.0 as usize)?;
         if slot == 0 { None } else { Some(&self.g_infos[slot as usize - 1]) }
+    }
+
+    /// The code that performs `function` in this configuration (the lowest, when several do).
+    pub fn code_for(&self, function: GFunction) -> Option<Code> {
+        self.g_infos.iter().filter(|g| g.function == Some(function)).map(|g| g.code).min_by_key(|c| c.0)
     }
 
     pub fn g_elsewhere(&self, code: Code) -> Option<&Elsewhere> {
@@ -616,6 +698,7 @@ fn compile(config: DialectConfig) -> Tables {
                     schema,
                     meaning: g.meaning.clone(),
                     note: g.note.clone(),
+                    function: g.function,
                 });
                 g_index[code.0 as usize] = g_infos.len() as u16;
             }
@@ -668,6 +751,7 @@ fn compile(config: DialectConfig) -> Tables {
         g_elsewhere,
         foreign_g,
         m,
+        m_functions: raw.m_functions,
         schemas,
     }
 }

@@ -11,5 +11,6 @@ mod parse;
 mod print;
 mod robustness;
 mod roundtrip;
+mod simulate;
 mod support;
 mod thesis;

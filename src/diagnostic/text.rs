@@ -1,0 +1,394 @@
+//! The words of each diagnostic: stable codes, messages, labels and hints, written for a
+//! machinist at the control.
+
+use super::DiagnosticKind;
+
+impl DiagnosticKind {
+    /// A stable identifier for tools and JSON output.
+    pub fn code(&self) -> &'static str {
+        use DiagnosticKind::*;
+        match self {
+            InvalidCharacter { .. } => "invalid-character",
+            NonAsciiByte { .. } => "non-ascii-byte",
+            LowerCaseLetter { .. } => "lower-case-letter",
+            NulByte => "nul-byte",
+            DamagedNumber { .. } => "damaged-number",
+            MissingValue { .. } => "missing-value",
+            MissingDigits { .. } => "missing-digits",
+            LetterOForZero { .. } => "letter-o-for-zero",
+            ZeroForLetterO { .. } => "zero-for-letter-o",
+            NumberOutOfRange { .. } => "number-out-of-range",
+            NumberWithoutAddress { .. } => "number-without-address",
+            UnknownGCode { .. } => "unknown-g-code",
+            MalformedCode { .. } => "malformed-code",
+            MachiningCentreCode { .. } => "machining-centre-code",
+            ForeignWord { .. } => "foreign-word",
+            UnknownStatement { .. } => "unknown-statement",
+            ExtendedAddressNeedsEquals { .. } => "extended-address-needs-equals",
+            MissingSpaceAfterSequence { .. } => "missing-space-after-sequence",
+            SequenceTooLong { .. } => "sequence-too-long",
+            MissingSequenceName => "missing-sequence-name",
+            MisplacedSequence => "misplaced-sequence",
+            InvalidProgramName { .. } => "invalid-program-name",
+            ProgramNameNotAlone => "program-name-not-alone",
+            UnclosedComment => "unclosed-comment",
+            UnclosedBracket => "unclosed-bracket",
+            UnmatchedBracket => "unmatched-bracket",
+            ExpressionTooDeep { .. } => "expression-too-deep",
+            MalformedExpression { .. } => "malformed-expression",
+            MisplacedBlockDelete => "misplaced-block-delete",
+            WordNotAllowed { .. } => "word-not-allowed",
+            MissingWord { .. } => "missing-word",
+            IntegerExpected { .. } => "integer-expected",
+            ConflictingCommands { .. } => "conflicting-commands",
+            DuplicateWord { .. } => "duplicate-word",
+            SemicolonInOsp => "semicolon-in-osp",
+            ByteOrderMark => "byte-order-mark",
+            SameModalGroup { .. } => "same-modal-group",
+            DialectConflict { .. } => "dialect-conflict",
+            MachiningCentreProgram => "machining-centre-program",
+            SourceTooLarge => "source-too-large",
+            TooManyWords { .. } => "too-many-words",
+            OrphanContinuation => "orphan-continuation",
+            NonFiniteMove => "non-finite-move",
+            ArcEndOffCircle { .. } => "arc-end-off-circle",
+            TimeGoesBack => "time-goes-back",
+            OutsideTravel { .. } => "outside-travel",
+            HomeUnknown => "home-unknown",
+            UnknownStartPosition => "unknown-start-position",
+            LapContourNotClosed => "lap-contour-not-closed",
+            ProfileBackwards => "profile-backwards",
+            CycleNotSimulated { .. } => "cycle-not-simulated",
+            NotExpandable => "not-expandable",
+            CycleNeedsDepth => "cycle-needs-depth",
+            EmptyProfile => "empty-profile",
+            ProfileReverses { .. } => "profile-reverses",
+            ProfileNotMonotonic { .. } => "profile-not-monotonic",
+            MissingSequence { .. } => "missing-sequence",
+            DuplicateSequence { .. } => "duplicate-sequence",
+            RunawayProgram { .. } => "runaway-program",
+            UnmatchedLoop { .. } => "unmatched-loop",
+            MissingLabel { .. } => "missing-label",
+            MissingProgram { .. } => "missing-program",
+            CallsTooDeep { .. } => "calls-too-deep",
+            NoFeed => "no-feed",
+            ArcRadiusTooSmall { .. } => "arc-radius-too-small",
+            ArcWithoutCentre => "arc-without-centre",
+            ArcCentreMismatch { .. } => "arc-centre-mismatch",
+            CornerWithoutNextLine => "corner-without-next-line",
+            CornerDoesNotFit { .. } => "corner-does-not-fit",
+            NotAllowedInProfile => "not-allowed-in-profile",
+            BadVariableNumber { .. } => "bad-variable-number",
+            NotAVariable => "not-a-variable",
+            SystemVariableUnknown { .. } => "system-variable-unknown",
+            UndefinedVariable { .. } => "undefined-variable",
+            DivisionByZero => "division-by-zero",
+            FunctionDomain { .. } => "function-domain",
+        }
+    }
+
+    pub fn message(&self) -> String {
+        use DiagnosticKind::*;
+        match self {
+            InvalidCharacter { found } => {
+                format!("`{}` is not a character a block may contain", found.escape_debug())
+            }
+            NonAsciiByte { byte } => format!("byte 0x{byte:02X} is not ASCII and is outside a comment"),
+            LowerCaseLetter { found } => format!("lower-case `{found}` outside a comment"),
+            NulByte => "NUL byte outside a comment".to_string(),
+            DamagedNumber { text } => format!("the value in `{text}` is damaged"),
+            MissingValue { address, .. } => format!("`{address}` has no value"),
+            MissingDigits { address } => format!("the value of `{address}` has no digits"),
+            LetterOForZero { .. } => "letter `O` where a digit belongs".to_string(),
+            ZeroForLetterO { .. } => "digit `0` where the letter `O` of a program name belongs".to_string(),
+            NumberOutOfRange { address, digits, max_digits } => {
+                format!("`{address}` has {digits} significant digits; it takes at most {max_digits}")
+            }
+            NumberWithoutAddress { .. } => "a number with no address letter before it".to_string(),
+            UnknownGCode { code, dialect, .. } => format!("{code} is not a G-code of the {dialect} dialect"),
+            MalformedCode { address } => format!("malformed `{address}` code"),
+            MachiningCentreCode { code, meaning } => {
+                format!("{code} ({meaning}) is an OSP machining-centre code, not a lathe code")
+            }
+            ForeignWord { what, dialect, belongs_to } => {
+                format!("{what} belongs to the {belongs_to} dialect; this program is read as {dialect}")
+            }
+            UnknownStatement { name } => format!("`{name}` is not an OSP statement or address"),
+            ExtendedAddressNeedsEquals { name } => format!("extended address `{name}` needs `=`"),
+            MissingSpaceAfterSequence { name } => {
+                format!("sequence name `{name}` runs into the next word")
+            }
+            SequenceTooLong { max } => format!("sequence name longer than {max} characters"),
+            MissingSequenceName => "`N` with no sequence name".to_string(),
+            MisplacedSequence => "sequence number after the start of the block".to_string(),
+            InvalidProgramName { max } => format!("invalid program name (`O` and up to {max} characters)"),
+            ProgramNameNotAlone => "the program-name block holds other words".to_string(),
+            UnclosedComment => "comment not closed before the end of the block".to_string(),
+            UnclosedBracket => "`[` not closed before the end of the block".to_string(),
+            UnmatchedBracket => "`]` with no `[` before it".to_string(),
+            ExpressionTooDeep { max } => format!("brackets nested more than {max} deep"),
+            MalformedExpression { expected } => format!("malformed expression: expected {expected}"),
+            MisplacedBlockDelete => "block delete `/` in the middle of a block".to_string(),
+            WordNotAllowed { command, address, .. } => format!("{command} does not take `{address}`"),
+            MissingWord { command, words } => format!("{command} needs {words}"),
+            IntegerExpected { command, address } => {
+                format!("`{address}` in {command} takes an integer with no decimal point")
+            }
+            ConflictingCommands { first, second } => format!("{first} and {second} cannot share a block"),
+            DuplicateWord { address } => format!("`{address}` appears twice in this block"),
+            SemicolonInOsp => "`;` is not a comment on Okuma OSP".to_string(),
+            ByteOrderMark => "the file starts with a byte-order mark".to_string(),
+            SameModalGroup { first, second } => {
+                format!("{first} and {second} are in the same modal group; the control keeps {second}")
+            }
+            DialectConflict { chosen, other } => {
+                format!("the program shows features of both dialects; reading it as {chosen}, not {other}")
+            }
+            MachiningCentreProgram => "this is an OSP machining-centre program; only its syntax is checked".to_string(),
+            SourceTooLarge => "the program is 4 GiB or larger".to_string(),
+            TooManyWords { max } => format!("the block has more than {max} words"),
+            OrphanContinuation => "continuation line with no block before it".to_string(),
+            NonFiniteMove => "a move of this block has no finite position, feed or time".to_string(),
+            ArcEndOffCircle { start_radius, end_radius } => format!(
+                "the arc's end is not on its circle: radius {start_radius:.4} mm at the start, {end_radius:.4} mm at the end"
+            ),
+            TimeGoesBack => "a move of this block ends before it starts".to_string(),
+            OutsideTravel { x_mm, z_mm } => {
+                format!("the tool leaves the machine's travel at X{:.3} Z{z_mm:.3} (diameter, mm)", 2.0 * x_mm)
+            }
+            HomeUnknown => "the machine settings give no home position".to_string(),
+            UnknownStartPosition => {
+                "the machine settings give no home position; the toolpath starts at the first programmed point"
+                    .to_string()
+            }
+            LapContourNotClosed => "LAP contour with no `G80` after it".to_string(),
+            ProfileBackwards => "the profile's end (`Q`) comes before its start (`P`)".to_string(),
+            CycleNotSimulated { code } => {
+                format!("{code} is not simulated yet; its moves are missing from the toolpath")
+            }
+            NotExpandable => {
+                "this cycle is left as it is: its thread passes have no single-move form in this dialect".to_string()
+            }
+            CycleNeedsDepth => "the roughing cycle has no depth of cut".to_string(),
+            EmptyProfile => "the profile named by `P`/`Q` has no moves".to_string(),
+            ProfileReverses { axis } => format!("the profile turns back in {axis}; the roughing cycle cannot cut it"),
+            ProfileNotMonotonic { axis } => {
+                format!("the profile is not monotonic in {axis}, which a Type I roughing cycle requires")
+            }
+            MissingSequence { number } => format!("no block has sequence number N{number}"),
+            DuplicateSequence { number, count } => format!("{count} blocks have sequence number N{number}"),
+            RunawayProgram { blocks } => format!("the program ran {blocks} blocks without ending"),
+            UnmatchedLoop { number } => format!("`DO{number}` has no `END{number}`"),
+            MissingLabel { name } => format!("no block is labelled `{name}`"),
+            MissingProgram { name } => format!("the file holds no program `{name}`"),
+            CallsTooDeep { max } => format!("subprogram calls nest deeper than {max}"),
+            NoFeed => "a feed move with no feed rate (or no spindle speed for feed per revolution)".to_string(),
+            ArcRadiusTooSmall { radius_mm, half_chord_mm } => format!(
+                "the arc radius {radius_mm:.4} mm cannot reach the end point (half the chord is {half_chord_mm:.4} mm)"
+            ),
+            ArcWithoutCentre => "the arc has neither a centre (`I`/`K`) nor a radius".to_string(),
+            ArcCentreMismatch { start_radius_mm, end_radius_mm } => {
+                format!("the centre is {start_radius_mm:.4} mm from the start but {end_radius_mm:.4} mm from the end")
+            }
+            CornerWithoutNextLine => {
+                "the automatic corner has no straight move after it; the corner is left sharp".to_string()
+            }
+            CornerDoesNotFit { size_mm } => format!("a {size_mm:.3} mm corner does not fit between these lines"),
+            NotAllowedInProfile => "a finishing profile may hold only moves and modal words".to_string(),
+            BadVariableNumber { value } => format!("{value} is not a variable number"),
+            NotAVariable => "only a variable can be assigned".to_string(),
+            SystemVariableUnknown { name } => {
+                format!("{name} holds machine state the simulation does not have; read as 0")
+            }
+            UndefinedVariable { name } => format!("{name} is used before it is set"),
+            DivisionByZero => "division by zero".to_string(),
+            FunctionDomain { function, argument } => format!("{function} is not defined at {argument}"),
+        }
+    }
+
+    /// The short text under the primary label.
+    pub fn label(&self) -> String {
+        use DiagnosticKind::*;
+        match self {
+            InvalidCharacter { .. } | NonAsciiByte { .. } | NulByte | LowerCaseLetter { .. } => {
+                "not valid here".to_string()
+            }
+            DamagedNumber { .. } => "damaged value".to_string(),
+            MissingValue { .. } => "no value".to_string(),
+            MissingDigits { .. } => "no digits".to_string(),
+            LetterOForZero { .. } => "letter O".to_string(),
+            ZeroForLetterO { .. } => "digit 0".to_string(),
+            NumberOutOfRange { .. } => "too many digits".to_string(),
+            NumberWithoutAddress { .. } => "no address".to_string(),
+            UnknownGCode { .. } => "unknown G-code".to_string(),
+            MalformedCode { .. } => "malformed code".to_string(),
+            MachiningCentreCode { .. } => "machining-centre code".to_string(),
+            ForeignWord { belongs_to, .. } => format!("{belongs_to} syntax"),
+            UnknownStatement { .. } => "unknown name".to_string(),
+            ExtendedAddressNeedsEquals { .. } => "`=` missing".to_string(),
+            MissingSpaceAfterSequence { .. } => "space needed here".to_string(),
+            SequenceTooLong { .. } => "too long".to_string(),
+            MissingSequenceName => "no name".to_string(),
+            MisplacedSequence => "sequence number".to_string(),
+            InvalidProgramName { .. } => "program name".to_string(),
+            ProgramNameNotAlone => "more words after the program name".to_string(),
+            UnclosedComment => "comment starts here".to_string(),
+            UnclosedBracket => "opened here".to_string(),
+            UnmatchedBracket => "unmatched".to_string(),
+            ExpressionTooDeep { .. } => "too deep".to_string(),
+            MalformedExpression { .. } => "here".to_string(),
+            MisplacedBlockDelete => "block delete".to_string(),
+            WordNotAllowed { .. } => "not taken here".to_string(),
+            MissingWord { .. } => "this command".to_string(),
+            IntegerExpected { .. } => "decimal point".to_string(),
+            ConflictingCommands { .. } => "second command".to_string(),
+            DuplicateWord { .. } => "second time".to_string(),
+            SemicolonInOsp => "`;`".to_string(),
+            ByteOrderMark => "byte-order mark".to_string(),
+            SameModalGroup { .. } => "same group".to_string(),
+            DialectConflict { chosen, .. } => format!("evidence for {chosen}"),
+            MachiningCentreProgram => "machining-centre evidence".to_string(),
+            SourceTooLarge => "too large".to_string(),
+            TooManyWords { .. } => "this block".to_string(),
+            OrphanContinuation => "`$`".to_string(),
+            NonFiniteMove | ArcEndOffCircle { .. } | TimeGoesBack | OutsideTravel { .. } => "this block".to_string(),
+            HomeUnknown
+            | UnknownStartPosition
+            | CycleNotSimulated { .. }
+            | RunawayProgram { .. }
+            | CallsTooDeep { .. } => "here".to_string(),
+            LapContourNotClosed => "contour start".to_string(),
+            ProfileBackwards | MissingSequence { .. } | DuplicateSequence { .. } => "this cycle".to_string(),
+            NotExpandable => "kept".to_string(),
+            CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
+                "this cycle".to_string()
+            }
+            UnmatchedLoop { .. } => "loop start".to_string(),
+            MissingLabel { .. } => "jump".to_string(),
+            MissingProgram { .. } => "call".to_string(),
+            NoFeed => "no feed".to_string(),
+            ArcRadiusTooSmall { .. } | ArcWithoutCentre | ArcCentreMismatch { .. } => "this arc".to_string(),
+            CornerWithoutNextLine | CornerDoesNotFit { .. } => "corner".to_string(),
+            NotAllowedInProfile => "inside the profile".to_string(),
+            BadVariableNumber { .. } | NotAVariable | SystemVariableUnknown { .. } | UndefinedVariable { .. } => {
+                "variable".to_string()
+            }
+            DivisionByZero | FunctionDomain { .. } => "this value".to_string(),
+        }
+    }
+
+    pub fn hint(&self) -> Option<String> {
+        use DiagnosticKind::*;
+        match self {
+            InvalidCharacter { found } if found.is_ascii_punctuation() => Some(format!(
+                "`{found}` often stands for a digit damaged in scanning or transfer; retype the word from the drawing"
+            )),
+            InvalidCharacter { .. } => None,
+            NonAsciiByte { .. } => {
+                Some("text in another encoding (Shift-JIS, Latin-1) must stay inside `( )` comments".to_string())
+            }
+            LowerCaseLetter { found } => Some(format!("write `{}`", found.to_ascii_uppercase())),
+            NulByte => Some("remove the NUL byte; it is often left by a tape punch or a bad transfer".to_string()),
+            DamagedNumber { .. } => Some(
+                "a digit was lost or misread in scanning (OCR) or transfer; characters such as `}` stand for damaged digits; retype the value from the drawing"
+                    .to_string(),
+            ),
+            MissingValue { suggestion: Some(s), .. } => Some(format!("did you mean `{s}`?")),
+            MissingValue { address, suggestion: None } => {
+                Some(format!("write a number after `{address}`, for example `{address}0.`"))
+            }
+            MissingDigits { address } => Some(format!("write the digits, for example `{address}0.5`")),
+            LetterOForZero { suggestion } => Some(format!("`O` typed for `0`? did you mean `{suggestion}`?")),
+            ZeroForLetterO { suggestion } => Some(format!("`0` typed for `O`? did you mean `{suggestion}`?")),
+            NumberOutOfRange { .. } => Some("check the decimal point and the unit of the value".to_string()),
+            NumberWithoutAddress { suggestion: Some(s) } => Some(format!("missing `G`? did you mean `{s}`?")),
+            NumberWithoutAddress { suggestion: None } => Some("every value needs an address letter".to_string()),
+            UnknownGCode { hint: Some(h), .. } => Some(h.clone()),
+            UnknownGCode { hint: None, .. } => {
+                Some("check the G-code system (A, B, C) and the dialect in the machine settings".to_string())
+            }
+            MalformedCode { address } => Some(format!("`{address}` codes are whole numbers, at most with one decimal (`G12.1`)")),
+            MachiningCentreCode { .. } => {
+                Some("this program looks like a machining-centre program; check the dialect".to_string())
+            }
+            ForeignWord { belongs_to, .. } => Some(format!(
+                "if the whole program is {belongs_to}, pass `--dialect {}`",
+                if *belongs_to == "Okuma OSP" { "osp" } else { "fanuc" }
+            )),
+            UnknownStatement { .. } => Some(
+                "a variable needs `=` (`NAME=value`); an address with a value needs `=` before an expression (`X=NAME+1`)"
+                    .to_string(),
+            ),
+            ExtendedAddressNeedsEquals { name } => Some(format!("write `{name}=` before the value")),
+            MissingSpaceAfterSequence { name } => {
+                Some(format!("OSP requires a space after the sequence name: `{name} …`"))
+            }
+            SequenceTooLong { .. } => Some("shorten the name or renumber the block".to_string()),
+            MissingSequenceName => Some("write digits after `N`, or remove it".to_string()),
+            MisplacedSequence => Some("move the sequence number to the start of the block".to_string()),
+            InvalidProgramName { .. } => None,
+            ProgramNameNotAlone => Some("put the other words on the next line".to_string()),
+            UnclosedComment => Some("add `)`; a comment cannot continue on the next line".to_string()),
+            UnclosedBracket => Some("add `]`".to_string()),
+            UnmatchedBracket => Some("remove the `]` or add the `[` it closes".to_string()),
+            ExpressionTooDeep { .. } => Some("split the expression with a variable".to_string()),
+            MalformedExpression { .. } => None,
+            MisplacedBlockDelete => {
+                Some("put `/` at the start of the block or right after the sequence name".to_string())
+            }
+            WordNotAllowed { allowed, .. } if !allowed.is_empty() => Some(format!("it takes {allowed}")),
+            WordNotAllowed { .. } => Some("it takes no other words".to_string()),
+            MissingWord { .. } => None,
+            IntegerExpected { .. } => Some(
+                "the value counts least increments (e.g. µm) or names a sequence number; remove the decimal point"
+                    .to_string(),
+            ),
+            ConflictingCommands { .. } => Some("split them into two blocks".to_string()),
+            DuplicateWord { .. } => Some("remove one of them".to_string()),
+            SemicolonInOsp => Some("use `( )` for comments on OSP".to_string()),
+            ByteOrderMark => Some("most controls reject it; save the file without a BOM".to_string()),
+            SameModalGroup { .. } => None,
+            DialectConflict { .. } => {
+                Some("pass `--dialect osp` or `--dialect fanuc`, or set `dialect` in the machine settings".to_string())
+            }
+            MachiningCentreProgram => None,
+            SourceTooLarge => None,
+            TooManyWords { .. } => Some("no control reads a block this long; split it".to_string()),
+            OrphanContinuation => Some("a `$` line continues the block on the line before it".to_string()),
+            NonFiniteMove | TimeGoesBack => None,
+            ArcEndOffCircle { .. } => Some("check the end point and the centre (I K) or radius of the arc".to_string()),
+            OutsideTravel { .. } => Some("check the coordinates, the work offset and the travel limits in the machine settings".to_string()),
+            HomeUnknown | UnknownStartPosition => {
+                Some("set `home = { x = …, z = … }` in the [machine] table of the model file".to_string())
+            }
+            LapContourNotClosed => Some("end the contour with a `G80` block".to_string()),
+            ProfileBackwards => Some("`P` names the first block of the profile, `Q` the last".to_string()),
+            CycleNotSimulated { .. } => None,
+            NotExpandable => None,
+            CycleNeedsDepth => Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".to_string()),
+            EmptyProfile => None,
+            ProfileReverses { .. } => Some("split the profile, or rough the undercut with another cycle (G73)".to_string()),
+            ProfileNotMonotonic { .. } => Some(
+                "a Type II cycle allows pockets: name both X and Z (e.g. `W0`) in the profile's first block".to_string(),
+            ),
+            MissingSequence { number } => Some(format!("number the profile's first and last blocks `N{number}`, or correct P/Q")),
+            DuplicateSequence { .. } => Some("P and Q must each name exactly one block; renumber the others".to_string()),
+            RunawayProgram { .. } => Some("check the loop's condition and the variables it changes".to_string()),
+            UnmatchedLoop { .. } => None,
+            MissingLabel { .. } => None,
+            MissingProgram { .. } => Some("the subprogram must be in the same file".to_string()),
+            CallsTooDeep { .. } => Some("a subprogram probably calls itself".to_string()),
+            NoFeed => Some("program F before the first feed move (and S for feed per revolution)".to_string()),
+            ArcRadiusTooSmall { .. } => Some("check the end point and the radius; R must be at least half the chord".to_string()),
+            ArcWithoutCentre => Some("add `I`/`K` (centre from the start point) or the radius".to_string()),
+            ArcCentreMismatch { .. } => Some("check `I`/`K`: they give the centre measured from the start point, I as a radius".to_string()),
+            CornerWithoutNextLine => None,
+            CornerDoesNotFit { .. } => Some("make `L` smaller than both lines".to_string()),
+            NotAllowedInProfile => None,
+            BadVariableNumber { .. } | NotAVariable => None,
+            SystemVariableUnknown { .. } => None,
+            UndefinedVariable { .. } => Some("set it earlier in the program or pass it in the call".to_string()),
+            DivisionByZero | FunctionDomain { .. } => None,
+        }
+    }
+}

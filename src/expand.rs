@@ -1,0 +1,166 @@
+//! `turnpass expand`: every cycle replaced by the explicit `G00`/`G01`/`G02`/`G03` blocks it
+//! performs, in the program's own dialect and style, all other blocks untouched.
+//!
+//! The moves come from lowering without nose-radius compensation, so they are the
+//! programmed contour, and the printed blocks stay under the program's own `G41`/`G42`.
+//! Coordinates go back through the program's frame (units, diameter X) and are rounded to
+//! the least increment; motion codes and F are written when they change; arcs use the
+//! program's own form (`R`/`L` radius or `I K` centre).
+
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::dialect::{Address, Code, Dialect, GFunction};
+use crate::printer::{Edits, NewBlock, NewWord};
+use crate::semantic::{Frame, Lowered};
+use crate::syntax::{CodeLetter, Number, Program, Statement, WordKind};
+use crate::toolpath::{Motion, Move, Xz};
+
+/// Edits that replace each cycle call with its moves (and delete the blocks it consumed).
+/// A cycle whose moves this dialect cannot write as plain blocks (a thread pass on a
+/// control with no thread move) stays as it is, with a note.
+pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<Diagnostic>) {
+    let mut edits = Edits::new();
+    let mut notes = Vec::new();
+    let thread_code = program.config().tables().code_for(GFunction::ThreadMove);
+    let radius_arcs = uses_radius_arcs(program);
+    let calls: std::collections::HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
+    for expansion in &lowered.expansions {
+        let frame = expansion.frame;
+        let places = increment_places(frame.increment);
+        let moves = &lowered.toolpath.moves[expansion.moves.clone()];
+        let mut start = lowered.toolpath.start_of(expansion.moves.start);
+        if thread_code.is_none() && moves.iter().any(|m| m.threading) {
+            let span = program.block(expansion.block).span;
+            notes.push(Diagnostic::note(DiagnosticKind::NotExpandable, span));
+            continue;
+        }
+        let mut writer = BlockWriter {
+            frame,
+            places,
+            radius_arcs,
+            dialect: program.config().dialect,
+            thread_code: thread_code.unwrap_or(Code::whole(32)),
+            motion: None,
+            feed: None,
+        };
+        let blocks: Vec<NewBlock> = moves
+            .iter()
+            .map(|m| {
+                let block = writer.block(start, m);
+                start = m.contour;
+                block
+            })
+            .collect();
+        edits.replace(expansion.block, blocks);
+        for &consumed in &expansion.consumed {
+            // A block that is itself a cycle call keeps its own expansion.
+            if !calls.contains(&consumed) && program.block(consumed).statement != Statement::Invalid {
+                edits.delete(consumed);
+            }
+        }
+    }
+    (edits, notes)
+}
+
+fn increment_places(increment: f64) -> u8 {
+    let mut places = 0u8;
+    let mut scaled = increment;
+    while places < 9 && (scaled - scaled.round()).abs() > 1e-9 {
+        scaled *= 10.0;
+        places += 1;
+    }
+    places
+}
+
+/// Whether the program writes its arcs with a radius (`R`, OSP `L`) rather than `I K`.
+fn uses_radius_arcs(program: &Program<'_>) -> bool {
+    let radius = if program.config().dialect == Dialect::Osp { Address::L } else { Address::R };
+    let (mut by_radius, mut by_centre) = (0, 0);
+    for block in program.blocks() {
+        if block.statement != Statement::Motion {
+            continue;
+        }
+        for word in program.words_of(block) {
+            if let WordKind::Number { address, .. } | WordKind::Expr { address, .. } = word.kind {
+                if address == radius {
+                    by_radius += 1;
+                } else if address == Address::I || address == Address::K {
+                    by_centre += 1;
+                }
+            }
+        }
+    }
+    by_radius > by_centre
+}
+
+struct BlockWriter {
+    frame: Frame,
+    places: u8,
+    radius_arcs: bool,
+    dialect: Dialect,
+    /// `G32` (system A/B) or `G33` (system C): one thread pass.
+    thread_code: Code,
+    /// The last motion code written (`None` before the first), and whether it was a thread.
+    motion: Option<(Motion, bool)>,
+    feed: Option<f64>,
+}
+
+impl BlockWriter {
+    fn number(&self, value: f64) -> Number {
+        let scale = 10f64.powi(self.places as i32);
+        let mantissa = (value * scale).round() as i64;
+        Number::new(mantissa, self.places, true)
+    }
+
+    fn block(&mut self, start: Xz, m: &Move) -> NewBlock {
+        let mut words = Vec::new();
+        if m.motion == Motion::Dwell {
+            let seconds = m.t_end - m.t_start;
+            words.push(NewWord::Code(CodeLetter::G, Code::whole(4)));
+            let address = if self.dialect == Dialect::Osp { Address::F } else { Address::X };
+            words.push(NewWord::Number(address, Number::new((seconds * 1000.0).round() as i64, 3, true)));
+            return NewBlock::new(words);
+        }
+        let code = match m.motion {
+            _ if m.threading => self.thread_code,
+            Motion::Rapid => Code::whole(0),
+            Motion::Feed => Code::whole(1),
+            Motion::Cw => Code::whole(2),
+            Motion::Ccw => Code::whole(3),
+            Motion::Dwell => unreachable!("dwells return above"),
+        };
+        if self.motion != Some((m.motion, m.threading)) || m.is_arc() {
+            words.push(NewWord::Code(CodeLetter::G, code));
+            self.motion = Some((m.motion, m.threading));
+        }
+        let end = m.contour;
+        words.push(NewWord::Number(Address::X, self.number(self.frame.x_program(end.x))));
+        words.push(NewWord::Number(Address::Z, self.number(self.frame.program(end.z))));
+        if m.is_arc() {
+            let centre = m.centre;
+            if self.radius_arcs {
+                let radius = start.distance(centre);
+                let sweep = crate::geometry::sweep(start, end, centre, m.motion == Motion::Ccw);
+                let signed = if sweep > std::f64::consts::PI + 1e-9 { -radius } else { radius };
+                let address = if self.dialect == Dialect::Osp { Address::L } else { Address::R };
+                words.push(NewWord::Number(address, self.number(self.frame.program(signed))));
+            } else {
+                words.push(NewWord::Number(Address::I, self.number(self.frame.program(centre.x - start.x))));
+                words.push(NewWord::Number(Address::K, self.number(self.frame.program(centre.z - start.z))));
+            }
+        }
+        if m.motion != Motion::Rapid && self.feed != Some(m.f_word) && m.f_word > 0.0 {
+            words.push(NewWord::Number(Address::F, feed_number(m.f_word)));
+            self.feed = Some(m.f_word);
+        }
+        NewBlock::new(words)
+    }
+}
+
+/// A feed written with the digits it needs (up to six decimals).
+fn feed_number(value: f64) -> Number {
+    let mut scale = 0u8;
+    while scale < 6 && ((value * 10f64.powi(scale as i32)).round() - value * 10f64.powi(scale as i32)).abs() > 1e-9 {
+        scale += 1;
+    }
+    Number::new((value * 10f64.powi(scale as i32)).round() as i64, scale, true)
+}

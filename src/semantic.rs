@@ -1,0 +1,156 @@
+//! The semantic pass: a parsed program to the toolpath the machine really moves.
+//!
+//! The interpreter walks the blocks the way a control does: it keeps the modal state
+//! (units, absolute/incremental, feed mode, spindle mode and clamp, motion mode, tool,
+//! nose-radius compensation), evaluates variables and expressions, follows `IF`/`GOTO`,
+//! `WHILE`, `CALL`/`RTS` and `M98`/`M99`, and turns every motion, dwell and canned cycle
+//! into IR moves (`crate::toolpath`). Nose-radius compensation is applied afterwards over
+//! each run of compensated moves, so the IR holds both the tool's reference point path and
+//! the programmed contour.
+//!
+//! **Invariant: lowering never fails.** Problems are diagnostics on the block that has
+//! them; the block is skipped and the rest of the program is lowered.
+//!
+//! **Bounded work.** The number of executed blocks, the depth of subprogram calls and the
+//! nesting of expressions are bounded, so a runaway loop is a diagnostic, not a hang.
+
+mod block;
+pub mod cycles;
+mod emitter;
+mod eval;
+mod frame;
+mod interpreter;
+mod labels;
+mod modal;
+mod motion;
+pub mod nose_radius;
+pub mod profile;
+
+pub use frame::Frame;
+
+use crate::diagnostic::Diagnostic;
+use crate::dialect::{DecimalInput, Dialect};
+use crate::machine::{MachineSettings, ToolSettings, Units};
+use crate::syntax::Program;
+use crate::toolpath::{Limits, Toolpath, Xz};
+
+/// How to run the program.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LowerOptions {
+    /// The block-delete switch: skip blocks that start with `/` (and, on Fanuc, the rest of
+    /// a block after a mid-block `/`).
+    pub block_delete: bool,
+    /// Stop with a diagnostic after this many executed blocks (a runaway loop).
+    pub max_executed_blocks: u64,
+    /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
+    /// under the program's own `G41`/`G42`).
+    pub nose_radius_compensation: bool,
+}
+
+impl LowerOptions {
+    pub fn new(block_delete: bool) -> LowerOptions {
+        LowerOptions { block_delete, max_executed_blocks: 10_000_000, nose_radius_compensation: true }
+    }
+}
+
+/// The machine, as the semantic pass needs it: settings resolved, in the toolpath frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Machine {
+    pub units: Units,
+    pub diameter_programming: bool,
+    pub decimal_input: DecimalInput,
+    /// Least input increment, machine units.
+    pub increment: f64,
+    /// Home position in the toolpath frame, when the settings give it.
+    pub home: Option<Xz>,
+    pub limits: Option<Limits>,
+    /// Rapid rate of each axis, mm/min; `assumed` when the settings do not give it.
+    pub rapid: Xz,
+    pub rapid_assumed: bool,
+    pub max_rpm: f64,
+    pub tools: Vec<ToolSettings>,
+}
+
+/// Rapid traverse used when the machine settings give none, mm/min per axis.
+pub const DEFAULT_RAPID_MM_MIN: f64 = 10_000.0;
+
+impl Machine {
+    /// The machine a program runs on, from its settings; documented defaults fill the gaps
+    /// (mm, diameter programming, calculator decimal input, no home, no travel limits,
+    /// 10 m/min rapids, no spindle limit).
+    pub fn from_settings(settings: &MachineSettings) -> Machine {
+        let units = settings.units.unwrap_or(Units::Mm);
+        let diameter_programming = settings.diameter_programming.unwrap_or(true);
+        let scale = if units == Units::Inch { frame::MM_PER_INCH } else { 1.0 };
+        let x_mm = |x: f64| if diameter_programming { x / 2.0 * scale } else { x * scale };
+        let home = settings.home.map(|h| Xz::new(x_mm(h.x), h.z * scale));
+        let limits = settings.travel.map(|t| {
+            let (a, b) = (x_mm(t.x_min), x_mm(t.x_max));
+            Limits { x_min: a.min(b), x_max: a.max(b), z_min: t.z_min * scale, z_max: t.z_max * scale }
+        });
+        let rapid = settings.rapid_rate.map(|r| Xz::new(r.x * scale, r.z * scale));
+        Machine {
+            units,
+            diameter_programming,
+            decimal_input: settings.decimal_input.unwrap_or_default(),
+            increment: settings.least_increment.unwrap_or(if units == Units::Inch { 0.0001 } else { 0.001 }),
+            home,
+            limits,
+            rapid: rapid.unwrap_or(Xz::new(DEFAULT_RAPID_MM_MIN, DEFAULT_RAPID_MM_MIN)),
+            rapid_assumed: rapid.is_none(),
+            max_rpm: settings.max_spindle_rpm.unwrap_or(f64::INFINITY),
+            tools: settings.tool.clone(),
+        }
+    }
+
+    /// Millimetres per machine unit.
+    pub fn scale(&self) -> f64 {
+        if self.units == Units::Inch { frame::MM_PER_INCH } else { 1.0 }
+    }
+}
+
+/// Which moves a cycle call produced, for `expand`: the call block, the other blocks the
+/// cycle consumed (the first block of a two-block Fanuc cycle, a LAP contour that follows
+/// its call), and the range of moves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expansion {
+    pub block: usize,
+    /// The program's frame at the call (units may change along the program).
+    pub frame: Frame,
+    pub consumed: Vec<usize>,
+    pub moves: std::ops::Range<usize>,
+}
+
+/// The result of lowering: the toolpath (not yet validated), what went wrong, and where the
+/// cycles are.
+#[derive(Debug, Clone)]
+pub struct Lowered {
+    pub toolpath: Toolpath,
+    pub diagnostics: Vec<Diagnostic>,
+    pub expansions: Vec<Expansion>,
+    /// The program's frame at its start (units and diameter programming), for printing
+    /// moves back.
+    pub frame: Frame,
+    /// Executed blocks, for the bounded-work report.
+    pub executed_blocks: u64,
+}
+
+/// Lower a parsed program. Never fails; see the module documentation.
+pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Lowered {
+    interpreter::Interpreter::new(program, machine, options).run()
+}
+
+/// The frame a program starts in on this machine.
+pub fn initial_frame(program: &Program<'_>, machine: &Machine) -> Frame {
+    Frame {
+        dialect: program.config().dialect,
+        inch: machine.units == Units::Inch,
+        diameter: machine.diameter_programming,
+        decimal_input: if program.config().dialect == Dialect::Fanuc {
+            machine.decimal_input
+        } else {
+            DecimalInput::Calculator
+        },
+        increment: machine.increment,
+    }
+}

@@ -1,0 +1,82 @@
+//! Fanuc `G70 P Q [F S]`: one pass along the profile `P`…`Q` with the F and S written in it
+//! (the `G70` F where the profile has none), then a rapid back to the start point. The
+//! profile blocks are not executed again afterwards; the program continues after `G70`.
+
+use crate::dialect::Role;
+use crate::syntax::Command;
+use crate::toolpath::Xz;
+
+use super::super::interpreter::{Flow, Interpreter};
+use super::super::profile::{Profile, Shape};
+
+pub(super) fn run(
+    interp: &mut Interpreter<'_, '_>,
+    index: usize,
+    command: &Command,
+    consumed: &mut Vec<usize>,
+) -> Flow {
+    let span = interp.program.block(index).span;
+    let start = interp.emitter.at;
+    if !start.is_finite() {
+        interp.unknown_position(span);
+        return Flow::Next;
+    }
+    let Some(profile) = interp.profile_of(command, span, start) else { return Flow::Next };
+    // In the expanded program the profile's blocks are gone: the moves say it all.
+    consumed.extend(profile.blocks.clone());
+    let feed = interp.param(command, Role::Feed);
+    interp.trace_profile(&profile, feed);
+    let modal = interp.modal.clone();
+    interp.emitter.rapid(&modal, start);
+    Flow::Next
+}
+
+impl Interpreter<'_, '_> {
+    /// The profile named by a command's `P` and `Q` (profile start and end roles).
+    pub(in crate::semantic) fn profile_of(
+        &mut self,
+        command: &Command,
+        span: crate::source::Span,
+        start: Xz,
+    ) -> Option<Profile> {
+        let p = self.param(command, Role::ProfileStart)?;
+        let q = self.param(command, Role::ProfileEnd)?;
+        let first = self.sequence_block(p, span)?;
+        let last = self.sequence_block(q, span)?;
+        if last < first {
+            self.error(crate::diagnostic::DiagnosticKind::ProfileBackwards, span);
+            return None;
+        }
+        match self.profile(first..=last, start) {
+            Ok(profile) => Some(profile),
+            Err(diagnostic) => {
+                self.diagnostics.push(diagnostic);
+                None
+            }
+        }
+    }
+
+    /// Cut along a profile with its own F, S and compensation (`feed` where it has no F).
+    pub(in crate::semantic) fn trace_profile(&mut self, profile: &Profile, feed: Option<f64>) {
+        let saved = self.modal.clone();
+        self.emitter.at = profile.start;
+        for segment in &profile.segments {
+            self.modal.feed = if segment.feed > 0.0 { segment.feed } else { feed.unwrap_or(saved.feed) };
+            if segment.speed > 0.0 {
+                self.modal.speed = segment.speed;
+            }
+            self.modal.compensation = segment.compensation;
+            let modal = self.modal.clone();
+            match segment.shape {
+                _ if segment.rapid => self.emitter.rapid(&modal, segment.end),
+                Shape::Line => self.emitter.line(&modal, segment.end, true),
+                Shape::Arc { centre, ccw } => self.emitter.arc(&modal, segment.end, centre, ccw, true),
+            }
+        }
+        let compensation = self.modal.compensation;
+        self.modal = saved;
+        self.modal.compensation = compensation;
+        let span = self.emitter.context.source;
+        self.report_zero_feed(span);
+    }
+}

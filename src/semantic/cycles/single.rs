@@ -1,0 +1,108 @@
+//! Fanuc single cycles: `G90` turning, `G92` threading and `G94` facing (system A numbers;
+//! `G77`/`G78`/`G79` on B, `G20`/`G21`/`G24` on C), and their modal repetition: later blocks
+//! that give only a new X (or Z) run the cycle again with the other values kept.
+//!
+//! ```txt
+//!  G90 / G92 (turning, threading)         G94 (facing)
+//!   A ◀─────4(R)───── .                    A ─1(R)─▶ .
+//!   │1(R)             ▲3                   ▲4(R)     │2(F)
+//!   ▼                 │                    │         ▼
+//!   . ───2(F)───────▶ end                  . ◀─3(F)─ end
+//! ```
+//! Move 2 runs along Z (X for facing) and may taper by `R` (the radius difference between
+//! the start and the end of the cut). `G90` and `G94` return with a feed move 3; `G92` cuts
+//! move 2 as a thread (lead `F`) and retracts at rapid.
+
+use crate::dialect::{Address, GFunction, Role};
+use crate::syntax::{Command, Word};
+use crate::toolpath::Xz;
+
+use super::super::interpreter::{Flow, Interpreter};
+use super::super::modal::MotionMode;
+
+/// The last single cycle, for its modal repetitions (toolpath frame, mm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SingleCycleMemory {
+    pub function: GFunction,
+    pub end: Xz,
+    pub taper: f64,
+}
+
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
+    let words: Vec<Word> = command.params.iter().map(|p| *interp.program.word(p.word)).collect();
+    let axes = interp.axis_target(&words);
+    let taper = interp.param(command, Role::Taper).map(|r| interp.modal.frame.mm(r)).unwrap_or(0.0);
+    let start = interp.emitter.at;
+    let end = axes.target.unwrap_or(start);
+    if let Some(lead) = interp.param(command, Role::Lead) {
+        interp.modal.feed = lead;
+    }
+    interp.cycle_memory.single = Some(SingleCycleMemory { function, end, taper });
+    interp.modal.motion = match function {
+        GFunction::TurningCycle => MotionMode::TurningCycle,
+        GFunction::ThreadCycle => MotionMode::ThreadCycle,
+        _ => MotionMode::FacingCycle,
+    };
+    cut(interp, index, function, start, end, taper);
+    Flow::Next
+}
+
+/// A block repeating the modal single cycle with new end values.
+pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, index: usize, words: &[Word]) -> Flow {
+    let Some(memory) = interp.cycle_memory.single else { return Flow::Next };
+    let block = *interp.program.block(index);
+    interp.emitter.context = super::super::emitter::Context { source: block.span, cycle: block.span };
+    let first_move = interp.emitter.moves.len();
+    let axes = interp.axis_target(words);
+    let frame = interp.modal.frame;
+    let taper = interp.address_value(words, Address::R).map(|r| frame.mm(r)).unwrap_or(memory.taper);
+    if let Some(feed) = interp.address_value(words, Address::F) {
+        interp.modal.feed = feed;
+    }
+    let start = interp.emitter.at;
+    let end = Xz::new(
+        if axes.x_given { axes.target.map_or(memory.end.x, |t| t.x) } else { memory.end.x },
+        if axes.z_given { axes.target.map_or(memory.end.z, |t| t.z) } else { memory.end.z },
+    );
+    interp.cycle_memory.single = Some(SingleCycleMemory { end, taper, ..memory });
+    cut(interp, index, memory.function, start, end, taper);
+    interp.expansions.push(super::super::Expansion {
+        block: index,
+        frame: interp.modal.frame,
+        consumed: Vec::new(),
+        moves: first_move..interp.emitter.moves.len(),
+    });
+    Flow::Next
+}
+
+fn cut(interp: &mut Interpreter<'_, '_>, index: usize, function: GFunction, start: Xz, end: Xz, taper: f64) {
+    let span = interp.program.block(index).span;
+    if !start.is_finite() {
+        interp.unknown_position(span);
+        return;
+    }
+    let modal = interp.modal.clone();
+    let e = &mut interp.emitter;
+    match function {
+        GFunction::FacingCycle => {
+            e.rapid(&modal, Xz::new(start.x, end.z + taper));
+            e.line(&modal, end, true);
+            e.line(&modal, Xz::new(end.x, start.z), true);
+            e.rapid(&modal, start);
+        }
+        GFunction::ThreadCycle => {
+            let lead = modal.frame.feed_mm(modal.feed);
+            e.rapid(&modal, Xz::new(end.x + taper, start.z));
+            e.thread(&modal, end, lead);
+            e.rapid(&modal, Xz::new(start.x, end.z));
+            e.rapid(&modal, start);
+        }
+        _ => {
+            e.rapid(&modal, Xz::new(end.x + taper, start.z));
+            e.line(&modal, end, true);
+            e.line(&modal, Xz::new(start.x, end.z), true);
+            e.rapid(&modal, start);
+        }
+    }
+    interp.report_zero_feed(span);
+}

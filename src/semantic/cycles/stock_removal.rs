@@ -1,0 +1,351 @@
+//! Fanuc `G71` stock removal in turning and `G72` in facing; two-block form
+//! (`G71 U(Δd) R(e)` then `G71 P Q U(Δu) W(Δw) F S T`) and one-block form
+//! (`G71 P Q U W D(Δd) F [R1]`, Haas and Fanuc 15).
+//!
+//! The roughing region lies between the start point A (the tool's position at the call)
+//! and the finishing profile P…Q shifted by the allowance (Δu/2 in X, Δw in Z). In the
+//! canonical frame (see `canonical.rs`: levels step toward the profile in `u`, passes cut
+//! toward it in `v`):
+//!
+//! ```txt
+//!        A ●───────────────────────────  level u₀
+//!          │ infeed Δd (G00 or G01 as the P block)
+//!          ├──cut F────────────╮ ╱ 45° retract e (rapid)
+//!          │◀──rapid return────╯
+//!          ├──cut──────────╮
+//!          ⋮               ╰─ … last level above the profile's lowest point
+//!          then one pass along the shifted profile (leaving exactly Δu, Δw),
+//!          and a rapid back to A (first in u, then in v)
+//! ```
+//!
+//! A pass at level `u` cuts where the level lies above the shifted profile: from A's `v`
+//! to where it meets the profile (Type I, a profile monotonic in both axes), or over every
+//! stretch above the profile (Type II, chosen when the P block names both axes, or by `R1`
+//! in the one-block form; Z must still be monotonic and X may dip into pockets). In Type II
+//! the tool follows the profile up from the end of each stretch to the previous level
+//! before it retracts, and enters a pocket from the safe level of A.
+//!
+//! F, S and T inside P…Q are for finishing (`G70`); roughing uses the cycle's own F. After
+//! the cycle the program continues after the Q block: the profile is a definition.
+
+use crate::diagnostic::DiagnosticKind;
+use crate::dialect::{GFunction, Role};
+use crate::source::Span;
+use crate::syntax::Command;
+use crate::toolpath::Xz;
+
+use super::super::interpreter::{Flow, Interpreter};
+use super::super::profile::Profile;
+use super::canonical::{self, Canon, Element, Uv};
+
+/// The retract when neither the program nor its first block gives one (Fanuc's usual
+/// parameter value), mm.
+const DEFAULT_RETRACT_MM: f64 = 0.5;
+
+/// The first block of the two-block form only sets Δd and e.
+pub(super) fn depth_block(
+    interp: &mut Interpreter<'_, '_>,
+    index: usize,
+    command: &Command,
+    function: GFunction,
+) -> Flow {
+    let depth = interp.param(command, Role::DepthOfCut);
+    let retract = interp.param(command, Role::Retract);
+    let memory = &mut interp.cycle_memory;
+    memory.depth_block = Some(index);
+    if function == GFunction::StockRemovalTurning {
+        memory.turning_depth = depth.or(memory.turning_depth);
+        memory.turning_retract = retract.or(memory.turning_retract);
+    } else {
+        memory.facing_depth = depth.or(memory.facing_depth);
+        memory.facing_retract = retract.or(memory.facing_retract);
+    }
+    Flow::Next
+}
+
+pub(super) fn run(
+    interp: &mut Interpreter<'_, '_>,
+    index: usize,
+    command: &Command,
+    function: GFunction,
+    consumed: &mut Vec<usize>,
+) -> Flow {
+    let span = interp.program.block(index).span;
+    let facing = function == GFunction::StockRemovalFacing;
+    let start = interp.emitter.at;
+    if !start.is_finite() {
+        interp.unknown_position(span);
+        return Flow::Next;
+    }
+    let frame = interp.modal.frame;
+    let one_block = command.param(Role::DepthOfCut).is_some();
+    let depth = if one_block {
+        interp.param(command, Role::DepthOfCut)
+    } else if facing {
+        interp.cycle_memory.facing_depth
+    } else {
+        interp.cycle_memory.turning_depth
+    };
+    let Some(depth) = depth.map(|d| frame.mm(d.abs())).filter(|d| *d > 0.0) else {
+        interp.error(DiagnosticKind::CycleNeedsDepth, span);
+        return Flow::Next;
+    };
+    let retract = if facing { interp.cycle_memory.facing_retract } else { interp.cycle_memory.turning_retract }
+        .map(|e| frame.mm(e.abs()))
+        .unwrap_or(DEFAULT_RETRACT_MM);
+    let allowance = Xz::new(
+        interp.param(command, Role::AllowanceX).map_or(0.0, |u| frame.x_mm(u)),
+        interp.param(command, Role::AllowanceZ).map_or(0.0, |w| frame.mm(w)),
+    );
+    let type_ii_flag = interp.param(command, Role::TypeIi).is_some_and(|r| r >= 1.0);
+    let Some(profile) = interp.profile_of(command, span, start) else { return Flow::Next };
+    let after_q = interp.after_profile(command);
+    // The profile and the first block are part of the cycle: `expand` deletes them.
+    consumed.extend(profile.blocks.clone());
+    if !one_block {
+        consumed.extend(interp.cycle_memory.depth_block);
+    }
+    if profile.segments.is_empty() {
+        interp.error(DiagnosticKind::EmptyProfile, span);
+        return after_q;
+    }
+    let type_ii = type_ii_flag || (!facing && profile.first_block_has_both_axes);
+    let feed = interp.param(command, Role::Feed).unwrap_or(interp.modal.feed);
+    let speed = interp.param(command, Role::Speed);
+    let rough = Rough { depth, retract, allowance, type_ii, feed, speed, facing };
+    if let Err(kind) = rough.cut(interp, &profile, start, span) {
+        interp.error(kind, span);
+    }
+    after_q
+}
+
+struct Rough {
+    depth: f64,
+    retract: f64,
+    allowance: Xz,
+    type_ii: bool,
+    feed: f64,
+    speed: Option<f64>,
+    facing: bool,
+}
+
+impl Rough {
+    fn cut(
+        &self,
+        interp: &mut Interpreter<'_, '_>,
+        profile: &Profile,
+        start: Xz,
+        _span: Span,
+    ) -> Result<(), DiagnosticKind> {
+        // The profile proper starts where the P block goes; that first move is the approach.
+        let shifted_end = Xz::new(profile.end().x + self.allowance.x, profile.end().z + self.allowance.z);
+        let first = profile.segments[0];
+        let canon = Canon {
+            swap: self.facing,
+            mirror_u: if self.facing { start.z < first.end.z } else { start.x < first.end.x },
+            mirror_v: if self.facing { shifted_end.x > start.x } else { shifted_end.z > start.z },
+        };
+        let elements = canonical::elements(&canon, profile, self.allowance, true);
+        if elements.is_empty() {
+            return Err(DiagnosticKind::EmptyProfile);
+        }
+        check_shape(&elements, self.type_ii, self.facing)?;
+
+        let a = canon.to(start);
+        let v_end = elements.last().map_or(a.v, |e| e.end.v);
+        let u_min = elements.iter().flat_map(|e| [e.start.u, e.end.u]).fold(f64::INFINITY, f64::min);
+        let u_min = u_min.min(lowest_arc_point(&elements));
+        let approach_rapid = first.rapid;
+
+        let saved = interp.modal.clone();
+        interp.modal.feed = self.feed;
+        if let Some(s) = self.speed {
+            interp.modal.speed = s;
+        }
+        let go = |interp: &mut Interpreter<'_, '_>, p: Uv, rapid: bool| {
+            let modal = interp.modal.clone();
+            let to = canon.from(p);
+            if rapid { interp.emitter.rapid(&modal, to) } else { interp.emitter.line(&modal, to, true) }
+        };
+
+        let mut level = a.u - self.depth;
+        let mut previous_level = a.u;
+        // Every stretch cut so far, with its level: the tool may rapid along `v` at a
+        // height only over a stretch cut at or below that height, and otherwise climbs to
+        // A's level first (after a pocket, the stock between it and A is still there).
+        let mut cleared: Vec<(f64, f64, f64)> = Vec::new();
+        let mut at = a;
+        while level > u_min + 1e-9 {
+            let stretches = stretches(&elements, level, a.v, v_end);
+            for (v_in, v_out) in stretches.iter().copied() {
+                if (v_in - a.v).abs() < 1e-9 {
+                    // Back to A's v, then infeed as the P block moves (rapid or feed).
+                    travel(interp, &go, &cleared, at, a.v, a.u);
+                    go(interp, Uv { u: level, v: a.v }, approach_rapid);
+                } else {
+                    // Into a pocket: across, down at rapid to just over the stock the
+                    // previous level left, then feed.
+                    at = travel(interp, &go, &cleared, at, v_in, a.u);
+                    let opened = cleared
+                        .iter()
+                        .any(|&(u, hi, lo)| u <= previous_level + 1e-9 && v_in <= hi + 1e-9 && v_in >= lo - 1e-9);
+                    let clear = if opened { (previous_level + self.retract).min(at.u) } else { at.u };
+                    go(interp, Uv { u: clear, v: v_in }, true);
+                    go(interp, Uv { u: level, v: v_in }, false);
+                }
+                go(interp, Uv { u: level, v: v_out }, false);
+                cleared.push((level, v_in, v_out));
+                let mut here = Uv { u: level, v: v_out };
+                if self.type_ii && v_out > v_end + 1e-9 {
+                    // Follow the rising profile up to the previous level.
+                    for p in follow_up(&elements, here, previous_level) {
+                        go(interp, p, false);
+                        here = p;
+                    }
+                }
+                here = Uv { u: here.u + self.retract, v: here.v + self.retract };
+                go(interp, here, true);
+                at = here;
+            }
+            previous_level = level;
+            level -= self.depth;
+        }
+
+        // The semi-finishing pass along the shifted profile, entered at A's v.
+        let shifted_start = canon.to(Xz::new(first.end.x + self.allowance.x, first.end.z + self.allowance.z));
+        travel(interp, &go, &cleared, at, a.v, a.u);
+        go(interp, shifted_start, approach_rapid);
+        for e in &elements {
+            let modal = interp.modal.clone();
+            match e.arc {
+                None => interp.emitter.line(&modal, canon.from(e.end), true),
+                Some((c, ccw)) => {
+                    interp.emitter.arc(&modal, canon.from(e.end), canon.from(c), ccw ^ canon.flips(), true)
+                }
+            }
+        }
+        // Back to A: away from the part first.
+        let last = canon.to(interp.emitter.at);
+        go(interp, Uv { u: a.u.max(last.u), v: last.v }, true);
+        go(interp, a, true);
+        interp.modal = saved;
+        Ok(())
+    }
+}
+
+/// Rapid from `at` to `v`: straight along `v` when every point of the way lies over a
+/// stretch cut at or below the tool's height, else up to the safe level `safe_u` first.
+fn travel(
+    interp: &mut Interpreter<'_, '_>,
+    go: &impl Fn(&mut Interpreter<'_, '_>, Uv, bool),
+    cleared: &[(f64, f64, f64)],
+    at: Uv,
+    v: f64,
+    safe_u: f64,
+) -> Uv {
+    let (hi, lo) = (at.v.max(v), at.v.min(v));
+    let covered = cleared.iter().any(|&(u, top, bottom)| u <= at.u + 1e-9 && top >= hi - 1e-9 && bottom <= lo + 1e-9);
+    let height = if covered || at.u >= safe_u - 1e-9 { at.u } else { safe_u };
+    if height != at.u {
+        go(interp, Uv { u: height, v: at.v }, true);
+    }
+    let to = Uv { u: height, v };
+    go(interp, to, true);
+    to
+}
+
+/// The lowest point of the arcs, when an arc dips below its end points.
+fn lowest_arc_point(elements: &[Element]) -> f64 {
+    elements
+        .iter()
+        .filter_map(|e| e.arc.map(|(c, _)| (e, c)))
+        .filter_map(|(e, c)| {
+            let bottom = Uv { u: c.u - e.radius(), v: c.v };
+            let as_xz = |q: Uv| Xz::new(q.u, q.v);
+            let (_, ccw) = e.arc?;
+            crate::geometry::angle_within(as_xz(bottom), as_xz(e.start), as_xz(e.end), as_xz(c), ccw)
+                .then_some(bottom.u)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The stretches of level `u`, from `v_start` toward `v_end`, that lie above the profile.
+fn stretches(elements: &[Element], u: f64, v_start: f64, v_end: f64) -> Vec<(f64, f64)> {
+    let mut cuts: Vec<f64> =
+        canonical::crossings(elements, u).into_iter().filter(|v| *v < v_start && *v > v_end).collect();
+    cuts.insert(0, v_start);
+    cuts.push(v_end);
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    for pair in cuts.windows(2) {
+        let (hi, lo) = (pair[0], pair[1]);
+        if hi - lo < 1e-9 {
+            continue;
+        }
+        let mid = (hi + lo) / 2.0;
+        if u > canonical::u_at(elements, mid) + 1e-9 {
+            match out.last_mut() {
+                Some((_, end)) if (*end - hi).abs() < 1e-9 => *end = lo,
+                _ => out.push((hi, lo)),
+            }
+        }
+    }
+    out
+}
+
+/// The profile from `from` (a point on it) onward, until it rises to `ceiling`.
+fn follow_up(elements: &[Element], from: Uv, ceiling: f64) -> Vec<Uv> {
+    let mut out = Vec::new();
+    let mut started = false;
+    for e in elements {
+        let (hi, lo) = (e.start.v.max(e.end.v), e.start.v.min(e.end.v));
+        if !started {
+            if from.v <= hi + 1e-9 && from.v >= lo - 1e-9 {
+                started = true;
+            } else {
+                continue;
+            }
+        }
+        if e.end.u >= ceiling - 1e-9 {
+            // Stop where this element reaches the ceiling (lines only; an arc ends there).
+            if e.arc.is_none() && (e.end.u - e.start.u).abs() > 1e-12 {
+                let t = (ceiling - e.start.u) / (e.end.u - e.start.u);
+                out.push(Uv { u: ceiling, v: e.start.v + (e.end.v - e.start.v) * t.clamp(0.0, 1.0) });
+            } else {
+                out.push(e.end);
+            }
+            return out;
+        }
+        if e.end.u < from.u - 1e-9 {
+            // The profile goes down again: a new stretch will cut there.
+            return out;
+        }
+        out.push(e.end);
+    }
+    out
+}
+
+/// Type I: monotonic in both axes; Type II: monotonic along the cut. A profile that breaks
+/// its type is what the control rejects.
+fn check_shape(elements: &[Element], type_ii: bool, facing: bool) -> Result<(), DiagnosticKind> {
+    let along = |e: &Element| e.end.v - e.start.v;
+    let across = |e: &Element| e.end.u - e.start.u;
+    if elements.iter().any(|e| along(e) > 1e-9) {
+        return Err(DiagnosticKind::ProfileReverses { axis: if facing { 'X' } else { 'Z' } });
+    }
+    if !type_ii && elements.iter().any(|e| across(e) < -1e-9) {
+        return Err(DiagnosticKind::ProfileNotMonotonic { axis: if facing { 'Z' } else { 'X' } });
+    }
+    Ok(())
+}
+
+impl Interpreter<'_, '_> {
+    /// Where the program continues after a cycle that names a profile: after its Q block.
+    pub(in crate::semantic) fn after_profile(&mut self, command: &Command) -> Flow {
+        let Some(q) = self.param(command, Role::ProfileEnd) else { return Flow::Next };
+        let key = (q.round() as i64).to_string();
+        match self.labels.blocks(&key) {
+            [one] => Flow::Jump(one + 1),
+            _ => Flow::Next,
+        }
+    }
+}

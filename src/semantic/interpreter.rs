@@ -1,0 +1,491 @@
+//! The program counter: which block runs next.
+//!
+//! Control flow follows the controls: a jump searches forward for its label and then from
+//! the top; `CALL`/`M98` push a return point and a fresh frame of local variables, `RTS`/
+//! `M99` pop them; Fanuc `WHILE … DOn` loops back from its `ENDn`; `M02`, `M30`, the closing
+//! `%`, `RTS` in the main program, or a second program name end the run. Every executed
+//! block counts toward `max_executed_blocks`.
+
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::dialect::tables::KeywordKind;
+use crate::dialect::{Dialect, Tables};
+use crate::source::Span;
+use crate::syntax::{Program, Statement, WordKind};
+use crate::toolpath::{Compensation, Toolpath, Xz};
+
+use super::emitter::Emitter;
+use super::eval::{Evaluator, Variables};
+use super::labels::{self, Labels};
+use super::modal::{Modal, MotionMode, SpindleMode, ToolState};
+use super::{Expansion, LowerOptions, Lowered, Machine};
+
+/// What to do after a block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Flow {
+    Next,
+    Jump(usize),
+    End,
+}
+
+/// A subprogram call in progress.
+#[derive(Debug, Clone, Copy)]
+struct Call {
+    /// Where to continue after the last repetition.
+    return_to: usize,
+    /// The first block of the subprogram, for repetitions.
+    entry: usize,
+    remaining: u32,
+}
+
+/// Subprogram calls nest at most this deep.
+const MAX_CALL_DEPTH: usize = 32;
+
+/// What the first block of a two-block Fanuc cycle set, kept for its second block.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct CycleMemory {
+    /// `G71 U(Δd) R(e)`, `G72 W(Δd) R(e)`: depth of cut and retract, program units.
+    pub turning_depth: Option<f64>,
+    pub turning_retract: Option<f64>,
+    pub facing_depth: Option<f64>,
+    pub facing_retract: Option<f64>,
+    /// The block that last set a depth (the first block of a two-block cycle).
+    pub depth_block: Option<usize>,
+    /// The last Fanuc single cycle, for its modal repetitions.
+    pub single: Option<super::cycles::SingleCycleMemory>,
+}
+
+pub(super) struct Interpreter<'p, 'src> {
+    pub program: &'p Program<'src>,
+    pub tables: &'static Tables,
+    pub dialect: Dialect,
+    pub machine: &'p Machine,
+    pub options: &'p LowerOptions,
+    pub modal: Modal,
+    pub emitter: Emitter,
+    pub variables: Variables,
+    pub labels: Labels,
+    pub diagnostics: Vec<Diagnostic>,
+    pub expansions: Vec<Expansion>,
+    pub cycle_memory: CycleMemory,
+    /// OSP `MODIN`: the subprogram called after every motion block.
+    pub modal_call: Option<usize>,
+    /// An OSP `G75`/`G76` corner waiting for the move after it.
+    pub pending_corner: Option<super::motion::PendingCorner>,
+    /// Blocks a cycle consumed (a LAP contour right after its call): the flow skips them.
+    pub skip_to: Option<usize>,
+    calls: Vec<Call>,
+    /// Fanuc `WHILE` blocks being looped, with their loop number.
+    loops: Vec<(usize, u32)>,
+    executed: u64,
+    first_program_name: Option<usize>,
+    warned_unknown_position: bool,
+    tape_opened: bool,
+}
+
+impl<'p, 'src> Interpreter<'p, 'src> {
+    pub fn new(program: &'p Program<'src>, machine: &'p Machine, options: &'p LowerOptions) -> Self {
+        let frame = super::initial_frame(program, machine);
+        let dialect = program.config().dialect;
+        let start = machine.home.unwrap_or(Xz::new(f64::NAN, f64::NAN));
+        let modal = Modal {
+            frame,
+            absolute: true,
+            feed_per_rev: true,
+            feed: 0.0,
+            spindle: SpindleMode::Rpm,
+            speed: 0.0,
+            clamp: machine.max_rpm,
+            motion: MotionMode::Rapid,
+            compensation: Compensation::Off,
+            tool: ToolState { station: 0, offset: 0, nose_radius: 0.0, tip: 0, minor_edge_angle: None },
+            shift: Xz::default(),
+        };
+        Interpreter {
+            program,
+            tables: program.config().tables(),
+            dialect,
+            machine,
+            options,
+            modal,
+            emitter: Emitter::new(start, machine.rapid),
+            variables: Variables::default(),
+            labels: Labels::new(program),
+            diagnostics: Vec::new(),
+            expansions: Vec::new(),
+            cycle_memory: CycleMemory::default(),
+            modal_call: None,
+            pending_corner: None,
+            skip_to: None,
+            calls: Vec::new(),
+            loops: Vec::new(),
+            executed: 0,
+            first_program_name: None,
+            warned_unknown_position: false,
+            tape_opened: false,
+        }
+    }
+
+    pub fn evaluator(&self) -> Evaluator<'p, 'src> {
+        Evaluator { program: self.program, dialect: self.dialect }
+    }
+
+    pub fn error(&mut self, kind: DiagnosticKind, span: Span) {
+        self.diagnostics.push(Diagnostic::error(kind, span));
+    }
+
+    pub fn warning(&mut self, kind: DiagnosticKind, span: Span) {
+        self.diagnostics.push(Diagnostic::warning(kind, span));
+    }
+
+    /// Warn once that the tool's position is unknown (no home in the machine settings).
+    pub fn unknown_position(&mut self, span: Span) {
+        if !self.warned_unknown_position {
+            self.warned_unknown_position = true;
+            self.diagnostics.push(Diagnostic::warning(DiagnosticKind::UnknownStartPosition, span));
+        }
+    }
+
+    pub fn run(mut self) -> Lowered {
+        let blocks = self.program.blocks();
+        let mut pc = 0;
+        while pc < blocks.len() {
+            if self.executed >= self.options.max_executed_blocks {
+                let span = blocks[pc].span;
+                self.error(DiagnosticKind::RunawayProgram { blocks: self.executed }, span);
+                break;
+            }
+            self.executed += 1;
+            let flow = self.execute(pc);
+            if let Some(target) = self.skip_to.take() {
+                pc = target;
+                continue;
+            }
+            pc = match flow {
+                Flow::Next => pc + 1,
+                Flow::Jump(target) => target,
+                Flow::End => break,
+            };
+        }
+        self.finish_corner();
+        let start = self.emitter.moves.first().map(|_| self.first_move_start()).unwrap_or(self.emitter.at);
+        let mut toolpath = Toolpath { start, moves: std::mem::take(&mut self.emitter.moves) };
+        if self.options.nose_radius_compensation {
+            super::nose_radius::apply(&mut toolpath, &self.machine_tools(), &mut self.diagnostics);
+        }
+        self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        self.diagnostics.dedup();
+        Lowered {
+            toolpath,
+            diagnostics: self.diagnostics,
+            expansions: self.expansions,
+            frame: super::initial_frame(self.program, self.machine),
+            executed_blocks: self.executed,
+        }
+    }
+
+    fn first_move_start(&self) -> Xz {
+        self.emitter.first_start.unwrap_or(self.emitter.at)
+    }
+
+    fn machine_tools(&self) -> super::nose_radius::ToolTable {
+        super::nose_radius::ToolTable::from_machine(self.machine)
+    }
+
+    /// Run one block.
+    fn execute(&mut self, index: usize) -> Flow {
+        let block = self.program.block(index);
+        let words = self.program.words_of(block);
+        if self.options.block_delete && words.iter().any(|w| matches!(w.kind, WordKind::BlockDelete { .. })) {
+            return Flow::Next;
+        }
+        match block.statement {
+            Statement::Invalid | Statement::Empty | Statement::Header | Statement::Graphics | Statement::Pattern => {
+                Flow::Next
+            }
+            Statement::Trailing => Flow::End,
+            Statement::TapeMark => {
+                // The first `%` opens the tape (comment lines may stand before it); a second
+                // one ends the program, and the parser already made the rest Trailing.
+                let opened = std::mem::replace(&mut self.tape_opened, true);
+                if opened && words.iter().all(|w| matches!(w.kind, WordKind::TapeMark | WordKind::Comment(_))) {
+                    Flow::End
+                } else {
+                    Flow::Next
+                }
+            }
+            Statement::ProgramName => match self.first_program_name {
+                None => {
+                    self.first_program_name = Some(index);
+                    Flow::Next
+                }
+                // Running into the next program's name: the main program had no end code.
+                Some(_) if self.calls.is_empty() => Flow::End,
+                Some(_) => Flow::Next,
+            },
+            Statement::Assignment => {
+                self.assignments(index);
+                Flow::Next
+            }
+            Statement::Control => self.control(index),
+            _ => self.machine_block(index),
+        }
+    }
+
+    /// `NAME=expr`, `#1=expr`, several in one block.
+    pub fn assignments(&mut self, index: usize) {
+        let block = self.program.block(index);
+        for word in self.program.words_of(block) {
+            if let WordKind::Assign { target, value } = word.kind {
+                let evaluator = self.evaluator();
+                let mut warnings = Vec::new();
+                let result = evaluator
+                    .value(value, &mut self.variables, &mut warnings)
+                    .and_then(|v| evaluator.key(target, &mut self.variables, &mut warnings).map(|k| (k, v)));
+                self.diagnostics.append(&mut warnings);
+                match result {
+                    Ok((key, v)) => self.variables.set(key, v, self.dialect),
+                    Err(diagnostic) => self.diagnostics.push(diagnostic),
+                }
+            }
+        }
+    }
+
+    /// Evaluate an expression, reporting problems; `None` when it fails.
+    pub fn value_of(&mut self, expr: u32) -> Option<f64> {
+        let mut warnings = Vec::new();
+        let result = self.evaluator().value(expr, &mut self.variables, &mut warnings);
+        self.diagnostics.append(&mut warnings);
+        match result {
+            Ok(v) => Some(v),
+            Err(diagnostic) => {
+                self.diagnostics.push(diagnostic);
+                None
+            }
+        }
+    }
+
+    /// `IF`, `GOTO`, `CALL`, `RTS`, `MODIN`, `MODOUT`, `WHILE`, `END`, I/O statements.
+    fn control(&mut self, index: usize) -> Flow {
+        let block = self.program.block(index);
+        let words = self.program.words_of(block);
+        let Some((position, kind)) = words.iter().enumerate().find_map(|(i, w)| match w.kind {
+            WordKind::Keyword { index } => Some((i, self.tables.keyword_info(index as usize).kind)),
+            _ => None,
+        }) else {
+            return Flow::Next;
+        };
+        let rest = &words[position + 1..];
+        match kind {
+            KeywordKind::If => {
+                let Some(condition) = rest.iter().find_map(|w| match w.kind {
+                    WordKind::Operand { expr } => Some(expr),
+                    _ => None,
+                }) else {
+                    return Flow::Next;
+                };
+                let Some(value) = self.value_of(condition) else { return Flow::Next };
+                if value == 0.0 {
+                    return Flow::Next;
+                }
+                // `IF [..] GOTO n`, `IF [..] N<label>` (OSP) or `IF [..] THEN assignment`.
+                if rest.iter().any(|w| matches!(w.kind, WordKind::Assign { .. })) {
+                    self.assignments(index);
+                    return Flow::Next;
+                }
+                self.jump_from(index, &rest[1..])
+            }
+            KeywordKind::Goto => self.jump_from(index, rest),
+            KeywordKind::Call => self.call(index, rest, false),
+            KeywordKind::ModalCall => {
+                self.modal_call = self.call_target(index, rest);
+                Flow::Next
+            }
+            KeywordKind::ModalCallEnd => {
+                self.modal_call = None;
+                Flow::Next
+            }
+            KeywordKind::Return => self.return_from_call(),
+            KeywordKind::While => {
+                let condition = rest.iter().find_map(|w| match w.kind {
+                    WordKind::Operand { expr } => Some(expr),
+                    _ => None,
+                });
+                let loop_number = rest.iter().rev().find_map(|w| match w.kind {
+                    WordKind::Operand { expr } => Some(expr),
+                    _ => None,
+                });
+                let number = loop_number.and_then(|e| self.value_of(e)).unwrap_or(0.0) as u32;
+                let holds = condition.and_then(|c| self.value_of(c)).is_some_and(|v| v != 0.0);
+                if holds {
+                    if self.loops.last() != Some(&(index, number)) {
+                        self.loops.push((index, number));
+                    }
+                    Flow::Next
+                } else {
+                    self.loops.retain(|&(b, _)| b != index);
+                    match self.matching_end(index, number) {
+                        Some(end) => Flow::Jump(end + 1),
+                        None => {
+                            self.error(DiagnosticKind::UnmatchedLoop { number }, block.span);
+                            Flow::End
+                        }
+                    }
+                }
+            }
+            KeywordKind::EndLoop => {
+                let number = rest
+                    .iter()
+                    .find_map(|w| match w.kind {
+                        WordKind::Operand { expr } => Some(expr),
+                        _ => None,
+                    })
+                    .and_then(|e| self.value_of(e))
+                    .unwrap_or(0.0) as u32;
+                match self.loops.iter().rev().find(|&&(_, n)| n == number) {
+                    Some(&(start, _)) => Flow::Jump(start),
+                    None => Flow::Next,
+                }
+            }
+            KeywordKind::Then | KeywordKind::Do | KeywordKind::Io | KeywordKind::Schedule => Flow::Next,
+            KeywordKind::Graphics | KeywordKind::Pattern => Flow::Next,
+        }
+    }
+
+    /// The `ENDn` that closes `WHILE … DOn` at `start`.
+    fn matching_end(&self, start: usize, number: u32) -> Option<usize> {
+        let blocks = self.program.blocks();
+        (start + 1..blocks.len()).find(|&i| {
+            let words = self.program.words_of(&blocks[i]);
+            words.iter().any(|w| {
+                matches!(w.kind, WordKind::Keyword { index } if self.tables.keyword_info(index as usize).kind == KeywordKind::EndLoop)
+            }) && words.iter().any(|w| match w.kind {
+                WordKind::Operand { expr } => matches!(self.program.expr(expr).kind,
+                    crate::syntax::ExprKind::Number(n) if n.to_f64() as u32 == number),
+                _ => false,
+            })
+        })
+    }
+
+    /// Jump to the label (OSP `N<name>`) or sequence number (Fanuc operand) in `words`.
+    fn jump_from(&mut self, index: usize, words: &[crate::syntax::Word]) -> Flow {
+        let span = self.program.block(index).span;
+        for word in words {
+            match word.kind {
+                WordKind::Label { number } => {
+                    let key = labels::key(self.dialect, self.program.text(word.span), number);
+                    return match self.labels.jump(&key, index) {
+                        Some(target) => Flow::Jump(target),
+                        None => {
+                            self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            Flow::End
+                        }
+                    };
+                }
+                WordKind::Operand { expr } => {
+                    let Some(value) = self.value_of(expr) else { return Flow::End };
+                    let key = (value.round() as i64).to_string();
+                    return match self.labels.jump(&key, index) {
+                        Some(target) => Flow::Jump(target),
+                        None => {
+                            self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            Flow::End
+                        }
+                    };
+                }
+                WordKind::Keyword { .. } => continue,
+                _ => {}
+            }
+        }
+        self.error(DiagnosticKind::MissingLabel { name: String::new() }, span);
+        Flow::Next
+    }
+
+    /// The block that starts the subprogram a `CALL`/`MODIN` names.
+    fn call_target(&mut self, index: usize, words: &[crate::syntax::Word]) -> Option<usize> {
+        let word = words.iter().find(|w| matches!(w.kind, WordKind::ProgramRef))?;
+        let key = labels::program_key(self.dialect, self.program.text(word.span));
+        let target = self.labels.program(&key);
+        if target.is_none() {
+            self.error(DiagnosticKind::MissingProgram { name: format!("O{key}") }, word.span);
+        }
+        let _ = index;
+        target
+    }
+
+    /// OSP `CALL O<name> [Q<n>] [var=value …]`: run the subprogram (Q times).
+    fn call(&mut self, index: usize, words: &[crate::syntax::Word], _modal: bool) -> Flow {
+        let Some(target) = self.call_target(index, words) else { return Flow::Next };
+        let repeat = words
+            .iter()
+            .find_map(|w| match w.kind {
+                WordKind::Number { address, number } if address == crate::dialect::Address::Q => Some(number.to_f64()),
+                _ => None,
+            })
+            .unwrap_or(1.0)
+            .max(1.0) as u32;
+        // Arguments are evaluated in the caller's frame and set in the callee's.
+        let mut arguments = Vec::new();
+        for word in words {
+            if let WordKind::Assign { target, value } = word.kind
+                && let Some(v) = self.value_of(value)
+            {
+                let mut warnings = Vec::new();
+                if let Ok(key) = self.evaluator().key(target, &mut self.variables, &mut warnings) {
+                    arguments.push((key, v));
+                }
+                self.diagnostics.append(&mut warnings);
+            }
+        }
+        self.enter(index, target, repeat, arguments)
+    }
+
+    /// Push a call frame and jump into the subprogram (past its name block).
+    pub fn enter(
+        &mut self,
+        from: usize,
+        target: usize,
+        repeat: u32,
+        arguments: Vec<(super::eval::VarKey, f64)>,
+    ) -> Flow {
+        if self.calls.len() >= MAX_CALL_DEPTH {
+            let span = self.program.block(from).span;
+            self.error(DiagnosticKind::CallsTooDeep { max: MAX_CALL_DEPTH }, span);
+            return Flow::End;
+        }
+        self.calls.push(Call { return_to: from + 1, entry: target + 1, remaining: repeat.saturating_sub(1) });
+        self.variables.push_frame();
+        for (key, value) in arguments {
+            self.variables.set(key, value, self.dialect);
+        }
+        Flow::Jump(target + 1)
+    }
+
+    /// `RTS`, `M99`: repeat, return, or (in the main program) end.
+    pub fn return_from_call(&mut self) -> Flow {
+        match self.calls.last_mut() {
+            None => Flow::End,
+            Some(call) if call.remaining > 0 => {
+                call.remaining -= 1;
+                Flow::Jump(call.entry)
+            }
+            Some(_) => {
+                let call = self.calls.pop().map(|c| c.return_to).unwrap_or(usize::MAX);
+                self.variables.pop_frame();
+                Flow::Jump(call)
+            }
+        }
+    }
+
+    /// Fanuc `M98 P<program> [L<count>]`.
+    pub fn subprogram_call(&mut self, index: usize, program_number: f64, count: f64) -> Flow {
+        let key = (program_number.round() as i64).to_string();
+        match self.labels.program(&key) {
+            Some(target) => self.enter(index, target, count.max(1.0) as u32, Vec::new()),
+            None => {
+                let span = self.program.block(index).span;
+                self.error(DiagnosticKind::MissingProgram { name: format!("O{key}") }, span);
+                Flow::Next
+            }
+        }
+    }
+}

@@ -1,0 +1,312 @@
+//! Motion blocks: rapids, lines, arcs and thread moves, from their words to IR moves.
+//!
+//! - End points: `X`/`Z` absolute (incremental under `G91`), Fanuc `U`/`W` incremental; X is
+//!   converted from diameter and program units by the frame, then shifted by `G50 X Z`.
+//! - Arcs: `I`/`K` give the centre from the start (I as a radius); `R` (Fanuc) or `L` (OSP)
+//!   the radius, negative for more than half a circle. A radius that cannot reach is an
+//!   error; an `I`/`K` centre whose end radius differs by up to 0.02 mm is moved onto the
+//!   chord's bisector, as the controls tolerate it.
+//! - OSP `A`: a line given by one coordinate and its direction angle (from +Z, counter-
+//!   clockwise).
+//! - OSP `G75`/`G76` with `L`: a chamfer or a rounding between this line and the next,
+//!   which waits for the next move.
+
+use crate::diagnostic::DiagnosticKind;
+use crate::dialect::{Address, Dialect, GFunction};
+use crate::geometry;
+use crate::source::Span;
+use crate::syntax::{Statement, Word};
+use crate::toolpath::Xz;
+
+use super::block::word_address;
+use super::interpreter::{Flow, Interpreter};
+use super::modal::{Modal, MotionMode};
+
+/// The end point a block's axis words give, and which axes they named.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct AxisTarget {
+    pub target: Option<Xz>,
+    pub x_given: bool,
+    pub z_given: bool,
+    pub any: bool,
+}
+
+/// The largest end-radius difference of an `I`/`K` arc the controls accept, mm.
+const ARC_RADIUS_MISMATCH_MM: f64 = 0.02;
+
+/// An automatic corner waiting for the move after it.
+#[derive(Debug, Clone)]
+pub(super) struct PendingCorner {
+    pub round: bool,
+    pub size: f64,
+    pub from: Xz,
+    pub corner: Xz,
+    pub modal: Modal,
+    pub context: super::emitter::Context,
+}
+
+impl Interpreter<'_, '_> {
+    /// The end point of a block's `X Z U W` words (and OSP `A`).
+    pub fn axis_target(&mut self, words: &[Word]) -> AxisTarget {
+        let frame = self.modal.frame;
+        let at = self.emitter.at;
+        let shift = self.modal.shift;
+        let (mut x, mut z) = (None::<f64>, None::<f64>);
+        let (mut x_given, mut z_given) = (false, false);
+        for word in words {
+            let Some(address) = word_address(word) else { continue };
+            let incremental_xz = !self.modal.absolute;
+            match (address, self.dialect) {
+                (Address::X, _) => {
+                    let Some(v) = self.word_value(word) else { continue };
+                    x = Some(if incremental_xz { at.x + frame.x_mm(v) } else { frame.x_mm(v) + shift.x });
+                    x_given = true;
+                }
+                (Address::Z, _) => {
+                    let Some(v) = self.word_value(word) else { continue };
+                    z = Some(if incremental_xz { at.z + frame.mm(v) } else { frame.mm(v) + shift.z });
+                    z_given = true;
+                }
+                (Address::U, Dialect::Fanuc) => {
+                    let Some(v) = self.word_value(word) else { continue };
+                    x = Some(at.x + frame.x_mm(v));
+                    x_given = true;
+                }
+                (Address::W, Dialect::Fanuc) => {
+                    let Some(v) = self.word_value(word) else { continue };
+                    z = Some(at.z + frame.mm(v));
+                    z_given = true;
+                }
+                _ => {}
+            }
+        }
+        // OSP: one coordinate and the direction angle A give the other.
+        if self.dialect == Dialect::Osp
+            && x_given != z_given
+            && let Some(angle) = self.address_value(words, Address::A)
+            && at.is_finite()
+        {
+            let (sin, cos) = angle.to_radians().sin_cos();
+            if let Some(tx) = x.filter(|_| sin.abs() > 1e-9) {
+                z = Some(at.z + (tx - at.x) * cos / sin);
+                z_given = true;
+            } else if let Some(tz) = z.filter(|_| cos.abs() > 1e-9) {
+                x = Some(at.x + (tz - at.z) * sin / cos);
+                x_given = true;
+            }
+        }
+        let any = x_given || z_given;
+        let target = any.then(|| Xz::new(x.unwrap_or(at.x), z.unwrap_or(at.z)));
+        AxisTarget { target, x_given, z_given, any }
+    }
+
+    /// A rapid to `to`, or, while the position is not known yet, arriving there.
+    pub fn rapid_to(&mut self, to: Xz, span: Span) {
+        self.finish_corner();
+        if !self.emitter.at.is_finite() {
+            self.unknown_position(span);
+            self.emitter.arrive(to);
+            return;
+        }
+        let modal = self.modal.clone();
+        self.emitter.rapid(&modal, to);
+    }
+
+    /// A straight feed move to `to` (cutting), through any pending corner.
+    pub fn line_to(&mut self, to: Xz, span: Span) {
+        if !self.emitter.at.is_finite() {
+            self.unknown_position(span);
+            self.emitter.arrive(to);
+            return;
+        }
+        if self.pending_corner.is_some() {
+            self.corner_then_line(to);
+            return;
+        }
+        let modal = self.modal.clone();
+        self.emitter.line(&modal, to, true);
+        self.report_zero_feed(span);
+    }
+
+    pub fn report_zero_feed(&mut self, span: Span) {
+        if std::mem::take(&mut self.emitter.zero_feed) {
+            self.error(DiagnosticKind::NoFeed, span);
+        }
+    }
+
+    pub(super) fn motion_block(&mut self, index: usize, words: &[Word]) -> Flow {
+        let block = *self.program.block(index);
+        let span = block.span;
+        let axes = self.axis_target(words);
+        let codes = self.g_infos(words);
+        let corner = codes.iter().find_map(|(_, g)| match g.function {
+            Some(GFunction::ChamferCorner) => Some(false),
+            Some(GFunction::RoundCorner) => Some(true),
+            _ => None,
+        });
+        match self.modal.motion {
+            MotionMode::TurningCycle | MotionMode::ThreadCycle | MotionMode::FacingCycle => {
+                // A single cycle repeats with the new end point.
+                return super::cycles::single_cycle_again(self, index, words);
+            }
+            MotionMode::Rapid => {
+                if let Some(to) = axes.target {
+                    self.rapid_to(to, span);
+                }
+            }
+            MotionMode::Linear => {
+                let Some(to) = axes.target else {
+                    self.finish_corner();
+                    return Flow::Next;
+                };
+                match corner {
+                    Some(round) => self.start_corner(round, to, words, span),
+                    None => self.line_to(to, span),
+                }
+            }
+            MotionMode::Cw | MotionMode::Ccw => {
+                self.finish_corner();
+                let ccw = self.modal.motion == MotionMode::Ccw;
+                if let Some(to) = axes.target.or(Some(self.emitter.at)) {
+                    self.arc_to(to, words, ccw, span);
+                }
+            }
+            MotionMode::Thread => {
+                self.finish_corner();
+                let lead = self.address_value(words, Address::F).or(self.address_value(words, Address::E));
+                let lead =
+                    lead.map(|v| self.modal.frame.feed_mm(v)).unwrap_or(self.modal.frame.feed_mm(self.modal.feed));
+                if let Some(to) = axes.target {
+                    if !self.emitter.at.is_finite() {
+                        self.unknown_position(span);
+                        self.emitter.arrive(to);
+                    } else {
+                        let modal = self.modal.clone();
+                        self.emitter.thread(&modal, to, lead);
+                        self.report_zero_feed(span);
+                    }
+                }
+            }
+        }
+        let _ = block.statement == Statement::Motion;
+        Flow::Next
+    }
+
+    /// The arc of a `G02`/`G03` block ending at `to`.
+    pub fn arc_to(&mut self, to: Xz, words: &[Word], ccw: bool, span: Span) {
+        let start = self.emitter.at;
+        if !start.is_finite() {
+            self.unknown_position(span);
+            self.emitter.arrive(to);
+            return;
+        }
+        let frame = self.modal.frame;
+        let radius_address = if self.dialect == Dialect::Osp { Address::L } else { Address::R };
+        let centre = if let Some(r) = self.address_value(words, radius_address) {
+            let r = frame.mm(r);
+            match geometry::centre_from_radius(start, to, r, ccw, 1e-6) {
+                Some(c) => c,
+                None => {
+                    let chord = start.distance(to);
+                    self.error(
+                        DiagnosticKind::ArcRadiusTooSmall { radius_mm: r.abs(), half_chord_mm: chord / 2.0 },
+                        span,
+                    );
+                    return;
+                }
+            }
+        } else {
+            let i = self.address_value(words, Address::I).map(|v| frame.mm(v));
+            let k = self.address_value(words, Address::K).map(|v| frame.mm(v));
+            if i.is_none() && k.is_none() {
+                self.error(DiagnosticKind::ArcWithoutCentre, span);
+                return;
+            }
+            let centre = Xz::new(start.x + i.unwrap_or(0.0), start.z + k.unwrap_or(0.0));
+            let (r0, r1) = (start.distance(centre), to.distance(centre));
+            if (r0 - r1).abs() > ARC_RADIUS_MISMATCH_MM {
+                self.error(DiagnosticKind::ArcCentreMismatch { start_radius_mm: r0, end_radius_mm: r1 }, span);
+                return;
+            }
+            if (r0 - r1).abs() > 1e-9 && start.distance(to) > 1e-9 {
+                // Onto the chord's perpendicular bisector, nearest the programmed centre.
+                let mid = Xz::new((start.x + to.x) / 2.0, (start.z + to.z) / 2.0);
+                let normal = geometry::left_normal(start, to);
+                let along = (centre.x - mid.x) * normal.x + (centre.z - mid.z) * normal.z;
+                Xz::new(mid.x + normal.x * along, mid.z + normal.z * along)
+            } else {
+                centre
+            }
+        };
+        let modal = self.modal.clone();
+        self.emitter.arc(&modal, to, centre, ccw, true);
+        self.report_zero_feed(span);
+    }
+
+    /// OSP `G75`/`G76 G01 … L`: remember the corner; the next line completes it.
+    fn start_corner(&mut self, round: bool, to: Xz, words: &[Word], span: Span) {
+        self.finish_corner();
+        if !self.emitter.at.is_finite() {
+            self.unknown_position(span);
+            self.emitter.arrive(to);
+            return;
+        }
+        let size = self.address_value(words, Address::L).map(|v| self.modal.frame.mm(v)).unwrap_or(0.0);
+        self.pending_corner = Some(PendingCorner {
+            round,
+            size,
+            from: self.emitter.at,
+            corner: to,
+            modal: self.modal.clone(),
+            context: self.emitter.context,
+        });
+        // The control is at the corner as far as later blocks are concerned.
+        self.emitter.at = to;
+    }
+
+    /// Emit a pending corner's first line as programmed (no line follows it).
+    pub fn finish_corner(&mut self) {
+        let Some(corner) = self.pending_corner.take() else { return };
+        let context = std::mem::replace(&mut self.emitter.context, corner.context);
+        self.emitter.at = corner.from;
+        self.emitter.line(&corner.modal, corner.corner, true);
+        self.warning(DiagnosticKind::CornerWithoutNextLine, corner.context.source);
+        self.emitter.context = context;
+    }
+
+    /// The pending corner's line, the chamfer or rounding, then the line to `to`.
+    fn corner_then_line(&mut self, to: Xz) {
+        let Some(corner) = self.pending_corner.take() else { return };
+        let d1 = geometry::direction(corner.from, corner.corner);
+        let d2 = geometry::direction(corner.corner, to);
+        let (len1, len2) = (corner.from.distance(corner.corner), corner.corner.distance(to));
+        // Turn angle between the two lines, and which way it turns in the (Z, X) view.
+        let cross = d1.z * d2.x - d1.x * d2.z;
+        let dot = d1.z * d2.z + d1.x * d2.x;
+        let turn = cross.atan2(dot);
+        let back = if corner.round { corner.size * (turn.abs() / 2.0).tan() } else { corner.size };
+        let context = std::mem::replace(&mut self.emitter.context, corner.context);
+        self.emitter.at = corner.from;
+        if turn.abs() < 1e-9 || back > len1 + 1e-9 || back > len2 + 1e-9 {
+            self.emitter.line(&corner.modal, corner.corner, true);
+            self.error(DiagnosticKind::CornerDoesNotFit { size_mm: corner.size }, corner.context.source);
+        } else {
+            let p1 = Xz::new(corner.corner.x - d1.x * back, corner.corner.z - d1.z * back);
+            let p2 = Xz::new(corner.corner.x + d2.x * back, corner.corner.z + d2.z * back);
+            self.emitter.line(&corner.modal, p1, true);
+            if corner.round {
+                // The centre lies on the inside of the turn, a radius from p1.
+                let normal = if cross > 0.0 { Xz::new(d1.z, -d1.x) } else { Xz::new(-d1.z, d1.x) };
+                let centre = Xz::new(p1.x + normal.x * corner.size, p1.z + normal.z * corner.size);
+                self.emitter.arc(&corner.modal, p2, centre, cross > 0.0, true);
+            } else {
+                self.emitter.line(&corner.modal, p2, true);
+            }
+        }
+        self.emitter.context = context;
+        let modal = self.modal.clone();
+        let span = self.emitter.context.source;
+        self.emitter.line(&modal, to, true);
+        self.report_zero_feed(span);
+    }
+}

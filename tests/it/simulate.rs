@@ -1,0 +1,189 @@
+//! Simulate cases: `tests/cases/simulate/**/*.nc`, each lowered on the machine of the
+//! nearest `machine.toml` (or its own `<name>.toml`). Cases under `err/` must report an
+//! error; all others must lower with none and give a valid toolpath. The snapshot holds
+//! the diagnostics, the summary, every move, and the `expand` output.
+//!
+//! Every case also checks that expansion is faithful: the expanded program, parsed and
+//! lowered again, moves the tool through the same points (to the least increment).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use turnpass::dialect::{DialectChoice, GCodeSystem};
+use turnpass::machine::{MachineSettings, ModelFile};
+use turnpass::printer::print;
+use turnpass::semantic::{self, LowerOptions, Machine};
+use turnpass::syntax::{ParseOptions, parse};
+use turnpass::toolpath::{Motion, Toolpath, validate};
+
+use crate::support::{check_spans, render, repo, with_snapshots};
+
+/// The machine settings of a case: `<case>.toml` beside it, else the nearest `machine.toml`
+/// in its directory or above (up to `tests/cases/simulate`).
+pub fn settings_for(case: &Path) -> MachineSettings {
+    let own = case.with_extension("toml");
+    let path = if own.is_file() {
+        own
+    } else {
+        let root = repo().join("tests/cases/simulate");
+        case.ancestors()
+            .skip(1)
+            .take_while(|dir| dir.starts_with(&root))
+            .map(|dir| dir.join("machine.toml"))
+            .find(|p| p.is_file())
+            .unwrap_or_else(|| panic!("no machine.toml for {}", case.display()))
+    };
+    ModelFile::from_toml(&std::fs::read_to_string(&path).unwrap()).unwrap().machine
+}
+
+pub fn parse_options(settings: &MachineSettings) -> ParseOptions {
+    ParseOptions {
+        dialect: settings.dialect.map_or(DialectChoice::Auto, DialectChoice::Fixed),
+        gcode_system: settings.gcode_system.unwrap_or(GCodeSystem::A),
+        machine_kind: None,
+    }
+}
+
+/// Moves as text: one line each, X as radius, mm, four decimals.
+pub fn moves_text(program: &turnpass::syntax::Program<'_>, toolpath: &Toolpath) -> String {
+    let lines = turnpass::source::LineIndex::new(program.source());
+    let mut out = String::new();
+    let _ = writeln!(out, "start X{:.4} Z{:.4}", toolpath.start.x, toolpath.start.z);
+    for m in &toolpath.moves {
+        let line = if m.source.is_synthetic() { 0 } else { lines.position(m.source.start).0 };
+        let _ = write!(out, "{line:>4} {:<5} X{:.4} Z{:.4}", m.motion.name(), m.end.x, m.end.z);
+        if m.is_arc() {
+            let _ = write!(out, " C{:.4},{:.4}", m.centre.x, m.centre.z);
+        }
+        if m.motion == Motion::Dwell {
+            let _ = write!(out, " {:.3}s", m.t_end - m.t_start);
+        } else if m.motion != Motion::Rapid {
+            let _ = write!(out, " F{:.2}", m.feed);
+        }
+        let _ = write!(out, " S{:.0} t{:.3}", m.rpm, m.t_end);
+        if m.cutting {
+            out.push_str(" cut");
+        }
+        if m.threading {
+            out.push_str(" thread");
+        }
+        out.push('\n');
+    }
+    out
+}
+
+fn run_case(path: &Path) -> String {
+    let source = std::fs::read(path).unwrap();
+    let settings = settings_for(path);
+    let parsed = parse(&source, &parse_options(&settings));
+    check_spans(&parsed);
+    let machine = Machine::from_settings(&settings);
+    let options = LowerOptions::new(settings.block_delete.unwrap_or(false));
+    let lowered = semantic::lower(&parsed.program, &machine, &options);
+    let mut diagnostics = parsed.diagnostics.clone();
+    diagnostics.extend(lowered.diagnostics.iter().cloned());
+    let valid = validate(lowered.toolpath.clone(), machine.limits);
+    if let Err(problems) = &valid {
+        diagnostics.extend(problems.iter().cloned());
+    }
+    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+    let name = path.file_name().unwrap().to_string_lossy().into_owned();
+    let errors = diagnostics.iter().any(|d| d.is_error());
+    let err_case = path.components().any(|c| c.as_os_str() == "err");
+    assert_eq!(errors, err_case, "{}:\n{}", path.display(), render(&name, &source, &diagnostics));
+
+    let mut out = String::new();
+    let _ = writeln!(out, "----- SOURCE\n{}", String::from_utf8_lossy(&source).trim_end());
+    let _ = writeln!(out, "----- DIAGNOSTICS\n{}", render(&name, &source, &diagnostics).trim_end());
+    if let Ok(valid) = &valid {
+        let summary = turnpass::simulation::summary(&parsed.program, &lowered, valid.toolpath(), &machine);
+        let _ = writeln!(
+            out,
+            "----- SUMMARY\ncycle {:.3} s, cutting {:.3} s, path {:.3} mm, cutting {:.3} mm, {} moves",
+            summary.cycle_time_s,
+            summary.cutting_time_s,
+            summary.path_length_mm,
+            summary.cutting_length_mm,
+            summary.moves
+        );
+        for pass in &summary.finishing_passes {
+            let _ = writeln!(
+                out,
+                "finishing line {} tool {} f {:.4} mm/rev r {:.4} mm Rt {}",
+                pass.line,
+                pass.tool,
+                pass.feed_per_rev_mm,
+                pass.nose_radius_mm,
+                pass.roughness_mm.map_or("-".to_string(), |rt| format!("{:.3} µm ({})", rt * 1000.0, pass.formula))
+            );
+        }
+    }
+    let _ = write!(out, "----- MOVES\n{}", moves_text(&parsed.program, &lowered.toolpath));
+    if !errors {
+        let _ =
+            write!(out, "----- EXPANDED\n{}", expand_and_compare(path, &parsed.program, &machine, &options, &settings));
+    }
+    out
+}
+
+/// The `expand` output, after checking that it moves the tool as the original does.
+fn expand_and_compare(
+    path: &Path,
+    program: &turnpass::syntax::Program<'_>,
+    machine: &Machine,
+    options: &LowerOptions,
+    settings: &MachineSettings,
+) -> String {
+    let plain = LowerOptions { nose_radius_compensation: false, ..*options };
+    let lowered = semantic::lower(program, machine, &plain);
+    let (edits, notes) = turnpass::expand::expansion_edits(program, &lowered);
+    let expanded = print(program, &edits);
+    let reparsed = parse(&expanded, &parse_options(settings));
+    check_spans(&reparsed);
+    assert_eq!(
+        reparsed.error_count(),
+        0,
+        "{}: expanded program:\n{}",
+        path.display(),
+        render("expanded", &expanded, &reparsed.diagnostics)
+    );
+    let again = semantic::lower(&reparsed.program, machine, &plain);
+    assert!(!again.diagnostics.iter().any(|d| d.is_error()), "{}: expanded program lowers with errors", path.display());
+    // Expansion rounds to the least increment, and rapids of zero length vanish.
+    let tolerance = machine.increment * machine.scale() * 1.01;
+    let points = |t: &Toolpath| -> Vec<(Motion, bool, f64, f64)> {
+        let mut out = Vec::new();
+        let mut at = t.start;
+        for m in &t.moves {
+            if m.motion == Motion::Dwell || (m.end.distance(at) <= tolerance && !m.is_arc()) {
+                continue;
+            }
+            out.push((m.motion, m.threading, m.end.x, m.end.z));
+            at = m.end;
+        }
+        out
+    };
+    let (a, b) = (points(&lowered.toolpath), points(&again.toolpath));
+    assert_eq!(a.len(), b.len(), "{}: the expanded program has a different number of moves", path.display());
+    for (i, (p, q)) in a.iter().zip(&b).enumerate() {
+        assert!(
+            p.0 == q.0 && p.1 == q.1 && (p.2 - q.2).abs() <= tolerance && (p.3 - q.3).abs() <= tolerance,
+            "{}: move {i} differs after expansion: {p:?} vs {q:?}",
+            path.display()
+        );
+    }
+    let mut out = String::from_utf8_lossy(&expanded).into_owned();
+    if !notes.is_empty() {
+        out.push_str(&render("expand", program.source(), &notes));
+    }
+    out
+}
+
+#[test]
+fn simulate_cases() {
+    with_snapshots("simulate", || {
+        insta::glob!("../cases/simulate", "**/*.nc", |path| {
+            insta::assert_snapshot!(run_case(path));
+        });
+    });
+}
