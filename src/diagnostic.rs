@@ -289,9 +289,10 @@ pub enum DiagnosticKind {
         number: String,
         count: usize,
     },
-    /// More executed blocks than the bound: a loop that does not end.
+    /// More executed blocks or moves than the bounds: a loop that does not end.
     RunawayProgram {
         blocks: u64,
+        moves: usize,
     },
     /// `WHILE … DOn` with no `ENDn`.
     UnmatchedLoop {

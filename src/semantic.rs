@@ -42,6 +42,9 @@ pub struct LowerOptions {
     pub block_delete: bool,
     /// Stop with a diagnostic after this many executed blocks (a runaway loop).
     pub max_executed_blocks: u64,
+    /// … or after this many moves (a loop of cycles fills memory long before it has run
+    /// many blocks).
+    pub max_moves: usize,
     /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
     /// under the program's own `G41`/`G42`).
     pub nose_radius_compensation: bool,
@@ -49,7 +52,12 @@ pub struct LowerOptions {
 
 impl LowerOptions {
     pub fn new(block_delete: bool) -> LowerOptions {
-        LowerOptions { block_delete, max_executed_blocks: 10_000_000, nose_radius_compensation: true }
+        LowerOptions {
+            block_delete,
+            max_executed_blocks: 10_000_000,
+            max_moves: 20_000_000,
+            nose_radius_compensation: true,
+        }
     }
 }
 

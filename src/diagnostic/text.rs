@@ -177,7 +177,9 @@ impl DiagnosticKind {
             }
             MissingSequence { number } => format!("no block has sequence number N{number}"),
             DuplicateSequence { number, count } => format!("{count} blocks have sequence number N{number}"),
-            RunawayProgram { blocks } => format!("the program ran {blocks} blocks without ending"),
+            RunawayProgram { blocks, moves } => {
+                format!("the program ran {blocks} blocks ({moves} moves) without ending")
+            }
             UnmatchedLoop { number } => format!("`DO{number}` has no `END{number}`"),
             MissingLabel { name } => format!("no block is labelled `{name}`"),
             MissingProgram { name } => format!("the file holds no program `{name}`"),

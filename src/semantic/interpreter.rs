@@ -73,6 +73,8 @@ pub(super) struct Interpreter<'p, 'src> {
     pub pending_corner: Option<super::motion::PendingCorner>,
     /// Blocks a cycle consumed (a LAP contour right after its call): the flow skips them.
     pub skip_to: Option<usize>,
+    /// The block being executed.
+    pub current_block: usize,
     calls: Vec<Call>,
     /// Fanuc `WHILE` blocks being looped, with their loop number.
     loops: Vec<(usize, u32)>,
@@ -116,6 +118,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             modal_call: None,
             pending_corner: None,
             skip_to: None,
+            current_block: 0,
             calls: Vec::new(),
             loops: Vec::new(),
             executed: 0,
@@ -149,12 +152,16 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         let blocks = self.program.blocks();
         let mut pc = 0;
         while pc < blocks.len() {
-            if self.executed >= self.options.max_executed_blocks {
+            if self.executed >= self.options.max_executed_blocks || self.emitter.moves.len() >= self.options.max_moves {
                 let span = blocks[pc].span;
-                self.error(DiagnosticKind::RunawayProgram { blocks: self.executed }, span);
+                self.error(
+                    DiagnosticKind::RunawayProgram { blocks: self.executed, moves: self.emitter.moves.len() },
+                    span,
+                );
                 break;
             }
             self.executed += 1;
+            self.current_block = pc;
             let flow = self.execute(pc);
             if let Some(target) = self.skip_to.take() {
                 pc = target;

@@ -151,7 +151,16 @@ impl Interpreter<'_, '_> {
         self.emitter.context = saved_context;
         self.emitter.first_start = saved_first;
         self.modal = saved_modal;
-        let _ = saved_diagnostics;
+        // A profile needs no feed of its own: the cycle that uses it supplies one, and
+        // G70 reports a missing feed when it cuts.
+        let mut index = saved_diagnostics;
+        while index < self.diagnostics.len() {
+            if self.diagnostics[index].kind == DiagnosticKind::NoFeed {
+                self.diagnostics.remove(index);
+            } else {
+                index += 1;
+            }
+        }
         if let Some(diagnostic) = failure {
             return Err(diagnostic);
         }

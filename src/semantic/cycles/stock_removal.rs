@@ -116,6 +116,13 @@ pub(super) fn run(
     if let Err(kind) = rough.cut(interp, &profile, start, span) {
         interp.error(kind, span);
     }
+    // F and S written in the cycle block are words of that block: they stay modal after
+    // it, as every F and S does (a G70 with no F of its own then finishes at that feed
+    // where the profile gives none).
+    interp.modal.feed = feed;
+    if let Some(s) = speed {
+        interp.modal.speed = s;
+    }
     after_q
 }
 
@@ -339,12 +346,14 @@ fn check_shape(elements: &[Element], type_ii: bool, facing: bool) -> Result<(), 
 }
 
 impl Interpreter<'_, '_> {
-    /// Where the program continues after a cycle that names a profile: after its Q block.
+    /// Where the program continues after a cycle that names a profile: after its Q block
+    /// when the profile follows the call (the usual layout), else with the next block (a
+    /// profile written earlier is a definition the flow has already passed).
     pub(in crate::semantic) fn after_profile(&mut self, command: &Command) -> Flow {
         let Some(q) = self.param(command, Role::ProfileEnd) else { return Flow::Next };
         let key = (q.round() as i64).to_string();
         match self.labels.blocks(&key) {
-            [one] => Flow::Jump(one + 1),
+            [one] if *one > self.current_block => Flow::Jump(one + 1),
             _ => Flow::Next,
         }
     }
