@@ -7,6 +7,7 @@
 
 mod cli;
 mod corpus;
+mod nose_radius;
 mod parse;
 mod print;
 mod robustness;
