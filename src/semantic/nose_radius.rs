@@ -169,7 +169,7 @@ pub fn apply(toolpath: &mut Toolpath, setup: &Setup, diagnostics: &mut Vec<Diagn
         if radius > 0.0 {
             let run = Run { moves: run_start..i, r: radius, tip, setup };
             run.compensate(toolpath, &mut inserted, diagnostics);
-            straighten_cancel_arc(toolpath, i, diagnostics);
+            straighten_cancel_arc(toolpath, i, &setup.tools, diagnostics);
         }
     }
     merge(toolpath, inserted)
@@ -308,14 +308,18 @@ fn straighten(m: &mut Move) {
 }
 
 /// The move that cancels compensation after a run (its first move that is not a dwell)
-/// leaves from an offset point, off its own circle if it is an arc.
-fn straighten_cancel_arc(toolpath: &mut Toolpath, after_run: usize, diagnostics: &mut Vec<Diagnostic>) {
+/// leaves from an offset point, off its own circle if it is an arc. A move under a tool
+/// with no nose radius in the table cancels it as `G40` does.
+fn straighten_cancel_arc(
+    toolpath: &mut Toolpath,
+    after_run: usize,
+    tools: &ToolTable,
+    diagnostics: &mut Vec<Diagnostic>,
+) {
     let next = (after_run..toolpath.moves.len()).find(|&k| toolpath.moves[k].motion != Motion::Dwell);
-    if let Some(k) = next
-        && toolpath.moves[k].compensation == Compensation::Off
-        && toolpath.moves[k].is_arc()
-    {
-        let m = &mut toolpath.moves[k];
+    let Some(m) = next.map(|k| &mut toolpath.moves[k]) else { return };
+    let compensated = m.compensation != Compensation::Off && tools.lookup(m.tool, m.offset).0 > 0.0;
+    if m.is_arc() && !compensated {
         diagnostics.push(Diagnostic::warning(DiagnosticKind::CompensationOnArc { cancel: true }, m.source));
         straighten(m);
     }

@@ -355,6 +355,33 @@ fn arcs_that_start_or_end_compensation_are_made_straight_with_a_warning() {
 }
 
 #[test]
+fn an_arc_after_a_run_under_a_tool_with_no_nose_radius_cancels_like_g40() {
+    // G42 with T0101, then T0505 (not in the table) still in G42: its arc leaves from the
+    // last offset point, so it is made straight.
+    let mut t = 0.0;
+    let mut moves = vec![
+        emitted(Xz::new(15.0, 5.0), Motion::Rapid, Xz::new(10.0, 0.0), NAN_POINT, Compensation::Right, &mut t),
+        emitted(Xz::new(10.0, 0.0), Motion::Feed, Xz::new(10.0, -10.0), NAN_POINT, Compensation::Right, &mut t),
+        emitted(
+            Xz::new(10.0, -10.0),
+            Motion::Cw,
+            Xz::new(12.0, -12.0),
+            Xz::new(12.0, -10.0),
+            Compensation::Right,
+            &mut t,
+        ),
+    ];
+    moves[2].tool = 5;
+    moves[2].offset = 5;
+    let mut toolpath = Toolpath { start: Xz::new(15.0, 5.0), moves };
+    let mut diagnostics = Vec::new();
+    apply(&mut toolpath, &setup(0.4, 0), &mut diagnostics);
+    assert_eq!(diagnostics.len(), 1);
+    assert_eq!(toolpath.moves[2].motion, Motion::Feed);
+    assert!(validate(toolpath, None).is_ok());
+}
+
+#[test]
 fn a_tool_change_inside_compensation_starts_a_new_run_with_the_new_radius() {
     // T0101 (r 0.4) cuts along Z-10, then T0202 (r 0.8) in G42 goes on along -Z.
     let mut t = 0.0;
