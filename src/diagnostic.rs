@@ -254,6 +254,17 @@ pub enum DiagnosticKind {
         x_mm: f64,
         z_mm: f64,
     },
+    /// The tool nose cannot follow the contour under nose-radius compensation: a concave arc
+    /// tighter than the nose, or a groove or step too small for it.
+    NoseDoesNotFit {
+        radius_mm: f64,
+        reason: &'static str,
+    },
+    /// Nose-radius compensation switched on (`G41`/`G42`) or off (`G40`) in an arc block;
+    /// the arc is made a straight move.
+    CompensationOnArc {
+        cancel: bool,
+    },
     /// `G28` and machine coordinates need the home position from the machine settings.
     HomeUnknown,
     /// No home in the settings, so the toolpath starts at the first programmed point.

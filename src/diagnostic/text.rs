@@ -54,6 +54,8 @@ impl DiagnosticKind {
             ArcEndOffCircle { .. } => "arc-end-off-circle",
             TimeGoesBack => "time-goes-back",
             OutsideTravel { .. } => "outside-travel",
+            NoseDoesNotFit { .. } => "nose-does-not-fit",
+            CompensationOnArc { .. } => "compensation-on-arc",
             HomeUnknown => "home-unknown",
             UnknownStartPosition => "unknown-start-position",
             LapContourNotClosed => "lap-contour-not-closed",
@@ -156,6 +158,15 @@ impl DiagnosticKind {
             OutsideTravel { x_mm, z_mm } => {
                 format!("the tool leaves the machine's travel at X{:.3} Z{z_mm:.3} (diameter, mm)", 2.0 * x_mm)
             }
+            NoseDoesNotFit { radius_mm, reason } => {
+                format!("the tool nose (radius {radius_mm:.3} mm) cannot follow the contour here: {reason}")
+            }
+            CompensationOnArc { cancel: false } => {
+                "nose-radius compensation starts on an arc; the move is made straight".to_string()
+            }
+            CompensationOnArc { cancel: true } => {
+                "nose-radius compensation ends on an arc; the move is made straight".to_string()
+            }
             HomeUnknown => "the machine settings give no home position".to_string(),
             UnknownStartPosition => {
                 "the machine settings give no home position; the toolpath starts at the first programmed point"
@@ -254,6 +265,8 @@ impl DiagnosticKind {
             TooManyWords { .. } => "this block".to_string(),
             OrphanContinuation => "`$`".to_string(),
             NonFiniteMove | ArcEndOffCircle { .. } | TimeGoesBack | OutsideTravel { .. } => "this block".to_string(),
+            NoseDoesNotFit { .. } => "the nose does not fit".to_string(),
+            CompensationOnArc { .. } => "this arc".to_string(),
             HomeUnknown
             | UnknownStartPosition
             | CycleNotSimulated { .. }
@@ -360,6 +373,15 @@ impl DiagnosticKind {
             NonFiniteMove | TimeGoesBack => None,
             ArcEndOffCircle { .. } => Some("check the end point and the centre (I K) or radius of the arc".to_string()),
             OutsideTravel { .. } => Some("check the coordinates, the work offset and the travel limits in the machine settings".to_string()),
+            NoseDoesNotFit { .. } => {
+                Some("use a tool with a smaller nose radius, or open up the contour (a wider groove, a larger concave radius)".to_string())
+            }
+            CompensationOnArc { cancel: false } => {
+                Some("switch compensation on (G41/G42) in a G00 or G01 block before the arc".to_string())
+            }
+            CompensationOnArc { cancel: true } => {
+                Some("cancel compensation (G40) in a G00 or G01 block after the arc".to_string())
+            }
             HomeUnknown | UnknownStartPosition => {
                 Some("set `home = { x = …, z = … }` in the [machine] table of the model file".to_string())
             }

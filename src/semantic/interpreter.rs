@@ -177,7 +177,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         let start = self.emitter.moves.first().map(|_| self.first_move_start()).unwrap_or(self.emitter.at);
         let mut toolpath = Toolpath { start, moves: std::mem::take(&mut self.emitter.moves) };
         if self.options.nose_radius_compensation {
-            super::nose_radius::apply(&mut toolpath, &self.machine_tools(), &mut self.diagnostics);
+            let setup = super::nose_radius::Setup::new(self.machine, self.modal.frame.scale());
+            // Compensation inserts corner arcs: the cycles' move ranges follow them.
+            let moved = super::nose_radius::apply(&mut toolpath, &setup, &mut self.diagnostics);
+            for expansion in &mut self.expansions {
+                expansion.moves = moved.range(expansion.moves.clone());
+            }
         }
         self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
         self.diagnostics.dedup();
@@ -192,10 +197,6 @@ impl<'p, 'src> Interpreter<'p, 'src> {
 
     fn first_move_start(&self) -> Xz {
         self.emitter.first_start.unwrap_or(self.emitter.at)
-    }
-
-    fn machine_tools(&self) -> super::nose_radius::ToolTable {
-        super::nose_radius::ToolTable::from_machine(self.machine)
     }
 
     /// Run one block.

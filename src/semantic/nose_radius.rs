@@ -3,8 +3,8 @@
 //! Without compensation a lathe program describes the path of the tool's imaginary tip
 //! (the reference point). With it, the program describes the part contour, and the control
 //! moves the nose centre on a path offset by the nose radius `r` (left of the direction of
-//! travel with `G41`, right with `G42`), so the reference point is the nose centre plus
-//! `r` times the tip-direction vector:
+//! travel with `G41`, right with `G42`, seen with Z to the right and X up), so the
+//! reference point is the nose centre plus `r` times the tip-direction vector:
 //!
 //! ```txt
 //!   X ▲   2  6  1        tip 3 (outside turning toward the chuck): the imaginary tip is
@@ -13,22 +13,50 @@
 //!     └──────────▶ Z
 //! ```
 //!
-//! Corners are joined the way a C-type control does: the offset elements (lines stay
-//! lines, arcs stay concentric with radius `R ± r`) are cut or extended to where they meet.
-//! The block that switches compensation on ends offset perpendicular to the next element;
-//! the `G40` block leaves from the last offset point to its own uncompensated end. When two
-//! offset elements do not meet within four nose radii of the corner (a very sharp outside
-//! corner), the first ends at its own offset end and the next leaves from there: a small
-//! departure from the control's extra corner vectors, noted here rather than hidden.
+//! **Runs.** Compensation works on each run of consecutive compensated moves with one side,
+//! tool and offset (a tool change or a change of side starts a new run). The first move of
+//! a run is the start-up: it ends offset perpendicular to the next element at that
+//! element's start (C-type start-up); when the run has no other element, perpendicular to
+//! itself at its own end. The last element ends perpendicular to itself at its end, and
+//! the `G40` block (or the next run's start-up) leaves from there to its own end. An arc
+//! cannot start or end compensation; such a block is made a straight move, with a warning.
+//!
+//! **Corners** (see [`path`]). Each element is offset to the tool's side: lines stay
+//! parallel lines, arcs stay concentric with radius `R ± r`. Where the path turns toward
+//! the tool (a concave corner) the two offset elements are cut back to where they cross.
+//! Where it turns away from the tool or reverses (a convex corner), the nose rolls round
+//! the corner: an arc of radius `r` about the contour corner, turning the way the path
+//! turns, from the perpendicular offset point of one element to that of the next. It is
+//! a move of its own in the IR, in front of the move it leads into, with that move's block,
+//! cycle, tool and spindle, and `contour` the corner itself. Where the offset points
+//! coincide (a tangent join) the elements share that point. A nose that cannot follow the
+//! contour (a concave arc smaller than the nose, an element the cuts at its corners use
+//! up) is an error on the block; the path is still made. (Some controls run a convex
+//! corner on extended offsets or extra straight vectors instead of the arc; the nose
+//! touches the same contour either way, only its path through the air at the corner
+//! differs.)
+//!
+//! **Times.** A programmed move keeps the time the emitter gave it: the feed is the feed
+//! of the cutting point along the contour, which is where the nose touches the part. A
+//! corner arc has no contour length (the cutting point stays on the corner), so it takes
+//! its own length at the feed of the move it leads into: the F word at the spindle speed
+//! of the corner's radius under constant surface speed, or the slower axis' rapid rate
+//! before a rapid. Every later move is delayed by the corner arcs before it, so the clock
+//! stays continuous. [`apply`] returns the [`MoveMap`] that carries move indices (the
+//! cycles' expansions) over the inserted moves.
 //!
 //! The IR keeps both paths: `end` becomes the reference point, `contour` stays the
 //! programmed point.
 
-use crate::diagnostic::Diagnostic;
-use crate::geometry;
-use crate::toolpath::{Compensation, Motion, Toolpath, Xz};
+use std::ops::Range;
+
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
 
 use super::Machine;
+use path::Curve;
+
+pub mod path;
 
 /// Nose radius (mm) and tip direction by turret station and offset number.
 #[derive(Debug, Clone, Default)]
@@ -75,41 +103,53 @@ pub fn tip_vector(tip: u8) -> Xz {
     }
 }
 
-/// An element of the nose-centre path.
-#[derive(Debug, Clone, Copy)]
-enum Element {
-    Line { start: Xz, end: Xz },
-    Arc { centre: Xz, radius: f64, start: Xz, end: Xz },
+/// What compensation needs to know besides the toolpath.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    pub tools: ToolTable,
+    /// Rapid traverse rate of each axis, mm/min: a corner arc in front of a rapid runs at
+    /// the slower one.
+    pub rapid: Xz,
+    /// Millimetres per program unit, for the F word of a corner arc.
+    pub mm_per_unit: f64,
 }
 
-impl Element {
-    fn start(&self) -> Xz {
-        match *self {
-            Element::Line { start, .. } | Element::Arc { start, .. } => start,
-        }
-    }
-
-    fn end(&self) -> Xz {
-        match *self {
-            Element::Line { end, .. } | Element::Arc { end, .. } => end,
-        }
-    }
-
-    fn set_start(&mut self, p: Xz) {
-        match self {
-            Element::Line { start, .. } | Element::Arc { start, .. } => *start = p,
-        }
-    }
-
-    fn set_end(&mut self, p: Xz) {
-        match self {
-            Element::Line { end, .. } | Element::Arc { end, .. } => *end = p,
-        }
+impl Setup {
+    /// The machine's tools and rapid rates, and the program's units (the units in effect
+    /// when the program ends: programs do not switch units while compensating).
+    pub fn new(machine: &Machine, mm_per_unit: f64) -> Setup {
+        Setup { tools: ToolTable::from_machine(machine), rapid: machine.rapid, mm_per_unit }
     }
 }
 
-/// Apply compensation to every run of compensated moves.
-pub fn apply(toolpath: &mut Toolpath, tools: &ToolTable, _diagnostics: &mut Vec<Diagnostic>) {
+/// Where the moves of the uncompensated toolpath went after compensation inserted corner
+/// arcs. An inserted move belongs to the move it leads into (it has that move's block and
+/// cycle), so a range of moves maps to the range from the first move its first move became
+/// up to the first move the move after it became.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MoveMap {
+    /// For each old move, the new index of the first move it became; then the new length.
+    first: Vec<usize>,
+}
+
+impl MoveMap {
+    /// Nothing inserted into a toolpath of `len` moves.
+    pub fn identity(len: usize) -> MoveMap {
+        MoveMap { first: (0..=len).collect() }
+    }
+
+    /// The new range of the moves an old range held (indices past the end map to the end).
+    pub fn range(&self, old: Range<usize>) -> Range<usize> {
+        let at = |k: usize| self.first.get(k).or(self.first.last()).copied().unwrap_or(0);
+        let start = at(old.start);
+        start..at(old.end).max(start)
+    }
+}
+
+/// Apply compensation to every run of compensated moves; returns where the moves went.
+pub fn apply(toolpath: &mut Toolpath, setup: &Setup, diagnostics: &mut Vec<Diagnostic>) -> MoveMap {
+    // Moves to insert, each in front of the (old) index it leads into, in index order.
+    let mut inserted: Vec<(usize, Move)> = Vec::new();
     let mut i = 0;
     while i < toolpath.moves.len() {
         if toolpath.moves[i].compensation == Compensation::Off {
@@ -117,135 +157,214 @@ pub fn apply(toolpath: &mut Toolpath, tools: &ToolTable, _diagnostics: &mut Vec<
             continue;
         }
         let run_start = i;
-        let (tool, offset) = (toolpath.moves[i].tool, toolpath.moves[i].offset);
+        let first = toolpath.moves[i];
         while i < toolpath.moves.len()
-            && toolpath.moves[i].compensation == toolpath.moves[run_start].compensation
-            && toolpath.moves[i].tool == tool
-            && toolpath.moves[i].offset == offset
+            && toolpath.moves[i].compensation == first.compensation
+            && toolpath.moves[i].tool == first.tool
+            && toolpath.moves[i].offset == first.offset
         {
             i += 1;
         }
-        let (radius, tip) = tools.lookup(tool, offset);
+        let (radius, tip) = setup.tools.lookup(first.tool, first.offset);
         if radius > 0.0 {
-            compensate_run(toolpath, run_start..i, radius, tip);
+            let run = Run { moves: run_start..i, r: radius, tip, setup };
+            run.compensate(toolpath, &mut inserted, diagnostics);
+            straighten_cancel_arc(toolpath, i, &setup.tools, diagnostics);
+        }
+    }
+    merge(toolpath, inserted)
+}
+
+/// One run of compensated moves and its tool.
+struct Run<'s> {
+    moves: Range<usize>,
+    r: f64,
+    tip: u8,
+    setup: &'s Setup,
+}
+
+impl Run<'_> {
+    /// The reference point of a nose-centre point.
+    fn reference(&self, p: Xz) -> Xz {
+        let tip = tip_vector(self.tip);
+        Xz::new(p.x + tip.x * self.r, p.z + tip.z * self.r)
+    }
+
+    fn compensate(
+        &self,
+        toolpath: &mut Toolpath,
+        inserted: &mut Vec<(usize, Move)>,
+        diagnostics: &mut Vec<Diagnostic>,
+    ) {
+        let side = if toolpath.moves[self.moves.start].compensation == Compensation::Left { 1.0 } else { -1.0 };
+        // The contour elements of the run; dwells keep their place and are skipped.
+        let geometric: Vec<usize> = self.moves.clone().filter(|&k| toolpath.moves[k].motion != Motion::Dwell).collect();
+        let Some((&startup, elements)) = geometric.split_first() else { return };
+        let contours: Vec<Curve> = elements.iter().map(|&k| contour_of(toolpath, k)).collect();
+        let offsets = path::offset_chain(&contours, self.r, side);
+
+        // The start-up ends where the first real element's path starts, or, with none,
+        // perpendicular to itself at its own end.
+        let first_real = contours.iter().zip(&offsets).find(|(c, _)| !c.is_null()).map(|(_, o)| o.path.start());
+        let startup_end = first_real.unwrap_or_else(|| {
+            let own = contour_of(toolpath, startup);
+            if own.is_null() { own.end() } else { path::offset(own, self.r, side).0.end() }
+        });
+        let m = &mut toolpath.moves[startup];
+        if m.is_arc() {
+            diagnostics.push(Diagnostic::warning(DiagnosticKind::CompensationOnArc { cancel: false }, m.source));
+            straighten(m);
+        }
+        m.end = self.reference(startup_end);
+
+        for ((&k, offset), contour) in elements.iter().zip(&offsets).zip(&contours) {
+            if let Some(problem) = offset.problem {
+                let kind = DiagnosticKind::NoseDoesNotFit { radius_mm: self.r, reason: problem.reason() };
+                diagnostics.push(Diagnostic::error(kind, toolpath.moves[k].source));
+            }
+            if let Some(lead_in) = offset.lead_in {
+                inserted.push((k, self.lead_in_move(&toolpath.moves[k], lead_in, contour.start())));
+            }
+            // With no real element in the run, null elements stand at the start-up's end.
+            let path =
+                if first_real.is_none() { Curve::Line { start: startup_end, end: startup_end } } else { offset.path };
+            let m = &mut toolpath.moves[k];
+            m.end = self.reference(path.end());
+            if let Curve::Arc { centre, .. } = path {
+                m.centre = self.reference(centre);
+            }
+        }
+    }
+
+    /// The move that joins two elements' paths at a corner (a corner arc, or a straight
+    /// link where concave offsets never cross), in front of the move `next` it leads into.
+    fn lead_in_move(&self, next: &Move, curve: Curve, corner: Xz) -> Move {
+        let rapid = next.motion == Motion::Rapid;
+        let (motion, centre) = match curve {
+            Curve::Arc { centre, ccw, .. } => (if ccw { Motion::Ccw } else { Motion::Cw }, self.reference(centre)),
+            Curve::Line { .. } => (if rapid { Motion::Rapid } else { Motion::Feed }, NAN_POINT),
+        };
+        let (start, end) = (curve.start(), curve.end());
+        let rate = if rapid {
+            self.setup.rapid.x.min(self.setup.rapid.z)
+        } else {
+            // The cutting point stays on the corner: under constant surface speed the
+            // spindle turns at the corner's rpm, the rpm `next` starts with.
+            let per_unit = next.f_word * self.setup.mm_per_unit;
+            if next.per_revolution { per_unit * next.rpm } else { per_unit }
+        };
+        let seconds = if motion == Motion::Rapid {
+            // A rapid link moves each axis at its own rate, as every rapid does.
+            let dx = (end.x - start.x).abs() / self.setup.rapid.x.max(1e-9);
+            let dz = (end.z - start.z).abs() / self.setup.rapid.z.max(1e-9);
+            dx.max(dz) * 60.0
+        } else if rate.is_finite() && rate > 0.0 {
+            curve.length() / rate * 60.0
+        } else {
+            0.0
+        };
+        let feed = if motion == Motion::Rapid || seconds <= 0.0 { 0.0 } else { rate };
+        Move {
+            motion,
+            compensation: next.compensation,
+            cutting: next.cutting && !rapid,
+            threading: false,
+            per_revolution: next.per_revolution,
+            tool: next.tool,
+            offset: next.offset,
+            end: self.reference(end),
+            centre,
+            contour: corner,
+            feed,
+            f_word: next.f_word,
+            s_word: next.s_word,
+            rpm: next.rpm,
+            t_start: 0.0,
+            t_end: seconds,
+            source: next.source,
+            cycle: next.cycle,
         }
     }
 }
 
-fn compensate_run(toolpath: &mut Toolpath, run: std::ops::Range<usize>, r: f64, tip: u8) {
-    let side = if toolpath.moves[run.start].compensation == Compensation::Left { 1.0 } else { -1.0 };
-    // The contour elements of the run (dwells keep their place and are skipped).
-    let geometric: Vec<usize> = run.clone().filter(|&k| toolpath.moves[k].motion != Motion::Dwell).collect();
-    if geometric.is_empty() {
-        return;
-    }
-    // Offset each element except the start-up move, which ends where the next one begins.
-    let mut elements: Vec<(usize, Element)> = Vec::new();
-    for &k in geometric.iter().skip(1) {
-        let start = toolpath.start_of(k);
-        let m = toolpath.moves[k];
-        let contour_start = if k == 0 { toolpath.start } else { toolpath.moves[k - 1].contour };
-        let _ = start;
-        elements.push((k, offset_element(contour_start, m.contour, m.centre, m.motion, r, side)));
-    }
-    // Join neighbours.
-    for pair in 1..elements.len() {
-        let corner = toolpath.moves[elements[pair - 1].0].contour;
-        let (a, b) = (elements[pair - 1].1, elements[pair].1);
-        match meet(a, b, corner, r) {
-            Some(p) => {
-                elements[pair - 1].1.set_end(p);
-                elements[pair].1.set_start(p);
-            }
-            None => {
-                let p = a.end();
-                elements[pair].1.set_start(p);
-            }
-        }
-    }
-    let shift = tip_vector(tip);
-    let reference = |p: Xz| Xz::new(p.x + shift.x * r, p.z + shift.z * r);
-    // The start-up move ends where the first offset element starts (or at its own offset
-    // end when it is the only move of the run).
-    let first = geometric[0];
-    let startup_end = match elements.first() {
-        Some((_, element)) => element.start(),
-        None => {
-            let m = toolpath.moves[first];
-            let contour_start = if first == 0 { toolpath.start } else { toolpath.moves[first - 1].contour };
-            offset_element(contour_start, m.contour, m.centre, m.motion, r, side).end()
-        }
-    };
-    let startup_arc = toolpath.moves[first].is_arc();
-    toolpath.moves[first].end = reference(startup_end);
-    if startup_arc {
-        // An arc cannot start compensation on these controls; keep it as a straight move.
-        toolpath.moves[first].motion = Motion::Feed;
-        toolpath.moves[first].centre = Xz::new(f64::NAN, f64::NAN);
-    }
-    for (k, element) in elements {
-        let m = &mut toolpath.moves[k];
-        m.end = reference(element.end());
-        if let Element::Arc { centre, .. } = element {
-            m.centre = reference(centre);
-        }
-    }
-    // Dwells inside the run stand where the previous move ended.
-    for k in run {
-        if toolpath.moves[k].motion == Motion::Dwell {
-            let at = toolpath.start_of(k);
-            toolpath.moves[k].end = at;
-        }
-    }
-}
+const NAN_POINT: Xz = Xz::new(f64::NAN, f64::NAN);
 
-fn offset_element(start: Xz, end: Xz, centre: Xz, motion: Motion, r: f64, side: f64) -> Element {
-    match motion {
+/// The programmed contour of move `k`: from the previous move's contour point to its own.
+fn contour_of(toolpath: &Toolpath, k: usize) -> Curve {
+    let m = &toolpath.moves[k];
+    let start = if k == 0 { toolpath.start } else { toolpath.moves[k - 1].contour };
+    match m.motion {
         Motion::Cw | Motion::Ccw => {
-            let ccw = motion == Motion::Ccw;
-            let radius = start.distance(centre);
-            // The left of a counter-clockwise arc is its inside.
-            let inward = if ccw { side } else { -side };
-            let new_radius = (radius - inward * r).max(1e-9);
-            let a0 = geometry::angle(start, centre);
-            let a1 = geometry::angle(end, centre);
-            Element::Arc {
-                centre,
-                radius: new_radius,
-                start: geometry::on_circle(centre, new_radius, a0),
-                end: geometry::on_circle(centre, new_radius, a1),
-            }
+            Curve::Arc { start, end: m.contour, centre: m.centre, ccw: m.motion == Motion::Ccw }
         }
-        _ => {
-            let n = geometry::left_normal(start, end);
-            let d = Xz::new(n.x * r * side, n.z * r * side);
-            Element::Line { start: Xz::new(start.x + d.x, start.z + d.z), end: Xz::new(end.x + d.x, end.z + d.z) }
+        _ => Curve::Line { start, end: m.contour },
+    }
+}
+
+/// An arc that starts or ends compensation becomes a straight move to its end.
+fn straighten(m: &mut Move) {
+    m.motion = Motion::Feed;
+    m.centre = NAN_POINT;
+}
+
+/// The move that cancels compensation after a run (its first move that is not a dwell)
+/// leaves from an offset point, off its own circle if it is an arc. A move under a tool
+/// with no nose radius in the table cancels it as `G40` does.
+fn straighten_cancel_arc(
+    toolpath: &mut Toolpath,
+    after_run: usize,
+    tools: &ToolTable,
+    diagnostics: &mut Vec<Diagnostic>,
+) {
+    let next = (after_run..toolpath.moves.len()).find(|&k| toolpath.moves[k].motion != Motion::Dwell);
+    let Some(m) = next.map(|k| &mut toolpath.moves[k]) else { return };
+    let compensated = m.compensation != Compensation::Off && tools.lookup(m.tool, m.offset).0 > 0.0;
+    if m.is_arc() && !compensated {
+        diagnostics.push(Diagnostic::warning(DiagnosticKind::CompensationOnArc { cancel: true }, m.source));
+        straighten(m);
+    }
+}
+
+/// Put the inserted moves in place, delay every later move by their time, and stand each
+/// dwell where the move before it ended.
+fn merge(toolpath: &mut Toolpath, inserted: Vec<(usize, Move)>) -> MoveMap {
+    if inserted.is_empty() {
+        stand_dwells(toolpath);
+        return MoveMap::identity(toolpath.moves.len());
+    }
+    let old = std::mem::take(&mut toolpath.moves);
+    let mut moves = Vec::with_capacity(old.len() + inserted.len());
+    let mut first = Vec::with_capacity(old.len() + 1);
+    let mut delay = 0.0;
+    let mut pending = inserted.into_iter().peekable();
+    for (k, mut m) in old.into_iter().enumerate() {
+        first.push(moves.len());
+        while let Some((_, mut extra)) = pending.next_if(|(before, _)| *before == k) {
+            let seconds = extra.t_end - extra.t_start;
+            extra.t_start = m.t_start + delay;
+            extra.t_end = extra.t_start + seconds;
+            delay += seconds;
+            moves.push(extra);
+        }
+        m.t_start += delay;
+        m.t_end += delay;
+        moves.push(m);
+    }
+    first.push(moves.len());
+    toolpath.moves = moves;
+    stand_dwells(toolpath);
+    MoveMap { first }
+}
+
+/// A dwell stands where the tool is: where the move before it ended (an offset point
+/// inside or right after a compensated run).
+fn stand_dwells(toolpath: &mut Toolpath) {
+    for k in 0..toolpath.moves.len() {
+        if toolpath.moves[k].motion == Motion::Dwell {
+            toolpath.moves[k].end = toolpath.start_of(k);
         }
     }
 }
 
-/// Where two offset elements meet near the contour corner, if within four nose radii.
-fn meet(a: Element, b: Element, corner: Xz, r: f64) -> Option<Xz> {
-    if a.end().distance(b.start()) < 1e-9 {
-        return Some(a.end());
-    }
-    let candidates: Vec<Xz> = match (a, b) {
-        (Element::Line { start: a0, end: a1 }, Element::Line { start: b0, end: b1 }) => {
-            geometry::line_line(a0, a1, b0, b1).into_iter().collect()
-        }
-        (Element::Line { start, end }, Element::Arc { centre, radius, .. })
-        | (Element::Arc { centre, radius, .. }, Element::Line { start, end }) => {
-            geometry::line_circle(start, end, centre, radius)
-                .into_iter()
-                .map(|t| Xz::new(start.x + (end.x - start.x) * t, start.z + (end.z - start.z) * t))
-                .collect()
-        }
-        (Element::Arc { centre: c1, radius: r1, .. }, Element::Arc { centre: c2, radius: r2, .. }) => {
-            geometry::circle_circle(c1, r1, c2, r2)
-        }
-    };
-    candidates
-        .into_iter()
-        .filter(|p| p.distance(corner) <= 4.0 * r)
-        .min_by(|p, q| p.distance(corner).total_cmp(&q.distance(corner)))
-}
+#[cfg(test)]
+mod tests;

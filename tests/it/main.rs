@@ -8,6 +8,7 @@
 mod cli;
 mod corpus;
 mod differential;
+mod nose_radius;
 mod parse;
 mod print;
 mod robustness;
