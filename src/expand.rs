@@ -12,7 +12,7 @@ use crate::dialect::{Address, Code, Dialect, GFunction};
 use crate::printer::{Edits, NewBlock, NewWord};
 use crate::semantic::{Frame, Lowered};
 use crate::syntax::{CodeLetter, Number, Program, Statement, WordKind};
-use crate::toolpath::{Motion, Move, Xz};
+use crate::toolpath::{Compensation, Motion, Move, Xz};
 
 /// Edits that replace each cycle call with its moves (and delete the blocks it consumed).
 /// A cycle whose moves this dialect cannot write as plain blocks (a thread pass on a
@@ -22,6 +22,12 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
     let mut notes = Vec::new();
     let thread_code = program.config().tables().code_for(GFunction::ThreadMove);
     let radius_arcs = uses_radius_arcs(program);
+    let tables = program.config().tables();
+    let compensation_codes = [
+        tables.code_for(GFunction::CompensationOff).unwrap_or(Code::whole(40)),
+        tables.code_for(GFunction::CompensationLeft).unwrap_or(Code::whole(41)),
+        tables.code_for(GFunction::CompensationRight).unwrap_or(Code::whole(42)),
+    ];
     let calls: std::collections::HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
     for expansion in &lowered.expansions {
         let frame = expansion.frame;
@@ -33,14 +39,24 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             notes.push(Diagnostic::note(DiagnosticKind::NotExpandable, span));
             continue;
         }
+        // The compensation in effect when the cycle starts: the written blocks switch it
+        // where the cycle's moves do (a G70 profile's own G41/G42/G40).
+        let compensation_before = expansion
+            .moves
+            .start
+            .checked_sub(1)
+            .and_then(|k| lowered.toolpath.moves.get(k))
+            .map_or(Compensation::Off, |m| m.compensation);
         let mut writer = BlockWriter {
             frame,
             places,
             radius_arcs,
             dialect: program.config().dialect,
             thread_code: thread_code.unwrap_or(Code::whole(32)),
+            compensation_codes,
             motion: None,
             feed: None,
+            compensation: compensation_before,
         };
         let blocks: Vec<NewBlock> = moves
             .iter()
@@ -99,9 +115,12 @@ struct BlockWriter {
     dialect: Dialect,
     /// `G32` (system A/B) or `G33` (system C): one thread pass.
     thread_code: Code,
+    /// `G40`, `G41`, `G42` in this dialect.
+    compensation_codes: [Code; 3],
     /// The last motion code written (`None` before the first), and whether it was a thread.
     motion: Option<(Motion, bool)>,
     feed: Option<f64>,
+    compensation: Compensation,
 }
 
 impl BlockWriter {
@@ -128,6 +147,15 @@ impl BlockWriter {
             Motion::Ccw => Code::whole(3),
             Motion::Dwell => unreachable!("dwells return above"),
         };
+        if m.compensation != self.compensation {
+            let code = match m.compensation {
+                Compensation::Off => self.compensation_codes[0],
+                Compensation::Left => self.compensation_codes[1],
+                Compensation::Right => self.compensation_codes[2],
+            };
+            words.push(NewWord::Code(CodeLetter::G, code));
+            self.compensation = m.compensation;
+        }
         if self.motion != Some((m.motion, m.threading)) || m.is_arc() {
             words.push(NewWord::Code(CodeLetter::G, code));
             self.motion = Some((m.motion, m.threading));
