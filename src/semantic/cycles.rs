@@ -7,9 +7,11 @@
 //! count least increments; OSP `D`, `U`, `H` are diameters.
 
 mod canonical;
+mod compound_thread;
 mod finishing;
 mod single;
 mod stock_removal;
+pub mod thread_infeed;
 pub mod thread_pass;
 mod thread_single;
 
@@ -56,6 +58,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         | GFunction::ThreadSingleFace
         | GFunction::ThreadSingleLeadIncreasing
         | GFunction::ThreadSingleLeadDecreasing => thread_single::run(interp, index, &command, function),
+        GFunction::CompoundThreadLongitudinal | GFunction::CompoundThreadFace => {
+            compound_thread::run(interp, index, &command, function)
+        }
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
@@ -101,6 +106,24 @@ impl Interpreter<'_, '_> {
         let z =
             self.param(command, Role::EndZ).map(|v| if absolute { frame.mm(v) + shift.z } else { at.z + frame.mm(v) });
         Xz::new(x.unwrap_or(at.x), z.unwrap_or(at.z))
+    }
+
+    /// Where the word playing `role` is written, else `fallback` (the block).
+    pub(super) fn param_span(&self, command: &Command, role: Role, fallback: Span) -> Span {
+        command.param(role).map_or(fallback, |id| self.program.word(id).span)
+    }
+
+    /// The M-code numbers written for `role` (`M32` as an infeed mode).
+    pub(super) fn m_params(&self, command: &Command, role: Role) -> Vec<u16> {
+        command
+            .params
+            .iter()
+            .filter(|p| p.role == role)
+            .filter_map(|p| match self.program.word(p.word).kind {
+                WordKind::Code { code, .. } => Some(code.major()),
+                _ => None,
+            })
+            .collect()
     }
 
     /// The block with sequence number `value` (a `P`/`Q` reference), which must be unique.
