@@ -9,6 +9,7 @@
 mod canonical;
 mod compound_thread;
 mod finishing;
+mod lap_thread;
 mod single;
 mod stock_removal;
 pub mod thread_infeed;
@@ -61,6 +62,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         GFunction::CompoundThreadLongitudinal | GFunction::CompoundThreadFace => {
             compound_thread::run(interp, index, &command, function)
         }
+        GFunction::LapThread => lap_thread::run(interp, index, &command),
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
