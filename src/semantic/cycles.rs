@@ -9,6 +9,7 @@
 mod canonical;
 mod compound_thread;
 mod finishing;
+mod grooving;
 mod lap_thread;
 mod single;
 mod stock_removal;
@@ -63,6 +64,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             compound_thread::run(interp, index, &command, function)
         }
         GFunction::LapThread => lap_thread::run(interp, index, &command),
+        GFunction::OspGrooving | GFunction::OspFaceCutting => grooving::run(interp, index, &command, function),
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
