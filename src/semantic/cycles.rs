@@ -13,6 +13,7 @@ mod grooving;
 mod lap_thread;
 mod single;
 mod stock_removal;
+mod tapping;
 pub mod thread_infeed;
 pub mod thread_pass;
 mod thread_single;
@@ -65,6 +66,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         }
         GFunction::LapThread => lap_thread::run(interp, index, &command),
         GFunction::OspGrooving | GFunction::OspFaceCutting => grooving::run(interp, index, &command, function),
+        GFunction::Tapping => tapping::run(interp, index, &command),
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
