@@ -277,7 +277,8 @@ pub enum DiagnosticKind {
     CycleNotSimulated {
         code: String,
     },
-    /// `expand` leaves a cycle as it is: its moves have no plain-block form in this dialect.
+    /// `expand` leaves a cycle as it is: its moves have no plain-block form in this dialect
+    /// (on OSP: thread moves that are not single-pass `G33` passes).
     NotExpandable,
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
@@ -343,6 +344,47 @@ pub enum DiagnosticKind {
     },
     /// A block a finishing profile may not hold.
     NotAllowedInProfile,
+    /// OSP compound thread, infeed pattern 1 (`M73`, a constant depth `D` per pass): the
+    /// depth to rough, `H − U`, is less than one pass, which the control rejects. Values in
+    /// program units, as written (diameters).
+    ThreadRoughDepthBelowFirstCut {
+        rough_depth: f64,
+        first_depth: f64,
+    },
+    /// OSP compound thread: the finishing allowance `U` (`W`) is larger than the thread
+    /// height `H`, which the control rejects. Program units.
+    ThreadAllowanceOverHeight {
+        height: f64,
+        allowance: f64,
+    },
+    /// OSP thread infeed (tool) angle `B` outside 0 ≤ B < 180 degrees.
+    InfeedAngleOutOfRange {
+        angle: f64,
+    },
+    /// OSP multi-pass thread with a first depth `D` or a height `H` that is not positive.
+    ThreadDepthNotPositive {
+        address: char,
+    },
+    /// A cycle that would cut more passes than the simulation runs (bounded work).
+    TooManyPasses {
+        passes: usize,
+        max: usize,
+    },
+    /// OSP infeed pattern 3 where the control chooses its own pass depths (`D² < H² − (H − U)²`,
+    /// which the manual leaves undocumented); the simulation uses the `D·√n` rule.
+    InfeedPatternApproximated,
+    /// An OSP grooving or face-cutting cycle whose end lies off the start line (`X` or `Z`
+    /// differs from where the tool is) with no shift word to step there.
+    CycleNeedsShift {
+        shift: char,
+        axis: char,
+    },
+    /// An OSP `G88` thread whose `N` names no `G81`/`G82` contour.
+    ThreadContourNotFound {
+        name: String,
+    },
+    /// An OSP `G88` thread contour with an arc, or a rapid after its first thread element.
+    ThreadContourNotStraight,
     /// `#[expr]` with a value that is no variable number.
     BadVariableNumber {
         value: f64,

@@ -14,9 +14,12 @@ use crate::semantic::{Frame, Lowered};
 use crate::syntax::{CodeLetter, Number, Program, Statement, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
+mod thread_pass;
+
 /// Edits that replace each cycle call with its moves (and delete the blocks it consumed).
-/// A cycle whose moves this dialect cannot write as plain blocks (a thread pass on a
-/// control with no thread move) stays as it is, with a note.
+/// On a control with no thread move (OSP) a thread pass is written as a single-pass cycle
+/// block (`thread_pass.rs`); a cycle whose thread moves are not such passes stays as it
+/// is, with a note.
 pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<Diagnostic>) {
     let mut edits = Edits::new();
     let mut notes = Vec::new();
@@ -34,11 +37,6 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
         let places = increment_places(frame.increment);
         let moves = &lowered.toolpath.moves[expansion.moves.clone()];
         let mut start = lowered.toolpath.start_of(expansion.moves.start);
-        if thread_code.is_none() && moves.iter().any(|m| m.threading) {
-            let span = program.block(expansion.block).span;
-            notes.push(Diagnostic::note(DiagnosticKind::NotExpandable, span));
-            continue;
-        }
         // The compensation in effect when the cycle starts: the written blocks switch it
         // where the cycle's moves do (a G70 profile's own G41/G42/G40).
         let compensation_before = expansion
@@ -58,6 +56,21 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             feed: None,
             compensation: compensation_before,
         };
+        if thread_code.is_none() && moves.iter().any(|m| m.threading) {
+            // No thread move in this dialect: passes become single-pass cycle blocks.
+            match thread_pass::expand(program, expansion, moves, start, &mut writer) {
+                thread_pass::Threads::Keep => {}
+                thread_pass::Threads::Blocks(blocks) => {
+                    edits.replace(expansion.block, blocks);
+                    delete_consumed(&mut edits, program, expansion, &calls);
+                }
+                thread_pass::Threads::NotExpandable => {
+                    let span = program.block(expansion.block).span;
+                    notes.push(Diagnostic::note(DiagnosticKind::NotExpandable, span));
+                }
+            }
+            continue;
+        }
         let blocks: Vec<NewBlock> = moves
             .iter()
             .map(|m| {
@@ -67,14 +80,24 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             })
             .collect();
         edits.replace(expansion.block, blocks);
-        for &consumed in &expansion.consumed {
-            // A block that is itself a cycle call keeps its own expansion.
-            if !calls.contains(&consumed) && program.block(consumed).statement != Statement::Invalid {
-                edits.delete(consumed);
-            }
-        }
+        delete_consumed(&mut edits, program, expansion, &calls);
     }
     (edits, notes)
+}
+
+/// Delete the blocks a cycle consumed; a block that is itself a cycle call keeps its own
+/// expansion.
+fn delete_consumed(
+    edits: &mut Edits,
+    program: &Program<'_>,
+    expansion: &crate::semantic::Expansion,
+    calls: &std::collections::HashSet<usize>,
+) {
+    for &consumed in &expansion.consumed {
+        if !calls.contains(&consumed) && program.block(consumed).statement != Statement::Invalid {
+            edits.delete(consumed);
+        }
+    }
 }
 
 fn increment_places(increment: f64) -> u8 {

@@ -80,6 +80,15 @@ impl DiagnosticKind {
             CornerWithoutNextLine => "corner-without-next-line",
             CornerDoesNotFit { .. } => "corner-does-not-fit",
             NotAllowedInProfile => "not-allowed-in-profile",
+            ThreadRoughDepthBelowFirstCut { .. } => "thread-rough-depth-below-first-cut",
+            ThreadAllowanceOverHeight { .. } => "thread-allowance-over-height",
+            InfeedAngleOutOfRange { .. } => "infeed-angle-out-of-range",
+            ThreadDepthNotPositive { .. } => "thread-depth-not-positive",
+            TooManyPasses { .. } => "too-many-passes",
+            InfeedPatternApproximated => "infeed-pattern-approximated",
+            CycleNeedsShift { .. } => "cycle-needs-shift",
+            ThreadContourNotFound { .. } => "thread-contour-not-found",
+            ThreadContourNotStraight => "thread-contour-not-straight",
             BadVariableNumber { .. } => "bad-variable-number",
             NotAVariable => "not-a-variable",
             SystemVariableUnknown { .. } => "system-variable-unknown",
@@ -178,7 +187,7 @@ impl DiagnosticKind {
                 format!("{code} is not simulated yet; its moves are missing from the toolpath")
             }
             NotExpandable => {
-                "this cycle is left as it is: its thread passes have no single-move form in this dialect".to_string()
+                "this cycle is left as it is: its thread moves have no plain-block form in this dialect".to_string()
             }
             CycleNeedsDepth => "the roughing cycle has no depth of cut".to_string(),
             EmptyProfile => "the profile named by `P`/`Q` has no moves".to_string(),
@@ -208,6 +217,35 @@ impl DiagnosticKind {
             }
             CornerDoesNotFit { size_mm } => format!("a {size_mm:.3} mm corner does not fit between these lines"),
             NotAllowedInProfile => "a finishing profile may hold only moves and modal words".to_string(),
+            ThreadRoughDepthBelowFirstCut { rough_depth, first_depth } => format!(
+                "with infeed pattern 1 the depth to rough, H − U = {}, is less than the first cut D = {}",
+                short(*rough_depth),
+                short(*first_depth)
+            ),
+            ThreadAllowanceOverHeight { height, allowance } => format!(
+                "the finishing allowance {} is larger than the thread height H = {}",
+                short(*allowance),
+                short(*height)
+            ),
+            InfeedAngleOutOfRange { angle } => {
+                format!("the infeed angle B = {}° is outside 0 ≤ B < 180", short(*angle))
+            }
+            ThreadDepthNotPositive { address: 'H' } => "the thread height `H` is not positive".to_string(),
+            ThreadDepthNotPositive { address } => format!("the thread cycle's first depth of cut `{address}` is not positive"),
+            TooManyPasses { passes, max } => {
+                format!("this cycle would cut {passes} passes; the simulation stops at {max}")
+            }
+            InfeedPatternApproximated => {
+                "with D² < H² − (H − U)² the control chooses its own pass depths for infeed pattern 3; simulated with D·√n"
+                    .to_string()
+            }
+            CycleNeedsShift { shift, axis } => {
+                format!("the cycle ends at another {axis} than it starts, and has no `{shift}` to step there")
+            }
+            ThreadContourNotFound { name } => format!("no `G81`/`G82` contour is named `{name}`"),
+            ThreadContourNotStraight => {
+                "a continuous thread contour may hold only straight thread elements after its approach".to_string()
+            }
             BadVariableNumber { value } => format!("{value} is not a variable number"),
             NotAVariable => "only a variable can be assigned".to_string(),
             SystemVariableUnknown { name } => {
@@ -285,6 +323,15 @@ impl DiagnosticKind {
             ArcRadiusTooSmall { .. } | ArcWithoutCentre | ArcCentreMismatch { .. } => "this arc".to_string(),
             CornerWithoutNextLine | CornerDoesNotFit { .. } => "corner".to_string(),
             NotAllowedInProfile => "inside the profile".to_string(),
+            ThreadRoughDepthBelowFirstCut { .. } => "deeper than H − U".to_string(),
+            ThreadAllowanceOverHeight { .. } => "larger than H".to_string(),
+            ThreadDepthNotPositive { .. } => "not positive".to_string(),
+            TooManyPasses { .. } => "this cycle".to_string(),
+            InfeedPatternApproximated => "pattern 3".to_string(),
+            CycleNeedsShift { .. } => "off the start line".to_string(),
+            ThreadContourNotFound { .. } => "contour name".to_string(),
+            InfeedAngleOutOfRange { .. } => "infeed angle".to_string(),
+            ThreadContourNotStraight => "in the thread contour".to_string(),
             BadVariableNumber { .. } | NotAVariable | SystemVariableUnknown { .. } | UndefinedVariable { .. } => {
                 "variable".to_string()
             }
@@ -409,10 +456,38 @@ impl DiagnosticKind {
             CornerWithoutNextLine => None,
             CornerDoesNotFit { .. } => Some("make `L` smaller than both lines".to_string()),
             NotAllowedInProfile => None,
+            ThreadRoughDepthBelowFirstCut { .. } => {
+                Some("make `D` at most `H − U`, or choose infeed pattern 2 or 3 (`M74`, `M75`)".to_string())
+            }
+            ThreadAllowanceOverHeight { .. } => Some("the allowance must be at most the thread height `H`".to_string()),
+            InfeedAngleOutOfRange { .. } => {
+                Some("`B` is the tool's included angle: 60 for metric threads, 55 for Whitworth, 0 for radial infeed".to_string())
+            }
+            ThreadDepthNotPositive { address } => {
+                Some(format!("give `{address}` as a positive diameter, for example `{address}0.4`"))
+            }
+            TooManyPasses { .. } => Some("check `D` against the thread height `H`".to_string()),
+            InfeedPatternApproximated => {
+                Some("a larger first depth `D` (D² ≥ H² − (H − U)²) makes the pass depths the documented D·√n".to_string())
+            }
+            CycleNeedsShift { shift, .. } => Some(format!("give the shift per pass `{shift}`, or start the cycle on the end line")),
+            ThreadContourNotFound { .. } => {
+                Some("name the contour's first block (`G81`/`G82`) as the `N` of the call".to_string())
+            }
+            ThreadContourNotStraight => {
+                Some("cut the thread with G71/G72, or split the contour at the arc".to_string())
+            }
             BadVariableNumber { .. } | NotAVariable => None,
             SystemVariableUnknown { .. } => None,
             UndefinedVariable { .. } => Some("set it earlier in the program or pass it in the call".to_string()),
             DivisionByZero | FunctionDomain { .. } => None,
         }
     }
+}
+
+/// A program value as a machinist writes it: up to four decimals, no trailing zeros.
+fn short(value: f64) -> String {
+    let text = format!("{value:.4}");
+    let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };
+    if text == "-0" { "0".to_string() } else { text.to_string() }
 }

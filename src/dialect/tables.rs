@@ -240,6 +240,13 @@ pub enum GFunction {
     ThreadCycle,
     ThreadMove,
     ThreadSingle,
+    /// OSP `G34`/`G35`: the single-pass thread cycle with a lead that grows (or shrinks) by
+    /// `E` every revolution.
+    ThreadSingleLeadIncreasing,
+    ThreadSingleLeadDecreasing,
+    /// OSP `G31`: the manual's other name for the `G33` cycle ("programmed in the same manner");
+    /// a function of its own so that `expand` writes the usual `G33`.
+    ThreadSingleAlias,
     ThreadSingleFace,
     TurningCycle,
     VariableLeadThreadMove,
@@ -498,6 +505,25 @@ pub struct MFunctions {
     pub subprogram_call: Vec<u16>,
     pub subprogram_return: Vec<u16>,
     pub spindle_stop: Vec<u16>,
+    /// OSP thread-end chamfering on / off (`M23`/`M22`), a mode kept from block to block.
+    #[serde(default)]
+    pub thread_chamfer_on: Vec<u16>,
+    #[serde(default)]
+    pub thread_chamfer_off: Vec<u16>,
+    /// OSP compound thread cycles: the infeed mode (along one flank, zigzag, along the other
+    /// flank) and the infeed pattern (1, 2, 3) written in the cycle block.
+    #[serde(default)]
+    pub infeed_one_flank: Vec<u16>,
+    #[serde(default)]
+    pub infeed_zigzag: Vec<u16>,
+    #[serde(default)]
+    pub infeed_other_flank: Vec<u16>,
+    #[serde(default)]
+    pub infeed_pattern_1: Vec<u16>,
+    #[serde(default)]
+    pub infeed_pattern_2: Vec<u16>,
+    #[serde(default)]
+    pub infeed_pattern_3: Vec<u16>,
 }
 
 /// The compiled tables of one dialect configuration.

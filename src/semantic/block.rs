@@ -80,6 +80,8 @@ impl Interpreter<'_, '_> {
                 self.modal.speed = speed;
             }
         }
+        // Modes set by M codes that the motion of this block already obeys.
+        self.m_code_modes(&words);
         if !matches!(block.statement, Statement::LapCall(_))
             && !matches!(command.map(|c| c.kind), Some(GKind::Cycle))
             && let Some(word) = words.iter().find(|w| word_address(w) == Some(Address::T)).copied()
@@ -131,6 +133,20 @@ impl Interpreter<'_, '_> {
             return self.enter(index, target, 1, Vec::new());
         }
         flow
+    }
+
+    /// OSP `M23`/`M22`: thread-end chamfering on or off, from this block on.
+    fn m_code_modes(&mut self, words: &[Word]) {
+        let functions = &self.tables.m_functions;
+        for word in words {
+            if let WordKind::Code { letter: CodeLetter::M, code } = word.kind {
+                if functions.thread_chamfer_on.contains(&code.major()) {
+                    self.cycle_memory.thread_chamfer = true;
+                } else if functions.thread_chamfer_off.contains(&code.major()) {
+                    self.cycle_memory.thread_chamfer = false;
+                }
+            }
+        }
     }
 
     fn apply_modal(&mut self, info: &GInfo) {
@@ -305,6 +321,11 @@ fn is_repetitive_cycle(function: GFunction) -> bool {
             | GFunction::OspGrooving
             | GFunction::OspFaceCutting
             | GFunction::Tapping
+            | GFunction::ThreadSingle
+            | GFunction::ThreadSingleAlias
+            | GFunction::ThreadSingleFace
+            | GFunction::ThreadSingleLeadIncreasing
+            | GFunction::ThreadSingleLeadDecreasing
     )
 }
 

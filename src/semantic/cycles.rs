@@ -7,14 +7,22 @@
 //! count least increments; OSP `D`, `U`, `H` are diameters.
 
 mod canonical;
+mod compound_thread;
 mod finishing;
+mod grooving;
+mod lap_thread;
 mod single;
 mod stock_removal;
+mod tapping;
+pub mod thread_infeed;
+pub mod thread_pass;
+mod thread_single;
 
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::{GFunction, Role};
 use crate::source::Span;
-use crate::syntax::{CommandId, WordKind};
+use crate::syntax::{Command, CommandId, WordKind};
+use crate::toolpath::Xz;
 
 use super::Expansion;
 use super::emitter::Context;
@@ -48,6 +56,17 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
                 stock_removal::run(interp, index, &command, function, &mut consumed)
             }
         }
+        GFunction::ThreadSingle
+        | GFunction::ThreadSingleAlias
+        | GFunction::ThreadSingleFace
+        | GFunction::ThreadSingleLeadIncreasing
+        | GFunction::ThreadSingleLeadDecreasing => thread_single::run(interp, index, &command, function),
+        GFunction::CompoundThreadLongitudinal | GFunction::CompoundThreadFace => {
+            compound_thread::run(interp, index, &command, function)
+        }
+        GFunction::LapThread => lap_thread::run(interp, index, &command),
+        GFunction::OspGrooving | GFunction::OspFaceCutting => grooving::run(interp, index, &command, function),
+        GFunction::Tapping => tapping::run(interp, index, &command),
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
@@ -80,6 +99,37 @@ impl Interpreter<'_, '_> {
         let id = command.param(role)?;
         let word = *self.program.word(id);
         self.word_value(&word)
+    }
+
+    /// The end point a cycle's `X`/`Z` words give (absolute, or from the tool under `G91`);
+    /// an axis the block does not name stays where the tool is. Read from the schema roles,
+    /// not the motion words, so that an OSP taper angle `A` is not taken for a direction.
+    pub(super) fn cycle_end(&mut self, command: &Command, at: Xz) -> Xz {
+        let (frame, shift, absolute) = (self.modal.frame, self.modal.shift, self.modal.absolute);
+        let x = self
+            .param(command, Role::EndX)
+            .map(|v| if absolute { frame.x_mm(v) + shift.x } else { at.x + frame.x_mm(v) });
+        let z =
+            self.param(command, Role::EndZ).map(|v| if absolute { frame.mm(v) + shift.z } else { at.z + frame.mm(v) });
+        Xz::new(x.unwrap_or(at.x), z.unwrap_or(at.z))
+    }
+
+    /// Where the word playing `role` is written, else `fallback` (the block).
+    pub(super) fn param_span(&self, command: &Command, role: Role, fallback: Span) -> Span {
+        command.param(role).map_or(fallback, |id| self.program.word(id).span)
+    }
+
+    /// The M-code numbers written for `role` (`M32` as an infeed mode).
+    pub(super) fn m_params(&self, command: &Command, role: Role) -> Vec<u16> {
+        command
+            .params
+            .iter()
+            .filter(|p| p.role == role)
+            .filter_map(|p| match self.program.word(p.word).kind {
+                WordKind::Code { code, .. } => Some(code.major()),
+                _ => None,
+            })
+            .collect()
     }
 
     /// The block with sequence number `value` (a `P`/`Q` reference), which must be unique.

@@ -52,6 +52,8 @@ pub(super) struct CycleMemory {
     pub depth_block: Option<usize>,
     /// The last Fanuc single cycle, for its modal repetitions.
     pub single: Option<super::cycles::SingleCycleMemory>,
+    /// OSP thread-end chamfering (`M23` on, `M22` off, off at the start): a mode.
+    pub thread_chamfer: bool,
 }
 
 pub(super) struct Interpreter<'p, 'src> {

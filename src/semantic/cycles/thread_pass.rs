@@ -1,0 +1,199 @@
+//! One OSP thread pass, the motion of a `G33` (`G32` on a face) single-pass cycle, which
+//! the multi-pass cycles (`G71`, `G72`, `G88`) repeat at growing depth:
+//!
+//! ```txt
+//!   from ●◀──────────4 rapid──────────● ▲
+//!        │1 rapid                       │3 rapid (back to from's depth)
+//!        ▼                              │
+//!        ●━━━━━━━━━2 thread━━━━━━━━━━━━╱●  ← with chamfering (M23) the last L along the
+//!      start                       end      axis pulls out at 45° while still threading
+//! ```
+//!
+//! `along` is the thread's axis (Z for a longitudinal thread, X for a face thread) and
+//! `depth` the infeed axis. The shape is a pure function of the pass, so that `expand` can
+//! check that a cycle's moves are exactly such passes before it writes them as `G33` blocks.
+
+use crate::dialect::Role;
+use crate::syntax::Command;
+use crate::toolpath::Xz;
+
+use super::super::interpreter::Interpreter;
+use super::super::modal::Modal;
+
+/// The axes of a thread: longitudinal (thread along Z, infeed in X) or face (along X, infeed in Z).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Axes {
+    pub face: bool,
+}
+
+impl Axes {
+    pub fn along(self, p: Xz) -> f64 {
+        if self.face { p.x } else { p.z }
+    }
+
+    pub fn depth(self, p: Xz) -> f64 {
+        if self.face { p.z } else { p.x }
+    }
+
+    pub fn point(self, along: f64, depth: f64) -> Xz {
+        if self.face { Xz::new(along, depth) } else { Xz::new(depth, along) }
+    }
+}
+
+/// A pass: the thread from `points[0]` through the other points (one more for a straight
+/// or taper thread, several for a LAP contour), entered from and left back to `from`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pass {
+    pub axes: Axes,
+    pub from: Xz,
+    pub points: Vec<Xz>,
+    /// Thread-end chamfer length along the thread's axis (chamfering on), mm.
+    pub chamfer: Option<f64>,
+}
+
+/// One move of a pass: where it ends and whether it threads (else it is a rapid).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PassMove {
+    pub to: Xz,
+    pub threading: bool,
+}
+
+struct Moves {
+    at: Xz,
+    moves: Vec<PassMove>,
+}
+
+impl Moves {
+    fn push(&mut self, to: Xz, threading: bool) {
+        if self.at.distance(to) > NO_MOVE_MM {
+            self.moves.push(PassMove { to, threading });
+            self.at = to;
+        }
+    }
+}
+
+/// Lengths below this are no move (the emitter drops such rapids too), mm.
+const NO_MOVE_MM: f64 = 1e-9;
+
+impl Pass {
+    /// The moves of the pass, without the ones that go nowhere.
+    pub fn moves(&self) -> Vec<PassMove> {
+        let axes = self.axes;
+        let mut out = Moves { at: self.from, moves: Vec::with_capacity(self.points.len() + 4) };
+        let Some((&first, rest)) = self.points.split_first() else { return out.moves };
+        out.push(first, false);
+        let Some((&end, middle)) = rest.split_last() else { return out.moves };
+        for &p in middle {
+            out.push(p, true);
+        }
+        let before_end = middle.last().copied().unwrap_or(first);
+        match self.chamfer.filter(|l| *l > NO_MOVE_MM) {
+            Some(length) => {
+                // The pull-out starts `length` before the end along the axis, on the last
+                // element, and rises by the same amount away from the work (toward `from`).
+                let run = (axes.along(end) - axes.along(before_end)).abs();
+                let t = if run > NO_MOVE_MM { (1.0 - length / run).max(0.0) } else { 0.0 };
+                let pull_start =
+                    Xz::new(before_end.x + (end.x - before_end.x) * t, before_end.z + (end.z - before_end.z) * t);
+                let out_sign = outward(axes, self.from, end);
+                let pull_end = axes.point(axes.along(end), axes.depth(pull_start) + out_sign * length);
+                out.push(pull_start, true);
+                out.push(pull_end, true);
+            }
+            None => out.push(end, true),
+        }
+        let thread_end = out.at;
+        out.push(axes.point(axes.along(thread_end), axes.depth(self.from)), false);
+        out.push(self.from, false);
+        out.moves
+    }
+
+    /// Run the pass: rapids at the rapid rate, thread moves at `lead_mm` per revolution.
+    /// `modal` carries the F (the lead, program units) and S the moves record.
+    pub(in crate::semantic) fn emit(&self, interp: &mut Interpreter<'_, '_>, modal: &Modal, lead_mm: f64) {
+        for m in self.moves() {
+            if m.threading {
+                interp.emitter.thread(modal, m.to, lead_mm);
+            } else {
+                interp.emitter.rapid(modal, m.to);
+            }
+        }
+    }
+}
+
+/// The modal state a thread cycle's moves run under, and its lead in mm: the cycle's own
+/// `S` for its moves, and its lead as the F they record: `F`, or `F/J` when `J` threads
+/// share the length `F` ([M-P97] "F/J if a J word is provided"); without `F`, the F in force.
+pub(in crate::semantic) fn thread_modal(interp: &mut Interpreter<'_, '_>, command: &Command) -> (Modal, f64) {
+    let mut modal = interp.modal.clone();
+    let lead = interp.param(command, Role::Lead).unwrap_or(modal.feed);
+    let threads = interp.param(command, Role::ThreadsPerInch).filter(|j| *j > 0.0).unwrap_or(1.0);
+    modal.feed = lead / threads;
+    if let Some(speed) = interp.param(command, Role::Speed) {
+        modal.speed = speed;
+    }
+    let lead_mm = modal.frame.feed_mm(modal.feed);
+    (modal, lead_mm)
+}
+
+/// +1 when `from` lies on the increasing side of `end` along the infeed axis (an outside
+/// thread for a longitudinal pass), −1 on the other side.
+pub fn outward(axes: Axes, from: Xz, end: Xz) -> f64 {
+    if axes.depth(from) >= axes.depth(end) { 1.0 } else { -1.0 }
+}
+
+/// The lead per revolution that cuts `length` in the same time as a lead starting at
+/// `lead` and changing by `change` every revolution (`G34`/`G35`, `E`): the revolutions
+/// `n` solve `lead·n + change·n²/2 = length`. A lead that would shrink to nothing before
+/// the end keeps its starting value.
+pub fn mean_lead(lead: f64, change: f64, length: f64) -> f64 {
+    if change.abs() < 1e-12 || length <= 0.0 || lead <= 0.0 {
+        return lead;
+    }
+    let discriminant = lead * lead + 2.0 * change * length;
+    if discriminant < 0.0 {
+        return lead;
+    }
+    let revolutions = (discriminant.sqrt() - lead) / change;
+    if revolutions.is_finite() && revolutions > 0.0 { length / revolutions } else { lead }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pass(chamfer: Option<f64>) -> Pass {
+        Pass {
+            axes: Axes { face: false },
+            from: Xz::new(20.0, 5.0),
+            points: vec![Xz::new(14.0, 5.0), Xz::new(14.0, -20.0)],
+            chamfer,
+        }
+    }
+
+    #[test]
+    fn a_pass_goes_in_threads_retracts_and_returns() {
+        let moves = pass(None).moves();
+        let points: Vec<(f64, f64, bool)> = moves.iter().map(|m| (m.to.x, m.to.z, m.threading)).collect();
+        assert_eq!(points, [(14.0, 5.0, false), (14.0, -20.0, true), (20.0, -20.0, false), (20.0, 5.0, false)]);
+    }
+
+    #[test]
+    fn a_chamfer_pulls_out_at_45_degrees_over_its_length() {
+        let moves = pass(Some(1.5)).moves();
+        let points: Vec<(f64, f64, bool)> = moves.iter().map(|m| (m.to.x, m.to.z, m.threading)).collect();
+        assert_eq!(
+            points,
+            [(14.0, 5.0, false), (14.0, -18.5, true), (15.5, -20.0, true), (20.0, -20.0, false), (20.0, 5.0, false)]
+        );
+    }
+
+    #[test]
+    fn the_mean_lead_of_a_growing_lead() {
+        // From 1 mm growing 0.1 mm a revolution, 10 revolutions cut 10 + 0.1·100/2 = 15 mm.
+        assert!((mean_lead(1.0, 0.1, 15.0) - 1.5).abs() < 1e-12);
+        assert_eq!(mean_lead(1.0, 0.0, 15.0), 1.0);
+        // A lead shrinking to zero before the end keeps its start value.
+        assert_eq!(mean_lead(1.0, -0.1, 100.0), 1.0);
+    }
+}

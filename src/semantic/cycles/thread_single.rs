@@ -1,0 +1,66 @@
+//! OSP single-pass thread cycles: `G33` (and `G31`, "programmed in the same manner")
+//! longitudinal, `G32` on a face, `G34`/`G35` with a lead that grows or shrinks by `E` each
+//! revolution. One block, one pass (the motion is drawn in `thread_pass.rs`):
+//!
+//! `G33 X Z F [I | A] [K] [L] [J] [C] [E]` ([M-P97], dialects.md §1.6): from the tool's
+//! position S, rapid to the pass diameter `X` (plus the taper) at S's Z shifted by `K`,
+//! thread to `Z` at the lead `F` (`F/J` with `J`), chamfer the end over `L` when
+//! chamfering is on (`M23`; one lead when `L` is not given), rapid out to S's X and back to
+//! S. `G32` is the same with the axes swapped: the thread runs along X to `X` at the depth
+//! `Z`, `K` gives the taper and `I` shifts the start.
+//!
+//! Readings of the manual where it is silent or its OCR garbled:
+//!
+//! - `I` is the radius at the start minus the radius at the end (Fanuc's `R` sense); `A`
+//!   is the taper angle to the axis, positive when the thread starts on the larger side,
+//!   so `I = tan(A) · length`. With both, `I` is used.
+//! - `K` shifts the thread's start along its axis (signed, program units); the end stays
+//!   at `Z`. This is how a program shifts passes for flank infeed by hand.
+//! - The chamfer pulls out at 45°: as far away from the work as it runs along the axis.
+//! - `C` (the phase of one start of a multi-start thread) turns the spindle, not the
+//!   path: it changes no move.
+//! - `E` on `G34` makes the lead grow by |E| per revolution, on `G35` shrink by |E|; on
+//!   `G33` it is taken as written. The time of a pass uses the mean lead.
+//! - `F` and `S` belong to the cycle; after it, the feed and speed in force are the ones
+//!   before it.
+
+use crate::dialect::{GFunction, Role};
+use crate::syntax::Command;
+
+use super::super::interpreter::{Flow, Interpreter};
+use super::thread_pass::{self, Axes, Pass};
+
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
+    let span = interp.program.block(index).span;
+    let from = interp.emitter.at;
+    if !from.is_finite() {
+        interp.unknown_position(span);
+        return Flow::Next;
+    }
+    let frame = interp.modal.frame;
+    let axes = Axes { face: function == GFunction::ThreadSingleFace };
+    let end = interp.cycle_end(command, from);
+    let shift = interp.param(command, Role::StartShift).map_or(0.0, |k| frame.mm(k));
+    let start_along = axes.along(from) + shift;
+    let length = (axes.along(end) - start_along).abs();
+    let taper = match (interp.param(command, Role::Taper), interp.param(command, Role::TaperAngle)) {
+        (Some(i), _) => frame.mm(i),
+        (None, Some(angle)) => angle.to_radians().tan() * length,
+        (None, None) => 0.0,
+    };
+    let (modal, lead_mm) = thread_pass::thread_modal(interp, command);
+    let change = interp.param(command, Role::LeadChange).map_or(0.0, |e| frame.feed_mm(e));
+    let change = match function {
+        GFunction::ThreadSingleLeadIncreasing => change.abs(),
+        GFunction::ThreadSingleLeadDecreasing => -change.abs(),
+        _ => change,
+    };
+    let chamfer = interp
+        .cycle_memory
+        .thread_chamfer
+        .then(|| interp.param(command, Role::Chamfer).map_or(lead_mm, |l| frame.mm(l)));
+    let pass = Pass { axes, from, points: vec![axes.point(start_along, axes.depth(end) + taper), end], chamfer };
+    pass.emit(interp, &modal, thread_pass::mean_lead(lead_mm, change, length));
+    interp.report_zero_feed(span);
+    Flow::Next
+}

@@ -1,0 +1,5 @@
+(G88 naming a contour no G81/G82 block has.)
+G97 S400 M03
+G00 X30 Z5
+G88 NTH9 D0.4 H1.2 B60 F1.5 M32 M73
+M02
