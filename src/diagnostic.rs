@@ -280,6 +280,13 @@ pub enum DiagnosticKind {
     ProfileNotMonotonic {
         axis: char,
     },
+    /// A `G73` with no number of passes (`R` of its first block, or `D`), or fewer than one.
+    CycleNeedsDivisions,
+    /// A cycle whose parameters ask for more passes or pecks than turnpass simulates.
+    CycleTooManyPasses {
+        passes: u64,
+        max: u64,
+    },
     /// `P`/`Q` name a sequence number no block has.
     MissingSequence {
         number: String,

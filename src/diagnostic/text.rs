@@ -64,6 +64,8 @@ impl DiagnosticKind {
             EmptyProfile => "empty-profile",
             ProfileReverses { .. } => "profile-reverses",
             ProfileNotMonotonic { .. } => "profile-not-monotonic",
+            CycleNeedsDivisions => "cycle-needs-divisions",
+            CycleTooManyPasses { .. } => "cycle-too-many-passes",
             MissingSequence { .. } => "missing-sequence",
             DuplicateSequence { .. } => "duplicate-sequence",
             RunawayProgram { .. } => "runaway-program",
@@ -175,6 +177,10 @@ impl DiagnosticKind {
             ProfileNotMonotonic { axis } => {
                 format!("the profile is not monotonic in {axis}, which a Type I roughing cycle requires")
             }
+            CycleNeedsDivisions => "the pattern-repeating cycle has no number of passes".to_string(),
+            CycleTooManyPasses { passes, max } => {
+                format!("this cycle would run {passes} passes; turnpass simulates at most {max}")
+            }
             MissingSequence { number } => format!("no block has sequence number N{number}"),
             DuplicateSequence { number, count } => format!("{count} blocks have sequence number N{number}"),
             RunawayProgram { blocks } => format!("the program ran {blocks} blocks without ending"),
@@ -263,6 +269,7 @@ impl DiagnosticKind {
             CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
                 "this cycle".to_string()
             }
+            CycleNeedsDivisions | CycleTooManyPasses { .. } => "this cycle".to_string(),
             UnmatchedLoop { .. } => "loop start".to_string(),
             MissingLabel { .. } => "jump".to_string(),
             MissingProgram { .. } => "call".to_string(),
@@ -371,6 +378,12 @@ impl DiagnosticKind {
             ProfileNotMonotonic { .. } => Some(
                 "a Type II cycle allows pockets: name both X and Z (e.g. `W0`) in the profile's first block".to_string(),
             ),
+            CycleNeedsDivisions => Some(
+                "give the number of passes as `R` in a first block (`G73 U… W… R3`) \
+                 or as `D` in the cycle block"
+                    .to_string(),
+            ),
+            CycleTooManyPasses { .. } => Some("check the depth of cut, step or number of passes".to_string()),
             MissingSequence { number } => Some(format!("number the profile's first and last blocks `N{number}`, or correct P/Q")),
             DuplicateSequence { .. } => Some("P and Q must each name exactly one block; renumber the others".to_string()),
             RunawayProgram { .. } => Some("check the loop's condition and the variables it changes".to_string()),

@@ -8,19 +8,24 @@
 
 mod canonical;
 mod finishing;
+pub(super) mod pattern_repeat;
 mod single;
 mod stock_removal;
 
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::{GFunction, Role};
 use crate::source::Span;
-use crate::syntax::{CommandId, WordKind};
+use crate::syntax::{Command, CommandId, WordKind};
 
 use super::Expansion;
 use super::emitter::Context;
 use super::interpreter::{Flow, Interpreter};
 
 pub(super) use single::{SingleCycleMemory, single_cycle_again};
+
+/// A cycle call may run at most this many passes (or pecks): more is a runaway parameter
+/// (a depth of a thousandth over a long groove), reported instead of simulated.
+pub(super) const MAX_CYCLE_PASSES: u64 = 10_000;
 
 /// Run the cycle of block `index`.
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId) -> Flow {
@@ -48,6 +53,13 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
                 stock_removal::run(interp, index, &command, function, &mut consumed)
             }
         }
+        GFunction::PatternRepeat => {
+            if interp.form_name(&command) == "relief" {
+                pattern_repeat::relief_block(interp, index, &command)
+            } else {
+                pattern_repeat::run(interp, index, &command, &mut consumed)
+            }
+        }
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
@@ -70,16 +82,27 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
 
 impl Interpreter<'_, '_> {
     /// The name of the schema form a command matched (`depth`, `profile`, `one_block`, …).
-    pub(super) fn form_name(&self, command: &crate::syntax::Command) -> &'static str {
+    pub(super) fn form_name(&self, command: &Command) -> &'static str {
         self.tables.schema(command.schema).forms.get(command.form as usize).map_or("", |f| f.name.as_str())
     }
 
-    /// The value of a cycle parameter in program units. Parameters the schema takes as
-    /// integers (`P`/`Q` of `G74`-`G76`) count least increments when they are lengths.
-    pub(super) fn param(&mut self, command: &crate::syntax::Command, role: Role) -> Option<f64> {
+    /// The value of a cycle parameter in program units, read as any word of its address
+    /// reads (an integer `P`/`Q` is its plain value here).
+    pub(super) fn param(&mut self, command: &Command, role: Role) -> Option<f64> {
         let id = command.param(role)?;
         let word = *self.program.word(id);
         self.word_value(&word)
+    }
+
+    /// A cycle parameter as written, not scaled: a count (`G73` divisions) or a code
+    /// (`G76 P(m)(r)(a)`). A literal is its digits; an expression its value.
+    pub(super) fn param_count(&mut self, command: &Command, role: Role) -> Option<f64> {
+        let id = command.param(role)?;
+        let word = *self.program.word(id);
+        match word.kind {
+            WordKind::Number { number, .. } => Some(number.to_f64()),
+            _ => self.word_value(&word),
+        }
     }
 
     /// The block with sequence number `value` (a `P`/`Q` reference), which must be unique.

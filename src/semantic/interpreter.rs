@@ -52,6 +52,8 @@ pub(super) struct CycleMemory {
     pub depth_block: Option<usize>,
     /// The last Fanuc single cycle, for its modal repetitions.
     pub single: Option<super::cycles::SingleCycleMemory>,
+    /// `G73 U(Δi) W(Δk) R(d)`.
+    pub pattern: super::cycles::pattern_repeat::PatternMemory,
 }
 
 pub(super) struct Interpreter<'p, 'src> {

@@ -7,6 +7,7 @@
 
 mod cli;
 mod corpus;
+mod cycles;
 mod parse;
 mod print;
 mod robustness;
