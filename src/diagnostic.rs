@@ -282,6 +282,10 @@ pub enum DiagnosticKind {
     },
     /// A `G73` with no number of passes (`R` of its first block, or `D`), or fewer than one.
     CycleNeedsDivisions,
+    /// A `G74`/`G75` groove wider than one plunge with no step between plunges.
+    GrooveStepMissing {
+        axis: char,
+    },
     /// A cycle whose parameters ask for more passes or pecks than turnpass simulates.
     CycleTooManyPasses {
         passes: u64,

@@ -65,6 +65,7 @@ impl DiagnosticKind {
             ProfileReverses { .. } => "profile-reverses",
             ProfileNotMonotonic { .. } => "profile-not-monotonic",
             CycleNeedsDivisions => "cycle-needs-divisions",
+            GrooveStepMissing { .. } => "groove-step-missing",
             CycleTooManyPasses { .. } => "cycle-too-many-passes",
             MissingSequence { .. } => "missing-sequence",
             DuplicateSequence { .. } => "duplicate-sequence",
@@ -178,6 +179,9 @@ impl DiagnosticKind {
                 format!("the profile is not monotonic in {axis}, which a Type I roughing cycle requires")
             }
             CycleNeedsDivisions => "the pattern-repeating cycle has no number of passes".to_string(),
+            GrooveStepMissing { axis } => {
+                format!("the groove is wider than one plunge but the cycle has no step in {axis} between plunges")
+            }
             CycleTooManyPasses { passes, max } => {
                 format!("this cycle would run {passes} passes; turnpass simulates at most {max}")
             }
@@ -269,7 +273,7 @@ impl DiagnosticKind {
             CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
                 "this cycle".to_string()
             }
-            CycleNeedsDivisions | CycleTooManyPasses { .. } => "this cycle".to_string(),
+            CycleNeedsDivisions | GrooveStepMissing { .. } | CycleTooManyPasses { .. } => "this cycle".to_string(),
             UnmatchedLoop { .. } => "loop start".to_string(),
             MissingLabel { .. } => "jump".to_string(),
             MissingProgram { .. } => "call".to_string(),
@@ -383,6 +387,10 @@ impl DiagnosticKind {
                  or as `D` in the cycle block"
                     .to_string(),
             ),
+            GrooveStepMissing { axis } => Some(format!(
+                "give the step in {axis} (`Q` of G75 or `P` of G74 in least increments, Haas `K`/`I`), \
+                 or end the groove where it starts"
+            )),
             CycleTooManyPasses { .. } => Some("check the depth of cut, step or number of passes".to_string()),
             MissingSequence { number } => Some(format!("number the profile's first and last blocks `N{number}`, or correct P/Q")),
             DuplicateSequence { .. } => Some("P and Q must each name exactly one block; renumber the others".to_string()),

@@ -9,6 +9,7 @@
 mod canonical;
 mod finishing;
 pub(super) mod pattern_repeat;
+pub(super) mod peck_grooving;
 mod single;
 mod stock_removal;
 
@@ -60,6 +61,13 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
                 pattern_repeat::run(interp, index, &command, &mut consumed)
             }
         }
+        GFunction::FacePeck | GFunction::DiameterGrooving => {
+            if interp.form_name(&command) == "retract" {
+                peck_grooving::retract_block(interp, index, &command)
+            } else {
+                peck_grooving::run(interp, index, &command, function, &mut consumed)
+            }
+        }
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
@@ -103,6 +111,14 @@ impl Interpreter<'_, '_> {
             WordKind::Number { number, .. } => Some(number.to_f64()),
             _ => self.word_value(&word),
         }
+    }
+
+    /// An integer length parameter (`P`/`Q` of `G74`-`G76`): the control reads it in least
+    /// input increments whatever the decimal-point setting, so `P2000` is 2 mm on a 0.001 mm
+    /// control. Program units.
+    pub(super) fn param_increments(&mut self, command: &Command, role: Role) -> Option<f64> {
+        let count = self.param_count(command, role)?;
+        Some(count * self.modal.frame.increment)
     }
 
     /// The block with sequence number `value` (a `P`/`Q` reference), which must be unique.

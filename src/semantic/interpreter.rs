@@ -54,6 +54,8 @@ pub(super) struct CycleMemory {
     pub single: Option<super::cycles::SingleCycleMemory>,
     /// `G73 U(Δi) W(Δk) R(d)`.
     pub pattern: super::cycles::pattern_repeat::PatternMemory,
+    /// `G74 R(e)`, `G75 R(e)`.
+    pub peck: super::cycles::peck_grooving::PeckMemory,
 }
 
 pub(super) struct Interpreter<'p, 'src> {

@@ -131,3 +131,100 @@ proptest! {
         prop_assert_eq!(i, moves.len());
     }
 }
+
+/// `G74`/`G75` parameters: start and end in diameter/Z mm, peck and step in micrometres.
+#[derive(Debug, Clone)]
+struct Groove {
+    face: bool,
+    start: (f64, f64),
+    end: (f64, f64),
+    peck_um: u32,
+    step_um: u32,
+    retract: f64,
+    relief: f64,
+}
+
+fn groove() -> impl Strategy<Value = Groove> {
+    (
+        any::<bool>(),
+        40u32..80,
+        1u32..30,
+        -20i32..20,
+        -10i32..-2,
+        0u32..12,
+        300u32..5000,
+        300u32..5000,
+        0u32..1000,
+        0u32..500,
+    )
+        .prop_map(|(face, x, depth_or_width, across, z, along, peck_um, step_um, retract, relief)| {
+            let (x, z) = (f64::from(x), f64::from(z));
+            // G75 pecks down in X and steps along Z; G74 pecks down in Z and steps across X.
+            let end = if face {
+                (x + 2.0 * f64::from(across), z - f64::from(depth_or_width))
+            } else {
+                (x - 2.0 * f64::from(depth_or_width.min(15)), z - f64::from(along))
+            };
+            Groove {
+                face,
+                start: (x, z),
+                end,
+                peck_um,
+                step_um,
+                retract: f64::from(retract) / 1000.0,
+                relief: f64::from(relief) / 1000.0,
+            }
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    /// `G74`/`G75`: no move goes past the end point (in depth, or in the stepping direction)
+    /// or behind the start by more than the relief; the plunges reach the bottom from the
+    /// start's step position to the end's, never further apart than the step; no feed is
+    /// longer than a peck plus the retract; the cycle ends at A.
+    #[test]
+    fn g74_g75_stay_inside_and_cover_the_groove(g in groove()) {
+        let code = if g.face { "G74" } else { "G75" };
+        let (peck_word, step_word) = if g.face { ("Q", "P") } else { ("P", "Q") };
+        let program = format!(
+            "G21 G99\nG97 S500 M03\nG00 X{:.3} Z{:.3}\n{code} R{:.3}\n\
+             {code} X{:.3} Z{:.3} {peck_word}{} {step_word}{} R{:.3} F0.1\nM30\n",
+            g.start.0, g.start.1, g.retract, g.end.0, g.end.1, g.peck_um, g.step_um, g.relief
+        );
+        let toolpath = lower(&program);
+        let moves = cycle_moves(&toolpath);
+        // (depth, step) of a point: the depth axis is Z on the face, X on a diameter.
+        let split = |p: Xz| if g.face { (p.z, p.x) } else { (p.x, p.z) };
+        let start = split(Xz::new(g.start.0 / 2.0, g.start.1));
+        let end = split(Xz::new(g.end.0 / 2.0, g.end.1));
+        let (peck, step) = (f64::from(g.peck_um) / 1000.0, f64::from(g.step_um) / 1000.0);
+        let down = (end.0 - start.0).signum();
+        let across = if (end.1 - start.1).abs() > TOLERANCE { (end.1 - start.1).signum() } else { 0.0 };
+        let mut bottoms = Vec::new();
+        for (i, m) in moves.iter().enumerate() {
+            let (depth, at) = split(m.end);
+            // Depth: between the start level and the bottom.
+            prop_assert!((depth - start.0) * down >= -TOLERANCE && (end.0 - depth) * down >= -TOLERANCE, "{m:?}");
+            if across != 0.0 {
+                prop_assert!((end.1 - at) * across >= -TOLERANCE, "past the end: {m:?}");
+                prop_assert!((at - start.1) * across >= -g.relief - TOLERANCE, "behind the start: {m:?}");
+            }
+            if m.motion == Motion::Feed {
+                let from = toolpath.start_of(i + 1);
+                prop_assert!(from.distance(m.end) <= peck + g.retract + TOLERANCE);
+                if (depth - end.0).abs() <= TOLERANCE {
+                    bottoms.push(at);
+                }
+            }
+        }
+        prop_assert!(close(moves[moves.len() - 1].end, Xz::new(g.start.0 / 2.0, g.start.1)));
+        prop_assert!((bottoms[0] - start.1).abs() <= TOLERANCE);
+        prop_assert!((bottoms[bottoms.len() - 1] - end.1).abs() <= TOLERANCE);
+        for pair in bottoms.windows(2) {
+            prop_assert!((pair[1] - pair[0]).abs() <= step + TOLERANCE, "{bottoms:?}");
+            prop_assert!((pair[1] - pair[0]) * across > 0.0, "{bottoms:?}");
+        }
+    }
+}
