@@ -291,6 +291,17 @@ pub enum DiagnosticKind {
         passes: u64,
         max: u64,
     },
+    /// A `G76` thread height smaller than its first depth of cut.
+    ThreadHeightBelowFirstDepth {
+        height_mm: f64,
+        first_depth_mm: f64,
+    },
+    /// A thread lead of zero or less.
+    ThreadLeadNotPositive,
+    /// `G76 P(m)(r)(a)` digits, or a Haas `P`/`A`, outside what the control takes.
+    ThreadParametersInvalid {
+        word: String,
+    },
     /// `P`/`Q` name a sequence number no block has.
     MissingSequence {
         number: String,

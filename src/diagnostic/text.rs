@@ -67,6 +67,9 @@ impl DiagnosticKind {
             CycleNeedsDivisions => "cycle-needs-divisions",
             GrooveStepMissing { .. } => "groove-step-missing",
             CycleTooManyPasses { .. } => "cycle-too-many-passes",
+            ThreadHeightBelowFirstDepth { .. } => "thread-height-below-first-depth",
+            ThreadLeadNotPositive => "thread-lead-not-positive",
+            ThreadParametersInvalid { .. } => "thread-parameters-invalid",
             MissingSequence { .. } => "missing-sequence",
             DuplicateSequence { .. } => "duplicate-sequence",
             RunawayProgram { .. } => "runaway-program",
@@ -185,6 +188,11 @@ impl DiagnosticKind {
             CycleTooManyPasses { passes, max } => {
                 format!("this cycle would run {passes} passes; turnpass simulates at most {max}")
             }
+            ThreadHeightBelowFirstDepth { height_mm, first_depth_mm } => format!(
+                "the thread height ({height_mm:.4} mm) is smaller than the first depth of cut ({first_depth_mm:.4} mm)"
+            ),
+            ThreadLeadNotPositive => "the thread lead is zero or negative".to_string(),
+            ThreadParametersInvalid { word } => format!("`{word}` is not a threading parameter this control takes"),
             MissingSequence { number } => format!("no block has sequence number N{number}"),
             DuplicateSequence { number, count } => format!("{count} blocks have sequence number N{number}"),
             RunawayProgram { blocks } => format!("the program ran {blocks} blocks without ending"),
@@ -274,6 +282,9 @@ impl DiagnosticKind {
                 "this cycle".to_string()
             }
             CycleNeedsDivisions | GrooveStepMissing { .. } | CycleTooManyPasses { .. } => "this cycle".to_string(),
+            ThreadHeightBelowFirstDepth { .. } => "thread height".to_string(),
+            ThreadLeadNotPositive => "lead".to_string(),
+            ThreadParametersInvalid { .. } => "this word".to_string(),
             UnmatchedLoop { .. } => "loop start".to_string(),
             MissingLabel { .. } => "jump".to_string(),
             MissingProgram { .. } => "call".to_string(),
@@ -392,6 +403,17 @@ impl DiagnosticKind {
                  or end the groove where it starts"
             )),
             CycleTooManyPasses { .. } => Some("check the depth of cut, step or number of passes".to_string()),
+            ThreadHeightBelowFirstDepth { .. } => Some(
+                "the height (`P` of the second G76 block, Haas `K`) is the full thread depth; \
+                 the first depth (`Q`, Haas `D`) must not exceed it"
+                    .to_string(),
+            ),
+            ThreadLeadNotPositive => Some("give the lead as a positive `F` (or `E`)".to_string()),
+            ThreadParametersInvalid { .. } => Some(
+                "`G76 P` takes six digits: finishing passes 01-99, chamfer 00-99 (tenths of the lead), \
+                 tool angle 80, 60, 55, 30, 29 or 00; Haas `P` is 1-4 and `A` 0-120"
+                    .to_string(),
+            ),
             MissingSequence { number } => Some(format!("number the profile's first and last blocks `N{number}`, or correct P/Q")),
             DuplicateSequence { .. } => Some("P and Q must each name exactly one block; renumber the others".to_string()),
             RunawayProgram { .. } => Some("check the loop's condition and the variables it changes".to_string()),

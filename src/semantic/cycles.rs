@@ -8,6 +8,7 @@
 
 mod canonical;
 mod finishing;
+pub(super) mod multiple_threading;
 pub(super) mod pattern_repeat;
 pub(super) mod peck_grooving;
 mod single;
@@ -68,6 +69,14 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
                 peck_grooving::run(interp, index, &command, function, &mut consumed)
             }
         }
+        GFunction::MultipleThreading => {
+            if interp.form_name(&command) == "passes" {
+                multiple_threading::passes_block(interp, index, &command)
+            } else {
+                let name = info.map_or(String::new(), |g| g.code.display('G'));
+                multiple_threading::run(interp, index, &command, &name, &mut consumed)
+            }
+        }
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
@@ -119,6 +128,11 @@ impl Interpreter<'_, '_> {
     pub(super) fn param_increments(&mut self, command: &Command, role: Role) -> Option<f64> {
         let count = self.param_count(command, role)?;
         Some(count * self.modal.frame.increment)
+    }
+
+    /// The span of a cycle parameter's word, else `fallback` (the block).
+    pub(super) fn param_span(&self, command: &Command, role: Role, fallback: Span) -> Span {
+        command.param(role).map_or(fallback, |id| self.program.word(id).span)
     }
 
     /// The block with sequence number `value` (a `P`/`Q` reference), which must be unique.

@@ -56,6 +56,8 @@ pub(super) struct CycleMemory {
     pub pattern: super::cycles::pattern_repeat::PatternMemory,
     /// `G74 R(e)`, `G75 R(e)`.
     pub peck: super::cycles::peck_grooving::PeckMemory,
+    /// `G76 P(m)(r)(a) Q(Δdmin) R(d)`.
+    pub thread: super::cycles::multiple_threading::ThreadMemory,
 }
 
 pub(super) struct Interpreter<'p, 'src> {

@@ -41,6 +41,95 @@ fn close(a: Xz, b: Xz) -> bool {
     (a.x - b.x).abs() <= TOLERANCE && (a.z - b.z).abs() <= TOLERANCE
 }
 
+/// `G76` parameters in the control's units: micrometres for the `P`/`Q` words.
+#[derive(Debug, Clone)]
+struct Threading {
+    height_um: u32,
+    first_um: u32,
+    min_um: u32,
+    allowance_um: u32,
+    finishing: u32,
+    angle: u32,
+    lead_centi: u32,
+    root_diameter: u32,
+    end_z: u32,
+}
+
+fn threading() -> impl Strategy<Value = Threading> {
+    (200u32..3000, 0.02f64..1.0, 0u32..150, 0.0f64..0.5, 1u32..4, 0usize..6, 50u32..300, 10u32..60, 5u32..50).prop_map(
+        |(height_um, share, min_um, allowance_share, finishing, angle, lead_centi, root_diameter, end_z)| Threading {
+            height_um,
+            first_um: ((f64::from(height_um) * share) as u32).max(30),
+            min_um,
+            allowance_um: (f64::from(height_um) * allowance_share) as u32,
+            finishing,
+            angle: [0, 29, 30, 55, 60, 80][angle],
+            lead_centi,
+            root_diameter,
+            end_z,
+        },
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    /// `G76`: the roughing depths increase strictly, never pass the height, start at the
+    /// first depth (or the minimum, if larger), follow at least Δd·√n, step at least Δdmin
+    /// until the last one lands on k − d; then m passes at k, the last ending at the root.
+    #[test]
+    fn g76_depths_climb_to_the_thread_height(t in threading()) {
+        let height = f64::from(t.height_um) / 1000.0;
+        let first = f64::from(t.first_um) / 1000.0;
+        let min = f64::from(t.min_um) / 1000.0;
+        let allowance = f64::from(t.allowance_um) / 1000.0;
+        let root = f64::from(t.root_diameter) / 2.0;
+        let start = Xz::new(root + height + 2.0, 3.0);
+        let program = format!(
+            "G21 G99\nG97 S500 M03\nG00 X{:.3} Z3.\nG76 P{:02}00{:02} Q{} R{:.3}\nG76 X{}. Z-{}. P{} Q{} F{:.2}\nM30\n",
+            2.0 * start.x, t.finishing, t.angle, t.min_um, allowance, t.root_diameter, t.end_z, t.height_um,
+            t.first_um, f64::from(t.lead_centi) / 100.0
+        );
+        let toolpath = lower(&program);
+        let moves = cycle_moves(&toolpath);
+        let threads: Vec<(Xz, &Move)> = moves
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.threading)
+            .map(|(i, m)| (toolpath.start_of(i + 1), m))
+            .collect();
+        prop_assert!(threads.len() > t.finishing as usize);
+        let flank = (f64::from(t.angle).to_radians() / 2.0).tan();
+        let mut depths = Vec::new();
+        for (from, m) in &threads {
+            let depth = height - (m.end.x - root);
+            // Straight thread: the pass stays at its depth; flank infeed shifts it toward A.
+            prop_assert!((from.x - m.end.x).abs() <= TOLERANCE);
+            prop_assert!((from.z - (3.0 + (height - depth) * flank)).abs() <= TOLERANCE, "{from:?} at {depth}");
+            prop_assert!(depth <= height + TOLERANCE);
+            depths.push(depth);
+        }
+        let (rough, finish) = depths.split_at(depths.len() - t.finishing as usize);
+        prop_assert!(finish.iter().all(|d| (d - height).abs() <= TOLERANCE), "{finish:?}");
+        let last = threads[threads.len() - 1].1;
+        prop_assert!(close(last.end, Xz::new(root, -f64::from(t.end_z))));
+        let limit = height - allowance;
+        prop_assert!(!rough.is_empty());
+        prop_assert!((rough[rough.len() - 1] - limit).abs() <= TOLERANCE, "{rough:?} to {limit}");
+        prop_assert!((rough[0] - first.max(min).min(limit)).abs() <= TOLERANCE, "{rough:?}");
+        for (n, pair) in rough.windows(2).enumerate() {
+            prop_assert!(pair[1] > pair[0] + TOLERANCE, "{rough:?}");
+            let is_last = n + 2 == rough.len();
+            if !is_last {
+                prop_assert!(pair[1] - pair[0] >= min - TOLERANCE, "{rough:?} min {min}");
+                prop_assert!(pair[1] >= first * ((n + 2) as f64).sqrt() - TOLERANCE, "{rough:?}");
+            }
+        }
+        // The first finishing pass removes exactly the allowance.
+        prop_assert!((finish[0] - rough[rough.len() - 1] - allowance).abs() <= TOLERANCE);
+    }
+}
+
 /// `G73` parameters: a profile of points (diameter, Z) with Z falling, relief, allowance.
 #[derive(Debug, Clone)]
 struct Pattern {
