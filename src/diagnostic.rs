@@ -292,6 +292,28 @@ pub enum DiagnosticKind {
     ProfileNotMonotonic {
         axis: char,
     },
+    /// A `G73` with no number of passes (`R` of its first block, or `D`), or fewer than one.
+    CycleNeedsDivisions,
+    /// A `G74`/`G75` groove wider than one plunge with no step between plunges.
+    GrooveStepMissing {
+        axis: char,
+    },
+    /// A cycle whose parameters ask for more passes or pecks than turnpass simulates.
+    CycleTooManyPasses {
+        passes: u64,
+        max: u64,
+    },
+    /// A `G76` thread height smaller than its first depth of cut.
+    ThreadHeightBelowFirstDepth {
+        height_mm: f64,
+        first_depth_mm: f64,
+    },
+    /// A thread lead of zero or less.
+    ThreadLeadNotPositive,
+    /// `G76 P(m)(r)(a)` digits, or a Haas `P`/`A`, outside what the control takes.
+    ThreadParametersInvalid {
+        word: String,
+    },
     /// `P`/`Q` name a sequence number no block has.
     MissingSequence {
         number: String,

@@ -66,6 +66,12 @@ impl DiagnosticKind {
             EmptyProfile => "empty-profile",
             ProfileReverses { .. } => "profile-reverses",
             ProfileNotMonotonic { .. } => "profile-not-monotonic",
+            CycleNeedsDivisions => "cycle-needs-divisions",
+            GrooveStepMissing { .. } => "groove-step-missing",
+            CycleTooManyPasses { .. } => "cycle-too-many-passes",
+            ThreadHeightBelowFirstDepth { .. } => "thread-height-below-first-depth",
+            ThreadLeadNotPositive => "thread-lead-not-positive",
+            ThreadParametersInvalid { .. } => "thread-parameters-invalid",
             MissingSequence { .. } => "missing-sequence",
             DuplicateSequence { .. } => "duplicate-sequence",
             RunawayProgram { .. } => "runaway-program",
@@ -195,6 +201,18 @@ impl DiagnosticKind {
             ProfileNotMonotonic { axis } => {
                 format!("the profile is not monotonic in {axis}, which a Type I roughing cycle requires")
             }
+            CycleNeedsDivisions => "the pattern-repeating cycle has no number of passes".to_string(),
+            GrooveStepMissing { axis } => {
+                format!("the groove is wider than one plunge but the cycle has no step in {axis} between plunges")
+            }
+            CycleTooManyPasses { passes, max } => {
+                format!("this cycle would run {passes} passes; turnpass simulates at most {max}")
+            }
+            ThreadHeightBelowFirstDepth { height_mm, first_depth_mm } => format!(
+                "the thread height ({height_mm:.4} mm) is smaller than the first depth of cut ({first_depth_mm:.4} mm)"
+            ),
+            ThreadLeadNotPositive => "the thread lead is zero or negative".to_string(),
+            ThreadParametersInvalid { word } => format!("`{word}` is not a threading parameter this control takes"),
             MissingSequence { number } => format!("no block has sequence number N{number}"),
             DuplicateSequence { number, count } => format!("{count} blocks have sequence number N{number}"),
             RunawayProgram { blocks, moves } => {
@@ -316,6 +334,10 @@ impl DiagnosticKind {
             CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
                 "this cycle".to_string()
             }
+            CycleNeedsDivisions | GrooveStepMissing { .. } | CycleTooManyPasses { .. } => "this cycle".to_string(),
+            ThreadHeightBelowFirstDepth { .. } => "thread height".to_string(),
+            ThreadLeadNotPositive => "lead".to_string(),
+            ThreadParametersInvalid { .. } => "this word".to_string(),
             UnmatchedLoop { .. } => "loop start".to_string(),
             MissingLabel { .. } => "jump".to_string(),
             MissingProgram { .. } => "call".to_string(),
@@ -441,6 +463,27 @@ impl DiagnosticKind {
             ProfileReverses { .. } => Some("split the profile, or rough the undercut with another cycle (G73)".to_string()),
             ProfileNotMonotonic { .. } => Some(
                 "a Type II cycle allows pockets: name both X and Z (e.g. `W0`) in the profile's first block".to_string(),
+            ),
+            CycleNeedsDivisions => Some(
+                "give the number of passes as `R` in a first block (`G73 U… W… R3`) \
+                 or as `D` in the cycle block"
+                    .to_string(),
+            ),
+            GrooveStepMissing { axis } => Some(format!(
+                "give the step in {axis} (`Q` of G75 or `P` of G74 in least increments, Haas `K`/`I`), \
+                 or end the groove where it starts"
+            )),
+            CycleTooManyPasses { .. } => Some("check the depth of cut, step or number of passes".to_string()),
+            ThreadHeightBelowFirstDepth { .. } => Some(
+                "the height (`P` of the second G76 block, Haas `K`) is the full thread depth; \
+                 the first depth (`Q`, Haas `D`) must not exceed it"
+                    .to_string(),
+            ),
+            ThreadLeadNotPositive => Some("give the lead as a positive `F` (or `E`)".to_string()),
+            ThreadParametersInvalid { .. } => Some(
+                "`G76 P` takes six digits: finishing passes 01-99, chamfer 00-99 (tenths of the lead), \
+                 tool angle 80, 60, 55, 30, 29 or 00; Haas `P` is 1-4 and `A` 0-120"
+                    .to_string(),
             ),
             MissingSequence { number } => Some(format!("number the profile's first and last blocks `N{number}`, or correct P/Q")),
             DuplicateSequence { .. } => Some("P and Q must each name exactly one block; renumber the others".to_string()),

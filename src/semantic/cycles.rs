@@ -11,6 +11,9 @@ mod compound_thread;
 mod finishing;
 mod grooving;
 mod lap_thread;
+pub(super) mod multiple_threading;
+pub(super) mod pattern_repeat;
+pub(super) mod peck_grooving;
 mod single;
 mod stock_removal;
 mod tapping;
@@ -29,6 +32,10 @@ use super::emitter::Context;
 use super::interpreter::{Flow, Interpreter};
 
 pub(super) use single::{SingleCycleMemory, single_cycle_again};
+
+/// A cycle call may run at most this many passes (or pecks): more is a runaway parameter
+/// (a depth of a thousandth over a long groove), reported instead of simulated.
+pub(super) const MAX_CYCLE_PASSES: u64 = 10_000;
 
 /// Run the cycle of block `index`.
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId) -> Flow {
@@ -67,6 +74,28 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         GFunction::LapThread => lap_thread::run(interp, index, &command),
         GFunction::OspGrooving | GFunction::OspFaceCutting => grooving::run(interp, index, &command, function),
         GFunction::Tapping => tapping::run(interp, index, &command),
+        GFunction::PatternRepeat => {
+            if interp.form_name(&command) == "relief" {
+                pattern_repeat::relief_block(interp, index, &command)
+            } else {
+                pattern_repeat::run(interp, index, &command, &mut consumed)
+            }
+        }
+        GFunction::FacePeck | GFunction::DiameterGrooving => {
+            if interp.form_name(&command) == "retract" {
+                peck_grooving::retract_block(interp, index, &command)
+            } else {
+                peck_grooving::run(interp, index, &command, function, &mut consumed)
+            }
+        }
+        GFunction::MultipleThreading => {
+            if interp.form_name(&command) == "passes" {
+                multiple_threading::passes_block(interp, index, &command)
+            } else {
+                let name = info.map_or(String::new(), |g| g.code.display('G'));
+                multiple_threading::run(interp, index, &command, &name, &mut consumed)
+            }
+        }
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
@@ -89,13 +118,13 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
 
 impl Interpreter<'_, '_> {
     /// The name of the schema form a command matched (`depth`, `profile`, `one_block`, …).
-    pub(super) fn form_name(&self, command: &crate::syntax::Command) -> &'static str {
+    pub(super) fn form_name(&self, command: &Command) -> &'static str {
         self.tables.schema(command.schema).forms.get(command.form as usize).map_or("", |f| f.name.as_str())
     }
 
-    /// The value of a cycle parameter in program units. Parameters the schema takes as
-    /// integers (`P`/`Q` of `G74`-`G76`) count least increments when they are lengths.
-    pub(super) fn param(&mut self, command: &crate::syntax::Command, role: Role) -> Option<f64> {
+    /// The value of a cycle parameter in program units, read as any word of its address
+    /// reads (an integer `P`/`Q` is its plain value here).
+    pub(super) fn param(&mut self, command: &Command, role: Role) -> Option<f64> {
         let id = command.param(role)?;
         let word = *self.program.word(id);
         self.word_value(&word)
@@ -115,6 +144,26 @@ impl Interpreter<'_, '_> {
     }
 
     /// Where the word playing `role` is written, else `fallback` (the block).
+    /// A cycle parameter as written, not scaled: a count (`G73` divisions) or a code
+    /// (`G76 P(m)(r)(a)`). A literal is its digits; an expression its value.
+    pub(super) fn param_count(&mut self, command: &Command, role: Role) -> Option<f64> {
+        let id = command.param(role)?;
+        let word = *self.program.word(id);
+        match word.kind {
+            WordKind::Number { number, .. } => Some(number.to_f64()),
+            _ => self.word_value(&word),
+        }
+    }
+
+    /// An integer length parameter (`P`/`Q` of `G74`-`G76`): the control reads it in least
+    /// input increments whatever the decimal-point setting, so `P2000` is 2 mm on a 0.001 mm
+    /// control. Program units.
+    pub(super) fn param_increments(&mut self, command: &Command, role: Role) -> Option<f64> {
+        let count = self.param_count(command, role)?;
+        Some(count * self.modal.frame.increment)
+    }
+
+    /// The span of a cycle parameter's word, else `fallback` (the block).
     pub(super) fn param_span(&self, command: &Command, role: Role, fallback: Span) -> Span {
         command.param(role).map_or(fallback, |id| self.program.word(id).span)
     }

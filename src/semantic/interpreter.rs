@@ -54,6 +54,12 @@ pub(super) struct CycleMemory {
     pub single: Option<super::cycles::SingleCycleMemory>,
     /// OSP thread-end chamfering (`M23` on, `M22` off, off at the start): a mode.
     pub thread_chamfer: bool,
+    /// `G73 U(Δi) W(Δk) R(d)`.
+    pub pattern: super::cycles::pattern_repeat::PatternMemory,
+    /// `G74 R(e)`, `G75 R(e)`.
+    pub peck: super::cycles::peck_grooving::PeckMemory,
+    /// `G76 P(m)(r)(a) Q(Δdmin) R(d)`.
+    pub thread: super::cycles::multiple_threading::ThreadMemory,
 }
 
 pub(super) struct Interpreter<'p, 'src> {
@@ -75,8 +81,6 @@ pub(super) struct Interpreter<'p, 'src> {
     pub pending_corner: Option<super::motion::PendingCorner>,
     /// Blocks a cycle consumed (a LAP contour right after its call): the flow skips them.
     pub skip_to: Option<usize>,
-    /// The block being executed.
-    pub current_block: usize,
     calls: Vec<Call>,
     /// Fanuc `WHILE` blocks being looped, with their loop number.
     loops: Vec<(usize, u32)>,
@@ -120,7 +124,6 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             modal_call: None,
             pending_corner: None,
             skip_to: None,
-            current_block: 0,
             calls: Vec::new(),
             loops: Vec::new(),
             executed: 0,
@@ -163,7 +166,6 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 break;
             }
             self.executed += 1;
-            self.current_block = pc;
             let flow = self.execute(pc);
             if let Some(target) = self.skip_to.take() {
                 pc = target;

@@ -7,6 +7,7 @@
 
 mod cli;
 mod corpus;
+mod cycles;
 mod differential;
 mod nose_radius;
 mod parse;

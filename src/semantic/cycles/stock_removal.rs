@@ -99,7 +99,7 @@ pub(super) fn run(
     );
     let type_ii_flag = interp.param(command, Role::TypeIi).is_some_and(|r| r >= 1.0);
     let Some(profile) = interp.profile_of(command, span, start) else { return Flow::Next };
-    let after_q = interp.after_profile(command);
+    let after_q = interp.after_profile(command, index);
     // The profile and the first block are part of the cycle: `expand` deletes them.
     consumed.extend(profile.blocks.clone());
     if !one_block {
@@ -346,14 +346,14 @@ fn check_shape(elements: &[Element], type_ii: bool, facing: bool) -> Result<(), 
 }
 
 impl Interpreter<'_, '_> {
-    /// Where the program continues after a cycle that names a profile: after its Q block
-    /// when the profile follows the call (the usual layout), else with the next block (a
-    /// profile written earlier is a definition the flow has already passed).
-    pub(in crate::semantic) fn after_profile(&mut self, command: &Command) -> Flow {
+    /// Where the program continues after the cycle of block `index` that names a profile:
+    /// after its Q block, when that lies ahead (a profile written before its cycle was
+    /// already read past; jumping back to it would run the cycle again and again).
+    pub(in crate::semantic) fn after_profile(&mut self, command: &Command, index: usize) -> Flow {
         let Some(q) = self.param(command, Role::ProfileEnd) else { return Flow::Next };
         let key = (q.round() as i64).to_string();
         match self.labels.blocks(&key) {
-            [one] if *one > self.current_block => Flow::Jump(one + 1),
+            [one] if *one > index => Flow::Jump(one + 1),
             _ => Flow::Next,
         }
     }

@@ -1,0 +1,12 @@
+(A G76 with a zero lead cannot cut a thread.)
+%
+O0018
+G21 G99
+T0101
+G97 S800 M03
+G00 X36. Z3.
+G76 P010060 Q100 R0.05
+G76 X30. Z-20. P900 Q350 F0
+G00 X200. Z100.
+M30
+%
