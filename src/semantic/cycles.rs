@@ -8,6 +8,9 @@
 
 mod canonical;
 mod finishing;
+mod lap_contour;
+mod lap_frame;
+mod lap_rough;
 mod single;
 mod stock_removal;
 
@@ -48,6 +51,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
                 stock_removal::run(interp, index, &command, function, &mut consumed)
             }
         }
+        GFunction::LapRough => lap_rough::run(interp, index, &command, &mut consumed),
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },

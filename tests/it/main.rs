@@ -7,6 +7,7 @@
 
 mod cli;
 mod corpus;
+mod lap;
 mod parse;
 mod print;
 mod robustness;
