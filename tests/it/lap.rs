@@ -10,8 +10,14 @@
 //! - `G85`: no move (rapid or feed, sampled along its length) enters the contour offset by
 //!   the allowance; the last cutting moves are exactly that offset contour; the tool ends
 //!   at the start point.
-//! - `G85`: pass N starts at M-P195's infeed point, `Xp = Xs − N·D` on the line from the
-//!   start point to the contour's start plus allowance (`Zp`).
+//! - `G86`: on a contour without pockets, no move enters the finished contour (its passes
+//!   close in on the contour along the infeed line and may run inside the Z allowance near a
+//!   shoulder; on the falling side of a pocket even a contour translated by (U, W) dips into
+//!   the part, so pockets are left out of this check); the last pass is the offset contour;
+//!   the tool ends at the start point.
+//! - `G85` and `G86`: pass N starts at M-P195's infeed point, `Xp = Xs − N·D` on the line
+//!   from the start point to the contour's start plus allowance (`Zp`); `G86`'s last pass
+//!   starts at that contour start.
 
 use proptest::prelude::*;
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem};
@@ -72,6 +78,8 @@ struct Case {
     depth: f64,
     u_word: f64,
     w_word: f64,
+    /// Some element falls toward the axis along the cut.
+    pockets: bool,
 }
 
 impl Case {
@@ -138,6 +146,7 @@ impl Case {
         out.push_str("G80\nG50 S2000\n");
         out.push_str(&format!("G00 X{xs:.3} Z{zs:.3} T010101\nG97 S800 M03\n"));
         out.push_str(&format!("G85 NLAP1 D{d:.3} F0.3 U{u:.3} W{w:.3}\n"));
+        out.push_str(&format!("G86 NLAP1 D{d:.3} F0.3 U{u:.3} W{w:.3}\n"));
         out.push_str("M02\n");
         out
     }
@@ -196,10 +205,11 @@ fn case() -> impl Strategy<Value = Case> {
             }
             let top = elements.iter().flat_map(|e| [e.start.u, e.end.u]).fold(at.u, f64::max);
             elements.push(Element { start: at, end: Uv { u: top + 1.0, v: at.v }, arc: None });
+            let pockets = elements.iter().any(|e| e.end.u < e.start.u);
             let first = elements[0].start;
             let allowance_u = if transverse { w_word } else { u_word / 2.0 };
             let start = Uv { u: top + 1.0 + allowance_u + extra as f64 / 2.0, v: first.v + lead };
-            Case { transverse, elements, start, lead, g01_first, depth: depth as f64 / 2.0, u_word, w_word }
+            Case { transverse, elements, start, lead, g01_first, depth: depth as f64 / 2.0, u_word, w_word, pockets }
         })
 }
 
@@ -282,17 +292,32 @@ fn check_elements(case: &Case, moves: &[&Move], expected: &[Element]) -> Result<
 }
 
 /// Where the roughing passes start: `G85` passes are the feeds along the cut before the last
-/// pass.
-fn pass_starts(case: &Case, from: Xz, moves: &[&Move], n: usize) -> Vec<Uv> {
+/// pass; a `G86` pass is a run of `n` contour moves, perhaps after a fed approach.
+fn pass_starts(case: &Case, from: Xz, moves: &[&Move], n: usize, copy: bool) -> Vec<Uv> {
     let mut starts = Vec::new();
     let mut points = vec![from];
     points.extend(moves.iter().map(|m| m.end));
     let end = moves.iter().rposition(|m| m.motion != Motion::Rapid).map_or(0, |i| i + 1);
-    for (i, m) in moves[..end.saturating_sub(n)].iter().enumerate() {
-        let (a, b) = (case.to_uv(points[i]), case.to_uv(m.end));
-        if m.motion == Motion::Feed && (a.u - b.u).abs() < 1e-9 && (a.v - b.v).abs() > 1e-9 {
-            starts.push(a);
+    if !copy {
+        for (i, m) in moves[..end.saturating_sub(n)].iter().enumerate() {
+            let (a, b) = (case.to_uv(points[i]), case.to_uv(m.end));
+            if m.motion == Motion::Feed && (a.u - b.u).abs() < 1e-9 && (a.v - b.v).abs() > 1e-9 {
+                starts.push(a);
+            }
         }
+        return starts;
+    }
+    let mut i = 0;
+    while i < moves.len() {
+        if moves[i].motion == Motion::Rapid {
+            i += 1;
+            continue;
+        }
+        let run = moves[i..].iter().take_while(|m| m.motion != Motion::Rapid).count();
+        if run >= n {
+            starts.push(case.to_uv(points[i + run - n]));
+        }
+        i += run;
     }
     starts
 }
@@ -353,7 +378,18 @@ proptest! {
         check_no_entry(&case, from, &rough, &offset, "G85")?;
         check_elements(&case, &last_cut(&rough, offset.len()), &offset)?;
         let infeed = case.infeed_points();
-        check_starts(&pass_starts(&case, from, &rough, offset.len()), &infeed, "G85")?;
+        check_starts(&pass_starts(&case, from, &rough, offset.len(), false), &infeed, "G85")?;
         prop_assert!(close(rough.last().unwrap().end, start), "G85 ends at {:?}", rough.last().unwrap().end);
+
+        // G86: outside the finished contour, its last pass on the offset contour, back at A.
+        let (from, copy) = cycle_moves(&parsed.program, moves, call_line + 1);
+        if !case.pockets {
+            check_no_entry(&case, from, &copy, &case.elements, "G86")?;
+        }
+        check_elements(&case, &last_cut(&copy, offset.len()), &offset)?;
+        let mut copy_starts = infeed.clone();
+        copy_starts.push(offset[0].start);
+        check_starts(&pass_starts(&case, from, &copy, offset.len(), true), &copy_starts, "G86")?;
+        prop_assert!(close(copy.last().unwrap().end, start));
     }
 }
