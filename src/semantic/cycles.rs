@@ -10,6 +10,7 @@ mod canonical;
 mod finishing;
 mod lap_contour;
 mod lap_copy;
+mod lap_finish;
 mod lap_frame;
 mod lap_rough;
 mod single;
@@ -54,6 +55,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         }
         GFunction::LapRough => lap_rough::run(interp, index, &command, &mut consumed),
         GFunction::LapCopy => lap_copy::run(interp, index, &command, &mut consumed),
+        GFunction::LapFinish => lap_finish::run(interp, index, &command, &mut consumed),
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },

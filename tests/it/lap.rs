@@ -15,6 +15,7 @@
 //!   shoulder; on the falling side of a pocket even a contour translated by (U, W) dips into
 //!   the part, so pockets are left out of this check); the last pass is the offset contour;
 //!   the tool ends at the start point.
+//! - `G87`: the approach and then exactly the contour, then the return to the start point.
 //! - `G85` and `G86`: pass N starts at M-P195's infeed point, `Xp = Xs − N·D` on the line
 //!   from the start point to the contour's start plus allowance (`Zp`); `G86`'s last pass
 //!   starts at that contour start.
@@ -147,7 +148,7 @@ impl Case {
         out.push_str(&format!("G00 X{xs:.3} Z{zs:.3} T010101\nG97 S800 M03\n"));
         out.push_str(&format!("G85 NLAP1 D{d:.3} F0.3 U{u:.3} W{w:.3}\n"));
         out.push_str(&format!("G86 NLAP1 D{d:.3} F0.3 U{u:.3} W{w:.3}\n"));
-        out.push_str("M02\n");
+        out.push_str("G87 NLAP1\nM02\n");
         out
     }
 
@@ -391,5 +392,14 @@ proptest! {
         copy_starts.push(offset[0].start);
         check_starts(&pass_starts(&case, from, &copy, offset.len(), true), &copy_starts, "G86")?;
         prop_assert!(close(copy.last().unwrap().end, start));
+
+        // G87: the approach, then exactly the contour, then back to A.
+        let (_, finish) = cycle_moves(&parsed.program, moves, call_line + 2);
+        let cut = last_cut(&finish, case.elements.len() + 1);
+        let approach = cut[0];
+        prop_assert_eq!(approach.motion, if case.g01_first { Motion::Feed } else { Motion::Rapid });
+        prop_assert!(close(approach.end, case.point(case.contour_start())));
+        check_elements(&case, &cut[1..], &case.elements)?;
+        prop_assert!(close(finish.last().unwrap().end, start));
     }
 }
