@@ -305,7 +305,8 @@ pub(super) fn plan(
     loop {
         let (step, feed) = conditions.in_force(from, depth, feed);
         let level = from - step;
-        if level <= floor + 1e-9 {
+        // A level that is not a number (an overflowing expression) ends the passes too.
+        if level.is_nan() || level <= floor + 1e-9 {
             return Ok(passes);
         }
         let v_in = frame.line_v(level);
@@ -351,3 +352,6 @@ fn cut(
     lap_frame::cut_along(interp, contour, frame.allowance, along);
     interp.modal = saved;
 }
+
+#[cfg(test)]
+mod tests;
