@@ -271,6 +271,42 @@ pub enum DiagnosticKind {
     UnknownStartPosition,
     /// A LAP contour with no `G80` after it.
     LapContourNotClosed,
+    /// A LAP call (`G85`-`G88`) names no `G81`/`G82` contour block.
+    LapContourMissing {
+        name: String,
+    },
+    /// A LAP contour with no move after its approach block.
+    LapContourEmpty,
+    /// A LAP roughing contour that turns back along the cutting direction.
+    LapContourNotMonotonic {
+        axis: char,
+    },
+    /// The AP start point lies inside the contour plus its allowance.
+    LapStartInsideContour,
+    /// A LAP call word with a value the control rejects (`D0`, `U-1`, too many passes).
+    LapWordOutOfRange {
+        word: String,
+        value: f64,
+        rule: &'static str,
+    },
+    /// `G84` condition-change points that do not follow the cut (outside: Xs > XA > XB).
+    LapConditionOrder {
+        word: String,
+        value: f64,
+        before: String,
+        before_value: f64,
+        outside: bool,
+    },
+    /// A `G84` condition-change word where it does not apply (`ZA=` on a `G81` contour).
+    LapConditionMisplaced {
+        word: String,
+        reason: &'static str,
+    },
+    /// `S`, `T` or `M` in a LAP call block, which the control rejects.
+    LapCallWord {
+        command: String,
+        address: String,
+    },
     /// `Q` names a block before `P`.
     ProfileBackwards,
     /// A cycle the simulation does not expand yet.

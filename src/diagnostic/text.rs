@@ -59,6 +59,14 @@ impl DiagnosticKind {
             HomeUnknown => "home-unknown",
             UnknownStartPosition => "unknown-start-position",
             LapContourNotClosed => "lap-contour-not-closed",
+            LapContourMissing { .. } => "lap-contour-missing",
+            LapContourEmpty => "lap-contour-empty",
+            LapContourNotMonotonic { .. } => "lap-contour-not-monotonic",
+            LapStartInsideContour => "lap-start-inside-contour",
+            LapWordOutOfRange { .. } => "lap-word-out-of-range",
+            LapConditionOrder { .. } => "lap-condition-order",
+            LapConditionMisplaced { .. } => "lap-condition-misplaced",
+            LapCallWord { .. } => "lap-call-word",
             ProfileBackwards => "profile-backwards",
             CycleNotSimulated { .. } => "cycle-not-simulated",
             NotExpandable => "not-expandable",
@@ -188,6 +196,28 @@ impl DiagnosticKind {
                     .to_string()
             }
             LapContourNotClosed => "LAP contour with no `G80` after it".to_string(),
+            LapContourMissing { name } => format!("no `G81`/`G82` contour block is named `{name}`"),
+            LapContourEmpty => "the LAP contour has no move after its first block".to_string(),
+            LapContourNotMonotonic { axis } => {
+                format!(
+                    "the contour turns back in {axis}; the LAP roughing cycle cuts along {axis} and cannot follow it"
+                )
+            }
+            LapStartInsideContour => {
+                "the cycle starts inside the contour plus its allowance; the first pass would cut into the part"
+                    .to_string()
+            }
+            LapWordOutOfRange { word, value, rule } => format!("`{word}` is {value}; {rule}"),
+            LapConditionOrder { word, value, before, before_value, outside } => format!(
+                "`{word}{value}` does not come after `{before}{before_value}` along the cut: {}",
+                if *outside {
+                    "outside, each change point must be smaller than the one before"
+                } else {
+                    "inside, each change point must be larger than the one before"
+                }
+            ),
+            LapConditionMisplaced { word, reason } => format!("`{word}` does not apply here: {reason}"),
+            LapCallWord { command, address } => format!("{command} cannot carry `{address}`; the control rejects it"),
             ProfileBackwards => "the profile's end (`Q`) comes before its start (`P`)".to_string(),
             CycleNotSimulated { code } => {
                 format!("{code} is not simulated yet; its moves are missing from the toolpath")
@@ -329,6 +359,12 @@ impl DiagnosticKind {
             | RunawayProgram { .. }
             | CallsTooDeep { .. } => "here".to_string(),
             LapContourNotClosed => "contour start".to_string(),
+            LapContourMissing { .. } | LapStartInsideContour => "this call".to_string(),
+            LapContourEmpty | LapContourNotMonotonic { .. } => "contour".to_string(),
+            LapWordOutOfRange { .. } | LapConditionOrder { .. } | LapConditionMisplaced { .. } => {
+                "this word".to_string()
+            }
+            LapCallWord { .. } => "not in a LAP call".to_string(),
             ProfileBackwards | MissingSequence { .. } | DuplicateSequence { .. } => "this cycle".to_string(),
             NotExpandable => "kept".to_string(),
             CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
@@ -455,6 +491,29 @@ impl DiagnosticKind {
                 Some("set `home = { x = …, z = … }` in the [machine] table of the model file".to_string())
             }
             LapContourNotClosed => Some("end the contour with a `G80` block".to_string()),
+            LapContourMissing { .. } => Some(
+                "the call names the sequence name of the block that starts the contour, e.g. `G85 NLAP1 …` and `NLAP1 G81`"
+                    .to_string(),
+            ),
+            LapContourEmpty => Some("define the contour with G00/G01/G02/G03 moves between `G81`/`G82` and `G80`".to_string()),
+            LapContourNotMonotonic { .. } => Some(
+                "G85 and G86 need a contour that runs one way along the cut; rough the undercut with another cycle or by hand"
+                    .to_string(),
+            ),
+            LapStartInsideContour => Some(
+                "position the tool outside the stock before the call (above the largest diameter for outside turning)"
+                    .to_string(),
+            ),
+            LapWordOutOfRange { .. } => Some(
+                "D, DA=, DB= are depths per pass, greater than 0 (diameters on a G81 contour); U and W are allowances of 0 or more"
+                    .to_string(),
+            ),
+            LapConditionOrder { .. } => Some(
+                "write the points in the order the cut meets them: start > XA= > XB= outside, start < XA= < XB= inside"
+                    .to_string(),
+            ),
+            LapConditionMisplaced { .. } => None,
+            LapCallWord { .. } => Some("program S, T and M in a block before the LAP call".to_string()),
             ProfileBackwards => Some("`P` names the first block of the profile, `Q` the last".to_string()),
             CycleNotSimulated { .. } => None,
             NotExpandable => None,

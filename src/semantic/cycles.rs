@@ -10,6 +10,11 @@ mod canonical;
 mod compound_thread;
 mod finishing;
 mod grooving;
+mod lap_contour;
+mod lap_copy;
+mod lap_finish;
+mod lap_frame;
+mod lap_rough;
 mod lap_thread;
 pub(super) mod multiple_threading;
 pub(super) mod pattern_repeat;
@@ -96,6 +101,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
                 multiple_threading::run(interp, index, &command, &name, &mut consumed)
             }
         }
+        GFunction::LapRough => lap_rough::run(interp, index, &command, &mut consumed),
+        GFunction::LapCopy => lap_copy::run(interp, index, &command, &mut consumed),
+        GFunction::LapFinish => lap_finish::run(interp, index, &command, &mut consumed),
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },

@@ -420,6 +420,14 @@ impl Classifier<'_> {
     }
 
     fn not_allowed(&self, info: &GInfo, form: &crate::dialect::Form, address: Address, word: &Word) -> Diagnostic {
+        // The control rejects spindle, tool and M words in a LAP call (M-P204); say so, since
+        // the usual fix is to move them to the block before, not to drop them.
+        if info.kind == GKind::LapCall && matches!(address, Address::S | Address::T | Address::M) {
+            return Diagnostic::error(
+                DiagnosticKind::LapCallWord { command: self.command_name(info), address: address.name() },
+                word.span,
+            );
+        }
         Diagnostic::error(
             DiagnosticKind::WordNotAllowed {
                 command: self.command_name(info),

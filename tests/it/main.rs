@@ -9,6 +9,7 @@ mod cli;
 mod corpus;
 mod cycles;
 mod differential;
+mod lap;
 mod nose_radius;
 mod parse;
 mod print;

@@ -1,0 +1,35 @@
+//! OSP LAP `G87 N<name>`: finish turning. One pass along the contour as it is written: the
+//! approach block from the AP start point, then every element with the `F` and `S` written
+//! inside the contour (modal there; the feed in force where the contour sets none) and its
+//! own `G41`/`G42`/`G40`, then the return to the AP start point (`lap_contour.rs`). The call
+//! block takes nothing but the contour's name (M-P218); the contour may be shared with a
+//! `G85`/`G86` that roughed it with another tool.
+
+use crate::syntax::Command;
+
+use super::super::interpreter::{Flow, Interpreter};
+use super::lap_contour;
+
+pub(super) fn run(
+    interp: &mut Interpreter<'_, '_>,
+    index: usize,
+    command: &Command,
+    consumed: &mut Vec<usize>,
+) -> Flow {
+    let span = interp.program.block(index).span;
+    let start = interp.emitter.at;
+    if !start.is_finite() {
+        interp.unknown_position(span);
+        return Flow::Next;
+    }
+    let Some(contour) = lap_contour::find(interp, index, command, start) else { return Flow::Next };
+    interp.trace_profile(&contour.profile, None);
+    // The contour ends its own compensation (`G40` after the last move): the return is not
+    // compensated then.
+    interp.modal.compensation = contour.profile.modal_after.compensation;
+    lap_contour::return_to_start(interp, &contour, start);
+    if contour.follows_call {
+        consumed.extend(contour.blocks.clone());
+    }
+    contour.flow_after()
+}
