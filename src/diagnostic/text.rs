@@ -258,7 +258,9 @@ impl DiagnosticKind {
             | RunawayProgram { .. }
             | CallsTooDeep { .. } => "here".to_string(),
             LapContourNotClosed => "contour start".to_string(),
-            ProfileBackwards | MissingSequence { .. } | DuplicateSequence { .. } => "this cycle".to_string(),
+            ProfileBackwards => "this cycle".to_string(),
+            MissingSequence { .. } => "names no block".to_string(),
+            DuplicateSequence { .. } => "names several blocks".to_string(),
             NotExpandable => "kept".to_string(),
             CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
                 "this cycle".to_string()
@@ -371,7 +373,7 @@ impl DiagnosticKind {
             ProfileNotMonotonic { .. } => Some(
                 "a Type II cycle allows pockets: name both X and Z (e.g. `W0`) in the profile's first block".to_string(),
             ),
-            MissingSequence { number } => Some(format!("number the profile's first and last blocks `N{number}`, or correct P/Q")),
+            MissingSequence { number } => Some(format!("number the block this word means `N{number}`, or correct the number")),
             DuplicateSequence { .. } => Some("P and Q must each name exactly one block; renumber the others".to_string()),
             RunawayProgram { .. } => Some("check the loop's condition and the variables it changes".to_string()),
             UnmatchedLoop { .. } => None,
