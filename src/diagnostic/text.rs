@@ -180,7 +180,11 @@ impl DiagnosticKind {
             RunawayProgram { blocks } => format!("the program ran {blocks} blocks without ending"),
             UnmatchedLoop { number } => format!("`DO{number}` has no `END{number}`"),
             MissingLabel { name } => format!("no block is labelled `{name}`"),
-            MissingProgram { name } => format!("the file holds no program `{name}`"),
+            MissingProgram { name } => {
+                format!(
+                    "`{name}` is not in this file; the control runs it from its memory and its moves are not simulated"
+                )
+            }
             CallsTooDeep { max } => format!("subprogram calls nest deeper than {max}"),
             NoFeed => "a feed move with no feed rate (or no spindle speed for feed per revolution)".to_string(),
             ArcRadiusTooSmall { radius_mm, half_chord_mm } => format!(
@@ -378,7 +382,7 @@ impl DiagnosticKind {
             RunawayProgram { .. } => Some("check the loop's condition and the variables it changes".to_string()),
             UnmatchedLoop { .. } => None,
             MissingLabel { .. } => None,
-            MissingProgram { .. } => Some("the subprogram must be in the same file".to_string()),
+            MissingProgram { .. } => Some("to simulate its moves, add the subprogram to the file".to_string()),
             CallsTooDeep { .. } => Some("a subprogram probably calls itself".to_string()),
             NoFeed => Some("program F before the first feed move (and S for feed per revolution)".to_string()),
             ArcRadiusTooSmall { .. } => Some("check the end point and the radius; R must be at least half the chord".to_string()),

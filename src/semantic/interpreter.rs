@@ -406,7 +406,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         let key = labels::program_key(self.dialect, self.program.text(word.span));
         let target = self.labels.program(&key);
         if target.is_none() {
-            self.error(DiagnosticKind::MissingProgram { name: format!("O{key}") }, word.span);
+            self.warning(DiagnosticKind::MissingProgram { name: format!("O{key}") }, word.span);
         }
         let _ = index;
         target
@@ -483,7 +483,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             Some(target) => self.enter(index, target, count.max(1.0) as u32, Vec::new()),
             None => {
                 let span = self.program.block(index).span;
-                self.error(DiagnosticKind::MissingProgram { name: format!("O{key}") }, span);
+                self.warning(DiagnosticKind::MissingProgram { name: format!("O{key}") }, span);
                 Flow::Next
             }
         }
