@@ -174,6 +174,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         }
         self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
         self.diagnostics.dedup();
+        // A system variable read as 0 is said once, where the program first reads it.
+        let mut unknown = std::collections::HashSet::new();
+        self.diagnostics.retain(|d| match &d.kind {
+            DiagnosticKind::SystemVariableUnknown { name } => unknown.insert(name.clone()),
+            _ => true,
+        });
         Lowered {
             toolpath,
             diagnostics: self.diagnostics,
