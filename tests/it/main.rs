@@ -7,6 +7,7 @@
 
 mod cli;
 mod corpus;
+mod corpus_semantic;
 mod parse;
 mod print;
 mod robustness;
