@@ -396,6 +396,9 @@ fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     let (bytes, resolved) = lower_file(&args.file, &args.read, &args.run, false)?;
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);
+    if !semantic::lowers(&parsed.program) {
+        return Ok(not_lowered("expand", &name, &bytes, &parsed));
+    }
     let machine = Machine::from_settings(&resolved.settings);
     let lowered = semantic::lower(&parsed.program, &machine, &lower_options(&args.run, &resolved.settings, false));
     let mut diagnostics = parsed.diagnostics.clone();
@@ -424,6 +427,9 @@ fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     let (bytes, resolved) = lower_file(&args.file, &args.read, &args.run, true)?;
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);
+    if !semantic::lowers(&parsed.program) {
+        return Ok(not_lowered("simulate", &name, &bytes, &parsed));
+    }
     let machine = Machine::from_settings(&resolved.settings);
     let lowered = semantic::lower(&parsed.program, &machine, &lower_options(&args.run, &resolved.settings, true));
     let mut diagnostics = parsed.diagnostics.clone();
@@ -463,6 +469,18 @@ fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
         .write_all(&output)
         .map_err(|source| CliError::Write { path: "<stdout>".into(), source })?;
     Ok(if diagnostics.iter().any(|d| d.is_error()) { ExitCode::from(1) } else { ExitCode::SUCCESS })
+}
+
+/// A program the semantic pass does not lower (an OSP machining-centre program): its parse
+/// diagnostics, a line saying why nothing is printed, and the exit code of its syntax check.
+fn not_lowered(command: &str, name: &str, bytes: &[u8], parsed: &syntax::Parsed<'_>) -> ExitCode {
+    report(name, bytes, &parsed.diagnostics);
+    let _ = writeln!(
+        std::io::stderr(),
+        "{command}: {name} is an OSP machining-centre program; turnpass simulates and expands lathe \
+         programs only, so nothing is printed (its syntax was checked)"
+    );
+    if parsed.has_errors() { ExitCode::from(1) } else { ExitCode::SUCCESS }
 }
 
 fn summary_text(summary: &simulation::Summary) -> String {

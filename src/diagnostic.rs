@@ -372,7 +372,8 @@ pub enum DiagnosticKind {
     MissingLabel {
         name: String,
     },
-    /// A call of a program the file does not hold.
+    /// A call of a program the file does not hold: a subprogram in the control's memory
+    /// (a warning; the call's moves are missing from the toolpath, and the run goes on).
     MissingProgram {
         name: String,
     },

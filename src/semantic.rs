@@ -29,7 +29,7 @@ pub mod profile;
 pub use frame::Frame;
 
 use crate::diagnostic::Diagnostic;
-use crate::dialect::{DecimalInput, Dialect};
+use crate::dialect::{DecimalInput, Dialect, MachineKind};
 use crate::machine::{MachineSettings, ToolSettings, Units};
 use crate::syntax::Program;
 use crate::toolpath::{Limits, Toolpath, Xz};
@@ -143,9 +143,29 @@ pub struct Lowered {
     pub executed_blocks: u64,
 }
 
-/// Lower a parsed program. Never fails; see the module documentation.
+/// Lower a parsed program. Never fails; see the module documentation. A program the pass
+/// does not lower (see [`lowers`]) gives an empty toolpath and no diagnostics: the front end
+/// has already said what it is.
 pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Lowered {
+    if !lowers(program) {
+        return Lowered {
+            toolpath: Toolpath { start: machine.home.unwrap_or(Xz::new(f64::NAN, f64::NAN)), moves: Vec::new() },
+            diagnostics: Vec::new(),
+            expansions: Vec::new(),
+            frame: initial_frame(program, machine),
+            executed_blocks: 0,
+        };
+    }
     interpreter::Interpreter::new(program, machine, options).run()
+}
+
+/// Whether the semantic pass lowers this program. It simulates lathes: an OSP
+/// machining-centre program (the front end notes it, `machining-centre-program`, and checks
+/// only its syntax) moves a milling spindle in three axes, and its G-codes mean other things
+/// there, so it has no lathe toolpath.
+pub fn lowers(program: &Program<'_>) -> bool {
+    let config = program.config();
+    !(config.dialect == Dialect::Osp && config.machine_kind == MachineKind::MachiningCentre)
 }
 
 /// The frame a program starts in on this machine.

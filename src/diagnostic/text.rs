@@ -250,7 +250,11 @@ impl DiagnosticKind {
             }
             UnmatchedLoop { number } => format!("`DO{number}` has no `END{number}`"),
             MissingLabel { name } => format!("no block is labelled `{name}`"),
-            MissingProgram { name } => format!("the file holds no program `{name}`"),
+            MissingProgram { name } => {
+                format!(
+                    "`{name}` is not in this file; the control runs it from its memory and its moves are not simulated"
+                )
+            }
             CallsTooDeep { max } => format!("subprogram calls nest deeper than {max}"),
             NoFeed => "a feed move with no feed rate (or no spindle speed for feed per revolution)".to_string(),
             ArcRadiusTooSmall { radius_mm, half_chord_mm } => format!(
@@ -365,7 +369,9 @@ impl DiagnosticKind {
                 "this word".to_string()
             }
             LapCallWord { .. } => "not in a LAP call".to_string(),
-            ProfileBackwards | MissingSequence { .. } | DuplicateSequence { .. } => "this cycle".to_string(),
+            ProfileBackwards => "this cycle".to_string(),
+            MissingSequence { .. } => "names no block".to_string(),
+            DuplicateSequence { .. } => "names several blocks".to_string(),
             NotExpandable => "kept".to_string(),
             CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
                 "this cycle".to_string()
@@ -544,12 +550,12 @@ impl DiagnosticKind {
                  tool angle 80, 60, 55, 30, 29 or 00; Haas `P` is 1-4 and `A` 0-120"
                     .to_string(),
             ),
-            MissingSequence { number } => Some(format!("number the profile's first and last blocks `N{number}`, or correct P/Q")),
+            MissingSequence { number } => Some(format!("number the block this word means `N{number}`, or correct the number")),
             DuplicateSequence { .. } => Some("P and Q must each name exactly one block; renumber the others".to_string()),
             RunawayProgram { .. } => Some("check the loop's condition and the variables it changes".to_string()),
             UnmatchedLoop { .. } => None,
             MissingLabel { .. } => None,
-            MissingProgram { .. } => Some("the subprogram must be in the same file".to_string()),
+            MissingProgram { .. } => Some("to simulate its moves, add the subprogram to the file".to_string()),
             CallsTooDeep { .. } => Some("a subprogram probably calls itself".to_string()),
             NoFeed => Some("program F before the first feed move (and S for feed per revolution)".to_string()),
             ArcRadiusTooSmall { .. } => Some("check the end point and the radius; R must be at least half the chord".to_string()),

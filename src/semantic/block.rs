@@ -66,8 +66,13 @@ impl Interpreter<'_, '_> {
         for &(_, info) in &codes {
             self.apply_modal(info);
         }
-        // F: the modal feed, except in the multiple repetitive cycles, whose F is their own.
-        let cycle_feed = matches!(command.and_then(|c| c.function), Some(f) if is_repetitive_cycle(f));
+        // F: the modal feed, except in the multiple repetitive cycles, whose F is their own
+        // (a thread lead, a grooving feed). The F and S of the Fanuc stock-removal and
+        // finishing cycles are ordinary modal words: the cycle cuts at them and they stay in
+        // effect after it, which is how `G70 P Q` with no F of its own finishes at the
+        // roughing cycle's F.
+        let cycle_feed =
+            matches!(command.and_then(|c| c.function), Some(f) if is_repetitive_cycle(f) && !sets_modal_feed(f));
         if !cycle_feed && let Some(feed) = self.address_value(&words, Address::F) {
             self.modal.feed = feed;
         }
@@ -326,6 +331,17 @@ fn is_repetitive_cycle(function: GFunction) -> bool {
             | GFunction::ThreadSingleFace
             | GFunction::ThreadSingleLeadIncreasing
             | GFunction::ThreadSingleLeadDecreasing
+    )
+}
+
+/// The multiple repetitive cycles whose F and S are the modal feed and speed.
+fn sets_modal_feed(function: GFunction) -> bool {
+    matches!(
+        function,
+        GFunction::Finishing
+            | GFunction::StockRemovalTurning
+            | GFunction::StockRemovalFacing
+            | GFunction::PatternRepeat
     )
 }
 

@@ -112,6 +112,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             Flow::Next
         }
     };
+    // A cut of the cycle with no feed is the cycle's fault, reported on its block (not left
+    // for the next feed move to report).
+    interp.report_zero_feed(block.span);
     interp.emitter.context = Context { source: block.span, cycle: Span::SYNTHETIC };
     if interp.emitter.moves.len() > first_move || !consumed.is_empty() {
         interp.expansions.push(Expansion {

@@ -190,6 +190,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         }
         self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
         self.diagnostics.dedup();
+        // A system variable read as 0 is said once, where the program first reads it.
+        let mut unknown = std::collections::HashSet::new();
+        self.diagnostics.retain(|d| match &d.kind {
+            DiagnosticKind::SystemVariableUnknown { name } => unknown.insert(name.clone()),
+            _ => true,
+        });
         Lowered {
             toolpath,
             diagnostics: self.diagnostics,
@@ -418,7 +424,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         let key = labels::program_key(self.dialect, self.program.text(word.span));
         let target = self.labels.program(&key);
         if target.is_none() {
-            self.error(DiagnosticKind::MissingProgram { name: format!("O{key}") }, word.span);
+            self.warning(DiagnosticKind::MissingProgram { name: format!("O{key}") }, word.span);
         }
         let _ = index;
         target
@@ -495,7 +501,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             Some(target) => self.enter(index, target, count.max(1.0) as u32, Vec::new()),
             None => {
                 let span = self.program.block(index).span;
-                self.error(DiagnosticKind::MissingProgram { name: format!("O{key}") }, span);
+                self.warning(DiagnosticKind::MissingProgram { name: format!("O{key}") }, span);
                 Flow::Next
             }
         }

@@ -75,6 +75,7 @@ impl Interpreter<'_, '_> {
         let saved_first = self.emitter.first_start;
         let saved_len = self.emitter.moves.len();
         let saved_diagnostics = self.diagnostics.len();
+        let saved_zero_feed = self.emitter.zero_feed;
         self.emitter.at = start;
 
         let mut first_block_has_both_axes = false;
@@ -145,22 +146,18 @@ impl Interpreter<'_, '_> {
         let modal_after = self.modal.clone();
 
         // Problems inside the profile are the profile's; keep them, drop the scratch moves.
+        // Except a missing feed: the scratch moves' times are thrown away, and the F of a
+        // profile usually comes from its cycle (roughing uses the cycle's F, finishing the
+        // profile's own or the cycle's), so the cycles that cut report a missing feed.
+        let raised = self.diagnostics.split_off(saved_diagnostics);
+        self.diagnostics.extend(raised.into_iter().filter(|d| d.kind != DiagnosticKind::NoFeed));
+        self.emitter.zero_feed = saved_zero_feed;
         self.emitter.moves.truncate(saved_len);
         self.emitter.at = saved_at;
         self.emitter.time = saved_time;
         self.emitter.context = saved_context;
         self.emitter.first_start = saved_first;
         self.modal = saved_modal;
-        // A profile needs no feed of its own: the cycle that uses it supplies one, and
-        // G70 reports a missing feed when it cuts.
-        let mut index = saved_diagnostics;
-        while index < self.diagnostics.len() {
-            if self.diagnostics[index].kind == DiagnosticKind::NoFeed {
-                self.diagnostics.remove(index);
-            } else {
-                index += 1;
-            }
-        }
         if let Some(diagnostic) = failure {
             return Err(diagnostic);
         }

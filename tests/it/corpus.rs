@@ -12,28 +12,45 @@ use turnpass::syntax::{ParseOptions, Statement, parse};
 
 use crate::support::{check_spans, render, repo, with_snapshots};
 
+/// `tests/corpus.toml`: the corpus programs, and the thesis examples the semantic test
+/// lowers with them.
 #[derive(Deserialize)]
-struct Manifest {
-    file: Vec<Entry>,
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    pub file: Vec<Entry>,
+    #[serde(default)]
+    pub example: Vec<Entry>,
 }
 
 #[derive(Deserialize)]
-struct Entry {
-    path: String,
-    dialect: String,
+#[serde(deny_unknown_fields)]
+pub struct Entry {
+    pub path: String,
+    pub dialect: String,
     #[serde(default)]
-    gcode_system: Option<String>,
+    pub gcode_system: Option<String>,
+    /// The machine model file, relative to the repository.
+    pub machine: String,
+    /// Errors of the parse.
     #[serde(default)]
-    faults: Vec<Fault>,
+    pub faults: Vec<Fault>,
+    /// Errors of the semantic pass.
+    #[serde(default)]
+    pub lowering_faults: Vec<Fault>,
 }
 
-#[derive(Deserialize, PartialEq, Debug)]
-struct Fault {
-    line: usize,
-    code: String,
+#[derive(Deserialize, PartialEq, Debug, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct Fault {
+    pub line: usize,
+    pub code: String,
 }
 
-fn corpus_dir() -> PathBuf {
+pub fn manifest() -> Manifest {
+    toml::from_str(&std::fs::read_to_string(repo().join("tests/corpus.toml")).unwrap()).unwrap()
+}
+
+pub fn corpus_dir() -> PathBuf {
     let dir = repo().join("../shared/corpus");
     assert!(dir.is_dir(), "the corpus is read in place from {}; it is missing", dir.display());
     dir
@@ -53,8 +70,7 @@ fn programs(dir: &Path, out: &mut Vec<String>, root: &Path) {
 #[test]
 fn every_corpus_program_parses_prints_back_and_reports_only_its_real_faults() {
     let dir = corpus_dir();
-    let manifest: Manifest =
-        toml::from_str(&std::fs::read_to_string(repo().join("tests/corpus.toml")).unwrap()).unwrap();
+    let manifest = manifest();
     let mut found = Vec::new();
     programs(&dir, &mut found, &dir);
     found.sort();

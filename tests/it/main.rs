@@ -7,6 +7,7 @@
 
 mod cli;
 mod corpus;
+mod corpus_semantic;
 mod cycles;
 mod differential;
 mod lap;

@@ -127,7 +127,7 @@ fn run_case(path: &Path) -> String {
 }
 
 /// The `expand` output, after checking that it moves the tool as the original does.
-fn expand_and_compare(
+pub fn expand_and_compare(
     path: &Path,
     program: &turnpass::syntax::Program<'_>,
     machine: &Machine,

@@ -41,8 +41,12 @@ impl Interpreter<'_, '_> {
     ) -> Option<Profile> {
         let p = self.param(command, Role::ProfileStart)?;
         let q = self.param(command, Role::ProfileEnd)?;
-        let first = self.sequence_block(p, span)?;
-        let last = self.sequence_block(q, span)?;
+        // Each word that names no block (or several) is reported on itself.
+        let word_span = |role| command.param(role).map_or(span, |id| self.program.word(id).span);
+        let (p_span, q_span) = (word_span(Role::ProfileStart), word_span(Role::ProfileEnd));
+        let first = self.sequence_block(p, p_span);
+        let last = self.sequence_block(q, q_span);
+        let (first, last) = (first?, last?);
         if last < first {
             self.error(crate::diagnostic::DiagnosticKind::ProfileBackwards, span);
             return None;

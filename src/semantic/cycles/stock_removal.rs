@@ -26,7 +26,9 @@
 //! before it retracts, and enters a pocket from the safe level of A.
 //!
 //! F, S and T inside P…Q are for finishing (`G70`); roughing uses the cycle's own F. After
-//! the cycle the program continues after the Q block: the profile is a definition.
+//! the cycle the program continues after the Q block: the profile is a definition. Lines at
+//! the end of the profile that leave the part back toward the start point, outside the stock
+//! (Haas profiles end `N20 G00 G40 Z0.1`), are not part of the shape the passes cut.
 
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::{GFunction, Role};
@@ -35,7 +37,7 @@ use crate::syntax::Command;
 use crate::toolpath::Xz;
 
 use super::super::interpreter::{Flow, Interpreter};
-use super::super::profile::Profile;
+use super::super::profile::{Profile, Shape};
 use super::canonical::{self, Canon, Element, Uv};
 
 /// The retract when neither the program nor its first block gives one (Fanuc's usual
@@ -113,6 +115,7 @@ pub(super) fn run(
     let feed = interp.param(command, Role::Feed).unwrap_or(interp.modal.feed);
     let speed = interp.param(command, Role::Speed);
     let rough = Rough { depth, retract, allowance, type_ii, feed, speed, facing };
+    let profile = without_exit(&profile, start, allowance, facing);
     if let Err(kind) = rough.cut(interp, &profile, start, span) {
         interp.error(kind, span);
     }
@@ -124,6 +127,35 @@ pub(super) fn run(
         interp.modal.speed = s;
     }
     after_q
+}
+
+/// The profile without its exit: the lines at its end that lie wholly at or beyond the
+/// start point's level (outside the stock, allowance included) and run back toward the start
+/// point, as in the Haas profiles that end `N20 G00 G40 Z0.1` (the NIMS template,
+/// nims1001.nc, teaches it). No pass reaches them and the cycle returns to the start point
+/// itself after its final pass; read as part of the shape, they would turn the profile back
+/// along the cut. `G70` still runs them.
+fn without_exit(profile: &Profile, start: Xz, allowance: Xz, facing: bool) -> Profile {
+    let Some(first) = profile.segments.first() else { return profile.clone() };
+    let mirror_u = if facing { start.z < first.end.z } else { start.x < first.end.x };
+    let level = Canon { swap: facing, mirror_u, mirror_v: false };
+    let a = level.to(start);
+    let shifted = |p: Xz| level.to(Xz::new(p.x + allowance.x, p.z + allowance.z));
+    // The approach and at least one element of the shape stay.
+    let mut keep = profile.segments.len();
+    while keep > 2 {
+        let (from, last) = (shifted(profile.segments[keep - 2].end), profile.segments[keep - 1]);
+        let to = shifted(last.end);
+        let outside = from.u >= a.u - 1e-9 && to.u >= a.u - 1e-9;
+        let back = (to.v - a.v).abs() < (from.v - a.v).abs() - 1e-9;
+        if !(outside && back && last.shape == Shape::Line) {
+            break;
+        }
+        keep -= 1;
+    }
+    let mut trimmed = profile.clone();
+    trimmed.segments.truncate(keep);
+    trimmed
 }
 
 struct Rough {
