@@ -15,7 +15,7 @@
 //!   shoulder; on the falling side of a pocket even a contour translated by (U, W) dips into
 //!   the part, so pockets are left out of this check); the last pass is the offset contour;
 //!   the tool ends at the start point.
-//! - `G87`: the approach and then exactly the contour, then the return to the start point.
+//! - `G87`: the approach and then exactly the contour; the tool stays at the contour's end.
 //! - `G85` and `G86`: pass N starts at M-P195's infeed point, `Xp = Xs − N·D` on the line
 //!   from the start point to the contour's start plus allowance (`Zp`); `G86`'s last pass
 //!   starts at that contour start.
@@ -393,13 +393,13 @@ proptest! {
         check_starts(&pass_starts(&case, from, &copy, offset.len(), true), &copy_starts, "G86")?;
         prop_assert!(close(copy.last().unwrap().end, start));
 
-        // G87: the approach, then exactly the contour, then back to A.
+        // G87: the approach, then exactly the contour, ending there.
         let (_, finish) = cycle_moves(&parsed.program, moves, call_line + 2);
         let cut = last_cut(&finish, case.elements.len() + 1);
         let approach = cut[0];
         prop_assert_eq!(approach.motion, if case.g01_first { Motion::Feed } else { Motion::Rapid });
         prop_assert!(close(approach.end, case.point(case.contour_start())));
         check_elements(&case, &cut[1..], &case.elements)?;
-        prop_assert!(close(finish.last().unwrap().end, start));
+        prop_assert!(close(finish.last().unwrap().end, case.point(case.elements.last().unwrap().end)));
     }
 }

@@ -8,7 +8,7 @@ $LAPM.MIN%
 (X50 at Z-23.9091, X44 at Z-21.1818, X38 at Z-18.4545, X32 at Z-15.7273.)
 (M85: no return; the tool stays at X52.4 Z-40 and the program retracts itself.)
 (G87 from X70 Z5 with T020202: G00 X30 at Z5, G01 Z-15 and X52 Z-25 at F0.2,)
-(Z-40 at F0.1 S180; then back Z5 first, then X70.)
+(Z-40 at F0.1 S180, where the tool stays.)
 NLAP1 G81
 G00 X30
 G01 Z-15 F0.2
