@@ -10,7 +10,7 @@
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::{Address, Code, Dialect, GFunction};
 use crate::printer::{Edits, NewBlock, NewWord};
-use crate::semantic::{Frame, Lowered};
+use crate::semantic::{Frame, Lowered, ModalAfter};
 use crate::syntax::{CodeLetter, Number, Program, Statement, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
@@ -45,6 +45,9 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             .checked_sub(1)
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
+        // S in force before the cycle's block: the written blocks give S where it changes
+        // (the cycle block's own S included, since the block is replaced).
+        let speed_before = Some(expansion.before.s_word).filter(|s| *s > 0.0);
         let mut writer = BlockWriter {
             frame,
             places,
@@ -54,6 +57,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             compensation_codes,
             motion: None,
             feed: None,
+            speed: speed_before,
             compensation: compensation_before,
         };
         if thread_code.is_none() && moves.iter().any(|m| m.threading) {
@@ -71,7 +75,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             }
             continue;
         }
-        let blocks: Vec<NewBlock> = moves
+        let mut blocks: Vec<NewBlock> = moves
             .iter()
             .map(|m| {
                 let block = writer.block(start, m);
@@ -79,6 +83,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
                 block
             })
             .collect();
+        blocks.extend(writer.restore(&expansion.after));
         edits.replace(expansion.block, blocks);
         delete_consumed(&mut edits, program, expansion, &calls);
     }
@@ -143,6 +148,7 @@ struct BlockWriter {
     /// The last motion code written (`None` before the first), and whether it was a thread.
     motion: Option<(Motion, bool)>,
     feed: Option<f64>,
+    speed: Option<f64>,
     compensation: Compensation,
 }
 
@@ -151,6 +157,35 @@ impl BlockWriter {
         let scale = 10f64.powi(self.places as i32);
         let mantissa = (value * scale).round() as i64;
         Number::new(mantissa, self.places, true)
+    }
+
+    /// A block that puts back the modal motion code, F and S the original program has after
+    /// the cycle, where the written blocks left others in force (a `G01 F0.25` from a
+    /// roughing pass would otherwise carry into the blocks after the call).
+    fn restore(&mut self, after: &ModalAfter) -> Option<NewBlock> {
+        let mut words = Vec::new();
+        if let Some(motion) = after.motion
+            && self.motion.is_some_and(|written| written != (motion, false))
+        {
+            let code = match motion {
+                Motion::Rapid => 0,
+                Motion::Feed => 1,
+                Motion::Cw => 2,
+                Motion::Ccw => 3,
+                Motion::Dwell => return None,
+            };
+            words.push(NewWord::Code(CodeLetter::G, Code::whole(code)));
+            self.motion = Some((motion, false));
+        }
+        if after.f_word > 0.0 && self.feed.is_some_and(|f| f != after.f_word) {
+            words.push(NewWord::Number(Address::F, feed_number(after.f_word)));
+            self.feed = Some(after.f_word);
+        }
+        if after.s_word > 0.0 && self.speed.is_some_and(|s| s != after.s_word) {
+            words.push(NewWord::Number(Address::S, feed_number(after.s_word)));
+            self.speed = Some(after.s_word);
+        }
+        (!words.is_empty()).then(|| NewBlock::new(words))
     }
 
     fn block(&mut self, start: Xz, m: &Move) -> NewBlock {
@@ -203,14 +238,19 @@ impl BlockWriter {
             words.push(NewWord::Number(Address::F, feed_number(m.f_word)));
             self.feed = Some(m.f_word);
         }
+        if m.s_word > 0.0 && self.speed != Some(m.s_word) {
+            words.push(NewWord::Number(Address::S, feed_number(m.s_word)));
+            self.speed = Some(m.s_word);
+        }
         NewBlock::new(words)
     }
 }
 
-/// A feed written with the digits it needs (up to six decimals).
+/// A feed, speed or thread lead written with the digits it needs: up to eight decimals, as
+/// an inch thread lead such as `F0.07692308` (13 threads per inch) needs.
 fn feed_number(value: f64) -> Number {
     let mut scale = 0u8;
-    while scale < 6 && ((value * 10f64.powi(scale as i32)).round() - value * 10f64.powi(scale as i32)).abs() > 1e-9 {
+    while scale < 8 && ((value * 10f64.powi(scale as i32)).round() - value * 10f64.powi(scale as i32)).abs() > 1e-9 {
         scale += 1;
     }
     Number::new((value * 10f64.powi(scale as i32)).round() as i64, scale, true)

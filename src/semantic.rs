@@ -127,6 +127,34 @@ pub struct Expansion {
     pub frame: Frame,
     pub consumed: Vec<usize>,
     pub moves: std::ops::Range<usize>,
+    /// The modal words in force before the call, and after it: the expanded blocks must
+    /// leave the latter behind so that the blocks after them run as before.
+    pub before: ModalAfter,
+    pub after: ModalAfter,
+}
+
+/// The modal words a cycle leaves in force: the motion code (when it is a plain one; after
+/// a single cycle the blocks that rely on it are repetitions, expanded themselves), and F
+/// and S as the program writes them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModalAfter {
+    pub motion: Option<crate::toolpath::Motion>,
+    pub f_word: f64,
+    pub s_word: f64,
+}
+
+impl ModalAfter {
+    pub(crate) fn of(modal: &modal::Modal) -> ModalAfter {
+        use crate::toolpath::Motion;
+        let motion = match modal.motion {
+            modal::MotionMode::Rapid => Some(Motion::Rapid),
+            modal::MotionMode::Linear => Some(Motion::Feed),
+            modal::MotionMode::Cw => Some(Motion::Cw),
+            modal::MotionMode::Ccw => Some(Motion::Ccw),
+            _ => None,
+        };
+        ModalAfter { motion, f_word: modal.feed, s_word: modal.speed }
+    }
 }
 
 /// The result of lowering: the toolpath (not yet validated), what went wrong, and where the

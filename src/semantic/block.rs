@@ -73,7 +73,21 @@ impl Interpreter<'_, '_> {
         // roughing cycle's F.
         let cycle_feed =
             matches!(command.and_then(|c| c.function), Some(f) if is_repetitive_cycle(f) && !sets_modal_feed(f));
-        if !cycle_feed && let Some(feed) = self.address_value(&words, Address::F) {
+        // OSP writes the dwell time as F (`G04 F5`): that F is no feed.
+        let dwell_in_f = match block.statement {
+            Statement::Dwell(id) => self.program.command(id).params.iter().any(|p| {
+                p.role == crate::dialect::Role::DwellSeconds
+                    && matches!(
+                        self.program.word(p.word).kind,
+                        WordKind::Number { address: Address::F, .. } | WordKind::Expr { address: Address::F, .. }
+                    )
+            }),
+            _ => false,
+        };
+        if !cycle_feed
+            && !dwell_in_f
+            && let Some(feed) = self.address_value(&words, Address::F)
+        {
             self.modal.feed = feed;
         }
         // S: a spindle clamp with G50/G92, otherwise the speed.

@@ -122,6 +122,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             frame: interp.modal.frame,
             consumed,
             moves: first_move..interp.emitter.moves.len(),
+            before: interp.modal_before_block,
+            after: crate::semantic::ModalAfter::of(&interp.modal),
         });
     }
     flow

@@ -81,6 +81,9 @@ pub(super) struct Interpreter<'p, 'src> {
     pub pending_corner: Option<super::motion::PendingCorner>,
     /// Blocks a cycle consumed (a LAP contour right after its call): the flow skips them.
     pub skip_to: Option<usize>,
+    /// The modal words in force before the block being executed (for `expand`, which
+    /// replaces a cycle's block, words and all).
+    pub modal_before_block: super::ModalAfter,
     calls: Vec<Call>,
     /// Fanuc `WHILE` blocks being looped, with their loop number.
     loops: Vec<(usize, u32)>,
@@ -124,6 +127,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             modal_call: None,
             pending_corner: None,
             skip_to: None,
+            modal_before_block: super::ModalAfter { motion: None, f_word: 0.0, s_word: 0.0 },
             calls: Vec::new(),
             loops: Vec::new(),
             executed: 0,
@@ -211,6 +215,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
 
     /// Run one block.
     fn execute(&mut self, index: usize) -> Flow {
+        self.modal_before_block = super::ModalAfter::of(&self.modal);
         let block = self.program.block(index);
         let words = self.program.words_of(block);
         if self.options.block_delete && words.iter().any(|w| matches!(w.kind, WordKind::BlockDelete { .. })) {

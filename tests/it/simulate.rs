@@ -151,14 +151,17 @@ pub fn expand_and_compare(
     assert!(!again.diagnostics.iter().any(|d| d.is_error()), "{}: expanded program lowers with errors", path.display());
     // Expansion rounds to the least increment, and rapids of zero length vanish.
     let tolerance = machine.increment * machine.scale() * 1.01;
-    let points = |t: &Toolpath| -> Vec<(Motion, bool, f64, f64)> {
+    // Each move's kind, end point, and the F and S words in force (as written), so that an
+    // expansion that leaves another feed or speed in force for later blocks shows.
+    let points = |t: &Toolpath| -> Vec<(Motion, bool, f64, f64, f64, f64)> {
         let mut out = Vec::new();
         let mut at = t.start;
         for m in &t.moves {
             if m.motion == Motion::Dwell || (m.end.distance(at) <= tolerance && !m.is_arc()) {
                 continue;
             }
-            out.push((m.motion, m.threading, m.end.x, m.end.z));
+            let f_word = if m.motion == Motion::Rapid { 0.0 } else { m.f_word };
+            out.push((m.motion, m.threading, m.end.x, m.end.z, f_word, m.s_word));
             at = m.end;
         }
         out
@@ -167,7 +170,12 @@ pub fn expand_and_compare(
     assert_eq!(a.len(), b.len(), "{}: the expanded program has a different number of moves", path.display());
     for (i, (p, q)) in a.iter().zip(&b).enumerate() {
         assert!(
-            p.0 == q.0 && p.1 == q.1 && (p.2 - q.2).abs() <= tolerance && (p.3 - q.3).abs() <= tolerance,
+            p.0 == q.0
+                && p.1 == q.1
+                && (p.2 - q.2).abs() <= tolerance
+                && (p.3 - q.3).abs() <= tolerance
+                && (p.4 - q.4).abs() <= 1e-9
+                && (p.5 - q.5).abs() <= 1e-9,
             "{}: move {i} differs after expansion: {p:?} vs {q:?}",
             path.display()
         );

@@ -7,6 +7,7 @@ use crate::syntax::Command;
 use crate::toolpath::Xz;
 
 use super::super::interpreter::{Flow, Interpreter};
+use super::super::modal::MotionMode;
 use super::super::profile::{Profile, Shape};
 
 pub(super) fn run(
@@ -77,9 +78,22 @@ impl Interpreter<'_, '_> {
                 Shape::Arc { centre, ccw } => self.emitter.arc(&modal, segment.end, centre, ccw, true),
             }
         }
-        let compensation = self.modal.compensation;
+        // The profile's blocks ran: their motion code, F, S and compensation stay in force
+        // after the cycle, as after any executed block.
+        let (feed, speed, compensation) = (self.modal.feed, self.modal.speed, self.modal.compensation);
+        let motion = profile.segments.last().map(|segment| match segment.shape {
+            _ if segment.rapid => MotionMode::Rapid,
+            Shape::Line => MotionMode::Linear,
+            Shape::Arc { ccw: true, .. } => MotionMode::Ccw,
+            Shape::Arc { ccw: false, .. } => MotionMode::Cw,
+        });
         self.modal = saved;
+        self.modal.feed = feed;
+        self.modal.speed = speed;
         self.modal.compensation = compensation;
+        if let Some(motion) = motion {
+            self.modal.motion = motion;
+        }
         let span = self.emitter.context.source;
         self.report_zero_feed(span);
     }

@@ -71,6 +71,8 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         frame: interp.modal.frame,
         consumed: Vec::new(),
         moves: first_move..interp.emitter.moves.len(),
+        before: interp.modal_before_block,
+        after: crate::semantic::ModalAfter::of(&interp.modal),
     });
     Flow::Next
 }
