@@ -17,6 +17,7 @@ pub mod dialect;
 pub mod expand;
 pub mod geometry;
 pub mod machine;
+mod memory;
 pub mod printer;
 pub mod semantic;
 pub mod simulation;

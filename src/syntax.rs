@@ -82,8 +82,8 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
         // Lines average 20-30 bytes and words 6-8 bytes in real and generated programs;
         // reserving a little more than that avoids regrowth (which would lose the huge-page
         // advice below); what is not used is never touched, and is given back at the end.
-        blocks: huge_page_vec(source.len() / 16 + 1),
-        words: huge_page_vec(source.len() / 6 + 1),
+        blocks: crate::memory::huge_page_vec(source.len() / 16 + 1),
+        words: crate::memory::huge_page_vec(source.len() / 6 + 1),
         exprs: Vec::new(),
         commands: Vec::new(),
     };
@@ -96,33 +96,6 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
     program.exprs.shrink_to_fit();
     diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
     Parsed { program, diagnostics, detection }
-}
-
-/// A vector with room for `capacity` items whose memory, when it is large, is backed by
-/// transparent huge pages where the system allows it (Linux `madvise`). A 50 MB program
-/// builds a 200 MB AST; with 4 KiB pages the kernel takes tens of thousands of faults to
-/// hand it over, a quarter of the parse time.
-fn huge_page_vec<T>(capacity: usize) -> Vec<T> {
-    let vec = Vec::with_capacity(capacity);
-    #[cfg(target_os = "linux")]
-    {
-        const PAGE: usize = 4096;
-        let start = vec.as_ptr() as usize;
-        let end = start + vec.capacity() * std::mem::size_of::<T>();
-        // madvise wants page-aligned addresses; the allocator's header shares the first page.
-        let aligned_start = start.div_ceil(PAGE) * PAGE;
-        let aligned_end = end / PAGE * PAGE;
-        if aligned_end > aligned_start && aligned_end - aligned_start >= 4 << 20 {
-            // SAFETY: the range lies inside the vector's own allocation, which stays alive for
-            // the call; MADV_HUGEPAGE is advice about how to back the pages and changes no
-            // contents. A failure (no THP support) leaves ordinary pages, which is fine.
-            unsafe {
-                let _ =
-                    libc::madvise(aligned_start as *mut libc::c_void, aligned_end - aligned_start, libc::MADV_HUGEPAGE);
-            }
-        }
-    }
-    vec
 }
 
 fn detection_diagnostics(detection: &Detection) -> Vec<Diagnostic> {

@@ -46,9 +46,10 @@ pub struct Emitter {
 const SIMPSON_INTERVALS: usize = 16;
 
 impl Emitter {
-    pub fn new(start: Xz, rapid: Xz) -> Emitter {
+    /// An emitter at `start`, with room for about `expected_moves` before it grows.
+    pub fn new(start: Xz, rapid: Xz, expected_moves: usize) -> Emitter {
         Emitter {
-            moves: Vec::new(),
+            moves: crate::memory::huge_page_vec(expected_moves.max(64)),
             time: 0.0,
             at: start,
             rapid,

@@ -118,7 +118,8 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             machine,
             options,
             modal,
-            emitter: Emitter::new(start, machine.rapid),
+            // Most blocks make one move; cycles make many more, and the vector grows for them.
+            emitter: Emitter::new(start, machine.rapid, program.blocks().len()),
             variables: Variables::default(),
             labels: Labels::new(program),
             diagnostics: Vec::new(),

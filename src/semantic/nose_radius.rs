@@ -129,18 +129,27 @@ impl Setup {
 #[derive(Debug, Clone, PartialEq)]
 pub struct MoveMap {
     /// For each old move, the new index of the first move it became; then the new length.
+    /// Empty when nothing was inserted (the common case, kept free of a per-move table).
     first: Vec<usize>,
+    /// The number of moves, for the identity map.
+    len: usize,
 }
 
 impl MoveMap {
     /// Nothing inserted into a toolpath of `len` moves.
     pub fn identity(len: usize) -> MoveMap {
-        MoveMap { first: (0..=len).collect() }
+        MoveMap { first: Vec::new(), len }
     }
 
     /// The new range of the moves an old range held (indices past the end map to the end).
     pub fn range(&self, old: Range<usize>) -> Range<usize> {
-        let at = |k: usize| self.first.get(k).or(self.first.last()).copied().unwrap_or(0);
+        let at = |k: usize| {
+            if self.first.is_empty() {
+                k.min(self.len)
+            } else {
+                self.first.get(k).or(self.first.last()).copied().unwrap_or(0)
+            }
+        };
         let start = at(old.start);
         start..at(old.end).max(start)
     }
@@ -351,9 +360,10 @@ fn merge(toolpath: &mut Toolpath, inserted: Vec<(usize, Move)>) -> MoveMap {
         moves.push(m);
     }
     first.push(moves.len());
+    let len = moves.len();
     toolpath.moves = moves;
     stand_dwells(toolpath);
-    MoveMap { first }
+    MoveMap { first, len }
 }
 
 /// A dwell stands where the tool is: where the move before it ended (an offset point
