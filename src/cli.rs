@@ -360,17 +360,10 @@ fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
     Ok(if parsed.has_errors() { ExitCode::from(1) } else { ExitCode::SUCCESS })
 }
 
-/// Parse and lower a program; diagnostics go to standard error. Returns the program text,
-/// the parse, the lowering and whether anything was an error.
-fn lower_file(
-    path: &Path,
-    read: &ReadArgs,
-    run: &RunArgs,
-    compensation: bool,
-) -> Result<(Vec<u8>, Resolved), CliError> {
+/// A program's bytes and the settings it is read with.
+fn read_program(path: &Path, read: &ReadArgs) -> Result<(Vec<u8>, Resolved), CliError> {
     let resolved = resolve(read, path)?;
     let bytes = read_input(path)?;
-    let _ = (run, compensation);
     Ok((bytes, resolved))
 }
 
@@ -393,7 +386,7 @@ fn report(name: &str, bytes: &[u8], diagnostics: &[turnpass::diagnostic::Diagnos
 }
 
 fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
-    let (bytes, resolved) = lower_file(&args.file, &args.read, &args.run, false)?;
+    let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);
     if !semantic::lowers(&parsed.program) {
@@ -424,7 +417,7 @@ fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
 }
 
 fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
-    let (bytes, resolved) = lower_file(&args.file, &args.read, &args.run, true)?;
+    let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);
     if !semantic::lowers(&parsed.program) {
