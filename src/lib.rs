@@ -14,6 +14,7 @@
 
 pub mod diagnostic;
 pub mod dialect;
+pub mod error_model;
 pub mod expand;
 pub mod geometry;
 pub mod machine;

@@ -1,0 +1,67 @@
+//! The machine error model: where the tool really is when the control commands a point.
+//!
+//! A model is the sum of small displacements (actual tool position − commanded, mm, X as a
+//! radius), each a function of the commanded point and of the machine's state at that
+//! moment: the time since the machine started (thermal growth), the direction each axis
+//! last moved in (backlash), the velocity (servo lag), the travel since an axis reversed
+//! (reversal spikes), the cut length since the tool was set (wear) and the surface normal
+//! (nose radius). Two kinds of terms add up:
+//!
+//! * measured axis tables (`interferometer.rs`): linear positioning, straightness and
+//!   angular errors of each slide in ISO 230-2 form, composed with the homogeneous
+//!   transformation of the thesis' eq. 8.6–8.12 (`htm.rs`);
+//! * parametric effects (`effects/`, one file each), read from `[[effect]]` tables.
+//!
+//! Errors are micrometres on positions of hundreds of millimetres, so first-order
+//! superposition is exact to far below the least increment; `htm.rs` keeps the one
+//! second-order product the thesis' matrix has.
+
+pub mod effects;
+pub mod htm;
+pub mod interferometer;
+pub mod model_file;
+pub mod state;
+
+pub use effects::Effect;
+pub use state::{Sample, Tracker};
+
+use crate::toolpath::Xz;
+
+/// A machine's error model.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ErrorModel {
+    /// The measured slides, when the model has interferometer tables.
+    pub tables: Option<htm::AxisTables>,
+    pub effects: Vec<Effect>,
+    /// Minutes since the machine started when the program starts (thermal effects).
+    pub start_min: f64,
+}
+
+impl ErrorModel {
+    /// The displacement of the tool at `sample`: actual − commanded, mm, X as a radius.
+    pub fn displacement(&self, sample: &Sample) -> Xz {
+        let mut d = match &self.tables {
+            Some(tables) => tables.displacement(sample),
+            None => Xz::new(0.0, 0.0),
+        };
+        for effect in &self.effects {
+            let e = effect.displacement(sample);
+            d = Xz::new(d.x + e.x, d.z + e.z);
+        }
+        d
+    }
+
+    /// Where the tool really goes when `sample.at` is commanded.
+    pub fn actual(&self, sample: &Sample) -> Xz {
+        let d = self.displacement(sample);
+        Xz::new(sample.at.x + d.x, sample.at.z + d.z)
+    }
+
+    /// Whether the model has any term (an empty model moves nothing).
+    pub fn is_empty(&self) -> bool {
+        self.tables.is_none() && self.effects.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests;

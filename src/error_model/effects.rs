@@ -1,0 +1,168 @@
+//! The parametric effects of the model's `[[effect]]` tables, one file each. Every effect
+//! is a displacement of the tool (actual − commanded, mm, X as a radius) as a function of a
+//! `Sample`; `kind` in the table names it and the other keys are its parameters, exactly:
+//!
+//! ```toml
+//! [[effect]]
+//! kind = "backlash_x"
+//! b = 0.004
+//! ```
+
+pub mod backlash_x;
+pub mod backlash_z;
+pub mod cyclic_x;
+pub mod cyclic_z;
+pub mod nose_radius;
+pub mod reversal_spike_x;
+pub mod reversal_spike_z;
+pub mod scale_x;
+pub mod scale_z;
+pub mod servo_mismatch;
+pub mod squareness;
+pub mod straightness_x;
+pub mod straightness_z;
+pub mod thermal_x;
+pub mod thermal_z;
+pub mod tool_offset_x;
+pub mod tool_offset_z;
+pub mod tool_wear;
+
+pub use backlash_x::BacklashX;
+pub use backlash_z::BacklashZ;
+pub use cyclic_x::CyclicX;
+pub use cyclic_z::CyclicZ;
+pub use nose_radius::NoseRadius;
+pub use reversal_spike_x::ReversalSpikeX;
+pub use reversal_spike_z::ReversalSpikeZ;
+pub use scale_x::ScaleX;
+pub use scale_z::ScaleZ;
+pub use servo_mismatch::ServoMismatch;
+pub use squareness::Squareness;
+pub use straightness_x::StraightnessX;
+pub use straightness_z::StraightnessZ;
+pub use thermal_x::ThermalX;
+pub use thermal_z::ThermalZ;
+pub use tool_offset_x::ToolOffsetX;
+pub use tool_offset_z::ToolOffsetZ;
+pub use tool_wear::ToolWear;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error_model::Sample;
+use crate::toolpath::Xz;
+
+/// One parametric effect.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Effect {
+    ToolOffsetX(ToolOffsetX),
+    ToolOffsetZ(ToolOffsetZ),
+    ScaleX(ScaleX),
+    ScaleZ(ScaleZ),
+    Squareness(Squareness),
+    BacklashX(BacklashX),
+    BacklashZ(BacklashZ),
+    CyclicX(CyclicX),
+    CyclicZ(CyclicZ),
+    ServoMismatch(ServoMismatch),
+    ThermalX(ThermalX),
+    ThermalZ(ThermalZ),
+    ToolWear(ToolWear),
+    ReversalSpikeX(ReversalSpikeX),
+    ReversalSpikeZ(ReversalSpikeZ),
+    StraightnessX(StraightnessX),
+    StraightnessZ(StraightnessZ),
+    NoseRadius(NoseRadius),
+}
+
+/// Every effect name, in catalogue order.
+pub const NAMES: [&str; 18] = [
+    "tool_offset_x",
+    "tool_offset_z",
+    "scale_x",
+    "scale_z",
+    "squareness",
+    "backlash_x",
+    "backlash_z",
+    "cyclic_x",
+    "cyclic_z",
+    "servo_mismatch",
+    "thermal_x",
+    "thermal_z",
+    "tool_wear",
+    "reversal_spike_x",
+    "reversal_spike_z",
+    "straightness_x",
+    "straightness_z",
+    "nose_radius",
+];
+
+impl Effect {
+    pub fn displacement(&self, s: &Sample) -> Xz {
+        match self {
+            Effect::ToolOffsetX(e) => e.displacement(s),
+            Effect::ToolOffsetZ(e) => e.displacement(s),
+            Effect::ScaleX(e) => e.displacement(s),
+            Effect::ScaleZ(e) => e.displacement(s),
+            Effect::Squareness(e) => e.displacement(s),
+            Effect::BacklashX(e) => e.displacement(s),
+            Effect::BacklashZ(e) => e.displacement(s),
+            Effect::CyclicX(e) => e.displacement(s),
+            Effect::CyclicZ(e) => e.displacement(s),
+            Effect::ServoMismatch(e) => e.displacement(s),
+            Effect::ThermalX(e) => e.displacement(s),
+            Effect::ThermalZ(e) => e.displacement(s),
+            Effect::ToolWear(e) => e.displacement(s),
+            Effect::ReversalSpikeX(e) => e.displacement(s),
+            Effect::ReversalSpikeZ(e) => e.displacement(s),
+            Effect::StraightnessX(e) => e.displacement(s),
+            Effect::StraightnessZ(e) => e.displacement(s),
+            Effect::NoseRadius(e) => e.displacement(s),
+        }
+    }
+
+    /// The effect's name as the model file writes it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Effect::ToolOffsetX(_) => "tool_offset_x",
+            Effect::ToolOffsetZ(_) => "tool_offset_z",
+            Effect::ScaleX(_) => "scale_x",
+            Effect::ScaleZ(_) => "scale_z",
+            Effect::Squareness(_) => "squareness",
+            Effect::BacklashX(_) => "backlash_x",
+            Effect::BacklashZ(_) => "backlash_z",
+            Effect::CyclicX(_) => "cyclic_x",
+            Effect::CyclicZ(_) => "cyclic_z",
+            Effect::ServoMismatch(_) => "servo_mismatch",
+            Effect::ThermalX(_) => "thermal_x",
+            Effect::ThermalZ(_) => "thermal_z",
+            Effect::ToolWear(_) => "tool_wear",
+            Effect::ReversalSpikeX(_) => "reversal_spike_x",
+            Effect::ReversalSpikeZ(_) => "reversal_spike_z",
+            Effect::StraightnessX(_) => "straightness_x",
+            Effect::StraightnessZ(_) => "straightness_z",
+            Effect::NoseRadius(_) => "nose_radius",
+        }
+    }
+}
+
+/// First-order warm-up growth: `amp · (1 − e^(−t/τ))`, nothing before the machine starts.
+pub(crate) fn warm_up(amp: f64, tau_min: f64, t_min: f64) -> f64 {
+    if t_min <= 0.0 || tau_min <= 0.0 {
+        return if tau_min <= 0.0 && t_min > 0.0 { amp } else { 0.0 };
+    }
+    amp * (1.0 - (-t_min / tau_min).exp())
+}
+
+/// A reversal spike: `h · direction · e^(−s/decay)`.
+pub(crate) fn spike(h: f64, decay_mm: f64, direction: i8, since_reversal: f64) -> f64 {
+    if decay_mm <= 0.0 || !since_reversal.is_finite() {
+        return 0.0;
+    }
+    h * f64::from(direction) * (-since_reversal / decay_mm).exp()
+}
+
+/// `Σ coeffs[k] · p^(k+2)`, by Horner's rule.
+pub(crate) fn bow(coeffs: &[f64], p: f64) -> f64 {
+    coeffs.iter().rev().fold(0.0, |acc, c| acc * p + c) * p * p
+}

@@ -1,0 +1,25 @@
+//! `reversal_spike_x {h, decay_mm}`: after X reverses, friction holds the slide back for
+//! a moment: `dx = h · d · e^(−s/decay)` with d the new direction of X and s the X travel
+//! since the reversal. One-sided, decaying with travel, at the X reversal points.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error_model::Sample;
+use crate::toolpath::Xz;
+
+use super::spike;
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReversalSpikeX {
+    /// Height at the reversal, mm.
+    pub h: f64,
+    /// Travel over which it falls by e, mm.
+    pub decay_mm: f64,
+}
+
+impl ReversalSpikeX {
+    pub fn displacement(&self, s: &Sample) -> Xz {
+        Xz::new(spike(self.h, self.decay_mm, s.direction.x, s.since_reversal.x), 0.0)
+    }
+}

@@ -1,0 +1,24 @@
+//! `reversal_spike_z {h, decay_mm}`: after Z reverses, `dz = h · d · e^(−s/decay)` with d
+//! the new direction of Z and s the Z travel since the reversal.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error_model::Sample;
+use crate::toolpath::Xz;
+
+use super::spike;
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReversalSpikeZ {
+    /// Height at the reversal, mm.
+    pub h: f64,
+    /// Travel over which it falls by e, mm.
+    pub decay_mm: f64,
+}
+
+impl ReversalSpikeZ {
+    pub fn displacement(&self, s: &Sample) -> Xz {
+        Xz::new(0.0, spike(self.h, self.decay_mm, s.direction.z, s.since_reversal.z))
+    }
+}

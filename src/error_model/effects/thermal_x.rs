@@ -1,0 +1,24 @@
+//! `thermal_x {amp, tau_min}`: first-order warm-up growth in X (eq. 5.1 of the thesis),
+//! `dx = amp · (1 − e^(−t/τ))`, t in minutes since the machine started.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error_model::Sample;
+use crate::toolpath::Xz;
+
+use super::warm_up;
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThermalX {
+    /// Growth at thermal equilibrium, mm.
+    pub amp: f64,
+    /// Time constant, minutes.
+    pub tau_min: f64,
+}
+
+impl ThermalX {
+    pub fn displacement(&self, s: &Sample) -> Xz {
+        Xz::new(warm_up(self.amp, self.tau_min, s.t_min), 0.0)
+    }
+}

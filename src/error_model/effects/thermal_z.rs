@@ -1,0 +1,24 @@
+//! `thermal_z {amp, tau_min}`: first-order warm-up growth in Z (eq. 5.1 of the thesis),
+//! `dz = amp · (1 − e^(−t/τ))`, t in minutes since the machine started.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error_model::Sample;
+use crate::toolpath::Xz;
+
+use super::warm_up;
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThermalZ {
+    /// Growth at thermal equilibrium, mm.
+    pub amp: f64,
+    /// Time constant, minutes.
+    pub tau_min: f64,
+}
+
+impl ThermalZ {
+    pub fn displacement(&self, s: &Sample) -> Xz {
+        Xz::new(0.0, warm_up(self.amp, self.tau_min, s.t_min))
+    }
+}

@@ -1,0 +1,290 @@
+//! Interferometer tables of one slide in the style of ISO 230-2 / ASME B5.57: for each
+//! target position, runs in each direction, with the linear positioning deviation and,
+//! where measured, the straightness and the angular error of the slide.
+//!
+//! The CSV has a header row; `target_mm` and `direction` (`up`/`down`, or `+`/`-`) are
+//! required, `run` is optional (repeated runs per target and direction), and each error is
+//! an optional column: `linear_mm`, `straightness_mm` (or the two runs of the reversal
+//! technique, `straightness_m1_mm` and `straightness_m2_mm`, reduced by eq. 2.7 of the
+//! thesis: `s = (m2 − m1)/2`), and `angular_deg`. Deviations are measured − target, mm.
+//!
+//! The model uses the mean deviation of the direction the slide moves in (the mean
+//! bidirectional deviation ± half the reversal value), interpolated linearly between
+//! targets and held at the end values beyond them. `report` gives the ISO 230-2 figures.
+
+use std::collections::BTreeMap;
+
+/// One measured quantity of a slide along its targets.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Profile {
+    /// Target positions, mm, ascending.
+    pub targets: Vec<f64>,
+    /// Mean deviation per target approaching upward, and downward.
+    pub up: Vec<f64>,
+    pub down: Vec<f64>,
+    /// Sample standard deviation per target and direction (0 with one run).
+    pub up_sigma: Vec<f64>,
+    pub down_sigma: Vec<f64>,
+}
+
+impl Profile {
+    /// The deviation at `position` for a slide last moving in `direction` (+1 up, −1 down).
+    pub fn at(&self, position: f64, direction: i8) -> f64 {
+        let values = if direction >= 0 { &self.up } else { &self.down };
+        interpolate(&self.targets, values, position)
+    }
+
+    /// The mean bidirectional deviation at `position`.
+    pub fn mean(&self, position: f64) -> f64 {
+        (self.at(position, 1) + self.at(position, -1)) / 2.0
+    }
+}
+
+fn interpolate(targets: &[f64], values: &[f64], position: f64) -> f64 {
+    let (Some(&first), Some(&last)) = (targets.first(), targets.last()) else { return 0.0 };
+    if position <= first {
+        return values[0];
+    }
+    if position >= last {
+        return values[values.len() - 1];
+    }
+    let k = targets.partition_point(|&t| t <= position).clamp(1, targets.len() - 1);
+    let (t0, t1) = (targets[k - 1], targets[k]);
+    let w = if t1 > t0 { (position - t0) / (t1 - t0) } else { 0.0 };
+    values[k - 1] + (values[k] - values[k - 1]) * w
+}
+
+/// The tables of one slide.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SlideTable {
+    pub linear: Option<Profile>,
+    pub straightness: Option<Profile>,
+    /// Angular error, radians.
+    pub angular: Option<Profile>,
+}
+
+impl SlideTable {
+    pub fn linear(&self, position: f64, direction: i8) -> f64 {
+        self.linear.as_ref().map_or(0.0, |p| p.at(position, direction))
+    }
+
+    pub fn straightness(&self, position: f64, direction: i8) -> f64 {
+        self.straightness.as_ref().map_or(0.0, |p| p.at(position, direction))
+    }
+
+    pub fn angular(&self, position: f64, direction: i8) -> f64 {
+        self.angular.as_ref().map_or(0.0, |p| p.at(position, direction))
+    }
+}
+
+/// A table that does not read.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TableError {
+    #[error("line {line}: {message}")]
+    Row { line: usize, message: String },
+    #[error("the table has no `{0}` column")]
+    MissingColumn(&'static str),
+    #[error("the table has no error column (linear_mm, straightness_mm, straightness_m1_mm/_m2_mm, angular_deg)")]
+    NoErrors,
+    #[error("the table has no rows")]
+    Empty,
+    #[error("{0}")]
+    Csv(String),
+}
+
+#[derive(Default)]
+struct Runs {
+    up: Vec<f64>,
+    down: Vec<f64>,
+}
+
+/// Read a slide's CSV table.
+pub fn parse(text: &str) -> Result<SlideTable, TableError> {
+    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
+    let headers = reader.headers().map_err(|e| TableError::Csv(e.to_string()))?.clone();
+    let column = |name: &str| headers.iter().position(|h| h == name);
+    let target = column("target_mm").ok_or(TableError::MissingColumn("target_mm"))?;
+    let direction = column("direction").ok_or(TableError::MissingColumn("direction"))?;
+    let quantities: [(&str, Option<usize>); 5] = [
+        ("linear_mm", column("linear_mm")),
+        ("straightness_mm", column("straightness_mm")),
+        ("straightness_m1_mm", column("straightness_m1_mm")),
+        ("straightness_m2_mm", column("straightness_m2_mm")),
+        ("angular_deg", column("angular_deg")),
+    ];
+    if quantities.iter().all(|(_, c)| c.is_none()) {
+        return Err(TableError::NoErrors);
+    }
+    // Per quantity, per target (keyed by its exact bits, in order), the runs each way.
+    let mut data: Vec<BTreeMap<OrderedTarget, Runs>> = (0..5).map(|_| BTreeMap::new()).collect();
+    for (index, record) in reader.records().enumerate() {
+        let line = index + 2;
+        let record = record.map_err(|e| TableError::Csv(e.to_string()))?;
+        let number = |c: usize, name: &str| -> Result<f64, TableError> {
+            let text = record.get(c).unwrap_or("");
+            text.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| TableError::Row { line, message: format!("`{text}` is not a number in column {name}") })
+        };
+        let t = number(target, "target_mm")?;
+        let up = match record.get(direction).unwrap_or("") {
+            "up" | "+" | "forward" => true,
+            "down" | "-" | "reverse" | "backward" => false,
+            other => {
+                return Err(TableError::Row { line, message: format!("direction `{other}` is neither up nor down") });
+            }
+        };
+        for (k, (name, c)) in quantities.iter().enumerate() {
+            let Some(c) = *c else { continue };
+            if record.get(c).is_none_or(|s| s.is_empty()) {
+                continue;
+            }
+            let v = number(c, name)?;
+            let runs = data[k].entry(OrderedTarget(t)).or_default();
+            if up { runs.up.push(v) } else { runs.down.push(v) }
+        }
+    }
+    let profile = |k: usize| build(&data[k]);
+    let straightness = match (profile(1), profile(2), profile(3)) {
+        (Some(s), _, _) => Some(s),
+        (None, Some(m1), Some(m2)) => Some(reversal(&m1, &m2)),
+        _ => None,
+    };
+    let angular = profile(4).map(|mut p| {
+        for v in p.up.iter_mut().chain(p.down.iter_mut()).chain(p.up_sigma.iter_mut()).chain(p.down_sigma.iter_mut()) {
+            *v = v.to_radians();
+        }
+        p
+    });
+    let table = SlideTable { linear: profile(0), straightness, angular };
+    if table.linear.is_none() && table.straightness.is_none() && table.angular.is_none() {
+        return Err(TableError::Empty);
+    }
+    Ok(table)
+}
+
+/// A target position as a map key: targets are read from text, so equal targets have
+/// equal bits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct OrderedTarget(f64);
+
+impl Eq for OrderedTarget {}
+
+impl PartialOrd for OrderedTarget {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for OrderedTarget {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
+    }
+}
+
+fn build(runs: &BTreeMap<OrderedTarget, Runs>) -> Option<Profile> {
+    if runs.is_empty() {
+        return None;
+    }
+    let mut p = Profile::default();
+    for (target, r) in runs {
+        // A direction with no run takes the other's values: no reversal measured there.
+        let (up, down) = match (r.up.is_empty(), r.down.is_empty()) {
+            (false, false) => (&r.up, &r.down),
+            (false, true) => (&r.up, &r.up),
+            (true, false) => (&r.down, &r.down),
+            (true, true) => continue,
+        };
+        p.targets.push(target.0);
+        p.up.push(mean(up));
+        p.down.push(mean(down));
+        p.up_sigma.push(sigma(up));
+        p.down_sigma.push(sigma(down));
+    }
+    (!p.targets.is_empty()).then_some(p)
+}
+
+/// The reversal technique (eq. 2.5–2.7): `m1 = a − s`, `m2 = a + s`, so `s = (m2 − m1)/2`
+/// whatever the straightness `a` of the optics. Targets both runs share.
+fn reversal(m1: &Profile, m2: &Profile) -> Profile {
+    let mut p = Profile::default();
+    for (i, &t) in m1.targets.iter().enumerate() {
+        if let Some(j) = m2.targets.iter().position(|&u| u == t) {
+            p.targets.push(t);
+            p.up.push((m2.up[j] - m1.up[i]) / 2.0);
+            p.down.push((m2.down[j] - m1.down[i]) / 2.0);
+            p.up_sigma.push((m1.up_sigma[i].powi(2) + m2.up_sigma[j].powi(2)).sqrt() / 2.0);
+            p.down_sigma.push((m1.down_sigma[i].powi(2) + m2.down_sigma[j].powi(2)).sqrt() / 2.0);
+        }
+    }
+    p
+}
+
+fn mean(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len().max(1) as f64
+}
+
+fn sigma(values: &[f64]) -> f64 {
+    if values.len() < 2 {
+        return 0.0;
+    }
+    let m = mean(values);
+    (values.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (values.len() - 1) as f64).sqrt()
+}
+
+/// The ISO 230-2 figures of a linear positioning profile, mm.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Iso230_2 {
+    /// Bidirectional accuracy A.
+    pub accuracy: f64,
+    /// Bidirectional systematic positioning error E.
+    pub systematic: f64,
+    /// Range of the mean bidirectional deviation M.
+    pub mean_range: f64,
+    /// Axis reversal value B (largest |B_i|), and the mean reversal value.
+    pub reversal: f64,
+    pub mean_reversal: f64,
+    /// Bidirectional repeatability R.
+    pub repeatability: f64,
+}
+
+/// ISO 230-2 figures (the formulas of its sections 2.10–2.24, with k = 2).
+pub fn report(p: &Profile) -> Iso230_2 {
+    let n = p.targets.len();
+    let mut max_up_down = f64::NEG_INFINITY;
+    let mut min_up_down = f64::INFINITY;
+    let mut max_acc = f64::NEG_INFINITY;
+    let mut min_acc = f64::INFINITY;
+    let mut means = Vec::with_capacity(n);
+    let mut reversal: f64 = 0.0;
+    let mut reversal_sum = 0.0;
+    let mut repeatability: f64 = 0.0;
+    for i in 0..n {
+        let (u, d, su, sd) = (p.up[i], p.down[i], p.up_sigma[i], p.down_sigma[i]);
+        max_up_down = max_up_down.max(u.max(d));
+        min_up_down = min_up_down.min(u.min(d));
+        max_acc = max_acc.max((u + 2.0 * su).max(d + 2.0 * sd));
+        min_acc = min_acc.min((u - 2.0 * su).min(d - 2.0 * sd));
+        means.push((u + d) / 2.0);
+        let b = u - d;
+        if b.abs() > reversal.abs() {
+            reversal = b;
+        }
+        reversal_sum += b;
+        let r = (2.0 * su + 2.0 * sd + b.abs()).max(4.0 * su).max(4.0 * sd);
+        repeatability = repeatability.max(r);
+    }
+    let (mean_max, mean_min) = means.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), &m| (a.max(m), b.min(m)));
+    Iso230_2 {
+        accuracy: max_acc - min_acc,
+        systematic: max_up_down - min_up_down,
+        mean_range: mean_max - mean_min,
+        reversal: reversal.abs(),
+        mean_reversal: reversal_sum / n.max(1) as f64,
+        repeatability,
+    }
+}
+
+#[cfg(test)]
+mod tests;

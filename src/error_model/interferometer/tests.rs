@@ -1,0 +1,66 @@
+use super::*;
+
+/// Two targets, two runs each way: every ISO 230-2 figure worked by hand.
+const TABLE: &str = "\
+# A small ISO 230-2 style table: deviations in mm.
+target_mm,direction,run,linear_mm
+0,up,1,0.001
+0,up,2,0.003
+0,down,1,-0.001
+0,down,2,-0.001
+100,up,1,0.004
+100,up,2,0.004
+100,down,1,0.000
+100,down,2,0.002
+";
+
+#[test]
+fn iso_230_2_figures_by_hand() {
+    let table = parse(TABLE).unwrap();
+    let p = table.linear.as_ref().unwrap();
+    assert_eq!(p.targets, vec![0.0, 100.0]);
+    // Means: 0 up 0.002, down −0.001; 100 up 0.004, down 0.001.
+    assert!((p.up[0] - 0.002).abs() < 1e-12 && (p.down[1] - 0.001).abs() < 1e-12);
+    // σ of (0.001, 0.003) is √2 · 0.001.
+    assert!((p.up_sigma[0] - 2f64.sqrt() * 0.001).abs() < 1e-12);
+    let r = report(p);
+    // E: max(0.004) − min(−0.001) = 0.005. M: means 0.0005 and 0.0025 → 0.002.
+    assert!((r.systematic - 0.005).abs() < 1e-12);
+    assert!((r.mean_range - 0.002).abs() < 1e-12);
+    // B_i = 0.003 at both targets.
+    assert!((r.reversal - 0.003).abs() < 1e-12 && (r.mean_reversal - 0.003).abs() < 1e-12);
+    // A: max(x̄ + 2s) = 0.004 + 0 or 0.002 + 2√2·0.001 = 0.004828…; min(x̄ − 2s) at 100 down:
+    // 0.001 − 2√2·0.001 = −0.001828…; also 0 down: −0.001 − 0. So A = 0.006657…
+    let two_s = 2.0 * 2f64.sqrt() * 0.001;
+    assert!((r.accuracy - ((0.002 + two_s) - (0.001 - two_s))).abs() < 1e-12);
+    // R_i = 2s↑ + 2s↓ + |B|: at 0, 2√2·0.001 + 0 + 0.003; at 100, 0 + 2√2·0.001 + 0.003.
+    assert!((r.repeatability - (two_s + 0.003)).abs() < 1e-12);
+}
+
+#[test]
+fn the_model_uses_the_mean_of_the_direction_of_travel_and_interpolates() {
+    let table = parse(TABLE).unwrap();
+    assert!((table.linear(50.0, 1) - 0.003).abs() < 1e-12);
+    assert!((table.linear(50.0, -1) - 0.0).abs() < 1e-12);
+    // Held at the end values beyond the targets.
+    assert!((table.linear(-10.0, 1) - 0.002).abs() < 1e-12);
+    assert!((table.linear(500.0, -1) - 0.001).abs() < 1e-12);
+}
+
+#[test]
+fn straightness_from_two_reversed_runs_is_half_their_difference() {
+    let table =
+        parse("target_mm,direction,straightness_m1_mm,straightness_m2_mm\n0,up,0.001,0.003\n50,up,-0.002,0.004\n")
+            .unwrap();
+    let s = table.straightness.unwrap();
+    assert_eq!(s.up, vec![0.001, 0.003]);
+}
+
+#[test]
+fn bad_tables_are_refused_with_the_line() {
+    assert!(matches!(parse("target_mm,linear_mm\n0,1\n"), Err(TableError::MissingColumn("direction"))));
+    assert!(matches!(parse("target_mm,direction\n0,up\n"), Err(TableError::NoErrors)));
+    assert!(matches!(parse("target_mm,direction,linear_mm\n0,sideways,1\n"), Err(TableError::Row { line: 2, .. })));
+    assert!(matches!(parse("target_mm,direction,linear_mm\n0,up,abc\n"), Err(TableError::Row { line: 2, .. })));
+    assert!(matches!(parse("target_mm,direction,angular_deg\n"), Err(TableError::Empty)));
+}

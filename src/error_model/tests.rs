@@ -1,0 +1,111 @@
+use super::effects::*;
+use super::*;
+
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-12
+}
+
+fn sample(x: f64, z: f64) -> Sample {
+    Sample::at_rest(Xz::new(x, z), 0.0)
+}
+
+#[test]
+fn effects_follow_their_formulas() {
+    let s = Sample { velocity: Xz::new(600.0, 0.0), t_min: 54.59, cut_length_m: 2.0, ..sample(20.0, -50.0) };
+    let d = |e: Effect| e.displacement(&s);
+    assert_eq!(d(Effect::ToolOffsetX(ToolOffsetX { dx: 0.003 })), Xz::new(0.003, 0.0));
+    assert_eq!(d(Effect::ToolOffsetZ(ToolOffsetZ { dz: -0.002 })), Xz::new(0.0, -0.002));
+    assert!(close(d(Effect::ScaleX(ScaleX { ppm: 50.0 })).x, 20.0 * 50e-6));
+    assert!(close(d(Effect::ScaleZ(ScaleZ { ppm: 50.0 })).z, -50.0 * 50e-6));
+    assert!(close(d(Effect::Squareness(Squareness { urad: 20.0 })).x, -50.0 * 20e-6));
+    // 600 mm/min is 0.01 mm/ms: 2 ms of lag leave X 0.02 mm behind.
+    assert!(close(d(Effect::ServoMismatch(ServoMismatch { dt_ms: 2.0 })).x, -0.02));
+    // One time constant: 1 − 1/e of the growth.
+    let thermal = d(Effect::ThermalZ(ThermalZ { amp: 0.01, tau_min: 54.59 })).z;
+    assert!(close(thermal, 0.01 * (1.0 - (-1.0f64).exp())));
+    assert!(close(d(Effect::ToolWear(ToolWear { um_per_m: 1.5 })).x, 0.003));
+    let cyclic = d(Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 11.94, phase: 0.5 })).z;
+    assert!(close(cyclic, 0.002 * (std::f64::consts::TAU * -50.0 / 11.94 + 0.5).sin()));
+    // A bow of 1e-6 mm per mm² and 1e-8 per mm³ at z = −50.
+    let bow = d(Effect::StraightnessX(StraightnessX { coeffs: vec![1e-6, 1e-8] })).x;
+    assert!(close(bow, 1e-6 * 2500.0 + 1e-8 * -125000.0));
+}
+
+#[test]
+fn backlash_follows_the_last_direction_and_persists_at_rest() {
+    let effect = Effect::BacklashX(BacklashX { b: 0.004 });
+    let mut tracker = Tracker::new(Xz::new(10.0, 0.0));
+    tracker.advance(Xz::new(8.0, 0.0), 1, false);
+    let moving_down = tracker.sample(0.0, Xz::new(-100.0, 0.0), 1, Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+    assert!(close(effect.displacement(&moving_down).x, -0.002));
+    // Z moves; X rests and keeps its last direction.
+    tracker.advance(Xz::new(8.0, -5.0), 1, true);
+    let resting = tracker.sample(0.0, Xz::new(0.0, -100.0), 1, Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+    assert!(close(effect.displacement(&resting).x, -0.002));
+    tracker.advance(Xz::new(9.0, -5.0), 1, true);
+    let up = tracker.sample(0.0, Xz::new(100.0, 0.0), 1, Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+    assert!(close(effect.displacement(&up).x, 0.002));
+    // The cut length counts cutting travel only: 5 mm + 1 mm.
+    assert!(close(up.cut_length_m, 0.006));
+}
+
+#[test]
+fn reversal_spike_decays_with_travel_since_the_reversal() {
+    let effect = Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 0.5 });
+    let mut tracker = Tracker::new(Xz::new(10.0, 0.0));
+    tracker.advance(Xz::new(12.0, 0.0), 1, false);
+    tracker.advance(Xz::new(11.5, 0.0), 1, false);
+    let s = tracker.sample(0.0, Xz::new(0.0, 0.0), 1, Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+    assert!(close(effect.displacement(&s).x, -0.003 * (-1.0f64).exp()));
+}
+
+#[test]
+fn nose_radius_error_leaves_diameters_and_faces_and_grows_on_chamfers() {
+    let effect = Effect::NoseRadius(NoseRadius { dr: 0.1 });
+    // Tip 3 (outside turning toward the chuck): the imaginary tip is at (−r, −r).
+    let tip = Xz::new(-1.0, -1.0);
+    let on = |normal: Xz| Sample { normal, tip, ..sample(10.0, -5.0) };
+    let diameter = effect.displacement(&on(Xz::new(1.0, 0.0)));
+    let normal_part = |d: Xz, n: Xz| d.x * n.x + d.z * n.z;
+    assert!(close(normal_part(diameter, Xz::new(1.0, 0.0)), 0.0));
+    let face = effect.displacement(&on(Xz::new(0.0, 1.0)));
+    assert!(close(normal_part(face, Xz::new(0.0, 1.0)), 0.0));
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let chamfer = effect.displacement(&on(Xz::new(h, h)));
+    assert!((normal_part(chamfer, Xz::new(h, h)) - 0.1 * (2f64.sqrt() - 1.0)).abs() < 1e-12);
+}
+
+#[test]
+fn the_model_file_reads_effects_and_rejects_unknown_names_and_parameters() {
+    let spec = model_file::ModelSpec::from_toml(
+        "[machine]\nunits = \"mm\"\n[model]\nstart_min = 30\n[[effect]]\nkind = \"backlash_z\"\nb = 0.004\n\
+         [[effect]]\nkind = \"thermal_x\"\namp = 0.01\ntau_min = 54.59\n",
+    )
+    .unwrap();
+    let model = spec.build(|_| Err("no files".to_string())).unwrap();
+    assert_eq!(model.effects.len(), 2);
+    assert_eq!(model.start_min, 30.0);
+    assert_eq!(model.effects[0].name(), "backlash_z");
+    assert!(model_file::ModelSpec::from_toml("[[effect]]\nkind = \"backlash_y\"\nb = 1\n").is_err());
+    assert!(model_file::ModelSpec::from_toml("[[effect]]\nkind = \"backlash_x\"\nbb = 1\n").is_err());
+    assert!(model_file::ModelSpec::from_toml("[[effects]]\nkind = \"backlash_x\"\nb = 1\n").is_err());
+}
+
+#[test]
+fn htm_composes_slide_errors_as_eq_8_12() {
+    let x = interferometer::parse(
+        "target_mm,direction,linear_mm,straightness_mm,angular_deg\n0,up,0.001,0.002,0.01\n100,up,0.003,0.004,0.01\n",
+    )
+    .unwrap();
+    let z = interferometer::parse(
+        "target_mm,direction,linear_mm,straightness_mm,angular_deg\n-100,up,-0.002,0.0005,0.02\n0,up,0,0.0015,0.02\n",
+    )
+    .unwrap();
+    let tables = htm::AxisTables { x, z, abbe_y_mm: 5.0 };
+    let s = sample(50.0, -50.0);
+    let d = tables.displacement(&s);
+    let (pitch, yaw) = (0.01f64.to_radians(), 0.02f64.to_radians());
+    let (linear_x, straightness_xz, linear_z, straightness_zx) = (0.002, 0.003, -0.001, 0.001);
+    assert!(close(d.x, linear_x + straightness_zx - pitch * 5.0 + yaw * pitch * (-50.0 + linear_z)));
+    assert!(close(d.z, linear_z + straightness_xz + yaw * 5.0));
+}
