@@ -23,7 +23,7 @@ pub mod model_file;
 pub mod state;
 
 pub use effects::Effect;
-pub use state::{Sample, Tracker};
+pub use state::{Sample, SampleInputs, Tracker};
 
 use crate::toolpath::Xz;
 
@@ -51,10 +51,23 @@ impl ErrorModel {
         d
     }
 
+    /// The displacement less the backlash, which the tracker's play operator gives (the
+    /// part of the error that is a function of the commanded point and the state).
+    pub fn displacement_without_play(&self, sample: &Sample) -> Xz {
+        let d = self.displacement(sample);
+        let take = |play: f64, offset: f64| if play > 0.0 { offset } else { 0.0 };
+        Xz::new(d.x - take(sample.play.x, sample.backlash.x), d.z - take(sample.play.z, sample.backlash.z))
+    }
+
     /// Where the tool really goes when `sample.at` is commanded.
     pub fn actual(&self, sample: &Sample) -> Xz {
         let d = self.displacement(sample);
         Xz::new(sample.at.x + d.x, sample.at.z + d.z)
+    }
+
+    /// The total play of each axis' drive (its backlash effects), for the `Tracker`.
+    pub fn play(&self) -> Xz {
+        self.effects.iter().map(Effect::play).fold(Xz::new(0.0, 0.0), |a, p| Xz::new(a.x + p.x, a.z + p.z))
     }
 
     /// Whether the model has any term (an empty model moves nothing).

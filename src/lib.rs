@@ -12,6 +12,7 @@
 
 #![deny(clippy::disallowed_methods)]
 
+pub mod compensation;
 pub mod diagnostic;
 pub mod dialect;
 pub mod error_model;

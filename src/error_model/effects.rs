@@ -98,6 +98,15 @@ pub const NAMES: [&str; 18] = [
 ];
 
 impl Effect {
+    /// The play this effect puts in each axis' drive, mm.
+    pub fn play(&self) -> Xz {
+        match self {
+            Effect::BacklashX(e) if e.b > 0.0 => Xz::new(e.b, 0.0),
+            Effect::BacklashZ(e) if e.b > 0.0 => Xz::new(0.0, e.b),
+            _ => Xz::new(0.0, 0.0),
+        }
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         match self {
             Effect::ToolOffsetX(e) => e.displacement(s),
@@ -152,6 +161,14 @@ pub(crate) fn warm_up(amp: f64, tau_min: f64, t_min: f64) -> f64 {
         return if tau_min <= 0.0 && t_min > 0.0 { amp } else { 0.0 };
     }
     amp * (1.0 - (-t_min / tau_min).exp())
+}
+
+/// One backlash effect's part of the slide's position in the play: the tracker runs the
+/// play operator with the total play of the axis, and each effect takes its share. A
+/// negative `b` (an over-compensating control) is no play the tracker can run: it is the
+/// same formula, `−d·b/2` with `d` the direction of the last motion, so the slide leads.
+pub(crate) fn backlash_share(b: f64, play: f64, slide_offset: f64, direction: i8) -> f64 {
+    if b > 0.0 { if play > 0.0 { slide_offset * b / play } else { 0.0 } } else { -f64::from(direction) * b / 2.0 }
 }
 
 /// A reversal spike: `h · direction · e^(−s/decay)`.

@@ -3,8 +3,16 @@
 //! Direction-dependent effects need each axis' last direction of motion and the travel
 //! since it last reversed; wear needs the cut length of the tool; thermal effects the time.
 //! A `Tracker` walks the commanded points in order and produces a `Sample` at each.
-//! Before an axis has moved, its last direction is `+`: a machine starts from a reference
-//! return, which on the lathes we model approaches in the positive direction.
+//!
+//! Backlash is a play between the drive and the slide: the slide stays where it is until
+//! the command has travelled across the play, then follows it, lagging by half the play
+//! (the classic play or hysteresis operator). The tracker runs that operator with the
+//! model's total play per axis, so the slide really stays put for a command that reverses
+//! by less than the play (as a compensated path's micrometre corrections do), and an
+//! axis' direction is the direction the slide was last pushed in. With no play, the
+//! direction is simply that of the last non-zero motion. Before an axis has moved, its
+//! last direction is `+`: a machine starts from a reference return, which on the lathes we
+//! model approaches in the positive direction.
 
 use crate::toolpath::Xz;
 
@@ -26,6 +34,10 @@ pub struct Sample {
     pub velocity: Xz,
     /// Each axis' last direction of motion (kept while it rests).
     pub direction: Signs,
+    /// The model's play per axis (the sum of its backlash effects), mm, and where the slide
+    /// sits in it: slide − command, between −play/2 and +play/2.
+    pub play: Xz,
+    pub backlash: Xz,
     /// Travel of each axis since it last reversed, mm.
     pub since_reversal: Xz,
     /// Length the current tool has cut since it was set, m.
@@ -45,12 +57,23 @@ impl Sample {
             t_min,
             velocity: Xz::new(0.0, 0.0),
             direction: Signs { x: 1, z: 1 },
+            play: Xz::new(0.0, 0.0),
+            backlash: Xz::new(0.0, 0.0),
             since_reversal: Xz::new(f64::INFINITY, f64::INFINITY),
             cut_length_m: 0.0,
             normal: Xz::new(0.0, 0.0),
             tip: Xz::new(0.0, 0.0),
         }
     }
+}
+
+/// What a sample takes from the path rather than from the tracker.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SampleInputs {
+    pub t_min: f64,
+    pub velocity: Xz,
+    pub normal: Xz,
+    pub tip: Xz,
 }
 
 /// Moves below this (mm) do not change an axis' direction: rounding noise is no reversal.
@@ -60,6 +83,9 @@ const STILL_MM: f64 = 1e-9;
 #[derive(Debug, Clone)]
 pub struct Tracker {
     at: Xz,
+    /// Where each slide is, on the play operator (equal to `at` with no play).
+    slide: Xz,
+    play: Xz,
     direction: Signs,
     since_reversal: Xz,
     /// Cut length per tool (turret station), m: wear belongs to the tool, not the program.
@@ -67,9 +93,14 @@ pub struct Tracker {
 }
 
 impl Tracker {
-    pub fn new(start: Xz) -> Tracker {
+    /// A tracker at `start`, reached by a positive approach, for a machine whose slides
+    /// have `play` (mm, zero for none).
+    pub fn new(start: Xz, play: Xz) -> Tracker {
+        let play = Xz::new(play.x.max(0.0), play.z.max(0.0));
         Tracker {
             at: start,
+            slide: Xz::new(start.x - play.x / 2.0, start.z - play.z / 2.0),
+            play,
             direction: Signs { x: 1, z: 1 },
             since_reversal: Xz::new(f64::INFINITY, f64::INFINITY),
             cut: Vec::new(),
@@ -81,11 +112,49 @@ impl Tracker {
         self.at
     }
 
+    /// Where the slides are (the commanded point, less the play they lag by).
+    pub fn slide(&self) -> Xz {
+        self.slide
+    }
+
+    /// The play of each axis, mm.
+    pub fn play(&self) -> Xz {
+        self.play
+    }
+
+    /// The sample the tracker would give after `advance(to, tool, cutting)`, without
+    /// moving it: for solving where to command a point.
+    pub fn peek(&self, to: Xz, tool: u16, cutting: bool, inputs: &SampleInputs) -> Sample {
+        let (mut slide, mut direction, mut since) = (self.slide, self.direction, self.since_reversal);
+        advance_axis(to.x, self.play.x, &mut slide.x, &mut direction.x, &mut since.x);
+        advance_axis(to.z, self.play.z, &mut slide.z, &mut direction.z, &mut since.z);
+        let mut cut = self.cut_length(tool);
+        if cutting {
+            cut += self.at.distance(to) / 1000.0;
+        }
+        Sample {
+            at: to,
+            t_min: inputs.t_min,
+            velocity: inputs.velocity,
+            direction,
+            play: self.play,
+            backlash: Xz::new(slide.x - to.x, slide.z - to.z),
+            since_reversal: since,
+            cut_length_m: cut,
+            normal: inputs.normal,
+            tip: inputs.tip,
+        }
+    }
+
+    fn cut_length(&self, tool: u16) -> f64 {
+        self.cut.iter().find(|(t, _)| *t == tool).map_or(0.0, |(_, m)| *m)
+    }
+
     /// Move to `to`; `cutting` adds the travel to `tool`'s cut length.
     pub fn advance(&mut self, to: Xz, tool: u16, cutting: bool) {
         let (dx, dz) = (to.x - self.at.x, to.z - self.at.z);
-        advance_axis(dx, &mut self.direction.x, &mut self.since_reversal.x);
-        advance_axis(dz, &mut self.direction.z, &mut self.since_reversal.z);
+        advance_axis(to.x, self.play.x, &mut self.slide.x, &mut self.direction.x, &mut self.since_reversal.x);
+        advance_axis(to.z, self.play.z, &mut self.slide.z, &mut self.direction.z, &mut self.since_reversal.z);
         if cutting {
             let length_m = (dx * dx + dz * dz).sqrt() / 1000.0;
             match self.cut.iter_mut().find(|(t, _)| *t == tool) {
@@ -103,23 +172,33 @@ impl Tracker {
             t_min,
             velocity,
             direction: self.direction,
+            play: self.play,
+            backlash: Xz::new(self.slide.x - self.at.x, self.slide.z - self.at.z),
             since_reversal: self.since_reversal,
-            cut_length_m: self.cut.iter().find(|(t, _)| *t == tool).map_or(0.0, |(_, m)| *m),
+            cut_length_m: self.cut_length(tool),
             normal,
             tip,
         }
     }
 }
 
-fn advance_axis(delta: f64, direction: &mut i8, since: &mut f64) {
-    if delta.abs() <= STILL_MM {
+/// The play operator on one axis: the slide moves only when the command leaves the band
+/// of width `play` around it, and then by as much as the command goes beyond the band.
+fn advance_axis(command: f64, play: f64, slide: &mut f64, direction: &mut i8, since: &mut f64) {
+    let half = play / 2.0;
+    let pushed = if command - *slide > half + STILL_MM {
+        command - half - *slide
+    } else if *slide - command > half + STILL_MM {
+        command + half - *slide
+    } else {
         return;
-    }
-    let sign = if delta > 0.0 { 1 } else { -1 };
+    };
+    *slide += pushed;
+    let sign = if pushed > 0.0 { 1 } else { -1 };
     if sign == *direction {
-        *since += delta.abs();
+        *since += pushed.abs();
     } else {
         *direction = sign;
-        *since = delta.abs();
+        *since = pushed.abs();
     }
 }

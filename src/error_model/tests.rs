@@ -34,25 +34,35 @@ fn effects_follow_their_formulas() {
 #[test]
 fn backlash_follows_the_last_direction_and_persists_at_rest() {
     let effect = Effect::BacklashX(BacklashX { b: 0.004 });
-    let mut tracker = Tracker::new(Xz::new(10.0, 0.0));
+    let model = ErrorModel { effects: vec![effect.clone()], ..ErrorModel::default() };
+    let mut tracker = Tracker::new(Xz::new(10.0, 0.0), model.play());
+    let zero = Xz::new(0.0, 0.0);
+    // Reached from +: the slide lags 0.002 below its command.
+    assert!(close(effect.displacement(&tracker.sample(0.0, zero, 1, zero, zero)).x, -0.002));
     tracker.advance(Xz::new(8.0, 0.0), 1, false);
-    let moving_down = tracker.sample(0.0, Xz::new(-100.0, 0.0), 1, Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
-    assert!(close(effect.displacement(&moving_down).x, -0.002));
-    // Z moves; X rests and keeps its last direction.
+    let moving_down = tracker.sample(0.0, Xz::new(-100.0, 0.0), 1, zero, zero);
+    assert!(close(effect.displacement(&moving_down).x, 0.002));
+    // Z moves; X rests and keeps its offset.
     tracker.advance(Xz::new(8.0, -5.0), 1, true);
-    let resting = tracker.sample(0.0, Xz::new(0.0, -100.0), 1, Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
-    assert!(close(effect.displacement(&resting).x, -0.002));
+    let resting = tracker.sample(0.0, Xz::new(0.0, -100.0), 1, zero, zero);
+    assert!(close(effect.displacement(&resting).x, 0.002));
+    // A command back up by less than the play moves nothing: the slide stays at 8.002.
+    tracker.advance(Xz::new(8.003, -5.0), 1, false);
+    let inside = tracker.sample(0.0, zero, 1, zero, zero);
+    assert!(close(inside.at.x + effect.displacement(&inside).x, 8.002));
+    assert_eq!(inside.direction.x, -1);
     tracker.advance(Xz::new(9.0, -5.0), 1, true);
-    let up = tracker.sample(0.0, Xz::new(100.0, 0.0), 1, Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
-    assert!(close(effect.displacement(&up).x, 0.002));
-    // The cut length counts cutting travel only: 5 mm + 1 mm.
-    assert!(close(up.cut_length_m, 0.006));
+    let up = tracker.sample(0.0, Xz::new(100.0, 0.0), 1, zero, zero);
+    assert!(close(effect.displacement(&up).x, -0.002));
+    assert_eq!(up.direction.x, 1);
+    // The cut length counts cutting travel only: 5 mm + 0.997 mm.
+    assert!(close(up.cut_length_m, 0.005997));
 }
 
 #[test]
 fn reversal_spike_decays_with_travel_since_the_reversal() {
     let effect = Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 0.5 });
-    let mut tracker = Tracker::new(Xz::new(10.0, 0.0));
+    let mut tracker = Tracker::new(Xz::new(10.0, 0.0), Xz::new(0.0, 0.0));
     tracker.advance(Xz::new(12.0, 0.0), 1, false);
     tracker.advance(Xz::new(11.5, 0.0), 1, false);
     let s = tracker.sample(0.0, Xz::new(0.0, 0.0), 1, Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));

@@ -76,7 +76,8 @@ impl ToolTable {
         }
     }
 
-    fn lookup(&self, station: u16, offset: u16) -> (f64, u8) {
+    /// Nose radius (mm) and tip direction of a tool; nothing for offset 0 or an unknown tool.
+    pub fn lookup(&self, station: u16, offset: u16) -> (f64, u8) {
         if offset == 0 {
             return (0.0, 0);
         }

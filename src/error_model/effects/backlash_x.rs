@@ -1,11 +1,15 @@
-//! `backlash_x {b}`: lost motion in the X drive. The slide lags by half the play behind
-//! the direction it last moved in, `dx = ±b/2` by the sign of the last non-zero X motion;
-//! the offset persists while the axis rests, and steps by `b` where X reverses.
+//! `backlash_x {b}`: lost motion (play) `b` in the X drive. The slide lags its command by
+//! half the play, against the direction it was last pushed in: `dx = −b/2` after a move in
+//! +X, `+b/2` after a move in −X. The offset persists while the axis rests and changes by
+//! `b` across a reversal, during which the slide stands still (the tracker's play
+//! operator, `state.rs`). A negative `b` is an over-compensating control.
 
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
 use crate::toolpath::Xz;
+
+use super::backlash_share as share;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -16,6 +20,6 @@ pub struct BacklashX {
 
 impl BacklashX {
     pub fn displacement(&self, s: &Sample) -> Xz {
-        Xz::new(f64::from(s.direction.x) * self.b / 2.0, 0.0)
+        Xz::new(share(self.b, s.play.x, s.backlash.x, s.direction.x), 0.0)
     }
 }

@@ -1,10 +1,13 @@
-//! `backlash_z {b}`: lost motion in the Z drive, `dz = ±b/2` by the sign of the last
-//! non-zero Z motion; it persists while the axis rests and steps by `b` where Z reverses.
+//! `backlash_z {b}`: lost motion (play) `b` in the Z drive: the slide lags its command by
+//! half the play against the direction it was last pushed in, `dz = ∓b/2`; see
+//! `backlash_x.rs`.
 
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
 use crate::toolpath::Xz;
+
+use super::backlash_share as share;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -15,6 +18,6 @@ pub struct BacklashZ {
 
 impl BacklashZ {
     pub fn displacement(&self, s: &Sample) -> Xz {
-        Xz::new(0.0, f64::from(s.direction.z) * self.b / 2.0)
+        Xz::new(0.0, share(self.b, s.play.z, s.backlash.z, s.direction.z))
     }
 }

@@ -1,0 +1,18 @@
+//! Compensation: the commanded path that makes a measured machine cut the nominal part.
+//!
+//! The nominal toolpath (a `ValidToolpath`: the tool reference points the program asks
+//! for) is sampled along every move (`sampling.rs`). Each sample is moved by the iteration
+//! of the thesis' eq. 2.14–2.16 (`inverse.rs`): command `U_c`, predict `U_a = U_c + Δ(U_c)`
+//! with the error model, correct `U_c += γ (U_d − U_a)`, until every sample's predicted
+//! position is within the tolerance of its nominal one. Direction-dependent terms are
+//! evaluated along the compensated path itself, in order, on every pass, so a reversal
+//! point that compensation moves is seen where it moved to.
+//!
+//! The samples' shifts are then re-expressed as G-code by the strategies of `fit.rs`, and
+//! written into the program by editing only the blocks whose motion changes.
+
+pub mod inverse;
+pub mod sampling;
+
+pub use inverse::{Compensated, InverseOptions, compensate_samples};
+pub use sampling::{PathSample, sample_toolpath};

@@ -1,0 +1,159 @@
+//! The inverse of the error model: the point to command for each nominal sample.
+//!
+//! The iteration is the thesis' eq. 2.14–2.16, solved sample by sample along the path:
+//!
+//! ```txt
+//! U_c(1) = U_d
+//! U_a(I) = U_c(I) + Δ(U_c(I))
+//! U_c(I+1) = U_c(I) + γ (U_d − U_a(I))
+//! ```
+//!
+//! With γ = 1 the first step is the thesis' mirror, `2 U_d − U_a`, and the residual then
+//! shrinks by the slope of the error map per step (about 1e-4 for geometric errors), so a
+//! second step usually ends it. The samples are solved in path order with one `Tracker`,
+//! so each axis' direction, the travel since a reversal and the cut length are those of
+//! the compensated path itself: compensation can move a reversal, and the state follows.
+//!
+//! Backlash is the one term the plain iteration cannot invert: inside the play the slide
+//! does not move whatever the command does, so the residual would only leak out by the
+//! step it gains per iteration. The play part is therefore inverted exactly — to move the
+//! slide up to `s`, command `s + play/2`; down, `s − play/2`; to keep it, keep the command —
+//! and the iteration runs on the rest of the error. That is how a compensated path takes up
+//! the backlash at a reversal: by a jump of the play in the new direction.
+
+use crate::error_model::{ErrorModel, SampleInputs, Tracker};
+use crate::toolpath::Xz;
+
+use super::sampling::PathSample;
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InverseOptions {
+    /// Stop when every predicted point is this close to its nominal one, mm (each sample
+    /// is solved to a thousandth of it; the tolerance proper is for the re-expression).
+    pub tolerance_mm: f64,
+    /// The gain γ of the correction.
+    pub gain: f64,
+    pub max_iterations: u32,
+}
+
+impl Default for InverseOptions {
+    fn default() -> InverseOptions {
+        InverseOptions { tolerance_mm: 0.0005, gain: 1.0, max_iterations: 20 }
+    }
+}
+
+/// The compensated samples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Compensated {
+    /// The point to command for each sample, mm, X as a radius.
+    pub commanded: Vec<Xz>,
+    /// Where the model predicts the tool goes for it, after the last pass.
+    pub predicted: Vec<Xz>,
+    /// Where the tool goes when the nominal path is commanded (the uncompensated error).
+    pub uncompensated: Vec<Xz>,
+    /// The most steps one sample took.
+    pub iterations: u32,
+    /// The largest |nominal − predicted|, mm.
+    pub max_residual_mm: f64,
+}
+
+/// Compensate `samples` from the machine's position `start`.
+pub fn compensate_samples(
+    samples: &[PathSample],
+    start: Xz,
+    model: &ErrorModel,
+    options: &InverseOptions,
+) -> Compensated {
+    let nominal: Vec<Xz> = samples.iter().map(|s| s.nominal).collect();
+    let uncompensated = predict(samples, &nominal, start, model);
+    let mut tracker = Tracker::new(start, model.play());
+    let mut commanded = Vec::with_capacity(samples.len());
+    let mut predicted = Vec::with_capacity(samples.len());
+    let mut iterations = 0;
+    let mut max_residual: f64 = 0.0;
+    for s in samples {
+        let inputs = inputs_of(s, model);
+        let (c, a, steps) = solve(&tracker, s, &inputs, model, options);
+        tracker.advance(c, s.tool, s.cutting);
+        iterations = iterations.max(steps);
+        max_residual = max_residual.max(s.nominal.distance(a));
+        commanded.push(c);
+        predicted.push(a);
+    }
+    Compensated { commanded, predicted, uncompensated, iterations, max_residual_mm: max_residual }
+}
+
+/// The point to command for one sample from the tracker's state, where the model predicts
+/// it goes, and the steps it took.
+fn solve(
+    tracker: &Tracker,
+    s: &PathSample,
+    inputs: &SampleInputs,
+    model: &ErrorModel,
+    options: &InverseOptions,
+) -> (Xz, Xz, u32) {
+    let play = tracker.play();
+    let slide = tracker.slide();
+    let before = tracker.position();
+    let mut c = s.nominal;
+    let mut steps = 0;
+    loop {
+        let state = tracker.peek(c, s.tool, s.cutting, inputs);
+        let actual = model.actual(&state);
+        let residual = s.nominal.distance(actual);
+        if residual <= options.tolerance_mm * 1e-3 || steps >= options.max_iterations || !residual.is_finite() {
+            return (c, actual, steps);
+        }
+        steps += 1;
+        // The rest of the error at this command, and where the slide must go for it.
+        let rest = model.displacement_without_play(&state);
+        let target = Xz::new(s.nominal.x - rest.x, s.nominal.z - rest.z);
+        let next = Xz::new(
+            command_for(target.x, slide.x, before.x, play.x, c.x, options.gain),
+            command_for(target.z, slide.z, before.z, play.z, c.z, options.gain),
+        );
+        if next.distance(c) <= 1e-12 {
+            return (c, actual, steps);
+        }
+        c = next;
+    }
+}
+
+/// The command that puts a slide at `target` from `slide` (commanded `before`) through the
+/// play; without play, the eq. 2.16 step from the current guess.
+fn command_for(target: f64, slide: f64, before: f64, play: f64, guess: f64, gain: f64) -> f64 {
+    if play <= 0.0 {
+        // The slide is the command: U_c += γ (U_d − U_a) is U_c += γ (target − U_c).
+        return guess + gain * (target - guess);
+    }
+    let half = play / 2.0;
+    if target > slide + 1e-12 {
+        target + half
+    } else if target < slide - 1e-12 {
+        target - half
+    } else {
+        // Already there: keep the command where it was, inside the play.
+        before.clamp(slide - half, slide + half)
+    }
+}
+
+fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
+    SampleInputs { t_min: model.start_min + s.t_s / 60.0, velocity: s.velocity, normal: s.normal, tip: s.tip }
+}
+
+/// Where the tool goes when `commanded` (one point per sample) is commanded in order.
+pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Xz> {
+    let mut tracker = Tracker::new(start, model.play());
+    samples
+        .iter()
+        .zip(commanded)
+        .map(|(s, &c)| {
+            let state = tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model));
+            tracker.advance(c, s.tool, s.cutting);
+            model.actual(&state)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;
