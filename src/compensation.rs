@@ -11,8 +11,10 @@
 //! The samples' shifts are then re-expressed as G-code by the strategies of `fit.rs`, and
 //! written into the program by editing only the blocks whose motion changes.
 
+pub mod fit;
 pub mod inverse;
 pub mod sampling;
 
+pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};
 pub use inverse::{Compensated, InverseOptions, compensate_samples};
 pub use sampling::{PathSample, sample_toolpath};
