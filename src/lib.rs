@@ -13,6 +13,7 @@
 #![deny(clippy::disallowed_methods)]
 
 pub mod compensation;
+pub mod diagnose;
 pub mod diagnostic;
 pub mod dialect;
 pub mod error_model;

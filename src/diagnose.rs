@@ -1,0 +1,7 @@
+//! The discrepancy workflow: compare what the model predicts with what was measured, say
+//! where they disagree, name the missing effect, add it, and show the gap shrink.
+//!
+//! `thermal_fit.rs` fits the first-order warm-up and cool-down curves of a thermal log
+//! (eq. 5.1–5.2 of the thesis).
+
+pub mod thermal_fit;
