@@ -16,5 +16,5 @@ pub mod inverse;
 pub mod sampling;
 
 pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};
-pub use inverse::{Compensated, InverseOptions, compensate_samples};
+pub use inverse::{Compensated, InverseOptions, compensate_samples, predict, states};
 pub use sampling::{PathSample, sample_toolpath};

@@ -21,7 +21,7 @@
 //! and the iteration runs on the rest of the error. That is how a compensated path takes up
 //! the backlash at a reversal: by a jump of the play in the new direction.
 
-use crate::error_model::{ErrorModel, SampleInputs, Tracker};
+use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker};
 use crate::toolpath::Xz;
 
 use super::sampling::PathSample;
@@ -143,6 +143,14 @@ fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
 
 /// Where the tool goes when `commanded` (one point per sample) is commanded in order.
 pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Xz> {
+    states(samples, commanded, start, model).iter().map(|state| model.actual(state)).collect()
+}
+
+/// The machine state at each sample when `commanded` is commanded in order: what
+/// `predict` evaluates the model on. The states depend on the model only through its play
+/// and start time, so a term without play added to the model moves each predicted point
+/// by exactly its displacement at these states (the discrepancy workflow relies on this).
+pub fn states(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Sample> {
     let mut tracker = Tracker::new(start, model.play());
     samples
         .iter()
@@ -150,7 +158,7 @@ pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &Erro
         .map(|(s, &c)| {
             let state = tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model));
             tracker.advance(c, s.tool, s.cutting);
-            model.actual(&state)
+            state
         })
         .collect()
 }

@@ -1,22 +1,5 @@
 use super::*;
-
-/// A small deterministic generator of normal noise (xorshift + Box–Muller): tests need
-/// repeatable noise, not a dependency.
-struct Noise(u64);
-
-impl Noise {
-    fn uniform(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn normal(&mut self, sigma: f64) -> f64 {
-        let (u, v) = (self.uniform().max(1e-300), self.uniform());
-        sigma * (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
-    }
-}
+use crate::diagnose::noise::Noise;
 
 /// A curve's gain, time constant (minutes) and offset.
 type Curve = (f64, f64, f64);
@@ -30,7 +13,7 @@ const FITS: [(&str, Curve, Curve); 2] = [
 /// Four hours of warm-up then four of cool-down, one sample a second as the thesis
 /// recorded, with noise.
 fn synthesise(warm: Curve, cool: Curve, sigma: f64, seed: u64) -> (Vec<f64>, Vec<f64>) {
-    let mut noise = Noise(seed);
+    let mut noise = Noise::new(seed);
     let (mut t, mut y) = (Vec::new(), Vec::new());
     for second in 0..=240 * 60 {
         let m = f64::from(second) / 60.0;
