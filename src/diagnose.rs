@@ -4,11 +4,23 @@
 //! `thermal_fit.rs` fits the first-order warm-up and cool-down curves of a thermal log
 //! (eq. 5.1–5.2 of the thesis).
 
+pub mod breakdown;
+pub mod candidates;
 pub mod forward;
+pub mod iso230_4;
 pub mod lsq;
 pub mod measured;
+pub mod model_text;
 pub mod noise;
+pub mod report;
+pub mod select;
+pub mod synth;
 pub mod thermal_fit;
+pub mod workflow;
+
+pub use forward::{Forward, ForwardError, Nominal};
+pub use measured::{Kind, Measured};
+pub use workflow::{Diagnosis, Options, diagnose};
 
 #[cfg(test)]
 mod test_support;

@@ -25,6 +25,9 @@
 mod ballbar;
 mod profile;
 
+pub(crate) use ballbar::test_circles;
+pub(crate) use profile::surface_points;
+
 use std::ops::Range;
 
 use crate::compensation::sampling::{PathSample, sample_toolpath};

@@ -27,6 +27,8 @@ fn norm(a: &[f64]) -> f64 {
 #[derive(Debug, Clone, Default)]
 pub struct Base {
     q: Vec<Vec<f64>>,
+    /// Which of the columns pushed were kept (independent of those before them).
+    pub kept: Vec<bool>,
 }
 
 impl Base {
@@ -40,6 +42,12 @@ impl Base {
 
     /// Add a column; returns whether it was independent of the basis (and so kept).
     pub fn push(&mut self, column: &[f64]) -> bool {
+        let kept = self.add(column);
+        self.kept.push(kept);
+        kept
+    }
+
+    fn add(&mut self, column: &[f64]) -> bool {
         let original = norm(column);
         if original == 0.0 || !original.is_finite() {
             return false;
@@ -88,12 +96,17 @@ pub struct ColumnFit {
     pub signature: Vec<f64>,
 }
 
-/// Fit `columns` to `residual` (both taken off the base here), jointly with the base.
-/// `None` when the columns have nothing left after the base (or are dependent).
+/// A candidate column of which the base explains all but this fraction is the base's
+/// own signature: what is left is the second-order rest of the readings' nonlinearity
+/// (1e-5 of a micrometre probe), not a signature of its own.
+pub const ALIASED: f64 = 1e-3;
+
+/// Fit `columns` to `residual` (already taken off the base), jointly with the base.
+/// `None` when a column has (almost) nothing left after the base: it is aliased.
 pub fn fit_columns(base: &Base, residual_perp: &[f64], columns: &[Vec<f64>]) -> Option<ColumnFit> {
     let projected: Vec<Vec<f64>> = columns.iter().map(|c| base.residual_of(c)).collect();
     for (c, p) in columns.iter().zip(&projected) {
-        if norm(p) <= DEPENDENT * norm(c).max(f64::MIN_POSITIVE) {
+        if norm(p) <= ALIASED * norm(c).max(f64::MIN_POSITIVE) {
             return None;
         }
     }
@@ -131,6 +144,24 @@ pub fn covariance(columns: &[Vec<f64>], sigma2: f64) -> Option<DMatrix<f64>> {
     }
     let inverse = jtj.try_inverse()?;
     Some(DMatrix::from_fn(m, m, |i, j| inverse[(i, j)] * sigma2 / (scales[i] * scales[j])))
+}
+
+/// The least-squares coefficients of `columns` for `y`, with their covariance for the
+/// residual variance of the fit. `None` when the columns are dependent.
+pub fn solve(columns: &[Vec<f64>], y: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>, f64)> {
+    let m = columns.len();
+    let n = y.len();
+    let unscaled = covariance(columns, 1.0)?;
+    let aty: Vec<f64> = columns.iter().map(|c| dot(c, y)).collect();
+    let coefficients: Vec<f64> = (0..m).map(|i| (0..m).map(|j| unscaled[(i, j)] * aty[j]).sum()).collect();
+    let rss: f64 = (0..n)
+        .map(|k| {
+            let fitted: f64 = columns.iter().zip(&coefficients).map(|(c, b)| c[k] * b).sum();
+            (y[k] - fitted).powi(2)
+        })
+        .sum();
+    let sigma2 = rss / n.saturating_sub(m).max(1) as f64;
+    Some((coefficients, unscaled * sigma2, rss))
 }
 
 /// The Bayesian information criterion of a Gaussian fit with `parameters` parameters.

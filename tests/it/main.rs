@@ -9,6 +9,7 @@ mod cli;
 mod corpus;
 mod corpus_semantic;
 mod cycles;
+mod diagnose;
 mod differential;
 mod lap;
 mod nose_radius;

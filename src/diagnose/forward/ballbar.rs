@@ -43,6 +43,12 @@ impl Circle {
     }
 }
 
+/// The program's test circles, in order: each one's direction and start angle (degrees
+/// from +Z toward +X), for synthesising a trace.
+pub(crate) fn test_circles(nominal: &Nominal) -> Vec<(Direction, f64)> {
+    circles(nominal).iter().map(|c| (c.direction(), c.start_angle.to_degrees())).collect()
+}
+
 fn circles(nominal: &Nominal) -> Vec<Circle> {
     let path = &nominal.toolpath;
     path.moves

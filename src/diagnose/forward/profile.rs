@@ -91,6 +91,54 @@ fn surfaces(nominal: &Nominal) -> Vec<Surface> {
     if finishing.is_empty() { (0..path.moves.len()).filter_map(make).collect() } else { finishing }
 }
 
+/// Points on the finished surface every `spacing` mm along each finishing move, at least
+/// half a spacing from its ends, each on the surface the program finishes last there: for
+/// synthesising a CMM profile.
+pub(crate) fn surface_points(nominal: &Nominal, spacing: f64) -> Vec<Xz> {
+    let surfaces = surfaces(nominal);
+    let spacing = if spacing.is_finite() && spacing > 0.0 { spacing } else { 0.5 };
+    let mut out = Vec::new();
+    for (k, s) in surfaces.iter().enumerate() {
+        let (length, at): (f64, Box<dyn Fn(f64) -> Xz>) = match s.arc {
+            None => {
+                let (start, end) = (s.start, s.end);
+                (
+                    start.distance(end),
+                    Box::new(move |d: f64| {
+                        let t = d / start.distance(end);
+                        Xz::new(start.x + (end.x - start.x) * t, start.z + (end.z - start.z) * t)
+                    }),
+                )
+            }
+            Some((centre, ccw)) => {
+                let radius = s.start.distance(centre);
+                let a0 = geometry::angle(s.start, centre);
+                let sign = if ccw { 1.0 } else { -1.0 };
+                (
+                    geometry::arc_length(s.start, s.end, centre, ccw),
+                    Box::new(move |d: f64| geometry::on_circle(centre, radius, a0 + sign * d / radius)),
+                )
+            }
+        };
+        let count = ((length - spacing) / spacing).floor();
+        if count < 0.0 {
+            continue;
+        }
+        let first = (length - count * spacing) / 2.0;
+        for i in 0..=count as usize {
+            let p = at(first + spacing * i as f64);
+            // Kept only where this move made the surface: no later pass over the same place
+            // and no other surface closer.
+            let nearest = surfaces.iter().map(|o| o.closest(p).1).fold(f64::INFINITY, f64::min);
+            let owner = surfaces.iter().rposition(|o| o.closest(p).1 <= nearest + SAME_SURFACE_MM);
+            if owner == Some(k) && p.x >= 0.0 {
+                out.push(p);
+            }
+        }
+    }
+    out
+}
+
 pub(super) fn forward(nominal: &Nominal, points: &[ProfilePoint]) -> Result<Forward, ForwardError> {
     let surfaces = surfaces(nominal);
     if surfaces.is_empty() {
@@ -165,10 +213,10 @@ pub(super) fn forward(nominal: &Nominal, points: &[ProfilePoint]) -> Result<Forw
     let groups = parts
         .iter()
         .map(|(label, start)| {
-            let name = label.as_deref().unwrap_or("the part");
+            let name = label.as_ref().map_or("the part".to_string(), |l| format!("part {l}"));
             match start {
-                Some(t) => format!("part {name} (started at {t} min)"),
-                None => format!("part {name}"),
+                Some(t) => format!("{name} (started at {t} min)"),
+                None => name,
             }
         })
         .collect();
