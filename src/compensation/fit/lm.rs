@@ -2,9 +2,9 @@
 //!
 //! The circle fits here have one, two or three parameters, so the normal equations are a
 //! 1×1 to 3×3 system that nalgebra solves on the stack. The loop is written here rather
-//! than taken from the `levenberg-marquardt` crate: that crate depends on a different
-//! major version of nalgebra than the one turnpass uses, and would bring a second copy of
-//! it into the build for a loop of thirty lines.
+//! than taken from the `levenberg-marquardt` crate: its latest release (0.15) requires
+//! nalgebra 0.34 where turnpass uses 0.35, so it would bring a second copy of nalgebra into
+//! the build for a loop of forty lines.
 //!
 //! The damping is Marquardt's: `(JᵀJ + λ·diag(JᵀJ)) δ = −Jᵀr`; a step that lowers the cost
 //! is taken and λ shrinks tenfold, one that does not is refused and λ grows tenfold.

@@ -308,7 +308,13 @@ fn degenerate_moves_do_not_panic() {
     let same = [Xz::new(1.0, 1.0); 5];
     let bad = [Xz::new(1.0, 1.0), Xz::new(f64::NAN, 2.0), Xz::new(3.0, f64::INFINITY), Xz::new(4.0, 4.0)];
     for points in [&same[..], &bad[..], &[Xz::new(2.0, 2.0)][..]] {
-        for nominal in [NominalShape::Line, NominalShape::Arc { centre: Xz::new(1.0, 0.0), ccw: true }] {
+        for nominal in [
+            NominalShape::Line,
+            NominalShape::Arc { centre: Xz::new(1.0, 0.0), ccw: true },
+            // A centre on the start (radius zero), and one that is not a number.
+            NominalShape::Arc { centre: Xz::new(1.0, 1.0), ccw: false },
+            NominalShape::Arc { centre: Xz::new(f64::NAN, 0.0), ccw: true },
+        ] {
             for strategy in [
                 Strategy::Auto,
                 Strategy::Circle,
