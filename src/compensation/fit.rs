@@ -147,18 +147,6 @@ fn chord_lines(mut from: Xz, points: &[Xz], tolerance: f64, out: &mut Vec<Segmen
     }
 }
 
-/// What wrote a move's segments.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Method {
-    /// A nominal line kept as one line.
-    Line,
-    Circle,
-    Semicircle,
-    Quadrant,
-    Arcs,
-    Densify,
-}
-
 /// The strategy that was asked for and could not meet the tolerance.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rejected {
@@ -172,7 +160,9 @@ pub struct Rejected {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fitted {
     pub segments: Vec<Segment>,
-    pub method: Method,
+    /// What wrote them: never `Auto`; a nominal line kept as one line is `Densify`'s one
+    /// `G01`, and a strategy that failed is `Densify` with `rejected` set.
+    pub strategy_used: Strategy,
     /// The largest distance of a compensated point from the written segments, mm.
     pub max_deviation_mm: f64,
     /// Set when the strategy asked for failed and the move fell back to `densify`.
@@ -199,7 +189,12 @@ pub fn fit_move(m: &MovePoints<'_>, options: &FitOptions) -> Fitted {
     let tolerance =
         if options.tolerance_mm >= 0.0 && options.tolerance_mm.is_finite() { options.tolerance_mm } else { 0.0 };
     let Some(&last) = m.points.last() else {
-        return Fitted { segments: Vec::new(), method: Method::Densify, max_deviation_mm: 0.0, rejected: None };
+        return Fitted {
+            segments: Vec::new(),
+            strategy_used: Strategy::Densify,
+            max_deviation_mm: 0.0,
+            rejected: None,
+        };
     };
     let fitting = Fitting { m, tolerance, step: options.step_mm };
     match m.nominal {
@@ -209,7 +204,7 @@ pub fn fit_move(m: &MovePoints<'_>, options: &FitOptions) -> Fitted {
             if deviation <= tolerance {
                 return Fitted {
                     segments: vec![line],
-                    method: Method::Line,
+                    strategy_used: Strategy::Densify,
                     max_deviation_mm: deviation,
                     rejected: None,
                 };
@@ -250,14 +245,14 @@ impl Fitting<'_, '_> {
     fn densify(&self) -> Fitted {
         let segments = densify(self.m, self.tolerance, self.step);
         let max_deviation_mm = deviation_by_piece(self.m.start, &segments, self.m.points);
-        Fitted { segments, method: Method::Densify, max_deviation_mm, rejected: None }
+        Fitted { segments, strategy_used: Strategy::Densify, max_deviation_mm, rejected: None }
     }
 
     fn arcs(&self) -> Fitted {
         let pieces = arcs::fit(self.m, self.tolerance);
         Fitted {
             segments: pieces.segments,
-            method: Method::Arcs,
+            strategy_used: Strategy::Arcs,
             max_deviation_mm: pieces.max_deviation_mm,
             rejected: None,
         }
@@ -276,14 +271,9 @@ impl Fitting<'_, '_> {
 
     fn circles(&self, centre: Xz, ccw: bool, cuts: &[f64], strategy: Strategy) -> Result<Fitted, f64> {
         let segments = split::circles(self.m, centre, ccw, cuts, self.tolerance)?;
-        let method = match strategy {
-            Strategy::Semicircle => Method::Semicircle,
-            Strategy::Quadrant => Method::Quadrant,
-            _ => Method::Circle,
-        };
         let max_deviation_mm = max_deviation(self.m.start, &segments, self.m.points);
         if max_deviation_mm <= self.tolerance {
-            Ok(Fitted { segments, method, max_deviation_mm, rejected: None })
+            Ok(Fitted { segments, strategy_used: strategy, max_deviation_mm, rejected: None })
         } else {
             Err(max_deviation_mm)
         }

@@ -101,7 +101,7 @@ fn check(m: &MovePoints<'_>, fitted: &Fitted) {
         from = s.end();
     }
     let deviation = max_deviation(m.start, &fitted.segments, m.points);
-    assert!(deviation <= TOLERANCE + 1e-12, "{:?}: deviation {deviation}", fitted.method);
+    assert!(deviation <= TOLERANCE + 1e-12, "{:?}: deviation {deviation}", fitted.strategy_used);
     assert!(fitted.max_deviation_mm >= deviation - 1e-12, "the reported deviation is at least the measured one");
 }
 
@@ -118,14 +118,14 @@ fn circle_absorbs_a_radius_error_and_a_centre_offset_exactly() {
     let m = arc_move(start, &points, Xz::new(0.0, 0.0), -90.0);
     let fitted = fit_move(&m, &options(Strategy::Circle));
     check(&m, &fitted);
-    assert_eq!(fitted.method, Method::Circle);
+    assert_eq!(fitted.strategy_used, Strategy::Circle);
     assert!(fitted.max_deviation_mm < 1e-9);
     let [Segment::Arc { centre, ccw: false, .. }] = fitted.segments[..] else { panic!("{:?}", fitted.segments) };
     assert!(centre.distance(Xz::new(0.0051, 0.0057)) < 1e-9, "{centre:?}");
     assert!((start.distance(centre) - 25.3958).abs() < 1e-9);
     // Auto keeps the one circle.
     let auto = fit_move(&m, &options(Strategy::Auto));
-    assert_eq!((auto.method, auto.segments.len()), (Method::Circle, 1));
+    assert_eq!((auto.strategy_used, auto.segments.len()), (Strategy::Circle, 1));
 }
 
 #[test]
@@ -139,11 +139,11 @@ fn semicircle_absorbs_a_backlash_step_that_defeats_one_circle() {
     check(&m, &circle);
     let rejected = circle.rejected.expect("one circle cannot take a 4 µm step");
     assert!(rejected.strategy == Strategy::Circle && rejected.deviation_mm > TOLERANCE);
-    assert_eq!(circle.method, Method::Densify);
+    assert_eq!(circle.strategy_used, Strategy::Densify);
 
     let halves = fit_move(&m, &options(Strategy::Semicircle));
     check(&m, &halves);
-    assert_eq!(halves.method, Method::Semicircle);
+    assert_eq!(halves.strategy_used, Strategy::Semicircle);
     assert!(halves.max_deviation_mm < 1e-9, "{}", halves.max_deviation_mm);
     // An arc to the reversal, the step, an arc from it.
     let [Segment::Arc { centre: before, .. }, Segment::Line { .. }, Segment::Arc { centre: after, .. }] =
@@ -158,7 +158,7 @@ fn semicircle_absorbs_a_backlash_step_that_defeats_one_circle() {
 
     let auto = fit_move(&m, &options(Strategy::Auto));
     check(&m, &auto);
-    assert_eq!((auto.method, auto.segments.len()), (Method::Semicircle, 3));
+    assert_eq!((auto.strategy_used, auto.segments.len()), (Strategy::Semicircle, 3));
 }
 
 #[test]
@@ -174,11 +174,11 @@ fn quadrant_approximates_an_oval_that_defeats_one_circle_and_two_halves() {
     }
     let quarters = fit_move(&m, &options(Strategy::Quadrant));
     check(&m, &quarters);
-    assert_eq!((quarters.method, count(&quarters)), (Method::Quadrant, (4, 0)));
+    assert_eq!((quarters.strategy_used, count(&quarters)), (Strategy::Quadrant, (4, 0)));
     assert!(quarters.max_deviation_mm > 0.1 * TOLERANCE, "an approximation, not an exact fit");
     let auto = fit_move(&m, &options(Strategy::Auto));
     check(&m, &auto);
-    assert_eq!((auto.method, auto.segments.len()), (Method::Quadrant, 4));
+    assert_eq!((auto.strategy_used, auto.segments.len()), (Strategy::Quadrant, 4));
 }
 
 #[test]
@@ -192,7 +192,7 @@ fn arcs_and_densify_meet_the_tolerance_on_every_error_at_once() {
         let lines = fit_move(&m, &options(Strategy::Densify));
         check(&m, &arcs);
         check(&m, &lines);
-        assert_eq!((arcs.method, lines.method), (Method::Arcs, Method::Densify));
+        assert_eq!((arcs.strategy_used, lines.strategy_used), (Strategy::Arcs, Strategy::Densify));
         assert!(
             arcs.segments.len() * 3 < lines.segments.len(),
             "arcs {} against lines {}",
@@ -260,7 +260,7 @@ fn a_line_stays_a_line_or_takes_the_fewest_segments() {
     let m = MovePoints { start: Xz::new(20.0, 0.0), points: &straight, nominal: NominalShape::Line };
     for strategy in [Strategy::Auto, Strategy::Circle, Strategy::Arcs, Strategy::Densify] {
         let fitted = fit_move(&m, &options(strategy));
-        assert_eq!((fitted.method, fitted.segments.len()), (Method::Line, 1), "{strategy:?}");
+        assert_eq!((fitted.strategy_used, fitted.segments.len()), (Strategy::Densify, 1), "{strategy:?}");
     }
     // A cyclic lead error of 3 µm and 10 mm pitch: lines must follow it.
     let wavy: Vec<Xz> = (1..=200)
@@ -277,10 +277,10 @@ fn a_line_stays_a_line_or_takes_the_fewest_segments() {
     for fitted in [&lines, &arcs, &auto, &circle] {
         check(&m, fitted);
     }
-    assert_eq!(circle.method, Method::Densify);
+    assert_eq!(circle.strategy_used, Strategy::Densify);
     assert!(circle.rejected.is_none(), "densify is what circle does with a line");
     assert!(arcs.segments.len() < lines.segments.len(), "arcs {} lines {}", arcs.segments.len(), lines.segments.len());
-    assert_eq!((auto.method, auto.segments.len()), (Method::Arcs, arcs.segments.len()));
+    assert_eq!((auto.strategy_used, auto.segments.len()), (Strategy::Arcs, arcs.segments.len()));
 }
 
 #[test]
@@ -363,7 +363,7 @@ proptest! {
             // A strategy that cannot meet the tolerance says so and falls back to densify.
             if let Some(rejected) = fitted.rejected {
                 prop_assert_eq!(rejected.strategy, strategy);
-                prop_assert_eq!(fitted.method, Method::Densify);
+                prop_assert_eq!(fitted.strategy_used, Strategy::Densify);
             }
         }
     }
