@@ -136,9 +136,7 @@ pub(super) fn run(
 /// itself after its final pass; read as part of the shape, they would turn the profile back
 /// along the cut. `G70` still runs them.
 fn without_exit(profile: &Profile, start: Xz, allowance: Xz, facing: bool) -> Profile {
-    let Some(first) = profile.segments.first() else { return profile.clone() };
-    let mirror_u = if facing { start.z < first.end.z } else { start.x < first.end.x };
-    let level = Canon { swap: facing, mirror_u, mirror_v: false };
+    let level = Canon { swap: facing, mirror_u: start_below(start, profile, allowance, facing), mirror_v: false };
     let a = level.to(start);
     let shifted = |p: Xz| level.to(Xz::new(p.x + allowance.x, p.z + allowance.z));
     // The approach and at least one element of the shape stay.
@@ -156,6 +154,24 @@ fn without_exit(profile: &Profile, start: Xz, allowance: Xz, facing: bool) -> Pr
     let mut trimmed = profile.clone();
     trimmed.segments.truncate(keep);
     trimmed
+}
+
+/// Whether the start point lies below the profile across the levels (toward smaller X when
+/// turning, an inside cut; toward smaller Z when facing). The start point and the point the
+/// P block goes to decide; where they lie at the same level (`N10 G00 X20 Z2` from X20 Z5),
+/// the sign of the allowance across the levels does, and without one the side the rest of
+/// the profile lies on.
+fn start_below(start: Xz, profile: &Profile, allowance: Xz, facing: bool) -> bool {
+    let across = |p: Xz| if facing { p.z } else { p.x };
+    let first = profile.segments.first().map_or(profile.start, |s| s.end);
+    let (a, p) = (across(start), across(first));
+    if (a - p).abs() > 1e-9 {
+        a < p
+    } else if across(allowance) != 0.0 {
+        across(allowance) < 0.0
+    } else {
+        profile.points().any(|q| across(q) > a + 1e-9)
+    }
 }
 
 struct Rough {
@@ -181,7 +197,7 @@ impl Rough {
         let first = profile.segments[0];
         let canon = Canon {
             swap: self.facing,
-            mirror_u: if self.facing { start.z < first.end.z } else { start.x < first.end.x },
+            mirror_u: start_below(start, profile, self.allowance, self.facing),
             mirror_v: if self.facing { shifted_end.x > start.x } else { shifted_end.z > start.z },
         };
         let elements = canonical::elements(&canon, profile, self.allowance, true);
