@@ -51,9 +51,43 @@ pub struct Element {
     pub arc: Option<(Uv, bool)>,
 }
 
+impl Uv {
+    pub fn distance(self, other: Uv) -> f64 {
+        (self.u - other.u).hypot(self.v - other.v)
+    }
+}
+
 impl Element {
     pub fn radius(&self) -> f64 {
         self.arc.map_or(0.0, |(c, _)| (self.start.u - c.u).hypot(self.start.v - c.v))
+    }
+
+    /// Whether `p`, a point on an arc's circle, lies within the arc's sweep (its ends
+    /// included, to rounding). The canonical frame is a rigid map, so the angular test of the
+    /// toolpath frame works on (u, v) read as (x, z).
+    fn sweeps(&self, p: Uv) -> bool {
+        let Some((c, ccw)) = self.arc else { return false };
+        let as_xz = |q: Uv| Xz::new(q.u, q.v);
+        p.distance(self.start) < 1e-9
+            || p.distance(self.end) < 1e-9
+            || geometry::angle_within(as_xz(p), as_xz(self.start), as_xz(self.end), as_xz(c), ccw)
+    }
+
+    /// Whether `p` lies on the element (to a micrometre's thousandth).
+    pub fn contains(&self, p: Uv) -> bool {
+        const ON: f64 = 1e-7;
+        match self.arc {
+            None => {
+                let (d_u, d_v) = (self.end.u - self.start.u, self.end.v - self.start.v);
+                let length2 = d_u * d_u + d_v * d_v;
+                if length2 < 1e-24 {
+                    return p.distance(self.start) < ON;
+                }
+                let t = (((p.u - self.start.u) * d_u + (p.v - self.start.v) * d_v) / length2).clamp(0.0, 1.0);
+                p.distance(Uv { u: self.start.u + d_u * t, v: self.start.v + d_v * t }) < ON
+            }
+            Some((c, _)) => (p.distance(c) - self.radius()).abs() < ON && self.sweeps(p),
+        }
     }
 }
 

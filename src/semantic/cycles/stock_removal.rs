@@ -347,19 +347,13 @@ fn stretches(elements: &[Element], u: f64, v_start: f64, v_end: f64) -> Vec<(f64
     out
 }
 
-/// The profile from `from` (a point on it) onward, until it rises to `ceiling`.
+/// The profile from `from` (a point on it, where a stretch ended) onward, until it rises to
+/// `ceiling`. It starts on the element that holds `from`: at a wall, the wall, not the
+/// element before it that ends at the wall's foot at the same `v`.
 fn follow_up(elements: &[Element], from: Uv, ceiling: f64) -> Vec<Uv> {
+    let Some(first) = elements.iter().position(|e| e.contains(from)) else { return Vec::new() };
     let mut out = Vec::new();
-    let mut started = false;
-    for e in elements {
-        let (hi, lo) = (e.start.v.max(e.end.v), e.start.v.min(e.end.v));
-        if !started {
-            if from.v <= hi + 1e-9 && from.v >= lo - 1e-9 {
-                started = true;
-            } else {
-                continue;
-            }
-        }
+    for e in &elements[first..] {
         if e.end.u >= ceiling - 1e-9 {
             // Stop where this element reaches the ceiling (lines only; an arc ends there).
             if e.arc.is_none() && (e.end.u - e.start.u).abs() > 1e-12 {
