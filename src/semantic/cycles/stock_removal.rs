@@ -253,9 +253,9 @@ impl Rough {
                 let mut here = Uv { u: level, v: v_out };
                 if self.type_ii && v_out > v_end + 1e-9 {
                     // Follow the rising profile up to the previous level.
-                    for p in follow_up(&elements, here, previous_level) {
-                        go(interp, p, false);
-                        here = p;
+                    for piece in follow_up(&elements, here, previous_level) {
+                        cut_along(interp, &canon, &piece);
+                        here = piece.end;
                     }
                 }
                 here = Uv { u: here.u + self.retract, v: here.v + self.retract };
@@ -271,13 +271,7 @@ impl Rough {
         travel(interp, &go, &cleared, at, a.v, a.u);
         go(interp, shifted_start, approach_rapid);
         for e in &elements {
-            let modal = interp.modal.clone();
-            match e.arc {
-                None => interp.emitter.line(&modal, canon.from(e.end), true),
-                Some((c, ccw)) => {
-                    interp.emitter.arc(&modal, canon.from(e.end), canon.from(c), ccw ^ canon.flips(), true)
-                }
-            }
+            cut_along(interp, &canon, e);
         }
         // Back to A: away from the part first.
         let last = canon.to(interp.emitter.at);
@@ -347,28 +341,40 @@ fn stretches(elements: &[Element], u: f64, v_start: f64, v_end: f64) -> Vec<(f64
     out
 }
 
-/// The profile from `from` (a point on it, where a stretch ended) onward, until it rises to
-/// `ceiling`. It starts on the element that holds `from`: at a wall, the wall, not the
-/// element before it that ends at the wall's foot at the same `v`.
-fn follow_up(elements: &[Element], from: Uv, ceiling: f64) -> Vec<Uv> {
+/// Cut along a profile element (or a piece of one) at the feed: a line, or an arc about
+/// its centre.
+fn cut_along(interp: &mut Interpreter<'_, '_>, canon: &Canon, e: &Element) {
+    let modal = interp.modal.clone();
+    match e.arc {
+        None => interp.emitter.line(&modal, canon.from(e.end), true),
+        Some((c, ccw)) => interp.emitter.arc(&modal, canon.from(e.end), canon.from(c), ccw ^ canon.flips(), true),
+    }
+}
+
+/// The profile from `from` (a point on it, where a stretch ended) onward, as pieces of its
+/// elements, until it rises to `ceiling` or turns down below `from` again (a new stretch
+/// cuts there). Arcs stay arcs: the chord of a convex arc runs inside the part. It starts
+/// on the element that holds `from`: at a wall, the wall, not the element before it that
+/// ends at the wall's foot at the same `v`.
+fn follow_up(elements: &[Element], from: Uv, ceiling: f64) -> Vec<Element> {
     let Some(first) = elements.iter().position(|e| e.contains(from)) else { return Vec::new() };
     let mut out = Vec::new();
+    let mut at = from;
     for e in &elements[first..] {
-        if e.end.u >= ceiling - 1e-9 {
-            // Stop where this element reaches the ceiling (lines only; an arc ends there).
-            if e.arc.is_none() && (e.end.u - e.start.u).abs() > 1e-12 {
-                let t = (ceiling - e.start.u) / (e.end.u - e.start.u);
-                out.push(Uv { u: ceiling, v: e.start.v + (e.end.v - e.start.v) * t.clamp(0.0, 1.0) });
-            } else {
-                out.push(e.end);
-            }
-            return out;
+        if at.u >= ceiling - 1e-9 || e.end.u < from.u - 1e-9 {
+            break;
         }
-        if e.end.u < from.u - 1e-9 {
-            // The profile goes down again: a new stretch will cut there.
-            return out;
+        let piece = Element { start: at, ..*e };
+        // The first point along the piece at the ceiling, if it gets there.
+        let reach = canonical::crossings(&[piece], ceiling).into_iter().filter(|v| *v <= at.v + 1e-9).reduce(f64::max);
+        let end = reach.map_or(e.end, |v| Uv { u: ceiling, v });
+        if at.distance(end) > 1e-12 {
+            out.push(Element { end, ..piece });
         }
-        out.push(e.end);
+        if reach.is_some() {
+            break;
+        }
+        at = end;
     }
     out
 }
