@@ -257,6 +257,13 @@ impl Rough {
                         cut_along(interp, &canon, &piece);
                         here = piece.end;
                     }
+                    if here.u < previous_level - 1e-9 {
+                        // The profile ended, or turned down, below the previous level: the
+                        // stock over it up to that level is still there, and a retract
+                        // at 45° would run through it. Cut straight up through it first.
+                        here.u = previous_level;
+                        go(interp, here, false);
+                    }
                 }
                 here = Uv { u: here.u + self.retract, v: here.v + self.retract };
                 go(interp, here, true);
