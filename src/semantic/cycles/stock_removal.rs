@@ -265,7 +265,8 @@ impl Rough {
                         go(interp, here, false);
                     }
                 }
-                here = Uv { u: here.u + self.retract, v: here.v + self.retract };
+                let retract = self.retract.min(retract_room(&cleared, here, a));
+                here = Uv { u: here.u + retract, v: here.v + retract };
                 go(interp, here, true);
                 at = here;
             }
@@ -287,6 +288,22 @@ impl Rough {
         interp.modal = saved;
         Ok(())
     }
+}
+
+/// How far the tool at `here` may retract at 45° (up and back along the cut) through stock
+/// already cut: as far back as the stretches cut at or below its height reach over it. A
+/// stretch that begins at A's `v` opens onto the outside; one in a pocket ends at the
+/// pocket's near side, and a full retract from a pocket narrower than the retract would
+/// run at rapid into that side (the part, or the stock the previous level left on it).
+fn retract_room(cleared: &[(f64, f64, f64)], here: Uv, a: Uv) -> f64 {
+    if here.u >= a.u - 1e-9 {
+        return f64::INFINITY;
+    }
+    cleared
+        .iter()
+        .filter(|&&(u, hi, lo)| u <= here.u + 1e-9 && here.v <= hi + 1e-9 && here.v >= lo - 1e-9)
+        .map(|&(_, hi, _)| if hi >= a.v - 1e-9 { f64::INFINITY } else { hi - here.v })
+        .fold(0.0, f64::max)
 }
 
 /// Rapid from `at` to `v`: straight along `v` when every point of the way lies over a
