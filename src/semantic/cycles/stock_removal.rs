@@ -281,9 +281,19 @@ impl Rough {
         for e in &elements {
             cut_along(interp, &canon, e);
         }
-        // Back to A: away from the part first.
+        // Back to A: away from the part first. Where the profile rises above A's level on
+        // the way back (a land left at the stock diameter), a straight line down to A would
+        // cross it: along the cut above it first.
         let last = canon.to(interp.emitter.at);
-        go(interp, Uv { u: a.u.max(last.u), v: last.v }, true);
+        let away = a.u.max(last.u);
+        go(interp, Uv { u: away, v: last.v }, true);
+        let (lo, hi) = (last.v.min(a.v) + 1e-6, last.v.max(a.v) - 1e-6);
+        let over = if lo < hi { highest(&elements, lo, hi) } else { f64::NEG_INFINITY };
+        if over > a.u + 1e-9 {
+            let height = away.max(over);
+            go(interp, Uv { u: height, v: last.v }, true);
+            go(interp, Uv { u: height, v: a.v }, true);
+        }
         go(interp, a, true);
         interp.modal = saved;
         Ok(())
@@ -325,6 +335,27 @@ fn travel(
     let to = Uv { u: height, v };
     go(interp, to, true);
     to
+}
+
+/// The highest point of the profile over `v` from `lo` to `hi`: where it is at both ends, the
+/// ends of its elements between, and the crest of an arc that rises above its ends there.
+fn highest(elements: &[Element], lo: f64, hi: f64) -> f64 {
+    let within = |p: Uv| p.v >= lo - 1e-9 && p.v <= hi + 1e-9;
+    let as_xz = |q: Uv| Xz::new(q.u, q.v);
+    let mut top = canonical::u_at(elements, lo).max(canonical::u_at(elements, hi));
+    for e in elements {
+        for p in [e.start, e.end].into_iter().filter(|p| within(*p)) {
+            top = top.max(p.u);
+        }
+        if let Some((c, ccw)) = e.arc {
+            let crest = Uv { u: c.u + e.radius(), v: c.v };
+            if within(crest) && crate::geometry::angle_within(as_xz(crest), as_xz(e.start), as_xz(e.end), as_xz(c), ccw)
+            {
+                top = top.max(crest.u);
+            }
+        }
+    }
+    top
 }
 
 /// The lowest point of the arcs, when an arc dips below its end points.
