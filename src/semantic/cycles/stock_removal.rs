@@ -235,12 +235,12 @@ impl Rough {
             for (v_in, v_out) in stretches.iter().copied() {
                 if (v_in - a.v).abs() < 1e-9 {
                     // Back to A's v, then infeed as the P block moves (rapid or feed).
-                    travel(interp, &go, &cleared, at, a.v, a.u);
+                    travel(interp, &go, &cleared, &elements, at, a.v, a.u);
                     go(interp, Uv { u: level, v: a.v }, approach_rapid);
                 } else {
                     // Into a pocket: across, down at rapid to just over the stock the
                     // previous level left, then feed.
-                    at = travel(interp, &go, &cleared, at, v_in, a.u);
+                    at = travel(interp, &go, &cleared, &elements, at, v_in, a.u);
                     let opened = cleared
                         .iter()
                         .any(|&(u, hi, lo)| u <= previous_level + 1e-9 && v_in <= hi + 1e-9 && v_in >= lo - 1e-9);
@@ -276,7 +276,7 @@ impl Rough {
 
         // The semi-finishing pass along the shifted profile, entered at A's v.
         let shifted_start = canon.to(Xz::new(first.end.x + self.allowance.x, first.end.z + self.allowance.z));
-        travel(interp, &go, &cleared, at, a.v, a.u);
+        travel(interp, &go, &cleared, &elements, at, a.v, a.u);
         go(interp, shifted_start, approach_rapid);
         for e in &elements {
             cut_along(interp, &canon, e);
@@ -317,17 +317,20 @@ fn retract_room(cleared: &[(f64, f64, f64)], here: Uv, a: Uv) -> f64 {
 }
 
 /// Rapid from `at` to `v`: straight along `v` when every point of the way lies over a
-/// stretch cut at or below the tool's height, else up to the safe level `safe_u` first.
+/// stretch cut at or below the tool's height, else up to the safe level first: A's level, or
+/// higher where the profile (allowance included) rises above it on the way.
 fn travel(
     interp: &mut Interpreter<'_, '_>,
     go: &impl Fn(&mut Interpreter<'_, '_>, Uv, bool),
     cleared: &[(f64, f64, f64)],
+    elements: &[Element],
     at: Uv,
     v: f64,
-    safe_u: f64,
+    a_u: f64,
 ) -> Uv {
     let (hi, lo) = (at.v.max(v), at.v.min(v));
     let covered = cleared.iter().any(|&(u, top, bottom)| u <= at.u + 1e-9 && top >= hi - 1e-9 && bottom <= lo + 1e-9);
+    let safe_u = a_u.max(highest(elements, lo, hi));
     let height = if covered || at.u >= safe_u - 1e-9 { at.u } else { safe_u };
     if height != at.u {
         go(interp, Uv { u: height, v: at.v }, true);
