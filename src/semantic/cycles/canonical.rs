@@ -118,10 +118,16 @@ pub fn crossings(elements: &[Element], u: f64) -> Vec<f64> {
             None => {
                 let (u0, u1) = (e.start.u, e.end.u);
                 if (u0 - u1).abs() < 1e-12 {
+                    // A level on a flat (to rounding: levels are A's level less whole depths)
+                    // meets it at both ends; without them, a level a hair above a flat would
+                    // seem to run along it, and the stretch before it would not be cut.
+                    if (u - u0).abs() <= 1e-9 {
+                        out.extend([e.start.v, e.end.v]);
+                    }
                     continue;
                 }
-                if (u - u0) * (u - u1) <= 0.0 {
-                    let t = (u - u0) / (u1 - u0);
+                if u >= u0.min(u1) - 1e-9 && u <= u0.max(u1) + 1e-9 {
+                    let t = ((u - u0) / (u1 - u0)).clamp(0.0, 1.0);
                     out.push(e.start.v + (e.end.v - e.start.v) * t);
                 }
             }
