@@ -131,19 +131,16 @@ pub fn crossings(elements: &[Element], u: f64) -> Vec<f64> {
                     out.push(e.start.v + (e.end.v - e.start.v) * t);
                 }
             }
-            Some((c, ccw)) => {
+            Some((c, _)) => {
                 let r = e.radius();
                 let du = u - c.u;
-                if du.abs() > r {
+                // A level that touches the arc (to rounding) meets it there.
+                if du.abs() > r + 1e-9 {
                     continue;
                 }
-                let dv = (r * r - du * du).sqrt();
+                let dv = (r * r - du * du).max(0.0).sqrt();
                 for v in [c.v + dv, c.v - dv] {
-                    // Back to a real-frame test of the arc's sweep: the canonical frame is a
-                    // rigid map, so the angular test works on (u, v) read as (x, z).
-                    let as_xz = |q: Uv| Xz::new(q.u, q.v);
-                    let ccw_uv = ccw;
-                    if geometry::angle_within(as_xz(Uv { u, v }), as_xz(e.start), as_xz(e.end), as_xz(c), ccw_uv) {
+                    if e.sweeps(Uv { u, v }) {
                         out.push(v);
                     }
                 }
@@ -178,16 +175,15 @@ pub fn u_at(elements: &[Element], v: f64) -> f64 {
                 };
                 best = best.max(u);
             }
-            Some((c, ccw)) => {
+            Some((c, _)) => {
                 let r = e.radius();
                 let dv = v - c.v;
-                if dv.abs() > r {
+                if dv.abs() > r + 1e-9 {
                     continue;
                 }
-                let du = (r * r - dv * dv).sqrt();
+                let du = (r * r - dv * dv).max(0.0).sqrt();
                 for u in [c.u + du, c.u - du] {
-                    let as_xz = |q: Uv| Xz::new(q.u, q.v);
-                    if geometry::angle_within(as_xz(Uv { u, v }), as_xz(e.start), as_xz(e.end), as_xz(c), ccw) {
+                    if e.sweeps(Uv { u, v }) {
                         best = best.max(u);
                     }
                 }
