@@ -145,7 +145,8 @@ fn without_exit(profile: &Profile, start: Xz, allowance: Xz, facing: bool) -> Pr
         let (from, last) = (shifted(profile.segments[keep - 2].end), profile.segments[keep - 1]);
         let to = shifted(last.end);
         let outside = from.u >= a.u - 1e-9 && to.u >= a.u - 1e-9;
-        let back = (to.v - a.v).abs() < (from.v - a.v).abs() - 1e-9;
+        // Toward the start point's plane, perhaps past it by the allowance.
+        let back = (to.v - from.v) * (a.v - from.v) > 1e-12;
         if !(outside && back && last.shape == Shape::Line) {
             break;
         }
