@@ -22,11 +22,12 @@
 
 use proptest::prelude::*;
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem};
-use turnpass::geometry;
 use turnpass::machine::ModelFile;
 use turnpass::semantic::{self, LowerOptions, Machine};
 use turnpass::syntax::{ParseOptions, parse};
 use turnpass::toolpath::{Motion, Move, Xz};
+
+use crate::moves::{cycle_moves, samples};
 
 /// A point of the canonical frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -223,24 +224,6 @@ fn machine() -> Machine {
     Machine::from_settings(&settings)
 }
 
-/// Points along a move, from `from`.
-fn samples(from: Xz, m: &Move) -> Vec<Xz> {
-    const N: usize = 16;
-    (0..=N)
-        .map(|i| {
-            let t = i as f64 / N as f64;
-            if m.is_arc() {
-                let ccw = m.motion == Motion::Ccw;
-                let sweep = geometry::sweep(from, m.end, m.centre, ccw);
-                let a = geometry::angle(from, m.centre) + if ccw { sweep * t } else { -sweep * t };
-                geometry::on_circle(m.centre, from.distance(m.centre), a)
-            } else {
-                Xz::new(from.x + (m.end.x - from.x) * t, from.z + (m.end.z - from.z) * t)
-            }
-        })
-        .collect()
-}
-
 /// Whether `p` lies strictly inside the region under `elements` (below the contour, within
 /// its span along the cut). A point on a wall is on the boundary, not inside: the contour is
 /// probed a hair either side along the cut, and the lower value counts (slopes here are at
@@ -249,22 +232,6 @@ fn inside(elements: &[Element], p: Uv) -> bool {
     let envelope = |v: f64| elements.iter().filter_map(|e| e.u_at(v)).fold(f64::NEG_INFINITY, f64::max);
     let floor = [p.v - 1e-9, p.v, p.v + 1e-9].into_iter().map(envelope).fold(f64::INFINITY, f64::min);
     p.u < floor - 1e-6
-}
-
-/// The moves of the cycle called in block `line` (1-based source line).
-fn cycle_moves<'a>(program: &turnpass::syntax::Program<'_>, moves: &'a [Move], line: usize) -> (Xz, Vec<&'a Move>) {
-    let lines = turnpass::source::LineIndex::new(program.source());
-    let mut from = None;
-    let mut out = Vec::new();
-    let mut previous = Xz::new(f64::NAN, f64::NAN);
-    for m in moves {
-        if !m.cycle.is_synthetic() && lines.position(m.cycle.start).0 == line {
-            from.get_or_insert(previous);
-            out.push(m);
-        }
-        previous = m.end;
-    }
-    (from.unwrap_or(previous), out)
 }
 
 fn close(a: Xz, b: Xz) -> bool {
@@ -340,7 +307,7 @@ fn check_starts(found: &[Uv], expected: &[Uv], what: &str) -> Result<(), TestCas
 fn check_no_entry(case: &Case, from: Xz, moves: &[&Move], region: &[Element], what: &str) -> Result<(), TestCaseError> {
     let mut at = from;
     for m in moves {
-        for p in samples(at, m) {
+        for p in samples(at, m, 16) {
             let q = case.to_uv(p);
             prop_assert!(!inside(region, q), "{what}: a {:?} move to {:?} passes {:?}, inside", m.motion, m.end, q);
         }
