@@ -32,10 +32,10 @@
 
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::{GFunction, Role};
-use crate::source::Span;
 use crate::syntax::Command;
 use crate::toolpath::Xz;
 
+use super::super::frame::Frame;
 use super::super::interpreter::{Flow, Interpreter};
 use super::super::profile::{Profile, Shape};
 use super::canonical::{self, Canon, Element, Uv};
@@ -115,9 +115,9 @@ pub(super) fn run(
     let feed = interp.param(command, Role::Feed).unwrap_or(interp.modal.feed);
     let speed = interp.param(command, Role::Speed);
     let rough = Rough { depth, retract, allowance, type_ii, feed, speed, facing };
-    let profile = without_exit(&profile, start, allowance, facing);
-    if let Err(kind) = rough.cut(interp, &profile, start, span) {
-        interp.error(kind, span);
+    if let Err(kind) = rough.cut(interp, &without_exit(&profile, start, allowance, facing), start) {
+        let (frame, shift) = (interp.modal.frame, interp.modal.shift);
+        interp.error(rough.wrong_side(&profile, start, frame, shift).unwrap_or(kind), span);
     }
     // F and S written in the cycle block are words of that block: they stay modal after
     // it, as every F and S does (a G70 with no F of its own then finishes at that feed
@@ -186,27 +186,60 @@ struct Rough {
 }
 
 impl Rough {
-    fn cut(
-        &self,
-        interp: &mut Interpreter<'_, '_>,
-        profile: &Profile,
-        start: Xz,
-        _span: Span,
-    ) -> Result<(), DiagnosticKind> {
-        // The profile proper starts where the P block goes; that first move is the approach.
+    /// The canonical frame seen from `start`, and the profile shifted by the allowance in it
+    /// (the approach left out), checked against the cycle's type.
+    fn shape(&self, profile: &Profile, start: Xz) -> Result<(Canon, Vec<Element>), DiagnosticKind> {
         let shifted_end = Xz::new(profile.end().x + self.allowance.x, profile.end().z + self.allowance.z);
-        let first = profile.segments[0];
         let canon = Canon {
             swap: self.facing,
             mirror_u: start_below(start, profile, self.allowance, self.facing),
             mirror_v: if self.facing { shifted_end.x > start.x } else { shifted_end.z > start.z },
         };
+        // The profile proper starts where the P block goes; that first move is the approach.
         let elements = canonical::elements(&canon, profile, self.allowance, true);
         if elements.is_empty() {
             return Err(DiagnosticKind::EmptyProfile);
         }
         check_shape(&elements, self.type_ii, self.facing)?;
+        Ok((canon, elements))
+    }
 
+    /// Why a profile that fails from `start` fails, when the start point lies on the other
+    /// side of it than the sign of the allowance across the passes asks for (`U-1`, inside,
+    /// from a start point outside the part), and the profile passes from a start point moved
+    /// across to that side: beyond the profile's extreme there, allowance included.
+    fn wrong_side(&self, profile: &Profile, start: Xz, frame: Frame, shift: Xz) -> Option<DiagnosticKind> {
+        let allowance_mm = if self.facing { self.allowance.z } else { self.allowance.x };
+        let inside = allowance_mm < 0.0;
+        if allowance_mm == 0.0 || start_below(start, profile, self.allowance, self.facing) == inside {
+            return None;
+        }
+        // Program values across the passes: X as written (a diameter), or Z.
+        let across = |p: Xz| if self.facing { frame.program(p.z - shift.z) } else { frame.x_program(p.x - shift.x) };
+        let ends = profile.segments.iter().map(|s| across(s.end));
+        let extreme = if inside { ends.fold(f64::INFINITY, f64::min) } else { ends.fold(f64::NEG_INFINITY, f64::max) };
+        let allowance = if self.facing { frame.program(allowance_mm) } else { frame.x_program(allowance_mm) };
+        let target = extreme + allowance;
+        let moved = if self.facing {
+            Xz::new(start.x, frame.mm(target) + shift.z)
+        } else {
+            Xz::new(frame.x_mm(target) + shift.x, start.z)
+        };
+        let from_there = without_exit(profile, moved, self.allowance, self.facing);
+        self.shape(&from_there, moved).ok()?;
+        Some(DiagnosticKind::StartOnWrongSide {
+            x: frame.x_program(start.x - shift.x),
+            z: frame.program(start.z - shift.z),
+            axis: if self.facing { 'Z' } else { 'X' },
+            address: if self.facing { 'W' } else { 'U' },
+            allowance,
+            extreme,
+        })
+    }
+
+    fn cut(&self, interp: &mut Interpreter<'_, '_>, profile: &Profile, start: Xz) -> Result<(), DiagnosticKind> {
+        let (canon, elements) = self.shape(profile, start)?;
+        let first = profile.segments[0];
         let a = canon.to(start);
         let v_end = elements.last().map_or(a.v, |e| e.end.v);
         let u_min = elements.iter().flat_map(|e| [e.start.u, e.end.u]).fold(f64::INFINITY, f64::min);
