@@ -455,10 +455,6 @@ pub enum DiagnosticKind {
         shift: char,
         axis: char,
     },
-    /// An OSP `G88` thread whose `N` names no `G81`/`G82` contour.
-    ThreadContourNotFound {
-        name: String,
-    },
     /// An OSP `G88` thread contour with an arc, or a rapid after its first thread element.
     ThreadContourNotStraight,
     /// `#[expr]` with a value that is no variable number.

@@ -102,7 +102,6 @@ impl DiagnosticKind {
             TooManyPasses { .. } => "too-many-passes",
             InfeedPatternApproximated => "infeed-pattern-approximated",
             CycleNeedsShift { .. } => "cycle-needs-shift",
-            ThreadContourNotFound { .. } => "thread-contour-not-found",
             ThreadContourNotStraight => "thread-contour-not-straight",
             BadVariableNumber { .. } => "bad-variable-number",
             NotAVariable => "not-a-variable",
@@ -310,7 +309,6 @@ impl DiagnosticKind {
             CycleNeedsShift { shift, axis } => {
                 format!("the cycle ends at another {axis} than it starts, and has no `{shift}` to step there")
             }
-            ThreadContourNotFound { name } => format!("no `G81`/`G82` contour is named `{name}`"),
             ThreadContourNotStraight => {
                 "a continuous thread contour may hold only straight thread elements after its approach".to_string()
             }
@@ -411,7 +409,6 @@ impl DiagnosticKind {
             TooManyPasses { .. } => "this cycle".to_string(),
             InfeedPatternApproximated => "pattern 3".to_string(),
             CycleNeedsShift { .. } => "off the start line".to_string(),
-            ThreadContourNotFound { .. } => "contour name".to_string(),
             InfeedAngleOutOfRange { .. } => "infeed angle".to_string(),
             ThreadContourNotStraight => "in the thread contour".to_string(),
             BadVariableNumber { .. } | NotAVariable | SystemVariableUnknown { .. } | UndefinedVariable { .. } => {
@@ -613,9 +610,6 @@ impl DiagnosticKind {
                 Some("a larger first depth `D` (D² ≥ H² − (H − U)²) makes the pass depths the documented D·√n".to_string())
             }
             CycleNeedsShift { shift, .. } => Some(format!("give the shift per pass `{shift}`, or start the cycle on the end line")),
-            ThreadContourNotFound { .. } => {
-                Some("name the contour's first block (`G81`/`G82`) as the `N` of the call".to_string())
-            }
             ThreadContourNotStraight => {
                 Some("cut the thread with G71/G72, or split the contour at the arc".to_string())
             }

@@ -76,7 +76,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         GFunction::CompoundThreadLongitudinal | GFunction::CompoundThreadFace => {
             compound_thread::run(interp, index, &command, function)
         }
-        GFunction::LapThread => lap_thread::run(interp, index, &command),
+        GFunction::LapThread => lap_thread::run(interp, index, &command, &mut consumed),
         GFunction::OspGrooving | GFunction::OspFaceCutting => grooving::run(interp, index, &command, function),
         GFunction::Tapping => tapping::run(interp, index, &command),
         GFunction::PatternRepeat => {
