@@ -28,23 +28,15 @@ use crate::syntax::Command;
 
 use super::super::interpreter::{Flow, Interpreter};
 use super::super::profile::Shape;
+use super::Call;
 use super::compound_thread::infeed_of;
 use super::lap_contour::{self, Direction};
 use super::thread_pass::{self, Axes, Pass};
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
-    let from = interp.emitter.at;
-    if !from.is_finite() {
-        interp.unknown_position(span);
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
+    let Some((Call { span, start: from }, contour)) = lap_contour::call(interp, index, command) else {
         return Flow::Next;
-    }
-    let Some(contour) = lap_contour::find(interp, index, command, from) else { return Flow::Next };
+    };
     let flow = contour.flow_after();
     let (modal, lead_mm) = thread_pass::thread_modal(interp, command);
     let profile = &contour.profile;
@@ -87,8 +79,6 @@ pub(super) fn run(
         }
     }
     interp.report_zero_feed(span);
-    if contour.follows_call {
-        consumed.extend(contour.blocks.clone());
-    }
+    contour.consume(interp);
     flow
 }

@@ -38,6 +38,7 @@ use crate::toolpath::Xz;
 use super::super::frame::Frame;
 use super::super::interpreter::{Flow, Interpreter};
 use super::super::profile::{Profile, Shape};
+use super::Call;
 use super::canonical::{self, Canon, Element, Uv};
 
 /// The retract when neither the program nor its first block gives one (Fanuc's usual
@@ -65,20 +66,9 @@ pub(super) fn depth_block(
     Flow::Next
 }
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    function: GFunction,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
+    let Some(Call { span, start }) = interp.cycle_call(index) else { return Flow::Next };
     let facing = function == GFunction::StockRemovalFacing;
-    let start = interp.emitter.at;
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
     let frame = interp.modal.frame;
     let one_block = command.param(Role::DepthOfCut).is_some();
     let depth = if one_block {
@@ -103,9 +93,9 @@ pub(super) fn run(
     let Some(profile) = interp.profile_of(command, span, start) else { return Flow::Next };
     let after_q = interp.after_profile(command, index);
     // The profile and the first block are part of the cycle: `expand` deletes them.
-    consumed.extend(profile.blocks.clone());
+    interp.consume(profile.blocks.clone());
     if !one_block {
-        consumed.extend(interp.cycle_memory.depth_block);
+        interp.consume(interp.cycle_memory.depth_block);
     }
     if profile.segments.is_empty() {
         interp.error(DiagnosticKind::EmptyProfile, span);
