@@ -27,47 +27,8 @@ use turnpass::semantic::{self, LowerOptions, Machine};
 use turnpass::syntax::{ParseOptions, parse};
 use turnpass::toolpath::{Motion, Move, Xz};
 
+use crate::canonical::{Element, Uv};
 use crate::moves::{cycle_moves, samples};
-
-/// A point of the canonical frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Uv {
-    u: f64,
-    v: f64,
-}
-
-/// One element of a generated contour; arcs are quarter circles, `upper` when the arc lies
-/// on the side of its centre toward larger `u`.
-#[derive(Debug, Clone, Copy)]
-struct Element {
-    start: Uv,
-    end: Uv,
-    arc: Option<(Uv, bool)>,
-}
-
-impl Element {
-    fn shifted(&self, du: f64, dv: f64) -> Element {
-        let s = |p: Uv| Uv { u: p.u + du, v: p.v + dv };
-        Element { start: s(self.start), end: s(self.end), arc: self.arc.map(|(c, upper)| (s(c), upper)) }
-    }
-
-    /// The contour's `u` at `v` on this element (the top of a wall), if `v` is in its span.
-    fn u_at(&self, v: f64) -> Option<f64> {
-        let (lo, hi) = (self.start.v.min(self.end.v), self.start.v.max(self.end.v));
-        if v < lo - 1e-12 || v > hi + 1e-12 {
-            return None;
-        }
-        match self.arc {
-            None if (hi - lo) < 1e-12 => Some(self.start.u.max(self.end.u)),
-            None => Some(self.start.u + (self.end.u - self.start.u) * (v - self.start.v) / (self.end.v - self.start.v)),
-            Some((c, upper)) => {
-                let r = (self.start.u - c.u).hypot(self.start.v - c.v);
-                let d = (r * r - (v - c.v).powi(2)).max(0.0).sqrt();
-                Some(if upper { c.u + d } else { c.u - d })
-            }
-        }
-    }
-}
 
 #[derive(Debug, Clone)]
 struct Case {

@@ -28,102 +28,11 @@ use turnpass::semantic::{self, LowerOptions, Machine};
 use turnpass::syntax::parse;
 use turnpass::toolpath::{Motion, Move, Xz};
 
+use crate::canonical::{Element, Uv};
 use crate::moves::{cycle_moves, samples};
 use crate::simulate::parse_options;
 
-const MACHINE: &str = r#"
-[machine]
-dialect = "fanuc"
-units = "mm"
-decimal_input = "calculator"
-home = { x = 400.0, z = 300.0 }
-"#;
-
 const TOLERANCE: f64 = 1e-6;
-
-/// A point of the canonical frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Uv {
-    u: f64,
-    v: f64,
-}
-
-impl Uv {
-    fn shifted(self, du: f64, dv: f64) -> Uv {
-        Uv { u: self.u + du, v: self.v + dv }
-    }
-}
-
-/// One element of a generated profile; arcs are quarter circles, `upper` when the arc lies
-/// on the side of its centre toward larger `u`.
-#[derive(Debug, Clone, Copy)]
-struct Element {
-    start: Uv,
-    end: Uv,
-    arc: Option<(Uv, bool)>,
-    /// A `G00` line (the Haas exit at the end of a profile).
-    rapid: bool,
-}
-
-impl Element {
-    fn line(start: Uv, end: Uv) -> Element {
-        Element { start, end, arc: None, rapid: false }
-    }
-
-    fn shifted(&self, du: f64, dv: f64) -> Element {
-        Element {
-            start: self.start.shifted(du, dv),
-            end: self.end.shifted(du, dv),
-            arc: self.arc.map(|(c, upper)| (c.shifted(du, dv), upper)),
-            rapid: self.rapid,
-        }
-    }
-
-    /// How far `p` lies from the element.
-    fn distance(&self, p: Uv) -> f64 {
-        let d = |a: Uv, b: Uv| (a.u - b.u).hypot(a.v - b.v);
-        let ends = d(p, self.start).min(d(p, self.end));
-        match self.arc {
-            None => {
-                let (du, dv) = (self.end.u - self.start.u, self.end.v - self.start.v);
-                let t = (((p.u - self.start.u) * du + (p.v - self.start.v) * dv) / (du * du + dv * dv)).clamp(0.0, 1.0);
-                d(p, Uv { u: self.start.u + du * t, v: self.start.v + dv * t })
-            }
-            // A quarter arc: the point's direction from the centre lies between the directions
-            // of its ends (on the same side of each as the other end, and toward the arc).
-            Some((c, _)) => {
-                let r = d(self.start, c);
-                let (s, e, q) = (
-                    (self.start.u - c.u, self.start.v - c.v),
-                    (self.end.u - c.u, self.end.v - c.v),
-                    (p.u - c.u, p.v - c.v),
-                );
-                let cross = |a: (f64, f64), b: (f64, f64)| a.0 * b.1 - a.1 * b.0;
-                let within = cross(s, q) * cross(s, e) >= 0.0
-                    && cross(q, e) * cross(s, e) >= 0.0
-                    && (q.0 * (s.0 + e.0) + q.1 * (s.1 + e.1)) > 0.0;
-                if within { (d(p, c) - r).abs() } else { ends }
-            }
-        }
-    }
-
-    /// The profile's `u` at `v` on this element (the top of a wall), if `v` is in its span.
-    fn u_at(&self, v: f64) -> Option<f64> {
-        let (lo, hi) = (self.start.v.min(self.end.v), self.start.v.max(self.end.v));
-        if v < lo - 1e-12 || v > hi + 1e-12 {
-            return None;
-        }
-        match self.arc {
-            None if (hi - lo) < 1e-12 => Some(self.start.u.max(self.end.u)),
-            None => Some(self.start.u + (self.end.u - self.start.u) * (v - self.start.v) / (self.end.v - self.start.v)),
-            Some((c, upper)) => {
-                let r = (self.start.u - c.u).hypot(self.start.v - c.v);
-                let d = (r * r - (v - c.v).powi(2)).max(0.0).sqrt();
-                Some(if upper { c.u + d } else { c.u - d })
-            }
-        }
-    }
-}
 
 /// The shape a roughing cycle cuts to, in the canonical frame: the profile shifted by the
 /// allowance, from the end of the P block's move to the end of the shape (the exit left out).
@@ -171,8 +80,10 @@ struct Case {
     start: Uv,
     /// Where the P block goes.
     first: Uv,
-    /// The profile from `first`, the exit (a rapid) included.
+    /// The profile's shape, from `first`.
     elements: Vec<Element>,
+    /// The Haas exit: a rapid at the end of the profile, back to the start point's plane.
+    exit: Option<Uv>,
     g01_first: bool,
     one_block: bool,
     depth: f64,
@@ -213,7 +124,7 @@ impl Case {
     }
 
     fn shape(&self) -> Shape {
-        Shape { elements: self.elements.iter().filter(|e| !e.rapid).map(|e| e.shifted(self.du, self.dv)).collect() }
+        Shape { elements: self.elements.iter().map(|e| e.shifted(self.du, self.dv)).collect() }
     }
 
     fn code(&self) -> &'static str {
@@ -253,13 +164,11 @@ impl Case {
             (false, false) => out.push_str(&format!("N10 {motion} X{x0:.3}{feed}\n")),
             (false, true) => out.push_str(&format!("N10 {motion} Z{z0:.3}{feed}\n")),
         }
-        let last = self.elements.len() - 1;
+        let last = self.elements.len() - usize::from(self.exit.is_none());
         for (i, e) in self.elements.iter().enumerate() {
             let label = if i == last { "N20 " } else { "" };
             let (x, z) = self.words(e.end);
             let line = match e.arc {
-                None if e.rapid && self.setup.facing => format!("G00 X{x:.3}"),
-                None if e.rapid => format!("G00 Z{z:.3}"),
                 None => format!("G01 X{x:.3} Z{z:.3} F0.1"),
                 Some((c, _)) => {
                     let (s, c) = (self.point(e.start), self.point(c));
@@ -268,6 +177,10 @@ impl Case {
                 }
             };
             out.push_str(&format!("{label}{line}\n"));
+        }
+        if let Some(exit) = self.exit {
+            let (x, z) = self.words(exit);
+            out.push_str(&if self.setup.facing { format!("N20 G00 X{x:.3}\n") } else { format!("N20 G00 Z{z:.3}\n") });
         }
         out.push_str("G70 P10 Q20\nM30\n");
         out
@@ -281,8 +194,7 @@ impl Case {
 fn step(at: Uv, kind: u8, a: f64, b: f64, floor: f64) -> Option<Element> {
     let down = a.min(at.u - floor);
     let line = |end: Uv| Some(Element::line(at, end));
-    let arc =
-        |end: Uv, centre: Uv, upper: bool| Some(Element { start: at, end, arc: Some((centre, upper)), rapid: false });
+    let arc = |end: Uv, centre: Uv, upper: bool| Some(Element { start: at, end, arc: Some((centre, upper)) });
     match kind {
         0 => line(Uv { u: at.u, v: at.v - a }),
         1 => line(Uv { u: at.u + a / 2.0, v: at.v - b }),
@@ -315,7 +227,7 @@ fn case() -> impl Strategy<Value = Case> {
         prop::sample::select(vec![0.0, 0.05, 0.1, 0.3]),
         (prop::sample::select(vec![0.0, 0.5, 2.0, 5.0]), any::<bool>()),
     );
-    (shape, cut).prop_map(|(((facing, outside, toward_minus, type_ii), u0, steps, wall, lead, exit), cut)| {
+    (shape, cut).prop_map(|(((facing, outside, toward_minus, type_ii), u0, steps, wall, lead, with_exit), cut)| {
         let ((g01_first, one_block), depth, retract, du, dv, (extra, above_allowance)) = cut;
         // Type II is the G71 form whose P block names both axes.
         let type_ii = type_ii && !facing;
@@ -341,15 +253,12 @@ fn case() -> impl Strategy<Value = Case> {
         let top = elements.iter().flat_map(|e| [e.start.u, e.end.u]).fold(at.u, f64::max) + wall;
         if top > at.u {
             elements.push(Element::line(at, Uv { u: top, v: at.v }));
-            at.u = top;
         }
         // A may lie below the shifted end (`N20 X60` from X60 with U0.4) but never inside
         // the allowance where the profile starts.
         let start_u = (top + extra + if above_allowance { du } else { 0.0 }).max(first.u + du);
         // The Haas exit: back to the start's plane at the top, outside the stock.
-        if exit && top + du >= start_u {
-            elements.push(Element { start: at, end: Uv { u: top, v: start_v }, arc: None, rapid: true });
-        }
+        let exit = (with_exit && top + du >= start_u).then_some(Uv { u: top, v: start_v });
         let setup = Setup { facing, outside, toward_minus };
         let v_min = elements.iter().map(|e| e.end.v).fold(f64::INFINITY, f64::min);
         let (offset_u, offset_v) = if facing {
@@ -365,6 +274,7 @@ fn case() -> impl Strategy<Value = Case> {
             start: Uv { u: start_u, v: start_v },
             first,
             elements,
+            exit,
             g01_first,
             one_block,
             depth: f64::from(depth) / 2.0,
@@ -378,7 +288,7 @@ fn case() -> impl Strategy<Value = Case> {
 }
 
 fn machine() -> (turnpass::machine::MachineSettings, Machine) {
-    let settings = ModelFile::from_toml(MACHINE).unwrap().machine;
+    let settings = ModelFile::from_toml(crate::cycles::MACHINE).unwrap().machine;
     let machine = Machine::from_settings(&settings);
     (settings, machine)
 }
@@ -387,15 +297,15 @@ fn close(a: Xz, b: Xz) -> bool {
     a.distance(b) < TOLERANCE
 }
 
-/// The moves `moves` follow `expected` exactly: the same end points, lines as feeds (rapids
-/// where the element is one), arcs about the same centres.
+/// The moves `moves` follow `expected` exactly: the same end points, lines as feeds, arcs
+/// about the same centres and in the same sense.
 fn check_elements(case: &Case, moves: &[&Move], expected: &[Element], what: &str) -> Result<(), TestCaseError> {
     prop_assert_eq!(moves.len(), expected.len(), "{}: moves along the profile", what);
     for (m, e) in moves.iter().zip(expected) {
         let end = case.point(e.end);
         prop_assert!(close(m.end, end), "{}: {:?} ends at {:?}, expected {:?}", what, m.motion, m.end, end);
         match e.arc {
-            None => prop_assert_eq!(m.motion, if e.rapid { Motion::Rapid } else { Motion::Feed }, "{}", what),
+            None => prop_assert_eq!(m.motion, Motion::Feed, "{}", what),
             Some((c, _)) => {
                 prop_assert_eq!(
                     m.motion,
@@ -530,7 +440,7 @@ proptest! {
             );
         }
 
-        // (e) G70: the P block's move, exactly the profile (its exit included), back to A.
+        // (e) G70: the P block's move, exactly the profile, its exit at rapid, back to A.
         let g70_line = text.lines().position(|l| l.starts_with("G70")).unwrap() + 1;
         let (from, finish) = cycle_moves(&parsed.program, moves, g70_line);
         prop_assert!(close(from, start));
@@ -544,6 +454,9 @@ proptest! {
         }
         check_elements(&case, &finish[approach..count], &case.elements, "G70")?;
         prop_assert!(finish[count..].iter().all(|m| m.motion == Motion::Rapid));
+        if let Some(exit) = case.exit {
+            prop_assert!(finish.len() > count && close(finish[count].end, case.point(exit)), "G70: no exit");
+        }
         prop_assert!(close(finish[finish.len() - 1].end, start), "G70 ends at {:?}", finish[finish.len() - 1].end);
     }
 }
