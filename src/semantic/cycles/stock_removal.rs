@@ -23,7 +23,11 @@
 //! stretch above the profile (Type II, chosen when the P block names both axes, or by `R1`
 //! in the one-block form; Z must still be monotonic and X may dip into pockets). In Type II
 //! the tool follows the profile up from the end of each stretch to the previous level
-//! before it retracts, and enters a pocket from the safe level of A.
+//! (along its arcs; where the profile ends or turns down below that level, straight up to
+//! it) before it retracts, and enters a pocket from the safe level: A's, or the profile's
+//! where it rises above A's on the way. A retract never reaches back past the stretch it
+//! ends (a pocket narrower than e). The property tests (`tests/it/stock_removal.rs`) check
+//! that no move enters the shifted profile and no rapid runs through stock not yet cut.
 //!
 //! F, S and T inside P…Q are for finishing (`G70`); roughing uses the cycle's own F. After
 //! the cycle the program continues after the Q block: the profile is a definition. Lines at
