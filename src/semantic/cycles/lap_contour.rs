@@ -1,5 +1,5 @@
-//! OSP LAP contours (`G81`/`G82` … `G80`): finding the contour a `G85`/`G86`/`G87` call
-//! names, reading it, and the return to the AP start point the three cycles share.
+//! OSP LAP contours (`G81`/`G82` … `G80`): finding the contour a `G85`-`G88` call names,
+//! reading it, and the return to the AP start point of the roughing cycles `G85`/`G86`.
 //!
 //! **Finding it.** A call names its contour by the sequence name of the `G81`/`G82` block
 //! (`G85 N0207` → `N0207 G81`, `G85 NLAP1` → `NLAP1 G81`); OSP compares names as text, so
