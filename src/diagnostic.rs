@@ -328,6 +328,23 @@ pub enum DiagnosticKind {
     ProfileNotMonotonic {
         axis: char,
     },
+    /// A `G71`/`G72` whose profile fails because its start point lies on the other side of
+    /// it than the sign of the allowance across the passes asks for (`U-1`, an inside
+    /// allowance, from a start point outside the part): read from the start point's side,
+    /// the profile turns back. From a start point on the allowance's side it would not.
+    StartOnWrongSide {
+        /// The start point as programmed (X as written, a diameter on a diameter lathe).
+        x: f64,
+        z: f64,
+        /// The axis across the passes (`X` for `G71`, `Z` for `G72`), the allowance word
+        /// along it (`U` or `W`) and that word's value.
+        axis: char,
+        address: char,
+        allowance: f64,
+        /// The profile's smallest value on that axis when the allowance is negative, its
+        /// largest when positive: where the start point must lie beyond, allowance added.
+        extreme: f64,
+    },
     /// A `G73` with no number of passes (`R` of its first block, or `D`), or fewer than one.
     CycleNeedsDivisions,
     /// A `G74`/`G75` groove wider than one plunge with no step between plunges.
@@ -437,10 +454,6 @@ pub enum DiagnosticKind {
     CycleNeedsShift {
         shift: char,
         axis: char,
-    },
-    /// An OSP `G88` thread whose `N` names no `G81`/`G82` contour.
-    ThreadContourNotFound {
-        name: String,
     },
     /// An OSP `G88` thread contour with an arc, or a rapid after its first thread element.
     ThreadContourNotStraight,

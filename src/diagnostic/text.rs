@@ -74,6 +74,7 @@ impl DiagnosticKind {
             EmptyProfile => "empty-profile",
             ProfileReverses { .. } => "profile-reverses",
             ProfileNotMonotonic { .. } => "profile-not-monotonic",
+            StartOnWrongSide { .. } => "start-on-wrong-side",
             CycleNeedsDivisions => "cycle-needs-divisions",
             GrooveStepMissing { .. } => "groove-step-missing",
             CycleTooManyPasses { .. } => "cycle-too-many-passes",
@@ -101,7 +102,6 @@ impl DiagnosticKind {
             TooManyPasses { .. } => "too-many-passes",
             InfeedPatternApproximated => "infeed-pattern-approximated",
             CycleNeedsShift { .. } => "cycle-needs-shift",
-            ThreadContourNotFound { .. } => "thread-contour-not-found",
             ThreadContourNotStraight => "thread-contour-not-straight",
             BadVariableNumber { .. } => "bad-variable-number",
             NotAVariable => "not-a-variable",
@@ -231,6 +231,21 @@ impl DiagnosticKind {
             ProfileNotMonotonic { axis } => {
                 format!("the profile is not monotonic in {axis}, which a Type I roughing cycle requires")
             }
+            StartOnWrongSide { x, z, axis, address, allowance, .. } => {
+                let (start, word) = (format!("X{} Z{}", short(*x), short(*z)), format!("{address}{}", short(*allowance)));
+                match (axis, *allowance < 0.0) {
+                    ('X', true) => format!("the start point {start} lies outside the profile, but {word} is an inside allowance"),
+                    ('X', false) => format!("the start point {start} lies inside the profile, but {word} is an outside allowance"),
+                    (_, true) => format!(
+                        "the start point {start} lies on the +{axis} side of the profile, \
+                         but {word} is the allowance of a cut from the -{axis} side"
+                    ),
+                    (_, false) => format!(
+                        "the start point {start} lies on the -{axis} side of the profile, \
+                         but {word} is the allowance of a cut from the +{axis} side"
+                    ),
+                }
+            }
             CycleNeedsDivisions => "the pattern-repeating cycle has no number of passes".to_string(),
             GrooveStepMissing { axis } => {
                 format!("the groove is wider than one plunge but the cycle has no step in {axis} between plunges")
@@ -294,7 +309,6 @@ impl DiagnosticKind {
             CycleNeedsShift { shift, axis } => {
                 format!("the cycle ends at another {axis} than it starts, and has no `{shift}` to step there")
             }
-            ThreadContourNotFound { name } => format!("no `G81`/`G82` contour is named `{name}`"),
             ThreadContourNotStraight => {
                 "a continuous thread contour may hold only straight thread elements after its approach".to_string()
             }
@@ -373,9 +387,11 @@ impl DiagnosticKind {
             MissingSequence { .. } => "names no block".to_string(),
             DuplicateSequence { .. } => "names several blocks".to_string(),
             NotExpandable => "kept".to_string(),
-            CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
-                "this cycle".to_string()
-            }
+            CycleNeedsDepth
+            | EmptyProfile
+            | ProfileReverses { .. }
+            | ProfileNotMonotonic { .. }
+            | StartOnWrongSide { .. } => "this cycle".to_string(),
             CycleNeedsDivisions | GrooveStepMissing { .. } | CycleTooManyPasses { .. } => "this cycle".to_string(),
             ThreadHeightBelowFirstDepth { .. } => "thread height".to_string(),
             ThreadLeadNotPositive => "lead".to_string(),
@@ -393,7 +409,6 @@ impl DiagnosticKind {
             TooManyPasses { .. } => "this cycle".to_string(),
             InfeedPatternApproximated => "pattern 3".to_string(),
             CycleNeedsShift { .. } => "off the start line".to_string(),
-            ThreadContourNotFound { .. } => "contour name".to_string(),
             InfeedAngleOutOfRange { .. } => "infeed angle".to_string(),
             ThreadContourNotStraight => "in the thread contour".to_string(),
             BadVariableNumber { .. } | NotAVariable | SystemVariableUnknown { .. } | UndefinedVariable { .. } => {
@@ -529,6 +544,22 @@ impl DiagnosticKind {
             ProfileNotMonotonic { .. } => Some(
                 "a Type II cycle allows pockets: name both X and Z (e.g. `W0`) in the profile's first block".to_string(),
             ),
+            StartOnWrongSide { x, z, axis, address, allowance, extreme } => {
+                let target = short(extreme + allowance);
+                let (word, extreme) = (format!("{address}{}", short(*allowance)), short(*extreme));
+                let example = if *axis == 'X' { format!("G00 X{target} Z{}", short(*z)) } else { format!("G00 X{} Z{target}", short(*x)) };
+                let (place, bound, smallest, other) = match (axis, *allowance < 0.0) {
+                    ('X', true) => ("an inside cut starts inside the bore", "or less", "smallest", "positive for an outside cut"),
+                    ('X', false) => ("an outside cut starts outside the part", "or more", "largest", "negative for an inside cut"),
+                    (_, true) => ("a cut from the -Z side starts behind the profile", "or less", "smallest", "positive for a cut from the +Z side"),
+                    (_, false) => ("a cut from the +Z side starts in front of the profile", "or more", "largest", "negative for a cut from the -Z side"),
+                };
+                Some(format!(
+                    "{place}: move the start point to {axis}{target} {bound} (the profile's {smallest} {axis}, \
+                     {axis}{extreme}, with the allowance {word}), e.g. `{example}` before the cycle; \
+                     or write {address} {other}"
+                ))
+            }
             CycleNeedsDivisions => Some(
                 "give the number of passes as `R` in a first block (`G73 U… W… R3`) \
                  or as `D` in the cycle block"
@@ -579,9 +610,6 @@ impl DiagnosticKind {
                 Some("a larger first depth `D` (D² ≥ H² − (H − U)²) makes the pass depths the documented D·√n".to_string())
             }
             CycleNeedsShift { shift, .. } => Some(format!("give the shift per pass `{shift}`, or start the cycle on the end line")),
-            ThreadContourNotFound { .. } => {
-                Some("name the contour's first block (`G81`/`G82`) as the `N` of the call".to_string())
-            }
             ThreadContourNotStraight => {
                 Some("cut the thread with G71/G72, or split the contour at the arc".to_string())
             }

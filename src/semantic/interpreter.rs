@@ -81,6 +81,9 @@ pub(super) struct Interpreter<'p, 'src> {
     pub pending_corner: Option<super::motion::PendingCorner>,
     /// Blocks a cycle consumed (a LAP contour right after its call): the flow skips them.
     pub skip_to: Option<usize>,
+    /// The blocks the cycle being run consumes (its profile, its first block, a LAP contour
+    /// right after it): `expand` deletes them with its call.
+    pub cycle_consumed: Vec<usize>,
     /// The modal words in force before the block being executed (for `expand`, which
     /// replaces a cycle's block, words and all).
     pub modal_before_block: super::ModalAfter,
@@ -128,6 +131,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             modal_call: None,
             pending_corner: None,
             skip_to: None,
+            cycle_consumed: Vec::new(),
             modal_before_block: super::ModalAfter { motion: None, f_word: 0.0, s_word: 0.0 },
             calls: Vec::new(),
             loops: Vec::new(),
