@@ -71,6 +71,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     match svg {
         Ok(svg) => {
             write_atomically(&args.output, svg.as_bytes())?;
+            eprintln!("plot: {name}: wrote {}", args.output.display());
             Ok(ExitCode::SUCCESS)
         }
         Err(error) => {

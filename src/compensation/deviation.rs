@@ -29,6 +29,12 @@ pub struct Figures {
 }
 
 impl Figures {
+    /// The figures rounded to 0.1 nm, far below any machine's resolution, for reports
+    /// that read the same on every platform.
+    pub fn rounded(self) -> Figures {
+        Figures { max_mm: nm(self.max_mm), rms_mm: nm(self.rms_mm), ssq_mm: nm(self.ssq_mm), points: self.points }
+    }
+
     pub fn of(distances: impl IntoIterator<Item = f64>) -> Figures {
         let (mut max, mut sum2, mut n) = (0.0f64, 0.0, 0usize);
         for d in distances {
@@ -48,6 +54,11 @@ impl Figures {
     pub fn improvement_percent(&self, after: &Figures) -> f64 {
         if self.rms_mm > 0.0 { 100.0 * (1.0 - after.rms_mm / self.rms_mm) } else { 0.0 }
     }
+}
+
+/// `mm` rounded to 0.1 nm.
+pub fn nm(mm: f64) -> f64 {
+    (mm * 1e7).round() / 1e7
 }
 
 /// Distance from `p` to the move `m` that starts at `start` (reference points: `m.end`).

@@ -14,7 +14,10 @@
 //! more than half the axis' play.
 //!
 //! Rapids are sampled only at their end and written as one move to the corrected end;
-//! thread moves stay one move (a thread cannot be cut in pieces), to their corrected end.
+//! thread moves stay one move (a thread cannot be cut in pieces), to their corrected end;
+//! so does a move that switches nose-radius compensation on or off (`G41`/`G42`/`G40`):
+//! the control makes its approach or departure over the whole block, and split into pieces
+//! it would make it over the first piece only.
 
 use std::ops::Range;
 
@@ -38,6 +41,9 @@ pub struct MovePlan {
     pub changed: bool,
     /// The backlash jumps written as their own moves.
     pub jumps: usize,
+    /// The first segment takes up the play before a move that switches nose-radius
+    /// compensation: it is written as a positioning block of its own, before the block.
+    pub lead_in: bool,
 }
 
 impl MovePlan {
@@ -84,7 +90,7 @@ pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, option
         let contour_start = written::contour_start(toolpath, index);
         let range = input.ranges.get(index).cloned().unwrap_or(0..0);
         let plan = if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
-            MovePlan { start: at, segments: Vec::new(), changed: false, jumps: 0 }
+            MovePlan { start: at, segments: Vec::new(), changed: false, jumps: 0, lead_in: false }
         } else if range.is_empty() || !input.writable.get(index).copied().unwrap_or(false) {
             nominal_plan(m, at, input.tools)
         } else {
@@ -92,7 +98,16 @@ pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, option
                 .clone()
                 .map(|j| written::written_point(m, contour_start, &input.samples[j], input.commanded[j], input.tools))
                 .collect();
-            plan_one(input, m, at, &points, range, &grid_of(index), options)
+            let switches = index > 0
+                && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
+                    != Some(m.compensation);
+            if m.motion == Motion::Rapid || m.threading {
+                one_move(m, at, &points, &grid_of(index), input.tools)
+            } else if switches {
+                switching_move(input, m, at, &points, range, &grid_of(index), options.play)
+            } else {
+                plan_one(input, m, at, &points, range, &grid_of(index), options)
+            }
         };
         at = plan.end();
         plans.push(plan);
@@ -110,7 +125,43 @@ pub(crate) fn nominal_segment(m: &Move, tools: &ToolTable) -> Segment {
 }
 
 fn nominal_plan(m: &Move, start: Xz, tools: &ToolTable) -> MovePlan {
-    MovePlan { start, segments: vec![nominal_segment(m, tools)], changed: false, jumps: 0 }
+    MovePlan { start, segments: vec![nominal_segment(m, tools)], changed: false, jumps: 0, lead_in: false }
+}
+
+/// A move written as one move to its corrected end (when that moved on the grid).
+fn one_move(m: &Move, at: Xz, points: &[Xz], grid: &Grid, tools: &ToolTable) -> MovePlan {
+    match points.last() {
+        Some(&last) if grid.point(last) != grid.point(m.contour) => {
+            MovePlan { start: at, segments: vec![Segment::Line { end: last }], changed: true, jumps: 0, lead_in: false }
+        }
+        _ => nominal_plan(m, at, tools),
+    }
+}
+
+/// A move that switches compensation: one move, after the play its start reverses taken
+/// up by a positioning move of its own (`lead_in`).
+fn switching_move(
+    input: &PlanInput<'_>,
+    m: &Move,
+    at: Xz,
+    points: &[Xz],
+    range: Range<usize>,
+    grid: &Grid,
+    play: Xz,
+) -> MovePlan {
+    let first = range.start;
+    let Some(&(_, jump)) = jumps(input, range, play).first().filter(|(j, _)| *j == first) else {
+        return one_move(m, at, points, grid, input.tools);
+    };
+    let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
+    let taken_up = Xz::new(at.x + jump.x, at.z + jump.z);
+    MovePlan {
+        start: at,
+        segments: vec![Segment::Line { end: taken_up }, Segment::Line { end: last }],
+        changed: true,
+        jumps: 1,
+        lead_in: true,
+    }
 }
 
 fn plan_one(
@@ -124,12 +175,6 @@ fn plan_one(
 ) -> MovePlan {
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
     let end_moves = grid.point(last) != grid.point(m.contour);
-    if m.motion == Motion::Rapid || m.threading {
-        if !end_moves {
-            return nominal_plan(m, at, input.tools);
-        }
-        return MovePlan { start: at, segments: vec![Segment::Line { end: last }], changed: true, jumps: 0 };
-    }
     let jumps = jumps(input, range.clone(), options.play);
     let tolerance = options.fit.tolerance_mm;
     let centre = written::contour_centre(m, input.tools);
@@ -155,7 +200,7 @@ fn plan_one(
     if piece < points.len() {
         segments.extend(choose_segments(&MovePoints { start: from, points: &points[piece..], nominal }, &options.fit));
     }
-    MovePlan { start: at, segments, changed: true, jumps: jumps.len() }
+    MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false }
 }
 
 /// Whether the programmed element (an arc about the contour's `centre`), started from

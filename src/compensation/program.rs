@@ -45,6 +45,8 @@ pub struct Outcome {
     pub diagnostics: Vec<Diagnostic>,
     pub report: Report,
     pub paths: Paths,
+    /// The blocks edited (motion blocks and expanded cycle calls).
+    pub edited: Vec<rewrite::EditedBlock>,
 }
 
 /// The paths of the compensation, one point per sample, for plotting.
@@ -142,6 +144,7 @@ pub fn compensate_program(
         diagnostics,
         report,
         paths: Paths { samples, uncompensated: compensated.uncompensated, compensated: after },
+        edited: rewritten.edited,
     }
 }
 

@@ -13,7 +13,7 @@ use crate::source::LineIndex;
 use crate::syntax::Program;
 use crate::toolpath::{Toolpath, Xz};
 
-use super::deviation::Figures;
+use super::deviation::{Figures, nm};
 use super::fit::Segment;
 use super::plan::MovePlan;
 use super::rewrite::EditedBlock;
@@ -101,9 +101,9 @@ pub fn build(input: &ReportInput<'_>) -> Report {
                     p.segments.iter().filter_map(move |s| {
                         let arc = match *s {
                             Segment::Arc { centre, .. } => Some(ArcReport {
-                                centre_x_mm: centre.x,
-                                centre_z_mm: centre.z,
-                                radius_mm: from.distance(centre),
+                                centre_x_mm: nm(centre.x),
+                                centre_z_mm: nm(centre.z),
+                                radius_mm: nm(from.distance(centre)),
                             }),
                             Segment::Line { .. } => None,
                         };
@@ -116,13 +116,13 @@ pub fn build(input: &ReportInput<'_>) -> Report {
                 line: lines.position(input.program.block(edited.block).span.start).0,
                 cycle: edited.cycle,
                 segments: plans.iter().map(|p| p.segments.len()).sum(),
-                max_correction_mm: correction.max_mm,
-                rms_correction_mm: correction.rms_mm,
+                max_correction_mm: nm(correction.max_mm),
+                rms_correction_mm: nm(correction.rms_mm),
                 arcs,
                 backlash_moves: plans.iter().map(|p| p.jumps).sum(),
-                predicted_residual_mm: after.max_mm,
-                ssq_before_mm: before.ssq_mm,
-                ssq_after_mm: after.ssq_mm,
+                predicted_residual_mm: nm(after.max_mm),
+                ssq_before_mm: nm(before.ssq_mm),
+                ssq_after_mm: nm(after.ssq_mm),
             }
         })
         .collect();
@@ -134,12 +134,12 @@ pub fn build(input: &ReportInput<'_>) -> Report {
             edited_blocks: input.edited.iter().filter(|e| !e.cycle).count(),
             expanded_cycles: input.edited.iter().filter(|e| e.cycle).count(),
             samples: input.samples.len(),
-            max_correction_mm: corrections.iter().copied().fold(0.0, f64::max),
+            max_correction_mm: nm(corrections.iter().copied().fold(0.0, f64::max)),
             inverse_iterations: input.inverse_iterations,
-            inverse_residual_mm: input.inverse_residual_mm,
-            before,
-            after,
-            improvement_percent: before.improvement_percent(&after),
+            inverse_residual_mm: nm(input.inverse_residual_mm),
+            before: before.rounded(),
+            after: after.rounded(),
+            improvement_percent: (before.improvement_percent(&after) * 1e4).round() / 1e4,
         },
     }
 }

@@ -49,7 +49,8 @@ pub fn deviation(
     };
     let before = measure(original);
     let after = measure(compensated);
-    Deviation { before, after, improvement_percent: before.improvement_percent(&after) }
+    let improvement_percent = (before.improvement_percent(&after) * 1e4).round() / 1e4;
+    Deviation { before: before.rounded(), after: after.rounded(), improvement_percent }
 }
 
 /// A word of the original that the compensated program lost (or moved out of order).

@@ -129,19 +129,12 @@ impl fmt::Display for ModelReport {
             )?;
             for row in &table.rows {
                 let iso = &row.iso;
-                writeln!(
-                    f,
-                    "  {:<13} {:>7} {:>10.4} {:>10.4} {:>10.4} {:>10.4} {:>10.4} {:>10.4}  {}",
-                    row.quantity,
-                    row.targets,
-                    iso.accuracy,
-                    iso.systematic,
-                    iso.mean_range,
-                    iso.reversal,
-                    iso.repeatability,
-                    iso.mean_reversal,
-                    row.unit
-                )?;
+                let figures = [iso.accuracy, iso.systematic, iso.mean_range, iso.reversal, iso.repeatability];
+                write!(f, "  {:<13} {:>7}", row.quantity, row.targets)?;
+                for value in figures.into_iter().chain([iso.mean_reversal]) {
+                    write!(f, " {:>10}", figure(value))?;
+                }
+                writeln!(f, "  {}", row.unit)?;
             }
             if table.straightness_by_reversal {
                 writeln!(
@@ -157,5 +150,15 @@ impl fmt::Display for ModelReport {
             writeln!(f, "  {:<17} {}", effect.kind, parameters.join(", "))?;
         }
         Ok(())
+    }
+}
+
+/// A figure to four decimals, with no minus sign on a value that rounds to zero.
+fn figure(value: f64) -> String {
+    let text = format!("{value:.4}");
+    if text.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+        text.trim_start_matches('-').to_string()
+    } else {
+        text
     }
 }

@@ -6,6 +6,7 @@
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 mod cli;
+mod compensate;
 mod corpus;
 mod corpus_semantic;
 mod cycles;

@@ -261,24 +261,41 @@ impl BlockContext<'_, '_> {
     /// The blocks that replace this block for one move and its plan, or `None` when the
     /// block already writes it.
     pub(super) fn rewrite(&self, m: &Move, contour_start: Xz, plan: &MovePlan) -> Option<Vec<NewBlock>> {
-        let (first, rest) = plan.segments.split_first()?;
         if !plan.changed && self.grid.point(plan.start) == self.grid.point(contour_start) {
             // The move is as programmed, from where the program puts it.
             return None;
         }
         let original_kind = Kind::of(m);
-        let first_kind = Kind::of_segment(first, original_kind);
         let form = self.form(m.is_arc());
+        let mut blocks = Vec::new();
+        let mut at = plan.start;
+        // The motion code the block's own words run under, when it is not the modal one.
+        let mut in_force = original_kind;
+        let mut segments = plan.segments.as_slice();
+        if plan.lead_in
+            && let Some((lead, rest)) = segments.split_first()
+        {
+            // The play taken up before the block, by a positioning move of its own.
+            let mut words = vec![self.code(Kind::Rapid)];
+            words.extend(self.words(&form, at, lead).into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
+            blocks.push(NewBlock::new(words));
+            in_force = Kind::Rapid;
+            at = lead.end();
+            segments = rest;
+        }
+        let (first, rest) = segments.split_first()?;
+        let first_kind = Kind::of_segment(first, original_kind);
         let original = self.original_words(&form, m, contour_start);
-        let new = self.words(&form, plan.start, first);
+        let new = self.words(&form, at, first);
         let same_words = original.len() == new.len()
             && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
-        if rest.is_empty() && first_kind == original_kind && same_words {
+        if blocks.is_empty() && rest.is_empty() && first_kind == original_kind && same_words {
             return None;
         }
-        let mut blocks = vec![self.first_block(&form, m, &new, &original, first_kind)];
+        let code_changes = first_kind != original_kind || in_force != original_kind;
+        blocks.push(self.first_block(&form, m, &new, &original, first_kind, code_changes));
         let mut kind = first_kind;
-        let mut at = first.end();
+        at = first.end();
         for segment in rest {
             let segment_kind = Kind::of_segment(segment, original_kind);
             let mut words = Vec::new();
@@ -304,10 +321,10 @@ impl BlockContext<'_, '_> {
         new: &Words,
         original: &[(Slot, Option<i64>)],
         kind: Kind,
+        code_changes: bool,
     ) -> NewBlock {
         let block = self.program.block(self.block);
         let words = self.program.words_of(block);
-        let code_changes = kind != Kind::of(m);
         // The block's coordinate words, read as the original move reads them (an `R` in a
         // line block is no radius).
         let coordinate = |w: &crate::syntax::Word| match w.kind {
@@ -331,7 +348,9 @@ impl BlockContext<'_, '_> {
             match word.kind {
                 WordKind::Code { letter: CodeLetter::G, code } if self.is_motion_code(code) && code_changes => {
                     if !code_written {
-                        out.push(self.code(kind));
+                        let same =
+                            self.program.config().tables().g(code).and_then(|g| g.function) == Some(kind.function());
+                        out.push(if same { NewWord::Copy(id) } else { self.code(kind) });
                         code_written = true;
                     }
                 }

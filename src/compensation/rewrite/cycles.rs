@@ -71,22 +71,28 @@ fn shares_blocks(a: &Expansion, b: &Expansion) -> bool {
 }
 
 /// The compensated moves of a cycle, as the expand writer takes them: one move per
-/// segment, in the contour frame.
-fn compensated_moves(moves: &[Move], plans: &[MovePlan]) -> Vec<Move> {
+/// segment, in the contour frame. A take-up of the play before a move that switches
+/// compensation is a rapid under the compensation in force before it.
+fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Compensation) -> Vec<Move> {
     let mut out = Vec::with_capacity(moves.len());
+    let mut compensation = compensation_before;
     for (m, plan) in moves.iter().zip(plans) {
         if m.motion == Motion::Dwell {
             out.push(*m);
             continue;
         }
-        for segment in &plan.segments {
+        for (k, segment) in plan.segments.iter().enumerate() {
             let (motion, centre) = match *segment {
-                Segment::Line { .. } if m.motion == Motion::Rapid => (Motion::Rapid, m.centre),
+                Segment::Line { .. } if m.motion == Motion::Rapid || (plan.lead_in && k == 0) => {
+                    (Motion::Rapid, Xz::new(f64::NAN, f64::NAN))
+                }
                 Segment::Line { .. } => (Motion::Feed, Xz::new(f64::NAN, f64::NAN)),
                 Segment::Arc { centre, ccw, .. } => (if ccw { Motion::Ccw } else { Motion::Cw }, centre),
             };
-            out.push(Move { motion, centre, contour: segment.end(), end: segment.end(), ..*m });
+            let compensation = if plan.lead_in && k == 0 { compensation } else { m.compensation };
+            out.push(Move { motion, centre, compensation, contour: segment.end(), end: segment.end(), ..*m });
         }
+        compensation = m.compensation;
     }
     out
 }
@@ -119,7 +125,7 @@ pub(super) fn write(
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(range.start).shift;
-        let compensated = compensated_moves(moves, cycle_plans);
+        let compensated = compensated_moves(moves, cycle_plans, compensation_before);
         let blocks = match expand::expansion_blocks(program, expansion, &compensated, start, compensation_before, shift)
         {
             ExpansionBlocks::Blocks(blocks) => with_call_words(program, expansion.block, blocks),
