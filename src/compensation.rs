@@ -22,6 +22,8 @@ pub mod report;
 pub mod rewrite;
 pub mod safety;
 pub mod sampling;
+#[cfg(test)]
+mod test_support;
 pub mod verify;
 pub mod written;
 

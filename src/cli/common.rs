@@ -245,18 +245,7 @@ pub fn ready<'b>(
         );
         return Err(text);
     }
-    let machine = Machine::from_settings(&resolved.settings);
-    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
-    let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    let valid = match turnpass::toolpath::validate(lowered.toolpath.clone(), machine.limits) {
-        Ok(valid) => Some(valid),
-        Err(problems) => {
-            diagnostics.extend(problems);
-            None
-        }
-    };
-    diagnostics.sort_by_key(|d| d.span.start);
+    let Lowering { lowered, valid, machine, diagnostics } = lower_and_validate(&parsed, resolved, run);
     let text = rendered(name, bytes, &diagnostics);
     match valid {
         Some(valid) if !diagnostics.iter().any(Diagnostic::is_error) => {
@@ -269,6 +258,32 @@ pub fn ready<'b>(
             Err(text)
         }
     }
+}
+
+/// A parsed program lowered with nose-radius compensation and validated.
+pub struct Lowering {
+    pub lowered: Lowered,
+    /// The toolpath, when it validates.
+    pub valid: Option<ValidToolpath>,
+    pub machine: Machine,
+    /// Every diagnostic, the parser's included, in program order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run: &RunArgs) -> Lowering {
+    let machine = Machine::from_settings(&resolved.settings);
+    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
+    let mut diagnostics = parsed.diagnostics.clone();
+    diagnostics.extend(lowered.diagnostics.iter().cloned());
+    let valid = match turnpass::toolpath::validate(lowered.toolpath.clone(), machine.limits) {
+        Ok(valid) => Some(valid),
+        Err(problems) => {
+            diagnostics.extend(problems);
+            None
+        }
+    };
+    diagnostics.sort_by_key(|d| d.span.start);
+    Lowering { lowered, valid, machine, diagnostics }
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse

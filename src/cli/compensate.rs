@@ -9,16 +9,19 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
-use turnpass::compensation::{CompensateOptions, compensate_program};
+use turnpass::compensation::{CompensateOptions, Outcome, compensate_program};
+use turnpass::error_model::ErrorModel;
 use turnpass::printer;
 use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, RunArgs, display_name, read_program, ready, rendered, required_error_model, write_output,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready, rendered, required_error_model,
+    write_output,
 };
 
 #[derive(Args)]
@@ -56,8 +59,8 @@ pub enum ReportFormat {
 pub struct FitArgs {
     /// How a compensated move is written: the cheapest form that meets the tolerance
     /// (auto), one circle per arc, circles per half or quarter, adaptive arcs, or G01 lines.
-    #[arg(long, value_enum, default_value = "auto")]
-    pub strategy: StrategyArg,
+    #[arg(long, default_value = "auto", value_parser = strategy_parser())]
+    pub strategy: Strategy,
     /// Every commanded point lies this close to the written path, mm (default: half the
     /// least increment).
     #[arg(long, value_name = "MM", value_parser = positive)]
@@ -78,14 +81,19 @@ pub struct FitArgs {
     pub start_min: Option<f64>,
 }
 
-#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
-pub enum StrategyArg {
-    Auto,
-    Circle,
-    Semicircle,
-    Quadrant,
-    Arcs,
-    Densify,
+/// The strategies by the names the command line gives them.
+const STRATEGIES: [(&str, Strategy); 6] = [
+    ("auto", Strategy::Auto),
+    ("circle", Strategy::Circle),
+    ("semicircle", Strategy::Semicircle),
+    ("quadrant", Strategy::Quadrant),
+    ("arcs", Strategy::Arcs),
+    ("densify", Strategy::Densify),
+];
+
+fn strategy_parser() -> impl TypedValueParser<Value = Strategy> {
+    PossibleValuesParser::new(STRATEGIES.map(|(name, _)| name))
+        .map(|name| STRATEGIES.iter().find(|(n, _)| *n == name).map_or(Strategy::Auto, |(_, s)| *s))
 }
 
 fn positive(s: &str) -> Result<f64, String> {
@@ -97,20 +105,31 @@ fn positive(s: &str) -> Result<f64, String> {
 
 impl FitArgs {
     pub fn options(&self, machine: &Machine) -> CompensateOptions {
-        let strategy = match self.strategy {
-            StrategyArg::Auto => Strategy::Auto,
-            StrategyArg::Circle => Strategy::Circle,
-            StrategyArg::Semicircle => Strategy::Semicircle,
-            StrategyArg::Quadrant => Strategy::Quadrant,
-            StrategyArg::Arcs => Strategy::Arcs,
-            StrategyArg::Densify => Strategy::Densify,
-        };
         let half_increment = machine.increment * machine.scale() / 2.0;
         CompensateOptions {
-            fit: FitOptions { strategy, tolerance_mm: self.tolerance.unwrap_or(half_increment), step_mm: self.step },
+            fit: FitOptions {
+                strategy: self.strategy,
+                tolerance_mm: self.tolerance.unwrap_or(half_increment),
+                step_mm: self.step,
+            },
             max_shift_mm: self.max_shift,
             expand_cycles: self.expand_cycles,
         }
+    }
+
+    /// The error model of the program's model file, started at `--start-min` when given.
+    pub fn error_model(&self, resolved: &Resolved, command: &str) -> Result<ErrorModel, CliError> {
+        let mut model = required_error_model(resolved, command)?;
+        if let Some(start) = self.start_min {
+            model.start_min = start;
+        }
+        Ok(model)
+    }
+
+    /// Compensate a ready program with `model`.
+    pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel) -> Outcome {
+        let options = self.options(&program.machine);
+        compensate_program(&program.parsed.program, &program.lowered, &program.valid, &program.machine, model, &options)
     }
 }
 
@@ -158,25 +177,14 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
 /// Compensate one program; nothing is written here.
 pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult, CliError> {
     let (bytes, resolved) = read_program(path, &args.read)?;
-    let mut model = required_error_model(&resolved, "compensate")?;
-    if let Some(start) = args.fit.start_min {
-        model.start_min = start;
-    }
+    let model = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
     let program = match ready(&name, &bytes, &resolved, &args.run, "compensate", &mut messages) {
         Ok(program) => program,
         Err(text) => return Ok(FileResult::failed(1, text)),
     };
-    let options = args.fit.options(&program.machine);
-    let outcome = compensate_program(
-        &program.parsed.program,
-        &program.lowered,
-        &program.valid,
-        &program.machine,
-        &model,
-        &options,
-    );
+    let outcome = args.fit.compensate(&program, &model);
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());

@@ -8,11 +8,7 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use turnpass::compensation::compensate_program;
-
-use super::common::{
-    CliError, ReadArgs, RunArgs, display_name, read_program, ready, rendered, required_error_model, write_atomically,
-};
+use super::common::{CliError, ReadArgs, RunArgs, display_name, read_program, ready, rendered, write_atomically};
 use super::compensate::FitArgs;
 
 #[derive(Args)]
@@ -38,10 +34,7 @@ pub struct PlotArgs {
 
 pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
-    let mut model = required_error_model(&resolved, "plot")?;
-    if let Some(start) = args.fit.start_min {
-        model.start_min = start;
-    }
+    let model = args.fit.error_model(&resolved, "plot")?;
     let name = display_name(&args.file);
     let mut messages = Vec::new();
     let program = match ready(&name, &bytes, &resolved, &args.run, "plot", &mut messages) {
@@ -51,15 +44,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
             return Ok(ExitCode::from(1));
         }
     };
-    let options = args.fit.options(&program.machine);
-    let outcome = compensate_program(
-        &program.parsed.program,
-        &program.lowered,
-        &program.valid,
-        &program.machine,
-        &model,
-        &options,
-    );
+    let outcome = args.fit.compensate(&program, &model);
     // The plot shows what compensation would do even where `compensate` would refuse.
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     let _ = std::io::stderr().write_all(&messages);

@@ -12,7 +12,8 @@ use turnpass::simulation;
 use turnpass::syntax;
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, display_name, lower_options, not_lowered, read_program, report, write_output,
+    CliError, Lowering, ReadArgs, RunArgs, display_name, lower_and_validate, lower_options, not_lowered, read_program,
+    report, write_output,
 };
 
 #[derive(Args)]
@@ -78,18 +79,7 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     if !semantic::lowers(&parsed.program) {
         return Ok(not_lowered("simulate", &name, &bytes, &parsed));
     }
-    let machine = Machine::from_settings(&resolved.settings);
-    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(&args.run, &resolved.settings, true));
-    let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    let valid = match turnpass::toolpath::validate(lowered.toolpath.clone(), machine.limits) {
-        Ok(valid) => Some(valid),
-        Err(problems) => {
-            diagnostics.extend(problems);
-            None
-        }
-    };
-    diagnostics.sort_by_key(|d| d.span.start);
+    let Lowering { lowered, valid, machine, diagnostics } = lower_and_validate(&parsed, &resolved, &args.run);
     report(&name, &bytes, &diagnostics);
     let Some(valid) = valid else { return Ok(ExitCode::from(1)) };
     let rows = simulation::rows(&parsed.program, &valid);

@@ -101,12 +101,13 @@ pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, option
             let switches = index > 0
                 && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
                     != Some(m.compensation);
+            let piece = Piece { m, at, points: &points, range, grid: grid_of(index) };
             if m.motion == Motion::Rapid || m.threading {
-                one_move(m, at, &points, &grid_of(index), input.tools)
+                one_move(&piece, input.tools)
             } else if switches {
-                switching_move(input, m, at, &points, range, &grid_of(index), options.play)
+                switching_move(input, &piece, options.play)
             } else {
-                plan_one(input, m, at, &points, range, &grid_of(index), options)
+                plan_one(input, &piece, options)
             }
         };
         at = plan.end();
@@ -128,30 +129,37 @@ fn nominal_plan(m: &Move, start: Xz, tools: &ToolTable) -> MovePlan {
     MovePlan { start, segments: vec![nominal_segment(m, tools)], changed: false, jumps: 0, lead_in: false }
 }
 
+/// One move to plan: where its written form starts, the points to write for its samples
+/// (`range`), and the grid they are rounded on.
+struct Piece<'a> {
+    m: &'a Move,
+    at: Xz,
+    points: &'a [Xz],
+    range: Range<usize>,
+    grid: Grid,
+}
+
 /// A move written as one move to its corrected end (when that moved on the grid).
-fn one_move(m: &Move, at: Xz, points: &[Xz], grid: &Grid, tools: &ToolTable) -> MovePlan {
+fn one_move(piece: &Piece<'_>, tools: &ToolTable) -> MovePlan {
+    let Piece { m, at, points, grid, .. } = piece;
     match points.last() {
-        Some(&last) if grid.point(last) != grid.point(m.contour) => {
-            MovePlan { start: at, segments: vec![Segment::Line { end: last }], changed: true, jumps: 0, lead_in: false }
-        }
-        _ => nominal_plan(m, at, tools),
+        Some(&last) if grid.point(last) != grid.point(m.contour) => MovePlan {
+            start: *at,
+            segments: vec![Segment::Line { end: last }],
+            changed: true,
+            jumps: 0,
+            lead_in: false,
+        },
+        _ => nominal_plan(m, *at, tools),
     }
 }
 
 /// A move that switches compensation: one move, after the play its start reverses taken
 /// up by a positioning move of its own (`lead_in`).
-fn switching_move(
-    input: &PlanInput<'_>,
-    m: &Move,
-    at: Xz,
-    points: &[Xz],
-    range: Range<usize>,
-    grid: &Grid,
-    play: Xz,
-) -> MovePlan {
-    let first = range.start;
-    let Some(&(_, jump)) = jumps(input, range, play).first().filter(|(j, _)| *j == first) else {
-        return one_move(m, at, points, grid, input.tools);
+fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>, play: Xz) -> MovePlan {
+    let Piece { m, at, points, ref range, .. } = *piece;
+    let Some(&(_, jump)) = jumps(input, range.clone(), play).first().filter(|(j, _)| *j == range.start) else {
+        return one_move(piece, input.tools);
     };
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
     let taken_up = Xz::new(at.x + jump.x, at.z + jump.z);
@@ -164,15 +172,8 @@ fn switching_move(
     }
 }
 
-fn plan_one(
-    input: &PlanInput<'_>,
-    m: &Move,
-    at: Xz,
-    points: &[Xz],
-    range: Range<usize>,
-    grid: &Grid,
-    options: &PlanOptions,
-) -> MovePlan {
+fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> MovePlan {
+    let Piece { m, at, points, ref range, grid } = *piece;
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
     let end_moves = grid.point(last) != grid.point(m.contour);
     let jumps = jumps(input, range.clone(), options.play);

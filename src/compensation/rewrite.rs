@@ -105,7 +105,7 @@ pub fn rewrite(
     expand_cycles: bool,
 ) -> Rewrite {
     let mut out = Rewrite::default();
-    let chosen = cycles::chosen(program, lowered, plans, expand_cycles);
+    let chosen = cycles::chosen(program, lowered, plans, expand_cycles, &mut out.diagnostics);
     let expanded = cycles::write(program, lowered, plans, &chosen, &mut out.edits, &mut out.diagnostics);
     for block in expanded {
         if let Some(e) = lowered.expansions.iter().find(|e| e.block == block) {

@@ -555,8 +555,8 @@ impl DiagnosticKind {
                 Some("move the part or the program away from the end of travel, or check the travel limits".to_string())
             }
             CannotRewriteBlock { .. } => Some(
-                "write the block out for each time it runs (no subprogram loop, no automatic corner, no \
-                 expression), or expand the program first (`turnpass expand`)"
+                "write the block out for each time it runs (not in a subprogram or loop that runs it at \
+                 different places), and without an automatic corner (`G75`/`G76`)"
                     .to_string(),
             ),
             CycleNotCompensated => Some("program the thread passes as single-pass cycle blocks".to_string()),

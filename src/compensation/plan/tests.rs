@@ -2,14 +2,12 @@ use super::*;
 use crate::compensation::fit::{FitOptions, Strategy};
 use crate::compensation::inverse::{InverseOptions, compensate_samples};
 use crate::compensation::sampling::sample_toolpath;
+use crate::compensation::test_support::lower_program;
 use crate::compensation::written::sample_ranges;
-use crate::dialect::{DialectChoice, GCodeSystem};
 use crate::error_model::ErrorModel;
 use crate::error_model::effects::*;
-use crate::machine::{AxisPair, MachineSettings};
+use crate::semantic::Lowered;
 use crate::semantic::nose_radius::ToolTable;
-use crate::semantic::{LowerOptions, Lowered, Machine, lower};
-use crate::syntax::{ParseOptions, parse};
 
 /// A diameter-programmed metric program: a rapid down to X40, a turn, up a shoulder to X50
 /// (an X reversal after the rapid), back down to X40 (another), a turn.
@@ -25,19 +23,8 @@ G00 X100. Z50.
 M30
 ";
 
-fn lowered() -> (Lowered, Machine) {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(PROGRAM.as_bytes(), &options);
-    assert_eq!(parsed.error_count(), 0);
-    let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), ..MachineSettings::default() };
-    let machine = Machine::from_settings(&settings);
-    let lowered = lower(&parsed.program, &machine, &LowerOptions::new(false));
-    assert!(lowered.diagnostics.iter().all(|d| !d.is_error()));
-    (lowered, machine)
-}
-
 fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
-    let (lowered, machine) = lowered();
+    let (lowered, machine) = lower_program(PROGRAM);
     let tools = ToolTable::from_machine(&machine);
     let path = &lowered.toolpath;
     let samples = sample_toolpath(path, &tools, 0.25);

@@ -12,7 +12,7 @@
 //! codes) go on the first written block, and a block-delete slash on every written block.
 //! A consumed block with a comment leaves the comment behind.
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::{BTreeMap, HashMap, HashSet};
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::GFunction;
@@ -35,39 +35,70 @@ pub fn expandable(program: &Program<'_>, lowered: &Lowered, expansion: &Expansio
 }
 
 /// The cycles to expand: those whose moves changed (every one with `all`), and those that
-/// share consumed blocks with one of them. Indices into `lowered.expansions`.
-pub(super) fn chosen(program: &Program<'_>, lowered: &Lowered, plans: &[MovePlan], all: bool) -> Vec<bool> {
+/// share blocks with one of them (a call block, or a consumed block). Indices into
+/// `lowered.expansions`. A cycle to expand that shares blocks with one that cannot be
+/// expanded is refused with an error in `diagnostics` (and not expanded).
+pub(super) fn chosen(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    plans: &[MovePlan],
+    all: bool,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Vec<bool> {
     let expansions = &lowered.expansions;
+    let expandable: Vec<bool> = expansions.iter().map(|e| expandable(program, lowered, e)).collect();
     let mut chosen: Vec<bool> = expansions
         .iter()
-        .map(|e| {
-            expandable(program, lowered, e)
-                && (all || plans.get(e.moves.clone()).is_some_and(|p| p.iter().any(|p| p.changed)))
-        })
+        .zip(&expandable)
+        .map(|(e, &ok)| ok && (all || plans.get(e.moves.clone()).is_some_and(|p| p.iter().any(|p| p.changed))))
         .collect();
-    loop {
-        let mut grew = false;
-        for a in 0..expansions.len() {
-            if chosen[a] {
-                continue;
+    // Cycles that share a block form a group (a roughing cycle, the finishing cycle on the
+    // same profile): a group is expanded whole or not at all.
+    let mut group: Vec<usize> = (0..expansions.len()).collect();
+    let mut first_with: HashMap<usize, usize> = HashMap::new();
+    for (k, e) in expansions.iter().enumerate() {
+        for &block in std::iter::once(&e.block).chain(&e.consumed) {
+            match first_with.get(&block) {
+                Some(&other) => {
+                    let (a, b) = (root(&mut group, k), root(&mut group, other));
+                    group[a] = b;
+                }
+                None => {
+                    first_with.insert(block, k);
+                }
             }
-            let shares = (0..expansions.len()).any(|b| chosen[b] && shares_blocks(&expansions[a], &expansions[b]));
-            if shares {
-                chosen[a] = true;
-                grew = true;
-            }
-        }
-        if !grew {
-            return chosen;
         }
     }
+    let roots: Vec<usize> = (0..expansions.len()).map(|k| root(&mut group, k)).collect();
+    let mut wanted: HashMap<usize, bool> = HashMap::new();
+    let mut possible: HashMap<usize, bool> = HashMap::new();
+    for k in 0..expansions.len() {
+        *wanted.entry(roots[k]).or_default() |= chosen[k];
+        *possible.entry(roots[k]).or_insert(true) &= expandable[k];
+    }
+    for k in 0..expansions.len() {
+        let r = roots[k];
+        let (want, can) = (wanted.get(&r).copied().unwrap_or(false), possible.get(&r).copied().unwrap_or(false));
+        if want && !can && chosen[k] {
+            diagnostics.push(Diagnostic::error(
+                DiagnosticKind::CannotRewriteBlock {
+                    reason: "its blocks are shared with a cycle whose passes cannot be written out",
+                },
+                program.block(expansions[k].block).span,
+            ));
+        }
+        chosen[k] = want && can;
+    }
+    chosen
 }
 
-fn shares_blocks(a: &Expansion, b: &Expansion) -> bool {
-    a.block == b.block
-        || a.consumed.contains(&b.block)
-        || b.consumed.contains(&a.block)
-        || a.consumed.iter().any(|c| b.consumed.contains(c))
+/// The representative of `k`'s group (with path halving).
+fn root(group: &mut [usize], mut k: usize) -> usize {
+    while group[k] != k {
+        group[k] = group[group[k]];
+        k = group[k];
+    }
+    k
 }
 
 /// The compensated moves of a cycle, as the expand writer takes them: one move per
