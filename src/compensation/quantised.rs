@@ -27,7 +27,7 @@ pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], radius_arcs: bool)
         let rounded = match *segment {
             Segment::Line { .. } => Segment::Line { end },
             Segment::Arc { end: exact_end, centre, ccw } => {
-                let centre = if radius_arcs {
+                let centre = if radius_arcs && from != end {
                     let radius = from_exact.distance(centre);
                     let sweep = geometry::sweep(from_exact, exact_end, centre, ccw);
                     let signed = if sweep > std::f64::consts::PI + 1e-9 { -radius } else { radius };

@@ -186,7 +186,8 @@ impl BlockContext<'_, '_> {
             out.push((Slot::Z, axis(form.z.1, to.z, from.z)));
         }
         if let Segment::Arc { end, centre, ccw } = *segment {
-            if form.radius_arcs {
+            // A full circle has no radius form: its end meets its start.
+            if form.radius_arcs && from != to {
                 let radius = start.distance(centre);
                 let sweep = geometry::sweep(start, end, centre, ccw);
                 let signed = if sweep > std::f64::consts::PI + 1e-9 { -radius } else { radius };
@@ -398,3 +399,6 @@ fn same_address(form: &Form, slot: Slot, address: Address) -> bool {
         Slot::Angle => false,
     }
 }
+
+#[cfg(test)]
+mod tests;
