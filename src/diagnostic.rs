@@ -316,6 +316,23 @@ pub enum DiagnosticKind {
     /// `expand` leaves a cycle as it is: its moves have no plain-block form in this dialect
     /// (on OSP: thread moves that are not single-pass `G33` passes).
     NotExpandable,
+    /// `compensate`: the correction of a point of this block is larger than `--max-shift`.
+    CorrectionTooLarge {
+        shift_mm: f64,
+        max_mm: f64,
+    },
+    /// `compensate`: a corrected point of this block lies outside the machine's travel.
+    CompensatedOutsideTravel {
+        x_mm: f64,
+        z_mm: f64,
+    },
+    /// `compensate`: the block's motion must change but cannot be written back in place.
+    CannotRewriteBlock {
+        reason: &'static str,
+    },
+    /// `compensate`: a cycle whose motion changes has no plain-block form in this dialect,
+    /// so it stays as programmed and its moves are not compensated.
+    CycleNotCompensated,
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
     /// A cycle whose profile has no moves.

@@ -70,6 +70,10 @@ impl DiagnosticKind {
             ProfileBackwards => "profile-backwards",
             CycleNotSimulated { .. } => "cycle-not-simulated",
             NotExpandable => "not-expandable",
+            CorrectionTooLarge { .. } => "correction-too-large",
+            CompensatedOutsideTravel { .. } => "compensated-outside-travel",
+            CannotRewriteBlock { .. } => "cannot-rewrite-block",
+            CycleNotCompensated => "cycle-not-compensated",
             CycleNeedsDepth => "cycle-needs-depth",
             EmptyProfile => "empty-profile",
             ProfileReverses { .. } => "profile-reverses",
@@ -225,6 +229,21 @@ impl DiagnosticKind {
             NotExpandable => {
                 "this cycle is left as it is: its thread moves have no plain-block form in this dialect".to_string()
             }
+            CorrectionTooLarge { shift_mm, max_mm } => format!(
+                "the machine model moves this block by {shift_mm:.4} mm, more than the {max_mm:.4} mm allowed; \
+                 no compensated program is written"
+            ),
+            CompensatedOutsideTravel { x_mm, z_mm } => format!(
+                "the compensated tool path leaves the machine's travel at X{:.4} Z{z_mm:.4} (diameter, mm); \
+                 no compensated program is written",
+                2.0 * x_mm
+            ),
+            CannotRewriteBlock { reason } => {
+                format!("this block's motion must change for the machine model, but it cannot be rewritten: {reason}")
+            }
+            CycleNotCompensated => "this cycle stays as programmed and is not compensated: its thread passes have \
+                                    no plain-block form in this dialect"
+                .to_string(),
             CycleNeedsDepth => "the roughing cycle has no depth of cut".to_string(),
             EmptyProfile => "the profile named by `P`/`Q` has no moves".to_string(),
             ProfileReverses { axis } => format!("the profile turns back in {axis}; the roughing cycle cannot cut it"),
@@ -387,6 +406,10 @@ impl DiagnosticKind {
             MissingSequence { .. } => "names no block".to_string(),
             DuplicateSequence { .. } => "names several blocks".to_string(),
             NotExpandable => "kept".to_string(),
+            CorrectionTooLarge { shift_mm, .. } => format!("moved {:.1} µm", shift_mm * 1000.0),
+            CompensatedOutsideTravel { .. } => "this block".to_string(),
+            CannotRewriteBlock { .. } => "this block".to_string(),
+            CycleNotCompensated => "not compensated".to_string(),
             CycleNeedsDepth
             | EmptyProfile
             | ProfileReverses { .. }
@@ -538,6 +561,20 @@ impl DiagnosticKind {
             ProfileBackwards => Some("`P` names the first block of the profile, `Q` the last".to_string()),
             CycleNotSimulated { .. } => None,
             NotExpandable => None,
+            CorrectionTooLarge { .. } => Some(
+                "check the machine model (units of its tables, signs of its effects) and the tool offsets; \
+                 raise --max-shift only if the machine really is that far off"
+                    .to_string(),
+            ),
+            CompensatedOutsideTravel { .. } => {
+                Some("move the part or the program away from the end of travel, or check the travel limits".to_string())
+            }
+            CannotRewriteBlock { .. } => Some(
+                "write the block out for each time it runs (not in a subprogram or loop that runs it at \
+                 different places), and without an automatic corner (`G75`/`G76`)"
+                    .to_string(),
+            ),
+            CycleNotCompensated => Some("program the thread passes as single-pass cycle blocks".to_string()),
             CycleNeedsDepth => Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".to_string()),
             EmptyProfile => None,
             ProfileReverses { .. } => Some("split the profile, or rough the undercut with another cycle (G73)".to_string()),

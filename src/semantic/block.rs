@@ -108,6 +108,7 @@ impl Interpreter<'_, '_> {
             self.tool_change(&word);
         }
 
+        self.mark_coordinates();
         let flow = match block.statement {
             Statement::Motion | Statement::ThreadMove => self.motion_block(index, &words),
             Statement::Dwell(_) => {

@@ -7,6 +7,7 @@
 
 mod canonical;
 mod cli;
+mod compensate;
 mod corpus;
 mod corpus_semantic;
 mod cycles;
