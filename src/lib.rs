@@ -21,6 +21,7 @@ pub mod expand;
 pub mod geometry;
 pub mod machine;
 mod memory;
+pub mod plot;
 pub mod printer;
 pub mod semantic;
 pub mod simulation;

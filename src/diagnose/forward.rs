@@ -30,6 +30,7 @@ pub(crate) use profile::surface_points;
 
 use std::ops::Range;
 
+use crate::compensation::program::SAMPLE_STEP_MM;
 use crate::compensation::sampling::{PathSample, sample_toolpath};
 use crate::compensation::states;
 use crate::error_model::{Effect, ErrorModel, Sample};
@@ -162,9 +163,6 @@ pub struct Simulation {
     pub states: Vec<Sample>,
     pub actual: Vec<Xz>,
 }
-
-/// Sampling step along cutting moves, mm: the thesis' interpolation step, as `compensate`.
-pub const STEP_MM: f64 = 0.254;
 
 impl Forward {
     pub fn new(nominal: &Nominal, measured: &Measured) -> Result<Forward, ForwardError> {
@@ -328,7 +326,8 @@ fn split_and_sample(toolpath: &Toolpath, tools: &ToolTable, places: &[Place]) ->
         // The last piece is the move itself from the last cut on.
         split.moves.push(Move { t_start, ..*m });
     }
-    let samples = sample_toolpath(&split, tools, STEP_MM);
+    // The sampling step `compensate` uses (the thesis' interpolation step).
+    let samples = sample_toolpath(&split, tools, SAMPLE_STEP_MM);
     // The last sample of each piece is its end.
     let mut end_sample = vec![usize::MAX; split.moves.len()];
     for (i, s) in samples.iter().enumerate() {

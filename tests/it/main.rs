@@ -5,18 +5,22 @@
 
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod canonical;
 mod cli;
+mod compensate;
 mod corpus;
 mod corpus_semantic;
 mod cycles;
 mod diagnose;
 mod differential;
 mod lap;
+mod moves;
 mod nose_radius;
 mod parse;
 mod print;
 mod robustness;
 mod roundtrip;
 mod simulate;
+mod stock_removal;
 mod support;
 mod thesis;
