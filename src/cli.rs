@@ -10,10 +10,12 @@ mod batch;
 mod check;
 mod common;
 mod compensate;
+mod diagnose;
 mod fmt;
 mod model;
 mod plot;
 mod simulate;
+mod thermal;
 mod verify;
 
 use std::process::ExitCode;
@@ -34,6 +36,9 @@ Examples:
   turnpass verify part.nc part-comp.nc --model machine.toml
   turnpass plot part.nc --model machine.toml -o part.svg
   turnpass model report machine.toml
+  turnpass diagnose part.nc --model machine.toml --measured cmm.csv --write-model machine-new.toml --plot gap.svg
+  turnpass synth ballbar.nc --model truth.toml --kind ballbar --noise 0.0002 --seed 7 -o trace.csv
+  turnpass fit-thermal spindle-log.csv --write-model machine.toml --axis z
 
 Machine settings come from --model FILE, or from a turnpass.toml found in the program's
 directory or above it ([machine] table: dialect, gcode_system, decimal_input, units,
@@ -65,6 +70,12 @@ enum Command {
     Verify(verify::VerifyArgs),
     /// Draw the nominal, actual and compensated paths (SVG), or a ball-bar polar plot.
     Plot(plot::PlotArgs),
+    /// Find where a measurement and the model disagree, name the missing effect, add it.
+    Diagnose(diagnose::DiagnoseArgs),
+    /// Make a measurement (ball bar trace or CMM profile) from a truth model, with noise.
+    Synth(diagnose::SynthArgs),
+    /// Fit the first-order warm-up and cool-down curves of a thermal log.
+    FitThermal(thermal::FitThermalArgs),
     /// Machine models.
     Model {
         #[command(subcommand)]
@@ -82,6 +93,9 @@ pub fn main() -> ExitCode {
         Command::Compensate(args) => compensate::compensate(args),
         Command::Verify(args) => verify::verify(args),
         Command::Plot(args) => plot::plot(args),
+        Command::Diagnose(args) => diagnose::run(args),
+        Command::Synth(args) => diagnose::run_synth(args),
+        Command::FitThermal(args) => thermal::run(args),
         Command::Model { command } => model::run(command),
     };
     match result {

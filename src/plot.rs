@@ -12,7 +12,13 @@
 //! the circle's centre, drawn around a base circle with rings one division apart, for each
 //! direction the program goes round (clockwise and counter-clockwise), before and after.
 //!
+//! **Residual plots** (`diagnose --plot`, `residuals.rs`): the measured − simulated
+//! residual before and after the effects found, polar for a ball bar, along the surface
+//! for a CMM profile.
+//!
 //! The SVG is written to a string; the caller writes the file.
+
+pub mod residuals;
 
 use plotters::prelude::*;
 
@@ -51,17 +57,31 @@ pub fn path_svg(title: &str, paths: &Paths, magnify: f64) -> Result<String, Plot
     }
     let actual = magnified(&paths.uncompensated);
     let compensated = magnified(&paths.compensated);
-    let all = nominal.iter().chain(&actual).chain(&compensated).flatten();
+    let caption = format!("{title}: error magnified ×{magnify}");
+    path_chart(
+        &caption,
+        &[("nominal", &nominal, BLACK), ("actual (as programmed)", &actual, RED), ("compensated", &compensated, BLUE)],
+    )
+}
+
+/// Polylines in the (Z, X) plane.
+pub(crate) type Lines = Vec<Vec<(f64, f64)>>;
+
+/// Lines in the (Z, X) plane, each series a colour and a legend entry, drawn to fit.
+pub(crate) fn path_chart(caption: &str, series: &[(&str, &Lines, RGBColor)]) -> Result<String, PlotError> {
+    let all = series.iter().flat_map(|(_, lines, _)| lines.iter().flatten());
     let (mut z0, mut z1, mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
     for &(z, x) in all {
         (z0, z1, x0, x1) = (z0.min(z), z1.max(z), x0.min(x), x1.max(x));
+    }
+    if !z0.is_finite() {
+        return Err(PlotError::NothingToPlot);
     }
     let pad = 0.05 * (z1 - z0).max(x1 - x0).max(1e-3);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let caption = format!("{title}: error magnified ×{magnify}");
         let mut chart = ChartBuilder::on(&root)
             .caption(caption, ("sans-serif", 22))
             .margin(20)
@@ -70,12 +90,7 @@ pub fn path_svg(title: &str, paths: &Paths, magnify: f64) -> Result<String, Plot
             .build_cartesian_2d(z0 - pad..z1 + pad, x0 - pad..x1 + pad)
             .map_err(drawing)?;
         chart.configure_mesh().x_desc("Z (mm)").y_desc("X, radius (mm)").draw().map_err(drawing)?;
-        let series = [
-            ("nominal", &nominal, BLACK),
-            ("actual (as programmed)", &actual, RED),
-            ("compensated", &compensated, BLUE),
-        ];
-        for (label, lines, colour) in series {
+        for &(label, lines, colour) in series {
             for (k, line) in lines.iter().enumerate() {
                 let drawn = chart.draw_series(LineSeries::new(line.iter().copied(), colour)).map_err(drawing)?;
                 if k == 0 {
@@ -144,7 +159,39 @@ pub fn polar_svg(title: &str, toolpath: &Toolpath, paths: &Paths) -> Result<Stri
         let direction = usize::from(m.motion == Motion::Ccw);
         points[direction].push((angle, deviation(paths.uncompensated[j]), deviation(paths.compensated[j])));
     }
-    let largest = points.iter().flatten().map(|&(_, a, b)| a.abs().max(b.abs())).fold(0.0, f64::max);
+    let series = [
+        ("clockwise, as programmed", 0, false, RED),
+        ("clockwise, compensated", 0, true, BLUE),
+        ("counter-clockwise, as programmed", 1, false, MAGENTA),
+        ("counter-clockwise, compensated", 1, true, CYAN),
+    ]
+    .map(|(label, direction, after, colour)| PolarSeries {
+        label: label.to_string(),
+        colour,
+        points: points[direction]
+            .iter()
+            .map(|&(angle, before, compensated)| (angle, if after { compensated } else { before }))
+            .collect(),
+    });
+    polar_chart(
+        |division| {
+            format!("{title}: radial deviation, {division} µm/div, centre Z{:.3} X{:.3} (radius)", centre.z, centre.x)
+        },
+        &series,
+    )
+}
+
+/// One line of a polar plot: (angle from +Z toward +X, radial deviation in µm) points.
+pub(crate) struct PolarSeries {
+    pub label: String,
+    pub colour: RGBColor,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Radial deviations drawn around a base circle with rings one division apart; the
+/// caption is given the division (µm) the data need.
+pub(crate) fn polar_chart(caption: impl Fn(f64) -> String, series: &[PolarSeries]) -> Result<String, PlotError> {
+    let largest = series.iter().flat_map(|s| &s.points).map(|&(_, d)| d.abs()).fold(0.0, f64::max);
     let division = nice_division(largest / 2.0);
     let base = 4.0 * division;
     let extent = base + 3.0 * division;
@@ -152,10 +199,8 @@ pub fn polar_svg(title: &str, toolpath: &Toolpath, paths: &Paths) -> Result<Stri
     {
         let root = SVGBackend::with_string(&mut svg, (800, 800)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let caption =
-            format!("{title}: radial deviation, {division} µm/div, centre Z{:.3} X{:.3} (radius)", centre.z, centre.x);
         let mut chart = ChartBuilder::on(&root)
-            .caption(caption, ("sans-serif", 18))
+            .caption(caption(division), ("sans-serif", 18))
             .margin(20)
             .build_cartesian_2d(-extent..extent, -extent..extent)
             .map_err(drawing)?;
@@ -164,25 +209,17 @@ pub fn polar_svg(title: &str, toolpath: &Toolpath, paths: &Paths) -> Result<Stri
             let style = if k == 0 { BLACK.stroke_width(2) } else { BLACK.mix(0.3).stroke_width(1) };
             chart.draw_series(LineSeries::new(ring(base + f64::from(k) * division), style)).map_err(drawing)?;
         }
-        let series = [
-            ("clockwise, as programmed", 0, false, RED),
-            ("clockwise, compensated", 0, true, BLUE),
-            ("counter-clockwise, as programmed", 1, false, MAGENTA),
-            ("counter-clockwise, compensated", 1, true, CYAN),
-        ];
-        for (label, direction, after, colour) in series {
-            let mut line: Vec<(f64, f64)> = points[direction]
-                .iter()
-                .map(|&(angle, before, compensated)| polar(base + if after { compensated } else { before }, angle))
-                .collect();
+        for s in series {
+            let mut line: Vec<(f64, f64)> = s.points.iter().map(|&(angle, d)| polar(base + d, angle)).collect();
             if line.len() < 2 {
                 continue;
             }
             line.dedup();
+            let colour = s.colour;
             chart
                 .draw_series(LineSeries::new(line, colour))
                 .map_err(drawing)?
-                .label(label)
+                .label(s.label.as_str())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
         }
         chart.configure_series_labels().background_style(WHITE).border_style(BLACK).draw().map_err(drawing)?;

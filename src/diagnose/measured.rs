@@ -241,6 +241,24 @@ fn number(row: &[String], column: usize, name: &str, line: usize) -> Result<f64,
     }
 }
 
+/// A thermal log (`t_min,value`): times in minutes, increasing, and the logged values.
+pub fn read_thermal_log(text: &str) -> Result<(Vec<f64>, Vec<f64>), MeasuredError> {
+    let table = Table::new(text)?;
+    table.check_columns(&["t_min", "value"], &["t_min", "value"])?;
+    let (t, v) = (table.column("t_min").unwrap_or(0), table.column("value").unwrap_or(1));
+    let mut times: Vec<f64> = Vec::with_capacity(table.rows.len());
+    let mut values = Vec::with_capacity(table.rows.len());
+    for (line, row) in &table.rows {
+        let time = number(row, t, "t_min", *line)?;
+        if times.last().is_some_and(|&before| time <= before) {
+            return Err(error(*line, format!("t_min {time} does not come after the row before: times must increase")));
+        }
+        times.push(time);
+        values.push(number(row, v, "value", *line)?);
+    }
+    Ok((times, values))
+}
+
 fn read_ball_bar(table: Table) -> Result<Vec<BallBarRow>, MeasuredError> {
     table.check_columns(&BALL_BAR, &BALL_BAR)?;
     let [angle, deviation, direction] = BALL_BAR.map(|name| table.column(name).unwrap_or(0));

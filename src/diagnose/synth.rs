@@ -49,7 +49,8 @@ pub fn synth(
                 let count = (360.0 / step).round().max(1.0) as usize;
                 for k in 1..=count {
                     let travel = 360.0 * k as f64 / count as f64;
-                    let angle = (start + direction.sign() * travel).rem_euclid(360.0);
+                    // `+ 0.0` turns the −0 of a whole turn clockwise into 0.
+                    let angle = (start + direction.sign() * travel).rem_euclid(360.0) + 0.0;
                     rows.push(BallBarRow { angle_deg: angle, deviation_mm: 0.0, direction, line: rows.len() + 2 });
                 }
             }

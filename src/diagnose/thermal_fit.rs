@@ -158,13 +158,24 @@ pub fn fit_phase(phase: Phase, t: &[f64], y: &[f64]) -> Result<FirstOrderFit, Th
 
 /// Fit a warm-up (and the cool-down after it, when the log has one).
 pub fn fit_log(t: &[f64], y: &[f64]) -> Result<ThermalFit, ThermalFitError> {
+    fit_log_split(t, y, None)
+}
+
+/// Fit a warm-up and cool-down split where the heat source stopped, `split_min` minutes
+/// from the start of the log, when it is known. Near equilibrium the log is flat within
+/// its noise, so the extreme it would otherwise be split at can lie minutes early, and a
+/// cool-down fitted from there starts with a plateau that lengthens its τ.
+pub fn fit_log_split(t: &[f64], y: &[f64], split_min: Option<f64>) -> Result<ThermalFit, ThermalFitError> {
     if t.len() < 8 || t.len() != y.len() {
         return Err(ThermalFitError::TooFewSamples(8));
     }
     if let Some(k) = t.windows(2).position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)) {
         return Err(ThermalFitError::TimesNotIncreasing(k + 2));
     }
-    let split = split_index(y);
+    let split = match split_min {
+        Some(m) => t.partition_point(|&ti| ti - t[0] <= m).saturating_sub(1).max(3),
+        None => split_index(y),
+    };
     let t0 = t[0];
     let warm_t: Vec<f64> = t[..=split].iter().map(|&ti| ti - t0).collect();
     let warm = fit_phase(Phase::Warm, &warm_t, &y[..=split])?;

@@ -46,9 +46,15 @@ struct Case {
     /// the working model have.
     #[serde(default)]
     known: Option<String>,
+    /// The truth and the working model inline, or as model files (relative to the cases).
+    #[serde(default)]
     truth: ModelSpec,
     #[serde(default)]
+    truth_file: Option<String>,
+    #[serde(default)]
     working: ModelSpec,
+    #[serde(default)]
+    working_file: Option<String>,
     expect: Expect,
 }
 
@@ -84,8 +90,20 @@ pub fn nominal_for(program: &Path, settings: &MachineSettings) -> Nominal {
     nominal
 }
 
-fn model(spec: &ModelSpec, known: Option<&ErrorModel>) -> ErrorModel {
-    let mut model = spec.build(|file| std::fs::read_to_string(dir().join(file)).map_err(|e| e.to_string())).unwrap();
+/// A model from a file, its tables read beside it.
+fn model_file(file: &str) -> ErrorModel {
+    let path = dir().join(file);
+    let spec = ModelSpec::from_toml(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let beside = path.parent().unwrap().to_path_buf();
+    spec.build(|table| std::fs::read_to_string(beside.join(table)).map_err(|e| e.to_string())).unwrap()
+}
+
+/// The case's inline model (or its file), with what both models know.
+fn model(spec: &ModelSpec, file: Option<&str>, known: Option<&ErrorModel>) -> ErrorModel {
+    let mut model = match file {
+        Some(file) => model_file(file),
+        None => spec.build(|table| std::fs::read_to_string(dir().join(table)).map_err(|e| e.to_string())).unwrap(),
+    };
     if let Some(known) = known {
         model.tables = model.tables.or_else(|| known.tables.clone());
         model.effects.splice(0..0, known.effects.iter().cloned());
@@ -103,6 +121,12 @@ struct Run {
 
 fn run(path: &Path) -> (Case, Run) {
     let case: Case = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let (_, run) = run_case(&case);
+    (case, run)
+}
+
+/// Synthesise the case's measurement (returned as its CSV text) and diagnose it.
+fn run_case(case: &Case) -> (String, Run) {
     let settings = ModelFile::from_toml(&std::fs::read_to_string(dir().join(&case.machine)).unwrap()).unwrap().machine;
     let nominal = nominal_for(&dir().join(&case.program), &settings);
     let kind = match case.kind.as_str() {
@@ -110,11 +134,8 @@ fn run(path: &Path) -> (Case, Run) {
         "profile" => Kind::Profile,
         other => panic!("unknown kind {other}"),
     };
-    let known = case.known.as_ref().map(|file| {
-        let text = std::fs::read_to_string(dir().join(file)).unwrap();
-        model(&ModelSpec::from_toml(&text).unwrap(), None)
-    });
-    let truth = model(&case.truth, known.as_ref());
+    let known = case.known.as_deref().map(model_file);
+    let truth = model(&case.truth, case.truth_file.as_deref(), known.as_ref());
     let options = SynthOptions {
         noise_mm: case.noise_mm,
         seed: case.seed,
@@ -122,13 +143,13 @@ fn run(path: &Path) -> (Case, Run) {
         parts: if case.parts.is_empty() { vec![None] } else { case.parts.iter().map(|&t| Some(t)).collect() },
         ..SynthOptions::default()
     };
-    let synthesised = synth(&nominal, &truth, kind, &options).unwrap();
+    let csv = to_csv(&synth(&nominal, &truth, kind, &options).unwrap());
     // Through the file format, as the command line reads it.
-    let measured = measured::read(&to_csv(&synthesised), None).unwrap();
+    let measured = measured::read(&csv, None).unwrap();
     assert_eq!(measured.kind(), kind);
-    let working = model(&case.working, known.as_ref());
+    let working = model(&case.working, case.working_file.as_deref(), known.as_ref());
     let diagnosis = diagnose(&nominal, &measured, &working, &Options::default()).unwrap();
-    (case, Run { measured, diagnosis, nominal, truth, working })
+    (csv, Run { measured, diagnosis, nominal, truth, working })
 }
 
 /// The truth's parameters of `found`'s kind, compared field by field.
@@ -273,4 +294,19 @@ fn set_up_errors_change_nothing() {
         }
         assert!((d.rms_after_mm() - clean.diagnosis.rms_after_mm()).abs() < 5e-6, "{name}");
     }
+}
+
+/// The thesis-scale demo (`examples/diagnose-demo.sh`, the README's "Diagnose" section):
+/// the committed CMM data and report are what the script makes, and the report names the
+/// Z screw's cyclic error at its thesis magnitudes.
+#[test]
+fn the_thesis_demo_files_are_what_the_demo_script_makes() {
+    let path = dir().join("demo-thesis-o2005.toml");
+    let case: Case = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let (csv, run) = run_case(&case);
+    check("demo-thesis-o2005", &case, &run);
+    let data = repo().join("examples/data");
+    assert_eq!(csv, std::fs::read_to_string(data.join("o2005-cmm.csv")).unwrap(), "examples/data/o2005-cmm.csv");
+    let report = report::human(&run.diagnosis);
+    assert_eq!(report, std::fs::read_to_string(data.join("o2005-diagnose.txt")).unwrap(), "o2005-diagnose.txt");
 }

@@ -45,3 +45,13 @@ fn errors_name_the_line_and_the_fault() {
     let message = read("x_mm,z_mm\n1,2\n", Some(Kind::BallBar)).unwrap_err().to_string();
     assert!(message.contains("unknown column `x_mm`"), "{message}");
 }
+
+#[test]
+fn a_thermal_log_reads_and_refuses_times_that_go_back() {
+    let (t, v) = read_thermal_log("t_min,value\n0,67.6\n0.5,67.9\n1.0,68.1\n").unwrap();
+    assert_eq!((t.len(), v[2]), (3, 68.1));
+    let message = read_thermal_log("t_min,value\n0,67.6\n0,67.9\n").unwrap_err().to_string();
+    assert!(message.starts_with("line 3: t_min 0 does not come after"), "{message}");
+    let message = read_thermal_log("time,value\n0,1\n").unwrap_err().to_string();
+    assert!(message.starts_with("line 1: unknown column `time`"), "{message}");
+}

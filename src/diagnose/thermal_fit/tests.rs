@@ -61,3 +61,13 @@ fn bad_logs_are_refused() {
     let t: Vec<f64> = (0..20).map(f64::from).collect();
     assert!(fit_phase(Phase::Warm, &t, &[5.0; 20]).is_err());
 }
+
+#[test]
+fn a_known_switch_off_time_splits_the_log_there() {
+    let (warm, cool) = ((9.913, 54.59, 67.64), (9.91, 81.97, 68.05));
+    let (t, y) = synthesise(warm, cool, 0.15, 3);
+    let fit = fit_log_split(&t, &y, Some(240.0)).unwrap();
+    assert!((fit.split_min - 240.0).abs() < 0.02, "{}", fit.split_min);
+    let c = fit.cool.unwrap();
+    assert!((c.tau_min / cool.1 - 1.0).abs() < 0.03, "cool τ {}", c.tau_min);
+}
