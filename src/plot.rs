@@ -37,6 +37,8 @@ pub enum PlotError {
     NoFullCircle,
     #[error("drawing failed: {0}")]
     Drawing(String),
+    #[error("no plot is drawn for {0}")]
+    NotDrawn(&'static str),
 }
 
 fn drawing<E: std::fmt::Debug>(e: E) -> PlotError {

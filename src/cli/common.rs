@@ -60,6 +60,22 @@ pub enum Format {
     Json,
 }
 
+/// A slide, on the command line.
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum AxisArg {
+    X,
+    Z,
+}
+
+impl AxisArg {
+    pub fn axis(self) -> turnpass::error_model::model_file::Axis {
+        match self {
+            AxisArg::X => turnpass::error_model::model_file::Axis::X,
+            AxisArg::Z => turnpass::error_model::model_file::Axis::Z,
+        }
+    }
+}
+
 fn parse_dialect(s: &str) -> Result<DialectChoice, String> {
     s.parse()
 }

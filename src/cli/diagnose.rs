@@ -14,22 +14,32 @@ use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
 
 use super::common::{
-    CliError, Format, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready, required_error_model,
-    write_atomically, write_output,
+    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready,
+    required_error_model, write_atomically, write_output,
 };
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 pub enum KindArg {
     Ballbar,
     Profile,
+    /// An interferometer table (ISO 230-2 CSV) of the slide --axis names.
+    Table,
 }
 
 impl KindArg {
-    fn kind(self) -> Kind {
-        match self {
+    fn kind(self, axis: Option<AxisArg>) -> Result<Kind, CliError> {
+        Ok(match self {
             KindArg::Ballbar => Kind::BallBar,
             KindArg::Profile => Kind::Profile,
-        }
+            KindArg::Table => match axis {
+                Some(axis) => Kind::Table(axis.axis()),
+                None => {
+                    return Err(CliError::Usage(
+                        "an interferometer table needs --axis x|z: the slide it measured".into(),
+                    ));
+                }
+            },
+        })
     }
 }
 
@@ -41,9 +51,13 @@ pub struct DiagnoseArgs {
     /// profile (x_mm,z_mm[,part,start_min]).
     #[arg(long, value_name = "DATA.csv")]
     pub measured: PathBuf,
-    /// What the measurement is (default: told by its header).
+    /// What the measurement is (default: told by its header). For an interferometer table
+    /// (`--kind table --axis x|z`) the program plays no part beyond finding the model.
     #[arg(long, value_enum)]
     pub kind: Option<KindArg>,
+    /// The slide an interferometer table measured.
+    #[arg(long, value_enum)]
+    pub axis: Option<AxisArg>,
     /// Write the model file with the effects found appended as [[effect]] tables.
     #[arg(long, value_name = "OUT.toml")]
     pub write_model: Option<PathBuf>,
@@ -73,6 +87,13 @@ pub struct SynthArgs {
     /// The measurement to make.
     #[arg(long, value_enum)]
     pub kind: KindArg,
+    /// The slide of an interferometer table.
+    #[arg(long, value_enum)]
+    pub axis: Option<AxisArg>,
+    /// Interferometer table: the targets, mm along the slide (comma-separated; default
+    /// every 5 mm from 0 to 100).
+    #[arg(long, value_name = "MM,MM,…", value_delimiter = ',')]
+    pub targets: Vec<f64>,
     /// Standard deviation of the gauge's noise, mm.
     #[arg(long, value_name = "MM", default_value_t = 0.0)]
     pub noise: f64,
@@ -136,8 +157,8 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     let data_name = display_name(&args.measured);
     let text =
         std::fs::read_to_string(&args.measured).map_err(|source| CliError::Read { path: data_name.clone(), source })?;
-    let measured = measured::read(&text, args.kind.map(KindArg::kind))
-        .map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
+    let kind = args.kind.map(|k| k.kind(args.axis)).transpose()?;
+    let measured = measured::read(&text, kind).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
     let options = Options { max_iterations: args.max_iterations };
     let diagnosis =
         diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
@@ -181,14 +202,16 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
     if !(args.noise.is_finite() && args.noise >= 0.0) {
         return Err(CliError::Usage(format!("--noise {} is not a standard deviation in mm", args.noise)));
     }
+    let defaults = SynthOptions::default();
     let options = SynthOptions {
         noise_mm: args.noise,
         seed: args.seed,
         step_deg: args.step_deg,
         spacing_mm: args.spacing,
         parts: if args.parts.is_empty() { vec![None] } else { args.parts.iter().map(|&t| Some(t)).collect() },
+        targets: if args.targets.is_empty() { defaults.targets } else { args.targets.clone() },
     };
-    let measured = synth(&nominal, &truth, args.kind.kind(), &options)
+    let measured = synth(&nominal, &truth, args.kind.kind(args.axis)?, &options)
         .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;
     write_output(args.output.as_deref(), to_csv(&measured).as_bytes())?;
     if let Some(path) = &args.output {

@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 
 use turnpass::diagnose::measured::read_thermal_log;
 use turnpass::diagnose::model_text::effect_table;
@@ -15,13 +15,7 @@ use turnpass::error_model::Effect;
 use turnpass::error_model::effects::{ThermalX, ThermalZ};
 use turnpass::error_model::model_file::ModelSpec;
 
-use super::common::{CliError, Format, display_name, write_atomically, write_output};
-
-#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
-pub enum AxisArg {
-    X,
-    Z,
-}
+use super::common::{AxisArg, CliError, Format, display_name, write_atomically, write_output};
 
 #[derive(Args)]
 pub struct FitThermalArgs {

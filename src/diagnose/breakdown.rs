@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use super::forward::{Forward, Projection};
+use super::measured::{Axis, Kind};
 use crate::error_model::Sample;
 
 /// Points within this travel (mm) of an axis reversal are in its reversal zone.
@@ -49,31 +50,51 @@ pub fn breakdown(forward: &Forward, states: &[Sample], residual: &[f64]) -> Brea
         groups.into_iter().map(|(label, values)| group(label, &values)).collect()
     };
     let points = &forward.points;
+    let table = match forward.kind {
+        Kind::Table(axis) => Some(axis == Axis::X),
+        _ => None,
+    };
     let by_segment = label_by(&|i| {
         let p = &points[i];
         vec![match p.direction {
             Some(d) => format!("line {} ({})", p.line, d.name()),
+            None if table.is_some() => forward.groups[p.group].clone(),
             None if forward.groups.len() > 1 => format!("line {}, {}", p.line, forward.groups[p.group]),
             None => format!("line {}", p.line),
         }]
     });
+    // A table's travel in thirds.
+    let (low, high) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+        let at = if table == Some(true) { p.nominal.x } else { p.nominal.z };
+        (lo.min(at), hi.max(at))
+    });
     let by_place = label_by(&|i| {
         let p = &points[i];
-        vec![match (p.angle_deg, p.projection) {
-            (Some(angle), _) => {
+        vec![match (p.angle_deg, p.projection, table) {
+            (Some(angle), _, _) => {
                 let sector = (angle.rem_euclid(360.0) / 45.0).floor() as i32 * 45;
                 format!("{sector}°–{}°", sector + 45)
             }
-            (None, Projection::Normal { normal, .. }) if normal.x.abs() > 0.999 => "diameters".to_string(),
-            (None, Projection::Normal { normal, .. }) if normal.z.abs() > 0.999 => "faces".to_string(),
+            (None, _, Some(along_x)) => {
+                let at = if along_x { p.nominal.x } else { p.nominal.z };
+                let third = (((at - low) / (high - low).max(1e-9)) * 3.0).floor().clamp(0.0, 2.0);
+                let from = low + (high - low) * third / 3.0;
+                format!("targets {from:.1}–{:.1} mm", from + (high - low) / 3.0)
+            }
+            (None, Projection::Normal { normal, .. }, None) if normal.x.abs() > 0.999 => "diameters".to_string(),
+            (None, Projection::Normal { normal, .. }, None) if normal.z.abs() > 0.999 => "faces".to_string(),
             _ => "arcs and tapers".to_string(),
         }]
     });
     let by_direction = label_by(&|i| {
         let p = &points[i];
-        vec![match p.direction {
-            Some(d) => d.name().to_string(),
-            None => {
+        vec![match (p.direction, table) {
+            (Some(d), _) => d.name().to_string(),
+            (None, Some(along_x)) => {
+                let d = if along_x { states[i].direction.x } else { states[i].direction.z };
+                if d > 0 { "approached upward" } else { "approached downward" }.to_string()
+            }
+            (None, None) => {
                 let v = states[i].velocity;
                 let sign = |v: f64| {
                     if v > 1e-9 {

@@ -24,6 +24,7 @@
 
 mod ballbar;
 mod profile;
+mod table;
 
 pub(crate) use ballbar::test_circles;
 pub(crate) use profile::surface_points;
@@ -140,6 +141,19 @@ pub struct Point {
     pub group: usize,
 }
 
+/// The set-up terms of one group of points, as a real test removes them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SetupTerms {
+    /// Ball bar: the bar's length and its centring, `1, sin θ, cos θ`.
+    LengthAndCentring,
+    /// CMM: the datum's Z shift, `n_z`.
+    DatumShift,
+    /// Interferometer positioning: the laser's zero.
+    Zero,
+    /// Interferometer straightness: zero and alignment (a slope along the slide's axis).
+    ZeroAndSlope { along_x: bool },
+}
+
 /// The forward model of one measurement.
 #[derive(Debug, Clone)]
 pub struct Forward {
@@ -152,8 +166,10 @@ pub struct Forward {
     runs: Vec<Option<f64>>,
     duration_s: f64,
     pub points: Vec<Point>,
-    /// The names of the set-up groups (test circles or parts).
+    /// The names of the set-up groups (test circles, parts, or a table's quantities).
     pub groups: Vec<String>,
+    /// Each group's set-up terms.
+    pub setup: Vec<SetupTerms>,
 }
 
 /// The simulated reading of every point, and the machine state there.
@@ -172,6 +188,7 @@ impl Forward {
         match measured {
             Measured::BallBar(rows) => ballbar::forward(nominal, rows),
             Measured::Profile(points) => profile::forward(nominal, points),
+            Measured::Table { axis, table } => Ok(table::forward(*axis, table)),
         }
     }
 
@@ -256,28 +273,31 @@ impl Forward {
     }
 
     /// The set-up columns: the ball bar's length and centring per test circle, the CMM
-    /// datum's Z shift per part.
+    /// datum's Z shift per part, an interferometer's zero (and alignment).
     pub fn setup_columns(&self) -> Vec<Vec<f64>> {
-        let n = self.points.len();
         let mut columns = Vec::new();
-        for group in 0..self.groups.len() {
+        for (group, terms) in self.setup.iter().enumerate() {
             let of = |f: &dyn Fn(&Point) -> f64| -> Vec<f64> {
                 self.points.iter().map(|p| if p.group == group { f(p) } else { 0.0 }).collect()
             };
-            match self.kind {
-                Kind::BallBar => {
-                    let angle = |p: &Point| p.angle_deg.unwrap_or(0.0).to_radians();
+            let angle = |p: &Point| p.angle_deg.unwrap_or(0.0).to_radians();
+            match *terms {
+                SetupTerms::LengthAndCentring => {
                     columns.push(of(&|_| 1.0));
                     columns.push(of(&|p| angle(p).sin()));
                     columns.push(of(&|p| angle(p).cos()));
                 }
-                Kind::Profile => columns.push(of(&|p| match p.projection {
+                SetupTerms::DatumShift => columns.push(of(&|p| match p.projection {
                     Projection::Normal { normal, .. } => normal.z,
                     Projection::Radial { .. } => 0.0,
                 })),
+                SetupTerms::Zero => columns.push(of(&|_| 1.0)),
+                SetupTerms::ZeroAndSlope { along_x } => {
+                    columns.push(of(&|_| 1.0));
+                    columns.push(of(&|p| if along_x { p.nominal.x } else { p.nominal.z }));
+                }
             }
         }
-        debug_assert!(columns.iter().all(|c| c.len() == n));
         columns
     }
 }

@@ -9,10 +9,16 @@
 //!   datum face; `part` labels the part a point was measured on and `start_min` the minutes
 //!   since machine start at which that part's program started.
 //!
+//! * Interferometer table (ISO 230-2 CSV as in the model, `error_model::interferometer`):
+//!   one slide's positioning and straightness deviations per target and direction.
+//!
 //! Lines starting with `#` are comments. Columns may come in any order; unknown columns are
 //! refused so that a misspelt name is not silently ignored.
 
 use serde::Serialize;
+
+use crate::error_model::interferometer::{self, SlideTable, TableError};
+pub use crate::error_model::model_file::Axis;
 
 /// The direction a ball bar circle was run in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -60,12 +66,12 @@ pub struct ProfilePoint {
 }
 
 /// The kind of a measurement.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {
-    #[serde(rename = "ballbar")]
     BallBar,
     Profile,
+    /// An interferometer table of one slide.
+    Table(Axis),
 }
 
 impl Kind {
@@ -73,6 +79,7 @@ impl Kind {
         match self {
             Kind::BallBar => "ballbar",
             Kind::Profile => "profile",
+            Kind::Table(_) => "table",
         }
     }
 }
@@ -82,6 +89,12 @@ impl Kind {
 pub enum Measured {
     BallBar(Vec<BallBarRow>),
     Profile(Vec<ProfilePoint>),
+    /// An ISO 230-2 table of one slide (`error_model::interferometer`): its positioning and
+    /// straightness deviations, the mean of the runs per target and direction.
+    Table {
+        axis: Axis,
+        table: Box<SlideTable>,
+    },
 }
 
 impl Measured {
@@ -89,6 +102,7 @@ impl Measured {
         match self {
             Measured::BallBar(_) => Kind::BallBar,
             Measured::Profile(_) => Kind::Profile,
+            Measured::Table { axis, .. } => Kind::Table(*axis),
         }
     }
 
@@ -96,6 +110,11 @@ impl Measured {
         match self {
             Measured::BallBar(rows) => rows.len(),
             Measured::Profile(points) => points.len(),
+            Measured::Table { table, .. } => [&table.linear, &table.straightness]
+                .iter()
+                .filter_map(|p| p.as_ref())
+                .map(|p| p.up_measured.iter().chain(&p.down_measured).filter(|&&m| m).count())
+                .sum(),
         }
     }
 
@@ -108,6 +127,7 @@ impl Measured {
         match self {
             Measured::BallBar(rows) => rows.get(i).map_or(0, |r| r.line),
             Measured::Profile(points) => points.get(i).map_or(0, |p| p.line),
+            Measured::Table { .. } => 0,
         }
     }
 }
@@ -127,14 +147,20 @@ fn error(line: usize, message: impl Into<String>) -> MeasuredError {
 const BALL_BAR: [&str; 3] = ["angle_deg", "deviation_mm", "direction"];
 const PROFILE: [&str; 4] = ["x_mm", "z_mm", "part", "start_min"];
 
-/// Read a measurement of either kind, telling them apart by the header (or, with `kind`,
-/// insisting on one).
+/// Read a measurement, telling a ball bar trace from a CMM profile by the header (or,
+/// with `kind`, insisting on one). An interferometer table needs its kind, for its axis.
 pub fn read(text: &str, kind: Option<Kind>) -> Result<Measured, MeasuredError> {
+    if let Some(Kind::Table(axis)) = kind {
+        return read_slide_table(text, axis);
+    }
     let table = Table::new(text)?;
     let kind = match kind {
         Some(kind) => kind,
         None if table.has("angle_deg") => Kind::BallBar,
         None if table.has("x_mm") => Kind::Profile,
+        None if table.has("target_mm") => {
+            return Err(error(table.header_line, "an interferometer table: say which slide (--kind table --axis x|z)"));
+        }
         None => {
             return Err(error(
                 table.header_line,
@@ -145,8 +171,20 @@ pub fn read(text: &str, kind: Option<Kind>) -> Result<Measured, MeasuredError> {
     };
     match kind {
         Kind::BallBar => read_ball_bar(table).map(Measured::BallBar),
-        Kind::Profile => read_profile(table).map(Measured::Profile),
+        Kind::Profile | Kind::Table(_) => read_profile(table).map(Measured::Profile),
     }
+}
+
+/// An ISO 230-2 table of one slide, read by the error model's own reader.
+fn read_slide_table(text: &str, axis: Axis) -> Result<Measured, MeasuredError> {
+    let table = interferometer::parse(text).map_err(|e| match e {
+        TableError::Row { line, message } => error(line, message),
+        other => error(1, other.to_string()),
+    })?;
+    if table.linear.is_none() && table.straightness.is_none() {
+        return Err(error(1, "the table has neither linear_mm nor straightness columns to diagnose"));
+    }
+    Ok(Measured::Table { axis, table: Box::new(table) })
 }
 
 /// A CSV file's header and rows, each with its line.

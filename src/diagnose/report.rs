@@ -83,10 +83,12 @@ pub fn human(d: &Diagnosis) -> String {
     let what = match f.kind {
         Kind::BallBar => "ball bar trace",
         Kind::Profile => "CMM profile",
+        Kind::Table(_) => "interferometer table",
     };
     let setup = match f.kind {
         Kind::BallBar => "centring and length removed per test circle",
         Kind::Profile => "datum Z shift removed per part",
+        Kind::Table(_) => "set-up removed per quantity",
     };
     let _ = writeln!(out, "diagnose: {what}, {} points; {setup}:", f.len());
     for g in &f.groups {
@@ -155,14 +157,19 @@ pub fn human(d: &Diagnosis) -> String {
             c.separate_by
         );
     }
-    let unseen: Vec<String> = d
+    let absorbed: Vec<String> = d
         .last_ranking
         .iter()
-        .filter(|r| r.status.starts_with("no signature") || r.status.starts_with("aliased"))
-        .map(|r| format!("{} ({})", r.effect, unseen_note(r, f.kind)))
+        .filter(|r| r.status.starts_with("aliased"))
+        .map(|r| format!("{} ({})", r.effect, shown_by(r.effect, f.kind)))
         .collect();
-    if !unseen.is_empty() {
-        let _ = writeln!(out, "Not measurable here: {}.", unseen.join("; "));
+    if !absorbed.is_empty() {
+        let _ = writeln!(out, "Absorbed by the set-up terms here: {}.", absorbed.join("; "));
+    }
+    let silent: Vec<&str> =
+        d.last_ranking.iter().filter(|r| r.status.starts_with("no signature")).map(|r| r.effect).collect();
+    if !silent.is_empty() {
+        let _ = writeln!(out, "No signature in this measurement: {}.", silent.join(", "));
     }
     let _ = writeln!(out);
     let _ = writeln!(
@@ -187,21 +194,19 @@ fn ranking_text(ranking: &[Ranked], count: usize) -> String {
     shown.join(", ")
 }
 
-/// Which measurement would show an effect this one cannot.
-fn unseen_note(r: &Ranked, kind: Kind) -> String {
-    let why =
-        if r.status.starts_with("aliased") { "the set-up terms absorb it" } else { "it does not move the readings" };
-    let by = match (r.effect, kind) {
-        ("tool_offset_z", _) => "a Z length from a face this program does not cut (the chuck face or a tool setter)",
-        ("tool_offset_x", Kind::BallBar) => "a CMM profile (a diameter)",
-        ("tool_wear" | "nose_radius", Kind::BallBar) => "a CMM profile of a cut part",
-        ("thermal_x" | "thermal_z", _) => "the test repeated over the warm-up",
-        ("reversal_spike_x" | "backlash_x", _) => "a path that reverses X",
-        ("reversal_spike_z" | "backlash_z", _) => "a path that reverses Z",
-        ("servo_mismatch", _) => "a path that moves X at a feed",
-        _ => "another path or test",
-    };
-    format!("{why}; {by} would show it")
+/// Which measurement would show an effect that this one's set-up terms absorb.
+fn shown_by(effect: &str, kind: Kind) -> &'static str {
+    match (effect, kind) {
+        ("tool_offset_z", _) => {
+            "a Z length from a face this program does not cut (the chuck face or a tool setter) shows it"
+        }
+        ("tool_offset_x", Kind::BallBar) => "a CMM profile (a diameter) shows it",
+        ("tool_offset_x", Kind::Table(_)) => "a cut part shows it",
+        ("backlash_x", _) => "a path that reverses X shows it",
+        ("backlash_z", _) => "a path that reverses Z shows it",
+        ("squareness", Kind::Table(_)) => "a ball bar, or a straightness run against a square, shows it",
+        _ => "another path or test shows it",
+    }
 }
 
 fn write_breakdown(out: &mut String, b: &Breakdown, kind: Kind) {

@@ -3,7 +3,8 @@
 //!
 //! A ball bar trace has one row every `step_deg` of travel round each test circle of the
 //! program, in program order; a CMM profile has points every `spacing_mm` along the
-//! finished surface, on each part (a run of the program at its start time). The readings
+//! finished surface, on each part (a run of the program at its start time); an
+//! interferometer table has both directions at each target. The readings
 //! are the forward model's (`forward.rs`) on the truth model, with no set-up error, plus
 //! normal noise of `noise_mm` from a seeded generator: the same seed gives the same file.
 
@@ -13,6 +14,7 @@ use super::forward::{Forward, ForwardError, Nominal, Projection, surface_points,
 use super::measured::{BallBarRow, Kind, Measured, ProfilePoint};
 use super::noise::Noise;
 use crate::error_model::ErrorModel;
+use crate::error_model::interferometer::{Profile, SlideTable};
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct SynthOptions {
@@ -26,11 +28,20 @@ pub struct SynthOptions {
     /// CMM: the start time of each part, minutes since machine start (`None`: right after
     /// the previous part, the first at the model's start).
     pub parts: Vec<Option<f64>>,
+    /// Interferometer table: the targets, mm along the slide.
+    pub targets: Vec<f64>,
 }
 
 impl Default for SynthOptions {
     fn default() -> SynthOptions {
-        SynthOptions { noise_mm: 0.0, seed: 1, step_deg: 1.0, spacing_mm: 0.5, parts: vec![None] }
+        SynthOptions {
+            noise_mm: 0.0,
+            seed: 1,
+            step_deg: 1.0,
+            spacing_mm: 0.5,
+            parts: vec![None],
+            targets: (0..=20).map(|k| f64::from(k) * 5.0).collect(),
+        }
     }
 }
 
@@ -74,6 +85,23 @@ pub fn synth(
             }
             Measured::Profile(points)
         }
+        Kind::Table(axis) => {
+            let mut targets = options.targets.clone();
+            targets.sort_by(f64::total_cmp);
+            targets.dedup();
+            let n = targets.len();
+            let profile = Profile {
+                targets,
+                up: vec![0.0; n],
+                down: vec![0.0; n],
+                up_sigma: vec![0.0; n],
+                down_sigma: vec![0.0; n],
+                up_measured: vec![true; n],
+                down_measured: vec![true; n],
+            };
+            let table = SlideTable { linear: Some(profile.clone()), straightness: Some(profile), angular: None };
+            Measured::Table { axis, table: Box::new(table) }
+        }
     };
     let forward = Forward::new(nominal, &template)?;
     let simulated = forward.simulate(truth);
@@ -97,6 +125,17 @@ pub fn synth(
                 })
                 .collect(),
         ),
+        Measured::Table { axis, mut table } => {
+            // The points come quantity by quantity, target by target, up then down.
+            let mut values = readings.iter();
+            for profile in [&mut table.linear, &mut table.straightness].into_iter().flatten() {
+                for k in 0..profile.targets.len() {
+                    profile.up[k] = values.next().copied().unwrap_or(0.0);
+                    profile.down[k] = values.next().copied().unwrap_or(0.0);
+                }
+            }
+            Measured::Table { axis, table }
+        }
     })
 }
 
@@ -130,6 +169,25 @@ pub fn to_csv(measured: &Measured) -> String {
                     let _ = write!(out, ",{}", p.start_min.map_or(String::new(), |t| format!("{t}")));
                 }
                 out.push('\n');
+            }
+        }
+        Measured::Table { table, .. } => {
+            let quantities: Vec<(&str, &Profile)> =
+                [("linear_mm", &table.linear), ("straightness_mm", &table.straightness)]
+                    .into_iter()
+                    .filter_map(|(name, p)| p.as_ref().map(|p| (name, p)))
+                    .collect();
+            let names: Vec<&str> = quantities.iter().map(|q| q.0).collect();
+            let _ = writeln!(out, "target_mm,direction,{}", names.join(","));
+            let targets = quantities.first().map_or(&[][..], |q| &q.1.targets[..]);
+            for (k, target) in targets.iter().enumerate() {
+                for (direction, up) in [("up", true), ("down", false)] {
+                    let values: Vec<String> = quantities
+                        .iter()
+                        .map(|(_, p)| format!("{:.7}", if up { p.up[k] } else { p.down[k] }))
+                        .collect();
+                    let _ = writeln!(out, "{target:.4},{direction},{}", values.join(","));
+                }
             }
         }
     }

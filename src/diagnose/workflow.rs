@@ -320,17 +320,23 @@ fn context<'a>(
     }
 }
 
-/// The points in path order (run, then sample), for differences of neighbours.
-fn path_order(forward: &Forward) -> Vec<usize> {
+/// The points of each set-up group in path order (run, then sample), for differences of
+/// neighbours: one sequence per group, since a table's positioning and straightness
+/// readings share their places on the path.
+fn path_order(forward: &Forward) -> Vec<Vec<usize>> {
     let mut order: Vec<usize> = (0..forward.len()).collect();
-    order.sort_by_key(|&i| (forward.points[i].run, forward.points[i].sample));
-    order
+    let p = &forward.points;
+    order.sort_by_key(|&i| (p[i].group, p[i].run, p[i].sample));
+    order.chunk_by(|&a, &b| p[a].group == p[b].group).map(<[usize]>::to_vec).collect()
 }
 
 /// The noise floor: the robust spread of the differences of neighbouring residuals.
-pub fn noise_floor(residual: &[f64], order: &[usize]) -> f64 {
-    let mut differences: Vec<f64> =
-        order.windows(2).filter_map(|w| Some((residual.get(w[1])? - residual.get(w[0])?).abs())).collect();
+pub fn noise_floor(residual: &[f64], order: &[Vec<usize>]) -> f64 {
+    let mut differences: Vec<f64> = order
+        .iter()
+        .flat_map(|sequence| sequence.windows(2))
+        .filter_map(|w| Some((residual.get(w[1])? - residual.get(w[0])?).abs()))
+        .collect();
     if differences.is_empty() {
         return 0.0;
     }
@@ -441,8 +447,17 @@ pub fn separate_by(effects: &[&str], kind: Kind) -> String {
                 "a CMM profile with diameters and lengths, or interferometer runs: a ball bar sees only the \
                  mismatch of the two scales"
             }
-            Kind::Profile => "a part with diameters and faces spread over X and Z, or interferometer runs",
+            Kind::Profile | Kind::Table(_) => {
+                "a part with diameters and faces spread over X and Z, or interferometer runs"
+            }
         });
+    }
+    if any(&["cyclic_x", "cyclic_z"]) && any(&["scale_x", "scale_z", "straightness_x", "straightness_z", "squareness"])
+    {
+        out.push(
+            "a run with targets not spaced at a multiple of the screw's lead, and a fine-step run over two leads \
+             (ISO 230-2 Annex C): a cyclic error read at a spacing near its pitch aliases to a slow slope",
+        );
     }
     if has("nose_radius") && any(&["tool_offset_x", "tool_offset_z"]) {
         out.push("a part with diameters and faces beside arcs or tapers: a nose-radius error vanishes on diameters and faces");

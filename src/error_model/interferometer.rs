@@ -25,6 +25,10 @@ pub struct Profile {
     /// Sample standard deviation per target and direction (0 with one run).
     pub up_sigma: Vec<f64>,
     pub down_sigma: Vec<f64>,
+    /// Whether the table has runs in that direction at the target (a direction without
+    /// takes the other's values).
+    pub up_measured: Vec<bool>,
+    pub down_measured: Vec<bool>,
 }
 
 impl Profile {
@@ -201,6 +205,8 @@ fn build(runs: &BTreeMap<OrderedTarget, Runs>) -> Option<Profile> {
         p.down.push(mean(down));
         p.up_sigma.push(sigma(up));
         p.down_sigma.push(sigma(down));
+        p.up_measured.push(!r.up.is_empty());
+        p.down_measured.push(!r.down.is_empty());
     }
     (!p.targets.is_empty()).then_some(p)
 }
@@ -216,6 +222,8 @@ fn reversal(m1: &Profile, m2: &Profile) -> Profile {
             p.down.push((m2.down[j] - m1.down[i]) / 2.0);
             p.up_sigma.push((m1.up_sigma[i].powi(2) + m2.up_sigma[j].powi(2)).sqrt() / 2.0);
             p.down_sigma.push((m1.down_sigma[i].powi(2) + m2.down_sigma[j].powi(2)).sqrt() / 2.0);
+            p.up_measured.push(m1.up_measured[i] && m2.up_measured[j]);
+            p.down_measured.push(m1.down_measured[i] && m2.down_measured[j]);
         }
     }
     p

@@ -72,6 +72,7 @@ pub fn report(
                     down: p.down.iter().map(|v| v * scale).collect(),
                     up_sigma: p.up_sigma.iter().map(|v| v * scale).collect(),
                     down_sigma: p.down_sigma.iter().map(|v| v * scale).collect(),
+                    ..p.clone()
                 };
                 rows.push(QuantityReport {
                     quantity,

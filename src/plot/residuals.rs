@@ -18,6 +18,9 @@ pub fn residuals_svg(title: &str, d: &Diagnosis) -> Result<String, PlotError> {
     match d.forward.kind {
         Kind::BallBar => ball_bar(title, d),
         Kind::Profile => profile(title, d),
+        Kind::Table(_) => {
+            Err(PlotError::NotDrawn("an interferometer table (`turnpass model report` gives its figures)"))
+        }
     }
 }
 

@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use turnpass::diagnose::forward::Nominal;
-use turnpass::diagnose::measured::{self, Kind, Measured};
+use turnpass::diagnose::measured::{self, Axis, Kind, Measured};
 use turnpass::diagnose::synth::{SynthOptions, synth, to_csv};
 use turnpass::diagnose::{Diagnosis, Options, diagnose, model_text, report};
 use turnpass::error_model::model_file::ModelSpec;
@@ -42,6 +42,11 @@ struct Case {
     /// CMM: each part's start, minutes since machine start.
     #[serde(default)]
     parts: Vec<f64>,
+    /// Interferometer table: the slide and its targets.
+    #[serde(default)]
+    axis: Option<String>,
+    #[serde(default)]
+    targets: Vec<f64>,
     /// A model file (relative to the cases) whose tables and effects both the truth and
     /// the working model have.
     #[serde(default)]
@@ -129,10 +134,12 @@ fn run(path: &Path) -> (Case, Run) {
 fn run_case(case: &Case) -> (String, Run) {
     let settings = ModelFile::from_toml(&std::fs::read_to_string(dir().join(&case.machine)).unwrap()).unwrap().machine;
     let nominal = nominal_for(&dir().join(&case.program), &settings);
-    let kind = match case.kind.as_str() {
-        "ballbar" => Kind::BallBar,
-        "profile" => Kind::Profile,
-        other => panic!("unknown kind {other}"),
+    let kind = match (case.kind.as_str(), case.axis.as_deref()) {
+        ("ballbar", _) => Kind::BallBar,
+        ("profile", _) => Kind::Profile,
+        ("table", Some("x")) => Kind::Table(Axis::X),
+        ("table", Some("z")) => Kind::Table(Axis::Z),
+        (other, axis) => panic!("unknown kind {other} (axis {axis:?})"),
     };
     let known = case.known.as_deref().map(model_file);
     let truth = model(&case.truth, case.truth_file.as_deref(), known.as_ref());
@@ -141,11 +148,12 @@ fn run_case(case: &Case) -> (String, Run) {
         seed: case.seed,
         step_deg: case.step_deg.unwrap_or(1.0),
         parts: if case.parts.is_empty() { vec![None] } else { case.parts.iter().map(|&t| Some(t)).collect() },
+        targets: if case.targets.is_empty() { SynthOptions::default().targets } else { case.targets.clone() },
         ..SynthOptions::default()
     };
     let csv = to_csv(&synth(&nominal, &truth, kind, &options).unwrap());
     // Through the file format, as the command line reads it.
-    let measured = measured::read(&csv, None).unwrap();
+    let measured = measured::read(&csv, matches!(kind, Kind::Table(_)).then_some(kind)).unwrap();
     assert_eq!(measured.kind(), kind);
     let working = model(&case.working, case.working_file.as_deref(), known.as_ref());
     let diagnosis = diagnose(&nominal, &measured, &working, &Options::default()).unwrap();
@@ -247,6 +255,11 @@ fn confounded_cases() {
     run_cases("confounded-");
 }
 
+#[test]
+fn interferometer_table_cases() {
+    run_cases("tbl-");
+}
+
 /// The model written by `--write-model` reads back, keeps the original text, and
 /// simulates to the residual the workflow reported.
 #[test]
@@ -264,11 +277,12 @@ fn the_written_model_reads_back_and_closes_the_gap() {
 }
 
 /// A real test's set-up is never perfect: a ball bar off-centre and of another length,
-/// CMM points shifted in Z by the datum. The workflow removes these as set-up terms, so
+/// CMM points shifted in Z by the datum, an interferometer zeroed elsewhere and its
+/// straightness optics misaligned. The workflow removes these as set-up terms, so
 /// they change nothing it finds.
 #[test]
 fn set_up_errors_change_nothing() {
-    for name in ["bb-squareness.toml", "cmm-nose-radius.toml"] {
+    for name in ["bb-squareness.toml", "cmm-nose-radius.toml", "tbl-z-slide-scale.toml"] {
         let (case, clean) = run(&dir().join(name));
         let shifted = match &clean.measured {
             Measured::BallBar(rows) => Measured::BallBar(
@@ -283,6 +297,20 @@ fn set_up_errors_change_nothing() {
             Measured::Profile(points) => Measured::Profile(
                 points.iter().map(|p| measured::ProfilePoint { z_mm: p.z_mm + 0.01, ..p.clone() }).collect(),
             ),
+            // The laser zeroed elsewhere, the straightness optics set at an angle.
+            Measured::Table { axis, table } => {
+                let mut table = table.clone();
+                for (profile, shift) in [(&mut table.linear, (0.005, 0.0)), (&mut table.straightness, (0.003, 2e-5))] {
+                    if let Some(p) = profile {
+                        for k in 0..p.targets.len() {
+                            let by = shift.0 + shift.1 * p.targets[k];
+                            p.up[k] += by;
+                            p.down[k] += by;
+                        }
+                    }
+                }
+                Measured::Table { axis: *axis, table }
+            }
         };
         let d = diagnose(&clean.nominal, &shifted, &clean.working, &Options::default()).unwrap();
         let names = |d: &Diagnosis| d.iterations.iter().map(|it| it.effect.name()).collect::<Vec<_>>();

@@ -12,7 +12,7 @@
 
 use std::f64::consts::{PI, TAU};
 
-use super::{Forward, ForwardError, Nominal, Place, Point, Projection, split_and_sample};
+use super::{Forward, ForwardError, Nominal, Place, Point, Projection, SetupTerms, split_and_sample};
 use crate::diagnose::measured::{BallBarRow, Direction, Kind};
 use crate::geometry;
 use crate::toolpath::{Motion, Xz};
@@ -157,7 +157,7 @@ pub(super) fn forward(nominal: &Nominal, rows: &[BallBarRow]) -> Result<Forward,
             }
         })
         .collect();
-    let groups =
+    let groups: Vec<String> =
         groups.iter().map(|(centre, r)| format!("circle R{r:.3} about x {:.3} z {:.3}", centre.x, centre.z)).collect();
     Ok(Forward {
         kind: Kind::BallBar,
@@ -166,6 +166,7 @@ pub(super) fn forward(nominal: &Nominal, rows: &[BallBarRow]) -> Result<Forward,
         runs: vec![None],
         duration_s: path.duration(),
         points,
+        setup: vec![SetupTerms::LengthAndCentring; groups.len()],
         groups,
     })
 }

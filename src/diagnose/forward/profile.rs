@@ -10,7 +10,7 @@
 //! the measured reading `(p − q) · n`, and the place on the tool reference path: the nose
 //! centre is `q + r n` and the reference point `r · tip` from it.
 
-use super::{Forward, ForwardError, Nominal, Place, Point, Projection, param_on, split_and_sample};
+use super::{Forward, ForwardError, Nominal, Place, Point, Projection, SetupTerms, param_on, split_and_sample};
 use crate::compensation::sampling::surface_normal;
 use crate::diagnose::measured::{Kind, ProfilePoint};
 use crate::geometry;
@@ -210,7 +210,7 @@ pub(super) fn forward(nominal: &Nominal, points: &[ProfilePoint]) -> Result<Forw
             group: run,
         })
         .collect();
-    let groups = parts
+    let groups: Vec<String> = parts
         .iter()
         .map(|(label, start)| {
             let name = label.as_ref().map_or("the part".to_string(), |l| format!("part {l}"));
@@ -227,6 +227,7 @@ pub(super) fn forward(nominal: &Nominal, points: &[ProfilePoint]) -> Result<Forw
         runs: parts.iter().map(|(_, t)| *t).collect(),
         duration_s: path.duration(),
         points,
+        setup: vec![SetupTerms::DatumShift; groups.len()],
         groups,
     })
 }
