@@ -164,6 +164,34 @@ pub fn solve(columns: &[Vec<f64>], y: &[f64]) -> Option<(Vec<f64>, DMatrix<f64>,
     Some((coefficients, unscaled * sigma2, rss))
 }
 
+/// The minimiser of a unimodal `f` on `[lo, hi]` by golden-section search: the middle of
+/// the bracket after at most `steps` steps, or once it is narrower than `width`.
+pub fn golden_minimum(f: impl Fn(f64) -> f64, lo: f64, hi: f64, steps: usize, width: f64) -> f64 {
+    let golden = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut lo, mut hi) = (lo, hi);
+    let (mut a, mut b) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+    let (mut fa, mut fb) = (f(a), f(b));
+    for _ in 0..steps {
+        if hi - lo < width {
+            break;
+        }
+        if fa < fb {
+            hi = b;
+            b = a;
+            fb = fa;
+            a = hi - golden * (hi - lo);
+            fa = f(a);
+        } else {
+            lo = a;
+            a = b;
+            fa = fb;
+            b = lo + golden * (hi - lo);
+            fb = f(b);
+        }
+    }
+    (lo + hi) / 2.0
+}
+
 /// The Bayesian information criterion of a Gaussian fit with `parameters` parameters.
 pub fn bic(rss: f64, n: usize, parameters: usize) -> f64 {
     let n = n as f64;

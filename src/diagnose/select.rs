@@ -220,32 +220,9 @@ impl Context<'_> {
         if !scores[best].is_finite() {
             return None;
         }
-        let (mut a, mut b) = (grid[best] - step, grid[best] + step);
-        a = a.max(u_low);
-        b = b.min(u_high);
-        let golden = (5f64.sqrt() - 1.0) / 2.0;
-        let (mut c, mut d) = (b - golden * (b - a), a + golden * (b - a));
-        let (mut fc, mut fd) = (rss(c), rss(d));
+        let (a, b) = ((grid[best] - step).max(u_low), (grid[best] + step).min(u_high));
         // 25 steps narrow the bracket to 1e-5 of a grid step.
-        for _ in 0..25 {
-            if (b - a).abs() < 1e-6 * step.abs().max(1e-12) {
-                break;
-            }
-            if fc < fd {
-                b = d;
-                d = c;
-                fd = fc;
-                c = b - golden * (b - a);
-                fc = rss(c);
-            } else {
-                a = c;
-                c = d;
-                fc = fd;
-                d = a + golden * (b - a);
-                fd = rss(d);
-            }
-        }
-        let refined = (a + b) / 2.0;
+        let refined = lsq::golden_minimum(rss, a, b, 25, 1e-6 * step.abs().max(1e-12));
         Some(value(if rss(refined) <= scores[best] { refined } else { grid[best] }))
     }
 

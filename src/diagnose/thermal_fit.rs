@@ -16,6 +16,8 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::lsq::golden_minimum;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Phase {
@@ -100,30 +102,8 @@ pub fn fit_phase(phase: Phase, t: &[f64], y: &[f64]) -> Result<FirstOrderFit, Th
         return Err(ThermalFitError::Flat);
     }
     // Golden-section search on ln τ between one sample step and a hundred times the span.
-    let (mut lo, mut hi) = (step.ln(), (100.0 * span).ln());
     let rss = |log_tau: f64| linear_fit(phase, t, y, log_tau.exp()).2;
-    let golden = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut a, mut b) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
-    let (mut fa, mut fb) = (rss(a), rss(b));
-    for _ in 0..200 {
-        if hi - lo < 1e-10 {
-            break;
-        }
-        if fa < fb {
-            hi = b;
-            b = a;
-            fb = fa;
-            a = hi - golden * (hi - lo);
-            fa = rss(a);
-        } else {
-            lo = a;
-            a = b;
-            fa = fb;
-            b = lo + golden * (hi - lo);
-            fb = rss(b);
-        }
-    }
-    let tau = ((lo + hi) / 2.0).exp();
+    let tau = golden_minimum(rss, step.ln(), (100.0 * span).ln(), 200, 1e-10).exp();
     let (gain, offset, rss) = linear_fit(phase, t, y, tau);
     if gain.abs() < 1e-300 {
         return Err(ThermalFitError::Flat);
