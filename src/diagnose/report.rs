@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 
 use serde_json::{Map, Value, json};
 
+use super::advice::shown_by;
 use super::breakdown::{Breakdown, Group, breakdown};
 use super::forward::Forward;
 use super::iso230_4::{Figures, figures};
@@ -192,21 +193,6 @@ fn ranking_text(ranking: &[Ranked], count: usize) -> String {
         .map(|r| format!("{} {:.1} ({:.1} %, {})", r.effect, r.delta_bic, r.explained_percent, r.status))
         .collect();
     shown.join(", ")
-}
-
-/// Which measurement would show an effect that this one's set-up terms absorb.
-fn shown_by(effect: &str, kind: Kind) -> &'static str {
-    match (effect, kind) {
-        ("tool_offset_z", _) => {
-            "a Z length from a face this program does not cut (the chuck face or a tool setter) shows it"
-        }
-        ("tool_offset_x", Kind::BallBar) => "a CMM profile (a diameter) shows it",
-        ("tool_offset_x", Kind::Table(_)) => "a cut part shows it",
-        ("backlash_x", _) => "a path that reverses X shows it",
-        ("backlash_z", _) => "a path that reverses Z shows it",
-        ("squareness", Kind::Table(_)) => "a ball bar, or a straightness run against a square, shows it",
-        _ => "another path or test shows it",
-    }
 }
 
 fn write_breakdown(out: &mut String, b: &Breakdown, kind: Kind) {
