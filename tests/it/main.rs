@@ -23,3 +23,4 @@ mod simulate;
 mod stock_removal;
 mod support;
 mod thesis;
+mod thesis_compensation;
