@@ -7,6 +7,7 @@
 
 mod canonical;
 mod cli;
+mod closed_loop;
 mod compensate;
 mod corpus;
 mod corpus_semantic;

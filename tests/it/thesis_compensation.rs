@@ -21,7 +21,11 @@ use crate::support::{check_spans, repo};
 /// The compensated points of every move, by move index, and the toolpath.
 fn compensate(program: &str, model_toml: &str, step: f64) -> (turnpass::toolpath::Toolpath, Vec<Vec<Xz>>) {
     let settings = ModelFile::from_toml(model_toml).unwrap().machine;
-    let model = ModelSpec::from_toml(model_toml).unwrap().build(|_| Err("no files".into())).unwrap();
+    let tables = repo().join("examples/machines");
+    let model = ModelSpec::from_toml(model_toml)
+        .unwrap()
+        .build(|file| std::fs::read_to_string(tables.join(file)).map_err(|e| e.to_string()))
+        .unwrap();
     let parsed = parse(program.as_bytes(), &parse_options(&settings));
     check_spans(&parsed);
     assert_eq!(parsed.error_count(), 0);
