@@ -24,7 +24,7 @@ use std::ops::Range;
 use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
-use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, Strategy, distance_to_chord};
+use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, distance_to_chord};
 use super::grid::Grid;
 use super::sampling::PathSample;
 use super::written;
@@ -61,11 +61,10 @@ pub struct PlanOptions {
     pub play: Xz,
 }
 
-/// The segments for one move's points. Every strategy is `densify` until the fitting
-/// strategies (circles, arcs) take over here; this is the one place that chooses.
+/// The segments for one move's points, by the strategy asked for (`fit::reexpress`); this
+/// is the one place that chooses.
 pub fn choose_segments(points: &MovePoints<'_>, options: &FitOptions) -> Vec<Segment> {
-    let step = if options.strategy == Strategy::Densify { options.step_mm } else { None };
-    fit::densify(points, options.tolerance_mm, step)
+    fit::reexpress(points, options)
 }
 
 /// The inputs of planning, one entry per sample or per move.

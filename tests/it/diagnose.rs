@@ -21,11 +21,9 @@ use turnpass::diagnose::{Diagnosis, Options, diagnose, model_text, report};
 use turnpass::error_model::model_file::ModelSpec;
 use turnpass::error_model::{Effect, ErrorModel};
 use turnpass::machine::{MachineSettings, ModelFile};
-use turnpass::semantic::{self, LowerOptions, Machine};
 use turnpass::syntax::parse;
-use turnpass::toolpath::validate;
 
-use crate::simulate::parse_options;
+use crate::simulate::{lower_and_validate, parse_options};
 use crate::support::{repo, with_snapshots};
 
 #[derive(Deserialize)]
@@ -85,12 +83,10 @@ fn dir() -> PathBuf {
 pub fn nominal_for(program: &Path, settings: &MachineSettings) -> Nominal {
     let source = std::fs::read(program).unwrap();
     let parsed = parse(&source, &parse_options(settings));
-    assert_eq!(parsed.error_count(), 0, "{}", program.display());
-    let machine = Machine::from_settings(settings);
-    let lowered = semantic::lower(&parsed.program, &machine, &LowerOptions::new(false));
-    assert!(!lowered.diagnostics.iter().any(|d| d.is_error()), "{}", program.display());
-    let valid = validate(lowered.toolpath.clone(), machine.limits).unwrap();
-    let mut nominal = Nominal::new(&parsed.program, &lowered, &valid, &machine);
+    let checked = lower_and_validate(&parsed, settings);
+    assert!(!checked.diagnostics.iter().any(|d| d.is_error()), "{}", program.display());
+    let valid = checked.valid.unwrap();
+    let mut nominal = Nominal::new(&parsed.program, &checked.lowered, &valid, &checked.machine);
     nominal.screw_pitch = settings.ball_screw_pitch_mm.unwrap_or_default();
     nominal
 }

@@ -7,6 +7,7 @@
 
 mod canonical;
 mod cli;
+mod closed_loop;
 mod compensate;
 mod corpus;
 mod corpus_semantic;
@@ -24,3 +25,4 @@ mod simulate;
 mod stock_removal;
 mod support;
 mod thesis;
+mod thesis_compensation;

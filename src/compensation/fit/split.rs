@@ -42,8 +42,12 @@ pub fn circles(
     tolerance_mm: f64,
 ) -> Result<Vec<Segment>, f64> {
     let radius = m.start.distance(centre);
-    let context =
-        Piece { ccw, curvature: if ccw { 1.0 } else { -1.0 } / radius, between: Between::Bulge { centre, radius } };
+    let context = Piece {
+        ccw,
+        tolerance: tolerance_mm,
+        curvature: if ccw { 1.0 } else { -1.0 } / radius,
+        between: Between::Bulge { centre, radius },
+    };
     let mut segments = Vec::new();
     let mut from = m.start;
     let mut first = 0;
@@ -113,6 +117,8 @@ pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> V
 
 struct Piece {
     ccw: bool,
+    /// The tolerance the free circle must meet to be preferred over the pinned one.
+    tolerance: f64,
     /// The nominal curvature, for a piece with no point between its ends.
     curvature: f64,
     between: Between,
@@ -141,8 +147,44 @@ impl Piece {
         Err(best)
     }
 
-    /// The circle from `from` to the last of `points`, and its deviation (points and chords).
+    /// The circle from `from` to the last of `points`, and its deviation (points and chords):
+    /// the free least-squares circle (Taubin, then geometric Levenberg–Marquardt), its
+    /// centre moved onto the perpendicular bisector of the exact ends, when that stays within
+    /// the tolerance; else the circle pinned to both ends by a least-squares fit of the
+    /// points between.
     fn arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+        let pinned = self.pinned_arc(from, points);
+        let Some(free) = self.free_arc(from, points) else { return pinned };
+        match pinned {
+            Some(p) if p.1 < free.1 && free.1 > self.tolerance => Some(p),
+            _ => Some(free),
+        }
+    }
+
+    fn free_arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+        let (&end, _) = points.split_last()?;
+        if from.distance(end) <= 1e-9 || points.len() < 2 {
+            return None;
+        }
+        let mut all = Vec::with_capacity(points.len() + 1);
+        all.push(from);
+        all.extend_from_slice(points);
+        let circle = super::circle::fit(&all)?;
+        // Both ends on one circle (the `R`/`L` form has no other): the free centre moved onto
+        // the perpendicular bisector of the ends, the least it can move.
+        let mid = Xz::new((from.x + end.x) / 2.0, (from.z + end.z) / 2.0);
+        let chord = Xz::new(end.x - from.x, end.z - from.z);
+        let length2 = chord.x * chord.x + chord.z * chord.z;
+        let along = ((circle.centre.x - mid.x) * chord.x + (circle.centre.z - mid.z) * chord.z) / length2;
+        let centre = Xz::new(circle.centre.x - along * chord.x, circle.centre.z - along * chord.z);
+        let segment = Segment::Arc { end, centre, ccw: self.ccw };
+        // The same sense as programmed, and a sweep the nominal arc could have.
+        let mut worst = deviation::segment_deviation(from, &segment, points);
+        worst = worst.max(deviation::chord_deviation(from, points, centre, from.distance(centre), self.between));
+        worst.is_finite().then_some((segment, worst))
+    }
+
+    fn pinned_arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
         let (&end, interior) = points.split_last()?;
         let segment = if from.distance(end) <= 1e-9 {
             if interior.is_empty() {
