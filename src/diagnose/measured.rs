@@ -202,21 +202,7 @@ impl Table {
             .flexible(true)
             .has_headers(false)
             .from_reader(text.as_bytes());
-        // The reader's own line count skips blank lines, and a record's position is where
-        // the reader started looking for it (before the blank and comment lines it
-        // skipped): count lines from the position, passing over those.
-        let line_of = |byte: u64| {
-            let start = (byte as usize).min(text.len());
-            let mut line = 1 + text.as_bytes()[..start].iter().filter(|&&c| c == b'\n').count();
-            for rest in text.get(start..).unwrap_or("").split('\n') {
-                let trimmed = rest.trim();
-                if !(trimmed.is_empty() || trimmed.starts_with('#')) {
-                    break;
-                }
-                line += 1;
-            }
-            line
-        };
+        let line_of = |byte: u64| interferometer::csv_record_line(text, byte);
         let mut records = Vec::new();
         for record in reader.records() {
             let record = record.map_err(|e| {

@@ -102,6 +102,23 @@ struct Runs {
     down: Vec<f64>,
 }
 
+/// The 1-based line of the CSV record a reader positioned at `byte`. The reader's own line
+/// count skips blank lines, and a record's position is where the reader started looking
+/// for it, before the blank and `#` comment lines it passed over: count lines up to the
+/// position, then over those.
+pub fn csv_record_line(text: &str, byte: u64) -> usize {
+    let start = (byte as usize).min(text.len());
+    let mut line = 1 + text.as_bytes()[..start].iter().filter(|&&c| c == b'\n').count();
+    for rest in text.get(start..).unwrap_or("").split('\n') {
+        let trimmed = rest.trim();
+        if !(trimmed.is_empty() || trimmed.starts_with('#')) {
+            break;
+        }
+        line += 1;
+    }
+    line
+}
+
 /// Read a slide's CSV table.
 pub fn parse(text: &str) -> Result<SlideTable, TableError> {
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
@@ -121,9 +138,9 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
     }
     // Per quantity, per target (keyed by its exact bits, in order), the runs each way.
     let mut data: Vec<BTreeMap<OrderedTarget, Runs>> = (0..5).map(|_| BTreeMap::new()).collect();
-    for (index, record) in reader.records().enumerate() {
-        let line = index + 2;
+    for record in reader.records() {
         let record = record.map_err(|e| TableError::Csv(e.to_string()))?;
+        let line = record.position().map_or(0, |p| csv_record_line(text, p.byte()));
         let number = |c: usize, name: &str| -> Result<f64, TableError> {
             let text = record.get(c).unwrap_or("");
             text.parse::<f64>()
