@@ -9,6 +9,9 @@
 //! Values are kept as integer counts of the increment (`i64` mantissas with the
 //! increment's decimal places), so comparisons and differences are exact.
 
+use std::f64::consts::{PI, TAU};
+
+use crate::geometry;
 use crate::semantic::{CoordinateMark, Frame};
 use crate::syntax::Number;
 use crate::toolpath::Xz;
@@ -82,6 +85,146 @@ impl Grid {
     /// The increment in mm (of X as programmed: the diameter on a diameter machine).
     pub fn increment_mm(&self) -> f64 {
         self.frame.mm(self.frame.increment)
+    }
+}
+
+/// How an arc is written on the grid (see [`Grid::arc_words`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArcWords {
+    /// `R` (OSP `L`): the signed radius in increments, negative beyond half a turn.
+    Radius(i64),
+    /// `I K`: the centre's offset from the rounded start, in increments.
+    Centre { i: i64, k: i64 },
+    /// No arc the control would run stays near it (its rounded ends coincide and it sweeps
+    /// no more than half a turn): the move is a straight one to its rounded end.
+    Line,
+}
+
+impl Grid {
+    /// The words of the arc from `from` to `end` about `centre` (exact points, toolpath
+    /// frame), in the form `prefer_radius` asks for when that form holds the arc.
+    ///
+    /// A control finds an `R` arc's centre from the rounded ends and the rounded radius, on
+    /// the chord's perpendicular bisector at the height √(R² − (c/2)²) over the chord. Near
+    /// half a turn that height is small and changes fast with the chord and the radius: a
+    /// half-increment rounding of either moves the centre by many increments, and past half
+    /// a turn the radius may no longer reach across the rounded chord at all (metrology.md
+    /// §5.3: prefer the centre form there). An `I K` arc's centre is rounded by at most half
+    /// an increment per axis, whatever the sweep. So the radius form is kept where the arc
+    /// the control would run from it stays within half an increment of the exact arc, or
+    /// no further than the centre form's, and where the rounded radius exceeds half the
+    /// rounded chord by at least an increment; else the arc is written by its centre. (At
+    /// exactly half a turn the radius is half the chord: whether a control then runs the
+    /// half circle or stops with "radius too small" turns on its own arithmetic.) A full
+    /// circle has only the centre form.
+    pub fn arc_words(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, prefer_radius: bool) -> ArcWords {
+        let (start, stop) = (self.point(from), self.point(end));
+        let exact = ArcSpan::new(from, end, centre, ccw);
+        // Rounded ends that meet make the control run a full circle: what an arc of more
+        // than half a turn short of one by less than an increment should be, and nothing
+        // near a shorter one.
+        let full = start == stop;
+        if full && exact.sweep <= PI {
+            return ArcWords::Line;
+        }
+        let at = self.to_mm(start);
+        let by_centre = ArcWords::Centre { i: self.length(centre.x - at.x), k: self.length(centre.z - at.z) };
+        let centre_gap = self.gap(&exact, start, stop, by_centre, ccw);
+        if full {
+            return if centre_gap.is_finite() { by_centre } else { ArcWords::Line };
+        }
+        let radius = from.distance(centre);
+        let signed = if exact.sweep > PI + 1e-9 { -radius } else { radius };
+        let count = self.length(signed);
+        let by_radius = ArcWords::Radius(count);
+        let radius_gap = self.gap(&exact, start, stop, by_radius, ccw);
+        let increment = self.increment_mm();
+        let reaches = self.length_mm(count).abs() - at.distance(self.to_mm(stop)) / 2.0 >= increment - 1e-12;
+        let radius_holds = reaches && radius_gap <= (increment / 2.0).max(centre_gap);
+        match (prefer_radius, radius_holds) {
+            (true, true) => by_radius,
+            _ if centre_gap.is_finite() => by_centre,
+            _ if radius_gap.is_finite() => by_radius,
+            _ => ArcWords::Line,
+        }
+    }
+
+    /// The centre the control takes for an arc written with `words` from `start` to `stop`
+    /// (grid points), in the toolpath frame: as the semantic pass reads the block back.
+    pub fn arc_centre(&self, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> Option<Xz> {
+        let (from, to) = (self.to_mm(start), self.to_mm(stop));
+        match words {
+            ArcWords::Radius(count) => {
+                geometry::centre_from_radius(from, to, self.length_mm(count), ccw, geometry::ARC_RADIUS_REACH_MM)
+            }
+            ArcWords::Centre { i, k } => {
+                let centre = Xz::new(from.x + self.length_mm(i), from.z + self.length_mm(k));
+                geometry::centre_from_offsets(from, to, centre).ok()
+            }
+            ArcWords::Line => None,
+        }
+    }
+
+    /// How far the arc the control runs for `words` strays from the exact arc (infinite
+    /// when it runs none).
+    fn gap(&self, exact: &ArcSpan, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> f64 {
+        match self.arc_centre(start, stop, words, ccw) {
+            Some(centre) => exact.gap(&ArcSpan::new(self.to_mm(start), self.to_mm(stop), centre, ccw)),
+            None => f64::INFINITY,
+        }
+    }
+}
+
+/// An arc by its start, centre, radius and sweep.
+struct ArcSpan {
+    start: Xz,
+    end: Xz,
+    centre: Xz,
+    radius: f64,
+    ccw: bool,
+    a0: f64,
+    sweep: f64,
+}
+
+impl ArcSpan {
+    fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> ArcSpan {
+        let sweep = geometry::sweep(start, end, centre, ccw);
+        ArcSpan { start, end, centre, radius: start.distance(centre), ccw, a0: geometry::angle(start, centre), sweep }
+    }
+
+    /// The point at `fraction` of the sweep.
+    fn at(&self, fraction: f64) -> Xz {
+        let sign = if self.ccw { 1.0 } else { -1.0 };
+        geometry::on_circle(self.centre, self.radius, self.a0 + sign * self.sweep * fraction)
+    }
+
+    /// The distance from `p` to this arc.
+    fn distance(&self, p: Xz) -> f64 {
+        let a = geometry::angle(p, self.centre);
+        let delta = if self.ccw { (a - self.a0).rem_euclid(TAU) } else { (self.a0 - a).rem_euclid(TAU) };
+        if delta <= self.sweep {
+            (p.distance(self.centre) - self.radius).abs()
+        } else {
+            p.distance(self.start).min(p.distance(self.end))
+        }
+    }
+
+    /// The largest distance of a point of `other` from this arc. The distance of a point of
+    /// one circle from another circle is extreme where the two centres and the point line
+    /// up, so `other` is measured there (where that lies on it), at its ends, and at its
+    /// quarters (which catch an arc gone round the other way).
+    fn gap(&self, other: &ArcSpan) -> f64 {
+        let mut worst = [0.0, 0.25, 0.5, 0.75, 1.0].map(|f| self.distance(other.at(f))).into_iter().fold(0.0, f64::max);
+        if self.centre.distance(other.centre) > 0.0 {
+            let away = geometry::angle(self.centre, other.centre);
+            for a in [away, away + PI] {
+                let delta = if other.ccw { (a - other.a0).rem_euclid(TAU) } else { (other.a0 - a).rem_euclid(TAU) };
+                if delta <= other.sweep {
+                    worst = worst.max(self.distance(geometry::on_circle(other.centre, other.radius, a)));
+                }
+            }
+        }
+        if worst.is_nan() { f64::INFINITY } else { worst }
     }
 }
 

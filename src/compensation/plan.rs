@@ -25,7 +25,7 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
 use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, distance_to_chord};
-use super::grid::Grid;
+use super::grid::{ArcWords, Grid};
 use super::sampling::PathSample;
 use super::written;
 
@@ -77,6 +77,8 @@ pub struct PlanInput<'a> {
     /// Whether each move can be written back (its block is a motion block, or it belongs
     /// to a cycle that can be expanded).
     pub writable: &'a [bool],
+    /// Whether each move's arcs prefer the radius form (`rewrite::radius_preference`).
+    pub radius: &'a [bool],
     pub tools: &'a ToolTable,
 }
 
@@ -109,10 +111,30 @@ pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, option
                 plan_one(input, &piece, options)
             }
         };
+        let plan = if plan.changed {
+            settle_arcs(plan, &grid_of(index), input.radius.get(index).copied().unwrap_or(false))
+        } else {
+            plan
+        };
         at = plan.end();
         plans.push(plan);
     }
     plans
+}
+
+/// The plan with every arc that no words can write on `grid` (its rounded ends coincide:
+/// `Grid::arc_words`) turned into the straight move the control would make for it.
+fn settle_arcs(mut plan: MovePlan, grid: &Grid, prefer_radius: bool) -> MovePlan {
+    let mut from = plan.start;
+    for segment in &mut plan.segments {
+        if let Segment::Arc { end, centre, ccw } = *segment
+            && grid.arc_words(from, end, centre, ccw, prefer_radius) == ArcWords::Line
+        {
+            *segment = Segment::Line { end };
+        }
+        from = segment.end();
+    }
+    plan
 }
 
 /// The programmed move as a segment of the contour.

@@ -6,6 +6,8 @@
 //! a dwell not at all. The toolpath's start is the machine's position before the program
 //! and is not a sample: nothing commands it.
 
+use std::f64::consts::TAU;
+
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
@@ -60,10 +62,9 @@ pub fn sample_toolpath(toolpath: &Toolpath, tools: &ToolTable, step: f64) -> Vec
                 let a0 = geometry::angle(start, m.centre);
                 let sign = if ccw { 1.0 } else { -1.0 };
                 let n = (radius * sweep / step).ceil().max(2.0) as usize;
-                for i in 1..=n {
-                    let t = i as f64 / n as f64;
+                for t in arc_fractions(n, a0, sweep, ccw) {
                     let angle = a0 + sign * sweep * t;
-                    let p = if i == n { m.end } else { geometry::on_circle(m.centre, radius, angle) };
+                    let p = if t >= 1.0 { m.end } else { geometry::on_circle(m.centre, radius, angle) };
                     // The tangent of increasing angle is (cos, −sin) in (x, z).
                     let tangent = Xz::new(sign * angle.cos(), -sign * angle.sin());
                     let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
@@ -74,6 +75,33 @@ pub fn sample_toolpath(toolpath: &Toolpath, tools: &ToolTable, step: f64) -> Vec
         }
     }
     out
+}
+
+/// The fractions of an arc's sweep to sample at: `n` equal steps, and the points where an
+/// axis reverses (the arc's extremes in X and Z, at the quarter angles). An axis reverses
+/// there, and with it the backlash: the inverse takes up the play at the sample where the
+/// slide's direction changes, and `plan.rs` writes that jump at the sample before it. Were
+/// the reversal between two samples, the path from the sample before it to the reversal
+/// would be written with the play already taken up the other way: off by the play. An
+/// extreme within a hundredth of a step of a sample is that sample.
+fn arc_fractions(n: usize, a0: f64, sweep: f64, ccw: bool) -> impl Iterator<Item = f64> {
+    let mut extremes = [f64::INFINITY; 4];
+    for (k, slot) in extremes.iter_mut().enumerate() {
+        let target = k as f64 * std::f64::consts::FRAC_PI_2;
+        let delta = if ccw { (target - a0).rem_euclid(TAU) } else { (a0 - target).rem_euclid(TAU) };
+        let fraction = delta / sweep;
+        let off_grid = (fraction * n as f64 - (fraction * n as f64).round()).abs() > 0.01;
+        if fraction > 0.0 && fraction < 1.0 && off_grid {
+            *slot = fraction;
+        }
+    }
+    extremes.sort_by(f64::total_cmp);
+    let mut extremes = extremes.into_iter().filter(|f| f.is_finite()).peekable();
+    let mut uniform = (1..=n).map(move |i| i as f64 / n as f64).peekable();
+    std::iter::from_fn(move || match (uniform.peek(), extremes.peek()) {
+        (Some(&u), Some(&e)) if e < u => extremes.next(),
+        _ => uniform.next(),
+    })
 }
 
 fn sample(index: usize, m: &Move, t: f64, p: Xz, normal: Xz, cutting: bool, tip: Xz) -> PathSample {

@@ -34,12 +34,15 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
     let compensated = compensate_samples(&samples, path.start, &model, &inverse);
     let ranges = sample_ranges(path.moves.len(), &samples);
     let writable = vec![true; path.moves.len()];
+    // The program writes no arc: any arc written would take the centre form.
+    let radius = vec![false; path.moves.len()];
     let input = PlanInput {
         toolpath: path,
         samples: &samples,
         commanded: &compensated.commanded,
         ranges: &ranges,
         writable: &writable,
+        radius: &radius,
         tools: &tools,
     };
     let grid = crate::compensation::grid::Grid::new(&lowered.coordinates_at(0));
