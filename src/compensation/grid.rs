@@ -253,6 +253,95 @@ mod tests {
         assert!((g.round(Xz::new(10.00026, 0.0)).x - 10.0005).abs() < 1e-12);
     }
 
+    /// The point at `degrees` (from +Z toward +X) on the circle about `centre`.
+    fn on(centre: Xz, radius: f64, degrees: f64) -> Xz {
+        geometry::on_circle(centre, radius, degrees.to_radians())
+    }
+
+    /// How far the arc the control runs for `words` strays from the exact arc.
+    fn gap_of(g: &Grid, from: Xz, end: Xz, centre: Xz, ccw: bool, words: ArcWords) -> f64 {
+        g.gap(&ArcSpan::new(from, end, centre, ccw), g.point(from), g.point(end), words, ccw)
+    }
+
+    #[test]
+    fn a_quarter_and_three_quarters_keep_their_radius() {
+        let g = grid(false, false);
+        // G02 X45 Z-15 R5 from X40 Z-10 (radius programming): centre X45 Z-10.
+        let words = g.arc_words(Xz::new(40.0, -10.0), Xz::new(45.0, -15.0), Xz::new(45.0, -10.0), false, true);
+        assert_eq!(words, ArcWords::Radius(5_000));
+        // G03 X25 Z-48 R-3 from X22 Z-45: three quarters of a turn, a negative radius.
+        let words = g.arc_words(Xz::new(22.0, -45.0), Xz::new(25.0, -48.0), Xz::new(25.0, -45.0), true, true);
+        assert_eq!(words, ArcWords::Radius(-3_000));
+        // A program that writes I K keeps I K.
+        let words = g.arc_words(Xz::new(40.0, -10.0), Xz::new(45.0, -15.0), Xz::new(45.0, -10.0), false, false);
+        assert_eq!(words, ArcWords::Centre { i: 5_000, k: 0 });
+    }
+
+    #[test]
+    fn near_half_a_turn_the_centre_form_is_written_where_the_radius_would_move_the_centre() {
+        let g = grid(false, false);
+        let centre = Xz::new(30.1003, -24.9987);
+        // Radii that round up (the control finds the centre far off the exact one) and
+        // down (the rounded radius does not reach across the chord: an alarm).
+        for radius in [4.9996, 5.0002] {
+            for (sweep, ccw) in [(179.7, false), (179.9, true), (180.1, false), (180.4, true)] {
+                let from = on(centre, radius, 3.1);
+                let end = on(centre, radius, if ccw { 3.1 + sweep } else { 3.1 - sweep });
+                let words = g.arc_words(from, end, centre, ccw, true);
+                let ArcWords::Centre { .. } = words else { panic!("{radius} {sweep}°: {words:?}") };
+                let signed = if sweep > 180.0 { -radius } else { radius };
+                let by_radius = gap_of(&g, from, end, centre, ccw, ArcWords::Radius(g.length(signed)));
+                let by_centre = gap_of(&g, from, end, centre, ccw, words);
+                // Rounded up, R puts the centre some 0.03–0.06 mm from where it is.
+                assert!(by_radius > 0.02, "{radius} {sweep}°: R strays {by_radius}");
+                // I K strays by its rounding only: the centre and the ends by half an
+                // increment per axis.
+                assert!(by_centre <= 0.0015, "{radius} {sweep}°: I K strays {by_centre}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_half_circle_on_the_grid_is_written_by_its_centre() {
+        // Its radius is exactly half its chord: the R arc is exact, but whether a control
+        // takes R = c/2 as a half circle or as "radius too small" is its own arithmetic's
+        // call.
+        let g = grid(false, false);
+        let (from, end, centre) = (Xz::new(21.998, -45.001), Xz::new(27.998, -45.001), Xz::new(24.998, -45.001));
+        assert_eq!(g.arc_words(from, end, centre, true, true), ArcWords::Centre { i: 3_000, k: 0 });
+    }
+
+    #[test]
+    fn an_arc_whose_rounded_ends_meet_is_a_line_unless_it_is_nearly_a_full_circle() {
+        let g = grid(false, false);
+        // 0.3 µm of a 5 mm circle: both ends round to X25.000 Z-50.000.
+        let centre = Xz::new(20.0, -50.0);
+        let (from, end) = (on(centre, 5.0, 90.0 - 1e-6), on(centre, 5.0, 90.0 + 2.4e-6));
+        assert_eq!(g.point(from), g.point(end));
+        assert_eq!(g.arc_words(from, end, centre, true, true), ArcWords::Line);
+        assert_eq!(g.arc_centre(g.point(from), g.point(end), ArcWords::Line, true), None);
+        // The rest of the same circle, the long way round: the control runs the full circle
+        // from I K, about the centre as rounded.
+        let words = g.arc_words(from, end, centre, false, true);
+        assert_eq!(words, ArcWords::Centre { i: -5_000, k: 0 });
+        let run = g.arc_centre(g.point(from), g.point(end), words, false).unwrap();
+        assert!(run.distance(centre) < 1e-9, "{run:?}");
+    }
+
+    #[test]
+    fn the_centre_the_control_takes_from_offsets_is_on_the_rounded_chords_bisector() {
+        let g = grid(false, false);
+        // I5 K0 from X30 Z-20 to X35 Z-24.999: the end is 1 µm nearer the centre than the
+        // start. The control moves the centre onto the chord's bisector, nearest the
+        // written one, as the semantic pass reads the block.
+        let (start, stop) = (GridPoint { x: 30_000, z: -20_000 }, GridPoint { x: 35_000, z: -24_999 });
+        let run = g.arc_centre(start, stop, ArcWords::Centre { i: 5_000, k: 0 }, false).unwrap();
+        let (a, b) = (g.to_mm(start), g.to_mm(stop));
+        assert!((run.distance(a) - run.distance(b)).abs() < 1e-12);
+        let moved = run.distance(Xz::new(35.0, -20.0));
+        assert!(moved > 1e-4 && moved < 1e-3, "{run:?}");
+    }
+
     #[test]
     fn inch_grid_rounds_in_inches() {
         let g = grid(true, false);

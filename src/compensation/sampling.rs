@@ -146,3 +146,33 @@ fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compensation::test_support::lower_program;
+
+    #[test]
+    fn an_arc_is_sampled_where_an_axis_reverses_inside_it() {
+        // G02 from X40 Z0 to X40 Z-9 (diameters) with R5.1, centre X22.4 Z-4.5 (radii):
+        // X falls to the circle's bottom, X17.3, between two of the 0.254 mm samples and
+        // rises again.
+        let (lowered, machine) =
+            lower_program("G21 G99\nG97 S1000 M03\nG00 X40. Z2.\nG01 Z0 F0.2\nG02 X40. Z-9. R5.1\nM30\n");
+        let path = &lowered.toolpath;
+        let (index, arc) = path.moves.iter().enumerate().find(|(_, m)| m.is_arc()).unwrap();
+        let samples: Vec<PathSample> = sample_toolpath(path, &ToolTable::from_machine(&machine), 0.254)
+            .into_iter()
+            .filter(|s| s.move_index == index)
+            .collect();
+        let bottom = arc.centre.x - path.start_of(index).distance(arc.centre);
+        assert!((bottom - 17.3).abs() < 1e-3, "{bottom}");
+        let at_bottom: Vec<&PathSample> = samples.iter().filter(|s| (s.nominal.x - bottom).abs() < 1e-9).collect();
+        assert_eq!(at_bottom.len(), 1);
+        // Between uniform samples, not on one: the steps on either side are shorter.
+        let uniform = 1.0 / (samples.len() - 1) as f64;
+        assert!((at_bottom[0].param / uniform - (at_bottom[0].param / uniform).round()).abs() > 0.01);
+        assert!(samples.windows(2).all(|w| w[0].param < w[1].param));
+        assert_eq!(samples.last().map(|s| s.nominal), Some(arc.end));
+    }
+}
