@@ -165,6 +165,12 @@ impl Grid {
         }
     }
 
+    /// How far the arc the control runs for `words`, written for the arc from `from` to
+    /// `end` about `centre` (exact), strays from that arc (infinite when it runs none).
+    pub fn arc_gap(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, words: ArcWords) -> f64 {
+        self.gap(&ArcSpan::new(from, end, centre, ccw), self.point(from), self.point(end), words, ccw)
+    }
+
     /// How far the arc the control runs for `words` strays from the exact arc (infinite
     /// when it runs none).
     fn gap(&self, exact: &ArcSpan, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> f64 {
@@ -258,11 +264,6 @@ mod tests {
         geometry::on_circle(centre, radius, degrees.to_radians())
     }
 
-    /// How far the arc the control runs for `words` strays from the exact arc.
-    fn gap_of(g: &Grid, from: Xz, end: Xz, centre: Xz, ccw: bool, words: ArcWords) -> f64 {
-        g.gap(&ArcSpan::new(from, end, centre, ccw), g.point(from), g.point(end), words, ccw)
-    }
-
     #[test]
     fn a_quarter_and_three_quarters_keep_their_radius() {
         let g = grid(false, false);
@@ -290,8 +291,8 @@ mod tests {
                 let words = g.arc_words(from, end, centre, ccw, true);
                 let ArcWords::Centre { .. } = words else { panic!("{radius} {sweep}°: {words:?}") };
                 let signed = if sweep > 180.0 { -radius } else { radius };
-                let by_radius = gap_of(&g, from, end, centre, ccw, ArcWords::Radius(g.length(signed)));
-                let by_centre = gap_of(&g, from, end, centre, ccw, words);
+                let by_radius = g.arc_gap(from, end, centre, ccw, ArcWords::Radius(g.length(signed)));
+                let by_centre = g.arc_gap(from, end, centre, ccw, words);
                 // Rounded up, R puts the centre some 0.03–0.06 mm from where it is.
                 assert!(by_radius > 0.02, "{radius} {sweep}°: R strays {by_radius}");
                 // I K strays by its rounding only: the centre and the ends by half an
