@@ -91,6 +91,7 @@ pub fn compensate_program(
     let compensated = compensate_samples(&samples, toolpath.start, model, &inverse);
     let ranges = written::sample_ranges(toolpath.moves.len(), &samples);
     let writable = rewrite::writable_moves(program, lowered);
+    let radius = rewrite::radius_preference(program, lowered);
     let grid_of = |index: usize| Grid::new(&lowered.coordinates_at(index));
     let input = PlanInput {
         toolpath,
@@ -98,6 +99,7 @@ pub fn compensate_program(
         commanded: &compensated.commanded,
         ranges: &ranges,
         writable: &writable,
+        radius: &radius,
         tools: &tools,
     };
     let plans = plan_moves(&input, grid_of, &PlanOptions { fit: options.fit, play: model.play() });
@@ -117,8 +119,7 @@ pub fn compensate_program(
     diagnostics.extend(rewritten.diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
 
-    let radius_arcs = crate::expand::uses_radius_arcs(program);
-    let commanded = quantised::commanded_path(&input, &plans, grid_of, radius_arcs);
+    let commanded = quantised::commanded_path(&input, &plans, grid_of);
     let after = predict(&samples, &commanded, toolpath.start, model);
     let index = PathIndex::new(toolpath, |m| m.cutting);
     let distance = |points: &[Xz]| -> Vec<Option<f64>> {
