@@ -51,6 +51,8 @@ enum Command {
     Expand(ExpandArgs),
     /// Print the toolpath the machine moves, and a summary (times, length, roughness).
     Simulate(SimulateArgs),
+    /// Serve the Language Server Protocol on standard input and output (for editors).
+    Lsp,
 }
 
 #[derive(Args)]
@@ -183,6 +185,10 @@ pub fn main() -> ExitCode {
         Command::Fmt(args) => fmt(args),
         Command::Expand(args) => expand(args),
         Command::Simulate(args) => simulate(args),
+        Command::Lsp => match turnpass::lsp::stdio::run_stdio() {
+            Ok(clean) => Ok(if clean { ExitCode::SUCCESS } else { ExitCode::from(1) }),
+            Err(message) => Err(CliError::Write { path: "<stdout>".into(), source: std::io::Error::other(message) }),
+        },
     };
     match result {
         Ok(code) => code,

@@ -11,6 +11,7 @@ mod corpus_semantic;
 mod cycles;
 mod differential;
 mod lap;
+mod lsp_incremental;
 mod nose_radius;
 mod parse;
 mod print;

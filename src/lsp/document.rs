@@ -1,0 +1,506 @@
+//! An open program: its text, its parse kept as chunks, and incremental re-parsing.
+//!
+//! **Why chunks.** An edit changes a few bytes, but every span after it moves. A parse that
+//! is one arena of absolute spans would need every later word rewritten (a 1-byte edit of
+//! an 8 MB program would touch 1.2 million words). The document instead keeps its parse as
+//! chunks of whole blocks (about [`DEFAULT_CHUNK_BYTES`] each, see `chunk.rs`), each with
+//! spans relative to its own start. An edit:
+//!
+//! 1. splices the text;
+//! 2. takes the chunks the edited bytes touch, widened until both ends are chunk
+//!    boundaries in the new text (a `$` continuation line or a CR LF pair never straddles
+//!    one);
+//! 3. re-splits that stretch into chunks, scans their dialect evidence, and parses them
+//!    (only those blocks), from the tape state the chunk before leaves;
+//! 4. re-parses the chunks after it only while the tape state entering them changed (an
+//!    edit that adds or removes a `%` line);
+//! 5. re-decides the dialect from every chunk's evidence; when the decision changes, every
+//!    chunk is parsed again (the block grammar depends on it).
+//!
+//! The chunks after the edit keep their parse; only their start offsets and first line
+//! numbers, one integer per chunk, are recomputed. [`Snapshot::program`] splices the chunks
+//! back into one [`Program`], equal (tested, with random edit sequences) to what
+//! [`crate::syntax::parse`] gives for the same text.
+
+use std::ops::Range;
+use std::sync::Arc;
+
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::dialect::detect::{self, Detection};
+use crate::dialect::{DialectChoice, DialectConfig};
+use crate::source::Span;
+use crate::syntax::{self, Block, Command, Expr, ExprId, ParseOptions, Parsed, Program, Statement, Tape, Word, WordId};
+
+use super::chunk::{self, Chunk};
+use super::position;
+
+/// About how many bytes of text a chunk holds: a re-parse after an edit handles one or two
+/// chunks, and the per-chunk bookkeeping of an 8 MB program stays at two thousand entries.
+pub const DEFAULT_CHUNK_BYTES: usize = 4096;
+
+/// A line and a UTF-16 column, both 0-based: the protocol's position.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub struct LinePosition {
+    pub line: u32,
+    pub column: u32,
+}
+
+#[derive(Debug, Clone)]
+pub struct Document {
+    text: Arc<Vec<u8>>,
+    chunks: Vec<Arc<Chunk>>,
+    /// Where each chunk starts in the text, and the text's length last.
+    starts: Vec<u32>,
+    /// The first line of each chunk, and the number of lines last.
+    first_lines: Vec<u32>,
+    options: ParseOptions,
+    detection: Detection,
+    chunk_bytes: usize,
+}
+
+/// An immutable view of a document at one version, cheap to take (the text and the chunks
+/// are shared), for work done away from the document (the semantic pass on another thread).
+#[derive(Debug, Clone)]
+pub struct Snapshot {
+    text: Arc<Vec<u8>>,
+    chunks: Vec<Arc<Chunk>>,
+    starts: Vec<u32>,
+    detection: Detection,
+    config: DialectConfig,
+}
+
+impl Document {
+    pub fn new(text: Vec<u8>, options: ParseOptions) -> Document {
+        Document::with_chunk_bytes(text, options, DEFAULT_CHUNK_BYTES)
+    }
+
+    /// A document cut into chunks of about `chunk_bytes` (tests use tiny chunks to put
+    /// boundaries everywhere).
+    pub fn with_chunk_bytes(text: Vec<u8>, options: ParseOptions, chunk_bytes: usize) -> Document {
+        let detection = detect::decide(b"", given(&options), options.machine_kind);
+        let mut document = Document {
+            text: Arc::new(text),
+            chunks: Vec::new(),
+            starts: vec![0],
+            first_lines: vec![0],
+            options,
+            detection,
+            chunk_bytes: chunk_bytes.max(1),
+        };
+        document.rebuild();
+        document
+    }
+
+    pub fn text(&self) -> &[u8] {
+        &self.text
+    }
+
+    pub fn options(&self) -> ParseOptions {
+        self.options
+    }
+
+    pub fn detection(&self) -> &Detection {
+        &self.detection
+    }
+
+    pub fn config(&self) -> DialectConfig {
+        DialectConfig::new(self.detection.dialect, self.options.gcode_system, self.detection.machine_kind)
+    }
+
+    /// How many chunks the parse is kept in.
+    pub fn chunk_count(&self) -> usize {
+        self.chunks.len()
+    }
+
+    /// Replace the whole text.
+    pub fn set_text(&mut self, text: Vec<u8>) {
+        self.text = Arc::new(text);
+        self.rebuild();
+    }
+
+    /// Read the program with other options (new machine settings); parses it again.
+    pub fn set_options(&mut self, options: ParseOptions) {
+        if options != self.options {
+            self.options = options;
+            self.rebuild();
+        }
+    }
+
+    /// Replace the bytes `range` (clamped to the text) by `insert`, and re-parse the blocks
+    /// the change touches. See the module documentation.
+    pub fn replace(&mut self, range: Range<usize>, insert: &[u8]) {
+        let old_len = self.text.len();
+        let start = range.start.min(old_len);
+        let end = range.end.clamp(start, old_len);
+        if start == end && insert.is_empty() {
+            return;
+        }
+        Arc::make_mut(&mut self.text).splice(start..end, insert.iter().copied());
+        if self.chunks.is_empty() || self.text.len() >= u32::MAX as usize || old_len >= u32::MAX as usize {
+            self.rebuild();
+            return;
+        }
+        let delta = self.text.len() as i64 - old_len as i64;
+
+        // The chunks the edited bytes touch, in old offsets: the one holding `start` through
+        // the one holding the last replaced byte.
+        let mut first = self.chunk_at(start as u32);
+        let mut last = if end > start { self.chunk_at(end as u32 - 1) } else { first };
+        // Widen until both ends are boundaries in the new text.
+        loop {
+            let region_start = self.starts[first] as usize;
+            let region_end = (self.starts[last + 1] as i64 + delta) as usize;
+            if first > 0 && !chunk::is_boundary(&self.text, region_start) {
+                first -= 1;
+            } else if last + 1 < self.chunks.len() && !chunk::is_boundary(&self.text, region_end) {
+                last += 1;
+            } else {
+                break;
+            }
+        }
+        let region_start = self.starts[first] as usize;
+        let region_end = (self.starts[last + 1] as i64 + delta) as usize;
+        let scan = self.scans();
+        let fresh: Vec<Arc<Chunk>> = chunk::split(&self.text, region_start..region_end, self.chunk_bytes)
+            .into_iter()
+            .scan(region_start, |at, len| {
+                let chunk = Chunk::new(&self.text[*at..*at + len], scan);
+                *at += len;
+                Some(Arc::new(chunk))
+            })
+            .collect();
+        let fresh_count = fresh.len();
+        self.chunks.splice(first..=last, fresh);
+        self.recount();
+
+        let config = self.config();
+        self.detection = self.decide();
+        if self.config() != config {
+            self.parse_all();
+            return;
+        }
+        let after = first + fresh_count;
+        for index in first..after {
+            self.parse_chunk(index);
+        }
+        // Later chunks keep their parse while the tape state entering them is unchanged.
+        for index in after..self.chunks.len() {
+            if self.chunks[index].tape_in == self.tape_before(index) {
+                break;
+            }
+            self.parse_chunk(index);
+        }
+    }
+
+    /// Split, scan and parse the whole text again.
+    fn rebuild(&mut self) {
+        let scan = self.scans();
+        let text = Arc::clone(&self.text);
+        self.chunks = if text.len() >= u32::MAX as usize {
+            Vec::new()
+        } else {
+            let mut at = 0;
+            chunk::split(&text, 0..text.len(), self.chunk_bytes)
+                .into_iter()
+                .map(|len| {
+                    let chunk = Chunk::new(&text[at..at + len], scan);
+                    at += len;
+                    Arc::new(chunk)
+                })
+                .collect()
+        };
+        self.recount();
+        self.detection = if self.chunks.is_empty() && !text.is_empty() {
+            // Only a source too large for 32-bit spans has no chunks; `diagnostics` says so.
+            detect::decide(&text, given(&self.options), self.options.machine_kind)
+        } else {
+            self.decide()
+        };
+        self.parse_all();
+    }
+
+    /// Parse every chunk (after a new dialect decision: the block grammar depends on it).
+    fn parse_all(&mut self) {
+        for index in 0..self.chunks.len() {
+            self.parse_chunk(index);
+        }
+    }
+
+    fn parse_chunk(&mut self, index: usize) {
+        let tape = self.tape_before(index);
+        let config = self.config();
+        let range = self.starts[index] as usize..self.starts[index + 1] as usize;
+        let text = Arc::clone(&self.text);
+        Arc::make_mut(&mut self.chunks[index]).parse(&text[range], config, tape, index == 0);
+    }
+
+    fn tape_before(&self, index: usize) -> Tape {
+        match index.checked_sub(1) {
+            Some(previous) => self.chunks[previous].tape_out(),
+            None => Tape::Before,
+        }
+    }
+
+    fn scans(&self) -> bool {
+        detect::scan_needed(given(&self.options), self.options.machine_kind)
+    }
+
+    /// The dialect decision from every chunk's evidence, as one scan of the text would give.
+    fn decide(&self) -> Detection {
+        let mut evidence = Vec::new();
+        for (chunk, &start) in self.chunks.iter().zip(&self.starts) {
+            detect::merge_evidence(
+                &mut evidence,
+                chunk.evidence.iter().map(|e| detect::Evidence { first: chunk::shifted(e.first, start), ..e.clone() }),
+            );
+        }
+        detect::decide_from(evidence, given(&self.options), self.options.machine_kind)
+    }
+
+    /// Recompute where each chunk starts and its first line.
+    fn recount(&mut self) {
+        self.starts.clear();
+        self.first_lines.clear();
+        let (mut at, mut line) = (0u32, 0u32);
+        for chunk in &self.chunks {
+            self.starts.push(at);
+            self.first_lines.push(line);
+            at += chunk.len;
+            line += chunk.line_count() as u32;
+        }
+        self.starts.push(at);
+        self.first_lines.push(line);
+    }
+
+    /// The chunk holding byte `offset` (the last chunk for the end of the text).
+    pub(crate) fn chunk_at(&self, offset: u32) -> usize {
+        let after = self.starts[..self.chunks.len()].partition_point(|&s| s <= offset);
+        after.saturating_sub(1)
+    }
+
+    /// The block whose text holds byte `offset`, or whose text ends at it (a cursor just
+    /// after a word). The text after a closing `%` is no block here.
+    pub(crate) fn block_at(&self, offset: usize) -> Option<BlockRef<'_>> {
+        if self.chunks.is_empty() {
+            return None;
+        }
+        let index = self.chunk_at(offset as u32);
+        let base = self.starts[index];
+        let chunk = &self.chunks[index];
+        let local = offset as u32 - base.min(offset as u32);
+        let block = chunk.part.blocks.partition_point(|b| b.span.start <= local).checked_sub(1)?;
+        let found = BlockRef { chunk, base, text: self.chunk_text(index), index: block };
+        (local <= found.block().span.end).then_some(found)
+    }
+
+    /// Every block of the program, in order (without the text after a closing `%`).
+    pub(crate) fn blocks(&self) -> impl Iterator<Item = BlockRef<'_>> {
+        (0..self.chunks.len()).flat_map(move |index| {
+            let chunk = &*self.chunks[index];
+            let (base, text) = (self.starts[index], self.chunk_text(index));
+            (0..chunk.part.blocks.len()).map(move |block| BlockRef { chunk, base, text, index: block })
+        })
+    }
+
+    fn chunk_text(&self, index: usize) -> &[u8] {
+        &self.text[self.starts[index] as usize..self.starts[index + 1] as usize]
+    }
+
+    /// The diagnostics `syntax::parse` gives for the text, in the same order.
+    pub fn diagnostics(&self) -> Vec<Diagnostic> {
+        collect_diagnostics(&self.detection, self.text.len(), &self.chunks, &self.starts)
+    }
+
+    /// Whether the parse found errors (the semantic pass waits until it finds none).
+    pub fn has_errors(&self) -> bool {
+        (self.chunks.is_empty() && self.text.len() >= u32::MAX as usize)
+            || self.chunks.iter().any(|c| c.part.diagnostics.iter().any(Diagnostic::is_error))
+    }
+
+    pub fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            text: Arc::clone(&self.text),
+            chunks: self.chunks.clone(),
+            starts: self.starts.clone(),
+            detection: self.detection.clone(),
+            config: self.config(),
+        }
+    }
+
+    /// The number of lines as the protocol counts them: a terminator at the end of the text
+    /// starts one more, empty, line.
+    pub fn line_count(&self) -> u32 {
+        let lines = self.first_lines.last().copied().unwrap_or(0);
+        if self.text.is_empty() || ends_with_terminator(&self.text) { lines + 1 } else { lines }
+    }
+
+    /// The text of line `line` without its terminator, and where it starts.
+    pub fn line(&self, line: u32) -> Option<(usize, &[u8])> {
+        let index = self.first_lines[..self.chunks.len()].partition_point(|&l| l <= line).checked_sub(1)?;
+        let chunk = &self.chunks[index];
+        let local = (line - self.first_lines[index]) as usize;
+        let start = *chunk.line_starts.get(local)? as usize;
+        let end = chunk.line_starts.get(local + 1).map_or(chunk.len as usize, |&s| s as usize);
+        let base = self.starts[index] as usize;
+        Some((base + start, position::without_terminator(&self.text[base + start..base + end])))
+    }
+
+    /// The protocol position of byte `offset`; an offset inside a character goes to the
+    /// character's start, or its end when `round_up` (the end of a range).
+    pub fn position_of(&self, offset: usize, round_up: bool) -> LinePosition {
+        let offset = offset.min(self.text.len());
+        if self.chunks.is_empty() || (offset == self.text.len() && ends_with_terminator(&self.text)) {
+            return LinePosition { line: self.line_count().saturating_sub(1), column: 0 };
+        }
+        let index = self.chunk_at(offset as u32);
+        let chunk = &self.chunks[index];
+        let local = offset as u32 - self.starts[index];
+        let line_in_chunk = chunk.line_starts.partition_point(|&s| s <= local).saturating_sub(1);
+        let line = self.first_lines[index] + line_in_chunk as u32;
+        match self.line(line) {
+            Some((start, text)) => LinePosition { line, column: position::column_of(text, offset - start, round_up) },
+            None => LinePosition { line, column: 0 },
+        }
+    }
+
+    /// The protocol range of a span.
+    pub fn range(&self, span: Span) -> lsp_types::Range {
+        let start = self.position_of(span.start as usize, false);
+        let end = self.position_of(span.end as usize, true).max(start);
+        lsp_types::Range {
+            start: lsp_types::Position { line: start.line, character: start.column },
+            end: lsp_types::Position { line: end.line, character: end.column },
+        }
+    }
+
+    /// The byte offset of a protocol position, clamped to the text: a column past the end
+    /// of its line is the line's end, a line past the last is the end of the text.
+    pub fn offset_of(&self, position: LinePosition) -> usize {
+        match self.line(position.line) {
+            Some((start, text)) => start + position::offset_of(text, position.column),
+            None => self.text.len(),
+        }
+    }
+}
+
+impl Snapshot {
+    pub fn text(&self) -> &[u8] {
+        &self.text
+    }
+
+    /// The chunks spliced back into one program over the snapshot's text.
+    pub fn program(&self) -> Program<'_> {
+        super::assemble::program(
+            &self.text,
+            self.config,
+            self.chunks.iter().map(|c| &**c).zip(self.starts.iter().copied()),
+        )
+    }
+
+    /// What `syntax::parse` returns for the text, built from the chunks.
+    pub fn parsed(&self) -> Parsed<'_> {
+        let diagnostics = collect_diagnostics(&self.detection, self.text.len(), &self.chunks, &self.starts);
+        Parsed { program: self.program(), diagnostics, detection: self.detection.clone() }
+    }
+}
+
+/// The diagnostics of a whole parse from its chunks: those of the dialect decision, then
+/// each chunk's in order, sorted as `syntax::parse` sorts them (a stable sort on the same
+/// order of reports gives the same list).
+fn collect_diagnostics(detection: &Detection, len: usize, chunks: &[Arc<Chunk>], starts: &[u32]) -> Vec<Diagnostic> {
+    let mut diagnostics = syntax::detection_diagnostics(detection);
+    if chunks.is_empty() && len >= u32::MAX as usize {
+        diagnostics.push(Diagnostic::error(DiagnosticKind::SourceTooLarge, Span::new(0, 0)));
+    }
+    for (chunk, &start) in chunks.iter().zip(starts) {
+        diagnostics.extend(chunk.part.diagnostics.iter().map(|d| shift_diagnostic(d, start)));
+    }
+    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+    diagnostics
+}
+
+fn given(options: &ParseOptions) -> Option<crate::dialect::Dialect> {
+    match options.dialect {
+        DialectChoice::Fixed(dialect) => Some(dialect),
+        DialectChoice::Auto => None,
+    }
+}
+
+fn ends_with_terminator(text: &[u8]) -> bool {
+    matches!(text.last(), Some(b'\n' | b'\r'))
+}
+
+#[cfg(test)]
+mod tests;
+
+pub(crate) fn shift_diagnostic(diagnostic: &Diagnostic, by: u32) -> Diagnostic {
+    Diagnostic {
+        severity: diagnostic.severity,
+        kind: diagnostic.kind.clone(),
+        span: chunk::shifted(diagnostic.span, by),
+        related: diagnostic.related.iter().map(|(span, label)| (chunk::shifted(*span, by), label.clone())).collect(),
+    }
+}
+
+/// A block of a document, read in place in its chunk: its nodes keep the chunk's relative
+/// spans and indexes, and [`BlockRef::absolute`] moves a span to the document's offsets.
+#[derive(Clone, Copy)]
+pub(crate) struct BlockRef<'a> {
+    chunk: &'a Chunk,
+    base: u32,
+    text: &'a [u8],
+    index: usize,
+}
+
+impl<'a> BlockRef<'a> {
+    pub fn block(&self) -> &'a Block {
+        &self.chunk.part.blocks[self.index]
+    }
+
+    pub fn words(&self) -> &'a [Word] {
+        let block = self.block();
+        let first = block.first_word as usize;
+        self.chunk.part.words.get(first..first + block.word_count as usize).unwrap_or(&[])
+    }
+
+    /// The word of a command parameter or of `Command::code_word`.
+    pub fn word(&self, id: WordId) -> Option<&'a Word> {
+        self.chunk.part.words.get(id as usize)
+    }
+
+    pub fn command(&self) -> Option<&'a Command> {
+        match self.block().statement {
+            Statement::Cycle(id)
+            | Statement::LapCall(id)
+            | Statement::LapMarker(id)
+            | Statement::Dwell(id)
+            | Statement::OneShot(id) => self.chunk.part.commands.get(id as usize),
+            _ => None,
+        }
+    }
+
+    pub fn expr(&self, id: ExprId) -> Option<&'a Expr> {
+        self.chunk.part.exprs.get(id as usize)
+    }
+
+    /// The source text of a span of this block (relative to the chunk).
+    pub fn text(&self, span: Span) -> &'a [u8] {
+        self.text.get(span.range()).unwrap_or(&[])
+    }
+
+    pub fn absolute(&self, span: Span) -> Span {
+        chunk::shifted(span, self.base)
+    }
+
+    /// The word whose text holds the document offset `offset`, or ends at it.
+    pub fn word_at(&self, offset: usize) -> Option<(WordId, &'a Word)> {
+        let local = offset.checked_sub(self.base as usize)? as u32;
+        let words = self.words();
+        // Prefer the word the offset is inside; else the one that ends at it.
+        let position = words
+            .iter()
+            .position(|w| w.span.start <= local && local < w.span.end)
+            .or_else(|| words.iter().position(|w| w.span.end == local))?;
+        Some((self.block().first_word + position as u32, &words[position]))
+    }
+}
