@@ -142,11 +142,12 @@ pub(crate) struct Part {
 /// in place: `tape` is the tape state before the run, `document_start` says whether the run
 /// starts the program (where a byte-order mark may stand). Dialect detection is the caller's.
 pub(crate) fn parse_part(text: &[u8], config: DialectConfig, tape: Tape, document_start: bool) -> Part {
+    // The same reservations as `parse`, for the same reason: no regrowth while parsing.
     let mut program = Program {
         source: text,
         config,
-        blocks: Vec::new(),
-        words: Vec::new(),
+        blocks: Vec::with_capacity(text.len() / 16 + 1),
+        words: Vec::with_capacity(text.len() / 6 + 1),
         exprs: Vec::new(),
         commands: Vec::new(),
     };
@@ -159,6 +160,8 @@ pub(crate) fn parse_part(text: &[u8], config: DialectConfig, tape: Tape, documen
         document_start,
     };
     let (tape, trailing_from) = builder.run(tape);
+    program.blocks.shrink_to_fit();
+    program.words.shrink_to_fit();
     Part {
         blocks: program.blocks,
         words: program.words,

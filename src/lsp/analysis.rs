@@ -4,7 +4,8 @@
 //! spans; the protocol wants ranges in lines and UTF-16 columns (`position.rs`). A label
 //! and a hint have no field of their own in the protocol: the hint is added to the related
 //! information at the diagnostic's own range (editors show it under the message), and both
-//! travel in `data` for tools.
+//! travel in `data` for tools, with the byte offsets of the span and the pass that found it
+//! (`syntax`: the diagnostics `check` reports; `semantic`).
 //!
 //! **Why the semantic pass waits for a clean parse.** An invalid block loses its words, so
 //! a typo in `N20 G01 X1O.` would make `G71 P20` report a missing `N20`: the semantic pass
@@ -48,15 +49,34 @@ impl SemanticJob {
     }
 }
 
-/// The parse's diagnostics and the semantic pass's, sorted by position as `parse` sorts.
-pub fn merge(mut syntax: Vec<Diagnostic>, semantic: &[Diagnostic]) -> Vec<Diagnostic> {
-    syntax.extend(semantic.iter().cloned());
-    syntax.sort_by_key(|d| (d.span.start, d.span.end));
-    syntax
+/// Which pass found a diagnostic; `data.pass` says it to tools (`check` reports the parse's).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pass {
+    Syntax,
+    Semantic,
+}
+
+impl Pass {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Pass::Syntax => "syntax",
+            Pass::Semantic => "semantic",
+        }
+    }
+}
+
+/// What the server publishes for a document: its parse diagnostics and the semantic pass's,
+/// sorted by position as `parse` sorts (the parse's first on a tie).
+pub fn publishable(document: &Document, uri: &Uri, semantic: &[Diagnostic]) -> Vec<lsp_types::Diagnostic> {
+    let syntax = document.diagnostics();
+    let mut all: Vec<(&Diagnostic, Pass)> = syntax.iter().map(|d| (d, Pass::Syntax)).collect();
+    all.extend(semantic.iter().map(|d| (d, Pass::Semantic)));
+    all.sort_by_key(|(d, _)| (d.span.start, d.span.end));
+    all.into_iter().map(|(d, pass)| to_lsp(document, uri, d, pass)).collect()
 }
 
 /// A diagnostic in the protocol's terms.
-pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic) -> lsp_types::Diagnostic {
+pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pass) -> lsp_types::Diagnostic {
     let range = document.range(diagnostic.span);
     let mut related: Vec<DiagnosticRelatedInformation> = diagnostic
         .related
@@ -90,6 +110,7 @@ pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic) -> lsp_ty
             "label": diagnostic.label(),
             "hint": hint,
             "offset": { "start": diagnostic.span.start, "end": diagnostic.span.end },
+            "pass": pass.as_str(),
         })),
     }
 }

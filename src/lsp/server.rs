@@ -9,7 +9,8 @@
 //! **When diagnostics are published.** Edits mark a document; when no message is waiting,
 //! the loop calls [`Server::idle`], which publishes each marked document once, for its
 //! latest version (a burst of keystrokes costs one publish). A program up to
-//! `semanticInlineLimit` bytes (1 MiB by default) gets its semantic diagnostics in that same
+//! `semanticInlineLimit` bytes (256 KiB by default, where the pass takes a few
+//! milliseconds) gets its semantic diagnostics in that same
 //! publish. A larger one is published at once with its parse diagnostics and the previous
 //! semantic diagnostics moved across the edits, and again when the semantic pass, run on
 //! another thread, has finished with that version.
@@ -36,7 +37,7 @@ use super::settings::{InitOptions, Settings};
 use super::{definition, format, hover, symbols};
 
 /// Programs up to this size get their semantic diagnostics in the same publish.
-pub const DEFAULT_SEMANTIC_INLINE_LIMIT: usize = 1 << 20;
+pub const DEFAULT_SEMANTIC_INLINE_LIMIT: usize = 256 << 10;
 
 /// Where the server gets what lives outside the protocol: the settings files.
 pub trait Host {
@@ -343,9 +344,7 @@ impl<H: Host> Server<H> {
 }
 
 fn publish_open(uri: &Uri, open: &Open) -> Message {
-    let diagnostics = analysis::merge(open.document.diagnostics(), &open.semantic);
-    let lsp = diagnostics.iter().map(|d| analysis::to_lsp(&open.document, uri, d)).collect();
-    publish(uri.clone(), lsp, Some(open.version))
+    publish(uri.clone(), analysis::publishable(&open.document, uri, &open.semantic), Some(open.version))
 }
 
 fn publish(uri: Uri, diagnostics: Vec<lsp_types::Diagnostic>, version: Option<i32>) -> Message {

@@ -18,7 +18,7 @@ use crate::syntax::ParseOptions;
 /// ```json
 /// { "dialect": "osp", "gcodeSystem": "B", "decimalInput": "increment",
 ///   "model": "/path/to/machine.toml", "machine": { "units": "mm" },
-///   "semanticInlineLimit": 1048576 }
+///   "semanticInlineLimit": 262144 }
 /// ```
 #[derive(Debug, Clone, Default, PartialEq, Deserialize)]
 #[serde(rename_all = "camelCase", deny_unknown_fields)]

@@ -1,0 +1,220 @@
+//! Language-server latency: re-analysis after a one-character edit, and the full analysis
+//! of a program when it is opened, with tree-sitter-gcode's incremental re-parse of the
+//! same edit beside it.
+//!
+//! Run with `cargo bench --bench lsp`. Inputs: `python3 ../shared/bench/gen_lathe.py
+//! target/bench-data/big-<n>.nc <n>` for 1 and 8 MB (generated on first use). Measured:
+//!
+//! * **edit**: one character typed into a number in the middle of the program (and, in the
+//!   next round, deleted again), then everything the server publishes for it: the
+//!   incremental re-parse (`Document::replace`), the document's diagnostics and their
+//!   protocol form (`analysis::publishable`). Also at the start of the program, where the text
+//!   after the edit is longest.
+//! * **open**: a program opened from scratch: parse into chunks, diagnostics, the semantic
+//!   pass (`SemanticJob::run`, which assembles the chunks into one program and lowers it),
+//!   and the protocol form.
+//! * **tree-sitter-gcode**: `Tree::edit` and `Parser::parse` with the old tree, for the same
+//!   one-byte insertion (tree-sitter 0.25, tree-sitter-gcode 0.1.1 from crates.io).
+//!
+//! Besides the criterion groups, the bench prints medians of interleaved runs, which is
+//! what the README quotes.
+
+#![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
+
+use std::hint::black_box;
+use std::path::PathBuf;
+use std::process::Command;
+use std::time::Instant;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use lsp_types::Uri;
+use turnpass::dialect::{DialectChoice, GCodeSystem};
+use turnpass::lsp::Document;
+use turnpass::lsp::analysis::{self, SemanticJob};
+use turnpass::machine::MachineSettings;
+use turnpass::syntax::ParseOptions;
+
+fn generated(megabytes: u32) -> Vec<u8> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("target/bench-data/big-{megabytes}.nc"));
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_lathe.py");
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+    if !path.exists() {
+        assert!(Command::new("python3").arg(script).arg(&path).arg(megabytes.to_string()).status().unwrap().success());
+    }
+    std::fs::read(&path).unwrap()
+}
+
+/// As an editor opens a program with no settings: the dialect decided from the text.
+fn options() -> ParseOptions {
+    ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None }
+}
+
+fn uri() -> Uri {
+    "file:///bench/big.nc".parse().unwrap()
+}
+
+/// What the server publishes for a document's parse: its diagnostics in protocol form.
+fn publish(document: &Document, uri: &Uri) -> Vec<lsp_types::Diagnostic> {
+    analysis::publishable(document, uri, &[])
+}
+
+/// Everything the server does for a program it opens.
+fn open(text: &[u8], uri: &Uri) -> usize {
+    let document = Document::new(text.to_vec(), options());
+    let semantic = SemanticJob::new(document.snapshot(), &MachineSettings::default()).run();
+    analysis::publishable(&document, uri, &semantic).len()
+}
+
+/// The offset just after the first digit of a number at or after `from`: where a
+/// machinist types another digit.
+fn digit_after(text: &[u8], from: usize) -> usize {
+    from + text[from..].windows(2).position(|w| w[0] == b'X' && w[1].is_ascii_digit()).unwrap() + 2
+}
+
+/// One typed character, then its deletion, alternately; returns seconds per edit.
+fn median_edit_seconds(document: &mut Document, at: usize, uri: &Uri, rounds: usize) -> f64 {
+    let mut times: Vec<f64> = (0..rounds)
+        .map(|round| {
+            let start = Instant::now();
+            if round % 2 == 0 {
+                document.replace(at..at, b"5");
+            } else {
+                document.replace(at..at + 1, b"");
+            }
+            black_box(publish(document, uri));
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    median(&mut times)
+}
+
+fn median(times: &mut [f64]) -> f64 {
+    times.sort_by(|a, b| a.total_cmp(b));
+    times[times.len() / 2]
+}
+
+fn median_seconds(mut run: impl FnMut(), rounds: usize) -> f64 {
+    let mut times: Vec<f64> = (0..rounds)
+        .map(|_| {
+            let start = Instant::now();
+            run();
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    median(&mut times)
+}
+
+/// tree-sitter-gcode: the whole parse, and the re-parse after inserting one byte at `at`.
+struct TreeSitter {
+    parser: tree_sitter::Parser,
+    tree: tree_sitter::Tree,
+    edited: Vec<u8>,
+    edit: tree_sitter::InputEdit,
+}
+
+impl TreeSitter {
+    fn new(text: &[u8], at: usize) -> TreeSitter {
+        let mut parser = tree_sitter::Parser::new();
+        parser.set_language(&tree_sitter_gcode::LANGUAGE.into()).unwrap();
+        let tree = parser.parse(text, None).unwrap();
+        let mut edited = text.to_vec();
+        edited.insert(at, b'5');
+        let row = text[..at].iter().filter(|&&b| b == b'\n').count();
+        let column = at - text[..at].iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1);
+        let point = tree_sitter::Point { row, column };
+        let edit = tree_sitter::InputEdit {
+            start_byte: at,
+            old_end_byte: at,
+            new_end_byte: at + 1,
+            start_position: point,
+            old_end_position: point,
+            new_end_position: tree_sitter::Point { row, column: column + 1 },
+        };
+        TreeSitter { parser, tree, edited, edit }
+    }
+
+    fn reparse_after_edit(&mut self) -> tree_sitter::Tree {
+        let mut old = self.tree.clone();
+        old.edit(&self.edit);
+        self.parser.parse(&self.edited, Some(&old)).unwrap()
+    }
+}
+
+fn lsp(c: &mut Criterion) {
+    let uri = uri();
+    let small = generated(1);
+    let large = generated(8);
+
+    // The figures the README quotes: medians of runs in this one process.
+    let mut report = String::new();
+    for text in [&small, &large] {
+        let mb = text.len() as f64 / 1e6;
+        let mut document = Document::new(text.to_vec(), options());
+        let middle = digit_after(text, text.len() / 2);
+        let first = digit_after(text, 0);
+        let edit_middle = median_edit_seconds(&mut document, middle, &uri, 201);
+        let edit_start = median_edit_seconds(&mut document, first, &uri, 201);
+        let opened = median_seconds(|| _ = black_box(open(text, &uri)), 7);
+        let parse_only = median_seconds(|| drop(black_box(Document::new(text.to_vec(), options()))), 7);
+        let snapshot = document.snapshot();
+        let job = SemanticJob::new(snapshot, &MachineSettings::default());
+        let semantic = median_seconds(|| drop(black_box(job.run())), 7);
+        report.push_str(&format!(
+            "turnpass-bench: {mb:.2} MB, {} chunks, {} diagnostics: one-character edit + publish {:.3} ms (middle), \
+             {:.3} ms (start); open with semantic pass {:.1} ms (parse into chunks {:.1} ms, semantic pass {:.1} ms)\n",
+            document.chunk_count(),
+            document.diagnostics().len(),
+            edit_middle * 1e3,
+            edit_start * 1e3,
+            opened * 1e3,
+            parse_only * 1e3,
+            semantic * 1e3,
+        ));
+    }
+    let middle = digit_after(&large, large.len() / 2);
+    let mut peer = TreeSitter::new(&large, middle);
+    let peer_edit = median_seconds(|| drop(black_box(peer.reparse_after_edit())), 7);
+    let peer_full = median_seconds(
+        || {
+            let mut parser = tree_sitter::Parser::new();
+            parser.set_language(&tree_sitter_gcode::LANGUAGE.into()).unwrap();
+            drop(black_box(parser.parse(&large, None)));
+        },
+        3,
+    );
+    report.push_str(&format!(
+        "turnpass-bench: tree-sitter-gcode on {:.2} MB: one-byte edit re-parse {:.1} ms, full parse {:.1} ms, \
+         tree has errors: {}\n",
+        large.len() as f64 / 1e6,
+        peer_edit * 1e3,
+        peer_full * 1e3,
+        peer.tree.root_node().has_error()
+    ));
+    println!("\n{report}");
+
+    let mut group = c.benchmark_group("lsp");
+    group.sample_size(20);
+    for (name, text) in [("1MB", &small), ("8MB", &large)] {
+        let mut document = Document::new(text.to_vec(), options());
+        let at = digit_after(text, text.len() / 2);
+        let mut typed = false;
+        group.bench_function(format!("edit_and_publish_{name}"), |b| {
+            b.iter(|| {
+                if typed {
+                    document.replace(at..at + 1, b"");
+                } else {
+                    document.replace(at..at, b"5");
+                }
+                typed = !typed;
+                black_box(publish(&document, &uri))
+            })
+        });
+    }
+    group.bench_function("open_with_semantic_1MB", |b| b.iter(|| open(black_box(&small), &uri)));
+    group.sample_size(10);
+    group.bench_function("tree_sitter_gcode_edit_8MB", |b| b.iter(|| peer.reparse_after_edit()));
+    group.finish();
+}
+
+criterion_group!(benches, lsp);
+criterion_main!(benches);
