@@ -14,6 +14,7 @@ mod lap;
 mod lsp_check;
 mod lsp_client;
 mod lsp_incremental;
+mod lsp_nvim;
 mod lsp_server;
 mod lsp_session;
 mod nose_radius;
