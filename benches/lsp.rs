@@ -21,9 +21,9 @@
 
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
 
+mod support;
+
 use std::hint::black_box;
-use std::path::PathBuf;
-use std::process::Command;
 use std::time::Instant;
 
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -34,15 +34,7 @@ use turnpass::lsp::analysis::{self, SemanticJob};
 use turnpass::machine::MachineSettings;
 use turnpass::syntax::ParseOptions;
 
-fn generated(megabytes: u32) -> Vec<u8> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("target/bench-data/big-{megabytes}.nc"));
-    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_lathe.py");
-    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-    if !path.exists() {
-        assert!(Command::new("python3").arg(script).arg(&path).arg(megabytes.to_string()).status().unwrap().success());
-    }
-    std::fs::read(&path).unwrap()
-}
+use support::{generated, median, median_seconds};
 
 /// As an editor opens a program with no settings: the dialect decided from the text.
 fn options() -> ParseOptions {
@@ -88,22 +80,6 @@ fn median_edit_seconds(document: &mut Document, at: usize, uri: &Uri, rounds: us
     median(&mut times)
 }
 
-fn median(times: &mut [f64]) -> f64 {
-    times.sort_by(|a, b| a.total_cmp(b));
-    times[times.len() / 2]
-}
-
-fn median_seconds(mut run: impl FnMut(), rounds: usize) -> f64 {
-    let mut times: Vec<f64> = (0..rounds)
-        .map(|_| {
-            let start = Instant::now();
-            run();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    median(&mut times)
-}
-
 /// tree-sitter-gcode: the whole parse, and the re-parse after inserting one byte at `at`.
 struct TreeSitter {
     parser: tree_sitter::Parser,
@@ -142,8 +118,8 @@ impl TreeSitter {
 
 fn lsp(c: &mut Criterion) {
     let uri = uri();
-    let small = generated(1);
-    let large = generated(8);
+    let small = generated("1");
+    let large = generated("8");
 
     // The figures the README quotes: medians of runs in this one process.
     let mut report = String::new();

@@ -17,64 +17,50 @@ pub fn column_of(line: &[u8], offset: usize, round_up: bool) -> u32 {
         // The common case, and the only one where the offset cannot fall inside a character.
         return offset as u32;
     }
-    let mut units = 0u32;
-    let mut at = 0usize;
-    for chunk in line.utf8_chunks() {
-        for c in chunk.valid().chars() {
-            let end = at + c.len_utf8();
-            if end > offset {
-                if round_up && at < offset {
-                    units += c.len_utf16() as u32;
-                }
-                return units;
+    let mut column = 0;
+    for (start, end, units) in characters(line) {
+        if end > offset {
+            if round_up && start < offset {
+                column += units;
             }
-            units += c.len_utf16() as u32;
-            at = end;
+            break;
         }
-        let invalid = chunk.invalid().len();
-        if invalid > 0 {
-            let end = at + invalid;
-            if end > offset {
-                if round_up && at < offset {
-                    units += 1;
-                }
-                return units;
-            }
-            units += 1;
-            at = end;
-        }
+        column += units;
     }
-    units
+    column
 }
 
 /// The byte offset in `line` of UTF-16 column `column`. A column inside a surrogate pair
 /// goes to the start of its character; a column past the end goes to the end of the line,
 /// as the protocol asks.
 pub fn offset_of(line: &[u8], column: u32) -> usize {
-    let column = column as usize;
-    if column <= line.len() && line[..column].is_ascii() {
-        return column;
+    if (column as usize) <= line.len() && line[..column as usize].is_ascii() {
+        return column as usize;
     }
-    let mut units = 0usize;
-    let mut at = 0usize;
-    for chunk in line.utf8_chunks() {
-        for c in chunk.valid().chars() {
-            let next = units + c.len_utf16();
-            if next > column {
-                return at;
-            }
-            units = next;
-            at += c.len_utf8();
+    let mut units_before = 0;
+    for (start, _, units) in characters(line) {
+        if units_before + units > column {
+            return start;
         }
-        if !chunk.invalid().is_empty() {
-            if units + 1 > column {
-                return at;
-            }
-            units += 1;
-            at += chunk.invalid().len();
-        }
+        units_before += units;
     }
     line.len()
+}
+
+/// Each character of `line` as (start, end, UTF-16 units); a sequence that is not UTF-8 is
+/// one character of one unit, as the replacement character an editor shows for it.
+fn characters(line: &[u8]) -> impl Iterator<Item = (usize, usize, u32)> + '_ {
+    let mut at = 0;
+    line.utf8_chunks().flat_map(move |chunk| {
+        let base = at;
+        at += chunk.valid().len() + chunk.invalid().len();
+        let valid =
+            chunk.valid().char_indices().map(move |(i, c)| (base + i, base + i + c.len_utf8(), c.len_utf16() as u32));
+        let invalid_start = base + chunk.valid().len();
+        let invalid =
+            (!chunk.invalid().is_empty()).then_some((invalid_start, invalid_start + chunk.invalid().len(), 1));
+        valid.chain(invalid)
+    })
 }
 
 /// The length of a line's text: `line` without its final LF, CR LF or CR.

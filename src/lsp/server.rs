@@ -52,6 +52,9 @@ pub trait Host {
 #[derive(Debug)]
 pub struct Job {
     pub uri: Uri,
+    /// Which opening of the document (a document closed and opened again starts its
+    /// versions anew) and which version of it.
+    pub generation: u64,
     pub version: i32,
     pub work: SemanticJob,
     /// Run it now and hand the result to [`Server::finished`] before reading the next
@@ -63,18 +66,25 @@ pub struct Job {
 #[derive(Debug)]
 pub struct JobResult {
     pub uri: Uri,
+    pub generation: u64,
     pub version: i32,
     pub diagnostics: Vec<Diagnostic>,
 }
 
 impl Job {
     pub fn run(&self) -> JobResult {
-        JobResult { uri: self.uri.clone(), version: self.version, diagnostics: self.work.run() }
+        JobResult {
+            uri: self.uri.clone(),
+            generation: self.generation,
+            version: self.version,
+            diagnostics: self.work.run(),
+        }
     }
 }
 
 struct Open {
     document: Document,
+    generation: u64,
     version: i32,
     settings: Settings,
     /// The semantic diagnostics of `semantic_version`, moved across the edits since.
@@ -92,6 +102,8 @@ pub struct Server<H: Host> {
     documents: HashMap<Uri, Open>,
     inline_limit: usize,
     shut_down: bool,
+    /// Documents opened so far.
+    openings: u64,
 }
 
 impl<H: Host> Server<H> {
@@ -105,7 +117,7 @@ impl<H: Host> Server<H> {
             InitOptions::default()
         });
         let inline_limit = init.semantic_inline_limit.unwrap_or(DEFAULT_SEMANTIC_INLINE_LIMIT);
-        let server = Server { host, init, documents: HashMap::new(), inline_limit, shut_down: false };
+        let server = Server { host, init, documents: HashMap::new(), inline_limit, shut_down: false, openings: 0 };
         (server, initialize_result(), messages)
     }
 
@@ -222,8 +234,10 @@ impl<H: Host> Server<H> {
         let item = params.text_document;
         let (settings, problems) = self.settings_for(&item.uri);
         let document = Document::new(item.text.into_bytes(), settings.parse);
+        self.openings += 1;
         let open = Open {
             document,
+            generation: self.openings,
             version: item.version,
             settings,
             semantic: Vec::new(),
@@ -316,7 +330,7 @@ impl<H: Host> Server<H> {
             } else if open.semantic_version != Some(open.version) && !open.running {
                 let inline = open.document.text().len() <= self.inline_limit;
                 let work = SemanticJob::new(open.document.snapshot(), &open.settings.machine);
-                jobs.push(Job { uri: uri.clone(), version: open.version, work, inline });
+                jobs.push(Job { uri: uri.clone(), generation: open.generation, version: open.version, work, inline });
                 open.running = true;
                 if inline {
                     // Published with the job's result, in `finished`.
@@ -332,6 +346,9 @@ impl<H: Host> Server<H> {
     /// else mark the document so that the next idle moment runs the pass again.
     pub fn finished(&mut self, result: JobResult) -> Vec<Message> {
         let Some(open) = self.documents.get_mut(&result.uri) else { return Vec::new() };
+        if open.generation != result.generation {
+            return Vec::new();
+        }
         open.running = false;
         if result.version != open.version || open.document.has_errors() {
             open.dirty = true;

@@ -170,3 +170,69 @@ proptest! {
         prop_assert_eq!(closed.len(), 1, "the diagnostics are cleared");
     }
 }
+
+/// The codes and byte offsets of a publish, each marked with its pass.
+fn published(messages: &[Message]) -> Vec<Vec<(String, String, u64)>> {
+    messages
+        .iter()
+        .filter_map(|m| match m {
+            Message::Notification(n) if n.method == "textDocument/publishDiagnostics" => Some(&n.params),
+            _ => None,
+        })
+        .map(|params| {
+            params["diagnostics"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|d| {
+                    let pass = d["data"]["pass"].as_str().unwrap().to_string();
+                    (pass, d["code"].as_str().unwrap().to_string(), d["data"]["offset"]["start"].as_u64().unwrap())
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Above `semanticInlineLimit` the semantic pass runs as a job on its own: the parse's
+/// diagnostics are published at once with the previous semantic ones moved across the
+/// edits, a result for a version the editor has left is dropped, and the next one is
+/// published when it comes.
+#[test]
+fn large_programs_get_their_semantic_diagnostics_from_a_job() {
+    let uri = "file:///work/big.nc";
+    let init = json!({ "capabilities": {}, "initializationOptions": { "semanticInlineLimit": 0, "dialect": "fanuc" } });
+    let (mut server, _, messages) = Server::initialize(NoFiles, init);
+    assert!(messages.is_empty(), "{messages:?}");
+    let text = "G00 X60. Z2.\nG71 U2. R0.5\nG71 P10 Q21 U0.4 W0.1 F0.25\nN10 G01 X20.\nN20 X60.\n";
+    let missing = text.find("Q21").unwrap() as u64;
+    let item = json!({ "uri": uri, "languageId": "gcode", "version": 1, "text": text });
+    server.handle(notification("textDocument/didOpen", json!({ "textDocument": item })));
+
+    // Version 1: the parse's diagnostics now (none), the job's when it is done.
+    let (messages, jobs) = server.idle();
+    assert_eq!(published(&messages), vec![vec![]]);
+    assert_eq!(jobs.len(), 1);
+    assert!(!jobs[0].inline);
+    let first = server.finished(jobs[0].run());
+    let semantic = published(&first);
+    assert_eq!(semantic.len(), 1);
+    assert!(semantic[0].contains(&("semantic".to_string(), "missing-sequence".to_string(), missing)), "{semantic:?}");
+
+    // Version 2: a line typed at the top moves the semantic diagnostics in the publish at
+    // once; the job for version 2 is overtaken by version 3 and its result dropped.
+    let change = |version: i32, text: &str| {
+        let range = json!({ "start": { "line": 0, "character": 0 }, "end": { "line": 0, "character": 0 } });
+        let params = json!({ "textDocument": { "uri": uri, "version": version }, "contentChanges": [{ "range": range, "text": text }] });
+        notification("textDocument/didChange", params)
+    };
+    server.handle(change(2, "G97 S500\n"));
+    let (messages, jobs) = server.idle();
+    let interim = published(&messages);
+    assert!(interim[0].contains(&("semantic".to_string(), "missing-sequence".to_string(), missing + 9)), "{interim:?}");
+    server.handle(change(3, "M03\n"));
+    assert!(server.finished(jobs[0].run()).is_empty(), "a result for version 2 is not published at version 3");
+    let (messages, jobs) = server.idle();
+    assert!(jobs.len() == 1 && published(&messages).len() == 1);
+    let last = published(&server.finished(jobs[0].run()));
+    assert!(last[0].contains(&("semantic".to_string(), "missing-sequence".to_string(), missing + 13)), "{last:?}");
+}
