@@ -11,10 +11,23 @@
 //! The samples' shifts are then re-expressed as G-code by the strategies of `fit.rs`, and
 //! written into the program by editing only the blocks whose motion changes.
 
+pub mod deviation;
 pub mod fit;
+pub mod grid;
 pub mod inverse;
+pub mod plan;
+pub mod program;
+pub mod quantised;
+pub mod report;
+pub mod rewrite;
+pub mod safety;
 pub mod sampling;
+#[cfg(test)]
+mod test_support;
+pub mod verify;
+pub mod written;
 
 pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};
-pub use inverse::{Compensated, InverseOptions, compensate_samples};
+pub use inverse::{Compensated, InverseOptions, compensate_samples, predict, states};
+pub use program::{CompensateOptions, Outcome, compensate_program};
 pub use sampling::{PathSample, sample_toolpath};

@@ -316,6 +316,23 @@ pub enum DiagnosticKind {
     /// `expand` leaves a cycle as it is: its moves have no plain-block form in this dialect
     /// (on OSP: thread moves that are not single-pass `G33` passes).
     NotExpandable,
+    /// `compensate`: the correction of a point of this block is larger than `--max-shift`.
+    CorrectionTooLarge {
+        shift_mm: f64,
+        max_mm: f64,
+    },
+    /// `compensate`: a corrected point of this block lies outside the machine's travel.
+    CompensatedOutsideTravel {
+        x_mm: f64,
+        z_mm: f64,
+    },
+    /// `compensate`: the block's motion must change but cannot be written back in place.
+    CannotRewriteBlock {
+        reason: &'static str,
+    },
+    /// `compensate`: a cycle whose motion changes has no plain-block form in this dialect,
+    /// so it stays as programmed and its moves are not compensated.
+    CycleNotCompensated,
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
     /// A cycle whose profile has no moves.
@@ -327,6 +344,23 @@ pub enum DiagnosticKind {
     /// A Type I roughing profile that is not monotonic across the cut.
     ProfileNotMonotonic {
         axis: char,
+    },
+    /// A `G71`/`G72` whose profile fails because its start point lies on the other side of
+    /// it than the sign of the allowance across the passes asks for (`U-1`, an inside
+    /// allowance, from a start point outside the part): read from the start point's side,
+    /// the profile turns back. From a start point on the allowance's side it would not.
+    StartOnWrongSide {
+        /// The start point as programmed (X as written, a diameter on a diameter lathe).
+        x: f64,
+        z: f64,
+        /// The axis across the passes (`X` for `G71`, `Z` for `G72`), the allowance word
+        /// along it (`U` or `W`) and that word's value.
+        axis: char,
+        address: char,
+        allowance: f64,
+        /// The profile's smallest value on that axis when the allowance is negative, its
+        /// largest when positive: where the start point must lie beyond, allowance added.
+        extreme: f64,
     },
     /// A `G73` with no number of passes (`R` of its first block, or `D`), or fewer than one.
     CycleNeedsDivisions,
@@ -437,10 +471,6 @@ pub enum DiagnosticKind {
     CycleNeedsShift {
         shift: char,
         axis: char,
-    },
-    /// An OSP `G88` thread whose `N` names no `G81`/`G82` contour.
-    ThreadContourNotFound {
-        name: String,
     },
     /// An OSP `G88` thread contour with an arc, or a rapid after its first thread element.
     ThreadContourNotStraight,

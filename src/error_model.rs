@@ -20,6 +20,7 @@ pub mod effects;
 pub mod htm;
 pub mod interferometer;
 pub mod model_file;
+pub mod report;
 pub mod state;
 
 pub use effects::Effect;

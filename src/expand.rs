@@ -23,20 +23,10 @@ mod thread_pass;
 pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<Diagnostic>) {
     let mut edits = Edits::new();
     let mut notes = Vec::new();
-    let thread_code = program.config().tables().code_for(GFunction::ThreadMove);
-    let radius_arcs = uses_radius_arcs(program);
-    let tables = program.config().tables();
-    let compensation_codes = [
-        tables.code_for(GFunction::CompensationOff).unwrap_or(Code::whole(40)),
-        tables.code_for(GFunction::CompensationLeft).unwrap_or(Code::whole(41)),
-        tables.code_for(GFunction::CompensationRight).unwrap_or(Code::whole(42)),
-    ];
     let calls: std::collections::HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
     for expansion in &lowered.expansions {
-        let frame = expansion.frame;
-        let places = increment_places(frame.increment);
         let moves = &lowered.toolpath.moves[expansion.moves.clone()];
-        let mut start = lowered.toolpath.start_of(expansion.moves.start);
+        let start = lowered.toolpath.start_of(expansion.moves.start);
         // The compensation in effect when the cycle starts: the written blocks switch it
         // where the cycle's moves do (a G70 profile's own G41/G42/G40).
         let compensation_before = expansion
@@ -45,54 +35,93 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             .checked_sub(1)
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
-        // S in force before the cycle's block: the written blocks give S where it changes
-        // (the cycle block's own S included, since the block is replaced).
-        let speed_before = Some(expansion.before.s_word).filter(|s| *s > 0.0);
-        let mut writer = BlockWriter {
-            frame,
-            places,
-            radius_arcs,
-            dialect: program.config().dialect,
-            thread_code: thread_code.unwrap_or(Code::whole(32)),
-            compensation_codes,
-            motion: None,
-            feed: None,
-            speed: speed_before,
-            compensation: compensation_before,
-        };
-        if thread_code.is_none() && moves.iter().any(|m| m.threading) {
-            // No thread move in this dialect: passes become single-pass cycle blocks.
-            match thread_pass::expand(program, expansion, moves, start, &mut writer) {
-                thread_pass::Threads::Keep => {}
-                thread_pass::Threads::Blocks(blocks) => {
-                    edits.replace(expansion.block, blocks);
-                    delete_consumed(&mut edits, program, expansion, &calls);
-                }
-                thread_pass::Threads::NotExpandable => {
-                    let span = program.block(expansion.block).span;
-                    notes.push(Diagnostic::note(DiagnosticKind::NotExpandable, span));
-                }
+        let shift = lowered.coordinates_at(expansion.moves.start).shift;
+        match expansion_blocks(program, expansion, moves, start, compensation_before, shift) {
+            ExpansionBlocks::Keep => {}
+            ExpansionBlocks::Blocks(blocks) => {
+                edits.replace(expansion.block, blocks);
+                delete_consumed(&mut edits, program, expansion, &calls);
             }
-            continue;
+            ExpansionBlocks::NotExpandable => {
+                let span = program.block(expansion.block).span;
+                notes.push(Diagnostic::note(DiagnosticKind::NotExpandable, span));
+            }
         }
-        let mut blocks: Vec<NewBlock> = moves
-            .iter()
-            .map(|m| {
-                let block = writer.block(start, m);
-                start = m.contour;
-                block
-            })
-            .collect();
-        blocks.extend(writer.restore(&expansion.after));
-        edits.replace(expansion.block, blocks);
-        delete_consumed(&mut edits, program, expansion, &calls);
     }
     (edits, notes)
 }
 
+/// What a cycle call becomes.
+pub(crate) enum ExpansionBlocks {
+    /// A single-pass thread cycle: it is one pass already; leave it.
+    Keep,
+    /// The blocks that replace the call.
+    Blocks(Vec<NewBlock>),
+    /// Its thread moves have no plain-block form in this dialect; leave it.
+    NotExpandable,
+}
+
+/// The blocks that replace `expansion`'s call block when the cycle makes `moves` from
+/// `start` (programmed contour points: `Move.contour`, arcs about `Move.centre`), with
+/// `compensation_before` in force before it and the program's coordinates shifted by
+/// `shift` (`G50 X Z`). `expand` passes the cycle's own moves, the compensation pass its
+/// compensated ones.
+pub(crate) fn expansion_blocks(
+    program: &Program<'_>,
+    expansion: &crate::semantic::Expansion,
+    moves: &[Move],
+    start: Xz,
+    compensation_before: Compensation,
+    shift: Xz,
+) -> ExpansionBlocks {
+    let tables = program.config().tables();
+    let thread_code = tables.code_for(GFunction::ThreadMove);
+    let compensation_codes = [
+        tables.code_for(GFunction::CompensationOff).unwrap_or(Code::whole(40)),
+        tables.code_for(GFunction::CompensationLeft).unwrap_or(Code::whole(41)),
+        tables.code_for(GFunction::CompensationRight).unwrap_or(Code::whole(42)),
+    ];
+    let frame = expansion.frame;
+    // S in force before the cycle's block: the written blocks give S where it changes
+    // (the cycle block's own S included, since the block is replaced).
+    let speed_before = Some(expansion.before.s_word).filter(|s| *s > 0.0);
+    let mut writer = BlockWriter {
+        frame,
+        shift,
+        places: increment_places(frame.increment),
+        radius_arcs: uses_radius_arcs(program),
+        dialect: program.config().dialect,
+        thread_code: thread_code.unwrap_or(Code::whole(32)),
+        compensation_codes,
+        motion: None,
+        feed: None,
+        speed: speed_before,
+        compensation: compensation_before,
+    };
+    if thread_code.is_none() && moves.iter().any(|m| m.threading) {
+        // No thread move in this dialect: passes become single-pass cycle blocks.
+        return match thread_pass::expand(program, expansion, moves, start, &mut writer) {
+            thread_pass::Threads::Keep => ExpansionBlocks::Keep,
+            thread_pass::Threads::Blocks(blocks) => ExpansionBlocks::Blocks(blocks),
+            thread_pass::Threads::NotExpandable => ExpansionBlocks::NotExpandable,
+        };
+    }
+    let mut start = start;
+    let mut blocks: Vec<NewBlock> = moves
+        .iter()
+        .map(|m| {
+            let block = writer.block(start, m);
+            start = m.contour;
+            block
+        })
+        .collect();
+    blocks.extend(writer.restore(&expansion.after));
+    ExpansionBlocks::Blocks(blocks)
+}
+
 /// Delete the blocks a cycle consumed; a block that is itself a cycle call keeps its own
 /// expansion.
-fn delete_consumed(
+pub(crate) fn delete_consumed(
     edits: &mut Edits,
     program: &Program<'_>,
     expansion: &crate::semantic::Expansion,
@@ -105,7 +134,7 @@ fn delete_consumed(
     }
 }
 
-fn increment_places(increment: f64) -> u8 {
+pub(crate) fn increment_places(increment: f64) -> u8 {
     let mut places = 0u8;
     let mut scaled = increment;
     while places < 9 && (scaled - scaled.round()).abs() > 1e-9 {
@@ -116,7 +145,7 @@ fn increment_places(increment: f64) -> u8 {
 }
 
 /// Whether the program writes its arcs with a radius (`R`, OSP `L`) rather than `I K`.
-fn uses_radius_arcs(program: &Program<'_>) -> bool {
+pub(crate) fn uses_radius_arcs(program: &Program<'_>) -> bool {
     let radius = if program.config().dialect == Dialect::Osp { Address::L } else { Address::R };
     let (mut by_radius, mut by_centre) = (0, 0);
     for block in program.blocks() {
@@ -138,6 +167,8 @@ fn uses_radius_arcs(program: &Program<'_>) -> bool {
 
 struct BlockWriter {
     frame: Frame,
+    /// Toolpath frame minus program coordinates (`G50 X Z`), mm.
+    shift: Xz,
     places: u8,
     radius_arcs: bool,
     dialect: Dialect,
@@ -157,6 +188,16 @@ impl BlockWriter {
         let scale = 10f64.powi(self.places as i32);
         let mantissa = (value * scale).round() as i64;
         Number::new(mantissa, self.places, true)
+    }
+
+    /// The absolute `X` word of a radius in the toolpath frame.
+    fn x_word(&self, x_mm: f64) -> NewWord {
+        NewWord::Number(Address::X, self.number(self.frame.x_program(x_mm - self.shift.x)))
+    }
+
+    /// The absolute `Z` word of a position in the toolpath frame.
+    fn z_word(&self, z_mm: f64) -> NewWord {
+        NewWord::Number(Address::Z, self.number(self.frame.program(z_mm - self.shift.z)))
     }
 
     /// A block that puts back the modal motion code, F and S the original program has after
@@ -219,8 +260,8 @@ impl BlockWriter {
             self.motion = Some((m.motion, m.threading));
         }
         let end = m.contour;
-        words.push(NewWord::Number(Address::X, self.number(self.frame.x_program(end.x))));
-        words.push(NewWord::Number(Address::Z, self.number(self.frame.program(end.z))));
+        words.push(self.x_word(end.x));
+        words.push(self.z_word(end.z));
         if m.is_arc() {
             let centre = m.centre;
             if self.radius_arcs {

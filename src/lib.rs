@@ -13,6 +13,7 @@
 #![deny(clippy::disallowed_methods)]
 
 pub mod compensation;
+pub mod diagnose;
 pub mod diagnostic;
 pub mod dialect;
 pub mod error_model;
@@ -21,6 +22,7 @@ pub mod geometry;
 pub mod lsp;
 pub mod machine;
 mod memory;
+pub mod plot;
 pub mod printer;
 pub mod semantic;
 pub mod simulation;

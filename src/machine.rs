@@ -40,6 +40,9 @@ pub struct MachineSettings {
     pub max_spindle_rpm: Option<f64>,
     /// The block-delete switch: `true` skips blocks that start with `/`.
     pub block_delete: Option<bool>,
+    /// The lead of each axis' ball screw, mm (a property of the screw, so in millimetres
+    /// whatever the machine's units): the period of its cyclic error (`diagnose`).
+    pub ball_screw_pitch_mm: Option<ScrewPitch>,
     /// The tool table.
     #[serde(default)]
     pub tool: Vec<ToolSettings>,
@@ -51,6 +54,14 @@ pub struct MachineSettings {
 pub struct AxisPair {
     pub x: f64,
     pub z: f64,
+}
+
+/// The ball-screw lead of each axis, mm; either may be unknown.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScrewPitch {
+    pub x: Option<f64>,
+    pub z: Option<f64>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]

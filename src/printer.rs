@@ -129,7 +129,11 @@ pub fn write_new_block(out: &mut String, program: &Program<'_>, style: &ProgramS
         match word {
             NewWord::Code(letter, code) => write_code(out, *letter, code.major(), code.minor(), style.two_digit_codes),
             NewWord::Number(address, number) => write_address_number(out, program, style, *address, *number),
-            NewWord::Copy(id) => out.push_str(&String::from_utf8_lossy(program.text(program.word(*id).span))),
+            NewWord::Copy(id) => {
+                out.push_str(&String::from_utf8_lossy(program.text(program.word(*id).span)));
+                // A block-delete slash is written against what follows it (`/N120`).
+                first = matches!(program.word(*id).kind, crate::syntax::WordKind::BlockDelete { .. });
+            }
             NewWord::Comment(text) => {
                 out.push('(');
                 out.push_str(text);

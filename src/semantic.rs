@@ -169,6 +169,33 @@ pub struct Lowered {
     pub frame: Frame,
     /// Executed blocks, for the bounded-work report.
     pub executed_blocks: u64,
+    /// How the program's coordinate words map to the toolpath frame, from a move on: one
+    /// mark where the frame, the absolute/incremental mode or the `G50` shift changes. A
+    /// later pass that writes a move back into its own block (`compensation::rewrite`)
+    /// reads them; empty means the start frame, absolute, unshifted throughout.
+    pub coordinates: Vec<CoordinateMark>,
+}
+
+/// The program coordinates in force from move `from_move` on (see `Lowered::coordinates`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoordinateMark {
+    pub from_move: usize,
+    pub frame: Frame,
+    /// `X`/`Z` words are absolute (`G90`; always on Fanuc system A, which uses `U`/`W`).
+    pub absolute: bool,
+    /// Toolpath frame minus program coordinates, mm (`G50 X Z`).
+    pub shift: Xz,
+}
+
+impl Lowered {
+    /// The coordinates in force for move `index`.
+    pub fn coordinates_at(&self, index: usize) -> CoordinateMark {
+        let k = self.coordinates.partition_point(|m| m.from_move <= index);
+        match k.checked_sub(1).and_then(|k| self.coordinates.get(k)) {
+            Some(mark) => *mark,
+            None => CoordinateMark { from_move: 0, frame: self.frame, absolute: true, shift: Xz::default() },
+        }
+    }
 }
 
 /// Lower a parsed program. Never fails; see the module documentation. A program the pass
@@ -182,6 +209,7 @@ pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -
             expansions: Vec::new(),
             frame: initial_frame(program, machine),
             executed_blocks: 0,
+            coordinates: Vec::new(),
         };
     }
     interpreter::Interpreter::new(program, machine, options).run()

@@ -13,6 +13,8 @@
 //! With no `K'` in the tool table the nose-only form is used. A finishing pass is each
 //! `G70`/LAP finishing cycle, and each run of feed moves under nose-radius compensation.
 
+use std::ops::Range;
+
 use serde::Serialize;
 
 use crate::machine::ToolSettings;
@@ -189,6 +191,29 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
             formula,
         });
     };
+    for (source, moves) in finishing_moves(program, lowered, toolpath) {
+        pass(source, &toolpath.moves[moves]);
+    }
+    passes.sort_by_key(|p| p.line);
+
+    Summary {
+        moves: toolpath.moves.len(),
+        cycle_time_s: cycle_time,
+        cutting_time_s: cutting_time,
+        path_length_mm: path,
+        cutting_length_mm: cutting_length,
+        rapid_rate_assumed: machine.rapid_assumed,
+        finishing_passes: passes,
+    }
+}
+
+/// The finishing passes of a program, each as the block that makes it and its range of
+/// moves: every `G70`/LAP finishing cycle, then every run of feed moves under nose-radius
+/// compensation outside cycles (less the move that switches compensation on, which
+/// approaches the surface and does not finish it). In program order of the passes' kinds,
+/// not sorted.
+pub fn finishing_moves(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath) -> Vec<(Span, Range<usize>)> {
+    let mut out = Vec::new();
     for expansion in &lowered.expansions {
         let block = program.block(expansion.block);
         let is_finishing = program.words_of(block).iter().any(|w| match w.kind {
@@ -200,7 +225,7 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
             _ => false,
         });
         if is_finishing {
-            pass(block.span, &toolpath.moves[expansion.moves.clone()]);
+            out.push((block.span, expansion.moves.clone()));
         }
     }
     let mut i = 0;
@@ -217,22 +242,11 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
         {
             i += 1;
         }
-        // The move that switches compensation on approaches the surface; it does not finish it.
         if i > start + 1 {
-            pass(toolpath.moves[start + 1].source, &toolpath.moves[start + 1..i]);
+            out.push((toolpath.moves[start + 1].source, start + 1..i));
         }
     }
-    passes.sort_by_key(|p| p.line);
-
-    Summary {
-        moves: toolpath.moves.len(),
-        cycle_time_s: cycle_time,
-        cutting_time_s: cutting_time,
-        path_length_mm: path,
-        cutting_length_mm: cutting_length,
-        rapid_rate_assumed: machine.rapid_assumed,
-        finishing_passes: passes,
-    }
+    out
 }
 
 #[cfg(test)]

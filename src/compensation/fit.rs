@@ -7,14 +7,35 @@
 //! * `densify` — straight `G01` moves through the points, at `--step` or as few as the
 //!   chord tolerance allows (the thesis' O2012 turn);
 //! * `circle` — one least-squares circle per programmed arc (`fit/circle.rs`);
-//! * `semicircle` / `quadrant` — the arc split at its X reversals or at every quadrant,
-//!   one circle each (the thesis' Table 4–5 modes);
+//! * `semicircle` / `quadrant` — the arc split at 0° and 180° (where Z reverses:
+//!   [`SEMICIRCLE_CUTS`]) or at every quarter turn, one circle each (the thesis' Table 4–5
+//!   modes);
 //! * `arcs` — the fewest tangent-continuous arcs within the tolerance (`fit/arcs.rs`);
 //! * `auto` — per move, the cheapest of these that meets the tolerance.
 //!
-//! A line stays one line when its points allow it, whatever the strategy.
+//! A line stays one line when its points allow it, whatever the strategy. Every strategy
+//! writes segments that start at the move's start, end exactly on its last point and keep
+//! every point within the tolerance ([`max_deviation`] is the measure); a strategy that
+//! cannot says so in [`Fitted::rejected`] and the move falls back to `densify`. `quantize.rs`
+//! then puts the segments on the machine's grid.
+
+mod arcs;
+pub mod circle;
+mod deviation;
+mod grow;
+mod lm;
+pub mod pinned;
+pub mod quantize;
+mod split;
 
 use crate::toolpath::Xz;
+
+pub use arcs::{Pieces, fit as fit_arcs};
+pub use deviation::{
+    Between, chord_deviation, deviation_by_piece, distance_to_segment, max_deviation, segment_deviation,
+};
+pub use quantize::{ArcFailure, ArcForm, ArcProblem, Grid, Quantized, quantize};
+pub use split::{QUADRANT_CUTS, SEMICIRCLE_CUTS};
 
 /// One written segment, from the end of the previous one.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,46 +100,220 @@ pub fn distance_to_chord(p: Xz, a: Xz, b: Xz) -> f64 {
 }
 
 /// `densify`: straight moves through the points. With a step, one line per step of path
-/// length (ending on sample points); without, the fewest lines whose every skipped point
-/// lies within the tolerance of its chord (greedy, from the start).
+/// length (ending on sample points), cut finer wherever a step would leave a skipped point
+/// outside the tolerance; without, as few lines as keep every skipped point within the
+/// tolerance of its chord (greedy from the start, `grow.rs`).
 pub fn densify(m: &MovePoints<'_>, tolerance_mm: f64, step_mm: Option<f64>) -> Vec<Segment> {
     let points = m.points;
-    let Some(&last) = points.last() else { return Vec::new() };
     let mut out = Vec::new();
     match step_mm.filter(|s| s.is_finite() && *s > 0.0) {
         Some(step) => {
             let mut travelled = 0.0;
             let mut previous = m.start;
+            let mut from = m.start;
+            let mut first = 0;
             for (i, &p) in points.iter().enumerate() {
                 travelled += previous.distance(p);
                 previous = p;
                 if travelled >= step - 1e-9 || i + 1 == points.len() {
-                    out.push(Segment::Line { end: p });
+                    chord_lines(from, points.get(first..=i).unwrap_or_default(), tolerance_mm, &mut out);
+                    from = p;
+                    first = i + 1;
                     travelled = 0.0;
                 }
             }
         }
-        None => {
-            let mut from = m.start;
-            let mut first = 0;
-            while first < points.len() {
-                // Extend the chord as far as every skipped point stays within tolerance.
-                let mut end = first;
-                while end + 1 < points.len()
-                    && points[first..=end].iter().all(|&p| distance_to_chord(p, from, points[end + 1]) <= tolerance_mm)
-                {
-                    end += 1;
+        None => chord_lines(m.start, points, tolerance_mm, &mut out),
+    }
+    out
+}
+
+/// The fewest lines from `from` through `points`, ending on the last, that each keep the
+/// points they skip within `tolerance` of their chord.
+fn chord_lines(mut from: Xz, points: &[Xz], tolerance: f64, out: &mut Vec<Segment>) {
+    let mut first = 0;
+    while first < points.len() {
+        // A line to the next point skips nothing and always passes.
+        let last = grow::longest(first, points.len(), |last| {
+            let end = points.get(last)?;
+            let skipped = points.get(first..last)?;
+            skipped.iter().all(|&p| distance_to_chord(p, from, *end) <= tolerance).then_some(())
+        })
+        .map_or(first, |(last, ())| last);
+        let Some(&end) = points.get(last) else { return };
+        out.push(Segment::Line { end });
+        from = end;
+        first = last + 1;
+    }
+}
+
+/// The strategy that was asked for and could not meet the tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rejected {
+    pub strategy: Strategy,
+    /// How close its best attempt came, mm (infinite: no circle of the programmed sense
+    /// could be fitted at all).
+    pub deviation_mm: f64,
+}
+
+/// A move re-expressed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fitted {
+    pub segments: Vec<Segment>,
+    /// What wrote them: never `Auto`; a nominal line kept as one line is `Densify`'s one
+    /// `G01`, and a strategy that failed is `Densify` with `rejected` set.
+    pub strategy_used: Strategy,
+    /// The largest distance of a compensated point from the written segments, mm.
+    pub max_deviation_mm: f64,
+    /// Set when the strategy asked for failed and the move fell back to `densify`.
+    pub rejected: Option<Rejected>,
+}
+
+/// The segments that write the move `m` (see [`fit_move`]).
+pub fn reexpress(m: &MovePoints<'_>, options: &FitOptions) -> Vec<Segment> {
+    fit_move(m, options).segments
+}
+
+/// Re-express the move `m` by `options.strategy`:
+///
+/// * a nominal line stays one line when every point is within the tolerance of the chord
+///   from the start to the last point; else it is densified, or, under `arcs` and `auto`,
+///   fitted with arcs when that takes fewer segments;
+/// * `circle`, `semicircle`, `quadrant` fit one circle per piece of a programmed arc
+///   (`split.rs`), falling back to `densify` when they cannot meet the tolerance;
+/// * `arcs` fits adaptive arcs (`arcs.rs`), `densify` writes lines;
+/// * `auto` takes, per move, whichever of the nominal shape (one circle), `semicircle`,
+///   `quadrant`, `arcs` and `densify` meets the tolerance in the fewest segments, the
+///   earlier in that order on a tie.
+pub fn fit_move(m: &MovePoints<'_>, options: &FitOptions) -> Fitted {
+    let tolerance =
+        if options.tolerance_mm >= 0.0 && options.tolerance_mm.is_finite() { options.tolerance_mm } else { 0.0 };
+    let Some(&last) = m.points.last() else {
+        return Fitted {
+            segments: Vec::new(),
+            strategy_used: Strategy::Densify,
+            max_deviation_mm: 0.0,
+            rejected: None,
+        };
+    };
+    let fitting = Fitting { m, tolerance, step: options.step_mm };
+    match m.nominal {
+        NominalShape::Line => {
+            let line = Segment::Line { end: last };
+            let deviation = segment_deviation(m.start, &line, m.points);
+            if deviation <= tolerance {
+                return Fitted {
+                    segments: vec![line],
+                    strategy_used: Strategy::Densify,
+                    max_deviation_mm: deviation,
+                    rejected: None,
+                };
+            }
+            match options.strategy {
+                Strategy::Arcs | Strategy::Auto => fitting.arcs_or_densify(),
+                Strategy::Circle | Strategy::Semicircle | Strategy::Quadrant | Strategy::Densify => fitting.densify(),
+            }
+        }
+        NominalShape::Arc { centre, ccw } => {
+            let cuts: &[f64] = match options.strategy {
+                Strategy::Semicircle => &SEMICIRCLE_CUTS,
+                Strategy::Quadrant => &QUADRANT_CUTS,
+                _ => &[],
+            };
+            match options.strategy {
+                Strategy::Circle | Strategy::Semicircle | Strategy::Quadrant => {
+                    fitting.circles(centre, ccw, cuts, options.strategy).unwrap_or_else(|deviation_mm| Fitted {
+                        rejected: Some(Rejected { strategy: options.strategy, deviation_mm }),
+                        ..fitting.densify()
+                    })
                 }
-                out.push(Segment::Line { end: points[end] });
-                from = points[end];
-                first = end + 1;
+                Strategy::Arcs => fitting.arcs(),
+                Strategy::Densify => fitting.densify(),
+                Strategy::Auto => fitting.cheapest_for_arc(centre, ccw),
             }
         }
     }
-    if out.last().map(Segment::end) != Some(last) {
-        out.push(Segment::Line { end: last });
+}
+
+struct Fitting<'a, 'p> {
+    m: &'a MovePoints<'p>,
+    tolerance: f64,
+    step: Option<f64>,
+}
+
+impl Fitting<'_, '_> {
+    fn densify(&self) -> Fitted {
+        let segments = densify(self.m, self.tolerance, self.step);
+        let max_deviation_mm = deviation_by_piece(self.m.start, &segments, self.m.points);
+        Fitted { segments, strategy_used: Strategy::Densify, max_deviation_mm, rejected: None }
     }
-    out
+
+    fn arcs(&self) -> Fitted {
+        let pieces = arcs::fit(self.m, self.tolerance);
+        Fitted {
+            segments: pieces.segments,
+            strategy_used: Strategy::Arcs,
+            max_deviation_mm: pieces.max_deviation_mm,
+            rejected: None,
+        }
+    }
+
+    /// Arcs, unless densify takes fewer segments.
+    fn arcs_or_densify(&self) -> Fitted {
+        let arcs = self.arcs();
+        let lines = self.densify();
+        if lines.segments.len() < arcs.segments.len() && lines.max_deviation_mm <= self.tolerance {
+            lines
+        } else {
+            arcs
+        }
+    }
+
+    fn circles(&self, centre: Xz, ccw: bool, cuts: &[f64], strategy: Strategy) -> Result<Fitted, f64> {
+        let segments = split::circles(self.m, centre, ccw, cuts, self.tolerance)?;
+        let max_deviation_mm = max_deviation(self.m.start, &segments, self.m.points);
+        if max_deviation_mm <= self.tolerance {
+            Ok(Fitted { segments, strategy_used: strategy, max_deviation_mm, rejected: None })
+        } else {
+            Err(max_deviation_mm)
+        }
+    }
+
+    fn cheapest_for_arc(&self, centre: Xz, ccw: bool) -> Fitted {
+        let mut best: Option<Fitted> = None;
+        let mut tried = Vec::new();
+        for (cuts, strategy) in [
+            (&[][..], Strategy::Circle),
+            (&SEMICIRCLE_CUTS[..], Strategy::Semicircle),
+            (&QUADRANT_CUTS[..], Strategy::Quadrant),
+        ] {
+            // A split that cuts nowhere new is a fit already tried.
+            let pieces = split::cut_indices(self.m, centre, ccw, cuts);
+            if tried.contains(&pieces) {
+                continue;
+            }
+            tried.push(pieces);
+            if let Ok(fitted) = self.circles(centre, ccw, cuts, strategy) {
+                self.keep_cheaper(&mut best, fitted);
+            }
+        }
+        // Nothing takes fewer than one segment.
+        if let Some(one) = best.take_if(|b| b.segments.len() == 1) {
+            return one;
+        }
+        self.keep_cheaper(&mut best, self.arcs());
+        self.keep_cheaper(&mut best, self.densify());
+        // Arcs always meet the tolerance (a line to the next point always passes); this is
+        // the guard for points that are not numbers.
+        best.unwrap_or_else(|| self.densify())
+    }
+
+    fn keep_cheaper(&self, best: &mut Option<Fitted>, candidate: Fitted) {
+        let passes = candidate.max_deviation_mm <= self.tolerance;
+        if passes && best.as_ref().is_none_or(|b| candidate.segments.len() < b.segments.len()) {
+            *best = Some(candidate);
+        }
+    }
 }
 
 #[cfg(test)]

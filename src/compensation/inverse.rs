@@ -13,6 +13,8 @@
 //! second step usually ends it. The samples are solved in path order with one `Tracker`,
 //! so each axis' direction, the travel since a reversal and the cut length are those of
 //! the compensated path itself: compensation can move a reversal, and the state follows.
+//! After the first sample, `U_c(1)` is `U_d` moved by the previous sample's correction,
+//! which is nearer the answer and keeps the commanded path continuous inside the play.
 //!
 //! Backlash is the one term the plain iteration cannot invert: inside the play the slide
 //! does not move whatever the command does, so the residual would only leak out by the
@@ -20,8 +22,13 @@
 //! slide up to `s`, command `s + play/2`; down, `s − play/2`; to keep it, keep the command —
 //! and the iteration runs on the rest of the error. That is how a compensated path takes up
 //! the backlash at a reversal: by a jump of the play in the new direction.
+//!
+//! A reversal costs a jump of the whole play, so it is made only for a move against the
+//! slide's last direction of more than the tolerance: a slide that would have to come back
+//! by a few nanometres (a squareness term drifting as the other axis moves) stays where it
+//! is, within the tolerance, instead of jumping across its play.
 
-use crate::error_model::{ErrorModel, SampleInputs, Tracker};
+use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker};
 use crate::toolpath::Xz;
 
 use super::sampling::PathSample;
@@ -71,9 +78,13 @@ pub fn compensate_samples(
     let mut predicted = Vec::with_capacity(samples.len());
     let mut iterations = 0;
     let mut max_residual: f64 = 0.0;
+    // The previous sample's correction: the first guess of the next (see `solve`).
+    let mut correction = Xz::new(0.0, 0.0);
     for s in samples {
         let inputs = inputs_of(s, model);
-        let (c, a, steps) = solve(&tracker, s, &inputs, model, options);
+        let guess = Xz::new(s.nominal.x + correction.x, s.nominal.z + correction.z);
+        let (c, a, steps) = solve(&tracker, s, guess, &inputs, model, options);
+        correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
         tracker.advance(c, s.tool, s.cutting);
         iterations = iterations.max(steps);
         max_residual = max_residual.max(s.nominal.distance(a));
@@ -84,10 +95,15 @@ pub fn compensate_samples(
 }
 
 /// The point to command for one sample from the tracker's state, where the model predicts
-/// it goes, and the steps it took.
+/// it goes, and the steps it took. The iteration starts from `guess`, the nominal point
+/// moved by the previous sample's correction: the errors change little from one sample to
+/// the next, and inside an axis' play every command leaves the slide where it is, so of all
+/// the commands that solve the sample the one nearest the previous correction is taken,
+/// and the commanded path does not jump back and forth across the play for nothing.
 fn solve(
     tracker: &Tracker,
     s: &PathSample,
+    guess: Xz,
     inputs: &SampleInputs,
     model: &ErrorModel,
     options: &InverseOptions,
@@ -95,7 +111,9 @@ fn solve(
     let play = tracker.play();
     let slide = tracker.slide();
     let before = tracker.position();
-    let mut c = s.nominal;
+    let direction = tracker.direction();
+    let dead_band = options.tolerance_mm;
+    let mut c = guess;
     let mut steps = 0;
     loop {
         let state = tracker.peek(c, s.tool, s.cutting, inputs);
@@ -109,8 +127,18 @@ fn solve(
         let rest = model.displacement_without_play(&state);
         let target = Xz::new(s.nominal.x - rest.x, s.nominal.z - rest.z);
         let next = Xz::new(
-            command_for(target.x, slide.x, before.x, play.x, c.x, options.gain),
-            command_for(target.z, slide.z, before.z, play.z, c.z, options.gain),
+            command_for(
+                Axis { target: target.x, slide: slide.x, before: before.x, play: play.x, direction: direction.x },
+                c.x,
+                options.gain,
+                dead_band,
+            ),
+            command_for(
+                Axis { target: target.z, slide: slide.z, before: before.z, play: play.z, direction: direction.z },
+                c.z,
+                options.gain,
+                dead_band,
+            ),
         );
         if next.distance(c) <= 1e-12 {
             return (c, actual, steps);
@@ -119,21 +147,33 @@ fn solve(
     }
 }
 
-/// The command that puts a slide at `target` from `slide` (commanded `before`) through the
-/// play; without play, the eq. 2.16 step from the current guess.
-fn command_for(target: f64, slide: f64, before: f64, play: f64, guess: f64, gain: f64) -> f64 {
+/// One axis of the solve: where its slide must go, where it is, the command it was
+/// reached with, its play and the direction it was last pushed in.
+struct Axis {
+    target: f64,
+    slide: f64,
+    before: f64,
+    play: f64,
+    direction: i8,
+}
+
+/// The command that puts a slide at `target` through the play (a reversal only for more
+/// than `dead_band`); without play, the eq. 2.16 step from the current guess.
+fn command_for(axis: Axis, guess: f64, gain: f64, dead_band: f64) -> f64 {
+    let Axis { target, slide, before, play, direction } = axis;
     if play <= 0.0 {
         // The slide is the command: U_c += γ (U_d − U_a) is U_c += γ (target − U_c).
         return guess + gain * (target - guess);
     }
     let half = play / 2.0;
+    // Keep the command where it was, inside the play: the slide stays.
+    let keep = before.clamp(slide - half, slide + half);
     if target > slide + 1e-12 {
-        target + half
+        if direction < 0 && target - slide <= dead_band { keep } else { target + half }
     } else if target < slide - 1e-12 {
-        target - half
+        if direction > 0 && slide - target <= dead_band { keep } else { target - half }
     } else {
-        // Already there: keep the command where it was, inside the play.
-        before.clamp(slide - half, slide + half)
+        keep
     }
 }
 
@@ -143,6 +183,14 @@ fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
 
 /// Where the tool goes when `commanded` (one point per sample) is commanded in order.
 pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Xz> {
+    states(samples, commanded, start, model).iter().map(|state| model.actual(state)).collect()
+}
+
+/// The machine state at each sample when `commanded` is commanded in order: what
+/// `predict` evaluates the model on. The states depend on the model only through its play
+/// and start time, so a term without play added to the model moves each predicted point
+/// by exactly its displacement at these states (the discrepancy workflow relies on this).
+pub fn states(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Sample> {
     let mut tracker = Tracker::new(start, model.play());
     samples
         .iter()
@@ -150,7 +198,7 @@ pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &Erro
         .map(|(s, &c)| {
             let state = tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model));
             tracker.advance(c, s.tool, s.cutting);
-            model.actual(&state)
+            state
         })
         .collect()
 }

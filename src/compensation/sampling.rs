@@ -98,7 +98,7 @@ fn unit(v: Xz) -> Xz {
 /// The normal of the cut surface, pointing to the tool: to the left of the direction of
 /// travel under `G41`, to the right under `G42`; without compensation, the side the tool's
 /// body is on (opposite its tip direction); none for a tool with no tip direction.
-fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
+pub(crate) fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
     // The left normal of (x, z) travel, seen with Z to the right and X up.
     let left = Xz::new(direction.z, -direction.x);
     let right = Xz::new(-left.x, -left.z);

@@ -70,10 +70,15 @@ impl DiagnosticKind {
             ProfileBackwards => "profile-backwards",
             CycleNotSimulated { .. } => "cycle-not-simulated",
             NotExpandable => "not-expandable",
+            CorrectionTooLarge { .. } => "correction-too-large",
+            CompensatedOutsideTravel { .. } => "compensated-outside-travel",
+            CannotRewriteBlock { .. } => "cannot-rewrite-block",
+            CycleNotCompensated => "cycle-not-compensated",
             CycleNeedsDepth => "cycle-needs-depth",
             EmptyProfile => "empty-profile",
             ProfileReverses { .. } => "profile-reverses",
             ProfileNotMonotonic { .. } => "profile-not-monotonic",
+            StartOnWrongSide { .. } => "start-on-wrong-side",
             CycleNeedsDivisions => "cycle-needs-divisions",
             GrooveStepMissing { .. } => "groove-step-missing",
             CycleTooManyPasses { .. } => "cycle-too-many-passes",
@@ -101,7 +106,6 @@ impl DiagnosticKind {
             TooManyPasses { .. } => "too-many-passes",
             InfeedPatternApproximated => "infeed-pattern-approximated",
             CycleNeedsShift { .. } => "cycle-needs-shift",
-            ThreadContourNotFound { .. } => "thread-contour-not-found",
             ThreadContourNotStraight => "thread-contour-not-straight",
             BadVariableNumber { .. } => "bad-variable-number",
             NotAVariable => "not-a-variable",
@@ -225,11 +229,41 @@ impl DiagnosticKind {
             NotExpandable => {
                 "this cycle is left as it is: its thread moves have no plain-block form in this dialect".to_string()
             }
+            CorrectionTooLarge { shift_mm, max_mm } => format!(
+                "the machine model moves this block by {shift_mm:.4} mm, more than the {max_mm:.4} mm allowed; \
+                 no compensated program is written"
+            ),
+            CompensatedOutsideTravel { x_mm, z_mm } => format!(
+                "the compensated tool path leaves the machine's travel at X{:.4} Z{z_mm:.4} (diameter, mm); \
+                 no compensated program is written",
+                2.0 * x_mm
+            ),
+            CannotRewriteBlock { reason } => {
+                format!("this block's motion must change for the machine model, but it cannot be rewritten: {reason}")
+            }
+            CycleNotCompensated => "this cycle stays as programmed and is not compensated: its thread passes have \
+                                    no plain-block form in this dialect"
+                .to_string(),
             CycleNeedsDepth => "the roughing cycle has no depth of cut".to_string(),
             EmptyProfile => "the profile named by `P`/`Q` has no moves".to_string(),
             ProfileReverses { axis } => format!("the profile turns back in {axis}; the roughing cycle cannot cut it"),
             ProfileNotMonotonic { axis } => {
                 format!("the profile is not monotonic in {axis}, which a Type I roughing cycle requires")
+            }
+            StartOnWrongSide { x, z, axis, address, allowance, .. } => {
+                let (start, word) = (format!("X{} Z{}", short(*x), short(*z)), format!("{address}{}", short(*allowance)));
+                match (axis, *allowance < 0.0) {
+                    ('X', true) => format!("the start point {start} lies outside the profile, but {word} is an inside allowance"),
+                    ('X', false) => format!("the start point {start} lies inside the profile, but {word} is an outside allowance"),
+                    (_, true) => format!(
+                        "the start point {start} lies on the +{axis} side of the profile, \
+                         but {word} is the allowance of a cut from the -{axis} side"
+                    ),
+                    (_, false) => format!(
+                        "the start point {start} lies on the -{axis} side of the profile, \
+                         but {word} is the allowance of a cut from the +{axis} side"
+                    ),
+                }
             }
             CycleNeedsDivisions => "the pattern-repeating cycle has no number of passes".to_string(),
             GrooveStepMissing { axis } => {
@@ -294,7 +328,6 @@ impl DiagnosticKind {
             CycleNeedsShift { shift, axis } => {
                 format!("the cycle ends at another {axis} than it starts, and has no `{shift}` to step there")
             }
-            ThreadContourNotFound { name } => format!("no `G81`/`G82` contour is named `{name}`"),
             ThreadContourNotStraight => {
                 "a continuous thread contour may hold only straight thread elements after its approach".to_string()
             }
@@ -373,9 +406,15 @@ impl DiagnosticKind {
             MissingSequence { .. } => "names no block".to_string(),
             DuplicateSequence { .. } => "names several blocks".to_string(),
             NotExpandable => "kept".to_string(),
-            CycleNeedsDepth | EmptyProfile | ProfileReverses { .. } | ProfileNotMonotonic { .. } => {
-                "this cycle".to_string()
-            }
+            CorrectionTooLarge { shift_mm, .. } => format!("moved {:.1} µm", shift_mm * 1000.0),
+            CompensatedOutsideTravel { .. } => "this block".to_string(),
+            CannotRewriteBlock { .. } => "this block".to_string(),
+            CycleNotCompensated => "not compensated".to_string(),
+            CycleNeedsDepth
+            | EmptyProfile
+            | ProfileReverses { .. }
+            | ProfileNotMonotonic { .. }
+            | StartOnWrongSide { .. } => "this cycle".to_string(),
             CycleNeedsDivisions | GrooveStepMissing { .. } | CycleTooManyPasses { .. } => "this cycle".to_string(),
             ThreadHeightBelowFirstDepth { .. } => "thread height".to_string(),
             ThreadLeadNotPositive => "lead".to_string(),
@@ -393,7 +432,6 @@ impl DiagnosticKind {
             TooManyPasses { .. } => "this cycle".to_string(),
             InfeedPatternApproximated => "pattern 3".to_string(),
             CycleNeedsShift { .. } => "off the start line".to_string(),
-            ThreadContourNotFound { .. } => "contour name".to_string(),
             InfeedAngleOutOfRange { .. } => "infeed angle".to_string(),
             ThreadContourNotStraight => "in the thread contour".to_string(),
             BadVariableNumber { .. } | NotAVariable | SystemVariableUnknown { .. } | UndefinedVariable { .. } => {
@@ -523,12 +561,42 @@ impl DiagnosticKind {
             ProfileBackwards => Some("`P` names the first block of the profile, `Q` the last".to_string()),
             CycleNotSimulated { .. } => None,
             NotExpandable => None,
+            CorrectionTooLarge { .. } => Some(
+                "check the machine model (units of its tables, signs of its effects) and the tool offsets; \
+                 raise --max-shift only if the machine really is that far off"
+                    .to_string(),
+            ),
+            CompensatedOutsideTravel { .. } => {
+                Some("move the part or the program away from the end of travel, or check the travel limits".to_string())
+            }
+            CannotRewriteBlock { .. } => Some(
+                "write the block out for each time it runs (not in a subprogram or loop that runs it at \
+                 different places), and without an automatic corner (`G75`/`G76`)"
+                    .to_string(),
+            ),
+            CycleNotCompensated => Some("program the thread passes as single-pass cycle blocks".to_string()),
             CycleNeedsDepth => Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".to_string()),
             EmptyProfile => None,
             ProfileReverses { .. } => Some("split the profile, or rough the undercut with another cycle (G73)".to_string()),
             ProfileNotMonotonic { .. } => Some(
                 "a Type II cycle allows pockets: name both X and Z (e.g. `W0`) in the profile's first block".to_string(),
             ),
+            StartOnWrongSide { x, z, axis, address, allowance, extreme } => {
+                let target = short(extreme + allowance);
+                let (word, extreme) = (format!("{address}{}", short(*allowance)), short(*extreme));
+                let example = if *axis == 'X' { format!("G00 X{target} Z{}", short(*z)) } else { format!("G00 X{} Z{target}", short(*x)) };
+                let (place, bound, smallest, other) = match (axis, *allowance < 0.0) {
+                    ('X', true) => ("an inside cut starts inside the bore", "or less", "smallest", "positive for an outside cut"),
+                    ('X', false) => ("an outside cut starts outside the part", "or more", "largest", "negative for an inside cut"),
+                    (_, true) => ("a cut from the -Z side starts behind the profile", "or less", "smallest", "positive for a cut from the +Z side"),
+                    (_, false) => ("a cut from the +Z side starts in front of the profile", "or more", "largest", "negative for a cut from the -Z side"),
+                };
+                Some(format!(
+                    "{place}: move the start point to {axis}{target} {bound} (the profile's {smallest} {axis}, \
+                     {axis}{extreme}, with the allowance {word}), e.g. `{example}` before the cycle; \
+                     or write {address} {other}"
+                ))
+            }
             CycleNeedsDivisions => Some(
                 "give the number of passes as `R` in a first block (`G73 U… W… R3`) \
                  or as `D` in the cycle block"
@@ -579,9 +647,6 @@ impl DiagnosticKind {
                 Some("a larger first depth `D` (D² ≥ H² − (H − U)²) makes the pass depths the documented D·√n".to_string())
             }
             CycleNeedsShift { shift, .. } => Some(format!("give the shift per pass `{shift}`, or start the cycle on the end line")),
-            ThreadContourNotFound { .. } => {
-                Some("name the contour's first block (`G81`/`G82`) as the `N` of the call".to_string())
-            }
             ThreadContourNotStraight => {
                 Some("cut the thread with G71/G72, or split the contour at the arc".to_string())
             }

@@ -25,6 +25,10 @@ pub struct Profile {
     /// Sample standard deviation per target and direction (0 with one run).
     pub up_sigma: Vec<f64>,
     pub down_sigma: Vec<f64>,
+    /// Whether the table has runs in that direction at the target (a direction without
+    /// takes the other's values).
+    pub up_measured: Vec<bool>,
+    pub down_measured: Vec<bool>,
 }
 
 impl Profile {
@@ -98,6 +102,23 @@ struct Runs {
     down: Vec<f64>,
 }
 
+/// The 1-based line of the CSV record a reader positioned at `byte`. The reader's own line
+/// count skips blank lines, and a record's position is where the reader started looking
+/// for it, before the blank and `#` comment lines it passed over: count lines up to the
+/// position, then over those.
+pub fn csv_record_line(text: &str, byte: u64) -> usize {
+    let start = (byte as usize).min(text.len());
+    let mut line = 1 + text.as_bytes()[..start].iter().filter(|&&c| c == b'\n').count();
+    for rest in text.get(start..).unwrap_or("").split('\n') {
+        let trimmed = rest.trim();
+        if !(trimmed.is_empty() || trimmed.starts_with('#')) {
+            break;
+        }
+        line += 1;
+    }
+    line
+}
+
 /// Read a slide's CSV table.
 pub fn parse(text: &str) -> Result<SlideTable, TableError> {
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
@@ -117,9 +138,9 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
     }
     // Per quantity, per target (keyed by its exact bits, in order), the runs each way.
     let mut data: Vec<BTreeMap<OrderedTarget, Runs>> = (0..5).map(|_| BTreeMap::new()).collect();
-    for (index, record) in reader.records().enumerate() {
-        let line = index + 2;
+    for record in reader.records() {
         let record = record.map_err(|e| TableError::Csv(e.to_string()))?;
+        let line = record.position().map_or(0, |p| csv_record_line(text, p.byte()));
         let number = |c: usize, name: &str| -> Result<f64, TableError> {
             let text = record.get(c).unwrap_or("");
             text.parse::<f64>()
@@ -201,6 +222,8 @@ fn build(runs: &BTreeMap<OrderedTarget, Runs>) -> Option<Profile> {
         p.down.push(mean(down));
         p.up_sigma.push(sigma(up));
         p.down_sigma.push(sigma(down));
+        p.up_measured.push(!r.up.is_empty());
+        p.down_measured.push(!r.down.is_empty());
     }
     (!p.targets.is_empty()).then_some(p)
 }
@@ -216,6 +239,8 @@ fn reversal(m1: &Profile, m2: &Profile) -> Profile {
             p.down.push((m2.down[j] - m1.down[i]) / 2.0);
             p.up_sigma.push((m1.up_sigma[i].powi(2) + m2.up_sigma[j].powi(2)).sqrt() / 2.0);
             p.down_sigma.push((m1.down_sigma[i].powi(2) + m2.down_sigma[j].powi(2)).sqrt() / 2.0);
+            p.up_measured.push(m1.up_measured[i] && m2.up_measured[j]);
+            p.down_measured.push(m1.down_measured[i] && m2.down_measured[j]);
         }
     }
     p

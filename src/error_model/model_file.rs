@@ -93,19 +93,7 @@ impl ModelSpec {
                 return Err(ModelError::DuplicateAxis(spec.axis));
             }
             seen.push(spec.axis);
-            let (text, source_name) = match (&spec.file, &spec.csv) {
-                (Some(file), None) => {
-                    let text = read(file).map_err(|message| ModelError::Read {
-                        index,
-                        axis: spec.axis,
-                        file: file.clone(),
-                        message,
-                    })?;
-                    (text, file.clone())
-                }
-                (None, Some(csv)) => (csv.clone(), "inline csv".to_string()),
-                _ => return Err(ModelError::TableSource { index, axis: spec.axis }),
-            };
+            let (text, source_name) = self.table_text(index, &mut read)?;
             let table = interferometer::parse(&text).map_err(|error| ModelError::Table {
                 index,
                 axis: spec.axis,
@@ -120,5 +108,29 @@ impl ModelSpec {
             }
         }
         Ok(ErrorModel { tables, effects: self.effect.clone(), start_min: self.model.start_min })
+    }
+
+    /// The CSV text of axis table `index` and a name for it (its file, or "inline csv").
+    pub fn table_text(
+        &self,
+        index: usize,
+        mut read: impl FnMut(&str) -> Result<String, String>,
+    ) -> Result<(String, String), ModelError> {
+        let Some(spec) = self.axis_table.get(index) else {
+            return Err(ModelError::Toml(format!("no axis table {index}")));
+        };
+        match (&spec.file, &spec.csv) {
+            (Some(file), None) => {
+                let text = read(file).map_err(|message| ModelError::Read {
+                    index,
+                    axis: spec.axis,
+                    file: file.clone(),
+                    message,
+                })?;
+                Ok((text, file.clone()))
+            }
+            (None, Some(csv)) => Ok((csv.clone(), "inline csv".to_string())),
+            _ => Err(ModelError::TableSource { index, axis: spec.axis }),
+        }
     }
 }

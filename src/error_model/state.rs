@@ -122,6 +122,11 @@ impl Tracker {
         self.play
     }
 
+    /// The direction each slide was last pushed in.
+    pub fn direction(&self) -> Signs {
+        self.direction
+    }
+
     /// The sample the tracker would give after `advance(to, tool, cutting)`, without
     /// moving it: for solving where to command a point.
     pub fn peek(&self, to: Xz, tool: u16, cutting: bool, inputs: &SampleInputs) -> Sample {

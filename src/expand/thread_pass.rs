@@ -111,8 +111,8 @@ pub(super) fn expand(
             return Threads::NotExpandable;
         };
         let mut words = vec![NewWord::Code(CodeLetter::G, if face { face_code } else { longitudinal_code })];
-        words.push(NewWord::Number(Address::X, writer.number(writer.frame.x_program(end.x))));
-        words.push(NewWord::Number(Address::Z, writer.number(writer.frame.program(end.z))));
+        words.push(writer.x_word(end.x));
+        words.push(writer.z_word(end.z));
         let (taper_address, shift_address) = if face { (Address::K, Address::I) } else { (Address::I, Address::K) };
         let taper = pass.axes.depth(first) - pass.axes.depth(end);
         let shift = pass.axes.along(first) - pass.axes.along(at);

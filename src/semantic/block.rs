@@ -108,6 +108,7 @@ impl Interpreter<'_, '_> {
             self.tool_change(&word);
         }
 
+        self.mark_coordinates();
         let flow = match block.statement {
             Statement::Motion | Statement::ThreadMove => self.motion_block(index, &words),
             Statement::Dwell(_) => {
@@ -320,32 +321,30 @@ impl Interpreter<'_, '_> {
     }
 }
 
-/// The multiple repetitive cycles, whose F, S and T words belong to the cycle.
+/// The multiple repetitive cycles, whose F, S and T words belong to the cycle: those whose F
+/// and S also stay modal (`sets_modal_feed`), and the others.
 fn is_repetitive_cycle(function: GFunction) -> bool {
-    matches!(
-        function,
-        GFunction::Finishing
-            | GFunction::StockRemovalTurning
-            | GFunction::StockRemovalFacing
-            | GFunction::PatternRepeat
-            | GFunction::FacePeck
-            | GFunction::DiameterGrooving
-            | GFunction::MultipleThreading
-            | GFunction::LapRough
-            | GFunction::LapCopy
-            | GFunction::LapFinish
-            | GFunction::LapThread
-            | GFunction::CompoundThreadLongitudinal
-            | GFunction::CompoundThreadFace
-            | GFunction::OspGrooving
-            | GFunction::OspFaceCutting
-            | GFunction::Tapping
-            | GFunction::ThreadSingle
-            | GFunction::ThreadSingleAlias
-            | GFunction::ThreadSingleFace
-            | GFunction::ThreadSingleLeadIncreasing
-            | GFunction::ThreadSingleLeadDecreasing
-    )
+    sets_modal_feed(function)
+        || matches!(
+            function,
+            GFunction::FacePeck
+                | GFunction::DiameterGrooving
+                | GFunction::MultipleThreading
+                | GFunction::LapRough
+                | GFunction::LapCopy
+                | GFunction::LapFinish
+                | GFunction::LapThread
+                | GFunction::CompoundThreadLongitudinal
+                | GFunction::CompoundThreadFace
+                | GFunction::OspGrooving
+                | GFunction::OspFaceCutting
+                | GFunction::Tapping
+                | GFunction::ThreadSingle
+                | GFunction::ThreadSingleAlias
+                | GFunction::ThreadSingleFace
+                | GFunction::ThreadSingleLeadIncreasing
+                | GFunction::ThreadSingleLeadDecreasing
+        )
 }
 
 /// The multiple repetitive cycles whose F and S are the modal feed and speed.

@@ -55,17 +55,16 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     interp.finish_corner();
     let first_move = interp.emitter.moves.len();
     interp.emitter.context = Context { source: block.span, cycle: block.span };
-    let mut consumed = Vec::new();
     let flow = match function {
         GFunction::TurningCycle | GFunction::ThreadCycle | GFunction::FacingCycle => {
             single::run(interp, index, &command, function)
         }
-        GFunction::Finishing => finishing::run(interp, index, &command, &mut consumed),
+        GFunction::Finishing => finishing::run(interp, index, &command),
         GFunction::StockRemovalTurning | GFunction::StockRemovalFacing => {
             if interp.form_name(&command) == "depth" {
                 stock_removal::depth_block(interp, index, &command, function)
             } else {
-                stock_removal::run(interp, index, &command, function, &mut consumed)
+                stock_removal::run(interp, index, &command, function)
             }
         }
         GFunction::ThreadSingle
@@ -83,14 +82,14 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             if interp.form_name(&command) == "relief" {
                 pattern_repeat::relief_block(interp, index, &command)
             } else {
-                pattern_repeat::run(interp, index, &command, &mut consumed)
+                pattern_repeat::run(interp, index, &command)
             }
         }
         GFunction::FacePeck | GFunction::DiameterGrooving => {
             if interp.form_name(&command) == "retract" {
                 peck_grooving::retract_block(interp, index, &command)
             } else {
-                peck_grooving::run(interp, index, &command, function, &mut consumed)
+                peck_grooving::run(interp, index, &command, function)
             }
         }
         GFunction::MultipleThreading => {
@@ -98,12 +97,12 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
                 multiple_threading::passes_block(interp, index, &command)
             } else {
                 let name = info.map_or(String::new(), |g| g.code.display('G'));
-                multiple_threading::run(interp, index, &command, &name, &mut consumed)
+                multiple_threading::run(interp, index, &command, &name)
             }
         }
-        GFunction::LapRough => lap_rough::run(interp, index, &command, &mut consumed),
-        GFunction::LapCopy => lap_copy::run(interp, index, &command, &mut consumed),
-        GFunction::LapFinish => lap_finish::run(interp, index, &command, &mut consumed),
+        GFunction::LapRough => lap_rough::run(interp, index, &command),
+        GFunction::LapCopy => lap_copy::run(interp, index, &command),
+        GFunction::LapFinish => lap_finish::run(interp, index, &command),
         _ => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
@@ -116,6 +115,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     // for the next feed move to report).
     interp.report_zero_feed(block.span);
     interp.emitter.context = Context { source: block.span, cycle: Span::SYNTHETIC };
+    let consumed = std::mem::take(&mut interp.cycle_consumed);
     if interp.emitter.moves.len() > first_move || !consumed.is_empty() {
         interp.expansions.push(Expansion {
             block: index,
@@ -129,7 +129,41 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     flow
 }
 
+/// A cycle call: its block, and the tool's position there, which the cycle's moves start
+/// from and return to.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Call {
+    pub span: Span,
+    pub start: Xz,
+}
+
 impl Interpreter<'_, '_> {
+    /// The call of the cycle in block `index`, or `None` when the tool's position is not
+    /// known (no home and no move yet): the cycle then moves nothing, and the program is
+    /// warned once.
+    pub(super) fn cycle_call(&mut self, index: usize) -> Option<Call> {
+        let span = self.program.block(index).span;
+        let start = self.known_position(span)?;
+        Some(Call { span, start })
+    }
+
+    /// The tool's position, or `None` (warned once per program, on `span`) when it is not
+    /// known.
+    pub(super) fn known_position(&mut self, span: Span) -> Option<Xz> {
+        let at = self.emitter.at;
+        if at.is_finite() {
+            Some(at)
+        } else {
+            self.unknown_position(span);
+            None
+        }
+    }
+
+    /// Blocks the cycle being run consumes: `expand` deletes them with its call.
+    pub(super) fn consume(&mut self, blocks: impl IntoIterator<Item = usize>) {
+        self.cycle_consumed.extend(blocks);
+    }
+
     /// The name of the schema form a command matched (`depth`, `profile`, `one_block`, …).
     pub(super) fn form_name(&self, command: &Command) -> &'static str {
         self.tables.schema(command.schema).forms.get(command.form as usize).map_or("", |f| f.name.as_str())

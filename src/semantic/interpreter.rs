@@ -81,9 +81,14 @@ pub(super) struct Interpreter<'p, 'src> {
     pub pending_corner: Option<super::motion::PendingCorner>,
     /// Blocks a cycle consumed (a LAP contour right after its call): the flow skips them.
     pub skip_to: Option<usize>,
+    /// The blocks the cycle being run consumes (its profile, its first block, a LAP contour
+    /// right after it): `expand` deletes them with its call.
+    pub cycle_consumed: Vec<usize>,
     /// The modal words in force before the block being executed (for `expand`, which
     /// replaces a cycle's block, words and all).
     pub modal_before_block: super::ModalAfter,
+    /// Where the program's coordinates change meaning (`Lowered::coordinates`).
+    pub coordinates: Vec<super::CoordinateMark>,
     calls: Vec<Call>,
     /// Fanuc `WHILE` blocks being looped, with their loop number.
     loops: Vec<(usize, u32)>,
@@ -128,7 +133,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             modal_call: None,
             pending_corner: None,
             skip_to: None,
+            cycle_consumed: Vec::new(),
             modal_before_block: super::ModalAfter { motion: None, f_word: 0.0, s_word: 0.0 },
+            coordinates: Vec::new(),
             calls: Vec::new(),
             loops: Vec::new(),
             executed: 0,
@@ -192,6 +199,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             for expansion in &mut self.expansions {
                 expansion.moves = moved.range(expansion.moves.clone());
             }
+            for mark in &mut self.coordinates {
+                mark.from_move = moved.range(mark.from_move..mark.from_move).start;
+            }
         }
         self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
         self.diagnostics.dedup();
@@ -207,6 +217,40 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             expansions: self.expansions,
             frame: super::initial_frame(self.program, self.machine),
             executed_blocks: self.executed,
+            coordinates: self.coordinates,
+        }
+    }
+
+    /// Record the program coordinates in force for the moves the current block is about
+    /// to make, when they differ from the last mark.
+    pub fn mark_coordinates(&mut self) {
+        let mark = super::CoordinateMark {
+            from_move: self.emitter.moves.len(),
+            frame: self.modal.frame,
+            absolute: self.modal.absolute,
+            shift: self.modal.shift,
+        };
+        let same =
+            |m: &super::CoordinateMark| m.frame == mark.frame && m.absolute == mark.absolute && m.shift == mark.shift;
+        if self.coordinates.is_empty() {
+            if !same(&self.initial_mark()) {
+                self.coordinates.push(mark);
+            }
+            return;
+        }
+        match self.coordinates.last_mut() {
+            Some(last) if same(last) => {}
+            Some(last) if last.from_move == mark.from_move => *last = mark,
+            _ => self.coordinates.push(mark),
+        }
+    }
+
+    fn initial_mark(&self) -> super::CoordinateMark {
+        super::CoordinateMark {
+            from_move: 0,
+            frame: super::initial_frame(self.program, self.machine),
+            absolute: true,
+            shift: Xz::default(),
         }
     }
 

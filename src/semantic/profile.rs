@@ -117,7 +117,8 @@ impl Interpreter<'_, '_> {
                 self.modal.speed = speed;
             }
             if block.statement == Statement::Motion {
-                if !seen_motion {
+                let first_motion = !seen_motion;
+                if first_motion {
                     let axes = self.axis_target(&words);
                     first_block_has_both_axes = axes.x_given && axes.z_given;
                     seen_motion = true;
@@ -125,6 +126,20 @@ impl Interpreter<'_, '_> {
                 let before = self.emitter.moves.len();
                 let _ = self.motion_block(index, &words);
                 let (feed, speed, compensation) = (self.modal.feed, self.modal.speed, self.modal.compensation);
+                if first_motion && self.emitter.moves.len() == before {
+                    // The first block is the approach of every cycle that reads the profile,
+                    // even when it goes nowhere (a rapid to where the tool already is, as
+                    // `G00 X50 W0` from X50): an element of no length keeps it in its place.
+                    segments.push(Segment {
+                        end: self.emitter.at,
+                        shape: Shape::Line,
+                        rapid: self.modal.motion == super::modal::MotionMode::Rapid,
+                        feed,
+                        speed,
+                        compensation,
+                        source: block.span,
+                    });
+                }
                 for m in &self.emitter.moves[before..] {
                     segments.push(Segment {
                         end: m.end,

@@ -12,13 +12,12 @@ use std::path::{Path, PathBuf};
 use turnpass::dialect::GCodeSystem;
 use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::printer::print;
-use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
+use turnpass::semantic::{self, Lowered};
 use turnpass::source::LineIndex;
 use turnpass::syntax::{Program, parse};
-use turnpass::toolpath::validate;
 
 use crate::corpus::{Entry, Fault, corpus_dir, manifest};
-use crate::simulate::{expand_and_compare, parse_options};
+use crate::simulate::{Checked, expand_and_compare, lower_and_validate, parse_options};
 use crate::support::{check_spans, render, repo, with_snapshots};
 
 /// The machine file's settings, with the entry's G-code system.
@@ -73,17 +72,7 @@ fn run(path: &Path, name: &str, entry: &Entry) -> String {
     let parsed = parse(&source, &parse_options(&settings));
     check_spans(&parsed);
     assert_eq!(parsed.program.config().dialect.cli_name(), entry.dialect, "{name}: dialect");
-    let machine = Machine::from_settings(&settings);
-    let options = LowerOptions::new(settings.block_delete.unwrap_or(false));
-    let lowered = semantic::lower(&parsed.program, &machine, &options);
-
-    let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    let valid = validate(lowered.toolpath.clone(), machine.limits);
-    if let Err(problems) = &valid {
-        diagnostics.extend(problems.iter().cloned());
-    }
-    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+    let Checked { machine, options, lowered, valid, diagnostics } = lower_and_validate(&parsed, &settings);
     let rendered = render(name, &source, &diagnostics);
 
     assert_eq!(faults(&parsed.program, &parsed.diagnostics), entry.faults, "{name}: parse errors\n{rendered}");

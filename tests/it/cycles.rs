@@ -10,7 +10,7 @@ use turnpass::toolpath::{Motion, Move, Toolpath, Xz};
 
 use crate::simulate::parse_options;
 
-const MACHINE: &str = r#"
+pub const MACHINE: &str = r#"
 [machine]
 dialect = "fanuc"
 units = "mm"

@@ -22,51 +22,13 @@
 
 use proptest::prelude::*;
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem};
-use turnpass::geometry;
 use turnpass::machine::ModelFile;
 use turnpass::semantic::{self, LowerOptions, Machine};
 use turnpass::syntax::{ParseOptions, parse};
 use turnpass::toolpath::{Motion, Move, Xz};
 
-/// A point of the canonical frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Uv {
-    u: f64,
-    v: f64,
-}
-
-/// One element of a generated contour; arcs are quarter circles, `upper` when the arc lies
-/// on the side of its centre toward larger `u`.
-#[derive(Debug, Clone, Copy)]
-struct Element {
-    start: Uv,
-    end: Uv,
-    arc: Option<(Uv, bool)>,
-}
-
-impl Element {
-    fn shifted(&self, du: f64, dv: f64) -> Element {
-        let s = |p: Uv| Uv { u: p.u + du, v: p.v + dv };
-        Element { start: s(self.start), end: s(self.end), arc: self.arc.map(|(c, upper)| (s(c), upper)) }
-    }
-
-    /// The contour's `u` at `v` on this element (the top of a wall), if `v` is in its span.
-    fn u_at(&self, v: f64) -> Option<f64> {
-        let (lo, hi) = (self.start.v.min(self.end.v), self.start.v.max(self.end.v));
-        if v < lo - 1e-12 || v > hi + 1e-12 {
-            return None;
-        }
-        match self.arc {
-            None if (hi - lo) < 1e-12 => Some(self.start.u.max(self.end.u)),
-            None => Some(self.start.u + (self.end.u - self.start.u) * (v - self.start.v) / (self.end.v - self.start.v)),
-            Some((c, upper)) => {
-                let r = (self.start.u - c.u).hypot(self.start.v - c.v);
-                let d = (r * r - (v - c.v).powi(2)).max(0.0).sqrt();
-                Some(if upper { c.u + d } else { c.u - d })
-            }
-        }
-    }
-}
+use crate::canonical::{Element, Uv};
+use crate::moves::{cycle_moves, samples};
 
 #[derive(Debug, Clone)]
 struct Case {
@@ -223,24 +185,6 @@ fn machine() -> Machine {
     Machine::from_settings(&settings)
 }
 
-/// Points along a move, from `from`.
-fn samples(from: Xz, m: &Move) -> Vec<Xz> {
-    const N: usize = 16;
-    (0..=N)
-        .map(|i| {
-            let t = i as f64 / N as f64;
-            if m.is_arc() {
-                let ccw = m.motion == Motion::Ccw;
-                let sweep = geometry::sweep(from, m.end, m.centre, ccw);
-                let a = geometry::angle(from, m.centre) + if ccw { sweep * t } else { -sweep * t };
-                geometry::on_circle(m.centre, from.distance(m.centre), a)
-            } else {
-                Xz::new(from.x + (m.end.x - from.x) * t, from.z + (m.end.z - from.z) * t)
-            }
-        })
-        .collect()
-}
-
 /// Whether `p` lies strictly inside the region under `elements` (below the contour, within
 /// its span along the cut). A point on a wall is on the boundary, not inside: the contour is
 /// probed a hair either side along the cut, and the lower value counts (slopes here are at
@@ -249,22 +193,6 @@ fn inside(elements: &[Element], p: Uv) -> bool {
     let envelope = |v: f64| elements.iter().filter_map(|e| e.u_at(v)).fold(f64::NEG_INFINITY, f64::max);
     let floor = [p.v - 1e-9, p.v, p.v + 1e-9].into_iter().map(envelope).fold(f64::INFINITY, f64::min);
     p.u < floor - 1e-6
-}
-
-/// The moves of the cycle called in block `line` (1-based source line).
-fn cycle_moves<'a>(program: &turnpass::syntax::Program<'_>, moves: &'a [Move], line: usize) -> (Xz, Vec<&'a Move>) {
-    let lines = turnpass::source::LineIndex::new(program.source());
-    let mut from = None;
-    let mut out = Vec::new();
-    let mut previous = Xz::new(f64::NAN, f64::NAN);
-    for m in moves {
-        if !m.cycle.is_synthetic() && lines.position(m.cycle.start).0 == line {
-            from.get_or_insert(previous);
-            out.push(m);
-        }
-        previous = m.end;
-    }
-    (from.unwrap_or(previous), out)
 }
 
 fn close(a: Xz, b: Xz) -> bool {
@@ -340,7 +268,7 @@ fn check_starts(found: &[Uv], expected: &[Uv], what: &str) -> Result<(), TestCas
 fn check_no_entry(case: &Case, from: Xz, moves: &[&Move], region: &[Element], what: &str) -> Result<(), TestCaseError> {
     let mut at = from;
     for m in moves {
-        for p in samples(at, m) {
+        for p in samples(at, m, 16) {
             let q = case.to_uv(p);
             prop_assert!(!inside(region, q), "{what}: a {:?} move to {:?} passes {:?}, inside", m.motion, m.end, q);
         }

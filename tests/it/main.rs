@@ -5,10 +5,14 @@
 
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod canonical;
 mod cli;
+mod closed_loop;
+mod compensate;
 mod corpus;
 mod corpus_semantic;
 mod cycles;
+mod diagnose;
 mod differential;
 mod lap;
 mod lsp_check;
@@ -17,11 +21,14 @@ mod lsp_incremental;
 mod lsp_nvim;
 mod lsp_server;
 mod lsp_session;
+mod moves;
 mod nose_radius;
 mod parse;
 mod print;
 mod robustness;
 mod roundtrip;
 mod simulate;
+mod stock_removal;
 mod support;
 mod thesis;
+mod thesis_compensation;

@@ -9,12 +9,13 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use turnpass::diagnostic::Diagnostic;
 use turnpass::dialect::{DialectChoice, GCodeSystem};
 use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::printer::print;
-use turnpass::semantic::{self, LowerOptions, Machine};
-use turnpass::syntax::{ParseOptions, parse};
-use turnpass::toolpath::{Motion, Toolpath, validate};
+use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
+use turnpass::syntax::{ParseOptions, Parsed, parse};
+use turnpass::toolpath::{Motion, Toolpath, ValidToolpath, validate};
 
 use crate::support::{check_spans, render, repo, with_snapshots};
 
@@ -72,21 +73,38 @@ pub fn moves_text(program: &turnpass::syntax::Program<'_>, toolpath: &Toolpath) 
     out
 }
 
+/// A parsed program lowered on a machine, its toolpath validated.
+pub struct Checked {
+    pub machine: Machine,
+    pub options: LowerOptions,
+    pub lowered: Lowered,
+    pub valid: Result<ValidToolpath, Vec<Diagnostic>>,
+    /// The diagnostics of the parse, the lowering and the validation, in source order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Lower `parsed` on the machine `settings` describe (its block-delete switch included) and
+/// validate the toolpath against the machine's travel.
+pub fn lower_and_validate(parsed: &Parsed<'_>, settings: &MachineSettings) -> Checked {
+    let machine = Machine::from_settings(settings);
+    let options = LowerOptions::new(settings.block_delete.unwrap_or(false));
+    let lowered = semantic::lower(&parsed.program, &machine, &options);
+    let valid = validate(lowered.toolpath.clone(), machine.limits);
+    let mut diagnostics = parsed.diagnostics.clone();
+    diagnostics.extend(lowered.diagnostics.iter().cloned());
+    if let Err(problems) = &valid {
+        diagnostics.extend(problems.iter().cloned());
+    }
+    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+    Checked { machine, options, lowered, valid, diagnostics }
+}
+
 fn run_case(path: &Path) -> String {
     let source = std::fs::read(path).unwrap();
     let settings = settings_for(path);
     let parsed = parse(&source, &parse_options(&settings));
     check_spans(&parsed);
-    let machine = Machine::from_settings(&settings);
-    let options = LowerOptions::new(settings.block_delete.unwrap_or(false));
-    let lowered = semantic::lower(&parsed.program, &machine, &options);
-    let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    let valid = validate(lowered.toolpath.clone(), machine.limits);
-    if let Err(problems) = &valid {
-        diagnostics.extend(problems.iter().cloned());
-    }
-    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+    let Checked { machine, options, lowered, valid, diagnostics } = lower_and_validate(&parsed, &settings);
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
     let errors = diagnostics.iter().any(|d| d.is_error());
     let err_case = path.components().any(|c| c.as_os_str() == "err");

@@ -1,11 +1,9 @@
 use super::*;
 use crate::compensation::sampling::sample_toolpath;
-use crate::dialect::{DialectChoice, GCodeSystem};
+use crate::compensation::test_support::lower_program;
 use crate::error_model::effects::*;
-use crate::machine::{AxisPair, MachineSettings};
+use crate::semantic::Machine;
 use crate::semantic::nose_radius::ToolTable;
-use crate::semantic::{LowerOptions, Machine, lower};
-use crate::syntax::{ParseOptions, parse};
 use crate::toolpath::Toolpath;
 
 const PROGRAM: &str = "\
@@ -23,13 +21,7 @@ M30
 ";
 
 fn toolpath() -> (Toolpath, Machine) {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(PROGRAM.as_bytes(), &options);
-    assert_eq!(parsed.error_count(), 0);
-    let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), ..MachineSettings::default() };
-    let machine = Machine::from_settings(&settings);
-    let lowered = lower(&parsed.program, &machine, &LowerOptions::new(false));
-    assert!(lowered.diagnostics.iter().all(|d| !d.is_error()));
+    let (lowered, machine) = lower_program(PROGRAM);
     (lowered.toolpath, machine)
 }
 

@@ -64,3 +64,9 @@ fn bad_tables_are_refused_with_the_line() {
     assert!(matches!(parse("target_mm,direction,linear_mm\n0,up,abc\n"), Err(TableError::Row { line: 2, .. })));
     assert!(matches!(parse("target_mm,direction,angular_deg\n"), Err(TableError::Empty)));
 }
+
+#[test]
+fn row_errors_name_the_line_past_blank_and_comment_lines() {
+    let text = "target_mm,direction,linear_mm\n0,up,0.001\n\n# a remark\n5,up,abc\n";
+    assert_eq!(parse(text).unwrap_err().to_string(), "line 5: `abc` is not a number in column linear_mm");
+}

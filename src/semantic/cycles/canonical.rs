@@ -51,9 +51,43 @@ pub struct Element {
     pub arc: Option<(Uv, bool)>,
 }
 
+impl Uv {
+    pub fn distance(self, other: Uv) -> f64 {
+        (self.u - other.u).hypot(self.v - other.v)
+    }
+}
+
 impl Element {
     pub fn radius(&self) -> f64 {
         self.arc.map_or(0.0, |(c, _)| (self.start.u - c.u).hypot(self.start.v - c.v))
+    }
+
+    /// Whether `p`, a point on an arc's circle, lies within the arc's sweep (its ends
+    /// included, to rounding). The canonical frame is a rigid map, so the angular test of the
+    /// toolpath frame works on (u, v) read as (x, z).
+    fn sweeps(&self, p: Uv) -> bool {
+        let Some((c, ccw)) = self.arc else { return false };
+        let as_xz = |q: Uv| Xz::new(q.u, q.v);
+        p.distance(self.start) < 1e-9
+            || p.distance(self.end) < 1e-9
+            || geometry::angle_within(as_xz(p), as_xz(self.start), as_xz(self.end), as_xz(c), ccw)
+    }
+
+    /// Whether `p` lies on the element (to a micrometre's thousandth).
+    pub fn contains(&self, p: Uv) -> bool {
+        const ON: f64 = 1e-7;
+        match self.arc {
+            None => {
+                let (d_u, d_v) = (self.end.u - self.start.u, self.end.v - self.start.v);
+                let length2 = d_u * d_u + d_v * d_v;
+                if length2 < 1e-24 {
+                    return p.distance(self.start) < ON;
+                }
+                let t = (((p.u - self.start.u) * d_u + (p.v - self.start.v) * d_v) / length2).clamp(0.0, 1.0);
+                p.distance(Uv { u: self.start.u + d_u * t, v: self.start.v + d_v * t }) < ON
+            }
+            Some((c, _)) => (p.distance(c) - self.radius()).abs() < ON && self.sweeps(p),
+        }
     }
 }
 
@@ -84,26 +118,29 @@ pub fn crossings(elements: &[Element], u: f64) -> Vec<f64> {
             None => {
                 let (u0, u1) = (e.start.u, e.end.u);
                 if (u0 - u1).abs() < 1e-12 {
+                    // A level on a flat (to rounding: levels are A's level less whole depths)
+                    // meets it at both ends; without them, a level a hair above a flat would
+                    // seem to run along it, and the stretch before it would not be cut.
+                    if (u - u0).abs() <= 1e-9 {
+                        out.extend([e.start.v, e.end.v]);
+                    }
                     continue;
                 }
-                if (u - u0) * (u - u1) <= 0.0 {
-                    let t = (u - u0) / (u1 - u0);
+                if u >= u0.min(u1) - 1e-9 && u <= u0.max(u1) + 1e-9 {
+                    let t = ((u - u0) / (u1 - u0)).clamp(0.0, 1.0);
                     out.push(e.start.v + (e.end.v - e.start.v) * t);
                 }
             }
-            Some((c, ccw)) => {
+            Some((c, _)) => {
                 let r = e.radius();
                 let du = u - c.u;
-                if du.abs() > r {
+                // A level that touches the arc (to rounding) meets it there.
+                if du.abs() > r + 1e-9 {
                     continue;
                 }
-                let dv = (r * r - du * du).sqrt();
+                let dv = (r * r - du * du).max(0.0).sqrt();
                 for v in [c.v + dv, c.v - dv] {
-                    // Back to a real-frame test of the arc's sweep: the canonical frame is a
-                    // rigid map, so the angular test works on (u, v) read as (x, z).
-                    let as_xz = |q: Uv| Xz::new(q.u, q.v);
-                    let ccw_uv = ccw;
-                    if geometry::angle_within(as_xz(Uv { u, v }), as_xz(e.start), as_xz(e.end), as_xz(c), ccw_uv) {
+                    if e.sweeps(Uv { u, v }) {
                         out.push(v);
                     }
                 }
@@ -138,16 +175,15 @@ pub fn u_at(elements: &[Element], v: f64) -> f64 {
                 };
                 best = best.max(u);
             }
-            Some((c, ccw)) => {
+            Some((c, _)) => {
                 let r = e.radius();
                 let dv = v - c.v;
-                if dv.abs() > r {
+                if dv.abs() > r + 1e-9 {
                     continue;
                 }
-                let du = (r * r - dv * dv).sqrt();
+                let du = (r * r - dv * dv).max(0.0).sqrt();
                 for u in [c.u + du, c.u - du] {
-                    let as_xz = |q: Uv| Xz::new(q.u, q.v);
-                    if geometry::angle_within(as_xz(Uv { u, v }), as_xz(e.start), as_xz(e.end), as_xz(c), ccw) {
+                    if e.sweeps(Uv { u, v }) {
                         best = best.max(u);
                     }
                 }

@@ -33,32 +33,21 @@ use crate::source::Span;
 use crate::syntax::Command;
 
 use super::super::interpreter::{Flow, Interpreter};
+use super::Call;
 use super::thread_infeed::{self, Infeed, InfeedError, InfeedMode, InfeedPattern, Plan};
 use super::thread_pass::{self, Axes, Pass};
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
-    let span = interp.program.block(index).span;
-    let from = interp.emitter.at;
-    if !from.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
+    let Some(Call { span, start: from }) = interp.cycle_call(index) else { return Flow::Next };
     let axes = Axes { face: function == GFunction::CompoundThreadFace };
     let Some(infeed) = infeed_of(interp, command, span) else { return Flow::Next };
     let frame = interp.modal.frame;
     let end = interp.cycle_end(command, from);
     let length = (axes.along(end) - axes.along(from)).abs();
-    let taper = match (interp.param(command, Role::Taper), interp.param(command, Role::TaperAngle)) {
-        (Some(i), _) => frame.mm(i),
-        (None, Some(angle)) => angle.to_radians().tan() * length,
-        (None, None) => 0.0,
-    };
+    let taper = thread_pass::taper(interp, command, length);
     let (modal, lead_mm) = thread_pass::thread_modal(interp, command);
-    let change = interp.param(command, Role::LeadChange).map_or(0.0, |e| frame.feed_mm(e));
-    let chamfer = interp
-        .cycle_memory
-        .thread_chamfer
-        .then(|| interp.param(command, Role::Chamfer).map_or(lead_mm, |l| frame.mm(l)));
+    let change = thread_pass::lead_change(interp, command);
+    let chamfer = thread_pass::chamfer(interp, command, lead_mm);
     let to_mm = |d: f64| if axes.face { frame.mm(d) } else { frame.x_mm(d) };
     let out = thread_pass::outward(axes, from, end);
     let toward_start = if axes.along(from) >= axes.along(end) { 1.0 } else { -1.0 };

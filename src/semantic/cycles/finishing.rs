@@ -9,22 +9,13 @@ use crate::toolpath::Xz;
 use super::super::interpreter::{Flow, Interpreter};
 use super::super::modal::MotionMode;
 use super::super::profile::{Profile, Shape};
+use super::Call;
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
-    let start = interp.emitter.at;
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
+    let Some(Call { span, start }) = interp.cycle_call(index) else { return Flow::Next };
     let Some(profile) = interp.profile_of(command, span, start) else { return Flow::Next };
     // In the expanded program the profile's blocks are gone: the moves say it all.
-    consumed.extend(profile.blocks.clone());
+    interp.consume(profile.blocks.clone());
     let feed = interp.param(command, Role::Feed);
     interp.trace_profile(&profile, feed);
     let modal = interp.modal.clone();

@@ -40,6 +40,7 @@ use crate::syntax::Command;
 use crate::toolpath::Xz;
 
 use super::super::interpreter::{Flow, Interpreter};
+use super::Call;
 use super::thread_infeed::MAX_PASSES;
 
 /// The retract after a peck when `DA=` is not given, mm.
@@ -49,12 +50,7 @@ const DEFAULT_PECK_RETRACT_MM: f64 = 0.1;
 const MAX_PECKS: f64 = 100_000.0;
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
-    let span = interp.program.block(index).span;
-    let from = interp.emitter.at;
-    if !from.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
+    let Some(Call { span, start: from }) = interp.cycle_call(index) else { return Flow::Next };
     let frame = interp.modal.frame;
     // `plunge_x`: G73 plunges along X and steps along Z; G74 the other way round.
     let plunge_x = function == GFunction::OspGrooving;

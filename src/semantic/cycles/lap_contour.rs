@@ -1,5 +1,5 @@
-//! OSP LAP contours (`G81`/`G82` … `G80`): finding the contour a `G85`/`G86`/`G87` call
-//! names, reading it, and the return to the AP start point the three cycles share.
+//! OSP LAP contours (`G81`/`G82` … `G80`): finding the contour a `G85`-`G88` call names,
+//! reading it, and the return to the AP start point of the roughing cycles `G85`/`G86`.
 //!
 //! **Finding it.** A call names its contour by the sequence name of the `G81`/`G82` block
 //! (`G85 N0207` → `N0207 G81`, `G85 NLAP1` → `NLAP1 G81`); OSP compares names as text, so
@@ -40,6 +40,7 @@ use super::super::block::effective_words;
 use super::super::interpreter::{Flow, Interpreter};
 use super::super::labels;
 use super::super::profile::{Profile, Shape};
+use super::Call;
 
 /// Which way the contour is roughed: `G81` passes run parallel to Z, `G82` parallel to X.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -79,6 +80,25 @@ impl Contour {
         if self.follows_call { Flow::Jump(self.blocks.end() + 1) } else { Flow::Next }
     }
 
+    /// The contour goes with the call when it belongs to it (right after it): `expand`
+    /// deletes it with the call.
+    pub fn consume(&self, interp: &mut Interpreter<'_, '_>) {
+        if self.follows_call {
+            interp.consume(self.blocks.clone());
+        }
+    }
+
+    /// Whether roughing passes can follow the contour: it runs one way along the cutting
+    /// axis. If not, the error is the contour's, pointing at the call that roughs it.
+    pub fn roughable(&self, interp: &mut Interpreter<'_, '_>, call: Span) -> bool {
+        let monotonic = self.monotonic_along_cut();
+        if !monotonic {
+            let kind = DiagnosticKind::LapContourNotMonotonic { axis: self.cutting_axis() };
+            interp.diagnostics.push(Diagnostic::error(kind, self.span).with_related(call, "roughed by this call"));
+        }
+        monotonic
+    }
+
     /// The axis the passes cut along.
     pub fn cutting_axis(&self) -> char {
         match self.direction {
@@ -115,6 +135,15 @@ impl Contour {
         }
         true
     }
+}
+
+/// The call of the LAP cycle in block `index` and the contour it names, read from the tool's
+/// position there; `None` when the position is not known or the contour cannot be had
+/// (reported).
+pub(super) fn call(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Option<(Call, Contour)> {
+    let call = interp.cycle_call(index)?;
+    let contour = find(interp, index, command, call.start)?;
+    Some((call, contour))
 }
 
 /// The contour a LAP call names, read from `start`. `None` (with the diagnostic reported)

@@ -32,37 +32,25 @@
 //! the cut, as for `G85`: an undercut cannot be followed by the passes nor left by the
 //! return.
 
-use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::diagnostic::DiagnosticKind;
 use crate::dialect::Role;
 use crate::geometry;
 use crate::syntax::Command;
 use crate::toolpath::Xz;
 
 use super::super::interpreter::{Flow, Interpreter};
+use super::Call;
 use super::canonical::{self, Uv};
 use super::lap_contour;
-use super::lap_frame::{self, MAX_PASSES, RELIEF_MM, RoughFrame};
+use super::lap_frame::{self, RELIEF_MM, RoughFrame};
 use super::lap_rough::CallWords;
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
-    let start = interp.emitter.at;
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
-    let Some(contour) = lap_contour::find(interp, index, command, start) else { return Flow::Next };
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
+    let Some((Call { span, start }, contour)) = lap_contour::call(interp, index, command) else { return Flow::Next };
     let flow = contour.flow_after();
     let Some(words) = CallWords::read(interp, command, &contour) else { return flow };
     warn_conditions(interp, command);
-    if !contour.monotonic_along_cut() {
-        let kind = DiagnosticKind::LapContourNotMonotonic { axis: contour.cutting_axis() };
-        interp.diagnostics.push(Diagnostic::error(kind, contour.span).with_related(span, "roughed by this call"));
+    if !contour.roughable(interp, span) {
         return flow;
     }
     let frame = RoughFrame::new(&contour, start, words.x_allowance, words.z_allowance);
@@ -70,9 +58,7 @@ pub(super) fn run(
         interp.error(DiagnosticKind::LapStartInsideContour, span);
         return flow;
     }
-    if frame.stock_depth() / words.depth > MAX_PASSES {
-        let rule = "it would take more than 10000 passes";
-        interp.error(DiagnosticKind::LapWordOutOfRange { word: "D".into(), value: words.depth_written, rule }, span);
+    if words.too_many_passes(interp, frame.stock_depth(), words.depth, span) {
         return flow;
     }
     let saved = interp.modal.clone();
@@ -104,12 +90,7 @@ pub(super) fn run(
         previous = share;
     }
     interp.modal = saved;
-    if !words.no_return {
-        lap_contour::return_to_start(interp, &contour, start);
-    }
-    if contour.follows_call {
-        consumed.extend(contour.blocks.clone());
-    }
+    words.end_call(interp, &contour, start);
     flow
 }
 

@@ -15,25 +15,12 @@ use crate::syntax::Command;
 use super::super::interpreter::{Flow, Interpreter};
 use super::lap_contour;
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
-    let start = interp.emitter.at;
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
-    let Some(contour) = lap_contour::find(interp, index, command, start) else { return Flow::Next };
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
+    let Some((_, contour)) = lap_contour::call(interp, index, command) else { return Flow::Next };
     interp.trace_profile(&contour.profile, None);
     // The contour ends its own compensation (`G40` after the last move), and the blocks
     // after the call run in that state.
     interp.modal.compensation = contour.profile.modal_after.compensation;
-    if contour.follows_call {
-        consumed.extend(contour.blocks.clone());
-    }
+    contour.consume(interp);
     contour.flow_after()
 }

@@ -53,42 +53,27 @@
 
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::Role;
+use crate::source::Span;
 use crate::syntax::Command;
 use crate::toolpath::Xz;
 
 use super::super::interpreter::{Flow, Interpreter};
+use super::Call;
 use super::canonical::{self, Uv};
 use super::lap_contour::{self, Contour, Direction};
 use super::lap_frame::{self, MAX_PASSES, RELIEF_MM, RoughFrame};
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
-    let start = interp.emitter.at;
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
-    let Some(contour) = lap_contour::find(interp, index, command, start) else { return Flow::Next };
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
+    let Some((Call { span, start }, contour)) = lap_contour::call(interp, index, command) else { return Flow::Next };
     let flow = contour.flow_after();
     let Some(words) = CallWords::read(interp, command, &contour) else { return flow };
-    if !contour.monotonic_along_cut() {
-        let kind = DiagnosticKind::LapContourNotMonotonic { axis: contour.cutting_axis() };
-        interp
-            .diagnostics
-            .push(crate::diagnostic::Diagnostic::error(kind, contour.span).with_related(span, "roughed by this call"));
+    if !contour.roughable(interp, span) {
         return flow;
     }
     let frame = RoughFrame::new(&contour, start, words.x_allowance, words.z_allowance);
     let Some(conditions) = Conditions::read(interp, command, &contour, &frame) else { return flow };
     let smallest = conditions.depths().fold(words.depth, f64::min);
-    if frame.stock_depth() / smallest > MAX_PASSES {
-        let rule = "it would take more than 10000 passes";
-        interp.error(DiagnosticKind::LapWordOutOfRange { word: "D".into(), value: words.depth_written, rule }, span);
+    if words.too_many_passes(interp, frame.stock_depth(), smallest, span) {
         return flow;
     }
     let passes = match plan(&frame, words.depth, words.feed, &conditions) {
@@ -99,12 +84,7 @@ pub(super) fn run(
         }
     };
     cut(interp, &contour, &frame, &passes, &conditions, &words);
-    if !words.no_return {
-        lap_contour::return_to_start(interp, &contour, start);
-    }
-    if contour.follows_call {
-        consumed.extend(contour.blocks.clone());
-    }
+    words.end_call(interp, &contour, start);
     flow
 }
 
@@ -134,8 +114,7 @@ impl CallWords {
             (Role::AllowanceZ, "W", w, w >= 0.0, "an allowance is 0 or more"),
         ] {
             if !ok {
-                let span =
-                    command.param(role).map_or(crate::source::Span::SYNTHETIC, |id| interp.program.word(id).span);
+                let span = command.param(role).map_or(Span::SYNTHETIC, |id| interp.program.word(id).span);
                 interp.error(DiagnosticKind::LapWordOutOfRange { word: name.into(), value, rule }, span);
                 return None;
             }
@@ -149,6 +128,26 @@ impl CallWords {
             z_allowance: frame.mm(w),
             no_return: command.param(Role::NoReturn).is_some(),
         })
+    }
+
+    /// Whether cutting `stock` mm at depths of at least `smallest` takes more passes than
+    /// turnpass simulates; if so, an error on the call's `D`.
+    pub fn too_many_passes(&self, interp: &mut Interpreter<'_, '_>, stock: f64, smallest: f64, call: Span) -> bool {
+        let too_many = stock / smallest > MAX_PASSES;
+        if too_many {
+            let rule = "it would take more than 10000 passes";
+            interp.error(DiagnosticKind::LapWordOutOfRange { word: "D".into(), value: self.depth_written, rule }, call);
+        }
+        too_many
+    }
+
+    /// The end of a roughing call: back to the AP start point `start` unless `M85` keeps the
+    /// tool where the last pass left it, and the contour consumed when it belongs to the call.
+    pub fn end_call(&self, interp: &mut Interpreter<'_, '_>, contour: &Contour, start: Xz) {
+        if !self.no_return {
+            lap_contour::return_to_start(interp, contour, start);
+        }
+        contour.consume(interp);
     }
 }
 

@@ -18,60 +18,42 @@
 //! - The lead is the call's `F` (`F/J`), else the F in force; F words inside the contour
 //!   are finishing feeds for `G87` and are not leads. `U` and `W` are both read as the
 //!   allowance, in the unit of `H`. No chamfer (the call takes no `M22`/`M23`).
-//! - The contour stays in the program after `expand`: another call may use it.
-//!
-//! The contour is found by the name of its `G81`/`G82` block with a small lookup of this
-//! module's own, until the LAP roughing cycles share theirs.
+//! - The contour is found, read and owned as the LAP roughing cycles' contours are
+//!   (`lap_contour.rs`): before or after the call, its name compared as text; right after
+//!   the call it belongs to the call (the flow continues after its `G80`, and `expand`
+//!   deletes it with the call), anywhere else it stays for other calls.
 
 use crate::diagnostic::DiagnosticKind;
-use crate::dialect::{GFunction, Role};
-use crate::syntax::{Command, Statement, WordKind};
+use crate::syntax::Command;
 
 use super::super::interpreter::{Flow, Interpreter};
-use super::super::labels;
 use super::super::profile::Shape;
+use super::Call;
 use super::compound_thread::infeed_of;
+use super::lap_contour::{self, Direction};
 use super::thread_pass::{self, Axes, Pass};
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
-    let span = interp.program.block(index).span;
-    let from = interp.emitter.at;
-    if !from.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
-    let Some((marker, face)) = contour_block(interp, command) else { return Flow::Next };
-    let Some(last) = interp.lap_end(marker) else {
-        let at = interp.program.block(marker).span;
-        interp.error(DiagnosticKind::LapContourNotClosed, at);
+    let Some((Call { span, start: from }, contour)) = lap_contour::call(interp, index, command) else {
         return Flow::Next;
     };
-    // The contour's elements are read as moves; they are threads at the lead, so they are
-    // read under it (a thread contour needs no feed of its own).
+    let flow = contour.flow_after();
     let (modal, lead_mm) = thread_pass::thread_modal(interp, command);
-    let feed_in_force = std::mem::replace(&mut interp.modal.feed, modal.feed);
-    let profile = interp.profile(marker..=last, from);
-    interp.modal.feed = feed_in_force;
-    let profile = match profile {
-        Ok(profile) => profile,
-        Err(diagnostic) => {
-            interp.diagnostics.push(diagnostic);
-            return Flow::Next;
-        }
-    };
+    let profile = &contour.profile;
     // The approach (leading rapids), then straight thread elements only.
     let approach = profile.segments.iter().take_while(|s| s.rapid).count();
     let thread_start = profile.segments[..approach].last().map_or(profile.start, |s| s.end);
     let elements = &profile.segments[approach..];
     if let Some(bad) = elements.iter().find(|s| s.rapid || !matches!(s.shape, Shape::Line)) {
         interp.error(DiagnosticKind::ThreadContourNotStraight, bad.source);
-        return Flow::Next;
+        return flow;
     }
     if elements.is_empty() {
-        interp.error(DiagnosticKind::ThreadContourNotStraight, interp.program.block(marker).span);
-        return Flow::Next;
+        interp.error(DiagnosticKind::ThreadContourNotStraight, contour.span);
+        return flow;
     }
-    let Some(infeed) = infeed_of(interp, command, span) else { return Flow::Next };
+    let Some(infeed) = infeed_of(interp, command, span) else { return flow };
+    let face = contour.direction == Direction::Transverse;
     let axes = Axes { face };
     let frame = interp.modal.frame;
     let to_mm = |d: f64| if face { frame.mm(d) } else { frame.x_mm(d) };
@@ -97,28 +79,6 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
         }
     }
     interp.report_zero_feed(span);
-    Flow::Next
-}
-
-/// The `G81`/`G82` block the call's `N` names, and whether it is a face (`G82`) contour.
-fn contour_block(interp: &mut Interpreter<'_, '_>, command: &Command) -> Option<(usize, bool)> {
-    let id = command.param(Role::ContourName)?;
-    let word = *interp.program.word(id);
-    let WordKind::Label { number } = word.kind else { return None };
-    let key = labels::key(interp.dialect, interp.program.text(word.span), number);
-    let found = interp.labels.blocks(&key).iter().copied().find_map(|i| {
-        let block = interp.program.block(i);
-        if !matches!(block.statement, Statement::LapMarker(_)) {
-            return None;
-        }
-        interp.g_infos(interp.program.words_of(block)).iter().find_map(|(_, g)| match g.function {
-            Some(GFunction::LapContourLongitudinal) => Some((i, false)),
-            Some(GFunction::LapContourTransverse) => Some((i, true)),
-            _ => None,
-        })
-    });
-    if found.is_none() {
-        interp.error(DiagnosticKind::ThreadContourNotFound { name: format!("N{key}") }, word.span);
-    }
-    found
+    contour.consume(interp);
+    flow
 }

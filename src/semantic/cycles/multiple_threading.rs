@@ -177,15 +177,8 @@ fn reject_word(interp: &mut Interpreter<'_, '_>, command: &Command, role: Role, 
     interp.error(DiagnosticKind::ThreadParametersInvalid { word }, at);
 }
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    name: &str,
-    consumed: &mut Vec<usize>,
-) -> Flow {
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, name: &str) -> Flow {
     let span = interp.program.block(index).span;
-    let start = interp.emitter.at;
     let frame = interp.modal.frame;
     let one_block = interp.form_name(command) == "one_block";
     if !one_block && interp.cycle_memory.thread.rejected {
@@ -220,10 +213,7 @@ pub(super) fn run(
         return Flow::Next;
     }
     let Some((infeed, parameters)) = infeed(interp, command, one_block, span) else { return Flow::Next };
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
+    let Some(start) = interp.known_position(span) else { return Flow::Next };
     let memory = interp.cycle_memory.thread;
     let min_depth = memory.min_depth.map_or(0.0, |q| frame.mm(q.abs()));
     let allowance = memory.allowance.map_or(0.0, |r| frame.mm(r.abs()));
@@ -249,7 +239,7 @@ pub(super) fn run(
     };
     // The first block is part of the cycle: `expand` deletes it.
     if !one_block {
-        consumed.extend(interp.cycle_memory.thread.first_block);
+        interp.consume(interp.cycle_memory.thread.first_block);
     }
     let saved = interp.modal.clone();
     // The lead is the F of the thread moves (what `expand` writes on its `G32` blocks).

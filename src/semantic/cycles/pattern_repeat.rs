@@ -31,6 +31,7 @@ use crate::toolpath::Xz;
 
 use super::super::interpreter::{Flow, Interpreter};
 use super::super::profile::{Profile, Shape};
+use super::Call;
 use super::MAX_CYCLE_PASSES;
 
 /// What `G73 U(Δi) W(Δk) R(d)` set, program units (Δi a radius), kept for the cycle block.
@@ -56,18 +57,8 @@ pub(super) fn relief_block(interp: &mut Interpreter<'_, '_>, index: usize, comma
     Flow::Next
 }
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
-    let start = interp.emitter.at;
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
+    let Some(Call { span, start }) = interp.cycle_call(index) else { return Flow::Next };
     let frame = interp.modal.frame;
     let one_block = interp.form_name(command) == "one_block";
     let (relief_x, relief_z, divisions) = if one_block {
@@ -89,9 +80,9 @@ pub(super) fn run(
     let Some(profile) = interp.profile_of(command, span, start) else { return Flow::Next };
     let after_q = interp.after_profile(command, index);
     // The profile and the first block are part of the cycle: `expand` deletes them.
-    consumed.extend(profile.blocks.clone());
+    interp.consume(profile.blocks.clone());
     if !one_block {
-        consumed.extend(interp.cycle_memory.pattern.first_block);
+        interp.consume(interp.cycle_memory.pattern.first_block);
     }
     if profile.segments.is_empty() {
         interp.error(DiagnosticKind::EmptyProfile, span);

@@ -34,6 +34,7 @@ use crate::syntax::{Command, Word};
 use crate::toolpath::Xz;
 
 use super::super::interpreter::{Flow, Interpreter};
+use super::Call;
 use super::MAX_CYCLE_PASSES;
 
 const EPSILON: f64 = 1e-9;
@@ -154,20 +155,9 @@ impl Grooving {
     }
 }
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    function: GFunction,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
+    let Some(Call { span, start }) = interp.cycle_call(index) else { return Flow::Next };
     let face = function == GFunction::FacePeck;
-    let start = interp.emitter.at;
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
     let frame = interp.modal.frame;
     let one_block = interp.form_name(command) == "one_block";
     let words: Vec<Word> = command.params.iter().map(|p| *interp.program.word(p.word)).collect();
@@ -207,7 +197,7 @@ pub(super) fn run(
 
     // The first block is part of the cycle: `expand` deletes it.
     if !one_block {
-        consumed.extend(interp.cycle_memory.peck.first_block);
+        interp.consume(interp.cycle_memory.peck.first_block);
     }
     let saved = interp.modal.clone();
     interp.modal.feed = interp.param(command, Role::Feed).unwrap_or(saved.feed);

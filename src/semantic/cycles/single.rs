@@ -79,8 +79,7 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
 
 fn cut(interp: &mut Interpreter<'_, '_>, index: usize, function: GFunction, start: Xz, end: Xz, taper: f64) {
     let span = interp.program.block(index).span;
-    if !start.is_finite() {
-        interp.unknown_position(span);
+    if interp.known_position(span).is_none() {
         return;
     }
     let modal = interp.modal.clone();

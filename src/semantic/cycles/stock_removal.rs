@@ -23,7 +23,11 @@
 //! stretch above the profile (Type II, chosen when the P block names both axes, or by `R1`
 //! in the one-block form; Z must still be monotonic and X may dip into pockets). In Type II
 //! the tool follows the profile up from the end of each stretch to the previous level
-//! before it retracts, and enters a pocket from the safe level of A.
+//! (along its arcs; where the profile ends or turns down below that level, straight up to
+//! it) before it retracts, and enters a pocket from the safe level: A's, or the profile's
+//! where it rises above A's on the way. A retract never reaches back past the stretch it
+//! ends (a pocket narrower than e). The property tests (`tests/it/stock_removal.rs`) check
+//! that no move enters the shifted profile and no rapid runs through stock not yet cut.
 //!
 //! F, S and T inside P…Q are for finishing (`G70`); roughing uses the cycle's own F. After
 //! the cycle the program continues after the Q block: the profile is a definition. Lines at
@@ -32,12 +36,13 @@
 
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::{GFunction, Role};
-use crate::source::Span;
 use crate::syntax::Command;
 use crate::toolpath::Xz;
 
+use super::super::frame::Frame;
 use super::super::interpreter::{Flow, Interpreter};
 use super::super::profile::{Profile, Shape};
+use super::Call;
 use super::canonical::{self, Canon, Element, Uv};
 
 /// The retract when neither the program nor its first block gives one (Fanuc's usual
@@ -65,20 +70,9 @@ pub(super) fn depth_block(
     Flow::Next
 }
 
-pub(super) fn run(
-    interp: &mut Interpreter<'_, '_>,
-    index: usize,
-    command: &Command,
-    function: GFunction,
-    consumed: &mut Vec<usize>,
-) -> Flow {
-    let span = interp.program.block(index).span;
+pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
+    let Some(Call { span, start }) = interp.cycle_call(index) else { return Flow::Next };
     let facing = function == GFunction::StockRemovalFacing;
-    let start = interp.emitter.at;
-    if !start.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
     let frame = interp.modal.frame;
     let one_block = command.param(Role::DepthOfCut).is_some();
     let depth = if one_block {
@@ -103,9 +97,9 @@ pub(super) fn run(
     let Some(profile) = interp.profile_of(command, span, start) else { return Flow::Next };
     let after_q = interp.after_profile(command, index);
     // The profile and the first block are part of the cycle: `expand` deletes them.
-    consumed.extend(profile.blocks.clone());
+    interp.consume(profile.blocks.clone());
     if !one_block {
-        consumed.extend(interp.cycle_memory.depth_block);
+        interp.consume(interp.cycle_memory.depth_block);
     }
     if profile.segments.is_empty() {
         interp.error(DiagnosticKind::EmptyProfile, span);
@@ -115,9 +109,9 @@ pub(super) fn run(
     let feed = interp.param(command, Role::Feed).unwrap_or(interp.modal.feed);
     let speed = interp.param(command, Role::Speed);
     let rough = Rough { depth, retract, allowance, type_ii, feed, speed, facing };
-    let profile = without_exit(&profile, start, allowance, facing);
-    if let Err(kind) = rough.cut(interp, &profile, start, span) {
-        interp.error(kind, span);
+    if let Err(kind) = rough.cut(interp, &without_exit(&profile, start, allowance, facing), start) {
+        let (frame, shift) = (interp.modal.frame, interp.modal.shift);
+        interp.error(rough.wrong_side(&profile, start, frame, shift).unwrap_or(kind), span);
     }
     // F and S written in the cycle block are words of that block: they stay modal after
     // it, as every F and S does (a G70 with no F of its own then finishes at that feed
@@ -136,9 +130,7 @@ pub(super) fn run(
 /// itself after its final pass; read as part of the shape, they would turn the profile back
 /// along the cut. `G70` still runs them.
 fn without_exit(profile: &Profile, start: Xz, allowance: Xz, facing: bool) -> Profile {
-    let Some(first) = profile.segments.first() else { return profile.clone() };
-    let mirror_u = if facing { start.z < first.end.z } else { start.x < first.end.x };
-    let level = Canon { swap: facing, mirror_u, mirror_v: false };
+    let level = Canon { swap: facing, mirror_u: start_below(start, profile, allowance, facing), mirror_v: false };
     let a = level.to(start);
     let shifted = |p: Xz| level.to(Xz::new(p.x + allowance.x, p.z + allowance.z));
     // The approach and at least one element of the shape stay.
@@ -147,7 +139,8 @@ fn without_exit(profile: &Profile, start: Xz, allowance: Xz, facing: bool) -> Pr
         let (from, last) = (shifted(profile.segments[keep - 2].end), profile.segments[keep - 1]);
         let to = shifted(last.end);
         let outside = from.u >= a.u - 1e-9 && to.u >= a.u - 1e-9;
-        let back = (to.v - a.v).abs() < (from.v - a.v).abs() - 1e-9;
+        // Toward the start point's plane, perhaps past it by the allowance.
+        let back = (to.v - from.v) * (a.v - from.v) > 1e-12;
         if !(outside && back && last.shape == Shape::Line) {
             break;
         }
@@ -156,6 +149,24 @@ fn without_exit(profile: &Profile, start: Xz, allowance: Xz, facing: bool) -> Pr
     let mut trimmed = profile.clone();
     trimmed.segments.truncate(keep);
     trimmed
+}
+
+/// Whether the start point lies below the profile across the levels (toward smaller X when
+/// turning, an inside cut; toward smaller Z when facing). The start point and the point the
+/// P block goes to decide; where they lie at the same level (`N10 G00 X20 Z2` from X20 Z5),
+/// the sign of the allowance across the levels does, and without one the side the rest of
+/// the profile lies on.
+fn start_below(start: Xz, profile: &Profile, allowance: Xz, facing: bool) -> bool {
+    let across = |p: Xz| if facing { p.z } else { p.x };
+    let first = profile.segments.first().map_or(profile.start, |s| s.end);
+    let (a, p) = (across(start), across(first));
+    if (a - p).abs() > 1e-9 {
+        a < p
+    } else if across(allowance) != 0.0 {
+        across(allowance) < 0.0
+    } else {
+        profile.points().any(|q| across(q) > a + 1e-9)
+    }
 }
 
 struct Rough {
@@ -169,27 +180,60 @@ struct Rough {
 }
 
 impl Rough {
-    fn cut(
-        &self,
-        interp: &mut Interpreter<'_, '_>,
-        profile: &Profile,
-        start: Xz,
-        _span: Span,
-    ) -> Result<(), DiagnosticKind> {
-        // The profile proper starts where the P block goes; that first move is the approach.
+    /// The canonical frame seen from `start`, and the profile shifted by the allowance in it
+    /// (the approach left out), checked against the cycle's type.
+    fn shape(&self, profile: &Profile, start: Xz) -> Result<(Canon, Vec<Element>), DiagnosticKind> {
         let shifted_end = Xz::new(profile.end().x + self.allowance.x, profile.end().z + self.allowance.z);
-        let first = profile.segments[0];
         let canon = Canon {
             swap: self.facing,
-            mirror_u: if self.facing { start.z < first.end.z } else { start.x < first.end.x },
+            mirror_u: start_below(start, profile, self.allowance, self.facing),
             mirror_v: if self.facing { shifted_end.x > start.x } else { shifted_end.z > start.z },
         };
+        // The profile proper starts where the P block goes; that first move is the approach.
         let elements = canonical::elements(&canon, profile, self.allowance, true);
         if elements.is_empty() {
             return Err(DiagnosticKind::EmptyProfile);
         }
         check_shape(&elements, self.type_ii, self.facing)?;
+        Ok((canon, elements))
+    }
 
+    /// Why a profile that fails from `start` fails, when the start point lies on the other
+    /// side of it than the sign of the allowance across the passes asks for (`U-1`, inside,
+    /// from a start point outside the part), and the profile passes from a start point moved
+    /// across to that side: beyond the profile's extreme there, allowance included.
+    fn wrong_side(&self, profile: &Profile, start: Xz, frame: Frame, shift: Xz) -> Option<DiagnosticKind> {
+        let allowance_mm = if self.facing { self.allowance.z } else { self.allowance.x };
+        let inside = allowance_mm < 0.0;
+        if allowance_mm == 0.0 || start_below(start, profile, self.allowance, self.facing) == inside {
+            return None;
+        }
+        // Program values across the passes: X as written (a diameter), or Z.
+        let across = |p: Xz| if self.facing { frame.program(p.z - shift.z) } else { frame.x_program(p.x - shift.x) };
+        let ends = profile.segments.iter().map(|s| across(s.end));
+        let extreme = if inside { ends.fold(f64::INFINITY, f64::min) } else { ends.fold(f64::NEG_INFINITY, f64::max) };
+        let allowance = if self.facing { frame.program(allowance_mm) } else { frame.x_program(allowance_mm) };
+        let target = extreme + allowance;
+        let moved = if self.facing {
+            Xz::new(start.x, frame.mm(target) + shift.z)
+        } else {
+            Xz::new(frame.x_mm(target) + shift.x, start.z)
+        };
+        let from_there = without_exit(profile, moved, self.allowance, self.facing);
+        self.shape(&from_there, moved).ok()?;
+        Some(DiagnosticKind::StartOnWrongSide {
+            x: frame.x_program(start.x - shift.x),
+            z: frame.program(start.z - shift.z),
+            axis: if self.facing { 'Z' } else { 'X' },
+            address: if self.facing { 'W' } else { 'U' },
+            allowance,
+            extreme,
+        })
+    }
+
+    fn cut(&self, interp: &mut Interpreter<'_, '_>, profile: &Profile, start: Xz) -> Result<(), DiagnosticKind> {
+        let (canon, elements) = self.shape(profile, start)?;
+        let first = profile.segments[0];
         let a = canon.to(start);
         let v_end = elements.last().map_or(a.v, |e| e.end.v);
         let u_min = elements.iter().flat_map(|e| [e.start.u, e.end.u]).fold(f64::INFINITY, f64::min);
@@ -219,12 +263,12 @@ impl Rough {
             for (v_in, v_out) in stretches.iter().copied() {
                 if (v_in - a.v).abs() < 1e-9 {
                     // Back to A's v, then infeed as the P block moves (rapid or feed).
-                    travel(interp, &go, &cleared, at, a.v, a.u);
+                    travel(interp, &go, &cleared, &elements, at, a.v, a.u);
                     go(interp, Uv { u: level, v: a.v }, approach_rapid);
                 } else {
                     // Into a pocket: across, down at rapid to just over the stock the
                     // previous level left, then feed.
-                    at = travel(interp, &go, &cleared, at, v_in, a.u);
+                    at = travel(interp, &go, &cleared, &elements, at, v_in, a.u);
                     let opened = cleared
                         .iter()
                         .any(|&(u, hi, lo)| u <= previous_level + 1e-9 && v_in <= hi + 1e-9 && v_in >= lo - 1e-9);
@@ -237,12 +281,20 @@ impl Rough {
                 let mut here = Uv { u: level, v: v_out };
                 if self.type_ii && v_out > v_end + 1e-9 {
                     // Follow the rising profile up to the previous level.
-                    for p in follow_up(&elements, here, previous_level) {
-                        go(interp, p, false);
-                        here = p;
+                    for piece in follow_up(&elements, here, previous_level) {
+                        cut_along(interp, &canon, &piece);
+                        here = piece.end;
+                    }
+                    if here.u < previous_level - 1e-9 {
+                        // The profile ended, or turned down, below the previous level: the
+                        // stock over it up to that level is still there, and a retract
+                        // at 45° would run through it. Cut straight up through it first.
+                        here.u = previous_level;
+                        go(interp, here, false);
                     }
                 }
-                here = Uv { u: here.u + self.retract, v: here.v + self.retract };
+                let retract = self.retract.min(retract_room(&cleared, here, a));
+                here = Uv { u: here.u + retract, v: here.v + retract };
                 go(interp, here, true);
                 at = here;
             }
@@ -252,38 +304,61 @@ impl Rough {
 
         // The semi-finishing pass along the shifted profile, entered at A's v.
         let shifted_start = canon.to(Xz::new(first.end.x + self.allowance.x, first.end.z + self.allowance.z));
-        travel(interp, &go, &cleared, at, a.v, a.u);
+        travel(interp, &go, &cleared, &elements, at, a.v, a.u);
         go(interp, shifted_start, approach_rapid);
         for e in &elements {
-            let modal = interp.modal.clone();
-            match e.arc {
-                None => interp.emitter.line(&modal, canon.from(e.end), true),
-                Some((c, ccw)) => {
-                    interp.emitter.arc(&modal, canon.from(e.end), canon.from(c), ccw ^ canon.flips(), true)
-                }
-            }
+            cut_along(interp, &canon, e);
         }
-        // Back to A: away from the part first.
+        // Back to A: away from the part first. Where the profile rises above A's level on
+        // the way back (a land left at the stock diameter), a straight line down to A would
+        // cross it: along the cut above it first.
         let last = canon.to(interp.emitter.at);
-        go(interp, Uv { u: a.u.max(last.u), v: last.v }, true);
+        let away = a.u.max(last.u);
+        go(interp, Uv { u: away, v: last.v }, true);
+        let (lo, hi) = (last.v.min(a.v) + 1e-6, last.v.max(a.v) - 1e-6);
+        let over = if lo < hi { highest(&elements, lo, hi) } else { f64::NEG_INFINITY };
+        if over > a.u + 1e-9 {
+            let height = away.max(over);
+            go(interp, Uv { u: height, v: last.v }, true);
+            go(interp, Uv { u: height, v: a.v }, true);
+        }
         go(interp, a, true);
         interp.modal = saved;
         Ok(())
     }
 }
 
+/// How far the tool at `here` may retract at 45° (up and back along the cut) through stock
+/// already cut: as far back as the stretches cut at or below its height reach over it. A
+/// stretch that begins at A's `v` opens onto the outside; one in a pocket ends at the
+/// pocket's near side, and a full retract from a pocket narrower than the retract would
+/// run at rapid into that side (the part, or the stock the previous level left on it).
+fn retract_room(cleared: &[(f64, f64, f64)], here: Uv, a: Uv) -> f64 {
+    if here.u >= a.u - 1e-9 {
+        return f64::INFINITY;
+    }
+    cleared
+        .iter()
+        .filter(|&&(u, hi, lo)| u <= here.u + 1e-9 && here.v <= hi + 1e-9 && here.v >= lo - 1e-9)
+        .map(|&(_, hi, _)| if hi >= a.v - 1e-9 { f64::INFINITY } else { hi - here.v })
+        .fold(0.0, f64::max)
+}
+
 /// Rapid from `at` to `v`: straight along `v` when every point of the way lies over a
-/// stretch cut at or below the tool's height, else up to the safe level `safe_u` first.
+/// stretch cut at or below the tool's height, else up to the safe level first: A's level, or
+/// higher where the profile (allowance included) rises above it on the way.
 fn travel(
     interp: &mut Interpreter<'_, '_>,
     go: &impl Fn(&mut Interpreter<'_, '_>, Uv, bool),
     cleared: &[(f64, f64, f64)],
+    elements: &[Element],
     at: Uv,
     v: f64,
-    safe_u: f64,
+    a_u: f64,
 ) -> Uv {
     let (hi, lo) = (at.v.max(v), at.v.min(v));
     let covered = cleared.iter().any(|&(u, top, bottom)| u <= at.u + 1e-9 && top >= hi - 1e-9 && bottom <= lo + 1e-9);
+    let safe_u = a_u.max(highest(elements, lo, hi));
     let height = if covered || at.u >= safe_u - 1e-9 { at.u } else { safe_u };
     if height != at.u {
         go(interp, Uv { u: height, v: at.v }, true);
@@ -291,6 +366,27 @@ fn travel(
     let to = Uv { u: height, v };
     go(interp, to, true);
     to
+}
+
+/// The highest point of the profile over `v` from `lo` to `hi`: where it is at both ends, the
+/// ends of its elements between, and the crest of an arc that rises above its ends there.
+fn highest(elements: &[Element], lo: f64, hi: f64) -> f64 {
+    let within = |p: Uv| p.v >= lo - 1e-9 && p.v <= hi + 1e-9;
+    let as_xz = |q: Uv| Xz::new(q.u, q.v);
+    let mut top = canonical::u_at(elements, lo).max(canonical::u_at(elements, hi));
+    for e in elements {
+        for p in [e.start, e.end].into_iter().filter(|p| within(*p)) {
+            top = top.max(p.u);
+        }
+        if let Some((c, ccw)) = e.arc {
+            let crest = Uv { u: c.u + e.radius(), v: c.v };
+            if within(crest) && crate::geometry::angle_within(as_xz(crest), as_xz(e.start), as_xz(e.end), as_xz(c), ccw)
+            {
+                top = top.max(crest.u);
+            }
+        }
+    }
+    top
 }
 
 /// The lowest point of the arcs, when an arc dips below its end points.
@@ -331,34 +427,40 @@ fn stretches(elements: &[Element], u: f64, v_start: f64, v_end: f64) -> Vec<(f64
     out
 }
 
-/// The profile from `from` (a point on it) onward, until it rises to `ceiling`.
-fn follow_up(elements: &[Element], from: Uv, ceiling: f64) -> Vec<Uv> {
+/// Cut along a profile element (or a piece of one) at the feed: a line, or an arc about
+/// its centre.
+fn cut_along(interp: &mut Interpreter<'_, '_>, canon: &Canon, e: &Element) {
+    let modal = interp.modal.clone();
+    match e.arc {
+        None => interp.emitter.line(&modal, canon.from(e.end), true),
+        Some((c, ccw)) => interp.emitter.arc(&modal, canon.from(e.end), canon.from(c), ccw ^ canon.flips(), true),
+    }
+}
+
+/// The profile from `from` (a point on it, where a stretch ended) onward, as pieces of its
+/// elements, until it rises to `ceiling` or turns down below `from` again (a new stretch
+/// cuts there). Arcs stay arcs: the chord of a convex arc runs inside the part. It starts
+/// on the element that holds `from`: at a wall, the wall, not the element before it that
+/// ends at the wall's foot at the same `v`.
+fn follow_up(elements: &[Element], from: Uv, ceiling: f64) -> Vec<Element> {
+    let Some(first) = elements.iter().position(|e| e.contains(from)) else { return Vec::new() };
     let mut out = Vec::new();
-    let mut started = false;
-    for e in elements {
-        let (hi, lo) = (e.start.v.max(e.end.v), e.start.v.min(e.end.v));
-        if !started {
-            if from.v <= hi + 1e-9 && from.v >= lo - 1e-9 {
-                started = true;
-            } else {
-                continue;
-            }
+    let mut at = from;
+    for e in &elements[first..] {
+        if at.u >= ceiling - 1e-9 || e.end.u < from.u - 1e-9 {
+            break;
         }
-        if e.end.u >= ceiling - 1e-9 {
-            // Stop where this element reaches the ceiling (lines only; an arc ends there).
-            if e.arc.is_none() && (e.end.u - e.start.u).abs() > 1e-12 {
-                let t = (ceiling - e.start.u) / (e.end.u - e.start.u);
-                out.push(Uv { u: ceiling, v: e.start.v + (e.end.v - e.start.v) * t.clamp(0.0, 1.0) });
-            } else {
-                out.push(e.end);
-            }
-            return out;
+        let piece = Element { start: at, ..*e };
+        // The first point along the piece at the ceiling, if it gets there.
+        let reach = canonical::crossings(&[piece], ceiling).into_iter().filter(|v| *v <= at.v + 1e-9).reduce(f64::max);
+        let end = reach.map_or(e.end, |v| Uv { u: ceiling, v });
+        if at.distance(end) > 1e-12 {
+            out.push(Element { end, ..piece });
         }
-        if e.end.u < from.u - 1e-9 {
-            // The profile goes down again: a new stretch will cut there.
-            return out;
+        if reach.is_some() {
+            break;
         }
-        out.push(e.end);
+        at = end;
     }
     out
 }

@@ -14,14 +14,10 @@ use crate::syntax::Command;
 use crate::toolpath::Xz;
 
 use super::super::interpreter::{Flow, Interpreter};
+use super::Call;
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
-    let span = interp.program.block(index).span;
-    let from = interp.emitter.at;
-    if !from.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
+    let Some(Call { span, start: from }) = interp.cycle_call(index) else { return Flow::Next };
     let frame = interp.modal.frame;
     let end = interp.cycle_end(command, from);
     let approach = interp.param(command, Role::StartShift).map_or(0.0, |k| frame.mm(k).abs());

@@ -136,6 +136,28 @@ pub(in crate::semantic) fn thread_modal(interp: &mut Interpreter<'_, '_>, comman
     (modal, lead_mm)
 }
 
+/// The taper of a thread `length` mm long, mm across it: `I` as written, else from the taper
+/// angle `A` (degrees), else none.
+pub(in crate::semantic) fn taper(interp: &mut Interpreter<'_, '_>, command: &Command, length: f64) -> f64 {
+    match (interp.param(command, Role::Taper), interp.param(command, Role::TaperAngle)) {
+        (Some(i), _) => interp.modal.frame.mm(i),
+        (None, Some(angle)) => angle.to_radians().tan() * length,
+        (None, None) => 0.0,
+    }
+}
+
+/// The lead change per revolution (`E` of `G34`/`G35`), mm.
+pub(in crate::semantic) fn lead_change(interp: &mut Interpreter<'_, '_>, command: &Command) -> f64 {
+    interp.param(command, Role::LeadChange).map_or(0.0, |e| interp.modal.frame.feed_mm(e))
+}
+
+/// The chamfer at the thread's end while chamfering is on (`M23`): the call's `L`, else one
+/// lead; none when it is off.
+pub(in crate::semantic) fn chamfer(interp: &mut Interpreter<'_, '_>, command: &Command, lead_mm: f64) -> Option<f64> {
+    let frame = interp.modal.frame;
+    interp.cycle_memory.thread_chamfer.then(|| interp.param(command, Role::Chamfer).map_or(lead_mm, |l| frame.mm(l)))
+}
+
 /// +1 when `from` lies on the increasing side of `end` along the infeed axis (an outside
 /// thread for a longitudinal pass), −1 on the other side.
 pub fn outward(axes: Axes, from: Xz, end: Xz) -> f64 {

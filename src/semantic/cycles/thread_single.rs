@@ -28,37 +28,26 @@ use crate::dialect::{GFunction, Role};
 use crate::syntax::Command;
 
 use super::super::interpreter::{Flow, Interpreter};
+use super::Call;
 use super::thread_pass::{self, Axes, Pass};
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
-    let span = interp.program.block(index).span;
-    let from = interp.emitter.at;
-    if !from.is_finite() {
-        interp.unknown_position(span);
-        return Flow::Next;
-    }
+    let Some(Call { span, start: from }) = interp.cycle_call(index) else { return Flow::Next };
     let frame = interp.modal.frame;
     let axes = Axes { face: function == GFunction::ThreadSingleFace };
     let end = interp.cycle_end(command, from);
     let shift = interp.param(command, Role::StartShift).map_or(0.0, |k| frame.mm(k));
     let start_along = axes.along(from) + shift;
     let length = (axes.along(end) - start_along).abs();
-    let taper = match (interp.param(command, Role::Taper), interp.param(command, Role::TaperAngle)) {
-        (Some(i), _) => frame.mm(i),
-        (None, Some(angle)) => angle.to_radians().tan() * length,
-        (None, None) => 0.0,
-    };
+    let taper = thread_pass::taper(interp, command, length);
     let (modal, lead_mm) = thread_pass::thread_modal(interp, command);
-    let change = interp.param(command, Role::LeadChange).map_or(0.0, |e| frame.feed_mm(e));
+    let change = thread_pass::lead_change(interp, command);
     let change = match function {
         GFunction::ThreadSingleLeadIncreasing => change.abs(),
         GFunction::ThreadSingleLeadDecreasing => -change.abs(),
         _ => change,
     };
-    let chamfer = interp
-        .cycle_memory
-        .thread_chamfer
-        .then(|| interp.param(command, Role::Chamfer).map_or(lead_mm, |l| frame.mm(l)));
+    let chamfer = thread_pass::chamfer(interp, command, lead_mm);
     let pass = Pass { axes, from, points: vec![axes.point(start_along, axes.depth(end) + taper), end], chamfer };
     pass.emit(interp, &modal, thread_pass::mean_lead(lead_mm, change, length));
     interp.report_zero_feed(span);

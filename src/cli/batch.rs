@@ -1,0 +1,117 @@
+//! `compensate --out-dir DIR`: many programs, one per worker thread at a time, each
+//! written atomically into DIR under its own file name when it compensates cleanly.
+//!
+//! Workers take the next file from a shared counter (plain `std::thread::scope`: the work
+//! is one independent job per file, nothing a pool crate would add). Messages are printed
+//! per file, in the order the files were given, after all are done, so they never
+//! interleave; a progress bar shows on standard error while it is a terminal. The exit
+//! code is the worst of the files'.
+
+use std::collections::HashSet;
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use super::common::{CliError, write_atomically};
+use super::compensate::{CompensateArgs, FileResult, compensate_file};
+
+pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
+    let Some(dir) = &args.out_dir else { return Err(CliError::Usage("--out-dir is missing".to_string())) };
+    if !dir.is_dir() {
+        return Err(CliError::Usage(format!("--out-dir {}: no such directory", dir.display())));
+    }
+    let mut names = HashSet::new();
+    let mut targets = Vec::new();
+    for file in &args.files {
+        let Some(name) = file.file_name().filter(|_| file != Path::new("-")) else {
+            return Err(CliError::Usage("--out-dir takes program files, not standard input".to_string()));
+        };
+        if !names.insert(name.to_os_string()) {
+            let name = name.to_string_lossy();
+            return Err(CliError::Usage(format!(
+                "two programs are named {name}: --out-dir would write both to one file"
+            )));
+        }
+        targets.push(dir.join(name));
+    }
+    let results = in_parallel(&args.files, &targets, |file, target| {
+        let mut result = match compensate_file(file, args) {
+            Ok(result) => result,
+            Err(error) => FileResult::failed(2, format!("error: {error}\n").into_bytes()),
+        };
+        if let Some(output) = result.output.take()
+            && let Err(error) = write_atomically(target, &output)
+        {
+            result.code = 2;
+            result.messages.extend_from_slice(format!("error: {error}\n").as_bytes());
+        }
+        result
+    });
+    let mut stderr = std::io::stderr().lock();
+    let mut reports = Vec::new();
+    let mut worst = 0;
+    for result in results {
+        let _ = stderr.write_all(&result.messages);
+        worst = worst.max(result.code);
+        reports.extend(result.report);
+    }
+    drop(stderr);
+    if args.report.is_some() {
+        let text = serde_json::to_string_pretty(&reports).unwrap_or_default() + "\n";
+        super::common::write_output(None, text.as_bytes())?;
+    }
+    Ok(ExitCode::from(worst))
+}
+
+/// Run `job` on every file over the available cores; results in the files' order.
+fn in_parallel(
+    files: &[PathBuf],
+    targets: &[PathBuf],
+    job: impl Fn(&Path, &Path) -> FileResult + Sync,
+) -> Vec<FileResult> {
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(files.len()).max(1);
+    let next = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    let slots: Vec<Mutex<Option<FileResult>>> = files.iter().map(|_| Mutex::new(None)).collect();
+    let progress = std::io::stderr().is_terminal();
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    let (Some(file), Some(target)) = (files.get(k), targets.get(k)) else { break };
+                    let result = job(file, target);
+                    if let Some(slot) = slots.get(k)
+                        && let Ok(mut slot) = slot.lock()
+                    {
+                        *slot = Some(result);
+                    }
+                    let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    if progress {
+                        draw_progress(finished, files.len());
+                    }
+                }
+            });
+        }
+    });
+    if progress {
+        eprint!("\r\x1b[K");
+    }
+    slots
+        .into_iter()
+        .zip(files)
+        .map(|(slot, file)| {
+            slot.into_inner().ok().flatten().unwrap_or_else(|| {
+                FileResult::failed(2, format!("error: {}: the worker stopped\n", file.display()).into_bytes())
+            })
+        })
+        .collect()
+}
+
+fn draw_progress(done: usize, total: usize) {
+    const WIDTH: usize = 30;
+    let filled = WIDTH * done / total.max(1);
+    eprint!("\r[{}{}] {done}/{total} programs", "#".repeat(filled), " ".repeat(WIDTH - filled));
+}

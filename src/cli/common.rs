@@ -1,0 +1,345 @@
+//! What every command shares: the reading options, settings and model lookup, lowering,
+//! diagnostics on standard error, and output written atomically or to standard output.
+
+use std::io::{IsTerminal, Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Args, ValueEnum};
+
+use turnpass::diagnostic::Diagnostic;
+use turnpass::diagnostic::render::{RenderSource, render_terminal};
+use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
+use turnpass::error_model::ErrorModel;
+use turnpass::error_model::model_file::ModelSpec;
+use turnpass::machine::{MachineSettings, ModelFile};
+use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
+use turnpass::syntax::{self, ParseOptions};
+use turnpass::toolpath::ValidToolpath;
+
+#[derive(Args, Clone)]
+pub struct RunArgs {
+    /// The block-delete switch: `on` skips blocks starting with `/` (default: the machine
+    /// settings, else off).
+    #[arg(long, value_enum)]
+    pub block_delete: Option<Switch>,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum Switch {
+    On,
+    Off,
+}
+
+#[derive(Args, Clone)]
+pub struct ReadArgs {
+    /// Dialect to read: auto (decide from the text), osp or fanuc.
+    #[arg(long, value_parser = parse_dialect)]
+    pub dialect: Option<DialectChoice>,
+    /// Fanuc G-code system of the machine (A, B or C); a machine setting, never guessed.
+    #[arg(long, value_parser = parse_system)]
+    pub gcode_system: Option<GCodeSystem>,
+    /// How numbers without a decimal point read on this machine.
+    #[arg(long, value_enum)]
+    pub decimal_input: Option<DecimalInputArg>,
+    /// Machine model file (TOML): its [machine] table holds the settings above, its
+    /// [model], [[axis_table]] and [[effect]] tables the error model.
+    #[arg(long, value_name = "FILE")]
+    pub model: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+pub enum DecimalInputArg {
+    Calculator,
+    Increment,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum Format {
+    Human,
+    Json,
+}
+
+/// A slide, on the command line.
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum AxisArg {
+    X,
+    Z,
+}
+
+impl AxisArg {
+    pub fn axis(self) -> turnpass::error_model::model_file::Axis {
+        match self {
+            AxisArg::X => turnpass::error_model::model_file::Axis::X,
+            AxisArg::Z => turnpass::error_model::model_file::Axis::Z,
+        }
+    }
+}
+
+fn parse_dialect(s: &str) -> Result<DialectChoice, String> {
+    s.parse()
+}
+
+fn parse_system(s: &str) -> Result<GCodeSystem, String> {
+    s.parse()
+}
+
+/// An error that ends the run with exit code 2.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    #[error("cannot read {path}: {source}")]
+    Read { path: String, source: std::io::Error },
+    #[error("cannot write {path}: {source}")]
+    Write { path: String, source: std::io::Error },
+    #[error("invalid machine settings in {path}: {message}")]
+    Settings { path: String, message: String },
+    #[error("invalid machine model in {path}: {message}")]
+    Model { path: String, message: String },
+    #[error("{0}")]
+    Usage(String),
+    /// The language server's connection failed (the client broke the protocol or went away).
+    #[error("language server: {0}")]
+    Protocol(String),
+}
+
+pub fn display_name(path: &Path) -> String {
+    if path == Path::new("-") { "<stdin>".to_string() } else { path.display().to_string() }
+}
+
+pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
+    if path == Path::new("-") {
+        let mut bytes = Vec::new();
+        std::io::stdin().read_to_end(&mut bytes).map_err(|source| CliError::Read { path: "<stdin>".into(), source })?;
+        return Ok(bytes);
+    }
+    std::fs::read(path).map_err(|source| CliError::Read { path: path.display().to_string(), source })
+}
+
+/// The model file for `program`: `--model`, else the nearest `turnpass.toml` above it.
+fn model_path(read: &ReadArgs, program: &Path) -> Option<PathBuf> {
+    if let Some(path) = &read.model {
+        return Some(path.clone());
+    }
+    let start = if program == Path::new("-") {
+        std::env::current_dir().ok()
+    } else {
+        std::fs::canonicalize(program).ok().and_then(|p| p.parent().map(Path::to_path_buf))
+    };
+    start.and_then(|dir| dir.ancestors().map(|d| d.join("turnpass.toml")).find(|p| p.is_file()))
+}
+
+/// A program's settings, and the model file they came from.
+pub struct Resolved {
+    pub options: ParseOptions,
+    pub decimal_input: DecimalInput,
+    pub increment_places: u8,
+    pub settings: MachineSettings,
+    /// The model file and its text, when there is one.
+    pub model: Option<(PathBuf, String)>,
+}
+
+pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
+    let model = match model_path(read, program) {
+        Some(path) => {
+            let text = std::fs::read_to_string(&path)
+                .map_err(|source| CliError::Read { path: path.display().to_string(), source })?;
+            Some((path, text))
+        }
+        None => None,
+    };
+    let settings = match &model {
+        Some((path, text)) => {
+            ModelFile::from_toml(text)
+                .map_err(|e| CliError::Settings { path: path.display().to_string(), message: e.to_string() })?
+                .machine
+        }
+        None => MachineSettings::default(),
+    };
+    let dialect = read.dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
+    let gcode_system = read.gcode_system.or(settings.gcode_system).unwrap_or_default();
+    let decimal_input = match read.decimal_input {
+        Some(DecimalInputArg::Calculator) => DecimalInput::Calculator,
+        Some(DecimalInputArg::Increment) => DecimalInput::Increment,
+        None => settings.decimal_input.unwrap_or_default(),
+    };
+    Ok(Resolved {
+        options: ParseOptions { dialect, gcode_system, machine_kind: None },
+        decimal_input,
+        increment_places: settings.increment_places(),
+        settings: MachineSettings { decimal_input: Some(decimal_input), ..settings },
+        model,
+    })
+}
+
+/// The error model of a model file: `[model]`, `[[axis_table]]` (files read relative to
+/// the model file's directory) and `[[effect]]`.
+pub fn load_error_model(path: &Path, text: &str) -> Result<ErrorModel, CliError> {
+    let (spec, dir) = model_spec(path, text)?;
+    spec.build(|file| read_table(&dir, file))
+        .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })
+}
+
+/// A model file's spec and the directory its tables are read from.
+pub fn model_spec(path: &Path, text: &str) -> Result<(ModelSpec, PathBuf), CliError> {
+    let spec = ModelSpec::from_toml(text)
+        .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })?;
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf();
+    Ok((spec, dir))
+}
+
+pub fn read_table(dir: &Path, file: &str) -> Result<String, String> {
+    std::fs::read_to_string(dir.join(file)).map_err(|e| e.to_string())
+}
+
+/// The error model `resolved` names; a command that needs one fails without it.
+pub fn required_error_model(resolved: &Resolved, command: &str) -> Result<ErrorModel, CliError> {
+    match &resolved.model {
+        Some((path, text)) => load_error_model(path, text),
+        None => Err(CliError::Usage(format!(
+            "{command} needs a machine model: give --model FILE, or put a turnpass.toml in the program's \
+             directory or above it"
+        ))),
+    }
+}
+
+/// A program's bytes and the settings it is read with.
+pub fn read_program(path: &Path, read: &ReadArgs) -> Result<(Vec<u8>, Resolved), CliError> {
+    let resolved = resolve(read, path)?;
+    let bytes = read_input(path)?;
+    Ok((bytes, resolved))
+}
+
+pub fn lower_options(run: &RunArgs, settings: &MachineSettings, compensation: bool) -> LowerOptions {
+    let block_delete = match run.block_delete {
+        Some(Switch::On) => true,
+        Some(Switch::Off) => false,
+        None => settings.block_delete.unwrap_or(false),
+    };
+    LowerOptions { nose_radius_compensation: compensation, ..LowerOptions::new(block_delete) }
+}
+
+/// Diagnostics rendered for standard error.
+pub fn rendered(name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) -> Vec<u8> {
+    if diagnostics.is_empty() {
+        return Vec::new();
+    }
+    let render = RenderSource::new(name, bytes);
+    render_terminal(&render, diagnostics, std::io::stderr().is_terminal())
+}
+
+pub fn report(name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) {
+    let _ = std::io::stderr().write_all(&rendered(name, bytes, diagnostics));
+}
+
+pub fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+/// A lowered program ready for the error model: parsed, lowered with nose-radius
+/// compensation, its toolpath validated.
+pub struct Ready<'b> {
+    pub parsed: syntax::Parsed<'b>,
+    pub lowered: Lowered,
+    pub valid: ValidToolpath,
+    pub machine: Machine,
+}
+
+/// Parse, lower and validate; `Err` holds the rendered diagnostics and a line saying why
+/// when the program is not ready (errors, or not a lathe program). Warnings of a ready
+/// program come back in `warnings`.
+pub fn ready<'b>(
+    name: &str,
+    bytes: &'b [u8],
+    resolved: &Resolved,
+    run: &RunArgs,
+    command: &str,
+    warnings: &mut Vec<u8>,
+) -> Result<Ready<'b>, Vec<u8>> {
+    let parsed = syntax::parse(bytes, &resolved.options);
+    if !semantic::lowers(&parsed.program) {
+        let mut text = rendered(name, bytes, &parsed.diagnostics);
+        text.extend_from_slice(
+            format!("{command}: {name} is an OSP machining-centre program; turnpass {command}s lathe programs only\n")
+                .as_bytes(),
+        );
+        return Err(text);
+    }
+    let Lowering { lowered, valid, machine, diagnostics } = lower_and_validate(&parsed, resolved, run);
+    let text = rendered(name, bytes, &diagnostics);
+    match valid {
+        Some(valid) if !diagnostics.iter().any(Diagnostic::is_error) => {
+            warnings.extend_from_slice(&text);
+            Ok(Ready { parsed, lowered, valid, machine })
+        }
+        _ => {
+            let mut text = text;
+            text.extend_from_slice(format!("{command}: {name} has errors; nothing is written\n").as_bytes());
+            Err(text)
+        }
+    }
+}
+
+/// A parsed program lowered with nose-radius compensation and validated.
+pub struct Lowering {
+    pub lowered: Lowered,
+    /// The toolpath, when it validates.
+    pub valid: Option<ValidToolpath>,
+    pub machine: Machine,
+    /// Every diagnostic, the parser's included, in program order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run: &RunArgs) -> Lowering {
+    let machine = Machine::from_settings(&resolved.settings);
+    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
+    let mut diagnostics = parsed.diagnostics.clone();
+    diagnostics.extend(lowered.diagnostics.iter().cloned());
+    let valid = match turnpass::toolpath::validate(lowered.toolpath.clone(), machine.limits) {
+        Ok(valid) => Some(valid),
+        Err(problems) => {
+            diagnostics.extend(problems);
+            None
+        }
+    };
+    diagnostics.sort_by_key(|d| d.span.start);
+    Lowering { lowered, valid, machine, diagnostics }
+}
+
+/// A program the semantic pass does not lower (an OSP machining-centre program): its parse
+/// diagnostics, a line saying why nothing is printed, and the exit code of its syntax check.
+pub fn not_lowered(command: &str, name: &str, bytes: &[u8], parsed: &syntax::Parsed<'_>) -> ExitCode {
+    report(name, bytes, &parsed.diagnostics);
+    let _ = writeln!(
+        std::io::stderr(),
+        "{command}: {name} is an OSP machining-centre program; turnpass simulates and expands lathe \
+         programs only, so nothing is printed (its syntax was checked)"
+    );
+    if parsed.has_errors() { ExitCode::from(1) } else { ExitCode::SUCCESS }
+}
+
+/// Write to `output` atomically, or to standard output for none or `-`.
+pub fn write_output(output: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
+    match output {
+        Some(path) if path != Path::new("-") => write_atomically(path, bytes),
+        _ => std::io::stdout()
+            .lock()
+            .write_all(bytes)
+            .map_err(|source| CliError::Write { path: "<stdout>".into(), source }),
+    }
+}
+
+/// Write `bytes` to `path` through a temporary file in the same directory and a rename, so
+/// readers see the old file or the whole new one, never a part.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    let error = |source| CliError::Write { path: path.display().to_string(), source };
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        let message = format!("the directory {} does not exist", dir.display());
+        return Err(error(std::io::Error::new(std::io::ErrorKind::NotFound, message)));
+    }
+    let mut temp = tempfile::NamedTempFile::new_in(dir).map_err(error)?;
+    temp.write_all(bytes).map_err(error)?;
+    temp.flush().map_err(error)?;
+    temp.persist(path).map_err(|e| error(e.error))?;
+    Ok(())
+}

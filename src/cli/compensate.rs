@@ -1,0 +1,210 @@
+//! `turnpass compensate`: one program as a filter (`-` in, standard output out) or to a
+//! file, or many into `--out-dir` in parallel (`batch.rs`).
+//!
+//! A program is written only when it compensates cleanly: a program with errors, or one
+//! the safety checks refuse, writes nothing and exits 1. The `--report json` goes to
+//! standard output, or to standard error when the program itself goes to standard output.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::builder::{PossibleValuesParser, TypedValueParser};
+use clap::{Args, ValueEnum};
+
+use turnpass::compensation::fit::{FitOptions, Strategy};
+use turnpass::compensation::{CompensateOptions, Outcome, compensate_program};
+use turnpass::error_model::ErrorModel;
+use turnpass::printer;
+use turnpass::semantic::Machine;
+
+use super::batch;
+use super::common::{
+    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready, rendered, required_error_model,
+    write_output,
+};
+
+#[derive(Args)]
+pub struct CompensateArgs {
+    /// Program files; `-` reads standard input (the compensated program then goes to
+    /// standard output).
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Output file for one program (default: standard output; `-` is standard output).
+    #[arg(short, long, value_name = "OUT", conflicts_with = "out_dir")]
+    pub output: Option<PathBuf>,
+    /// Write each compensated program into DIR under its own file name; programs are
+    /// compensated in parallel.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub fit: FitArgs,
+    /// Also write a report: per edited block the corrections, fitted arcs, predicted
+    /// residual and SSQ before and after.
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub report: Option<ReportFormat>,
+    #[command(flatten)]
+    pub read: ReadArgs,
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum ReportFormat {
+    Json,
+}
+
+/// How moves are re-expressed and checked (shared with `plot`).
+#[derive(Args, Clone)]
+pub struct FitArgs {
+    /// How a compensated move is written: the cheapest form that meets the tolerance
+    /// (auto), one circle per arc, circles per half or quarter, adaptive arcs, or G01 lines.
+    #[arg(long, default_value = "auto", value_parser = strategy_parser())]
+    pub strategy: Strategy,
+    /// Every commanded point lies this close to the written path, mm (default: half the
+    /// least increment).
+    #[arg(long, value_name = "MM", value_parser = positive)]
+    pub tolerance: Option<f64>,
+    /// With --strategy densify: one G01 every MM of path (default: as few as the
+    /// tolerance allows).
+    #[arg(long, value_name = "MM", value_parser = positive)]
+    pub step: Option<f64>,
+    /// Refuse the program when the model moves any point by more than MM.
+    #[arg(long, value_name = "MM", default_value_t = 0.1, value_parser = positive)]
+    pub max_shift: f64,
+    /// Expand every canned cycle, not only those whose motion changes.
+    #[arg(long)]
+    pub expand_cycles: bool,
+    /// Minutes since the machine started when the program starts (thermal effects;
+    /// default: the model's `start_min`).
+    #[arg(long, value_name = "MIN")]
+    pub start_min: Option<f64>,
+}
+
+/// The strategies by the names the command line gives them.
+const STRATEGIES: [(&str, Strategy); 6] = [
+    ("auto", Strategy::Auto),
+    ("circle", Strategy::Circle),
+    ("semicircle", Strategy::Semicircle),
+    ("quadrant", Strategy::Quadrant),
+    ("arcs", Strategy::Arcs),
+    ("densify", Strategy::Densify),
+];
+
+fn strategy_parser() -> impl TypedValueParser<Value = Strategy> {
+    PossibleValuesParser::new(STRATEGIES.map(|(name, _)| name))
+        .map(|name| STRATEGIES.iter().find(|(n, _)| *n == name).map_or(Strategy::Auto, |(_, s)| *s))
+}
+
+fn positive(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("`{s}` is not a positive number of millimetres")),
+    }
+}
+
+impl FitArgs {
+    pub fn options(&self, machine: &Machine) -> CompensateOptions {
+        let half_increment = machine.increment * machine.scale() / 2.0;
+        CompensateOptions {
+            fit: FitOptions {
+                strategy: self.strategy,
+                tolerance_mm: self.tolerance.unwrap_or(half_increment),
+                step_mm: self.step,
+            },
+            max_shift_mm: self.max_shift,
+            expand_cycles: self.expand_cycles,
+        }
+    }
+
+    /// The error model of the program's model file, started at `--start-min` when given.
+    pub fn error_model(&self, resolved: &Resolved, command: &str) -> Result<ErrorModel, CliError> {
+        let mut model = required_error_model(resolved, command)?;
+        if let Some(start) = self.start_min {
+            model.start_min = start;
+        }
+        Ok(model)
+    }
+
+    /// Compensate a ready program with `model`.
+    pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel) -> Outcome {
+        let options = self.options(&program.machine);
+        compensate_program(&program.parsed.program, &program.lowered, &program.valid, &program.machine, model, &options)
+    }
+}
+
+/// What compensating one file gave.
+pub struct FileResult {
+    /// 0 written, 1 errors or refused, 2 I/O or model trouble.
+    pub code: u8,
+    /// For standard error: diagnostics and a summary line.
+    pub messages: Vec<u8>,
+    /// The compensated program (only with code 0).
+    pub output: Option<Vec<u8>>,
+    pub report: Option<serde_json::Value>,
+}
+
+impl FileResult {
+    pub fn failed(code: u8, messages: Vec<u8>) -> FileResult {
+        FileResult { code, messages, output: None, report: None }
+    }
+}
+
+pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
+    if args.out_dir.is_some() {
+        return batch::run(&args);
+    }
+    let [path] = args.files.as_slice() else {
+        return Err(CliError::Usage("several programs need --out-dir DIR to write them into".to_string()));
+    };
+    let result = compensate_file(path, &args)?;
+    let _ = std::io::stderr().write_all(&result.messages);
+    if let Some(output) = &result.output {
+        write_output(args.output.as_deref(), output)?;
+    }
+    if let Some(report) = &result.report {
+        let text = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
+        let to_stdout = args.output.as_deref().is_some_and(|o| o != Path::new("-"));
+        if to_stdout {
+            write_output(None, text.as_bytes())?;
+        } else {
+            let _ = std::io::stderr().write_all(text.as_bytes());
+        }
+    }
+    Ok(ExitCode::from(result.code))
+}
+
+/// Compensate one program; nothing is written here.
+pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult, CliError> {
+    let (bytes, resolved) = read_program(path, &args.read)?;
+    let model = args.fit.error_model(&resolved, "compensate")?;
+    let name = display_name(path);
+    let mut messages = Vec::new();
+    let program = match ready(&name, &bytes, &resolved, &args.run, "compensate", &mut messages) {
+        Ok(program) => program,
+        Err(text) => return Ok(FileResult::failed(1, text)),
+    };
+    let outcome = args.fit.compensate(&program, &model);
+    messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
+    if outcome.refused() {
+        messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
+        return Ok(FileResult::failed(1, messages));
+    }
+    let totals = &outcome.report.totals;
+    messages.extend_from_slice(
+        format!(
+            "compensate: {name}: {} block{} edited, {} cycle{} expanded; largest correction {:.4} mm; \
+             predicted RMS deviation {:.5} -> {:.5} mm\n",
+            totals.edited_blocks,
+            super::common::plural(totals.edited_blocks),
+            totals.expanded_cycles,
+            super::common::plural(totals.expanded_cycles),
+            totals.max_correction_mm,
+            totals.before.rms_mm,
+            totals.after.rms_mm,
+        )
+        .as_bytes(),
+    );
+    let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
+    Ok(FileResult { code: 0, messages, output: Some(printer::print(&program.parsed.program, &outcome.edits)), report })
+}

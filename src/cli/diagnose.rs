@@ -1,0 +1,243 @@
+//! `turnpass diagnose PROGRAM --model M --measured DATA.csv`: where the model and a
+//! measurement disagree, which effect is missing, and the gap closing as it is added; and
+//! `turnpass synth PROGRAM --model TRUTH --kind …`: a measurement made from a truth model.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Args, ValueEnum};
+
+use turnpass::diagnose::forward::Nominal;
+use turnpass::diagnose::measured::{self, Kind};
+use turnpass::diagnose::synth::{SynthOptions, synth, to_csv};
+use turnpass::diagnose::{Options, diagnose, model_text, report};
+use turnpass::error_model::ErrorModel;
+
+use super::common::{
+    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready,
+    required_error_model, write_atomically, write_output,
+};
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+pub enum KindArg {
+    Ballbar,
+    Profile,
+    /// An interferometer table (ISO 230-2 CSV) of the slide --axis names.
+    Table,
+}
+
+impl KindArg {
+    fn kind(self, axis: Option<AxisArg>) -> Result<Kind, CliError> {
+        Ok(match self {
+            KindArg::Ballbar => Kind::BallBar,
+            KindArg::Profile => Kind::Profile,
+            KindArg::Table => match axis {
+                Some(axis) => Kind::Table(axis.axis()),
+                None => {
+                    return Err(CliError::Usage(
+                        "an interferometer table needs --axis x|z: the slide it measured".into(),
+                    ));
+                }
+            },
+        })
+    }
+}
+
+#[derive(Args)]
+pub struct DiagnoseArgs {
+    /// The program the measurement was made on: the ball bar test, or the part.
+    pub file: PathBuf,
+    /// The measurement (CSV): a ball bar trace (angle_deg,deviation_mm,direction) or a CMM
+    /// profile (x_mm,z_mm[,part,start_min]).
+    #[arg(long, value_name = "DATA.csv")]
+    pub measured: PathBuf,
+    /// What the measurement is (default: told by its header). For an interferometer table
+    /// (`--kind table --axis x|z`) the program plays no part beyond finding the model.
+    #[arg(long, value_enum)]
+    pub kind: Option<KindArg>,
+    /// The slide an interferometer table measured.
+    #[arg(long, value_enum)]
+    pub axis: Option<AxisArg>,
+    /// Write the model file with the effects found appended as [[effect]] tables.
+    #[arg(long, value_name = "OUT.toml")]
+    pub write_model: Option<PathBuf>,
+    #[arg(long, value_enum, default_value = "human")]
+    pub format: Format,
+    /// Draw the residual before and after (SVG): polar for a ball bar, along the surface
+    /// for a CMM profile.
+    #[arg(long, value_name = "report.svg")]
+    pub plot: Option<PathBuf>,
+    /// Minutes since the machine started when the program started (default: the model's
+    /// `start_min`; a CMM file's `start_min` column gives each part's own).
+    #[arg(long, value_name = "MIN")]
+    pub start_min: Option<f64>,
+    /// Stop after this many effects.
+    #[arg(long, default_value_t = 6)]
+    pub max_iterations: usize,
+    #[command(flatten)]
+    pub read: ReadArgs,
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+#[derive(Args)]
+pub struct SynthArgs {
+    /// The program to measure: a ball bar test (full circles) or a part.
+    pub file: PathBuf,
+    /// The measurement to make.
+    #[arg(long, value_enum)]
+    pub kind: KindArg,
+    /// The slide of an interferometer table.
+    #[arg(long, value_enum)]
+    pub axis: Option<AxisArg>,
+    /// Interferometer table: the targets, mm along the slide (comma-separated; default
+    /// every 5 mm from 0 to 100).
+    #[arg(long, value_name = "MM,MM,…", value_delimiter = ',')]
+    pub targets: Vec<f64>,
+    /// Standard deviation of the gauge's noise, mm.
+    #[arg(long, value_name = "MM", default_value_t = 0.0)]
+    pub noise: f64,
+    /// Seed of the noise: the same seed gives the same file.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Ball bar: degrees of travel between rows.
+    #[arg(long, value_name = "DEG", default_value_t = 1.0)]
+    pub step_deg: f64,
+    /// CMM: mm along the surface between points.
+    #[arg(long, value_name = "MM", default_value_t = 0.5)]
+    pub spacing: f64,
+    /// CMM: several parts, started at these minutes since machine start (comma-separated).
+    #[arg(long, value_name = "MIN,MIN,…", value_delimiter = ',')]
+    pub parts: Vec<f64>,
+    /// Output file (default: standard output).
+    #[arg(short, long, value_name = "DATA.csv")]
+    pub output: Option<PathBuf>,
+    #[command(flatten)]
+    pub read: ReadArgs,
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+/// The program, its model and its nominal path; `Err` with the exit code when the program
+/// is not ready (its diagnostics already on standard error).
+fn prepare(
+    file: &Path,
+    read: &ReadArgs,
+    run: &RunArgs,
+    command: &str,
+    start_min: Option<f64>,
+) -> Result<Result<(Nominal, ErrorModel, Resolved), ExitCode>, CliError> {
+    let (bytes, resolved) = read_program(file, read)?;
+    let mut model = required_error_model(&resolved, command)?;
+    if let Some(start) = start_min {
+        model.start_min = start;
+    }
+    let name = display_name(file);
+    let mut messages = Vec::new();
+    let result = match ready(&name, &bytes, &resolved, run, command, &mut messages) {
+        Ok(Ready { parsed, lowered, valid, machine }) => {
+            let mut nominal = Nominal::new(&parsed.program, &lowered, &valid, &machine);
+            nominal.screw_pitch = resolved.settings.ball_screw_pitch_mm.unwrap_or_default();
+            Ok((nominal, model, resolved))
+        }
+        Err(text) => {
+            messages = text;
+            Err(ExitCode::from(1))
+        }
+    };
+    eprint!("{}", String::from_utf8_lossy(&messages));
+    Ok(result)
+}
+
+pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
+    let (nominal, model, resolved) = match prepare(&args.file, &args.read, &args.run, "diagnose", args.start_min)? {
+        Ok(ready) => ready,
+        Err(code) => return Ok(code),
+    };
+    let data_name = display_name(&args.measured);
+    let text =
+        std::fs::read_to_string(&args.measured).map_err(|source| CliError::Read { path: data_name.clone(), source })?;
+    let kind = args.kind.map(|k| k.kind(args.axis)).transpose()?;
+    let measured = measured::read(&text, kind).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
+    let options = Options { max_iterations: args.max_iterations };
+    let diagnosis =
+        diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
+    let out = match args.format {
+        Format::Human => report::human(&diagnosis),
+        Format::Json => serde_json::to_string_pretty(&report::json(&diagnosis)).unwrap_or_default() + "\n",
+    };
+    write_output(None, out.as_bytes())?;
+    if let Some(path) = &args.write_model {
+        warn_if_tables_move(&resolved, path);
+        let original = resolved.model.as_ref().map_or("", |(_, text)| text.as_str());
+        let written = model_text::with_found_effects(original, &diagnosis, &data_name);
+        write_atomically(path, written.as_bytes())?;
+        eprintln!(
+            "diagnose: wrote {} ({} effect{} added)",
+            path.display(),
+            diagnosis.added.len(),
+            super::common::plural(diagnosis.added.len())
+        );
+    }
+    if let Some(path) = &args.plot {
+        match turnpass::plot::residuals::residuals_svg(&display_name(&args.file), &diagnosis) {
+            Ok(svg) => {
+                write_atomically(path, svg.as_bytes())?;
+                eprintln!("diagnose: wrote {}", path.display());
+            }
+            Err(error) => {
+                eprintln!("diagnose: no plot: {error}");
+                return Ok(ExitCode::from(1));
+            }
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
+    let (nominal, truth, _) = match prepare(&args.file, &args.read, &args.run, "synth", None)? {
+        Ok(ready) => ready,
+        Err(code) => return Ok(code),
+    };
+    if !(args.noise.is_finite() && args.noise >= 0.0) {
+        return Err(CliError::Usage(format!("--noise {} is not a standard deviation in mm", args.noise)));
+    }
+    let defaults = SynthOptions::default();
+    let options = SynthOptions {
+        noise_mm: args.noise,
+        seed: args.seed,
+        step_deg: args.step_deg,
+        spacing_mm: args.spacing,
+        parts: if args.parts.is_empty() { vec![None] } else { args.parts.iter().map(|&t| Some(t)).collect() },
+        targets: if args.targets.is_empty() { defaults.targets } else { args.targets.clone() },
+    };
+    let measured = synth(&nominal, &truth, args.kind.kind(args.axis)?, &options)
+        .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;
+    write_output(args.output.as_deref(), to_csv(&measured).as_bytes())?;
+    if let Some(path) = &args.output {
+        eprintln!("synth: wrote {} ({} points)", path.display(), measured.len());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The written model keeps the original's text, so its `[[axis_table]] file = …` names stay
+/// relative to the original's directory: say so when the new file is written elsewhere.
+fn warn_if_tables_move(resolved: &Resolved, output: &Path) {
+    let Some((model_path, text)) = &resolved.model else { return };
+    let Ok(spec) = turnpass::error_model::model_file::ModelSpec::from_toml(text) else { return };
+    let dir =
+        |p: &Path| std::fs::canonicalize(p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new(".")));
+    let moved = match (dir(model_path), dir(output)) {
+        (Ok(a), Ok(b)) => a != b,
+        _ => true,
+    };
+    let files: Vec<&str> = spec.axis_table.iter().filter_map(|t| t.file.as_deref()).collect();
+    if moved && !files.is_empty() {
+        eprintln!(
+            "diagnose: warning: {} names its table files ({}) relative to its own directory; copy them beside {}",
+            model_path.display(),
+            files.join(", "),
+            output.display()
+        );
+    }
+}

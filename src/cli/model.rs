@@ -1,0 +1,44 @@
+//! `turnpass model report M`: the ISO 230-2 figures of a model's slide tables and its
+//! parametric effects.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Subcommand};
+
+use turnpass::error_model::report::report;
+
+use super::common::{CliError, Format, model_spec, read_table, write_output};
+
+#[derive(Subcommand)]
+pub enum ModelCommand {
+    /// ISO 230-2 figures per slide table (A, E, M, B, R, mean reversal) and the effects.
+    Report(ReportArgs),
+}
+
+#[derive(Args)]
+pub struct ReportArgs {
+    /// The machine model file (TOML).
+    pub model: PathBuf,
+    #[arg(long, value_enum, default_value = "human")]
+    pub format: Format,
+}
+
+pub fn run(command: ModelCommand) -> Result<ExitCode, CliError> {
+    match command {
+        ModelCommand::Report(args) => {
+            let path = &args.model;
+            let text = std::fs::read_to_string(path)
+                .map_err(|source| CliError::Read { path: path.display().to_string(), source })?;
+            let (spec, dir) = model_spec(path, &text)?;
+            let report = report(&spec, |file| read_table(&dir, file))
+                .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })?;
+            let out = match args.format {
+                Format::Human => format!("machine model {}\n{report}", path.display()),
+                Format::Json => serde_json::to_string_pretty(&report).unwrap_or_default() + "\n",
+            };
+            write_output(None, out.as_bytes())?;
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}

@@ -1,0 +1,67 @@
+//! `turnpass plot FILE -o OUT.svg`: the program compensated in memory, and its nominal,
+//! actual and compensated paths drawn with the error magnified, or with `--polar` the
+//! radial deviation of a full-circle (ball-bar) program.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use super::common::{CliError, ReadArgs, RunArgs, display_name, read_program, ready, rendered, write_atomically};
+use super::compensate::FitArgs;
+
+#[derive(Args)]
+pub struct PlotArgs {
+    /// Program file; `-` reads standard input.
+    pub file: PathBuf,
+    /// The SVG file to write.
+    #[arg(short, long, value_name = "OUT.svg")]
+    pub output: PathBuf,
+    /// Magnify the errors about the nominal path this many times.
+    #[arg(long, default_value_t = 10.0)]
+    pub magnify: f64,
+    /// A ball-bar polar plot: radial deviation against angle, each direction.
+    #[arg(long)]
+    pub polar: bool,
+    #[command(flatten)]
+    pub fit: FitArgs,
+    #[command(flatten)]
+    pub read: ReadArgs,
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
+    let (bytes, resolved) = read_program(&args.file, &args.read)?;
+    let model = args.fit.error_model(&resolved, "plot")?;
+    let name = display_name(&args.file);
+    let mut messages = Vec::new();
+    let program = match ready(&name, &bytes, &resolved, &args.run, "plot", &mut messages) {
+        Ok(program) => program,
+        Err(text) => {
+            let _ = std::io::stderr().write_all(&text);
+            return Ok(ExitCode::from(1));
+        }
+    };
+    let outcome = args.fit.compensate(&program, &model);
+    // The plot shows what compensation would do even where `compensate` would refuse.
+    messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
+    let _ = std::io::stderr().write_all(&messages);
+    let svg = if args.polar {
+        turnpass::plot::polar_svg(&name, &program.valid, &outcome.paths)
+    } else {
+        turnpass::plot::path_svg(&name, &outcome.paths, args.magnify)
+    };
+    match svg {
+        Ok(svg) => {
+            write_atomically(&args.output, svg.as_bytes())?;
+            eprintln!("plot: {name}: wrote {}", args.output.display());
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(error) => {
+            eprintln!("plot: {name}: {error}");
+            Ok(ExitCode::from(1))
+        }
+    }
+}

@@ -1,0 +1,112 @@
+//! `turnpass fit-thermal LOG.csv [--write-model M --axis x|z]`: the first-order warm-up and
+//! cool-down curves of a thermal log (eq. 5.1–5.2 of the thesis), with standard errors;
+//! the warm-up can be written into a model as `thermal_x` or `thermal_z`.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use turnpass::diagnose::measured::read_thermal_log;
+use turnpass::diagnose::model_text::effect_table;
+use turnpass::diagnose::report::value_with_sigma;
+use turnpass::diagnose::thermal_fit::{FirstOrderFit, fit_log_split};
+use turnpass::error_model::Effect;
+use turnpass::error_model::effects::{ThermalX, ThermalZ};
+use turnpass::error_model::model_file::ModelSpec;
+
+use super::common::{AxisArg, CliError, Format, display_name, write_atomically, write_output};
+
+#[derive(Args)]
+pub struct FitThermalArgs {
+    /// The log (CSV `t_min,value`): a warm-up, then (optionally) a cool-down.
+    pub log: PathBuf,
+    /// Append the warm-up curve to this model file (created if missing) as an [[effect]]
+    /// of the axis --axis names; the log's values are then millimetres of growth.
+    #[arg(long, value_name = "M", requires = "axis")]
+    pub write_model: Option<PathBuf>,
+    /// The axis the logged growth is along.
+    #[arg(long, value_enum)]
+    pub axis: Option<AxisArg>,
+    /// Minutes from the start of the log at which the heat source stopped and the
+    /// cool-down began (default: where the smoothed log peaks).
+    #[arg(long, value_name = "MIN")]
+    pub split_min: Option<f64>,
+    #[arg(long, value_enum, default_value = "human")]
+    pub format: Format,
+}
+
+fn curve(f: &FirstOrderFit) -> String {
+    format!(
+        "gain {}, τ {} min, offset {}; RMS {:.4} over {} samples",
+        value_with_sigma(f.gain, Some(f.gain_sigma)),
+        value_with_sigma(f.tau_min, Some(f.tau_sigma)),
+        value_with_sigma(f.offset, Some(f.offset_sigma)),
+        f.rms,
+        f.samples
+    )
+}
+
+pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
+    let name = display_name(&args.log);
+    let text = std::fs::read_to_string(&args.log).map_err(|source| CliError::Read { path: name.clone(), source })?;
+    let (t, y) = read_thermal_log(&text).map_err(|e| CliError::Usage(format!("{name}: {e}")))?;
+    let fit = fit_log_split(&t, &y, args.split_min).map_err(|e| CliError::Usage(format!("{name}: {e}")))?;
+    let out = match args.format {
+        Format::Json => serde_json::to_string_pretty(&fit).unwrap_or_default() + "\n",
+        Format::Human => {
+            let mut out = format!("fit-thermal: {name}: warm-up until {:.1} min\n", fit.split_min);
+            out.push_str(&format!("  warm-up   (gain·(1 − e^(−t/τ)) + offset): {}\n", curve(&fit.warm)));
+            match &fit.cool {
+                Some(cool) => out.push_str(&format!("  cool-down (gain·e^(−t/τ) + offset):       {}\n", curve(cool))),
+                None => out.push_str("  no cool-down in the log\n"),
+            }
+            out
+        }
+    };
+    write_output(None, out.as_bytes())?;
+    let (Some(path), Some(axis)) = (&args.write_model, args.axis) else { return Ok(ExitCode::SUCCESS) };
+    let (amp, tau_min) = (fit.warm.gain, fit.warm.tau_min);
+    let effect = match axis {
+        AxisArg::X => Effect::ThermalX(ThermalX { amp, tau_min }),
+        AxisArg::Z => Effect::ThermalZ(ThermalZ { amp, tau_min }),
+    };
+    let original = match std::fs::read_to_string(path) {
+        Ok(text) => text,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
+        Err(source) => return Err(CliError::Read { path: path.display().to_string(), source }),
+    };
+    let spec = ModelSpec::from_toml(&original)
+        .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })?;
+    if spec.effect.iter().any(|e| e.name() == effect.name()) {
+        return Err(CliError::Usage(format!(
+            "{} already has a {} effect: remove it, or write to another model file",
+            path.display(),
+            effect.name()
+        )));
+    }
+    let mut written = original;
+    if !written.is_empty() && !written.ends_with('\n') {
+        written.push('\n');
+    }
+    if !written.is_empty() {
+        written.push('\n');
+    }
+    written.push_str(&format!(
+        "# Added by `turnpass fit-thermal` from {name}: the warm-up curve, amp {} mm, τ {} min\n\
+         # (± one standard uncertainty); its offset {} is the cold reading, not growth.\n",
+        value_with_sigma(fit.warm.gain, Some(fit.warm.gain_sigma)),
+        value_with_sigma(fit.warm.tau_min, Some(fit.warm.tau_sigma)),
+        value_with_sigma(fit.warm.offset, Some(fit.warm.offset_sigma)),
+    ));
+    if let Some(cool) = fit.cool {
+        written.push_str(&format!(
+            "# The cool-down (τ {} min) is not in the model: its thermal effects are warm-up curves.\n",
+            value_with_sigma(cool.tau_min, Some(cool.tau_sigma))
+        ));
+    }
+    written.push_str(&effect_table(&effect));
+    write_atomically(path, written.as_bytes())?;
+    eprintln!("fit-thermal: wrote {} into {}", effect.name(), path.display());
+    Ok(ExitCode::SUCCESS)
+}

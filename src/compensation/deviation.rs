@@ -1,0 +1,178 @@
+//! How far a point is from a nominal path, and the figures of a set of such distances.
+//!
+//! The deviation of a predicted point is its distance to the closest point of the nominal
+//! path (lines and arcs as programmed), not to the sample it came from: a point that slid
+//! along the path is on the part. `PathIndex` finds the closest element through a uniform
+//! grid of cells, so a whole program is measured in time linear in its size.
+//!
+//! **SSQ** is the thesis' eq. 5.8, the root of the sum of the squares of the errors,
+//! `SSQ = [Σ P_i²]^½`, where the thesis' `P_i` is the radial error of the ball bar (for
+//! an arc) or the error normal to the path (for a turned or faced surface) at each of its
+//! points. Here `P_i` is the distance of the i-th sample from the nominal path, normal to
+//! it by construction; like the thesis' figure it grows with the number of points, so
+//! figures compare only at the same sampling.
+
+use std::collections::HashMap;
+
+use crate::geometry;
+use crate::toolpath::{Motion, Move, Toolpath, Xz};
+
+use super::fit::distance_to_chord;
+
+/// Max, RMS and SSQ of a set of distances, mm.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct Figures {
+    pub max_mm: f64,
+    pub rms_mm: f64,
+    pub ssq_mm: f64,
+    pub points: usize,
+}
+
+impl Figures {
+    /// The figures rounded to 0.1 nm, far below any machine's resolution, for reports
+    /// that read the same on every platform.
+    pub fn rounded(self) -> Figures {
+        Figures { max_mm: nm(self.max_mm), rms_mm: nm(self.rms_mm), ssq_mm: nm(self.ssq_mm), points: self.points }
+    }
+
+    pub fn of(distances: impl IntoIterator<Item = f64>) -> Figures {
+        let (mut max, mut sum2, mut n) = (0.0f64, 0.0, 0usize);
+        for d in distances {
+            max = max.max(d);
+            sum2 += d * d;
+            n += 1;
+        }
+        Figures {
+            max_mm: max,
+            rms_mm: if n > 0 { (sum2 / n as f64).sqrt() } else { 0.0 },
+            ssq_mm: sum2.sqrt(),
+            points: n,
+        }
+    }
+
+    /// How much smaller `after` is than `self`, percent of `self` (by RMS).
+    pub fn improvement_percent(&self, after: &Figures) -> f64 {
+        if self.rms_mm > 0.0 { 100.0 * (1.0 - after.rms_mm / self.rms_mm) } else { 0.0 }
+    }
+}
+
+/// `mm` rounded to 0.1 nm.
+pub fn nm(mm: f64) -> f64 {
+    (mm * 1e7).round() / 1e7
+}
+
+/// Distance from `p` to the move `m` that starts at `start` (reference points: `m.end`).
+pub fn distance_to_move(p: Xz, start: Xz, m: &Move) -> f64 {
+    match m.motion {
+        Motion::Cw | Motion::Ccw => {
+            let ccw = m.motion == Motion::Ccw;
+            let radius = start.distance(m.centre);
+            if geometry::angle_within(p, start, m.end, m.centre, ccw) {
+                (p.distance(m.centre) - radius).abs()
+            } else {
+                p.distance(start).min(p.distance(m.end))
+            }
+        }
+        Motion::Dwell => p.distance(m.end),
+        _ => distance_to_chord(p, start, m.end),
+    }
+}
+
+/// A nominal path for closest-point queries.
+pub struct PathIndex<'a> {
+    toolpath: &'a Toolpath,
+    cell: f64,
+    cells: HashMap<(i64, i64), Vec<u32>>,
+    /// Moves too large to enter cell by cell; checked on every query.
+    large: Vec<u32>,
+}
+
+/// A move covering more cells than this is kept aside.
+const MAX_CELLS_PER_MOVE: i64 = 4096;
+
+impl<'a> PathIndex<'a> {
+    /// Index the moves for which `include` holds (all but dwells make sense).
+    pub fn new(toolpath: &'a Toolpath, include: impl Fn(&Move) -> bool) -> PathIndex<'a> {
+        let cell = 1.0;
+        let mut index = PathIndex { toolpath, cell, cells: HashMap::new(), large: Vec::new() };
+        for (k, m) in toolpath.moves.iter().enumerate() {
+            if m.motion == Motion::Dwell || !include(m) {
+                continue;
+            }
+            let start = toolpath.start_of(k);
+            let (lo, hi) = bounds(start, m);
+            if !(lo.is_finite() && hi.is_finite()) {
+                continue;
+            }
+            let (x0, z0) = index.key(lo);
+            let (x1, z1) = index.key(hi);
+            if (x1 - x0 + 1).saturating_mul(z1 - z0 + 1) > MAX_CELLS_PER_MOVE {
+                index.large.push(k as u32);
+                continue;
+            }
+            for x in x0..=x1 {
+                for z in z0..=z1 {
+                    index.cells.entry((x, z)).or_default().push(k as u32);
+                }
+            }
+        }
+        index
+    }
+
+    fn key(&self, p: Xz) -> (i64, i64) {
+        ((p.x / self.cell).floor() as i64, (p.z / self.cell).floor() as i64)
+    }
+
+    /// The distance from `p` to the closest indexed move, if any.
+    pub fn distance(&self, p: Xz) -> Option<f64> {
+        let mut best = self.large.iter().map(|&k| self.distance_to(p, k)).fold(f64::INFINITY, f64::min);
+        let (cx, cz) = self.key(p);
+        // Search rings of cells outward: after ring r every unseen move is at least
+        // r cells away.
+        for r in 0..64i64 {
+            for x in cx - r..=cx + r {
+                for z in cz - r..=cz + r {
+                    if (x - cx).abs() != r && (z - cz).abs() != r {
+                        continue;
+                    }
+                    if let Some(moves) = self.cells.get(&(x, z)) {
+                        for &k in moves {
+                            best = best.min(self.distance_to(p, k));
+                        }
+                    }
+                }
+            }
+            if best <= r as f64 * self.cell {
+                return Some(best);
+            }
+        }
+        // Far from everything: look at every move.
+        for moves in self.cells.values() {
+            for &k in moves {
+                best = best.min(self.distance_to(p, k));
+            }
+        }
+        best.is_finite().then_some(best)
+    }
+
+    fn distance_to(&self, p: Xz, k: u32) -> f64 {
+        let k = k as usize;
+        match self.toolpath.moves.get(k) {
+            Some(m) => distance_to_move(p, self.toolpath.start_of(k), m),
+            None => f64::INFINITY,
+        }
+    }
+}
+
+/// The bounding box of a move.
+fn bounds(start: Xz, m: &Move) -> (Xz, Xz) {
+    let mut lo = Xz::new(start.x.min(m.end.x), start.z.min(m.end.z));
+    let mut hi = Xz::new(start.x.max(m.end.x), start.z.max(m.end.z));
+    if m.is_arc() {
+        for p in geometry::arc_extremes(start, m.end, m.centre, m.motion == Motion::Ccw) {
+            lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
+            hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
+        }
+    }
+    (lo, hi)
+}

@@ -1,0 +1,227 @@
+//! How far points lie from a written path, and ArcWelder's chord test.
+//!
+//! [`max_deviation`] is the one measure every strategy is held to: the distance from each
+//! compensated point to the nearest point of the written lines and arcs. An arc whose two
+//! end radii differ (after rounding to the grid) is taken as the control runs it, a spiral
+//! whose radius changes in proportion to the angle swept.
+//!
+//! Points alone do not pin an arc down between them, so an arc is also held to the path
+//! between consecutive points ([`chord_deviation`], ArcWelder's rule): where the points come
+//! from a polyline, the largest gap between the arc and each chord, at the foot of the
+//! perpendicular from the centre; where they were sampled along a nominal arc, the path
+//! between two samples is that arc's bulge, not the chord, so the arc is held to the chord's
+//! midpoint pushed out by the nominal sagitta. (Held to the bare chord, a 2 mm fillet
+//! sampled every 0.254 mm would fail by its own 4 µm sag, and no arc could ever be written
+//! for it.)
+
+use std::f64::consts::TAU;
+
+use super::{Segment, distance_to_chord};
+use crate::geometry;
+use crate::toolpath::Xz;
+
+/// The distance from `p` to `segment`, drawn from `from`.
+pub fn distance_to_segment(p: Xz, from: Xz, segment: &Segment) -> f64 {
+    match *segment {
+        Segment::Line { end } => distance_to_chord(p, from, end),
+        Segment::Arc { end, centre, ccw } => ArcGauge::new(from, end, centre, ccw).distance(p),
+    }
+}
+
+/// The largest distance from `points` to the one segment `segment` drawn from `from`.
+pub fn segment_deviation(from: Xz, segment: &Segment, points: &[Xz]) -> f64 {
+    let worst = match *segment {
+        Segment::Line { end } => points.iter().map(|&p| distance_to_chord(p, from, end)).fold(0.0, f64::max),
+        Segment::Arc { end, centre, ccw } => {
+            let gauge = ArcGauge::new(from, end, centre, ccw);
+            points.iter().map(|&p| gauge.distance(p)).fold(0.0, f64::max)
+        }
+    };
+    if points.iter().all(|p| p.is_finite()) && !worst.is_nan() { worst } else { f64::INFINITY }
+}
+
+/// An arc's constants, computed once for the many points measured against it.
+struct ArcGauge {
+    from: Xz,
+    end: Xz,
+    centre: Xz,
+    ccw: bool,
+    r0: f64,
+    r1: f64,
+    a0: f64,
+    total: f64,
+}
+
+impl ArcGauge {
+    fn new(from: Xz, end: Xz, centre: Xz, ccw: bool) -> ArcGauge {
+        ArcGauge {
+            from,
+            end,
+            centre,
+            ccw,
+            r0: from.distance(centre),
+            r1: end.distance(centre),
+            a0: geometry::angle(from, centre),
+            total: geometry::sweep(from, end, centre, ccw),
+        }
+    }
+
+    fn distance(&self, p: Xz) -> f64 {
+        let to_ends = p.distance(self.from).min(p.distance(self.end));
+        if self.r0 <= 0.0 || self.r1 <= 0.0 {
+            return to_ends;
+        }
+        let a = geometry::angle(p, self.centre);
+        let swept = if self.ccw { (a - self.a0).rem_euclid(TAU) } else { (self.a0 - a).rem_euclid(TAU) };
+        if swept > self.total {
+            return to_ends;
+        }
+        let radius = self.r0 + (self.r1 - self.r0) * (swept / self.total);
+        (p.distance(self.centre) - radius).abs().min(to_ends)
+    }
+}
+
+/// The box around a segment (its ends and, for an arc, its extreme points), to skip the
+/// segments that cannot be nearer than the best found.
+#[derive(Clone, Copy)]
+struct Bounds {
+    low: Xz,
+    high: Xz,
+}
+
+impl Bounds {
+    fn of(from: Xz, segment: &Segment) -> Bounds {
+        let mut b = Bounds { low: from, high: from };
+        b.include(segment.end());
+        if let Segment::Arc { end, centre, ccw } = *segment {
+            // A spiral bulges at most by the difference of its radii beyond the circle.
+            let slack = (from.distance(centre) - end.distance(centre)).abs();
+            for p in geometry::arc_extremes(from, end, centre, ccw) {
+                b.include(Xz::new(p.x + slack, p.z + slack));
+                b.include(Xz::new(p.x - slack, p.z - slack));
+            }
+        }
+        b
+    }
+
+    fn include(&mut self, p: Xz) {
+        self.low = Xz::new(self.low.x.min(p.x), self.low.z.min(p.z));
+        self.high = Xz::new(self.high.x.max(p.x), self.high.z.max(p.z));
+    }
+
+    fn distance(&self, p: Xz) -> f64 {
+        let dx = (self.low.x - p.x).max(p.x - self.high.x).max(0.0);
+        let dz = (self.low.z - p.z).max(p.z - self.high.z).max(0.0);
+        (dx * dx + dz * dz).sqrt()
+    }
+}
+
+/// The largest distance from any of `points` to the path that starts at `start` and runs
+/// through `segments`: 0 without points, infinite with points and no segments, NaN-free
+/// (a non-finite point counts as infinitely far).
+pub fn max_deviation(start: Xz, segments: &[Segment], points: &[Xz]) -> f64 {
+    if points.is_empty() {
+        return 0.0;
+    }
+    if segments.is_empty() {
+        return f64::INFINITY;
+    }
+    let mut starts = Vec::with_capacity(segments.len());
+    let mut bounds = Vec::with_capacity(segments.len());
+    let mut from = start;
+    for segment in segments {
+        starts.push(from);
+        bounds.push(Bounds::of(from, segment));
+        from = segment.end();
+    }
+    // Points follow the path, so the segment nearest the last point is the first guess for
+    // the next; the boxes then rule out most of the others.
+    let mut guess = 0;
+    let mut worst: f64 = 0.0;
+    for &p in points {
+        if !p.is_finite() {
+            return f64::INFINITY;
+        }
+        let mut best =
+            segments.get(guess).zip(starts.get(guess)).map_or(f64::INFINITY, |(s, &f)| distance_to_segment(p, f, s));
+        for (index, ((segment, &from), bound)) in segments.iter().zip(&starts).zip(&bounds).enumerate() {
+            if index == guess || bound.distance(p) >= best {
+                continue;
+            }
+            let d = distance_to_segment(p, from, segment);
+            if d < best {
+                best = d;
+                guess = index;
+            }
+        }
+        worst = worst.max(best);
+    }
+    if worst.is_nan() { f64::INFINITY } else { worst }
+}
+
+/// [`max_deviation`] for segments that each end on one of `points`, in order (what
+/// `densify` writes): each point measured against the segment that ends on it or after
+/// it, in one pass. That bounds the distance to the whole path from above. Segments that
+/// do not end on the points in order are measured by [`max_deviation`].
+pub fn deviation_by_piece(start: Xz, segments: &[Segment], points: &[Xz]) -> f64 {
+    let mut worst: f64 = 0.0;
+    let mut from = start;
+    let mut rest = points;
+    for segment in segments {
+        let end = segment.end();
+        let Some(count) = rest.iter().position(|&p| p == end).map(|i| i + 1) else {
+            return max_deviation(start, segments, points);
+        };
+        let (covered, after) = rest.split_at(count);
+        worst = worst.max(segment_deviation(from, segment, covered));
+        from = end;
+        rest = after;
+    }
+    if rest.is_empty() { worst } else { max_deviation(start, segments, points) }
+}
+
+/// Where the points an arc is held to came from, for the chord test.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Between {
+    /// The path between consecutive points is the straight chord (a `G01` polyline, or
+    /// samples of a nominal line).
+    Chords,
+    /// The points were sampled along a nominal arc of this centre and radius.
+    Bulge { centre: Xz, radius: f64 },
+}
+
+/// The largest gap between the circle (`centre`, `radius`) and the path between
+/// consecutive points of `from`, `points…` (see the module comment).
+pub fn chord_deviation(from: Xz, points: &[Xz], centre: Xz, radius: f64, between: Between) -> f64 {
+    let mut worst: f64 = 0.0;
+    let mut a = from;
+    for &b in points {
+        let gap = match between {
+            Between::Chords => {
+                let (dx, dz) = (b.x - a.x, b.z - a.z);
+                let length2 = dx * dx + dz * dz;
+                let t = if length2 > 0.0 { ((centre.x - a.x) * dx + (centre.z - a.z) * dz) / length2 } else { 0.0 };
+                if t > 0.0 && t < 1.0 {
+                    (radius - Xz::new(a.x + dx * t, a.z + dz * t).distance(centre)).abs()
+                } else {
+                    0.0
+                }
+            }
+            Between::Bulge { centre: nominal, radius: nominal_radius } => {
+                let middle = Xz::new((a.x + b.x) / 2.0, (a.z + b.z) / 2.0);
+                let half = a.distance(b) / 2.0;
+                let sagitta = if half < nominal_radius {
+                    nominal_radius - (nominal_radius * nominal_radius - half * half).sqrt()
+                } else {
+                    0.0
+                };
+                let outward = geometry::direction(nominal, middle);
+                let bowed = Xz::new(middle.x + outward.x * sagitta, middle.z + outward.z * sagitta);
+                (bowed.distance(centre) - radius).abs()
+            }
+        };
+        worst = worst.max(gap);
+        a = b;
+    }
+    if worst.is_nan() { f64::INFINITY } else { worst }
+}

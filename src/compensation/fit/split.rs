@@ -1,0 +1,210 @@
+//! `circle`, `semicircle`, `quadrant`: one fitted circle per piece of a programmed arc.
+//!
+//! The arc is cut where its nominal angle (about the programmed centre, `geometry::angle`:
+//! from +Z toward +X) crosses one of the given angles, at the last point before each
+//! crossing; `circle` does not cut at all. Each piece is one circle with the programmed
+//! sense of travel, pinned to the piece's first and last points (the first is where the
+//! written path stands, so nothing is left to drift) and fitted to the points between by
+//! orthogonal least squares (`pinned::through_ends`); a programmed full circle is pinned to
+//! its one start-and-end point (`pinned::through_point`).
+//!
+//! A step in the points is the one thing a circle cannot follow: where the path jumps
+//! (a backlash taken up at a reversal, which the inverse writes as a jump of the play), the
+//! piece is written as a straight step to its first point and the circle from there.
+//!
+//! A piece is accepted when every point and every chord (ArcWelder's test, `deviation.rs`)
+//! lies within the tolerance; otherwise the whole strategy fails and says how close it came.
+
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+use super::deviation::{self, Between};
+use super::pinned;
+use super::{MovePoints, Segment};
+use crate::geometry;
+use crate::toolpath::Xz;
+
+/// Where `semicircle` cuts: 0° and 180° in `geometry::angle`'s convention, the points level
+/// with the centre in X (`x = cx`), at the ends of the circle's Z travel. Z reverses there,
+/// so that is where a Z backlash step sits (X moves fastest there and reverses at ±90°).
+/// On our reading of the thesis' Table 4 these are its cuts too: the centres fitted to its
+/// two halves ("quadrants 1 and 2", "3 and 4") differ mostly in Z.
+pub const SEMICIRCLE_CUTS: [f64; 2] = [0.0, PI];
+
+/// Where `quadrant` cuts: every quarter turn, the reversals of both axes.
+pub const QUADRANT_CUTS: [f64; 4] = [0.0, FRAC_PI_2, PI, -FRAC_PI_2];
+
+/// The fitted pieces, or the largest deviation of the best attempt at the piece that failed.
+pub fn circles(
+    m: &MovePoints<'_>,
+    centre: Xz,
+    ccw: bool,
+    cuts: &[f64],
+    tolerance_mm: f64,
+) -> Result<Vec<Segment>, f64> {
+    let radius = m.start.distance(centre);
+    let context = Piece {
+        ccw,
+        tolerance: tolerance_mm,
+        curvature: if ccw { 1.0 } else { -1.0 } / radius,
+        between: Between::Bulge { centre, radius },
+    };
+    let mut segments = Vec::new();
+    let mut from = m.start;
+    let mut first = 0;
+    for last in cut_indices(m, centre, ccw, cuts) {
+        let points = m.points.get(first..=last).ok_or(f64::INFINITY)?;
+        let written = context.fit(from, points, tolerance_mm)?;
+        segments.extend(written);
+        from = segments.last().map_or(from, Segment::end);
+        first = last + 1;
+    }
+    Ok(segments)
+}
+
+/// The index of the last point of each piece, the move's last point included.
+pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> Vec<usize> {
+    let sense = if ccw { 1.0 } else { -1.0 };
+    // The angle each point has travelled from the start, unwrapped along the points.
+    let a0 = geometry::angle(m.start, centre);
+    let mut previous = a0;
+    let mut travelled = 0.0;
+    let travel: Vec<f64> = m
+        .points
+        .iter()
+        .map(|&p| {
+            let a = geometry::angle(p, centre);
+            let mut step = (a - previous).rem_euclid(TAU);
+            if step > PI {
+                step -= TAU;
+            }
+            previous = a;
+            travelled += sense * step;
+            travelled
+        })
+        .collect();
+    let total = travel.last().copied().unwrap_or(0.0);
+    // A cut within half a sample of either end of the move is no cut: compensation moves
+    // the points off the nominal angles by a little, and a move that starts or ends on a cut
+    // would otherwise grow a piece of one point.
+    let margin = total.abs() / (2.0 * travel.len().max(1) as f64);
+    let mut crossings: Vec<f64> = Vec::new();
+    for &cut in cuts {
+        let mut at = (sense * (cut - a0)).rem_euclid(TAU);
+        while at < total - margin {
+            if at > margin {
+                crossings.push(at);
+            }
+            at += TAU;
+        }
+    }
+    crossings.sort_by(f64::total_cmp);
+    let mut ends = Vec::new();
+    for crossing in crossings {
+        // The last point at or before the crossing ends a piece, unless it ends the move.
+        let count_before = travel.partition_point(|&t| t <= crossing);
+        if let Some(last) = count_before.checked_sub(1)
+            && last + 1 < travel.len()
+            && ends.last().is_none_or(|&previous| last > previous)
+        {
+            ends.push(last);
+        }
+    }
+    if let Some(last) = m.points.len().checked_sub(1) {
+        ends.push(last);
+    }
+    ends
+}
+
+struct Piece {
+    ccw: bool,
+    /// The tolerance the free circle must meet to be preferred over the pinned one.
+    tolerance: f64,
+    /// The nominal curvature, for a piece with no point between its ends.
+    curvature: f64,
+    between: Between,
+}
+
+impl Piece {
+    /// One circle from `from` over `points`, or a step to the first point and the circle
+    /// from there; `Err` with the smaller deviation of the two when neither passes.
+    fn fit(&self, from: Xz, points: &[Xz], tolerance: f64) -> Result<Vec<Segment>, f64> {
+        let direct = self.arc(from, points);
+        if let Some((segment, deviation)) = direct
+            && deviation <= tolerance
+        {
+            return Ok(vec![segment]);
+        }
+        let stepped = match points {
+            [step, rest @ ..] if !rest.is_empty() => self.arc(*step, rest).map(|(s, d)| (*step, s, d)),
+            _ => None,
+        };
+        if let Some((step, segment, deviation)) = stepped
+            && deviation <= tolerance
+        {
+            return Ok(vec![Segment::Line { end: step }, segment]);
+        }
+        let best = [direct.map(|d| d.1), stepped.map(|s| s.2)].into_iter().flatten().fold(f64::INFINITY, f64::min);
+        Err(best)
+    }
+
+    /// The circle from `from` to the last of `points`, and its deviation (points and chords):
+    /// the free least-squares circle (Taubin, then geometric Levenberg–Marquardt), its
+    /// centre moved onto the perpendicular bisector of the exact ends, when that stays within
+    /// the tolerance; else the circle pinned to both ends by a least-squares fit of the
+    /// points between.
+    fn arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+        let pinned = self.pinned_arc(from, points);
+        let Some(free) = self.free_arc(from, points) else { return pinned };
+        match pinned {
+            Some(p) if p.1 < free.1 && free.1 > self.tolerance => Some(p),
+            _ => Some(free),
+        }
+    }
+
+    fn free_arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+        let (&end, _) = points.split_last()?;
+        if from.distance(end) <= 1e-9 || points.len() < 2 {
+            return None;
+        }
+        let mut all = Vec::with_capacity(points.len() + 1);
+        all.push(from);
+        all.extend_from_slice(points);
+        let circle = super::circle::fit(&all)?;
+        // Both ends on one circle (the `R`/`L` form has no other): the free centre moved onto
+        // the perpendicular bisector of the ends, the least it can move.
+        let mid = Xz::new((from.x + end.x) / 2.0, (from.z + end.z) / 2.0);
+        let chord = Xz::new(end.x - from.x, end.z - from.z);
+        let length2 = chord.x * chord.x + chord.z * chord.z;
+        let along = ((circle.centre.x - mid.x) * chord.x + (circle.centre.z - mid.z) * chord.z) / length2;
+        let centre = Xz::new(circle.centre.x - along * chord.x, circle.centre.z - along * chord.z);
+        let segment = Segment::Arc { end, centre, ccw: self.ccw };
+        // The same sense as programmed, and a sweep the nominal arc could have.
+        let mut worst = deviation::segment_deviation(from, &segment, points);
+        worst = worst.max(deviation::chord_deviation(from, points, centre, from.distance(centre), self.between));
+        worst.is_finite().then_some((segment, worst))
+    }
+
+    fn pinned_arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+        let (&end, interior) = points.split_last()?;
+        let segment = if from.distance(end) <= 1e-9 {
+            if interior.is_empty() {
+                Segment::Line { end }
+            } else {
+                let circle = pinned::through_point(end, interior)?;
+                Segment::Arc { end, centre: circle.centre, ccw: self.ccw }
+            }
+        } else {
+            let bend = pinned::through_ends(from, end, interior, Some(self.ccw), Some(self.curvature), true)?;
+            if !bend.writable() {
+                return None;
+            }
+            bend.segment_to(end)
+        };
+        let mut worst = deviation::segment_deviation(from, &segment, points);
+        if let Segment::Arc { centre, .. } = segment {
+            let chords = deviation::chord_deviation(from, points, centre, from.distance(centre), self.between);
+            worst = worst.max(chords);
+        }
+        Some((segment, worst))
+    }
+}

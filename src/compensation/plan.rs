@@ -1,0 +1,244 @@
+//! What each move becomes: the segments to write for it, in the program's contour frame.
+//!
+//! A move keeps its programmed form when the programmed element, from where the previous
+//! written move ends, passes within the tolerance of every point to write for it and its
+//! end point rounds to the same place on the grid: such a block is left as it is. Any
+//! other move is re-expressed by `choose_segments` from its written points
+//! (`written.rs`).
+//!
+//! **Backlash at a reversal.** When an axis reverses, the inverse takes up the play by
+//! commanding a jump of the play in the new direction (`inverse.rs`). Smeared into the
+//! move after the reversal, that jump would tilt its first segment across the part; it is
+//! written instead as its own short move at the reversal point, and the move goes on from
+//! there. A jump is a change of an axis' correction between two consecutive samples of
+//! more than half the axis' play.
+//!
+//! Rapids are sampled only at their end and written as one move to the corrected end;
+//! thread moves stay one move (a thread cannot be cut in pieces), to their corrected end;
+//! so does a move that switches nose-radius compensation on or off (`G41`/`G42`/`G40`):
+//! the control makes its approach or departure over the whole block, and split into pieces
+//! it would make it over the first piece only.
+
+use std::ops::Range;
+
+use crate::semantic::nose_radius::ToolTable;
+use crate::toolpath::{Motion, Move, Toolpath, Xz};
+
+use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, distance_to_chord};
+use super::grid::Grid;
+use super::sampling::PathSample;
+use super::written;
+
+/// One move's plan.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MovePlan {
+    /// Where the written move starts: the exact end of the previous written move.
+    pub start: Xz,
+    /// The segments to write, in the contour frame; empty for a move that is not written
+    /// (a dwell, a corner the control makes under `G41`/`G42`).
+    pub segments: Vec<Segment>,
+    /// Whether the segments differ from the programmed move.
+    pub changed: bool,
+    /// The backlash jumps written as their own moves.
+    pub jumps: usize,
+    /// The first segment takes up the play before a move that switches nose-radius
+    /// compensation: it is written as a positioning block of its own, before the block.
+    pub lead_in: bool,
+}
+
+impl MovePlan {
+    /// Where the written move ends.
+    pub fn end(&self) -> Xz {
+        self.segments.last().map_or(self.start, Segment::end)
+    }
+}
+
+/// What planning needs besides the path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanOptions {
+    pub fit: FitOptions,
+    /// The model's play per axis (its backlash), mm; zero for none.
+    pub play: Xz,
+}
+
+/// The segments for one move's points, by the strategy asked for (`fit::reexpress`); this
+/// is the one place that chooses.
+pub fn choose_segments(points: &MovePoints<'_>, options: &FitOptions) -> Vec<Segment> {
+    fit::reexpress(points, options)
+}
+
+/// The inputs of planning, one entry per sample or per move.
+pub struct PlanInput<'a> {
+    pub toolpath: &'a Toolpath,
+    pub samples: &'a [PathSample],
+    pub commanded: &'a [Xz],
+    /// `written::sample_ranges`.
+    pub ranges: &'a [Range<usize>],
+    /// Whether each move can be written back (its block is a motion block, or it belongs
+    /// to a cycle that can be expanded).
+    pub writable: &'a [bool],
+    pub tools: &'a ToolTable,
+}
+
+/// Plan every move.
+pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, options: &PlanOptions) -> Vec<MovePlan> {
+    let toolpath = input.toolpath;
+    let mut plans = Vec::with_capacity(toolpath.moves.len());
+    let mut at = toolpath.start;
+    for (index, m) in toolpath.moves.iter().enumerate() {
+        let contour_start = written::contour_start(toolpath, index);
+        let range = input.ranges.get(index).cloned().unwrap_or(0..0);
+        let plan = if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
+            MovePlan { start: at, segments: Vec::new(), changed: false, jumps: 0, lead_in: false }
+        } else if range.is_empty() || !input.writable.get(index).copied().unwrap_or(false) {
+            nominal_plan(m, at, input.tools)
+        } else {
+            let points: Vec<Xz> = range
+                .clone()
+                .map(|j| written::written_point(m, contour_start, &input.samples[j], input.commanded[j], input.tools))
+                .collect();
+            let switches = index > 0
+                && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
+                    != Some(m.compensation);
+            let piece = Piece { m, at, points: &points, range, grid: grid_of(index) };
+            if m.motion == Motion::Rapid || m.threading {
+                one_move(&piece, input.tools)
+            } else if switches {
+                switching_move(input, &piece, options.play)
+            } else {
+                plan_one(input, &piece, options)
+            }
+        };
+        at = plan.end();
+        plans.push(plan);
+    }
+    plans
+}
+
+/// The programmed move as a segment of the contour.
+pub(crate) fn nominal_segment(m: &Move, tools: &ToolTable) -> Segment {
+    if m.is_arc() {
+        Segment::Arc { end: m.contour, centre: written::contour_centre(m, tools), ccw: m.motion == Motion::Ccw }
+    } else {
+        Segment::Line { end: m.contour }
+    }
+}
+
+fn nominal_plan(m: &Move, start: Xz, tools: &ToolTable) -> MovePlan {
+    MovePlan { start, segments: vec![nominal_segment(m, tools)], changed: false, jumps: 0, lead_in: false }
+}
+
+/// One move to plan: where its written form starts, the points to write for its samples
+/// (`range`), and the grid they are rounded on.
+struct Piece<'a> {
+    m: &'a Move,
+    at: Xz,
+    points: &'a [Xz],
+    range: Range<usize>,
+    grid: Grid,
+}
+
+/// A move written as one move to its corrected end (when that moved on the grid).
+fn one_move(piece: &Piece<'_>, tools: &ToolTable) -> MovePlan {
+    let Piece { m, at, points, grid, .. } = piece;
+    match points.last() {
+        Some(&last) if grid.point(last) != grid.point(m.contour) => MovePlan {
+            start: *at,
+            segments: vec![Segment::Line { end: last }],
+            changed: true,
+            jumps: 0,
+            lead_in: false,
+        },
+        _ => nominal_plan(m, *at, tools),
+    }
+}
+
+/// A move that switches compensation: one move, after the play its start reverses taken
+/// up by a positioning move of its own (`lead_in`).
+fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>, play: Xz) -> MovePlan {
+    let Piece { m, at, points, ref range, .. } = *piece;
+    let Some(&(_, jump)) = jumps(input, range.clone(), play).first().filter(|(j, _)| *j == range.start) else {
+        return one_move(piece, input.tools);
+    };
+    let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
+    let taken_up = Xz::new(at.x + jump.x, at.z + jump.z);
+    MovePlan {
+        start: at,
+        segments: vec![Segment::Line { end: taken_up }, Segment::Line { end: last }],
+        changed: true,
+        jumps: 1,
+        lead_in: true,
+    }
+}
+
+fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> MovePlan {
+    let Piece { m, at, points, ref range, grid } = *piece;
+    let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
+    let end_moves = grid.point(last) != grid.point(m.contour);
+    let jumps = jumps(input, range.clone(), options.play);
+    let tolerance = options.fit.tolerance_mm;
+    let centre = written::contour_centre(m, input.tools);
+    if !end_moves && jumps.is_empty() && nominal_holds(m, centre, at, points, tolerance) {
+        return nominal_plan(m, at, input.tools);
+    }
+    let nominal =
+        if m.is_arc() { NominalShape::Arc { centre, ccw: m.motion == Motion::Ccw } } else { NominalShape::Line };
+    let mut segments = Vec::new();
+    let mut from = at;
+    let mut piece = 0;
+    for &(j, jump) in &jumps {
+        let local = j - range.start;
+        if local > piece {
+            let part = MovePoints { start: from, points: &points[piece..local], nominal };
+            segments.extend(choose_segments(&part, &options.fit));
+            from = points[local - 1];
+        }
+        from = Xz::new(from.x + jump.x, from.z + jump.z);
+        segments.push(Segment::Line { end: from });
+        piece = local;
+    }
+    if piece < points.len() {
+        segments.extend(choose_segments(&MovePoints { start: from, points: &points[piece..], nominal }, &options.fit));
+    }
+    MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false }
+}
+
+/// Whether the programmed element (an arc about the contour's `centre`), started from
+/// `at`, passes within `tolerance` of every point.
+fn nominal_holds(m: &Move, centre: Xz, at: Xz, points: &[Xz], tolerance: f64) -> bool {
+    if m.is_arc() {
+        let radius = m.contour.distance(centre);
+        (at.distance(centre) - radius).abs() <= tolerance
+            && points.iter().all(|p| (p.distance(centre) - radius).abs() <= tolerance)
+    } else {
+        points.iter().all(|&p| distance_to_chord(p, at, m.contour) <= tolerance)
+    }
+}
+
+/// The samples of `range` at which an axis' correction jumps by more than half its play,
+/// with the jump (only the jumping axes).
+fn jumps(input: &PlanInput<'_>, range: Range<usize>, play: Xz) -> Vec<(usize, Xz)> {
+    if play.x <= 0.0 && play.z <= 0.0 {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for j in range {
+        let now = written::offset(&input.samples[j], input.commanded[j]);
+        let before = match j.checked_sub(1) {
+            Some(k) => written::offset(&input.samples[k], input.commanded[k]),
+            None => Xz::new(0.0, 0.0),
+        };
+        let d = Xz::new(now.x - before.x, now.z - before.z);
+        let jump = Xz::new(
+            if play.x > 0.0 && d.x.abs() > play.x / 2.0 { d.x } else { 0.0 },
+            if play.z > 0.0 && d.z.abs() > play.z / 2.0 { d.z } else { 0.0 },
+        );
+        if jump.x != 0.0 || jump.z != 0.0 {
+            out.push((j, jump));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,94 @@
+use super::*;
+use crate::compensation::fit::{FitOptions, Strategy};
+use crate::compensation::inverse::{InverseOptions, compensate_samples};
+use crate::compensation::sampling::sample_toolpath;
+use crate::compensation::test_support::lower_program;
+use crate::compensation::written::sample_ranges;
+use crate::error_model::ErrorModel;
+use crate::error_model::effects::*;
+use crate::semantic::Lowered;
+use crate::semantic::nose_radius::ToolTable;
+
+/// A diameter-programmed metric program: a rapid down to X40, a turn, up a shoulder to X50
+/// (an X reversal after the rapid), back down to X40 (another), a turn.
+const PROGRAM: &str = "\
+G21 G99
+G97 S1000 M03
+G00 X40. Z2.
+G01 Z-10. F0.2
+X50.
+X40. Z-15.
+Z-30.
+G00 X100. Z50.
+M30
+";
+
+fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
+    let (lowered, machine) = lower_program(PROGRAM);
+    let tools = ToolTable::from_machine(&machine);
+    let path = &lowered.toolpath;
+    let samples = sample_toolpath(path, &tools, 0.25);
+    let model = ErrorModel { tables: None, effects, start_min: 0.0 };
+    let fit = FitOptions { strategy: Strategy::Densify, tolerance_mm: 0.0005, step_mm: None };
+    let inverse = InverseOptions { tolerance_mm: fit.tolerance_mm, ..InverseOptions::default() };
+    let compensated = compensate_samples(&samples, path.start, &model, &inverse);
+    let ranges = sample_ranges(path.moves.len(), &samples);
+    let writable = vec![true; path.moves.len()];
+    let input = PlanInput {
+        toolpath: path,
+        samples: &samples,
+        commanded: &compensated.commanded,
+        ranges: &ranges,
+        writable: &writable,
+        tools: &tools,
+    };
+    let grid = crate::compensation::grid::Grid::new(&lowered.coordinates_at(0));
+    let plans = plan_moves(&input, |_| grid, &PlanOptions { fit, play: model.play() });
+    (lowered, plans)
+}
+
+#[test]
+fn without_errors_every_move_keeps_its_programmed_form() {
+    let (lowered, plans) = plans(Vec::new());
+    for (m, plan) in lowered.toolpath.moves.iter().zip(&plans) {
+        assert!(!plan.changed);
+        assert_eq!(plan.segments, vec![nominal_segment(m, &ToolTable::default())]);
+    }
+}
+
+#[test]
+fn a_constant_offset_moves_every_end_and_each_line_stays_one_line() {
+    let (lowered, plans) =
+        plans(vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.01 }), Effect::ToolOffsetZ(ToolOffsetZ { dz: -0.005 })]);
+    for (m, plan) in lowered.toolpath.moves.iter().zip(&plans) {
+        assert!(plan.changed);
+        assert_eq!(plan.segments.len(), 1, "{m:?}");
+        let end = plan.end();
+        assert!((end.x - (m.end.x - 0.01)).abs() < 1e-9 && (end.z - (m.end.z + 0.005)).abs() < 1e-9);
+    }
+    // Each move starts where the previous written one ended.
+    for pair in plans.windows(2) {
+        assert_eq!(pair[1].start, pair[0].end());
+    }
+}
+
+#[test]
+fn the_backlash_at_an_x_reversal_is_its_own_move_at_the_reversal_point() {
+    let b = 0.006;
+    let (lowered, plans) = plans(vec![Effect::BacklashX(BacklashX { b })]);
+    let moves = &lowered.toolpath.moves;
+    // Move 3 (`X40. Z-15.`) reverses X after the shoulder went up.
+    let reversal = 3;
+    assert!(moves[reversal - 1].end.x > moves[reversal - 2].end.x && moves[reversal].end.x < moves[reversal - 1].end.x);
+    let plan = &plans[reversal];
+    assert_eq!(plan.jumps, 1);
+    let Segment::Line { end: jump } = plan.segments[0] else { panic!("{:?}", plan.segments) };
+    // A pure X move of the whole play, down, from where the shoulder ended.
+    assert!((jump.z - plan.start.z).abs() < 1e-12);
+    assert!((plan.start.x - jump.x - b).abs() < 1e-9, "{} -> {}", plan.start.x, jump.x);
+    // The rest of the move does not jump again: it runs to the corrected end.
+    assert!(plan.segments.len() >= 2);
+    // The shoulder reversed X too; nothing else does (and rapids are never split).
+    let jumps: Vec<usize> = plans.iter().map(|p| p.jumps).collect();
+    assert_eq!(jumps, [0, 0, 1, 1, 0, 0]);
+}

@@ -1,0 +1,138 @@
+//! The path the control will really command: each move's written segments rounded onto
+//! the grid, as the control reads the rounded words, and for each sample the reference
+//! point it commands there. The report and `plot` predict the machine along this path, so
+//! their residuals include the re-expression and the rounding, not only the inverse.
+
+use std::ops::Range;
+
+use crate::geometry;
+use crate::semantic::nose_radius::ToolTable;
+use crate::toolpath::{Move, Xz};
+
+use super::fit::Segment;
+use super::grid::Grid;
+use super::plan::{MovePlan, PlanInput};
+use super::sampling::PathSample;
+use super::written;
+
+/// A move's segments rounded onto `grid`, from its rounded start. Arcs take the centre the
+/// control computes: from the rounded radius with `radius_arcs`, else from the rounded
+/// centre offsets.
+pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], radius_arcs: bool) -> Vec<Segment> {
+    let mut from_exact = start;
+    let mut from = grid.round(start);
+    let mut out = Vec::with_capacity(segments.len());
+    for segment in segments {
+        let end = grid.round(segment.end());
+        let rounded = match *segment {
+            Segment::Line { .. } => Segment::Line { end },
+            Segment::Arc { end: exact_end, centre, ccw } => {
+                let centre = if radius_arcs && from != end {
+                    let radius = from_exact.distance(centre);
+                    let sweep = geometry::sweep(from_exact, exact_end, centre, ccw);
+                    let signed = if sweep > std::f64::consts::PI + 1e-9 { -radius } else { radius };
+                    let written = grid.length_mm(grid.length(signed));
+                    geometry::centre_from_radius(from, end, written, ccw, f64::INFINITY).unwrap_or(centre)
+                } else {
+                    Xz::new(
+                        from.x + grid.length_mm(grid.length(centre.x - from.x)),
+                        from.z + grid.length_mm(grid.length(centre.z - from.z)),
+                    )
+                };
+                Segment::Arc { end, centre, ccw }
+            }
+        };
+        out.push(rounded);
+        from = end;
+        from_exact = segment.end();
+    }
+    out
+}
+
+/// The point of a segment (from `start`) closest to `p`.
+pub fn closest_on_segment(p: Xz, start: Xz, segment: &Segment) -> Xz {
+    match *segment {
+        Segment::Line { end } => {
+            let (dx, dz) = (end.x - start.x, end.z - start.z);
+            let length2 = dx * dx + dz * dz;
+            if length2 <= 0.0 {
+                return start;
+            }
+            let t = (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0);
+            Xz::new(start.x + dx * t, start.z + dz * t)
+        }
+        Segment::Arc { end, centre, ccw } => {
+            if geometry::angle_within(p, start, end, centre, ccw) && p.distance(centre) > 0.0 {
+                let radius = start.distance(centre);
+                geometry::on_circle(centre, radius, geometry::angle(p, centre))
+            } else if p.distance(start) <= p.distance(end) {
+                start
+            } else {
+                end
+            }
+        }
+    }
+}
+
+/// For every sample, the reference point the control commands when the program writes
+/// the rounded segments of `plans` (`input.commanded` holds the ideal commands).
+pub fn commanded_path(
+    input: &PlanInput<'_>,
+    plans: &[MovePlan],
+    grid_of: impl Fn(usize) -> Grid,
+    radius_arcs: bool,
+) -> Vec<Xz> {
+    let (toolpath, samples, tools) = (input.toolpath, input.samples, input.tools);
+    let mut out: Vec<Xz> = samples.iter().map(|s| s.nominal).collect();
+    for (index, (m, plan)) in toolpath.moves.iter().zip(plans).enumerate() {
+        let Some(range) = input.ranges.get(index).filter(|r| !r.is_empty()) else { continue };
+        let contour_start = written::contour_start(toolpath, index);
+        let grid = grid_of(index);
+        if plan.segments.is_empty() {
+            // A corner the control makes: around the written corner.
+            let corner = grid.round(plan.start);
+            for j in range.clone() {
+                out[j] = written::reference_point(m, contour_start, &samples[j], corner, tools);
+            }
+            continue;
+        }
+        let rounded = quantise(&grid, plan.start, &plan.segments, radius_arcs);
+        let walk = Walk { m, contour_start, start: grid.round(plan.start), segments: &rounded, tools };
+        walk.follow(samples, input.commanded, range.clone(), &mut out);
+    }
+    out
+}
+
+/// One move's rounded segments, from their rounded start.
+struct Walk<'a> {
+    m: &'a Move,
+    contour_start: Xz,
+    start: Xz,
+    segments: &'a [Segment],
+    tools: &'a ToolTable,
+}
+
+impl Walk<'_> {
+    /// Walk the samples of the move along the segments, each to its closest point.
+    fn follow(&self, samples: &[PathSample], ideal: &[Xz], range: Range<usize>, out: &mut [Xz]) {
+        // Samples and segments both run along the move: search a window ahead of the last
+        // segment used.
+        const WINDOW: usize = 16;
+        let starts: Vec<Xz> = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end)).collect();
+        let mut cursor = 0usize;
+        for j in range {
+            let target = written::written_point(self.m, self.contour_start, &samples[j], ideal[j], self.tools);
+            let (mut best, mut best_k, mut best_d) = (self.start, cursor, f64::INFINITY);
+            let first = cursor.saturating_sub(1);
+            for (k, (segment, &from)) in self.segments.iter().zip(&starts).enumerate().skip(first).take(WINDOW + 1) {
+                let q = closest_on_segment(target, from, segment);
+                let d = q.distance(target);
+                if d < best_d {
+                    (best, best_k, best_d) = (q, k, d);
+                }
+            }
+            cursor = best_k;
+            out[j] = written::reference_point(self.m, self.contour_start, &samples[j], best, self.tools);
+        }
+    }
+}

@@ -1,0 +1,152 @@
+//! `compensate --report json`: what was changed, by how much, and what the model predicts.
+//!
+//! Per edited block: the largest and the RMS correction of its points (|commanded −
+//! nominal|), the arcs it now writes (centre and radius, mm, X as a radius), its segments,
+//! the predicted residual (the largest distance from the nominal path of the point the
+//! model predicts when the rounded, re-expressed block is run) and the SSQ of eq. 5.8
+//! (`deviation.rs`) of its cutting points before (the program as it was) and after. The
+//! totals cover every cutting point of the program.
+
+use serde::Serialize;
+
+use crate::source::LineIndex;
+use crate::syntax::Program;
+use crate::toolpath::{Toolpath, Xz};
+
+use super::deviation::{Figures, nm};
+use super::fit::Segment;
+use super::plan::MovePlan;
+use super::rewrite::EditedBlock;
+use super::sampling::PathSample;
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    pub blocks: Vec<BlockReport>,
+    pub totals: Totals,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BlockReport {
+    /// 1-based line of the block.
+    pub line: usize,
+    /// A cycle call that was expanded, rather than a motion block.
+    pub cycle: bool,
+    pub segments: usize,
+    pub max_correction_mm: f64,
+    pub rms_correction_mm: f64,
+    pub arcs: Vec<ArcReport>,
+    /// Backlash jumps written as their own moves.
+    pub backlash_moves: usize,
+    pub predicted_residual_mm: f64,
+    pub ssq_before_mm: f64,
+    pub ssq_after_mm: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ArcReport {
+    /// Centre, mm, X as a radius.
+    pub centre_x_mm: f64,
+    pub centre_z_mm: f64,
+    pub radius_mm: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Totals {
+    pub edited_blocks: usize,
+    pub expanded_cycles: usize,
+    pub samples: usize,
+    pub max_correction_mm: f64,
+    /// Iterations of the inverse at the worst sample, and its largest residual, mm.
+    pub inverse_iterations: u32,
+    pub inverse_residual_mm: f64,
+    /// Deviation of the cutting points from the nominal path, as programmed and compensated.
+    pub before: Figures,
+    pub after: Figures,
+    pub improvement_percent: f64,
+}
+
+/// Everything the report is computed from.
+pub struct ReportInput<'a> {
+    pub program: &'a Program<'a>,
+    pub toolpath: &'a Toolpath,
+    pub samples: &'a [PathSample],
+    pub ranges: &'a [std::ops::Range<usize>],
+    pub commanded: &'a [Xz],
+    /// Distance from the nominal path of each sample's predicted point, before and after
+    /// (`None` for a sample that does not cut).
+    pub before: &'a [Option<f64>],
+    pub after: &'a [Option<f64>],
+    pub plans: &'a [MovePlan],
+    pub edited: &'a [EditedBlock],
+    pub inverse_iterations: u32,
+    pub inverse_residual_mm: f64,
+}
+
+pub fn build(input: &ReportInput<'_>) -> Report {
+    let lines = LineIndex::new(input.program.source());
+    let corrections: Vec<f64> = input.samples.iter().zip(input.commanded).map(|(s, c)| c.distance(s.nominal)).collect();
+    let blocks = input
+        .edited
+        .iter()
+        .map(|edited| {
+            let samples = sample_span(input.ranges, edited.moves.clone());
+            let plans = input.plans.get(edited.moves.clone()).unwrap_or(&[]);
+            let correction = Figures::of(corrections.get(samples.clone()).unwrap_or(&[]).iter().copied());
+            let before = Figures::of(input.before.get(samples.clone()).unwrap_or(&[]).iter().flatten().copied());
+            let after = Figures::of(input.after.get(samples).unwrap_or(&[]).iter().flatten().copied());
+            let arcs = plans
+                .iter()
+                .flat_map(|p| {
+                    let mut from = p.start;
+                    p.segments.iter().filter_map(move |s| {
+                        let arc = match *s {
+                            Segment::Arc { centre, .. } => Some(ArcReport {
+                                centre_x_mm: nm(centre.x),
+                                centre_z_mm: nm(centre.z),
+                                radius_mm: nm(from.distance(centre)),
+                            }),
+                            Segment::Line { .. } => None,
+                        };
+                        from = s.end();
+                        arc
+                    })
+                })
+                .collect();
+            BlockReport {
+                line: lines.position(input.program.block(edited.block).span.start).0,
+                cycle: edited.cycle,
+                segments: plans.iter().map(|p| p.segments.len()).sum(),
+                max_correction_mm: nm(correction.max_mm),
+                rms_correction_mm: nm(correction.rms_mm),
+                arcs,
+                backlash_moves: plans.iter().map(|p| p.jumps).sum(),
+                predicted_residual_mm: nm(after.max_mm),
+                ssq_before_mm: nm(before.ssq_mm),
+                ssq_after_mm: nm(after.ssq_mm),
+            }
+        })
+        .collect();
+    let before = Figures::of(input.before.iter().flatten().copied());
+    let after = Figures::of(input.after.iter().flatten().copied());
+    Report {
+        blocks,
+        totals: Totals {
+            edited_blocks: input.edited.iter().filter(|e| !e.cycle).count(),
+            expanded_cycles: input.edited.iter().filter(|e| e.cycle).count(),
+            samples: input.samples.len(),
+            max_correction_mm: nm(corrections.iter().copied().fold(0.0, f64::max)),
+            inverse_iterations: input.inverse_iterations,
+            inverse_residual_mm: nm(input.inverse_residual_mm),
+            before: before.rounded(),
+            after: after.rounded(),
+            improvement_percent: (before.improvement_percent(&after) * 1e4).round() / 1e4,
+        },
+    }
+}
+
+/// The samples of a range of moves.
+fn sample_span(ranges: &[std::ops::Range<usize>], moves: std::ops::Range<usize>) -> std::ops::Range<usize> {
+    let start = ranges.get(moves.start).map_or(0, |r| r.start);
+    let end = moves.end.checked_sub(1).and_then(|k| ranges.get(k)).map_or(start, |r| r.end);
+    start..end.max(start)
+}

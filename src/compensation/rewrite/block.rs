@@ -1,0 +1,404 @@
+//! One motion block written back in its own form.
+//!
+//! The block keeps every word that is not a coordinate of its motion, in place and as
+//! written (`NewWord::Copy`): sequence name, block delete, modal codes, F, S, T, M,
+//! comments. Its coordinate words take the new values in the form the block wrote them:
+//! `X`/`Z` absolute, `U`/`W` or `G91` `X`/`Z` incremental, `R`/`L` radius or `I K` centre,
+//! in the order they were written; a word whose value does not change is copied as it was.
+//! An axis the block did not name is added only when the axis now moves. Increments are
+//! differences of rounded absolutes (`grid.rs`), so they never drift.
+//!
+//! A move that becomes several segments puts the block's other words on its first block;
+//! the others carry a motion code where it changes, and the coordinates. If the last one
+//! leaves a different motion code in force than the original block did, a block with that
+//! code alone restores it for the blocks that follow.
+
+use crate::dialect::{Address, AddressKind, Code, Dialect, GFunction};
+use crate::geometry;
+use crate::printer::{NewBlock, NewWord};
+use crate::semantic::CoordinateMark;
+use crate::semantic::nose_radius::ToolTable;
+use crate::syntax::{CodeLetter, Program, WordKind};
+use crate::toolpath::{Motion, Move, Xz};
+
+use super::super::fit::Segment;
+use super::super::grid::Grid;
+use super::super::plan::{MovePlan, nominal_segment};
+
+/// The motion a written block performs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Kind {
+    Rapid,
+    Feed,
+    Cw,
+    Ccw,
+    Thread,
+}
+
+impl Kind {
+    pub(super) fn of(m: &Move) -> Kind {
+        match m.motion {
+            _ if m.threading => Kind::Thread,
+            Motion::Rapid => Kind::Rapid,
+            Motion::Cw => Kind::Cw,
+            Motion::Ccw => Kind::Ccw,
+            _ => Kind::Feed,
+        }
+    }
+
+    /// The kind a segment is written as, in a block whose move was `original`.
+    fn of_segment(segment: &Segment, original: Kind) -> Kind {
+        match segment {
+            Segment::Line { .. } if matches!(original, Kind::Rapid | Kind::Thread) => original,
+            Segment::Line { .. } => Kind::Feed,
+            Segment::Arc { ccw: true, .. } => Kind::Ccw,
+            Segment::Arc { ccw: false, .. } => Kind::Cw,
+        }
+    }
+
+    fn function(self) -> GFunction {
+        match self {
+            Kind::Rapid => GFunction::Rapid,
+            Kind::Feed => GFunction::Linear,
+            Kind::Cw => GFunction::Cw,
+            Kind::Ccw => GFunction::Ccw,
+            Kind::Thread => GFunction::ThreadMove,
+        }
+    }
+}
+
+/// Which coordinate a word gives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Slot {
+    X,
+    Z,
+    Radius,
+    I,
+    K,
+    /// OSP `A`: a line's direction angle; dropped, both axes are written instead.
+    Angle,
+}
+
+/// How the block writes its coordinates.
+#[derive(Debug, Clone, Copy)]
+struct Form {
+    /// The address of each axis, and whether it is absolute.
+    x: (Address, bool),
+    z: (Address, bool),
+    /// Arcs by radius (`R`, OSP `L`) rather than `I K`.
+    radius_arcs: bool,
+    radius_address: Address,
+    /// The block names each axis (or gives `A`, which needs both).
+    x_named: bool,
+    z_named: bool,
+}
+
+/// The context one block is written in.
+pub(super) struct BlockContext<'a, 'src> {
+    pub program: &'a Program<'src>,
+    pub block: usize,
+    pub mark: CoordinateMark,
+    pub grid: Grid,
+    /// The program's arcs are mostly `R`/`L` (for arcs in a block that wrote none).
+    pub radius_arcs: bool,
+    pub tools: &'a ToolTable,
+}
+
+/// The coordinate words of one segment, by slot, as counts of the increment.
+type Words = Vec<(Slot, i64)>;
+
+impl BlockContext<'_, '_> {
+    fn slot(&self, address: Address, is_arc: bool) -> Option<Slot> {
+        let dialect = self.program.config().dialect;
+        let radius = if dialect == Dialect::Osp { Address::L } else { Address::R };
+        match address {
+            Address::X => Some(Slot::X),
+            Address::Z => Some(Slot::Z),
+            Address::U if dialect == Dialect::Fanuc => Some(Slot::X),
+            Address::W if dialect == Dialect::Fanuc => Some(Slot::Z),
+            Address::A if dialect == Dialect::Osp && !is_arc => Some(Slot::Angle),
+            a if a == radius && is_arc => Some(Slot::Radius),
+            Address::I if is_arc => Some(Slot::I),
+            Address::K if is_arc => Some(Slot::K),
+            _ => None,
+        }
+    }
+
+    fn form(&self, is_arc: bool) -> Form {
+        let dialect = self.program.config().dialect;
+        let absolute = self.mark.absolute;
+        let radius_address = if dialect == Dialect::Osp { Address::L } else { Address::R };
+        let mut form = Form {
+            x: (Address::X, absolute),
+            z: (Address::Z, absolute),
+            radius_arcs: self.radius_arcs,
+            radius_address,
+            x_named: false,
+            z_named: false,
+        };
+        let block = self.program.block(self.block);
+        let (mut radius, mut centre) = (false, false);
+        for word in self.program.words_of(block) {
+            let (WordKind::Number { address, .. } | WordKind::Expr { address, .. }) = word.kind else { continue };
+            match self.slot(address, is_arc) {
+                Some(Slot::X) => {
+                    form.x = (address, address == Address::X && absolute);
+                    form.x_named = true;
+                }
+                Some(Slot::Z) => {
+                    form.z = (address, address == Address::Z && absolute);
+                    form.z_named = true;
+                }
+                Some(Slot::Angle) => {
+                    form.x_named = true;
+                    form.z_named = true;
+                }
+                Some(Slot::Radius) => radius = true,
+                Some(Slot::I | Slot::K) => centre = true,
+                None => {}
+            }
+        }
+        if radius || centre {
+            form.radius_arcs = radius;
+        }
+        // An axis the block does not name is written the way it writes the other one
+        // (`W-20.` gains a `U`, not an `X`).
+        if form.z_named && !form.x_named && !form.z.1 {
+            form.x = (if form.z.0 == Address::W { Address::U } else { Address::X }, false);
+        }
+        if form.x_named && !form.z_named && !form.x.1 {
+            form.z = (if form.x.0 == Address::U { Address::W } else { Address::Z }, false);
+        }
+        form
+    }
+
+    /// The words of `segment` from `start` (exact), in `form`.
+    fn words(&self, form: &Form, start: Xz, segment: &Segment) -> Words {
+        let grid = &self.grid;
+        let from = grid.point(start);
+        let to = grid.point(segment.end());
+        let mut out = Vec::new();
+        let axis = |absolute: bool, end: i64, begin: i64| if absolute { end } else { end - begin };
+        if form.x_named || to.x != from.x {
+            out.push((Slot::X, axis(form.x.1, to.x, from.x)));
+        }
+        if form.z_named || to.z != from.z {
+            out.push((Slot::Z, axis(form.z.1, to.z, from.z)));
+        }
+        if let Segment::Arc { end, centre, ccw } = *segment {
+            // A full circle has no radius form: its end meets its start.
+            if form.radius_arcs && from != to {
+                let radius = start.distance(centre);
+                let sweep = geometry::sweep(start, end, centre, ccw);
+                let signed = if sweep > std::f64::consts::PI + 1e-9 { -radius } else { radius };
+                out.push((Slot::Radius, grid.length(signed)));
+            } else {
+                let at = grid.to_mm(from);
+                out.push((Slot::I, grid.length(centre.x - at.x)));
+                out.push((Slot::K, grid.length(centre.z - at.z)));
+            }
+        }
+        out
+    }
+
+    /// What the block's coordinate words say now: a literal's value, or for an expression
+    /// the value it had on this run (the nominal move).
+    fn original_words(&self, form: &Form, m: &Move, contour_start: Xz) -> Vec<(Slot, Option<i64>)> {
+        let block = self.program.block(self.block);
+        let tables = self.program.config().tables();
+        let nominal = self.words(form, contour_start, &nominal_segment(m, self.tools));
+        let mut out = Vec::new();
+        for word in self.program.words_of(block) {
+            let (address, literal) = match word.kind {
+                WordKind::Number { address, number } => (address, Some(number)),
+                WordKind::Expr { address, .. } => (address, None),
+                _ => continue,
+            };
+            let Some(slot) = self.slot(address, m.is_arc()) else { continue };
+            let value = match literal {
+                Some(number) => {
+                    let kind = tables.address(address).map(|s| s.kind).or(Some(AddressKind::Length));
+                    Some(self.grid.count(self.mark.frame.literal(number, kind)))
+                }
+                None => nominal.iter().find(|(s, _)| *s == slot).map(|&(_, v)| v),
+            };
+            out.push((slot, value));
+        }
+        out
+    }
+
+    fn code(&self, kind: Kind) -> NewWord {
+        let tables = self.program.config().tables();
+        let fallback = match kind {
+            Kind::Rapid => 0,
+            Kind::Feed => 1,
+            Kind::Cw => 2,
+            Kind::Ccw => 3,
+            Kind::Thread => 32,
+        };
+        NewWord::Code(CodeLetter::G, tables.code_for(kind.function()).unwrap_or(Code::whole(fallback)))
+    }
+
+    fn is_motion_code(&self, code: Code) -> bool {
+        let tables = self.program.config().tables();
+        matches!(
+            tables.g(code).and_then(|g| g.function),
+            Some(GFunction::Rapid | GFunction::Linear | GFunction::Cw | GFunction::Ccw | GFunction::ThreadMove)
+        )
+    }
+
+    fn new_word(&self, form: &Form, slot: Slot, value: i64) -> NewWord {
+        let address = match slot {
+            Slot::X => form.x.0,
+            Slot::Z => form.z.0,
+            Slot::Radius => form.radius_address,
+            Slot::I => Address::I,
+            Slot::K => Address::K,
+            Slot::Angle => Address::A,
+        };
+        NewWord::Number(address, self.grid.number(value))
+    }
+
+    /// The blocks that replace this block for one move and its plan, or `None` when the
+    /// block already writes it.
+    pub(super) fn rewrite(&self, m: &Move, contour_start: Xz, plan: &MovePlan) -> Option<Vec<NewBlock>> {
+        if !plan.changed && self.grid.point(plan.start) == self.grid.point(contour_start) {
+            // The move is as programmed, from where the program puts it.
+            return None;
+        }
+        let original_kind = Kind::of(m);
+        let form = self.form(m.is_arc());
+        let mut blocks = Vec::new();
+        let mut at = plan.start;
+        // The motion code the block's own words run under, when it is not the modal one.
+        let mut in_force = original_kind;
+        let mut segments = plan.segments.as_slice();
+        if plan.lead_in
+            && let Some((lead, rest)) = segments.split_first()
+        {
+            // The play taken up before the block, by a positioning move of its own.
+            let mut words = vec![self.code(Kind::Rapid)];
+            words.extend(self.words(&form, at, lead).into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
+            blocks.push(NewBlock::new(words));
+            in_force = Kind::Rapid;
+            at = lead.end();
+            segments = rest;
+        }
+        let (first, rest) = segments.split_first()?;
+        let first_kind = Kind::of_segment(first, original_kind);
+        let original = self.original_words(&form, m, contour_start);
+        let new = self.words(&form, at, first);
+        let same_words = original.len() == new.len()
+            && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
+        if blocks.is_empty() && rest.is_empty() && first_kind == original_kind && same_words {
+            return None;
+        }
+        let code_changes = first_kind != original_kind || in_force != original_kind;
+        blocks.push(self.first_block(&form, m, &new, &original, first_kind, code_changes));
+        let mut kind = first_kind;
+        at = first.end();
+        for segment in rest {
+            let segment_kind = Kind::of_segment(segment, original_kind);
+            let mut words = Vec::new();
+            if segment_kind != kind {
+                words.push(self.code(segment_kind));
+                kind = segment_kind;
+            }
+            words.extend(self.words(&form, at, segment).into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
+            blocks.push(NewBlock::new(words));
+            at = segment.end();
+        }
+        if kind != original_kind {
+            blocks.push(NewBlock::new(vec![self.code(original_kind)]));
+        }
+        Some(blocks)
+    }
+
+    /// The block's own words with the first segment's coordinates (and motion code).
+    fn first_block(
+        &self,
+        form: &Form,
+        m: &Move,
+        new: &Words,
+        original: &[(Slot, Option<i64>)],
+        kind: Kind,
+        code_changes: bool,
+    ) -> NewBlock {
+        let block = self.program.block(self.block);
+        let words = self.program.words_of(block);
+        // The block's coordinate words, read as the original move reads them (an `R` in a
+        // line block is no radius).
+        let coordinate = |w: &crate::syntax::Word| match w.kind {
+            WordKind::Number { address, .. } | WordKind::Expr { address, .. } => {
+                self.slot(address, m.is_arc()).is_some()
+            }
+            _ => false,
+        };
+        let last_coordinate = words.iter().rposition(coordinate);
+        let first_coordinate = words.iter().position(coordinate);
+        let mut out = Vec::new();
+        let mut written: Vec<Slot> = Vec::new();
+        let mut code_written = false;
+        let first = block.first_word;
+        for (k, word) in words.iter().enumerate() {
+            let id = first + k as u32;
+            if code_changes && !code_written && first_coordinate == Some(k) {
+                out.push(self.code(kind));
+                code_written = true;
+            }
+            match word.kind {
+                WordKind::Code { letter: CodeLetter::G, code } if self.is_motion_code(code) && code_changes => {
+                    if !code_written {
+                        let same =
+                            self.program.config().tables().g(code).and_then(|g| g.function) == Some(kind.function());
+                        out.push(if same { NewWord::Copy(id) } else { self.code(kind) });
+                        code_written = true;
+                    }
+                }
+                WordKind::Number { address, .. } | WordKind::Expr { address, .. } if coordinate(word) => {
+                    let slot = self.slot(address, m.is_arc());
+                    if let Some((slot, value)) = slot.and_then(|s| new.iter().find(|(n, _)| *n == s)).copied()
+                        && !written.contains(&slot)
+                    {
+                        let unchanged = original.iter().any(|(s, v)| *s == slot && *v == Some(value))
+                            && matches!(word.kind, WordKind::Number { .. })
+                            && same_address(form, slot, address);
+                        out.push(if unchanged { NewWord::Copy(id) } else { self.new_word(form, slot, value) });
+                        written.push(slot);
+                    }
+                }
+                _ => out.push(NewWord::Copy(id)),
+            }
+            if last_coordinate == Some(k) {
+                for &(slot, value) in new {
+                    if !written.contains(&slot) {
+                        out.push(self.new_word(form, slot, value));
+                        written.push(slot);
+                    }
+                }
+            }
+        }
+        if last_coordinate.is_none() {
+            if code_changes && !code_written {
+                out.push(self.code(kind));
+            }
+            out.extend(new.iter().map(|&(slot, value)| self.new_word(form, slot, value)));
+        }
+        NewBlock::new(out)
+    }
+}
+
+/// Whether the word at `address` is written with the address the form uses for `slot`.
+fn same_address(form: &Form, slot: Slot, address: Address) -> bool {
+    match slot {
+        Slot::X => form.x.0 == address,
+        Slot::Z => form.z.0 == address,
+        Slot::Radius => form.radius_address == address,
+        Slot::I => address == Address::I,
+        Slot::K => address == Address::K,
+        Slot::Angle => false,
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,101 @@
+use super::*;
+use crate::compensation::test_support::lower_program;
+use crate::dialect::{DialectChoice, GCodeSystem};
+use crate::printer::{Edits, print_string};
+use crate::semantic::{LowerOptions, lower};
+use crate::syntax::{ParseOptions, parse};
+use crate::toolpath::Motion;
+
+/// An arc by radius and an incremental arc by centre, after a line.
+const PROGRAM: &str = "\
+G21 G99
+G97 S1000 M03
+G00 X40. Z2.
+G01 Z-10. F0.2
+G02 X50. Z-15. R5.
+G03 U10. W-5. I0 K-5.
+G01 W-5.
+M30
+";
+
+/// Rewrite the block of move `index` for a plan of one arc about the move's centre moved by
+/// `centre_by`, from the same start, to its end moved by `end_by` and then onto the new
+/// circle; the printed program, the arc it lowers to, and the planned arc.
+fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolpath::Move, Segment) {
+    let (lowered, machine) = lower_program(PROGRAM);
+    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let parsed = parse(PROGRAM.as_bytes(), &options);
+    let program = &parsed.program;
+    let m = lowered.toolpath.moves[index];
+    let start = lowered.toolpath.start_of(index);
+    let centre = Xz::new(m.centre.x + centre_by.x, m.centre.z + centre_by.z);
+    let radius = start.distance(centre);
+    let moved = Xz::new(m.end.x + end_by.x, m.end.z + end_by.z);
+    let end = crate::geometry::on_circle(centre, radius, crate::geometry::angle(moved, centre));
+    let segment = Segment::Arc { end, centre, ccw: m.motion == Motion::Ccw };
+    let plan = MovePlan { start, segments: vec![segment], changed: true, jumps: 0, lead_in: false };
+    let block = program.blocks().iter().position(|b| b.span == m.source).unwrap();
+    let mark = lowered.coordinates_at(index);
+    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
+    let context = BlockContext { program, block, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
+    let mut edits = Edits::new();
+    edits.replace(block, context.rewrite(&m, start, &plan).unwrap());
+    let text = print_string(program, &edits);
+    let reparsed = parse(text.as_bytes(), &options);
+    assert_eq!(reparsed.error_count(), 0, "{text}");
+    let relowered = lower(&reparsed.program, &machine, &LowerOptions::new(false));
+    (text, relowered.toolpath.moves[index], segment)
+}
+
+#[test]
+fn an_arc_by_radius_keeps_its_radius_form_and_lands_on_the_rounded_end() {
+    let (text, arc, segment) = rewrite_arc(2, Xz::new(0.0031, -0.0022), Xz::new(0.001, 0.0015));
+    let line = text.lines().nth(4).unwrap();
+    assert_eq!(line, "G02 X50.006 Z-14.999 R5.001");
+    let Segment::Arc { end, centre, .. } = segment else { unreachable!() };
+    // X rounds on the diameter grid (0.0005 mm in radius), Z on 0.001 mm: the end lands
+    // within half of each of its planned place.
+    assert!((arc.end.x - end.x).abs() <= 0.00025 + 1e-9 && (arc.end.z - end.z).abs() <= 0.0005 + 1e-9, "{end:?}");
+    // The control's centre from the rounded radius is within an increment of the planned one.
+    assert!(arc.centre.distance(centre) < 0.001, "{:?} against {centre:?}", arc.centre);
+}
+
+#[test]
+fn an_incremental_arc_by_centre_keeps_u_w_i_k() {
+    let (text, arc, segment) = rewrite_arc(3, Xz::new(-0.0012, 0.0008), Xz::new(-0.002, 0.0));
+    let line = text.lines().nth(5).unwrap();
+    assert!(line.starts_with("G03 U") && line.contains(" W") && line.contains(" I") && line.contains(" K"), "{line}");
+    let Segment::Arc { end, centre, .. } = segment else { unreachable!() };
+    assert!(arc.end.distance(end) < 0.0006, "{:?} against {end:?}", arc.end);
+    assert!(arc.centre.distance(centre) < 0.001, "{:?} against {centre:?}", arc.centre);
+    // The line after it is untouched and, being incremental, now starts from the new end.
+    assert_eq!(text.lines().nth(6), Some("G01 W-5."));
+}
+
+#[test]
+fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
+    let (lowered, machine) = lower_program(PROGRAM);
+    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let parsed = parse(PROGRAM.as_bytes(), &options);
+    let m = lowered.toolpath.moves[2];
+    let start = lowered.toolpath.start_of(2);
+    let mid = Xz::new(22.0, -13.5);
+    let segments = vec![Segment::Line { end: mid }, Segment::Line { end: m.end }];
+    let plan = MovePlan { start, segments, changed: true, jumps: 0, lead_in: false };
+    let mark = lowered.coordinates_at(2);
+    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
+    let context = BlockContext {
+        program: &parsed.program,
+        block: 4,
+        mark,
+        grid: Grid::new(&mark),
+        radius_arcs: true,
+        tools: &tools,
+    };
+    let blocks = context.rewrite(&m, start, &plan).unwrap();
+    let mut edits = Edits::new();
+    edits.replace(4, blocks);
+    let text = print_string(&parsed.program, &edits);
+    let lines: Vec<&str> = text.lines().skip(4).take(4).collect();
+    assert_eq!(lines, ["G01 X44. Z-13.5", "X50. Z-15.", "G02", "G03 U10. W-5. I0 K-5."], "{text}");
+}

@@ -1,0 +1,68 @@
+//! The checks that make `compensate` refuse a program rather than write it.
+//!
+//! A correction is a few micrometres on a healthy machine. One larger than `--max-shift`
+//! means a wrong model (a table in inches read as mm, a sign turned over) or a program the
+//! model does not cover, and a program moved that far must not reach a machine unread. A
+//! commanded point outside the travel limits would stop the machine mid-cut. Both are
+//! errors on the block whose move has them (the cycle call for a cycle's moves), one per
+//! block, naming the worst point.
+
+use std::collections::BTreeMap;
+
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::source::Span;
+use crate::toolpath::{Limits, Toolpath, Xz};
+
+use super::sampling::PathSample;
+
+/// Slack at a travel limit, mm: rounding at a limit is no violation (as `toolpath::validate`).
+const LIMIT_SLACK_MM: f64 = 0.001;
+
+/// The refusals for `commanded` (one point per sample).
+pub fn check(
+    toolpath: &Toolpath,
+    samples: &[PathSample],
+    commanded: &[Xz],
+    max_shift_mm: f64,
+    limits: Option<Limits>,
+) -> Vec<Diagnostic> {
+    // Per block (keyed by span start, so the diagnostics come out in program order): the
+    // largest correction, and the first point outside the travel.
+    let mut shifts: BTreeMap<u32, (Span, f64)> = BTreeMap::new();
+    let mut outside: BTreeMap<u32, (Span, Xz)> = BTreeMap::new();
+    for (s, &c) in samples.iter().zip(commanded) {
+        let Some(m) = toolpath.moves.get(s.move_index) else { continue };
+        let span = m.source;
+        let shift = c.distance(s.nominal);
+        let shift = if shift.is_finite() { shift } else { f64::INFINITY };
+        if shift > max_shift_mm {
+            let entry = shifts.entry(span.start).or_insert((span, shift));
+            entry.1 = entry.1.max(shift);
+        }
+        if let Some(limits) = limits
+            && !inside(&limits, c)
+        {
+            outside.entry(span.start).or_insert((span, c));
+        }
+    }
+    let mut out: Vec<Diagnostic> = shifts
+        .into_values()
+        .map(|(span, shift)| {
+            Diagnostic::error(DiagnosticKind::CorrectionTooLarge { shift_mm: shift, max_mm: max_shift_mm }, span)
+        })
+        .collect();
+    out.extend(
+        outside.into_values().map(|(span, p)| {
+            Diagnostic::error(DiagnosticKind::CompensatedOutsideTravel { x_mm: p.x, z_mm: p.z }, span)
+        }),
+    );
+    out.sort_by_key(|d| d.span.start);
+    out
+}
+
+fn inside(limits: &Limits, p: Xz) -> bool {
+    p.x >= limits.x_min - LIMIT_SLACK_MM
+        && p.x <= limits.x_max + LIMIT_SLACK_MM
+        && p.z >= limits.z_min - LIMIT_SLACK_MM
+        && p.z <= limits.z_max + LIMIT_SLACK_MM
+}

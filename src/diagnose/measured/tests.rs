@@ -1,0 +1,57 @@
+use super::*;
+
+#[test]
+fn a_ball_bar_trace_reads_with_its_lines_and_kind_from_the_header() {
+    let text =
+        "# QC10 run, 2024-05-02\nangle_deg,deviation_mm,direction\n0,0.0012,ccw\n1.0, -0.0004 ,CCW\n\n2,0.001,cw\n";
+    let Measured::BallBar(rows) = read(text, None).unwrap() else { panic!("not a ball bar") };
+    assert_eq!(rows.len(), 3);
+    assert_eq!((rows[0].line, rows[1].line, rows[2].line), (3, 4, 6));
+    assert_eq!(rows[1].direction, Direction::Ccw);
+    assert_eq!(rows[2].direction, Direction::Cw);
+    assert_eq!(rows[1].deviation_mm, -0.0004);
+}
+
+#[test]
+fn a_profile_reads_with_parts_and_start_times() {
+    let text = "part,start_min,x_mm,z_mm\nA,0,10.0,-1.0\nA,0,10.0,-2.0\nB,30,10.001,-1.0\n";
+    let Measured::Profile(points) = read(text, Some(Kind::Profile)).unwrap() else { panic!("not a profile") };
+    assert_eq!(points[2].part.as_deref(), Some("B"));
+    assert_eq!(points[2].start_min, Some(30.0));
+    let plain = read("x_mm,z_mm\n5,0\n", None).unwrap();
+    assert_eq!(plain.kind(), Kind::Profile);
+}
+
+#[test]
+fn errors_name_the_line_and_the_fault() {
+    let cases = [
+        ("angle_deg,deviation_mm,direction\n0,0.001,ccw\n5,abc,ccw\n", "line 3: `deviation_mm` is `abc`"),
+        ("angle_deg,deviation_mm,direction\n0,0.001,up\n", "line 2: `direction` is `up`"),
+        ("angle_deg,deviaton_mm,direction\n", "line 1: unknown column `deviaton_mm`"),
+        ("angle_deg,direction\n0,ccw\n", "line 1: the header has no `deviation_mm` column"),
+        ("angle_deg,deviation_mm,direction\n", "line 1: the file has a header but no rows"),
+        ("angle_deg,deviation_mm,direction\n0,25.0,ccw\n", "line 2: a ball bar deviation of 25 mm"),
+        ("angle_deg,deviation_mm,direction\n0,,ccw\n", "line 2: no value for `deviation_mm`"),
+        ("x_mm,z_mm\n1,2\n-3,4\n", "line 3: x_mm is -3"),
+        ("x_mm,z_mm,part,start_min\n1,2,A,0\n1,3,A,5\n", "line 3: part A started at 0 min on line 2, not 5"),
+        ("x_mm,z_mm\n1,inf\n", "line 2: `z_mm` is `inf`"),
+        ("", "line 1: the file is empty"),
+        ("a,b\n1,2\n", "line 1: the header names neither"),
+    ];
+    for (text, expected) in cases {
+        let message = read(text, None).unwrap_err().to_string();
+        assert!(message.starts_with(expected), "{message:?} should start with {expected:?}");
+    }
+    let message = read("x_mm,z_mm\n1,2\n", Some(Kind::BallBar)).unwrap_err().to_string();
+    assert!(message.contains("unknown column `x_mm`"), "{message}");
+}
+
+#[test]
+fn a_thermal_log_reads_and_refuses_times_that_go_back() {
+    let (t, v) = read_thermal_log("t_min,value\n0,67.6\n0.5,67.9\n1.0,68.1\n").unwrap();
+    assert_eq!((t.len(), v[2]), (3, 68.1));
+    let message = read_thermal_log("t_min,value\n0,67.6\n0,67.9\n").unwrap_err().to_string();
+    assert!(message.starts_with("line 3: t_min 0 does not come after"), "{message}");
+    let message = read_thermal_log("time,value\n0,1\n").unwrap_err().to_string();
+    assert!(message.starts_with("line 1: unknown column `time`"), "{message}");
+}

@@ -1,0 +1,73 @@
+use super::*;
+use crate::diagnose::noise::Noise;
+
+/// A curve's gain, time constant (minutes) and offset.
+type Curve = (f64, f64, f64);
+
+/// The thesis' fits (eq. 5.3–5.6, `../shared/reference/tables/thermal_fits.csv`).
+const FITS: [(&str, Curve, Curve); 2] = [
+    ("spindle 1000 rpm", (9.913, 54.59, 67.64), (9.91, 81.97, 68.05)),
+    ("z slide 2.54 m/min", (6.12, 92.59, 64.53), (5.01, 95.24, 65.28)),
+];
+
+/// Four hours of warm-up then four of cool-down, one sample a second as the thesis
+/// recorded, with noise.
+fn synthesise(warm: Curve, cool: Curve, sigma: f64, seed: u64) -> (Vec<f64>, Vec<f64>) {
+    let mut noise = Noise::new(seed);
+    let (mut t, mut y) = (Vec::new(), Vec::new());
+    for second in 0..=240 * 60 {
+        let m = f64::from(second) / 60.0;
+        t.push(m);
+        y.push(warm.0 * (1.0 - (-m / warm.1).exp()) + warm.2 + noise.normal(sigma));
+    }
+    for second in 1..=240 * 60 {
+        let m = f64::from(second) / 60.0;
+        t.push(240.0 + m);
+        y.push(cool.0 * (-m / cool.1).exp() + cool.2 + noise.normal(sigma));
+    }
+    (t, y)
+}
+
+#[test]
+fn recovers_the_thesis_time_constants_within_five_percent_from_noisy_logs() {
+    for (name, warm, cool) in FITS {
+        for seed in [1, 7, 42] {
+            let (t, y) = synthesise(warm, cool, 0.15, seed);
+            let fit = fit_log(&t, &y).unwrap();
+            assert!((fit.split_min - 240.0).abs() <= 10.0, "{name}: split at {}", fit.split_min);
+            assert!((fit.warm.tau_min / warm.1 - 1.0).abs() < 0.05, "{name} warm τ {} vs {}", fit.warm.tau_min, warm.1);
+            let c = fit.cool.unwrap();
+            assert!((c.tau_min / cool.1 - 1.0).abs() < 0.05, "{name} cool τ {} vs {}", c.tau_min, cool.1);
+            // The stated uncertainty covers the error (three standard errors).
+            assert!((fit.warm.tau_min - warm.1).abs() < 4.0 * fit.warm.tau_sigma, "{name}: σ {}", fit.warm.tau_sigma);
+            assert!((fit.warm.rms - 0.15).abs() < 0.05);
+        }
+    }
+}
+
+#[test]
+fn an_exact_curve_is_fitted_exactly() {
+    let t: Vec<f64> = (0..200).map(f64::from).collect();
+    let y: Vec<f64> = t.iter().map(|&m| 9.913 * (1.0 - (-m / 54.59f64).exp()) + 67.64).collect();
+    let fit = fit_phase(Phase::Warm, &t, &y).unwrap();
+    assert!((fit.tau_min - 54.59).abs() < 1e-4 && (fit.gain - 9.913).abs() < 1e-5 && (fit.offset - 67.64).abs() < 1e-5);
+}
+
+#[test]
+fn bad_logs_are_refused() {
+    assert!(matches!(fit_log(&[0.0, 1.0], &[1.0, 2.0]), Err(ThermalFitError::TooFewSamples(_))));
+    let t = [0.0, 1.0, 2.0, 2.0, 4.0, 5.0, 6.0, 7.0];
+    assert!(matches!(fit_log(&t, &[0.0; 8]), Err(ThermalFitError::TimesNotIncreasing(4))));
+    let t: Vec<f64> = (0..20).map(f64::from).collect();
+    assert!(fit_phase(Phase::Warm, &t, &[5.0; 20]).is_err());
+}
+
+#[test]
+fn a_known_switch_off_time_splits_the_log_there() {
+    let (warm, cool) = ((9.913, 54.59, 67.64), (9.91, 81.97, 68.05));
+    let (t, y) = synthesise(warm, cool, 0.15, 3);
+    let fit = fit_log_split(&t, &y, Some(240.0)).unwrap();
+    assert!((fit.split_min - 240.0).abs() < 0.02, "{}", fit.split_min);
+    let c = fit.cool.unwrap();
+    assert!((c.tau_min / cool.1 - 1.0).abs() < 0.03, "cool τ {}", c.tau_min);
+}

@@ -1,0 +1,165 @@
+//! `turnpass model report M`: what a machine model holds, in the figures a metrologist
+//! reads.
+//!
+//! For each slide table, each measured quantity gets the ISO 230-2 figures of
+//! `interferometer::report` (A, E, M, B, R and the mean reversal value): for the linear
+//! positioning errors these are the standard's figures, and the same statistics of the
+//! straightness and angular deviations say how large and how direction-dependent those
+//! are. Straightness measured as two reversed runs (`straightness_m1_mm`,
+//! `straightness_m2_mm`) has been reduced by the reversal technique (eq. 2.5–2.7), which
+//! the report says. Then the parametric effects with their parameters.
+
+use std::fmt;
+
+use serde::Serialize;
+
+use super::interferometer::{self, Iso230_2, Profile};
+use super::model_file::{Axis, ModelError, ModelSpec};
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ModelReport {
+    pub start_min: f64,
+    pub abbe_y_mm: f64,
+    pub tables: Vec<TableReport>,
+    pub effects: Vec<EffectReport>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TableReport {
+    pub axis: char,
+    pub source: String,
+    pub rows: Vec<QuantityReport>,
+    /// The straightness was given as two reversed runs and reduced by eq. 2.7.
+    pub straightness_by_reversal: bool,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct QuantityReport {
+    pub quantity: &'static str,
+    /// `mm`, or `µrad` for the angular error.
+    pub unit: &'static str,
+    pub targets: usize,
+    pub iso: Iso230_2,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EffectReport {
+    pub kind: &'static str,
+    /// Each parameter and its value as the model file writes it.
+    pub parameters: Vec<(String, String)>,
+}
+
+/// The report of a model file, reading its tables through `read`.
+pub fn report(
+    spec: &ModelSpec,
+    mut read: impl FnMut(&str) -> Result<String, String>,
+) -> Result<ModelReport, ModelError> {
+    let mut tables = Vec::new();
+    for (index, table) in spec.axis_table.iter().enumerate() {
+        let (text, source) = spec.table_text(index, &mut read)?;
+        let slide = interferometer::parse(&text).map_err(|error| ModelError::Table {
+            index,
+            axis: table.axis,
+            source_name: source.clone(),
+            error,
+        })?;
+        let mut rows = Vec::new();
+        let mut push = |quantity, unit, profile: &Option<Profile>, scale: f64| {
+            if let Some(p) = profile {
+                let scaled = Profile {
+                    targets: p.targets.clone(),
+                    up: p.up.iter().map(|v| v * scale).collect(),
+                    down: p.down.iter().map(|v| v * scale).collect(),
+                    up_sigma: p.up_sigma.iter().map(|v| v * scale).collect(),
+                    down_sigma: p.down_sigma.iter().map(|v| v * scale).collect(),
+                    ..p.clone()
+                };
+                rows.push(QuantityReport {
+                    quantity,
+                    unit,
+                    targets: p.targets.len(),
+                    iso: interferometer::report(&scaled),
+                });
+            }
+        };
+        push("linear", "mm", &slide.linear, 1.0);
+        push("straightness", "mm", &slide.straightness, 1.0);
+        push("angular", "µrad", &slide.angular, 1e6);
+        tables.push(TableReport {
+            axis: if table.axis == Axis::X { 'X' } else { 'Z' },
+            source,
+            rows,
+            straightness_by_reversal: slide.straightness.is_some() && straightness_from_two_runs(&text),
+        });
+    }
+    let effects = spec.effect.iter().map(|e| EffectReport { kind: e.name(), parameters: parameters(e) }).collect();
+    Ok(ModelReport { start_min: spec.model.start_min, abbe_y_mm: spec.model.abbe_y_mm, tables, effects })
+}
+
+/// Whether the table's straightness comes from the two runs of the reversal technique
+/// (the parser reads `straightness_mm` first when both are given).
+fn straightness_from_two_runs(text: &str) -> bool {
+    let header = text.lines().find(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty()).unwrap_or("");
+    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
+    !columns.contains(&"straightness_mm")
+        && columns.contains(&"straightness_m1_mm")
+        && columns.contains(&"straightness_m2_mm")
+}
+
+fn parameters(effect: &super::Effect) -> Vec<(String, String)> {
+    let Ok(serde_json::Value::Object(fields)) = serde_json::to_value(effect) else { return Vec::new() };
+    fields.into_iter().filter(|(k, _)| k != "kind").map(|(k, v)| (k, v.to_string())).collect()
+}
+
+impl fmt::Display for ModelReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "program start: {} min after machine start; Abbe offset (Y): {} mm",
+            self.start_min, self.abbe_y_mm
+        )?;
+        if self.tables.is_empty() {
+            writeln!(f, "slide tables: none")?;
+        }
+        for table in &self.tables {
+            writeln!(f, "\n{} slide ({}), ISO 230-2 figures:", table.axis, table.source)?;
+            writeln!(
+                f,
+                "  {:<13} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  unit",
+                "quantity", "targets", "A", "E", "M", "B", "R", "mean B"
+            )?;
+            for row in &table.rows {
+                let iso = &row.iso;
+                let figures = [iso.accuracy, iso.systematic, iso.mean_range, iso.reversal, iso.repeatability];
+                write!(f, "  {:<13} {:>7}", row.quantity, row.targets)?;
+                for value in figures.into_iter().chain([iso.mean_reversal]) {
+                    write!(f, " {:>10}", figure(value))?;
+                }
+                writeln!(f, "  {}", row.unit)?;
+            }
+            if table.straightness_by_reversal {
+                writeln!(
+                    f,
+                    "  straightness reduced from two reversed runs by the reversal technique (eq. 2.5-2.7): \
+                     s = (m2 - m1) / 2"
+                )?;
+            }
+        }
+        writeln!(f, "\neffects:{}", if self.effects.is_empty() { " none" } else { "" })?;
+        for effect in &self.effects {
+            let parameters: Vec<String> = effect.parameters.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+            writeln!(f, "  {:<17} {}", effect.kind, parameters.join(", "))?;
+        }
+        Ok(())
+    }
+}
+
+/// A figure to four decimals, with no minus sign on a value that rounds to zero.
+fn figure(value: f64) -> String {
+    let text = format!("{value:.4}");
+    if text.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+        text.trim_start_matches('-').to_string()
+    } else {
+        text
+    }
+}
