@@ -3,16 +3,18 @@
 //! same edit beside it.
 //!
 //! Run with `cargo bench --bench lsp`. Inputs: `python3 ../shared/bench/gen_lathe.py
-//! target/bench-data/big-<n>.nc <n>` for 1 and 8 MB (generated on first use). Measured:
+//! target/bench-data/big-<n>.nc <n>` for 1, 8 and 50 MB (generated on first use; the report's
+//! sizes are `TURNPASS_BENCH_LSP_MB`, default `1,8,50`). Measured:
 //!
 //! * **edit**: one character typed into a number in the middle of the program (and, in the
 //!   next round, deleted again), then everything the server publishes for it: the
 //!   incremental re-parse (`Document::replace`), the document's diagnostics and their
 //!   protocol form (`analysis::publishable`). Also at the start of the program, where the text
-//!   after the edit is longest.
+//!   after the edit is longest, and in the middle while a snapshot of the document is held
+//!   (as the semantic pass's job on a worker thread holds one).
 //! * **open**: a program opened from scratch: parse into chunks, diagnostics, the semantic
 //!   pass (`SemanticJob::run`, which assembles the chunks into one program and lowers it),
-//!   and the protocol form.
+//!   and the protocol form of all the diagnostics; each part is also timed alone.
 //! * **tree-sitter-gcode**: `Tree::edit` and `Parser::parse` with the old tree, for the same
 //!   one-byte insertion (tree-sitter 0.25, tree-sitter-gcode 0.1.1 from crates.io).
 //!
@@ -118,33 +120,51 @@ impl TreeSitter {
 
 fn lsp(c: &mut Criterion) {
     let uri = uri();
+    // The sizes of the report; the criterion groups use the 1 and 8 MB programs.
+    let sizes = std::env::var("TURNPASS_BENCH_LSP_MB").unwrap_or_else(|_| "1,8,50".to_string());
     let small = generated("1");
     let large = generated("8");
 
     // The figures the README quotes: medians of runs in this one process.
     let mut report = String::new();
-    for text in [&small, &large] {
+    for megabytes in sizes.split(',') {
+        let text = generated(megabytes.trim());
         let mb = text.len() as f64 / 1e6;
+        // Opening a program grows with its size: fewer rounds for the large ones.
+        let open_rounds = if mb < 10.0 { 7 } else { 3 };
         let mut document = Document::new(text.to_vec(), options());
-        let middle = digit_after(text, text.len() / 2);
-        let first = digit_after(text, 0);
+        let middle = digit_after(&text, text.len() / 2);
+        let first = digit_after(&text, 0);
         let edit_middle = median_edit_seconds(&mut document, middle, &uri, 201);
         let edit_start = median_edit_seconds(&mut document, first, &uri, 201);
-        let opened = median_seconds(|| _ = black_box(open(text, &uri)), 7);
-        let parse_only = median_seconds(|| drop(black_box(Document::new(text.to_vec(), options()))), 7);
-        let snapshot = document.snapshot();
-        let job = SemanticJob::new(snapshot, &MachineSettings::default());
-        let semantic = median_seconds(|| drop(black_box(job.run())), 7);
+        // As on a large program whose semantic pass runs on a worker thread: the job holds a
+        // snapshot of the document while the machinist goes on typing.
+        let held = document.snapshot();
+        let edit_held = median_edit_seconds(&mut document, middle, &uri, 201);
+        drop(held);
+        let opened = median_seconds(|| _ = black_box(open(&text, &uri)), open_rounds);
+        let parse_only = median_seconds(|| drop(black_box(Document::new(text.to_vec(), options()))), open_rounds);
+        let job = SemanticJob::new(document.snapshot(), &MachineSettings::default());
+        let semantic_diagnostics = job.run();
+        let semantic = median_seconds(|| drop(black_box(job.run())), open_rounds);
+        let publish = median_seconds(
+            || drop(black_box(analysis::publishable(&document, &uri, &semantic_diagnostics))),
+            open_rounds,
+        );
         report.push_str(&format!(
-            "turnpass-bench: {mb:.2} MB, {} chunks, {} diagnostics: one-character edit + publish {:.3} ms (middle), \
-             {:.3} ms (start); open with semantic pass {:.1} ms (parse into chunks {:.1} ms, semantic pass {:.1} ms)\n",
+            "turnpass-bench: {mb:.2} MB, {} chunks, {} parse and {} semantic diagnostics: one-character edit + \
+             publish {:.3} ms (middle), {:.3} ms (start), {:.3} ms (middle, snapshot held); open {:.1} ms (parse \
+             into chunks {:.1} ms, semantic pass {:.1} ms, publish {:.1} ms)\n",
             document.chunk_count(),
             document.diagnostics().len(),
+            semantic_diagnostics.len(),
             edit_middle * 1e3,
             edit_start * 1e3,
+            edit_held * 1e3,
             opened * 1e3,
             parse_only * 1e3,
             semantic * 1e3,
+            publish * 1e3,
         ));
     }
     let middle = digit_after(&large, large.len() / 2);

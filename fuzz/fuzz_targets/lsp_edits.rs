@@ -7,8 +7,9 @@
 //! piece: two bytes place it (a fraction of the text's length), one byte says how many
 //! bytes it deletes, and the rest is inserted. After every edit the target checks that the
 //! document's chunks, spliced together, are exactly what a full parse of its text gives (the
-//! program, the diagnostics and the dialect decision), and that every character boundary
-//! survives the trip to a protocol position (line, UTF-16 column) and back.
+//! program, the diagnostics and the dialect decision), that every offset has the protocol
+//! position (line, UTF-16 column) it has in a document read from scratch, and that every
+//! character boundary survives the trip to a position and back.
 //!
 //! ```sh
 //! RUSTC_BOOTSTRAP=1 cargo fuzz run lsp_edits -- -max_total_time=360 -max_len=4096 -dict=fuzz/gcode.dict
@@ -32,8 +33,9 @@ fuzz_target!(|data: &[u8]| {
     let options = ParseOptions { dialect, gcode_system, machine_kind: None };
     let mut pieces = rest.split(|&b| b == 0xFF);
     let mut text = pieces.next().unwrap_or_default().to_vec();
-    let mut document = Document::with_chunk_bytes(text.clone(), options, 1 + *size as usize % 64);
-    check(&document, &text, &options);
+    let chunk_bytes = 1 + *size as usize % 64;
+    let mut document = Document::with_chunk_bytes(text.clone(), options, chunk_bytes);
+    check(&document, &text, &options, chunk_bytes);
     for edit in pieces {
         let (place, delete, insert) = match edit {
             [a, b, c, insert @ ..] => (u16::from_le_bytes([*a, *b]), *c as usize, insert),
@@ -43,11 +45,11 @@ fuzz_target!(|data: &[u8]| {
         let end = (start + delete).min(text.len());
         text.splice(start..end, insert.iter().copied());
         document.replace(start..end, insert);
-        check(&document, &text, &options);
+        check(&document, &text, &options, chunk_bytes);
     }
 });
 
-fn check(document: &Document, text: &[u8], options: &ParseOptions) {
+fn check(document: &Document, text: &[u8], options: &ParseOptions, chunk_bytes: usize) {
     assert_eq!(document.text(), text);
     let full = parse(text, options);
     let snapshot = document.snapshot();
@@ -56,6 +58,13 @@ fn check(document: &Document, text: &[u8], options: &ParseOptions) {
     assert_eq!(incremental.diagnostics, full.diagnostics);
     assert_eq!(incremental.detection, full.detection);
     assert_eq!(document.diagnostics(), full.diagnostics);
+    // Lines and columns, which an edit moves without looking at the chunks after it, are
+    // those of the text read from scratch into other chunks.
+    let fresh = Document::with_chunk_bytes(text.to_vec(), *options, chunk_bytes + 5);
+    assert_eq!(document.line_count(), fresh.line_count());
+    for offset in 0..=text.len() {
+        assert_eq!(document.position_of(offset, false), fresh.position_of(offset, false), "offset {offset}");
+    }
     // Positions: in UTF-8 text (what an editor sends), every character boundary that is not
     // the middle of a CR LF pair maps to a position and back to itself.
     if let Ok(utf8) = std::str::from_utf8(text) {

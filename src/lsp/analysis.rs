@@ -69,10 +69,13 @@ impl Pass {
 /// sorted by position as `parse` sorts (the parse's first on a tie).
 pub fn publishable(document: &Document, uri: &Uri, semantic: &[Diagnostic]) -> Vec<lsp_types::Diagnostic> {
     let syntax = document.diagnostics();
-    let mut all: Vec<(&Diagnostic, Pass)> = syntax.iter().map(|d| (d, Pass::Syntax)).collect();
+    let mut all: Vec<(&Diagnostic, Pass)> = Vec::with_capacity(syntax.len() + semantic.len());
+    all.extend(syntax.iter().map(|d| (d, Pass::Syntax)));
     all.extend(semantic.iter().map(|d| (d, Pass::Semantic)));
     all.sort_by_key(|(d, _)| (d.span.start, d.span.end));
-    all.into_iter().map(|(d, pass)| to_lsp(document, uri, d, pass)).collect()
+    let mut published = Vec::with_capacity(all.len());
+    published.extend(all.into_iter().map(|(d, pass)| to_lsp(document, uri, d, pass)));
+    published
 }
 
 /// A diagnostic in the protocol's terms.

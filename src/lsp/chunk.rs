@@ -19,8 +19,8 @@ use crate::syntax::{self, Part, Tape};
 
 #[derive(Debug, Clone)]
 pub(crate) struct Chunk {
-    /// Length of the chunk's text in bytes.
-    pub len: u32,
+    /// The chunk's text: whole lines of the document.
+    pub text: Vec<u8>,
     /// Where each line of the chunk starts, relative to the chunk; the first is 0.
     pub line_starts: Vec<u32>,
     /// The dialect evidence of the chunk's lines, spans relative to the chunk.
@@ -31,21 +31,26 @@ pub(crate) struct Chunk {
 }
 
 impl Chunk {
-    /// A chunk over `text` with its lines and evidence, not parsed yet.
-    pub fn new(text: &[u8], scan: bool) -> Chunk {
+    /// A chunk of `text` with its lines and evidence, not parsed yet.
+    pub fn new(text: Vec<u8>, scan: bool) -> Chunk {
         Chunk {
-            len: text.len() as u32,
-            line_starts: line_starts(text),
-            evidence: if scan { detect::scan(text) } else { Vec::new() },
+            line_starts: line_starts(&text),
+            evidence: if scan { detect::scan(&text) } else { Vec::new() },
+            text,
             tape_in: Tape::Before,
             part: Part::default(),
         }
     }
 
-    /// Parse the chunk's text (which the caller holds) from the tape state `tape_in`.
-    pub fn parse(&mut self, text: &[u8], config: DialectConfig, tape_in: Tape, document_start: bool) {
+    /// The length of the chunk's text (a document's chunks hold less than 4 GiB in all).
+    pub fn byte_len(&self) -> u32 {
+        self.text.len() as u32
+    }
+
+    /// Parse the chunk's text from the tape state `tape_in`.
+    pub fn parse(&mut self, config: DialectConfig, tape_in: Tape, document_start: bool) {
         self.tape_in = tape_in;
-        self.part = syntax::parse_part(text, config, tape_in, document_start);
+        self.part = syntax::parse_part(&self.text, config, tape_in, document_start);
         self.part.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
     }
 
@@ -76,15 +81,20 @@ fn line_starts(text: &[u8]) -> Vec<u32> {
 
 /// Whether a chunk may end at `at` in `text`: see the module documentation.
 pub(crate) fn is_boundary(text: &[u8], at: usize) -> bool {
-    if at == 0 || at >= text.len() {
-        return true;
-    }
-    let after_terminator = match text[at - 1] {
+    let before = at.checked_sub(1).and_then(|b| text.get(b)).copied();
+    is_boundary_between(before, text.get(at).copied())
+}
+
+/// Whether a chunk may end between the bytes `before` and `after`; `None` is the start or
+/// the end of the text, where a chunk may always end.
+pub(crate) fn is_boundary_between(before: Option<u8>, after: Option<u8>) -> bool {
+    let (Some(before), Some(after)) = (before, after) else { return true };
+    let after_terminator = match before {
         b'\n' => true,
-        b'\r' => text[at] != b'\n',
+        b'\r' => after != b'\n',
         _ => false,
     };
-    after_terminator && text[at] != b'$'
+    after_terminator && after != b'$'
 }
 
 /// Cut `text[range]` into chunks of about `target` bytes at boundaries; returns the lengths.

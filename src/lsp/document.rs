@@ -1,29 +1,30 @@
-//! An open program: its text, its parse kept as chunks, and incremental re-parsing.
+//! An open program: its text and its parse, kept as chunks, and incremental re-parsing.
 //!
-//! **Why chunks.** An edit changes a few bytes, but every span after it moves. A parse that
-//! is one arena of absolute spans would need every later word rewritten (a 1-byte edit of
-//! an 8 MB program would touch 1.2 million words). The document instead keeps its parse as
-//! chunks of whole blocks (about [`DEFAULT_CHUNK_BYTES`] each, see `chunk.rs`), each with
-//! spans relative to its own start. An edit:
+//! **Why chunks.** An edit changes a few bytes, but every byte and span after it moves. A
+//! parse that is one arena of absolute spans would need every later word rewritten (a
+//! 1-byte edit of an 8 MB program would touch 1.2 million words), and a text that is one
+//! buffer would need every later byte moved (50 MB of memory traffic for a keystroke at the
+//! top of a 50 MB program). The document instead keeps the text and its parse as chunks of
+//! whole blocks (about [`DEFAULT_CHUNK_BYTES`] each, see `chunk.rs`), each with its own
+//! bytes and spans relative to its own start. An edit:
 //!
-//! 1. splices the text;
-//! 2. takes the chunks the edited bytes touch, widened until both ends are chunk
-//!    boundaries in the new text (a `$` continuation line or a CR LF pair never straddles
-//!    one);
-//! 3. re-splits that stretch into chunks, scans their dialect evidence, and parses them
+//! 1. takes the chunks the edited bytes touch and splices the edit into their text;
+//! 2. widens that stretch by whole chunks until both ends are chunk boundaries in the new
+//!    text (a `$` continuation line or a CR LF pair never straddles one);
+//! 3. re-splits the stretch into chunks, scans their dialect evidence, and parses them
 //!    (only those blocks), from the tape state the chunk before leaves;
 //! 4. re-parses the chunks after it only while the tape state entering them changed (an
 //!    edit that adds or removes a `%` line);
 //! 5. re-decides the dialect from every chunk's evidence; when the decision changes, every
 //!    chunk is parsed again (the block grammar depends on it).
 //!
-//! The chunks after the edit keep their parse; only their start offsets and first line
-//! numbers, one integer per chunk, are recomputed. [`Snapshot::program`] splices the chunks
-//! back into one [`Program`], equal (tested, with random edit sequences) to what
-//! [`crate::syntax::parse`] gives for the same text.
+//! The chunks after the edit keep their text and parse; only their start offsets and first
+//! line numbers, one integer each, move. [`Snapshot::program`] joins the chunks back into
+//! one text and one [`Program`], equal (tested, and fuzzed, with random edit sequences) to
+//! what [`crate::syntax::parse`] gives for the same text.
 
 use std::ops::Range;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::detect::{self, Detection};
@@ -47,8 +48,14 @@ pub struct LinePosition {
 
 #[derive(Debug, Clone)]
 pub struct Document {
-    text: Arc<Vec<u8>>,
+    /// The text and its parse, in order; empty for an empty text and for a text too large
+    /// for 32-bit spans.
     chunks: Vec<Arc<Chunk>>,
+    /// The text when it is too large for 32-bit spans: it is not parsed, and
+    /// [`Document::diagnostics`] says so.
+    oversized: Option<Arc<Vec<u8>>>,
+    /// The length of the text.
+    len: usize,
     /// Where each chunk starts in the text, and the text's length last.
     starts: Vec<u32>,
     /// The first line of each chunk, and the number of lines last.
@@ -58,15 +65,19 @@ pub struct Document {
     chunk_bytes: usize,
 }
 
-/// An immutable view of a document at one version, cheap to take (the text and the chunks
-/// are shared), for work done away from the document (the semantic pass on another thread).
+/// An immutable view of a document at one version, cheap to take (the chunks are shared),
+/// for work done away from the document (the semantic pass on another thread).
 #[derive(Debug, Clone)]
 pub struct Snapshot {
-    text: Arc<Vec<u8>>,
     chunks: Vec<Arc<Chunk>>,
+    oversized: Option<Arc<Vec<u8>>>,
+    len: usize,
     starts: Vec<u32>,
     detection: Detection,
     config: DialectConfig,
+    /// The chunks' text joined into one, on first use: by the thread that runs the semantic
+    /// pass, not by the one that answers the editor.
+    joined: OnceLock<Vec<u8>>,
 }
 
 impl Document {
@@ -79,20 +90,34 @@ impl Document {
     pub fn with_chunk_bytes(text: Vec<u8>, options: ParseOptions, chunk_bytes: usize) -> Document {
         let detection = detect::decide(b"", given(&options), options.machine_kind);
         let mut document = Document {
-            text: Arc::new(text),
             chunks: Vec::new(),
+            oversized: None,
+            len: 0,
             starts: vec![0],
             first_lines: vec![0],
             options,
             detection,
             chunk_bytes: chunk_bytes.max(1),
         };
-        document.rebuild();
+        document.rebuild(text);
         document
     }
 
-    pub fn text(&self) -> &[u8] {
-        &self.text
+    /// The whole text, joined from the chunks (a copy: its cost grows with the text).
+    pub fn text(&self) -> Vec<u8> {
+        match &self.oversized {
+            Some(text) => text.to_vec(),
+            None => join(&self.chunks, self.len),
+        }
+    }
+
+    /// The length of the text in bytes.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
     }
 
     pub fn options(&self) -> ParseOptions {
@@ -114,64 +139,72 @@ impl Document {
 
     /// Replace the whole text.
     pub fn set_text(&mut self, text: Vec<u8>) {
-        self.text = Arc::new(text);
-        self.rebuild();
+        self.rebuild(text);
     }
 
     /// Read the program with other options (new machine settings); parses it again.
     pub fn set_options(&mut self, options: ParseOptions) {
         if options != self.options {
             self.options = options;
-            self.rebuild();
+            self.rebuild(self.text());
         }
     }
 
     /// Replace the bytes `range` (clamped to the text) by `insert`, and re-parse the blocks
     /// the change touches. See the module documentation.
     pub fn replace(&mut self, range: Range<usize>, insert: &[u8]) {
-        let old_len = self.text.len();
+        let old_len = self.len;
         let start = range.start.min(old_len);
         let end = range.end.clamp(start, old_len);
         if start == end && insert.is_empty() {
             return;
         }
-        Arc::make_mut(&mut self.text).splice(start..end, insert.iter().copied());
-        if self.chunks.is_empty() || self.text.len() >= u32::MAX as usize || old_len >= u32::MAX as usize {
-            self.rebuild();
+        let new_len = old_len - (end - start) + insert.len();
+        if self.chunks.is_empty() || new_len >= u32::MAX as usize || old_len >= u32::MAX as usize {
+            let mut text = self.text();
+            text.splice(start..end, insert.iter().copied());
+            self.rebuild(text);
             return;
         }
-        let delta = self.text.len() as i64 - old_len as i64;
 
         // The chunks the edited bytes touch, in old offsets: the one holding `start` through
-        // the one holding the last replaced byte.
+        // the one holding the last replaced byte; their text with the edit made.
         let mut first = self.chunk_at(start as u32);
         let mut last = if end > start { self.chunk_at(end as u32 - 1) } else { first };
-        // Widen until both ends are boundaries in the new text.
+        let mut region: Vec<u8> = self.chunks[first..=last].iter().flat_map(|c| c.text.iter().copied()).collect();
+        let base = self.starts[first] as usize;
+        region.splice(start - base..end - base, insert.iter().copied());
+        // Widen by whole chunks until both ends are boundaries in the new text.
         loop {
-            let region_start = self.starts[first] as usize;
-            let region_end = (self.starts[last + 1] as i64 + delta) as usize;
-            if first > 0 && !chunk::is_boundary(&self.text, region_start) {
+            let last_byte_before =
+                |first: usize| first.checked_sub(1).and_then(|p| self.chunks[p].text.last().copied());
+            let first_byte_after = |last: usize| self.chunks.get(last + 1).and_then(|c| c.text.first().copied());
+            let at_start = (last_byte_before(first), region.first().copied().or_else(|| first_byte_after(last)));
+            let at_end = (region.last().copied().or_else(|| last_byte_before(first)), first_byte_after(last));
+            if first > 0 && !chunk::is_boundary_between(at_start.0, at_start.1) {
                 first -= 1;
-            } else if last + 1 < self.chunks.len() && !chunk::is_boundary(&self.text, region_end) {
+                region.splice(0..0, self.chunks[first].text.iter().copied());
+            } else if last + 1 < self.chunks.len() && !chunk::is_boundary_between(at_end.0, at_end.1) {
                 last += 1;
+                region.extend_from_slice(&self.chunks[last].text);
             } else {
                 break;
             }
         }
-        let region_start = self.starts[first] as usize;
-        let region_end = (self.starts[last + 1] as i64 + delta) as usize;
         let scan = self.scans();
-        let fresh: Vec<Arc<Chunk>> = chunk::split(&self.text, region_start..region_end, self.chunk_bytes)
+        let mut at = 0;
+        let fresh: Vec<Arc<Chunk>> = chunk::split(&region, 0..region.len(), self.chunk_bytes)
             .into_iter()
-            .scan(region_start, |at, len| {
-                let chunk = Chunk::new(&self.text[*at..*at + len], scan);
-                *at += len;
-                Some(Arc::new(chunk))
+            .map(|len| {
+                let chunk = Chunk::new(region[at..at + len].to_vec(), scan);
+                at += len;
+                Arc::new(chunk)
             })
             .collect();
         let fresh_count = fresh.len();
+        self.respan(first..last + 1, &fresh, new_len);
         self.chunks.splice(first..=last, fresh);
-        self.recount();
+        self.len = new_len;
 
         let config = self.config();
         self.detection = self.decide();
@@ -192,30 +225,30 @@ impl Document {
         }
     }
 
-    /// Split, scan and parse the whole text again.
-    fn rebuild(&mut self) {
+    /// Split, scan and parse a whole new text.
+    fn rebuild(&mut self, text: Vec<u8>) {
+        self.len = text.len();
+        if text.len() >= u32::MAX as usize {
+            // Too large for 32-bit spans: no chunks, and `diagnostics` says so.
+            self.chunks.clear();
+            self.detection = detect::decide(&text, given(&self.options), self.options.machine_kind);
+            self.oversized = Some(Arc::new(text));
+            self.recount();
+            return;
+        }
+        self.oversized = None;
         let scan = self.scans();
-        let text = Arc::clone(&self.text);
-        self.chunks = if text.len() >= u32::MAX as usize {
-            Vec::new()
-        } else {
-            let mut at = 0;
-            chunk::split(&text, 0..text.len(), self.chunk_bytes)
-                .into_iter()
-                .map(|len| {
-                    let chunk = Chunk::new(&text[at..at + len], scan);
-                    at += len;
-                    Arc::new(chunk)
-                })
-                .collect()
-        };
+        let mut at = 0;
+        self.chunks = chunk::split(&text, 0..text.len(), self.chunk_bytes)
+            .into_iter()
+            .map(|len| {
+                let chunk = Chunk::new(text[at..at + len].to_vec(), scan);
+                at += len;
+                Arc::new(chunk)
+            })
+            .collect();
         self.recount();
-        self.detection = if self.chunks.is_empty() && !text.is_empty() {
-            // Only a source too large for 32-bit spans has no chunks; `diagnostics` says so.
-            detect::decide(&text, given(&self.options), self.options.machine_kind)
-        } else {
-            self.decide()
-        };
+        self.detection = self.decide();
         self.parse_all();
     }
 
@@ -229,9 +262,7 @@ impl Document {
     fn parse_chunk(&mut self, index: usize) {
         let tape = self.tape_before(index);
         let config = self.config();
-        let range = self.starts[index] as usize..self.starts[index + 1] as usize;
-        let text = Arc::clone(&self.text);
-        Arc::make_mut(&mut self.chunks[index]).parse(&text[range], config, tape, index == 0);
+        Arc::make_mut(&mut self.chunks[index]).parse(config, tape, index == 0);
     }
 
     fn tape_before(&self, index: usize) -> Tape {
@@ -248,11 +279,16 @@ impl Document {
     /// The dialect decision from every chunk's evidence, as one scan of the text would give.
     fn decide(&self) -> Detection {
         let mut evidence = Vec::new();
-        for (chunk, &start) in self.chunks.iter().zip(&self.starts) {
-            detect::merge_evidence(
-                &mut evidence,
-                chunk.evidence.iter().map(|e| detect::Evidence { first: chunk::shifted(e.first, start), ..e.clone() }),
-            );
+        if self.scans() {
+            for (chunk, &start) in self.chunks.iter().zip(&self.starts) {
+                detect::merge_evidence(
+                    &mut evidence,
+                    chunk
+                        .evidence
+                        .iter()
+                        .map(|e| detect::Evidence { first: chunk::shifted(e.first, start), ..e.clone() }),
+                );
+            }
         }
         detect::decide_from(evidence, given(&self.options), self.options.machine_kind)
     }
@@ -265,11 +301,37 @@ impl Document {
         for chunk in &self.chunks {
             self.starts.push(at);
             self.first_lines.push(line);
-            at += chunk.len;
+            at += chunk.byte_len();
             line += chunk.line_count() as u32;
         }
         self.starts.push(at);
         self.first_lines.push(line);
+    }
+
+    /// Where each chunk starts and its first line, when the chunks `replaced` give way to
+    /// `fresh` and the text's length becomes `new_len`: the chunks after them move by the
+    /// same number of bytes and lines, without being looked at.
+    fn respan(&mut self, replaced: Range<usize>, fresh: &[Arc<Chunk>], new_len: usize) {
+        let (mut at, mut line) = (self.starts[replaced.start], self.first_lines[replaced.start]);
+        let line_delta = fresh.iter().map(|c| c.line_count() as i64).sum::<i64>()
+            - (self.first_lines[replaced.end] as i64 - line as i64);
+        let byte_delta = new_len as i64 - self.len as i64;
+        let (mut starts, mut lines) = (Vec::with_capacity(fresh.len()), Vec::with_capacity(fresh.len()));
+        for chunk in fresh {
+            starts.push(at);
+            lines.push(line);
+            at += chunk.byte_len();
+            line += chunk.line_count() as u32;
+        }
+        let moved = replaced.start + fresh.len();
+        self.starts.splice(replaced.clone(), starts);
+        self.first_lines.splice(replaced, lines);
+        for start in &mut self.starts[moved..] {
+            *start = (*start as i64 + byte_delta) as u32;
+        }
+        for first_line in &mut self.first_lines[moved..] {
+            *first_line = (*first_line as i64 + line_delta) as u32;
+        }
     }
 
     /// The chunk holding byte `offset` (the last chunk for the end of the text).
@@ -289,7 +351,7 @@ impl Document {
         let chunk = &self.chunks[index];
         let local = offset as u32 - base.min(offset as u32);
         let block = chunk.part.blocks.partition_point(|b| b.span.start <= local).checked_sub(1)?;
-        let found = BlockRef { chunk, base, text: self.chunk_text(index), index: block };
+        let found = BlockRef { chunk, base, index: block };
         (local <= found.block().span.end).then_some(found)
     }
 
@@ -297,41 +359,51 @@ impl Document {
     pub(crate) fn blocks(&self) -> impl Iterator<Item = BlockRef<'_>> {
         (0..self.chunks.len()).flat_map(move |index| {
             let chunk = &*self.chunks[index];
-            let (base, text) = (self.starts[index], self.chunk_text(index));
-            (0..chunk.part.blocks.len()).map(move |block| BlockRef { chunk, base, text, index: block })
+            let base = self.starts[index];
+            (0..chunk.part.blocks.len()).map(move |block| BlockRef { chunk, base, index: block })
         })
-    }
-
-    fn chunk_text(&self, index: usize) -> &[u8] {
-        &self.text[self.starts[index] as usize..self.starts[index + 1] as usize]
     }
 
     /// The diagnostics `syntax::parse` gives for the text, in the same order.
     pub fn diagnostics(&self) -> Vec<Diagnostic> {
-        collect_diagnostics(&self.detection, self.text.len(), &self.chunks, &self.starts)
+        collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts)
     }
 
     /// Whether the parse found errors (the semantic pass waits until it finds none).
     pub fn has_errors(&self) -> bool {
-        (self.chunks.is_empty() && self.text.len() >= u32::MAX as usize)
-            || self.chunks.iter().any(|c| c.part.diagnostics.iter().any(Diagnostic::is_error))
+        self.oversized.is_some() || self.chunks.iter().any(|c| c.part.diagnostics.iter().any(Diagnostic::is_error))
     }
 
     pub fn snapshot(&self) -> Snapshot {
         Snapshot {
-            text: Arc::clone(&self.text),
             chunks: self.chunks.clone(),
+            oversized: self.oversized.clone(),
+            len: self.len,
             starts: self.starts.clone(),
             detection: self.detection.clone(),
             config: self.config(),
+            joined: OnceLock::new(),
         }
+    }
+
+    /// The last byte of the text.
+    fn last_byte(&self) -> Option<u8> {
+        match &self.oversized {
+            Some(text) => text.last().copied(),
+            None => self.chunks.last().and_then(|c| c.text.last().copied()),
+        }
+    }
+
+    /// Whether the text ends with a line terminator, which starts one more (empty) line.
+    fn ends_with_terminator(&self) -> bool {
+        matches!(self.last_byte(), Some(b'\n' | b'\r'))
     }
 
     /// The number of lines as the protocol counts them: a terminator at the end of the text
     /// starts one more, empty, line.
     pub fn line_count(&self) -> u32 {
         let lines = self.first_lines.last().copied().unwrap_or(0);
-        if self.text.is_empty() || ends_with_terminator(&self.text) { lines + 1 } else { lines }
+        if self.len == 0 || self.ends_with_terminator() { lines + 1 } else { lines }
     }
 
     /// The text of line `line` without its terminator, and where it starts.
@@ -340,16 +412,16 @@ impl Document {
         let chunk = &self.chunks[index];
         let local = (line - self.first_lines[index]) as usize;
         let start = *chunk.line_starts.get(local)? as usize;
-        let end = chunk.line_starts.get(local + 1).map_or(chunk.len as usize, |&s| s as usize);
+        let end = chunk.line_starts.get(local + 1).map_or(chunk.text.len(), |&s| s as usize);
         let base = self.starts[index] as usize;
-        Some((base + start, position::without_terminator(&self.text[base + start..base + end])))
+        Some((base + start, position::without_terminator(&chunk.text[start..end])))
     }
 
     /// The protocol position of byte `offset`; an offset inside a character goes to the
     /// character's start, or its end when `round_up` (the end of a range).
     pub fn position_of(&self, offset: usize, round_up: bool) -> LinePosition {
-        let offset = offset.min(self.text.len());
-        if self.chunks.is_empty() || (offset == self.text.len() && ends_with_terminator(&self.text)) {
+        let offset = offset.min(self.len);
+        if self.chunks.is_empty() || (offset == self.len && self.ends_with_terminator()) {
             return LinePosition { line: self.line_count().saturating_sub(1), column: 0 };
         }
         let index = self.chunk_at(offset as u32);
@@ -378,20 +450,24 @@ impl Document {
     pub fn offset_of(&self, position: LinePosition) -> usize {
         match self.line(position.line) {
             Some((start, text)) => start + position::offset_of(text, position.column),
-            None => self.text.len(),
+            None => self.len,
         }
     }
 }
 
 impl Snapshot {
+    /// The whole text (joined from the chunks on first use).
     pub fn text(&self) -> &[u8] {
-        &self.text
+        match &self.oversized {
+            Some(text) => text,
+            None => self.joined.get_or_init(|| join(&self.chunks, self.len)),
+        }
     }
 
     /// The chunks spliced back into one program over the snapshot's text.
     pub fn program(&self) -> Program<'_> {
         super::assemble::program(
-            &self.text,
+            self.text(),
             self.config,
             self.chunks.iter().map(|c| &**c).zip(self.starts.iter().copied()),
         )
@@ -399,17 +475,31 @@ impl Snapshot {
 
     /// What `syntax::parse` returns for the text, built from the chunks.
     pub fn parsed(&self) -> Parsed<'_> {
-        let diagnostics = collect_diagnostics(&self.detection, self.text.len(), &self.chunks, &self.starts);
+        let diagnostics = collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts);
         Parsed { program: self.program(), diagnostics, detection: self.detection.clone() }
     }
+}
+
+/// The chunks' text as one.
+fn join(chunks: &[Arc<Chunk>], len: usize) -> Vec<u8> {
+    let mut text = Vec::with_capacity(len);
+    for chunk in chunks {
+        text.extend_from_slice(&chunk.text);
+    }
+    text
 }
 
 /// The diagnostics of a whole parse from its chunks: those of the dialect decision, then
 /// each chunk's in order, sorted as `syntax::parse` sorts them (a stable sort on the same
 /// order of reports gives the same list).
-fn collect_diagnostics(detection: &Detection, len: usize, chunks: &[Arc<Chunk>], starts: &[u32]) -> Vec<Diagnostic> {
+fn collect_diagnostics(
+    detection: &Detection,
+    oversized: bool,
+    chunks: &[Arc<Chunk>],
+    starts: &[u32],
+) -> Vec<Diagnostic> {
     let mut diagnostics = syntax::detection_diagnostics(detection);
-    if chunks.is_empty() && len >= u32::MAX as usize {
+    if oversized {
         diagnostics.push(Diagnostic::error(DiagnosticKind::SourceTooLarge, Span::new(0, 0)));
     }
     for (chunk, &start) in chunks.iter().zip(starts) {
@@ -424,10 +514,6 @@ fn given(options: &ParseOptions) -> Option<crate::dialect::Dialect> {
         DialectChoice::Fixed(dialect) => Some(dialect),
         DialectChoice::Auto => None,
     }
-}
-
-fn ends_with_terminator(text: &[u8]) -> bool {
-    matches!(text.last(), Some(b'\n' | b'\r'))
 }
 
 #[cfg(test)]
@@ -448,7 +534,6 @@ pub(crate) fn shift_diagnostic(diagnostic: &Diagnostic, by: u32) -> Diagnostic {
 pub(crate) struct BlockRef<'a> {
     chunk: &'a Chunk,
     base: u32,
-    text: &'a [u8],
     index: usize,
 }
 
@@ -485,7 +570,7 @@ impl<'a> BlockRef<'a> {
 
     /// The source text of a span of this block (relative to the chunk).
     pub fn text(&self, span: Span) -> &'a [u8] {
-        self.text.get(span.range()).unwrap_or(&[])
+        self.chunk.text.get(span.range()).unwrap_or(&[])
     }
 
     pub fn absolute(&self, span: Span) -> Span {

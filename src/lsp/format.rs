@@ -13,7 +13,7 @@ use super::document::Document;
 pub fn formatting(document: &Document, options: &CanonicalOptions) -> Vec<TextEdit> {
     let snapshot = document.snapshot();
     let output = print_canonical(&snapshot.program(), options);
-    let old = document.text();
+    let old = snapshot.text();
     if output == old {
         return Vec::new();
     }

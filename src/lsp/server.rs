@@ -328,7 +328,7 @@ impl<H: Host> Server<H> {
                 open.semantic.clear();
                 open.semantic_version = None;
             } else if open.semantic_version != Some(open.version) && !open.running {
-                let inline = open.document.text().len() <= self.inline_limit;
+                let inline = open.document.len() <= self.inline_limit;
                 let work = SemanticJob::new(open.document.snapshot(), &open.settings.machine);
                 jobs.push(Job { uri: uri.clone(), generation: open.generation, version: open.version, work, inline });
                 open.running = true;

@@ -1,6 +1,7 @@
 //! The language server's incremental re-parse: after any sequence of edits, the document's
 //! chunks spliced back together are exactly what a full parse of its text gives (the
-//! program, its diagnostics and the dialect decision), whatever the chunk size.
+//! program, its diagnostics and the dialect decision), whatever the chunk size, and its
+//! lines and columns are those of the text read from scratch.
 
 use proptest::prelude::*;
 use turnpass::lsp::Document;
@@ -49,6 +50,13 @@ proptest! {
             prop_assert_eq!(&incremental.diagnostics, &full.diagnostics);
             prop_assert_eq!(&incremental.detection, &full.detection);
             prop_assert_eq!(document.diagnostics(), full.diagnostics);
+            // Lines and columns, which an edit moves without looking at the chunks after
+            // it, are those of a document read from scratch (cut into other chunks).
+            let fresh = Document::with_chunk_bytes(text.clone(), options, chunk_bytes + 5);
+            prop_assert_eq!(document.line_count(), fresh.line_count());
+            for offset in 0..=text.len() {
+                prop_assert_eq!(document.position_of(offset, false), fresh.position_of(offset, false), "{}", offset);
+            }
         }
     }
 }

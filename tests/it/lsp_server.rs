@@ -236,3 +236,34 @@ fn large_programs_get_their_semantic_diagnostics_from_a_job() {
     let last = published(&server.finished(jobs[0].run()));
     assert!(last[0].contains(&("semantic".to_string(), "missing-sequence".to_string(), missing + 13)), "{last:?}");
 }
+
+/// A document closed and opened again starts its versions anew: a semantic job started for
+/// the first opening must not be published for the second, even when the version numbers
+/// are the same.
+#[test]
+fn a_result_for_a_closed_document_is_not_published_after_it_is_reopened() {
+    let uri = "file:///work/reopened.nc";
+    let init = json!({ "capabilities": {}, "initializationOptions": { "semanticInlineLimit": 0, "dialect": "fanuc" } });
+    let (mut server, _, _) = Server::initialize(NoFiles, init);
+    let open = |text: &str| {
+        let item = json!({ "uri": uri, "languageId": "gcode", "version": 1, "text": text });
+        notification("textDocument/didOpen", json!({ "textDocument": item }))
+    };
+    let broken = "G00 X60. Z2.\nG71 U2. R0.5\nG71 P10 Q21 U0.4 W0.1 F0.25\nN10 G01 X20.\nN20 X60.\n";
+    server.handle(open(broken));
+    let (_, first_jobs) = server.idle();
+    assert_eq!(first_jobs.len(), 1);
+    server.handle(notification("textDocument/didClose", json!({ "textDocument": { "uri": uri } })));
+
+    // Opened again at version 1 with the Q target fixed: the first opening's result, which
+    // reports the missing N21, is dropped, and the new job's is published.
+    let fixed = broken.replace("Q21", "Q20");
+    server.handle(open(&fixed));
+    let (_, jobs) = server.idle();
+    assert_eq!(jobs.len(), 1);
+    assert!(server.finished(first_jobs[0].run()).is_empty(), "a result for the closed document is dropped");
+    let published = published(&server.finished(jobs[0].run()));
+    assert_eq!(published.len(), 1);
+    assert!(!published[0].is_empty(), "the fixed program still starts from an unknown position");
+    assert!(published[0].iter().all(|(_, code, _)| code != "missing-sequence"), "{published:?}");
+}
