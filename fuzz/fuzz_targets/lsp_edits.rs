@@ -2,17 +2,18 @@
 //! arbitrary documents and edit sequences.
 //!
 //! The input's first byte chooses how the program is read (dialect detection, Okuma OSP or
-//! Fanuc; G-code system A, B or C) and its second the chunk size (1 to 64 bytes, so that chunk boundaries
-//! fall everywhere). The rest, split at 0xFF bytes, is the document and then one edit per
-//! piece: two bytes place it (a fraction of the text's length), one byte says how many
-//! bytes it deletes, and the rest is inserted. After every edit the target checks that the
-//! document's chunks, spliced together, are exactly what a full parse of its text gives (the
-//! program, the diagnostics and the dialect decision), that every offset has the protocol
-//! position (line, UTF-16 column) it has in a document read from scratch, and that every
-//! character boundary survives the trip to a position and back.
+//! Fanuc; G-code system A, B or C) and its second the chunk size (1 to 64 bytes, so that
+//! chunk boundaries fall everywhere). The rest, split at 0xFF bytes, is the document and
+//! then one edit per piece: two bytes place it (a fraction of the text's length), one byte
+//! says how many bytes it deletes, and the rest is inserted. After every edit the target
+//! checks that the document's chunks, spliced together, are exactly what a full parse of its
+//! text gives (the program, the diagnostics and their first few as a capped publish takes
+//! them, and the dialect decision), that every offset has the protocol position (line,
+//! UTF-16 column) it has in a document read from scratch, and that every character
+//! boundary survives the trip to a position and back.
 //!
 //! ```sh
-//! RUSTC_BOOTSTRAP=1 cargo fuzz run lsp_edits -- -max_total_time=360 -max_len=4096 -dict=fuzz/gcode.dict
+//! RUSTC_BOOTSTRAP=1 cargo fuzz run lsp_edits -- -max_total_time=300 -max_len=4096 -dict=fuzz/gcode.dict
 //! ```
 
 #![no_main]
@@ -58,6 +59,12 @@ fn check(document: &Document, text: &[u8], options: &ParseOptions, chunk_bytes: 
     assert_eq!(incremental.diagnostics, full.diagnostics);
     assert_eq!(incremental.detection, full.detection);
     assert_eq!(document.diagnostics(), full.diagnostics);
+    // What a capped publish shows: the first diagnostics, and how many there are in all.
+    for limit in [0, 1, 3] {
+        let (first, total) = document.first_diagnostics(limit);
+        assert_eq!(&first[..], &full.diagnostics[..limit.min(full.diagnostics.len())]);
+        assert_eq!(total, full.diagnostics.len());
+    }
     // Lines and columns, which an edit moves without looking at the chunks after it, are
     // those of the text read from scratch into other chunks.
     let fresh = Document::with_chunk_bytes(text.to_vec(), *options, chunk_bytes + 5);

@@ -17,6 +17,7 @@ use lsp_types::{DiagnosticRelatedInformation, DiagnosticSeverity, Location, Numb
 use crate::diagnostic::{Diagnostic, Severity};
 use crate::machine::MachineSettings;
 use crate::semantic::{self, LowerOptions, Machine};
+use crate::source::Span;
 
 use super::document::{Document, Snapshot};
 
@@ -39,13 +40,16 @@ impl SemanticJob {
         SemanticJob { snapshot, machine: Machine::from_settings(settings), options }
     }
 
-    /// The semantic pass's diagnostics (none for a program it does not lower).
+    /// The semantic pass's diagnostics (none for a program it does not lower), sorted by
+    /// position as [`publishable`] wants them.
     pub fn run(&self) -> Vec<Diagnostic> {
         let program = self.snapshot.program();
         if !semantic::lowers(&program) {
             return Vec::new();
         }
-        semantic::lower(&program, &self.machine, &self.options).diagnostics
+        let mut diagnostics = semantic::lower(&program, &self.machine, &self.options).diagnostics;
+        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        diagnostics
     }
 }
 
@@ -65,17 +69,66 @@ impl Pass {
     }
 }
 
-/// What the server publishes for a document: its parse diagnostics and the semantic pass's,
-/// sorted by position as `parse` sorts (the parse's first on a tie).
-pub fn publishable(document: &Document, uri: &Uri, semantic: &[Diagnostic]) -> Vec<lsp_types::Diagnostic> {
-    let syntax = document.diagnostics();
-    let mut all: Vec<(&Diagnostic, Pass)> = Vec::with_capacity(syntax.len() + semantic.len());
-    all.extend(syntax.iter().map(|d| (d, Pass::Syntax)));
-    all.extend(semantic.iter().map(|d| (d, Pass::Semantic)));
-    all.sort_by_key(|(d, _)| (d.span.start, d.span.end));
-    let mut published = Vec::with_capacity(all.len());
-    published.extend(all.into_iter().map(|(d, pass)| to_lsp(document, uri, d, pass)));
+/// How many diagnostics the server publishes for a document unless the client says
+/// otherwise (`maxDiagnostics`). The protocol sends a document's whole list after every
+/// keystroke, and each one costs a few microseconds to convert and serialise: a program read
+/// with the wrong settings can have one on every block, and would then cost a keystroke
+/// tens of milliseconds. The first ones, and a note saying how many more there are, are
+/// what a machinist can act on; `turnpass check` lists them all.
+pub const DEFAULT_MAX_DIAGNOSTICS: usize = 200;
+
+/// What the server publishes for a document: its parse diagnostics and the semantic pass's
+/// (`semantic`, sorted by position), merged in order as `parse` sorts (the parse's first on
+/// a tie). Only the first `limit` are converted; when there are more, a note at the first
+/// one left out says how many.
+pub fn publishable(
+    document: &Document,
+    uri: &Uri,
+    semantic: &[Diagnostic],
+    limit: usize,
+) -> Vec<lsp_types::Diagnostic> {
+    // One more than shown, so that the first one left out is known exactly.
+    let (syntax, syntax_total) = document.first_diagnostics(limit.saturating_add(1));
+    let total = syntax_total + semantic.len();
+    let mut published = Vec::with_capacity(total.min(limit) + 1);
+    let (mut syntax, mut semantic) = (syntax.iter().peekable(), semantic.iter().peekable());
+    let key = |d: &Diagnostic| (d.span.start, d.span.end);
+    loop {
+        let next = match (syntax.peek(), semantic.peek()) {
+            (Some(parse), Some(pass)) if key(pass) < key(parse) => semantic.next().map(|d| (d, Pass::Semantic)),
+            (Some(_), _) => syntax.next().map(|d| (d, Pass::Syntax)),
+            (None, _) => semantic.next().map(|d| (d, Pass::Semantic)),
+        };
+        let Some((diagnostic, pass)) = next else { break };
+        if published.len() == limit {
+            published.push(omitted(document, diagnostic, total - limit));
+            break;
+        }
+        published.push(to_lsp(document, uri, diagnostic, pass));
+    }
     published
+}
+
+/// The note that stands for the `count` diagnostics left out, at the first of them.
+fn omitted(document: &Document, first: &Diagnostic, count: usize) -> lsp_types::Diagnostic {
+    let message = format!(
+        "{count} more problem{} from here on {} not shown; `turnpass check` lists them all",
+        if count == 1 { "" } else { "s" },
+        if count == 1 { "is" } else { "are" },
+    );
+    lsp_types::Diagnostic {
+        range: document.range(first.span),
+        severity: Some(DiagnosticSeverity::INFORMATION),
+        code: Some(NumberOrString::String("more-diagnostics".to_string())),
+        source: Some(SOURCE.to_string()),
+        message,
+        data: Some(serde_json::json!({
+            "offset": { "start": first.span.start, "end": first.span.end },
+            "omitted": count,
+            "pass": "server",
+        })),
+        ..lsp_types::Diagnostic::default()
+    }
 }
 
 /// A diagnostic in the protocol's terms.
@@ -118,22 +171,33 @@ pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pas
     }
 }
 
-/// Move a diagnostic's spans across an edit that replaced `removed` (old offsets) by
-/// `inserted` bytes; `None` when the edit touched its text.
-pub fn across_edit(diagnostic: &Diagnostic, removed: std::ops::Range<usize>, inserted: usize) -> Option<Diagnostic> {
+/// Move diagnostics across an edit that replaced `removed` (old offsets) by `inserted`
+/// bytes, in place: those after it move, those whose text it touched go. Their order is
+/// kept, so a sorted list stays sorted.
+pub fn move_across_edit(diagnostics: &mut Vec<Diagnostic>, removed: std::ops::Range<usize>, inserted: usize) {
     let (start, end) = (removed.start as i64, removed.end as i64);
     let delta = inserted as i64 - (end - start);
-    let map = |span: crate::source::Span| -> Option<crate::source::Span> {
+    let moved = |span: Span| -> Option<Span> {
         let (s, e) = (span.start as i64, span.end as i64);
         if e <= start {
             Some(span)
         } else if s >= end {
-            Some(crate::source::Span::new((s + delta) as u32, (e + delta) as u32))
+            Some(Span::new((s + delta) as u32, (e + delta) as u32))
         } else {
             None
         }
     };
-    let span = map(diagnostic.span)?;
-    let related = diagnostic.related.iter().filter_map(|(s, label)| Some((map(*s)?, label.clone()))).collect();
-    Some(Diagnostic { span, related, ..diagnostic.clone() })
+    diagnostics.retain_mut(|diagnostic| {
+        let Some(span) = moved(diagnostic.span) else { return false };
+        diagnostic.span = span;
+        // A related span the edit touched goes; the diagnostic stays.
+        diagnostic.related.retain_mut(|(related, _)| match moved(*related) {
+            Some(span) => {
+                *related = span;
+                true
+            }
+            None => false,
+        });
+        true
+    });
 }

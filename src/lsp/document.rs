@@ -366,7 +366,13 @@ impl Document {
 
     /// The diagnostics `syntax::parse` gives for the text, in the same order.
     pub fn diagnostics(&self) -> Vec<Diagnostic> {
-        collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts)
+        collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts, usize::MAX).0
+    }
+
+    /// The first `limit` of [`Document::diagnostics`], and how many there are in all. The
+    /// work grows with `limit` and the number of chunks, not with the number of diagnostics.
+    pub fn first_diagnostics(&self, limit: usize) -> (Vec<Diagnostic>, usize) {
+        collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts, limit)
     }
 
     /// Whether the parse found errors (the semantic pass waits until it finds none).
@@ -475,7 +481,8 @@ impl Snapshot {
 
     /// What `syntax::parse` returns for the text, built from the chunks.
     pub fn parsed(&self) -> Parsed<'_> {
-        let diagnostics = collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts);
+        let (diagnostics, _) =
+            collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts, usize::MAX);
         Parsed { program: self.program(), diagnostics, detection: self.detection.clone() }
     }
 }
@@ -489,24 +496,38 @@ fn join(chunks: &[Arc<Chunk>], len: usize) -> Vec<u8> {
     text
 }
 
-/// The diagnostics of a whole parse from its chunks: those of the dialect decision, then
-/// each chunk's in order, sorted as `syntax::parse` sorts them (a stable sort on the same
-/// order of reports gives the same list).
+/// The first `limit` diagnostics of a whole parse from its chunks, and how many there are
+/// in all: those of the dialect decision, then each chunk's in order, sorted as
+/// `syntax::parse` sorts them (a stable sort on the same order of reports gives the same
+/// list).
+///
+/// A chunk's diagnostics lie inside it, so they sort after those of the chunks before it
+/// (a tie at the boundary keeps the earlier chunk's first): once `limit` diagnostics of
+/// chunks are collected, the later chunks' only count.
 fn collect_diagnostics(
     detection: &Detection,
     oversized: bool,
     chunks: &[Arc<Chunk>],
     starts: &[u32],
-) -> Vec<Diagnostic> {
+    limit: usize,
+) -> (Vec<Diagnostic>, usize) {
     let mut diagnostics = syntax::detection_diagnostics(detection);
     if oversized {
         diagnostics.push(Diagnostic::error(DiagnosticKind::SourceTooLarge, Span::new(0, 0)));
     }
+    let mut total = diagnostics.len();
+    let mut from_chunks = 0;
     for (chunk, &start) in chunks.iter().zip(starts) {
-        diagnostics.extend(chunk.part.diagnostics.iter().map(|d| shift_diagnostic(d, start)));
+        let count = chunk.part.diagnostics.len();
+        if from_chunks < limit {
+            diagnostics.extend(chunk.part.diagnostics.iter().map(|d| shift_diagnostic(d, start)));
+            from_chunks += count;
+        }
+        total += count;
     }
     diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
-    diagnostics
+    diagnostics.truncate(limit);
+    (diagnostics, total)
 }
 
 fn given(options: &ParseOptions) -> Option<crate::dialect::Dialect> {

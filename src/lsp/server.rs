@@ -101,6 +101,8 @@ pub struct Server<H: Host> {
     init: InitOptions,
     documents: HashMap<Uri, Open>,
     inline_limit: usize,
+    /// How many diagnostics a publish holds at most (`maxDiagnostics`; 0 there is no limit).
+    max_diagnostics: usize,
     shut_down: bool,
     /// Documents opened so far.
     openings: u64,
@@ -117,7 +119,20 @@ impl<H: Host> Server<H> {
             InitOptions::default()
         });
         let inline_limit = init.semantic_inline_limit.unwrap_or(DEFAULT_SEMANTIC_INLINE_LIMIT);
-        let server = Server { host, init, documents: HashMap::new(), inline_limit, shut_down: false, openings: 0 };
+        let max_diagnostics = match init.max_diagnostics {
+            None => analysis::DEFAULT_MAX_DIAGNOSTICS,
+            Some(0) => usize::MAX,
+            Some(limit) => limit,
+        };
+        let server = Server {
+            host,
+            init,
+            documents: HashMap::new(),
+            inline_limit,
+            max_diagnostics,
+            shut_down: false,
+            openings: 0,
+        };
         (server, initialize_result(), messages)
     }
 
@@ -260,13 +275,7 @@ impl<H: Host> Server<H> {
                     let end = offset(&open.document, range.end).max(start);
                     let inserted = change.text.len();
                     open.document.replace(start..end, change.text.as_bytes());
-                    open.semantic.retain_mut(|d| match analysis::across_edit(d, start..end, inserted) {
-                        Some(moved) => {
-                            *d = moved;
-                            true
-                        }
-                        None => false,
-                    });
+                    analysis::move_across_edit(&mut open.semantic, start..end, inserted);
                 }
                 None => {
                     open.document.set_text(change.text.into_bytes());
@@ -337,7 +346,7 @@ impl<H: Host> Server<H> {
                     continue;
                 }
             }
-            messages.push(publish_open(uri, open));
+            messages.push(publish_open(uri, open, self.max_diagnostics));
         }
         (messages, jobs)
     }
@@ -356,12 +365,12 @@ impl<H: Host> Server<H> {
         }
         open.semantic = result.diagnostics;
         open.semantic_version = Some(result.version);
-        vec![publish_open(&result.uri, open)]
+        vec![publish_open(&result.uri, open, self.max_diagnostics)]
     }
 }
 
-fn publish_open(uri: &Uri, open: &Open) -> Message {
-    publish(uri.clone(), analysis::publishable(&open.document, uri, &open.semantic), Some(open.version))
+fn publish_open(uri: &Uri, open: &Open, limit: usize) -> Message {
+    publish(uri.clone(), analysis::publishable(&open.document, uri, &open.semantic, limit), Some(open.version))
 }
 
 fn publish(uri: Uri, diagnostics: Vec<lsp_types::Diagnostic>, version: Option<i32>) -> Message {

@@ -18,7 +18,7 @@ use crate::syntax::ParseOptions;
 /// ```json
 /// { "dialect": "osp", "gcodeSystem": "B", "decimalInput": "increment",
 ///   "model": "/path/to/machine.toml", "machine": { "units": "mm" },
-///   "semanticInlineLimit": 262144 }
+///   "semanticInlineLimit": 262144, "maxDiagnostics": 200 }
 /// ```
 #[derive(Debug, Clone, Default, PartialEq, Deserialize)]
 #[serde(rename_all = "camelCase", deny_unknown_fields)]
@@ -35,6 +35,9 @@ pub struct InitOptions {
     /// Programs up to this many bytes get their semantic diagnostics in the same publish as
     /// their parse diagnostics; larger ones get them from a worker thread, later.
     pub semantic_inline_limit: Option<usize>,
+    /// How many diagnostics a publish holds at most, the rest summed up in a note; 0 is no
+    /// limit.
+    pub max_diagnostics: Option<usize>,
 }
 
 /// Everything a document is read and checked with.

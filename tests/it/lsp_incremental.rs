@@ -1,7 +1,8 @@
 //! The language server's incremental re-parse: after any sequence of edits, the document's
 //! chunks spliced back together are exactly what a full parse of its text gives (the
 //! program, its diagnostics and the dialect decision), whatever the chunk size, and its
-//! lines and columns are those of the text read from scratch.
+//! lines and columns are those of the text read from scratch; the first few of its
+//! diagnostics, which a capped publish shows, are the first few of the full parse's.
 
 use proptest::prelude::*;
 use turnpass::lsp::Document;
@@ -49,7 +50,13 @@ proptest! {
             prop_assert_eq!(format!("{:?}", incremental.program), format!("{:?}", full.program));
             prop_assert_eq!(&incremental.diagnostics, &full.diagnostics);
             prop_assert_eq!(&incremental.detection, &full.detection);
-            prop_assert_eq!(document.diagnostics(), full.diagnostics);
+            prop_assert_eq!(document.diagnostics(), &full.diagnostics[..]);
+            // What a publish shows when it is capped: the first ones, and how many in all.
+            for limit in [0, 1, 3] {
+                let (first, total) = document.first_diagnostics(limit);
+                prop_assert_eq!(&first[..], &full.diagnostics[..limit.min(full.diagnostics.len())]);
+                prop_assert_eq!(total, full.diagnostics.len());
+            }
             // Lines and columns, which an edit moves without looking at the chunks after
             // it, are those of a document read from scratch (cut into other chunks).
             let fresh = Document::with_chunk_bytes(text.clone(), options, chunk_bytes + 5);
