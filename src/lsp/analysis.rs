@@ -40,16 +40,13 @@ impl SemanticJob {
         SemanticJob { snapshot, machine: Machine::from_settings(settings), options }
     }
 
-    /// The semantic pass's diagnostics (none for a program it does not lower), sorted by
-    /// position as [`publishable`] wants them.
+    /// The semantic pass's diagnostics (none for a program it does not lower).
     pub fn run(&self) -> Vec<Diagnostic> {
         let program = self.snapshot.program();
         if !semantic::lowers(&program) {
             return Vec::new();
         }
-        let mut diagnostics = semantic::lower(&program, &self.machine, &self.options).diagnostics;
-        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
-        diagnostics
+        semantic::lower(&program, &self.machine, &self.options).diagnostics
     }
 }
 
@@ -78,20 +75,20 @@ impl Pass {
 pub const DEFAULT_MAX_DIAGNOSTICS: usize = 200;
 
 /// What the server publishes for a document: its parse diagnostics and the semantic pass's
-/// (`semantic`, sorted by position), merged in order as `parse` sorts (the parse's first on
-/// a tie). Only the first `limit` are converted; when there are more, a note at the first
-/// one left out says how many.
+/// (moved across the edits since), merged in order as `parse` sorts (the parse's first on a
+/// tie). Only the first `limit` are converted; when there are more, a note at the first one
+/// left out says how many.
 pub fn publishable(
     document: &Document,
     uri: &Uri,
-    semantic: &[Diagnostic],
+    semantic: &SemanticDiagnostics,
     limit: usize,
 ) -> Vec<lsp_types::Diagnostic> {
     // One more than shown, so that the first one left out is known exactly.
     let (syntax, syntax_total) = document.first_diagnostics(limit.saturating_add(1));
     let total = syntax_total + semantic.len();
     let mut published = Vec::with_capacity(total.min(limit) + 1);
-    let (mut syntax, mut semantic) = (syntax.iter().peekable(), semantic.iter().peekable());
+    let (mut syntax, mut semantic) = (syntax.into_iter().peekable(), semantic.iter().peekable());
     let key = |d: &Diagnostic| (d.span.start, d.span.end);
     loop {
         let next = match (syntax.peek(), semantic.peek()) {
@@ -101,10 +98,10 @@ pub fn publishable(
         };
         let Some((diagnostic, pass)) = next else { break };
         if published.len() == limit {
-            published.push(omitted(document, diagnostic, total - limit));
+            published.push(omitted(document, &diagnostic, total - limit));
             break;
         }
-        published.push(to_lsp(document, uri, diagnostic, pass));
+        published.push(to_lsp(document, uri, &diagnostic, pass));
     }
     published
 }
@@ -171,33 +168,107 @@ pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pas
     }
 }
 
-/// Move diagnostics across an edit that replaced `removed` (old offsets) by `inserted`
-/// bytes, in place: those after it move, those whose text it touched go. Their order is
-/// kept, so a sorted list stays sorted.
-pub fn move_across_edit(diagnostics: &mut Vec<Diagnostic>, removed: std::ops::Range<usize>, inserted: usize) {
-    let (start, end) = (removed.start as i64, removed.end as i64);
-    let delta = inserted as i64 - (end - start);
-    let moved = |span: Span| -> Option<Span> {
+/// The semantic pass's diagnostics of an earlier version of a document, followed across the
+/// edits since: those after an edit move, those whose text it touched go.
+///
+/// A program read with the wrong settings can have a diagnostic on every block, and every
+/// keystroke moves them all; their spans are therefore kept apart, eight bytes each, so that
+/// moving a hundred thousand of them stays a short loop, and a diagnostic is copied out only
+/// when a publish shows it.
+#[derive(Debug, Clone, Default)]
+pub struct SemanticDiagnostics {
+    /// As the pass reported them, sorted by position (their related spans kept moved).
+    reported: Vec<Diagnostic>,
+    /// Each one's span now; `None` once an edit touched its text.
+    spans: Vec<Option<Span>>,
+    alive: usize,
+    /// The ones with related spans (few: those of LAP contours).
+    with_related: Vec<usize>,
+}
+
+impl SemanticDiagnostics {
+    pub fn new(mut reported: Vec<Diagnostic>) -> SemanticDiagnostics {
+        reported.sort_by_key(|d| (d.span.start, d.span.end));
+        let spans = reported.iter().map(|d| Some(d.span)).collect();
+        let with_related = (0..reported.len()).filter(|&i| !reported[i].related.is_empty()).collect();
+        SemanticDiagnostics { alive: reported.len(), reported, spans, with_related }
+    }
+
+    /// How many are left.
+    pub fn len(&self) -> usize {
+        self.alive
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.alive == 0
+    }
+
+    pub fn clear(&mut self) {
+        *self = SemanticDiagnostics::default();
+    }
+
+    /// Those left, in position order, at their spans now.
+    pub fn iter(&self) -> impl Iterator<Item = Diagnostic> + '_ {
+        self.reported
+            .iter()
+            .zip(&self.spans)
+            .filter_map(|(diagnostic, span)| Some(Diagnostic { span: (*span)?, ..diagnostic.clone() }))
+    }
+
+    /// Follow an edit that replaced `removed` (old offsets) by `inserted` bytes. The order is
+    /// kept: every span after the edit moves by the same amount.
+    pub fn move_across_edit(&mut self, removed: std::ops::Range<usize>, inserted: usize) {
+        let edit = Edit::new(removed, inserted);
+        for span in &mut self.spans {
+            if let Some(current) = *span {
+                *span = edit.apply(current);
+                if span.is_none() {
+                    self.alive -= 1;
+                }
+            }
+        }
+        for &index in &self.with_related {
+            if let Some(diagnostic) = self.reported.get_mut(index) {
+                // A related span the edit touched goes; the diagnostic stays.
+                diagnostic.related.retain_mut(|(related, _)| match edit.apply(*related) {
+                    Some(moved) => {
+                        *related = moved;
+                        true
+                    }
+                    None => false,
+                });
+            }
+        }
+    }
+}
+
+/// An edit in byte offsets: `start..end` of the old text replaced by `inserted` bytes.
+#[derive(Clone, Copy)]
+struct Edit {
+    start: i64,
+    end: i64,
+    delta: i64,
+}
+
+impl Edit {
+    fn new(removed: std::ops::Range<usize>, inserted: usize) -> Edit {
+        let (start, end) = (removed.start as i64, removed.end as i64);
+        Edit { start, end, delta: inserted as i64 - (end - start) }
+    }
+
+    /// Where a span of the old text is in the new: the same before the edit, moved after
+    /// it, `None` when the edit touched it.
+    fn apply(self, span: Span) -> Option<Span> {
         let (s, e) = (span.start as i64, span.end as i64);
-        if e <= start {
+        if e <= self.start {
             Some(span)
-        } else if s >= end {
-            Some(Span::new((s + delta) as u32, (e + delta) as u32))
+        } else if s >= self.end {
+            Some(Span::new((s + self.delta) as u32, (e + self.delta) as u32))
         } else {
             None
         }
-    };
-    diagnostics.retain_mut(|diagnostic| {
-        let Some(span) = moved(diagnostic.span) else { return false };
-        diagnostic.span = span;
-        // A related span the edit touched goes; the diagnostic stays.
-        diagnostic.related.retain_mut(|(related, _)| match moved(*related) {
-            Some(span) => {
-                *related = span;
-                true
-            }
-            None => false,
-        });
-        true
-    });
+    }
 }
+
+#[cfg(test)]
+mod tests;

@@ -60,6 +60,10 @@ pub struct Document {
     starts: Vec<u32>,
     /// The first line of each chunk, and the number of lines last.
     first_lines: Vec<u32>,
+    /// How many diagnostics and errors each chunk's parse has, kept beside the chunks so that
+    /// a keystroke's questions about the whole document (any error? how many diagnostics?)
+    /// read one small array instead of every chunk.
+    summaries: Vec<Summary>,
     options: ParseOptions,
     detection: Detection,
     chunk_bytes: usize,
@@ -95,6 +99,7 @@ impl Document {
             len: 0,
             starts: vec![0],
             first_lines: vec![0],
+            summaries: Vec::new(),
             options,
             detection,
             chunk_bytes: chunk_bytes.max(1),
@@ -192,6 +197,8 @@ impl Document {
             }
         }
         let scan = self.scans();
+        let old_evidence = region_evidence(&self.chunks[first..=last]);
+        let old_region_end = self.starts[last + 1];
         let mut at = 0;
         let fresh: Vec<Arc<Chunk>> = chunk::split(&region, 0..region.len(), self.chunk_bytes)
             .into_iter()
@@ -202,15 +209,30 @@ impl Document {
             })
             .collect();
         let fresh_count = fresh.len();
+        let same_evidence = !scan || region_evidence(&fresh) == old_evidence;
         self.respan(first..last + 1, &fresh, new_len);
         self.chunks.splice(first..=last, fresh);
+        self.summaries.splice(first..=last, std::iter::repeat_n(Summary::default(), fresh_count));
         self.len = new_len;
 
-        let config = self.config();
-        self.detection = self.decide();
-        if self.config() != config {
-            self.parse_all();
-            return;
+        if same_evidence {
+            // The region's evidence is what it was, so the decision is too: only the first
+            // occurrences after the region move (the usual keystroke, without a look at
+            // every chunk).
+            let delta = new_len as i64 - old_len as i64;
+            for evidence in &mut self.detection.evidence {
+                if evidence.first.start >= old_region_end {
+                    let moved = |offset: u32| (offset as i64 + delta) as u32;
+                    evidence.first = Span::new(moved(evidence.first.start), moved(evidence.first.end));
+                }
+            }
+        } else {
+            let config = self.config();
+            self.detection = self.decide();
+            if self.config() != config {
+                self.parse_all();
+                return;
+            }
         }
         let after = first + fresh_count;
         for index in first..after {
@@ -231,6 +253,7 @@ impl Document {
         if text.len() >= u32::MAX as usize {
             // Too large for 32-bit spans: no chunks, and `diagnostics` says so.
             self.chunks.clear();
+            self.summaries.clear();
             self.detection = detect::decide(&text, given(&self.options), self.options.machine_kind);
             self.oversized = Some(Arc::new(text));
             self.recount();
@@ -247,6 +270,7 @@ impl Document {
                 Arc::new(chunk)
             })
             .collect();
+        self.summaries = vec![Summary::default(); self.chunks.len()];
         self.recount();
         self.detection = self.decide();
         self.parse_all();
@@ -263,6 +287,7 @@ impl Document {
         let tape = self.tape_before(index);
         let config = self.config();
         Arc::make_mut(&mut self.chunks[index]).parse(config, tape, index == 0);
+        self.summaries[index] = Summary::of(&self.chunks[index]);
     }
 
     fn tape_before(&self, index: usize) -> Tape {
@@ -366,18 +391,25 @@ impl Document {
 
     /// The diagnostics `syntax::parse` gives for the text, in the same order.
     pub fn diagnostics(&self) -> Vec<Diagnostic> {
-        collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts, usize::MAX).0
+        let chunks = self.chunks.iter().map(|c| &**c).zip(self.starts.iter().copied());
+        collect_diagnostics(&self.detection, self.oversized.is_some(), chunks, usize::MAX)
     }
 
     /// The first `limit` of [`Document::diagnostics`], and how many there are in all. The
-    /// work grows with `limit` and the number of chunks, not with the number of diagnostics.
+    /// work grows with `limit`, not with the number of diagnostics, and reads only the
+    /// chunks that have some.
     pub fn first_diagnostics(&self, limit: usize) -> (Vec<Diagnostic>, usize) {
-        collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts, limit)
+        let with_diagnostics = (0..self.chunks.len()).filter(|&i| self.summaries[i].diagnostics > 0);
+        let chunks = with_diagnostics.map(|i| (&*self.chunks[i], self.starts[i]));
+        let first = collect_diagnostics(&self.detection, self.oversized.is_some(), chunks, limit);
+        let in_chunks: usize = self.summaries.iter().map(|s| s.diagnostics as usize).sum();
+        let outside = syntax::detection_diagnostics(&self.detection).len() + usize::from(self.oversized.is_some());
+        (first, outside + in_chunks)
     }
 
     /// Whether the parse found errors (the semantic pass waits until it finds none).
     pub fn has_errors(&self) -> bool {
-        self.oversized.is_some() || self.chunks.iter().any(|c| c.part.diagnostics.iter().any(Diagnostic::is_error))
+        self.oversized.is_some() || self.summaries.iter().any(|s| s.errors > 0)
     }
 
     pub fn snapshot(&self) -> Snapshot {
@@ -481,8 +513,8 @@ impl Snapshot {
 
     /// What `syntax::parse` returns for the text, built from the chunks.
     pub fn parsed(&self) -> Parsed<'_> {
-        let (diagnostics, _) =
-            collect_diagnostics(&self.detection, self.oversized.is_some(), &self.chunks, &self.starts, usize::MAX);
+        let chunks = self.chunks.iter().map(|c| &**c).zip(self.starts.iter().copied());
+        let diagnostics = collect_diagnostics(&self.detection, self.oversized.is_some(), chunks, usize::MAX);
         Parsed { program: self.program(), diagnostics, detection: self.detection.clone() }
     }
 }
@@ -496,38 +528,66 @@ fn join(chunks: &[Arc<Chunk>], len: usize) -> Vec<u8> {
     text
 }
 
-/// The first `limit` diagnostics of a whole parse from its chunks, and how many there are
-/// in all: those of the dialect decision, then each chunk's in order, sorted as
-/// `syntax::parse` sorts them (a stable sort on the same order of reports gives the same
-/// list).
+/// The first `limit` diagnostics of a whole parse from its chunks (with where each starts):
+/// those of the dialect decision, then each chunk's in order, sorted as `syntax::parse`
+/// sorts them (a stable sort on the same order of reports gives the same list).
 ///
 /// A chunk's diagnostics lie inside it, so they sort after those of the chunks before it
 /// (a tie at the boundary keeps the earlier chunk's first): once `limit` diagnostics of
-/// chunks are collected, the later chunks' only count.
-fn collect_diagnostics(
+/// chunks are collected, the later chunks cannot hold one of the first `limit`.
+fn collect_diagnostics<'c>(
     detection: &Detection,
     oversized: bool,
-    chunks: &[Arc<Chunk>],
-    starts: &[u32],
+    chunks: impl Iterator<Item = (&'c Chunk, u32)>,
     limit: usize,
-) -> (Vec<Diagnostic>, usize) {
+) -> Vec<Diagnostic> {
     let mut diagnostics = syntax::detection_diagnostics(detection);
     if oversized {
         diagnostics.push(Diagnostic::error(DiagnosticKind::SourceTooLarge, Span::new(0, 0)));
     }
-    let mut total = diagnostics.len();
     let mut from_chunks = 0;
-    for (chunk, &start) in chunks.iter().zip(starts) {
-        let count = chunk.part.diagnostics.len();
-        if from_chunks < limit {
-            diagnostics.extend(chunk.part.diagnostics.iter().map(|d| shift_diagnostic(d, start)));
-            from_chunks += count;
+    for (chunk, start) in chunks {
+        if from_chunks >= limit {
+            break;
         }
-        total += count;
+        diagnostics.extend(chunk.part.diagnostics.iter().map(|d| shift_diagnostic(d, start)));
+        from_chunks += chunk.part.diagnostics.len();
     }
     diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
     diagnostics.truncate(limit);
-    (diagnostics, total)
+    diagnostics
+}
+
+/// How many diagnostics, and how many errors, a chunk's parse has.
+#[derive(Debug, Clone, Copy, Default)]
+struct Summary {
+    diagnostics: u32,
+    errors: u32,
+}
+
+impl Summary {
+    fn of(chunk: &Chunk) -> Summary {
+        let diagnostics = &chunk.part.diagnostics;
+        Summary {
+            diagnostics: diagnostics.len() as u32,
+            errors: diagnostics.iter().filter(|d| d.is_error()).count() as u32,
+        }
+    }
+}
+
+/// The dialect evidence of consecutive chunks, merged, first occurrences relative to the
+/// first chunk's start.
+fn region_evidence(chunks: &[Arc<Chunk>]) -> Vec<detect::Evidence> {
+    let mut merged = Vec::new();
+    let mut at = 0;
+    for chunk in chunks {
+        detect::merge_evidence(
+            &mut merged,
+            chunk.evidence.iter().map(|e| detect::Evidence { first: chunk::shifted(e.first, at), ..e.clone() }),
+        );
+        at += chunk.byte_len();
+    }
+    merged
 }
 
 fn given(options: &ParseOptions) -> Option<crate::dialect::Dialect> {

@@ -31,7 +31,7 @@ use lsp_types::{
 
 use crate::diagnostic::Diagnostic;
 
-use super::analysis::{self, SemanticJob};
+use super::analysis::{self, SemanticDiagnostics, SemanticJob};
 use super::document::{Document, LinePosition};
 use super::settings::{InitOptions, Settings};
 use super::{definition, format, hover, symbols};
@@ -88,7 +88,7 @@ struct Open {
     version: i32,
     settings: Settings,
     /// The semantic diagnostics of `semantic_version`, moved across the edits since.
-    semantic: Vec<Diagnostic>,
+    semantic: SemanticDiagnostics,
     semantic_version: Option<i32>,
     /// Edited since the last publish.
     dirty: bool,
@@ -255,7 +255,7 @@ impl<H: Host> Server<H> {
             generation: self.openings,
             version: item.version,
             settings,
-            semantic: Vec::new(),
+            semantic: SemanticDiagnostics::default(),
             semantic_version: None,
             dirty: true,
             running: false,
@@ -275,7 +275,7 @@ impl<H: Host> Server<H> {
                     let end = offset(&open.document, range.end).max(start);
                     let inserted = change.text.len();
                     open.document.replace(start..end, change.text.as_bytes());
-                    analysis::move_across_edit(&mut open.semantic, start..end, inserted);
+                    open.semantic.move_across_edit(start..end, inserted);
                 }
                 None => {
                     open.document.set_text(change.text.into_bytes());
@@ -363,7 +363,7 @@ impl<H: Host> Server<H> {
             open.dirty = true;
             return Vec::new();
         }
-        open.semantic = result.diagnostics;
+        open.semantic = SemanticDiagnostics::new(result.diagnostics);
         open.semantic_version = Some(result.version);
         vec![publish_open(&result.uri, open, self.max_diagnostics)]
     }
