@@ -19,7 +19,9 @@
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
 
 use std::hint::black_box;
-use std::time::Instant;
+
+mod support;
+use support::median_seconds;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use turnpass::compensation::fit::{MovePoints, NominalShape, fit_arcs, max_deviation};
@@ -80,18 +82,6 @@ fn polyline(count: usize) -> (Xz, Vec<Xz>) {
     points.truncate(count);
     let points = points.into_iter().map(|p| Xz::new(round(p.x), round(p.z))).collect();
     (start, points)
-}
-
-fn median_seconds(mut run: impl FnMut(), rounds: usize) -> f64 {
-    let mut times: Vec<f64> = (0..rounds)
-        .map(|_| {
-            let start = Instant::now();
-            run();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    times.sort_by(|a, b| a.total_cmp(b));
-    times[times.len() / 2]
 }
 
 fn refit(c: &mut Criterion) {
