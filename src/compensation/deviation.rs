@@ -2,8 +2,20 @@
 //!
 //! The deviation of a predicted point is its distance to the closest point of the nominal
 //! path (lines and arcs as programmed), not to the sample it came from: a point that slid
-//! along the path is on the part. `PathIndex` finds the closest element through a uniform
-//! grid of cells, so a whole program is measured in time linear in its size.
+//! along the path is on the part.
+//!
+//! `compensate` knows which sample each predicted point belongs to, and measures it
+//! against the stretch of path around that sample (`LocalPath`): the cutting moves within
+//! twice the point's distance from its sample, along the path. A closer point of the path
+//! can only be nearer than that along the path, or belong to another pass; another pass
+//! is not the surface being cut, and on a program whose passes pile up over the same area
+//! it would be found ever closer (a generated 50 MB program crosses every square
+//! micrometre of its area several times) and ever more expensive to search. The stretch
+//! holds a few moves, so a whole program is measured in time linear in its size.
+//!
+//! `verify` compares two programs whose moves do not correspond, and measures against the
+//! whole original path (`PathIndex`, a uniform grid of cells): linear in the program's
+//! size while its passes keep their distance, as real passes do.
 //!
 //! **SSQ** is the thesis' eq. 5.8, the root of the sum of the squares of the errors,
 //! `SSQ = [Σ P_i²]^½`, where the thesis' `P_i` is the radial error of the ball bar (for
@@ -18,6 +30,7 @@ use crate::geometry;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
 use super::fit::distance_to_chord;
+use super::sampling::PathSample;
 
 /// Max, RMS and SSQ of a set of distances, mm.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -77,6 +90,75 @@ pub fn distance_to_move(p: Xz, start: Xz, m: &Move) -> f64 {
         _ => distance_to_chord(p, start, m.end),
     }
 }
+
+/// The nominal path as stretches around samples (see the module documentation).
+pub struct LocalPath<'a> {
+    toolpath: &'a Toolpath,
+    /// The length of the path up to the end of each move, mm.
+    ends: Vec<f64>,
+}
+
+impl<'a> LocalPath<'a> {
+    pub fn new(toolpath: &'a Toolpath) -> LocalPath<'a> {
+        let mut total = 0.0;
+        let ends = (0..toolpath.moves.len())
+            .map(|k| {
+                total += move_length(toolpath.start_of(k), &toolpath.moves[k]);
+                total
+            })
+            .collect();
+        LocalPath { toolpath, ends }
+    }
+
+    /// The distance from `p`, predicted for `sample`, to the closest cutting move within
+    /// twice its distance from the sample along the path; `None` for a sample that does not
+    /// cut.
+    pub fn distance(&self, sample: &PathSample, p: Xz) -> Option<f64> {
+        let k = sample.move_index;
+        let m = self.toolpath.moves.get(k)?;
+        if !sample.cutting || !m.cutting || m.motion == Motion::Dwell {
+            return None;
+        }
+        let end = self.ends.get(k).copied().unwrap_or(0.0);
+        let start = if k == 0 { 0.0 } else { self.ends.get(k - 1).copied().unwrap_or(0.0) };
+        let at = start + (end - start) * sample.param.clamp(0.0, 1.0);
+        let reach = 2.0 * p.distance(sample.nominal);
+        let mut best = self.distance_to(p, k);
+        for before in (0..k).rev() {
+            if at - self.ends[before] > reach {
+                break;
+            }
+            best = best.min(self.distance_to(p, before));
+        }
+        for after in k + 1..self.toolpath.moves.len() {
+            if self.ends[after - 1] - at > reach {
+                break;
+            }
+            best = best.min(self.distance_to(p, after));
+        }
+        best.is_finite().then_some(best)
+    }
+
+    /// The distance to move `k` when it cuts (infinity otherwise).
+    fn distance_to(&self, p: Xz, k: usize) -> f64 {
+        match self.toolpath.moves.get(k) {
+            Some(m) if m.cutting && m.motion != Motion::Dwell => distance_to_move(p, self.toolpath.start_of(k), m),
+            _ => f64::INFINITY,
+        }
+    }
+}
+
+/// The length of move `m` from `start`, mm (the arc length of an arc).
+fn move_length(start: Xz, m: &Move) -> f64 {
+    match m.motion {
+        Motion::Dwell => 0.0,
+        Motion::Cw | Motion::Ccw => geometry::arc_length(start, m.end, m.centre, m.motion == Motion::Ccw),
+        _ => start.distance(m.end),
+    }
+}
+
+#[cfg(test)]
+mod tests;
 
 /// A nominal path for closest-point queries.
 pub struct PathIndex<'a> {

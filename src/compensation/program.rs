@@ -15,7 +15,7 @@ use crate::semantic::{Lowered, Machine};
 use crate::syntax::Program;
 use crate::toolpath::{ValidToolpath, Xz};
 
-use super::deviation::PathIndex;
+use super::deviation::LocalPath;
 use super::fit::FitOptions;
 use super::grid::Grid;
 use super::inverse::{InverseOptions, compensate_samples, predict};
@@ -120,10 +120,9 @@ pub fn compensate_program(
     let radius_arcs = crate::expand::uses_radius_arcs(program);
     let commanded = quantised::commanded_path(&input, &plans, grid_of, radius_arcs);
     let after = predict(&samples, &commanded, toolpath.start, model);
-    let index = PathIndex::new(toolpath, |m| m.cutting);
-    let distance = |points: &[Xz]| -> Vec<Option<f64>> {
-        samples.iter().zip(points).map(|(s, &p)| if s.cutting { index.distance(p) } else { None }).collect()
-    };
+    let path = LocalPath::new(toolpath);
+    let distance =
+        |points: &[Xz]| -> Vec<Option<f64>> { samples.iter().zip(points).map(|(s, &p)| path.distance(s, p)).collect() };
     let before_distances = distance(&compensated.uncompensated);
     let after_distances = distance(&after);
     let report = super::report::build(&ReportInput {

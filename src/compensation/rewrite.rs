@@ -107,8 +107,13 @@ pub fn rewrite(
     let mut out = Rewrite::default();
     let chosen = cycles::chosen(program, lowered, plans, expand_cycles, &mut out.diagnostics);
     let expanded = cycles::write(program, lowered, plans, &chosen, &mut out.edits, &mut out.diagnostics);
+    // The first expansion of each call block (a call that runs several times has several).
+    let mut first_expansion: HashMap<usize, usize> = HashMap::new();
+    for (k, e) in lowered.expansions.iter().enumerate() {
+        first_expansion.entry(e.block).or_insert(k);
+    }
     for block in expanded {
-        if let Some(e) = lowered.expansions.iter().find(|e| e.block == block) {
+        if let Some(e) = first_expansion.get(&block).and_then(|&k| lowered.expansions.get(k)) {
             out.edited.push(EditedBlock { block, moves: e.moves.clone(), cycle: true });
         }
     }
