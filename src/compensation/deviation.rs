@@ -25,6 +25,7 @@
 //! figures compare only at the same sampling.
 
 use std::collections::HashMap;
+use std::f64::consts::TAU;
 
 use crate::geometry;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
@@ -96,18 +97,35 @@ pub struct LocalPath<'a> {
     toolpath: &'a Toolpath,
     /// The length of the path up to the end of each move, mm.
     ends: Vec<f64>,
+    /// Each arc's constants (`None` for other moves), computed once for its many samples.
+    arcs: Vec<Option<ArcConstants>>,
+}
+
+/// What `distance_to_move` computes of an arc before it looks at the point.
+#[derive(Debug, Clone, Copy)]
+struct ArcConstants {
+    radius: f64,
+    /// The angle of its start, and the angle it sweeps (`geometry::sweep`).
+    a0: f64,
+    total: f64,
 }
 
 impl<'a> LocalPath<'a> {
     pub fn new(toolpath: &'a Toolpath) -> LocalPath<'a> {
         let mut total = 0.0;
-        let ends = (0..toolpath.moves.len())
-            .map(|k| {
-                total += move_length(toolpath.start_of(k), &toolpath.moves[k]);
-                total
-            })
-            .collect();
-        LocalPath { toolpath, ends }
+        let mut ends = Vec::with_capacity(toolpath.moves.len());
+        let mut arcs = Vec::with_capacity(toolpath.moves.len());
+        for (k, m) in toolpath.moves.iter().enumerate() {
+            let start = toolpath.start_of(k);
+            total += move_length(start, m);
+            ends.push(total);
+            arcs.push(m.is_arc().then(|| ArcConstants {
+                radius: start.distance(m.centre),
+                a0: geometry::angle(start, m.centre),
+                total: geometry::sweep(start, m.end, m.centre, m.motion == Motion::Ccw),
+            }));
+        }
+        LocalPath { toolpath, ends, arcs }
     }
 
     /// The distance from `p`, predicted for `sample`, to the closest cutting move within
@@ -139,11 +157,25 @@ impl<'a> LocalPath<'a> {
         best.is_finite().then_some(best)
     }
 
-    /// The distance to move `k` when it cuts (infinity otherwise).
+    /// The distance to move `k` when it cuts (infinity otherwise): `distance_to_move`, with
+    /// an arc's constants taken from `arcs`.
     fn distance_to(&self, p: Xz, k: usize) -> f64 {
-        match self.toolpath.moves.get(k) {
-            Some(m) if m.cutting && m.motion != Motion::Dwell => distance_to_move(p, self.toolpath.start_of(k), m),
-            _ => f64::INFINITY,
+        let Some(m) = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell) else {
+            return f64::INFINITY;
+        };
+        let start = self.toolpath.start_of(k);
+        match self.arcs.get(k).copied().flatten() {
+            Some(ArcConstants { radius, a0, total }) => {
+                // `geometry::angle_within`.
+                let a = geometry::angle(p, m.centre);
+                let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+                if delta <= total + 1e-12 {
+                    (p.distance(m.centre) - radius).abs()
+                } else {
+                    p.distance(start).min(p.distance(m.end))
+                }
+            }
+            None => distance_to_move(p, start, m),
         }
     }
 }

@@ -287,6 +287,10 @@ impl Fitting<'_, '_> {
             (&SEMICIRCLE_CUTS[..], Strategy::Semicircle),
             (&QUADRANT_CUTS[..], Strategy::Quadrant),
         ] {
+            // Nothing takes fewer than one segment, and a tie keeps the earlier fit.
+            if best.as_ref().is_some_and(|b| b.segments.len() == 1) {
+                break;
+            }
             // A split that cuts nowhere new is a fit already tried.
             let pieces = split::cut_indices(self.m, centre, ccw, cuts);
             if tried.contains(&pieces) {

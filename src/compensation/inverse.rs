@@ -28,7 +28,7 @@
 //! by a few nanometres (a squareness term drifting as the other axis moves) stays where it
 //! is, within the tolerance, instead of jumping across its play.
 
-use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker};
+use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker, without_play};
 use crate::toolpath::Xz;
 
 use super::sampling::PathSample;
@@ -117,14 +117,17 @@ fn solve(
     let mut steps = 0;
     loop {
         let state = tracker.peek(c, s.tool, s.cutting, inputs);
-        let actual = model.actual(&state);
+        // One evaluation of the model gives both the actual point and the rest of the error
+        // (`ErrorModel::actual` and `displacement_without_play` of the same state).
+        let displacement = model.displacement(&state);
+        let actual = Xz::new(state.at.x + displacement.x, state.at.z + displacement.z);
         let residual = s.nominal.distance(actual);
         if residual <= options.tolerance_mm * 1e-3 || steps >= options.max_iterations || !residual.is_finite() {
             return (c, actual, steps);
         }
         steps += 1;
         // The rest of the error at this command, and where the slide must go for it.
-        let rest = model.displacement_without_play(&state);
+        let rest = without_play(&state, displacement);
         let target = Xz::new(s.nominal.x - rest.x, s.nominal.z - rest.z);
         let next = Xz::new(
             command_for(
@@ -181,9 +184,19 @@ fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
     SampleInputs { t_min: model.start_min + s.t_s / 60.0, velocity: s.velocity, normal: s.normal, tip: s.tip }
 }
 
-/// Where the tool goes when `commanded` (one point per sample) is commanded in order.
+/// Where the tool goes when `commanded` (one point per sample) is commanded in order: the
+/// model at each of `states`, evaluated as the tracker walks (the states are not kept).
 pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Xz> {
-    states(samples, commanded, start, model).iter().map(|state| model.actual(state)).collect()
+    let mut tracker = Tracker::new(start, model.play());
+    samples
+        .iter()
+        .zip(commanded)
+        .map(|(s, &c)| {
+            let actual = model.actual(&tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model)));
+            tracker.advance(c, s.tool, s.cutting);
+            actual
+        })
+        .collect()
 }
 
 /// The machine state at each sample when `commanded` is commanded in order: what

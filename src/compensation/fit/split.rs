@@ -153,10 +153,14 @@ impl Piece {
     /// the tolerance; else the circle pinned to both ends by a least-squares fit of the
     /// points between.
     fn arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
-        let pinned = self.pinned_arc(from, points);
-        let Some(free) = self.free_arc(from, points) else { return pinned };
-        match pinned {
-            Some(p) if p.1 < free.1 && free.1 > self.tolerance => Some(p),
+        let Some(free) = self.free_arc(from, points) else { return self.pinned_arc(from, points) };
+        // A free circle within the tolerance is taken whatever the pinned one gives, so the
+        // pinned one is fitted only when it could be taken.
+        if free.1 <= self.tolerance {
+            return Some(free);
+        }
+        match self.pinned_arc(from, points) {
+            Some(p) if p.1 < free.1 => Some(p),
             _ => Some(free),
         }
     }
