@@ -50,23 +50,50 @@ impl Figures {
     }
 
     pub fn of(distances: impl IntoIterator<Item = f64>) -> Figures {
-        let (mut max, mut sum2, mut n) = (0.0f64, 0.0, 0usize);
+        let mut tally = Tally::default();
         for d in distances {
-            max = max.max(d);
-            sum2 += d * d;
-            n += 1;
+            tally.add(d);
         }
-        Figures {
-            max_mm: max,
-            rms_mm: if n > 0 { (sum2 / n as f64).sqrt() } else { 0.0 },
-            ssq_mm: sum2.sqrt(),
-            points: n,
-        }
+        tally.figures()
     }
 
     /// How much smaller `after` is than `self`, percent of `self` (by RMS).
     pub fn improvement_percent(&self, after: &Figures) -> f64 {
         if self.rms_mm > 0.0 { 100.0 * (1.0 - after.rms_mm / self.rms_mm) } else { 0.0 }
+    }
+}
+
+/// The running sums `Figures` are made of, for distances that come one at a time: added in
+/// the same order, they give the same figures as `Figures::of`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Tally {
+    max: f64,
+    sum2: f64,
+    n: usize,
+}
+
+impl Tally {
+    pub fn add(&mut self, d: f64) {
+        self.max = self.max.max(d);
+        self.sum2 += d * d;
+        self.n += 1;
+    }
+
+    /// Both tallies, `other`'s distances counted after `self`'s (the sum of squares is then
+    /// added as one term, so the figures may differ from one tally of all the distances in
+    /// the last place).
+    pub fn merged(self, other: Tally) -> Tally {
+        Tally { max: self.max.max(other.max), sum2: self.sum2 + other.sum2, n: self.n + other.n }
+    }
+
+    pub fn figures(&self) -> Figures {
+        let n = self.n;
+        Figures {
+            max_mm: self.max,
+            rms_mm: if n > 0 { (self.sum2 / n as f64).sqrt() } else { 0.0 },
+            ssq_mm: self.sum2.sqrt(),
+            points: n,
+        }
     }
 }
 

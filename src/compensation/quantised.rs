@@ -82,9 +82,25 @@ pub fn commanded_path(
     grid_of: impl Fn(usize) -> Grid,
     radius_arcs: bool,
 ) -> Vec<Xz> {
+    let mut out: Vec<Xz> = input.samples.iter().map(|s| s.nominal).collect();
+    commanded_moves(input, 0, plans, grid_of, radius_arcs, &mut out);
+    out
+}
+
+/// `commanded_path` for the moves from `first` planned by `plans`, into `out` (one point
+/// per sample of `input.samples`; the samples of other moves are left alone).
+pub fn commanded_moves(
+    input: &PlanInput<'_>,
+    first: usize,
+    plans: &[MovePlan],
+    grid_of: impl Fn(usize) -> Grid,
+    radius_arcs: bool,
+    out: &mut [Xz],
+) {
     let (toolpath, samples, tools) = (input.toolpath, input.samples, input.tools);
-    let mut out: Vec<Xz> = samples.iter().map(|s| s.nominal).collect();
-    for (index, (m, plan)) in toolpath.moves.iter().zip(plans).enumerate() {
+    let moves = toolpath.moves.get(first..).unwrap_or_default();
+    for (index, (m, plan)) in moves.iter().zip(plans).enumerate() {
+        let index = first + index;
         let Some(range) = input.ranges.get(index).filter(|r| !r.is_empty()) else { continue };
         let contour_start = written::contour_start(toolpath, index);
         let grid = grid_of(index);
@@ -98,9 +114,8 @@ pub fn commanded_path(
         }
         let rounded = quantise(&grid, plan.start, &plan.segments, radius_arcs);
         let walk = Walk { m, contour_start, start: grid.round(plan.start), segments: &rounded, tools };
-        walk.follow(samples, input.commanded, range.clone(), &mut out);
+        walk.follow(samples, input.commanded, range.clone(), out);
     }
-    out
 }
 
 /// One move's rounded segments, from their rounded start.
