@@ -3,6 +3,7 @@
 //! point it commands there. The report and `plot` predict the machine along this path, so
 //! their residuals include the re-expression and the rounding, not only the inverse.
 
+use std::f64::consts::TAU;
 use std::ops::Range;
 
 use crate::geometry;
@@ -51,24 +52,56 @@ pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], radius_arcs: bool)
 
 /// The point of a segment (from `start`) closest to `p`.
 pub fn closest_on_segment(p: Xz, start: Xz, segment: &Segment) -> Xz {
-    match *segment {
-        Segment::Line { end } => {
-            let (dx, dz) = (end.x - start.x, end.z - start.z);
-            let length2 = dx * dx + dz * dz;
-            if length2 <= 0.0 {
-                return start;
+    Gauge::new(start, segment).closest(p)
+}
+
+/// A segment's constants, computed once for the many samples measured against it.
+#[derive(Debug, Clone, Copy)]
+enum Gauge {
+    Line { start: Xz, dx: f64, dz: f64, length2: f64 },
+    Arc { start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64, a0: f64, total: f64 },
+}
+
+impl Gauge {
+    fn new(start: Xz, segment: &Segment) -> Gauge {
+        match *segment {
+            Segment::Line { end } => {
+                let (dx, dz) = (end.x - start.x, end.z - start.z);
+                Gauge::Line { start, dx, dz, length2: dx * dx + dz * dz }
             }
-            let t = (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0);
-            Xz::new(start.x + dx * t, start.z + dz * t)
+            Segment::Arc { end, centre, ccw } => Gauge::Arc {
+                start,
+                end,
+                centre,
+                ccw,
+                radius: start.distance(centre),
+                a0: geometry::angle(start, centre),
+                total: geometry::sweep(start, end, centre, ccw),
+            },
         }
-        Segment::Arc { end, centre, ccw } => {
-            if geometry::angle_within(p, start, end, centre, ccw) && p.distance(centre) > 0.0 {
-                let radius = start.distance(centre);
-                geometry::on_circle(centre, radius, geometry::angle(p, centre))
-            } else if p.distance(start) <= p.distance(end) {
-                start
-            } else {
-                end
+    }
+
+    /// The closest point to `p`; an arc's is found as `geometry::angle_within` and
+    /// `geometry::on_circle` would, with the arc's angles computed once.
+    fn closest(&self, p: Xz) -> Xz {
+        match *self {
+            Gauge::Line { start, dx, dz, length2 } => {
+                if length2 <= 0.0 {
+                    return start;
+                }
+                let t = (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0);
+                Xz::new(start.x + dx * t, start.z + dz * t)
+            }
+            Gauge::Arc { start, end, centre, ccw, radius, a0, total } => {
+                let a = geometry::angle(p, centre);
+                let delta = if ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+                if delta <= total + 1e-12 && p.distance(centre) > 0.0 {
+                    geometry::on_circle(centre, radius, a)
+                } else if p.distance(start) <= p.distance(end) {
+                    start
+                } else {
+                    end
+                }
             }
         }
     }
@@ -133,14 +166,16 @@ impl Walk<'_> {
         // Samples and segments both run along the move: search a window ahead of the last
         // segment used.
         const WINDOW: usize = 16;
-        let starts: Vec<Xz> = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end)).collect();
+        let starts = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end));
+        let gauges: Vec<Gauge> =
+            self.segments.iter().zip(starts).map(|(segment, from)| Gauge::new(from, segment)).collect();
         let mut cursor = 0usize;
         for j in range {
             let target = written::written_point(self.m, self.contour_start, &samples[j], ideal[j], self.tools);
             let (mut best, mut best_k, mut best_d) = (self.start, cursor, f64::INFINITY);
             let first = cursor.saturating_sub(1);
-            for (k, (segment, &from)) in self.segments.iter().zip(&starts).enumerate().skip(first).take(WINDOW + 1) {
-                let q = closest_on_segment(target, from, segment);
+            for (k, gauge) in gauges.iter().enumerate().skip(first).take(WINDOW + 1) {
+                let q = gauge.closest(target);
                 let d = q.distance(target);
                 if d < best_d {
                     (best, best_k, best_d) = (q, k, d);
