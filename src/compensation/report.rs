@@ -96,8 +96,43 @@ pub struct ReportInput<'a> {
 
 pub fn build(input: &ReportInput<'_>) -> Report {
     let lines = LineIndex::new(input.program.source());
-    let blocks = input
-        .edited
+    let edited = input.edited;
+    // A long program's blocks are reported in two halves at once.
+    let blocks = if edited.len() >= PARALLEL_BLOCKS {
+        let (first, second) = edited.split_at(edited.len() / 2);
+        std::thread::scope(|scope| {
+            let second = scope.spawn(|| block_reports(input, &lines, second));
+            let mut blocks = block_reports(input, &lines, first);
+            blocks.extend(second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
+            blocks
+        })
+    } else {
+        block_reports(input, &lines, edited)
+    };
+    let before = input.before.figures();
+    let after = input.after.figures();
+    Report {
+        blocks,
+        totals: Totals {
+            edited_blocks: input.edited.iter().filter(|e| !e.cycle).count(),
+            expanded_cycles: input.edited.iter().filter(|e| e.cycle).count(),
+            samples: input.samples,
+            max_correction_mm: nm(input.max_correction_mm),
+            inverse_iterations: input.inverse_iterations,
+            inverse_residual_mm: nm(input.inverse_residual_mm),
+            before: before.rounded(),
+            after: after.rounded(),
+            improvement_percent: (before.improvement_percent(&after) * 1e4).round() / 1e4,
+        },
+    }
+}
+
+/// Programs with at least this many edited blocks have them reported on two threads.
+const PARALLEL_BLOCKS: usize = 50_000;
+
+/// The reports of `edited`, in order.
+fn block_reports(input: &ReportInput<'_>, lines: &LineIndex, edited: &[EditedBlock]) -> Vec<BlockReport> {
+    edited
         .iter()
         .map(|edited| {
             let plans = input.plans.get(edited.moves.clone()).unwrap_or(&[]);
@@ -134,23 +169,7 @@ pub fn build(input: &ReportInput<'_>) -> Report {
                 ssq_after_mm: nm(after.ssq_mm),
             }
         })
-        .collect();
-    let before = input.before.figures();
-    let after = input.after.figures();
-    Report {
-        blocks,
-        totals: Totals {
-            edited_blocks: input.edited.iter().filter(|e| !e.cycle).count(),
-            expanded_cycles: input.edited.iter().filter(|e| e.cycle).count(),
-            samples: input.samples,
-            max_correction_mm: nm(input.max_correction_mm),
-            inverse_iterations: input.inverse_iterations,
-            inverse_residual_mm: nm(input.inverse_residual_mm),
-            before: before.rounded(),
-            after: after.rounded(),
-            improvement_percent: (before.improvement_percent(&after) * 1e4).round() / 1e4,
-        },
-    }
+        .collect()
 }
 
 /// The tallies of the moves `moves`: an edited block covers one run exactly; should it

@@ -266,13 +266,13 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         // By block, each block's runs in path order (a stable sort; the runs mostly come in
         // block order already).
         self.runs.sort_by_key(|(block, _)| *block);
-        for block_runs in self.runs.chunk_by(|a, b| a.0 == b.0) {
+        for block_runs in self.runs.chunk_by_mut(|a, b| a.0 == b.0) {
             let Some((block, first)) = block_runs.first() else { continue };
             let block = *block;
             if block_runs.iter().all(|(_, r)| r.blocks.is_none()) {
                 continue;
             }
-            if block_runs.iter().any(|(_, r)| r.blocks != first.blocks) {
+            if block_runs.iter().skip(1).any(|(_, r)| r.blocks != first.blocks) {
                 if self.refused.insert(block) {
                     out.diagnostics.push(Diagnostic::error(
                         DiagnosticKind::CannotRewriteBlock {
@@ -283,8 +283,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                 }
                 continue;
             }
-            if let Some(new) = &first.blocks {
-                out.edits.replace(block, new.clone());
+            if let Some((_, first)) = block_runs.first_mut()
+                && let Some(new) = first.blocks.take()
+            {
+                out.edits.replace(block, new);
                 out.edited.push(EditedBlock { block, moves: first.moves.clone(), cycle: false });
             }
         }

@@ -9,9 +9,10 @@
 //!    sample's correction carry over), predict the program as written, and measure that
 //!    against the nominal path;
 //! 2. **plan**: plan each move (`plan_range`: where the previous written move ends carries
-//!    over) and rewrite each motion block's run (`MotionBlocks`);
+//!    over);
 //! 3. **check** (the calling thread): round the plans onto the grid, predict the rounded
-//!    program, measure it, check the corrections (`safety::Check`) and tally the figures.
+//!    program, measure it, check the corrections (`safety::Check`), tally the figures and
+//!    rewrite each motion block's run (`MotionBlocks`).
 //!
 //! A piece's samples start with the previous piece's last one (`lead`), which `jumps`
 //! compares the first with, so the pieces plan as the whole program would. A piece ends
@@ -94,14 +95,15 @@ pub struct Streamed<'a, 'src> {
     pub motion: MotionBlocks<'a, 'src>,
 }
 
-/// What the check stage leaves (`Streamed` without the motion blocks).
-struct Checked {
+/// What the check stage leaves (`Streamed` but for the inverse's figures).
+struct Checked<'a, 'src> {
     plans: Vec<MovePlan>,
     diagnostics: Vec<Diagnostic>,
     figures: Vec<RunFigures>,
     totals: Totals,
     paths: Paths,
     needs: Vec<bool>,
+    motion: MotionBlocks<'a, 'src>,
 }
 
 /// One piece's samples and what is computed for them. `samples` and `commanded` (and
@@ -148,10 +150,11 @@ pub fn run<'a, 'src>(context: &'a Context<'src>) -> Streamed<'a, 'src> {
     std::thread::scope(|scope| {
         let solver = scope.spawn(move || solve(context, &to_plan, &reusable));
         let planner = scope.spawn(move || plan(context, &planning, &to_check));
-        let Checked { plans, diagnostics, figures, mut totals, paths, needs } = check(context, &checking, &to_reuse);
+        let Checked { plans, diagnostics, figures, mut totals, paths, needs, motion } =
+            check(context, &checking, &to_reuse);
         // Neither thread can fail on any input; a panic in one is a bug, and is passed on.
         let (iterations, residual) = solver.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-        let motion = planner.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        planner.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
         totals.inverse_iterations = iterations;
         totals.inverse_residual_mm = residual;
         Streamed { plans, diagnostics, figures, totals, paths, needs, motion }
@@ -211,17 +214,11 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
     (inverse.iterations, inverse.max_residual_mm)
 }
 
-/// Stage 2: plan the moves, rewrite the motion blocks' runs.
-fn plan<'a, 'src>(
-    context: &'a Context<'src>,
-    planning: &Receiver<Piece>,
-    to_check: &SyncSender<Piece>,
-) -> MotionBlocks<'a, 'src> {
+/// Stage 2: plan the moves.
+fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_check: &SyncSender<Piece>) {
     let toolpath = context.toolpath;
-    let mut motion = MotionBlocks::new(context.program, context.lowered, context.tools);
     let mut ranges = vec![0..0; toolpath.moves.len()];
     let mut at = toolpath.start;
-    let mut run = 0;
     while let Ok(mut piece) = planning.recv() {
         fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
         let input = PlanInput {
@@ -234,22 +231,19 @@ fn plan<'a, 'src>(
         };
         let mut plans = std::mem::take(&mut piece.plans);
         at = plan_range(&input, piece.moves.clone(), at, |k| context.grid(k), &context.plan_options, &mut plans);
-        while let Some(r) = context.runs.get(run).filter(|r| r.moves.end <= piece.moves.end) {
-            let first = r.moves.start.max(piece.moves.start) - piece.moves.start;
-            let last = r.moves.end - piece.moves.start;
-            motion.add(r, plans.get(first..last).unwrap_or_default());
-            run += 1;
-        }
         piece.plans = plans;
         if to_check.send(piece).is_err() {
             break;
         }
     }
-    motion
 }
 
-/// Stage 3: round, predict as rounded, measure, check, tally.
-fn check(context: &Context<'_>, checking: &Receiver<Piece>, to_reuse: &SyncSender<Piece>) -> Checked {
+/// Stage 3: round, predict as rounded, measure, check, tally, rewrite.
+fn check<'a, 'src>(
+    context: &'a Context<'src>,
+    checking: &Receiver<Piece>,
+    to_reuse: &SyncSender<Piece>,
+) -> Checked<'a, 'src> {
     let Context { toolpath, model, options, .. } = *context;
     let count = toolpath.moves.len();
     let mut as_rounded = Predictor::new(toolpath.start, model);
@@ -261,9 +255,11 @@ fn check(context: &Context<'_>, checking: &Receiver<Piece>, to_reuse: &SyncSende
         totals: Totals::default(),
         paths: Paths::default(),
         needs: vec![false; count],
+        motion: MotionBlocks::new(context.program, context.lowered, context.tools),
     };
     let mut ranges = vec![0..0; count];
     let mut run = 0;
+    let mut rewritten = 0;
     while let Ok(mut piece) = checking.recv() {
         fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
         let input = PlanInput {
@@ -295,6 +291,13 @@ fn check(context: &Context<'_>, checking: &Receiver<Piece>, to_reuse: &SyncSende
             out.paths.uncompensated.extend_from_slice(&piece.uncompensated);
             out.paths.compensated.extend_from_slice(&piece.after);
         }
+        // Every motion block's run that ends in this piece lies in it (`pieces`).
+        while let Some(r) = context.runs.get(rewritten).filter(|r| r.moves.end <= piece.moves.end) {
+            let first = r.moves.start.max(piece.moves.start) - piece.moves.start;
+            let last = r.moves.end - piece.moves.start;
+            out.motion.add(r, piece.plans.get(first..last).unwrap_or_default());
+            rewritten += 1;
+        }
         out.plans.append(&mut piece.plans);
         // The solver may have finished: then the piece is dropped.
         let _ = to_reuse.try_send(piece);
@@ -305,7 +308,7 @@ fn check(context: &Context<'_>, checking: &Receiver<Piece>, to_reuse: &SyncSende
 
 /// Tally a piece's own samples into the run figures and the totals, and mark the moves
 /// whose correction exceeds the tolerance.
-fn measure(context: &Context<'_>, piece: &Piece, out: &mut Checked, run: &mut usize) {
+fn measure(context: &Context<'_>, piece: &Piece, out: &mut Checked<'_, '_>, run: &mut usize) {
     let tolerance = context.options.fit.tolerance_mm;
     let fresh = piece.fresh();
     let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
