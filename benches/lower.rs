@@ -17,11 +17,11 @@
 
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
 
+mod support;
+
 use std::fmt::Write as _;
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::process::Command;
-use std::time::Instant;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem, MachineKind};
@@ -29,23 +29,9 @@ use turnpass::machine::MachineSettings;
 use turnpass::semantic::{LowerOptions, Machine, lower};
 use turnpass::syntax::{ParseOptions, parse};
 
+use support::{data_dir, generated, median_seconds};
+
 const CYCLES: usize = 2000;
-
-fn data_dir() -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/bench-data");
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn generated(megabytes: &str) -> Vec<u8> {
-    let path = data_dir().join(format!("big-{megabytes}.nc"));
-    if !path.exists() {
-        let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_lathe.py");
-        let status = Command::new("python3").arg(&script).arg(&path).arg(megabytes).status().expect("python3 runs");
-        assert!(status.success(), "gen_lathe.py failed");
-    }
-    std::fs::read(&path).unwrap()
-}
 
 /// The profile both forms cut: a face, a chamfer, steps, a taper, a fillet and a shoulder.
 const PROFILE: [&str; 10] = [
@@ -95,18 +81,6 @@ fn linuxcnc_cycles() -> String {
     }
     out.push_str("G0 X200 Z100\nM2\n");
     out
-}
-
-fn median_seconds(mut run: impl FnMut(), rounds: usize) -> f64 {
-    let mut times: Vec<f64> = (0..rounds)
-        .map(|_| {
-            let start = Instant::now();
-            run();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    times.sort_by(|a, b| a.total_cmp(b));
-    times[times.len() / 2]
 }
 
 /// rs274's moves per second on the LinuxCNC form, or `None` when it is not installed.

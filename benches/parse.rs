@@ -7,26 +7,19 @@
 
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
 
+mod support;
+
 use std::hint::black_box;
-use std::path::PathBuf;
-use std::process::Command;
-use std::time::Instant;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem, MachineKind};
 use turnpass::printer::{Edits, print};
 use turnpass::syntax::{ParseOptions, parse};
 
+use support::{generated, median_seconds};
+
 fn input() -> Vec<u8> {
-    let megabytes = std::env::var("TURNPASS_BENCH_MB").unwrap_or_else(|_| "50".to_string());
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("target/bench-data/big-{megabytes}.nc"));
-    if !path.exists() {
-        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-        let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_lathe.py");
-        let status = Command::new("python3").arg(&script).arg(&path).arg(&megabytes).status().expect("python3 runs");
-        assert!(status.success(), "gen_lathe.py failed");
-    }
-    std::fs::read(&path).unwrap()
+    generated(&std::env::var("TURNPASS_BENCH_MB").unwrap_or_else(|_| "50".to_string()))
 }
 
 fn options() -> ParseOptions {
@@ -35,18 +28,6 @@ fn options() -> ParseOptions {
         gcode_system: GCodeSystem::A,
         machine_kind: Some(MachineKind::Lathe),
     }
-}
-
-fn median_seconds(mut run: impl FnMut(), rounds: usize) -> f64 {
-    let mut times: Vec<f64> = (0..rounds)
-        .map(|_| {
-            let start = Instant::now();
-            run();
-            start.elapsed().as_secs_f64()
-        })
-        .collect();
-    times.sort_by(|a, b| a.total_cmp(b));
-    times[times.len() / 2]
 }
 
 fn front_end(c: &mut Criterion) {

@@ -12,6 +12,7 @@ mod common;
 mod compensate;
 mod diagnose;
 mod fmt;
+mod lsp;
 mod model;
 mod plot;
 mod simulate;
@@ -39,6 +40,7 @@ Examples:
   turnpass diagnose part.nc --model machine.toml --measured cmm.csv --write-model machine-new.toml --plot gap.svg
   turnpass synth ballbar.nc --model truth.toml --kind ballbar --noise 0.0002 --seed 7 -o trace.csv
   turnpass fit-thermal spindle-log.csv --write-model machine.toml --axis z
+  turnpass lsp                               (language server on standard input and output, for editors)
 
 Machine settings come from --model FILE, or from a turnpass.toml found in the program's
 directory or above it ([machine] table: dialect, gcode_system, decimal_input, units,
@@ -76,6 +78,8 @@ enum Command {
     Synth(diagnose::SynthArgs),
     /// Fit the first-order warm-up and cool-down curves of a thermal log.
     FitThermal(thermal::FitThermalArgs),
+    /// Serve the Language Server Protocol on standard input and output (for editors).
+    Lsp,
     /// Machine models.
     Model {
         #[command(subcommand)]
@@ -96,6 +100,7 @@ pub fn main() -> ExitCode {
         Command::Diagnose(args) => diagnose::run(args),
         Command::Synth(args) => diagnose::run_synth(args),
         Command::FitThermal(args) => thermal::run(args),
+        Command::Lsp => lsp::run(),
         Command::Model { command } => model::run(command),
     };
     match result {

@@ -7,6 +7,7 @@
 //! the least increment; motion codes and F are written when they change; arcs use the
 //! program's own form (`R`/`L` radius or `I K` centre).
 
+use crate::compensation::grid::{ArcWords, Grid};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::{Address, Code, Dialect, GFunction};
 use crate::printer::{Edits, NewBlock, NewWord};
@@ -266,16 +267,25 @@ impl BlockWriter {
         words.push(self.x_word(end.x));
         words.push(self.z_word(end.z));
         if m.is_arc() {
-            let centre = m.centre;
-            if self.radius_arcs {
-                let radius = start.distance(centre);
-                let sweep = crate::geometry::sweep(start, end, centre, m.motion == Motion::Ccw);
-                let signed = if sweep > std::f64::consts::PI + 1e-9 { -radius } else { radius };
-                let address = if self.dialect == Dialect::Osp { Address::L } else { Address::R };
-                words.push(NewWord::Number(address, self.number(self.frame.program(signed))));
-            } else {
-                words.push(NewWord::Number(Address::I, self.number(self.frame.program(centre.x - start.x))));
-                words.push(NewWord::Number(Address::K, self.number(self.frame.program(centre.z - start.z))));
+            // The words `compensate` predicts the control to run (`Grid::arc_words`): the
+            // program's form where it holds the arc after rounding, else the centre form.
+            let grid = Grid { frame: self.frame, shift: self.shift, places: self.places };
+            let (i, k) = (grid.length(m.centre.x - start.x), grid.length(m.centre.z - start.z));
+            match grid.arc_words(start, end, m.centre, m.motion == Motion::Ccw, self.radius_arcs) {
+                ArcWords::Radius(radius) => {
+                    let address = if self.dialect == Dialect::Osp { Address::L } else { Address::R };
+                    words.push(NewWord::Number(address, grid.number(radius)));
+                }
+                ArcWords::Centre { i, k } => {
+                    words.push(NewWord::Number(Address::I, grid.number(i)));
+                    words.push(NewWord::Number(Address::K, grid.number(k)));
+                }
+                // An arc whose rounded ends meet (a cycle's own moves; `compensate` writes
+                // such an arc as a line): its centre as the cycle has it.
+                ArcWords::Line => {
+                    words.push(NewWord::Number(Address::I, grid.number(i)));
+                    words.push(NewWord::Number(Address::K, grid.number(k)));
+                }
             }
         }
         if m.motion != Motion::Rapid && self.feed != Some(m.f_word) && m.f_word > 0.0 {

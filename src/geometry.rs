@@ -92,6 +92,33 @@ pub fn centre_from_radius(start: Xz, end: Xz, radius: f64, ccw: bool, tolerance:
     Some(p(mid + left * (h * side)))
 }
 
+/// The largest difference of an `I`/`K` arc's start and end radii the controls accept, mm.
+pub const ARC_RADIUS_MISMATCH_MM: f64 = 0.02;
+
+/// How far an `R`/`L` radius may fall short of half the chord and still be taken (as a
+/// half circle), mm: rounding noise, not a programming error.
+pub const ARC_RADIUS_REACH_MM: f64 = 1e-6;
+
+/// The centre a control takes for an arc given by its centre offsets (`I K`) from `start`
+/// to `end`: `centre` itself when both ends are equally far from it, else the point of the
+/// chord's perpendicular bisector nearest it (the ends' radii differ after rounding, and
+/// the arc must still run through both ends). `None` when the radii differ by more than
+/// [`ARC_RADIUS_MISMATCH_MM`] (the control's alarm), with the two radii.
+pub fn centre_from_offsets(start: Xz, end: Xz, centre: Xz) -> Result<Xz, (f64, f64)> {
+    let (r0, r1) = (start.distance(centre), end.distance(centre));
+    if (r0 - r1).abs() > ARC_RADIUS_MISMATCH_MM {
+        return Err((r0, r1));
+    }
+    if (r0 - r1).abs() > 1e-9 && start.distance(end) > 1e-9 {
+        let mid = Xz::new((start.x + end.x) / 2.0, (start.z + end.z) / 2.0);
+        let normal = left_normal(start, end);
+        let along = (centre.x - mid.x) * normal.x + (centre.z - mid.z) * normal.z;
+        Ok(Xz::new(mid.x + normal.x * along, mid.z + normal.z * along))
+    } else {
+        Ok(centre)
+    }
+}
+
 /// Where the line through `a1`, `a2` meets the line through `b1`, `b2`; `None` if parallel.
 pub fn line_line(a1: Xz, a2: Xz, b1: Xz, b2: Xz) -> Option<Xz> {
     let d1 = v(a2) - v(a1);

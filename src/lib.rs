@@ -19,6 +19,7 @@ pub mod dialect;
 pub mod error_model;
 pub mod expand;
 pub mod geometry;
+pub mod lsp;
 pub mod machine;
 mod memory;
 pub mod plot;

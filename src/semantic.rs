@@ -20,7 +20,7 @@ mod emitter;
 mod eval;
 mod frame;
 mod interpreter;
-mod labels;
+pub mod labels;
 mod modal;
 mod motion;
 pub mod nose_radius;

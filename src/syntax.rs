@@ -87,9 +87,19 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
         exprs: Vec::new(),
         commands: Vec::new(),
     };
-    let mut builder =
-        Builder { program: &mut program, diagnostics: &mut diagnostics, warnings: Vec::new(), codes: Vec::new() };
-    builder.run();
+    let mut builder = Builder {
+        program: &mut program,
+        diagnostics: &mut diagnostics,
+        warnings: Vec::new(),
+        codes: Vec::new(),
+        document_start: true,
+    };
+    if let (Tape::Closed, Some(next)) = builder.run(Tape::Before)
+        && next < source.len()
+    {
+        // Controls stop reading at the closing `%`; keep the rest verbatim.
+        builder.push_block(Span::new(next as u32, source.len() as u32), ast::Statement::Trailing, 0, 0);
+    }
     // Growth doubles the arenas; give back what the program does not use.
     program.blocks.shrink_to_fit();
     program.words.shrink_to_fit();
@@ -98,7 +108,74 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
     Parsed { program, diagnostics, detection }
 }
 
-fn detection_diagnostics(detection: &Detection) -> Vec<Diagnostic> {
+/// Where the tape stands at a line: before its opening `%` (or `$…%` header), inside it, or
+/// after its closing `%`, where controls stop reading.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Tape {
+    #[default]
+    Before,
+    Open,
+    Closed,
+}
+
+/// A run of whole lines parsed on its own, with spans, word, expression and command indexes
+/// relative to the run. The language server keeps a program as such runs so that an edit
+/// re-parses only the lines it touched (`crate::lsp::document`).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Part {
+    pub blocks: Vec<Block>,
+    pub words: Vec<Word>,
+    pub exprs: Vec<Expr>,
+    pub commands: Vec<Command>,
+    /// In the order the parser reported them (not sorted).
+    pub diagnostics: Vec<Diagnostic>,
+    /// The tape after the run.
+    pub tape: Tape,
+    /// Where the text after the closing `%` starts, when the run holds that `%`. The run's
+    /// blocks stop there; the `Trailing` block is the caller's, since it runs to the end of
+    /// the program.
+    pub trailing_from: Option<usize>,
+}
+
+/// Parse `text`, a run of whole lines (it ends after a line terminator, or at the end of the
+/// program, and does not start inside an OSP `$` continuation), as `parse` would parse them
+/// in place: `tape` is the tape state before the run, `document_start` says whether the run
+/// starts the program (where a byte-order mark may stand). Dialect detection is the caller's.
+pub(crate) fn parse_part(text: &[u8], config: DialectConfig, tape: Tape, document_start: bool) -> Part {
+    // The same reservations as `parse`, for the same reason: no regrowth while parsing.
+    let mut program = Program {
+        source: text,
+        config,
+        blocks: Vec::with_capacity(text.len() / 16 + 1),
+        words: Vec::with_capacity(text.len() / 6 + 1),
+        exprs: Vec::new(),
+        commands: Vec::new(),
+    };
+    let mut diagnostics = Vec::new();
+    let mut builder = Builder {
+        program: &mut program,
+        diagnostics: &mut diagnostics,
+        warnings: Vec::new(),
+        codes: Vec::new(),
+        document_start,
+    };
+    let (tape, trailing_from) = builder.run(tape);
+    program.blocks.shrink_to_fit();
+    program.words.shrink_to_fit();
+    Part {
+        blocks: program.blocks,
+        words: program.words,
+        exprs: program.exprs,
+        commands: program.commands,
+        diagnostics,
+        tape,
+        trailing_from,
+    }
+}
+
+/// The warnings and notes the dialect decision itself gives (conflicting evidence, an OSP
+/// machining-centre program).
+pub(crate) fn detection_diagnostics(detection: &Detection) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     if detection.is_conflicted() {
         let chosen = detection.dialect;
@@ -138,6 +215,8 @@ struct Builder<'p, 'src> {
     diagnostics: &'p mut Vec<Diagnostic>,
     warnings: Vec<Diagnostic>,
     codes: Vec<(usize, &'static crate::dialect::GInfo)>,
+    /// The source starts the program, so a byte-order mark at its offset 0 is one.
+    document_start: bool,
 }
 
 /// The lines of a source, from one SIMD pass over its line terminators. A line ends at LF, CR
@@ -188,15 +267,21 @@ impl<'s> Lines<'s> {
 }
 
 impl<'src> Builder<'_, 'src> {
-    fn run(&mut self) {
+    /// Parse every line from the tape state `tape` on. Returns the tape state at the end and,
+    /// when a closing `%` stopped the run, where the text after its line starts.
+    fn run(&mut self, tape: Tape) -> (Tape, Option<usize>) {
         let source = self.program.source;
         let tables = self.program.config.tables();
         let osp = self.program.config.dialect == Dialect::Osp;
         let mut lines = Lines::new(source);
-        let mut tape_open = false;
+        let mut tape_open = match tape {
+            Tape::Before => false,
+            Tape::Open => true,
+            Tape::Closed => return (Tape::Closed, None),
+        };
         while let Some((start, mut end, mut next)) = lines.next_line() {
             let mut line = &source[start..end];
-            if start == 0 && line.starts_with(BYTE_ORDER_MARK) {
+            if self.has_byte_order_mark(start) {
                 line = &line[BYTE_ORDER_MARK.len()..];
             }
             if line.first() == Some(&b'$') && detect::is_osp_header(line) {
@@ -221,15 +306,16 @@ impl<'src> Builder<'_, 'src> {
             self.block(start, end);
             if tape_mark {
                 if tape_open {
-                    // Controls stop reading at the closing `%`; keep the rest verbatim.
-                    if next < source.len() {
-                        self.push_block(Span::new(next as u32, source.len() as u32), ast::Statement::Trailing, 0, 0);
-                    }
-                    return;
+                    return (Tape::Closed, Some(next));
                 }
                 tape_open = true;
             }
         }
+        (if tape_open { Tape::Open } else { Tape::Before }, None)
+    }
+
+    fn has_byte_order_mark(&self, start: usize) -> bool {
+        start == 0 && self.document_start && self.program.source.starts_with(BYTE_ORDER_MARK)
     }
 
     fn push_block(&mut self, span: Span, statement: ast::Statement, first_word: u32, word_count: u16) {
@@ -237,13 +323,13 @@ impl<'src> Builder<'_, 'src> {
     }
 
     fn header(&mut self, start: usize, end: usize, osp: bool) {
-        if start == 0 && self.program.source.starts_with(BYTE_ORDER_MARK) {
+        if self.has_byte_order_mark(start) {
             self.diagnostics.push(Diagnostic::warning(DiagnosticKind::ByteOrderMark, Span::new(0, 3)));
         }
         let span = Span::new(start as u32, end as u32);
         if osp {
             let first_word = self.program.words.len() as u32;
-            let bom = if start == 0 && self.program.source.starts_with(BYTE_ORDER_MARK) { 3 } else { 0 };
+            let bom = if self.has_byte_order_mark(start) { 3 } else { 0 };
             let word = Span::new(span.start + bom, span.end);
             self.program.words.push(ast::Word { span: word, kind: WordKind::Header });
             self.push_block(span, ast::Statement::Header, first_word, 1);
@@ -262,7 +348,7 @@ impl<'src> Builder<'_, 'src> {
         let source = self.program.source;
         let span = Span::new(start as u32, end as u32);
         let mut text = &source[start..end];
-        if start == 0 && text.starts_with(BYTE_ORDER_MARK) {
+        if self.has_byte_order_mark(start) {
             self.diagnostics.push(Diagnostic::warning(DiagnosticKind::ByteOrderMark, Span::new(0, 3)));
             text = &text[3..];
         }

@@ -97,6 +97,9 @@ pub enum CliError {
     Model { path: String, message: String },
     #[error("{0}")]
     Usage(String),
+    /// The language server's connection failed (the client broke the protocol or went away).
+    #[error("language server: {0}")]
+    Protocol(String),
 }
 
 pub fn display_name(path: &Path) -> String {

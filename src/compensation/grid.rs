@@ -9,6 +9,9 @@
 //! Values are kept as integer counts of the increment (`i64` mantissas with the
 //! increment's decimal places), so comparisons and differences are exact.
 
+use std::f64::consts::{PI, TAU};
+
+use crate::geometry;
 use crate::semantic::{CoordinateMark, Frame};
 use crate::syntax::Number;
 use crate::toolpath::Xz;
@@ -85,6 +88,152 @@ impl Grid {
     }
 }
 
+/// How an arc is written on the grid (see [`Grid::arc_words`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ArcWords {
+    /// `R` (OSP `L`): the signed radius in increments, negative beyond half a turn.
+    Radius(i64),
+    /// `I K`: the centre's offset from the rounded start, in increments.
+    Centre { i: i64, k: i64 },
+    /// No arc the control would run stays near it (its rounded ends coincide and it sweeps
+    /// no more than half a turn): the move is a straight one to its rounded end.
+    Line,
+}
+
+impl Grid {
+    /// The words of the arc from `from` to `end` about `centre` (exact points, toolpath
+    /// frame), in the form `prefer_radius` asks for when that form holds the arc.
+    ///
+    /// A control finds an `R` arc's centre from the rounded ends and the rounded radius, on
+    /// the chord's perpendicular bisector at the height √(R² − (c/2)²) over the chord. Near
+    /// half a turn that height is small and changes fast with the chord and the radius: a
+    /// half-increment rounding of either moves the centre by many increments, and past half
+    /// a turn the radius may no longer reach across the rounded chord at all (metrology.md
+    /// §5.3: prefer the centre form there). An `I K` arc's centre is rounded by at most half
+    /// an increment per axis, whatever the sweep. So the radius form is kept where the arc
+    /// the control would run from it stays within half an increment of the exact arc, or
+    /// no further than the centre form's, and where the rounded radius exceeds half the
+    /// rounded chord by at least an increment; else the arc is written by its centre. (At
+    /// exactly half a turn the radius is half the chord: whether a control then runs the
+    /// half circle or stops with "radius too small" turns on its own arithmetic.) A full
+    /// circle has only the centre form.
+    pub fn arc_words(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, prefer_radius: bool) -> ArcWords {
+        let (start, stop) = (self.point(from), self.point(end));
+        let exact = ArcSpan::new(from, end, centre, ccw);
+        // Rounded ends that meet make the control run a full circle: what an arc of more
+        // than half a turn short of one by less than an increment should be, and nothing
+        // near a shorter one.
+        let full = start == stop;
+        if full && exact.sweep <= PI {
+            return ArcWords::Line;
+        }
+        let at = self.to_mm(start);
+        let by_centre = ArcWords::Centre { i: self.length(centre.x - at.x), k: self.length(centre.z - at.z) };
+        let centre_gap = self.gap(&exact, start, stop, by_centre, ccw);
+        if full {
+            return if centre_gap.is_finite() { by_centre } else { ArcWords::Line };
+        }
+        let radius = from.distance(centre);
+        let signed = if exact.sweep > PI + 1e-9 { -radius } else { radius };
+        let count = self.length(signed);
+        let by_radius = ArcWords::Radius(count);
+        let radius_gap = self.gap(&exact, start, stop, by_radius, ccw);
+        let increment = self.increment_mm();
+        let reaches = self.length_mm(count).abs() - at.distance(self.to_mm(stop)) / 2.0 >= increment - 1e-12;
+        let radius_holds = reaches && radius_gap <= (increment / 2.0).max(centre_gap);
+        match (prefer_radius, radius_holds) {
+            (true, true) => by_radius,
+            _ if centre_gap.is_finite() => by_centre,
+            _ if radius_gap.is_finite() => by_radius,
+            _ => ArcWords::Line,
+        }
+    }
+
+    /// The centre the control takes for an arc written with `words` from `start` to `stop`
+    /// (grid points), in the toolpath frame: as the semantic pass reads the block back.
+    pub fn arc_centre(&self, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> Option<Xz> {
+        let (from, to) = (self.to_mm(start), self.to_mm(stop));
+        match words {
+            ArcWords::Radius(count) => {
+                geometry::centre_from_radius(from, to, self.length_mm(count), ccw, geometry::ARC_RADIUS_REACH_MM)
+            }
+            ArcWords::Centre { i, k } => {
+                let centre = Xz::new(from.x + self.length_mm(i), from.z + self.length_mm(k));
+                geometry::centre_from_offsets(from, to, centre).ok()
+            }
+            ArcWords::Line => None,
+        }
+    }
+
+    /// How far the arc the control runs for `words`, written for the arc from `from` to
+    /// `end` about `centre` (exact), strays from that arc (infinite when it runs none).
+    pub fn arc_gap(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, words: ArcWords) -> f64 {
+        self.gap(&ArcSpan::new(from, end, centre, ccw), self.point(from), self.point(end), words, ccw)
+    }
+
+    /// How far the arc the control runs for `words` strays from the exact arc (infinite
+    /// when it runs none).
+    fn gap(&self, exact: &ArcSpan, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> f64 {
+        match self.arc_centre(start, stop, words, ccw) {
+            Some(centre) => exact.gap(&ArcSpan::new(self.to_mm(start), self.to_mm(stop), centre, ccw)),
+            None => f64::INFINITY,
+        }
+    }
+}
+
+/// An arc by its start, centre, radius and sweep.
+struct ArcSpan {
+    start: Xz,
+    end: Xz,
+    centre: Xz,
+    radius: f64,
+    ccw: bool,
+    a0: f64,
+    sweep: f64,
+}
+
+impl ArcSpan {
+    fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> ArcSpan {
+        let sweep = geometry::sweep(start, end, centre, ccw);
+        ArcSpan { start, end, centre, radius: start.distance(centre), ccw, a0: geometry::angle(start, centre), sweep }
+    }
+
+    /// The point at `fraction` of the sweep.
+    fn at(&self, fraction: f64) -> Xz {
+        let sign = if self.ccw { 1.0 } else { -1.0 };
+        geometry::on_circle(self.centre, self.radius, self.a0 + sign * self.sweep * fraction)
+    }
+
+    /// The distance from `p` to this arc.
+    fn distance(&self, p: Xz) -> f64 {
+        let a = geometry::angle(p, self.centre);
+        let delta = if self.ccw { (a - self.a0).rem_euclid(TAU) } else { (self.a0 - a).rem_euclid(TAU) };
+        if delta <= self.sweep {
+            (p.distance(self.centre) - self.radius).abs()
+        } else {
+            p.distance(self.start).min(p.distance(self.end))
+        }
+    }
+
+    /// The largest distance of a point of `other` from this arc. The distance of a point of
+    /// one circle from another circle is extreme where the two centres and the point line
+    /// up, so `other` is measured there (where that lies on it), at its ends, and at its
+    /// quarters (which catch an arc gone round the other way).
+    fn gap(&self, other: &ArcSpan) -> f64 {
+        let mut worst = [0.0, 0.25, 0.5, 0.75, 1.0].map(|f| self.distance(other.at(f))).into_iter().fold(0.0, f64::max);
+        if self.centre.distance(other.centre) > 0.0 {
+            let away = geometry::angle(self.centre, other.centre);
+            for a in [away, away + PI] {
+                let delta = if other.ccw { (a - other.a0).rem_euclid(TAU) } else { (other.a0 - a).rem_euclid(TAU) };
+                if delta <= other.sweep {
+                    worst = worst.max(self.distance(geometry::on_circle(other.centre, other.radius, a)));
+                }
+            }
+        }
+        if worst.is_nan() { f64::INFINITY } else { worst }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -108,6 +257,90 @@ mod tests {
         assert_eq!(g.point(Xz::new(10.00024, 0.0)).x, 20_000);
         assert_eq!(g.point(Xz::new(10.00026, 0.0)).x, 20_001);
         assert!((g.round(Xz::new(10.00026, 0.0)).x - 10.0005).abs() < 1e-12);
+    }
+
+    /// The point at `degrees` (from +Z toward +X) on the circle about `centre`.
+    fn on(centre: Xz, radius: f64, degrees: f64) -> Xz {
+        geometry::on_circle(centre, radius, degrees.to_radians())
+    }
+
+    #[test]
+    fn a_quarter_and_three_quarters_keep_their_radius() {
+        let g = grid(false, false);
+        // G02 X45 Z-15 R5 from X40 Z-10 (radius programming): centre X45 Z-10.
+        let words = g.arc_words(Xz::new(40.0, -10.0), Xz::new(45.0, -15.0), Xz::new(45.0, -10.0), false, true);
+        assert_eq!(words, ArcWords::Radius(5_000));
+        // G03 X25 Z-48 R-3 from X22 Z-45: three quarters of a turn, a negative radius.
+        let words = g.arc_words(Xz::new(22.0, -45.0), Xz::new(25.0, -48.0), Xz::new(25.0, -45.0), true, true);
+        assert_eq!(words, ArcWords::Radius(-3_000));
+        // A program that writes I K keeps I K.
+        let words = g.arc_words(Xz::new(40.0, -10.0), Xz::new(45.0, -15.0), Xz::new(45.0, -10.0), false, false);
+        assert_eq!(words, ArcWords::Centre { i: 5_000, k: 0 });
+    }
+
+    #[test]
+    fn near_half_a_turn_the_centre_form_is_written_where_the_radius_would_move_the_centre() {
+        let g = grid(false, false);
+        let centre = Xz::new(30.1003, -24.9987);
+        // Radii that round up (the control finds the centre far off the exact one) and
+        // down (the rounded radius does not reach across the chord: an alarm).
+        for radius in [4.9996, 5.0002] {
+            for (sweep, ccw) in [(179.7, false), (179.9, true), (180.1, false), (180.4, true)] {
+                let from = on(centre, radius, 3.1);
+                let end = on(centre, radius, if ccw { 3.1 + sweep } else { 3.1 - sweep });
+                let words = g.arc_words(from, end, centre, ccw, true);
+                let ArcWords::Centre { .. } = words else { panic!("{radius} {sweep}°: {words:?}") };
+                let signed = if sweep > 180.0 { -radius } else { radius };
+                let by_radius = g.arc_gap(from, end, centre, ccw, ArcWords::Radius(g.length(signed)));
+                let by_centre = g.arc_gap(from, end, centre, ccw, words);
+                // Rounded up, R puts the centre some 0.03–0.06 mm from where it is.
+                assert!(by_radius > 0.02, "{radius} {sweep}°: R strays {by_radius}");
+                // I K strays by its rounding only: the centre and the ends by half an
+                // increment per axis.
+                assert!(by_centre <= 0.0015, "{radius} {sweep}°: I K strays {by_centre}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_half_circle_on_the_grid_is_written_by_its_centre() {
+        // Its radius is exactly half its chord: the R arc is exact, but whether a control
+        // takes R = c/2 as a half circle or as "radius too small" is its own arithmetic's
+        // call.
+        let g = grid(false, false);
+        let (from, end, centre) = (Xz::new(21.998, -45.001), Xz::new(27.998, -45.001), Xz::new(24.998, -45.001));
+        assert_eq!(g.arc_words(from, end, centre, true, true), ArcWords::Centre { i: 3_000, k: 0 });
+    }
+
+    #[test]
+    fn an_arc_whose_rounded_ends_meet_is_a_line_unless_it_is_nearly_a_full_circle() {
+        let g = grid(false, false);
+        // 0.3 µm of a 5 mm circle: both ends round to X25.000 Z-50.000.
+        let centre = Xz::new(20.0, -50.0);
+        let (from, end) = (on(centre, 5.0, 90.0 - 1e-6), on(centre, 5.0, 90.0 + 2.4e-6));
+        assert_eq!(g.point(from), g.point(end));
+        assert_eq!(g.arc_words(from, end, centre, true, true), ArcWords::Line);
+        assert_eq!(g.arc_centre(g.point(from), g.point(end), ArcWords::Line, true), None);
+        // The rest of the same circle, the long way round: the control runs the full circle
+        // from I K, about the centre as rounded.
+        let words = g.arc_words(from, end, centre, false, true);
+        assert_eq!(words, ArcWords::Centre { i: -5_000, k: 0 });
+        let run = g.arc_centre(g.point(from), g.point(end), words, false).unwrap();
+        assert!(run.distance(centre) < 1e-9, "{run:?}");
+    }
+
+    #[test]
+    fn the_centre_the_control_takes_from_offsets_is_on_the_rounded_chords_bisector() {
+        let g = grid(false, false);
+        // I5 K0 from X30 Z-20 to X35 Z-24.999: the end is 1 µm nearer the centre than the
+        // start. The control moves the centre onto the chord's bisector, nearest the
+        // written one, as the semantic pass reads the block.
+        let (start, stop) = (GridPoint { x: 30_000, z: -20_000 }, GridPoint { x: 35_000, z: -24_999 });
+        let run = g.arc_centre(start, stop, ArcWords::Centre { i: 5_000, k: 0 }, false).unwrap();
+        let (a, b) = (g.to_mm(start), g.to_mm(stop));
+        assert!((run.distance(a) - run.distance(b)).abs() < 1e-12);
+        let moved = run.distance(Xz::new(35.0, -20.0));
+        assert!(moved > 1e-4 && moved < 1e-3, "{run:?}");
     }
 
     #[test]

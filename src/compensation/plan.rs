@@ -21,11 +21,12 @@
 
 use std::ops::Range;
 
+use crate::geometry;
 use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
 use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, distance_to_chord};
-use super::grid::Grid;
+use super::grid::{ArcWords, Grid};
 use super::sampling::PathSample;
 use super::written;
 
@@ -77,6 +78,8 @@ pub struct PlanInput<'a> {
     /// Whether each move can be written back (its block is a motion block, or it belongs
     /// to a cycle that can be expanded).
     pub writable: &'a [bool],
+    /// Whether each move's arcs prefer the radius form (`rewrite::radius_preference`).
+    pub radius: &'a [bool],
     pub tools: &'a ToolTable,
 }
 
@@ -126,10 +129,61 @@ pub fn plan_range(
                 plan_one(input, &piece, options)
             }
         };
+        let plan = if plan.changed {
+            settle_arcs(plan, &grid_of(index), input.radius.get(index).copied().unwrap_or(false))
+        } else {
+            plan
+        };
         at = plan.end();
         plans.push(plan);
     }
     at
+}
+
+/// The plan with its arcs made writable on `grid`: an arc that no words can write (its
+/// rounded ends coincide: `Grid::arc_words`) becomes the straight move the control would
+/// make for it, and an arc that the control, given its rounded words, would run more than
+/// an increment away from the exact one is cut in halves until it does not.
+///
+/// The second is the long way round: an `I K` arc of most of a turn has a short chord, and
+/// when rounding leaves its end radii a micrometre apart, the control moves the centre
+/// along the chord by that micrometre times the radius over the chord (3 µm for a 340°
+/// arc of radius 13.5): the far side of the circle moves with it. Each half has a long
+/// chord. Cutting keeps the exact geometry; only the cut point is rounded.
+fn settle_arcs(mut plan: MovePlan, grid: &Grid, prefer_radius: bool) -> MovePlan {
+    let mut segments = Vec::with_capacity(plan.segments.len());
+    let mut from = plan.start;
+    for &segment in &plan.segments {
+        settle(grid, prefer_radius, from, segment, MAX_HALVINGS, &mut segments);
+        from = segment.end();
+    }
+    plan.segments = segments;
+    plan
+}
+
+/// At most this many halvings of one arc (into 2⁴ pieces).
+const MAX_HALVINGS: u32 = 4;
+
+fn settle(grid: &Grid, prefer_radius: bool, from: Xz, segment: Segment, halvings: u32, out: &mut Vec<Segment>) {
+    let Segment::Arc { end, centre, ccw } = segment else {
+        out.push(segment);
+        return;
+    };
+    let words = grid.arc_words(from, end, centre, ccw, prefer_radius);
+    if words == ArcWords::Line {
+        out.push(Segment::Line { end });
+        return;
+    }
+    if halvings > 0 && grid.arc_gap(from, end, centre, ccw, words) > grid.increment_mm() {
+        let sweep = geometry::sweep(from, end, centre, ccw);
+        let sign = if ccw { 1.0 } else { -1.0 };
+        let radius = (from.distance(centre) + end.distance(centre)) / 2.0;
+        let middle = geometry::on_circle(centre, radius, geometry::angle(from, centre) + sign * sweep / 2.0);
+        settle(grid, prefer_radius, from, Segment::Arc { end: middle, centre, ccw }, halvings - 1, out);
+        settle(grid, prefer_radius, middle, segment, halvings - 1, out);
+        return;
+    }
+    out.push(segment);
 }
 
 /// The programmed move as a segment of the contour.

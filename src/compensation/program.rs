@@ -100,7 +100,7 @@ pub fn compensate_program(
         limits: machine.limits,
         step: sample_step(&options.fit),
         writable: rewrite::writable_moves(program, lowered),
-        radius_arcs: crate::expand::uses_radius_arcs(program),
+        radius: rewrite::radius_preference(program, lowered),
         path: LocalPath::new(toolpath),
         plan_options: PlanOptions { fit: options.fit, play: model.play() },
         runs: rewrite::move_runs(lowered),

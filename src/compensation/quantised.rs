@@ -16,31 +16,24 @@ use super::plan::{MovePlan, PlanInput};
 use super::sampling::PathSample;
 use super::written;
 
-/// A move's segments rounded onto `grid`, from its rounded start. Arcs take the centre the
-/// control computes: from the rounded radius with `radius_arcs`, else from the rounded
-/// centre offsets.
-pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], radius_arcs: bool) -> Vec<Segment> {
+/// A move's segments rounded onto `grid`, from its rounded start, as the control runs the
+/// words `rewrite` writes for them: each end rounded from its exact value, each arc about
+/// the centre the control finds from its words (`Grid::arc_words`, in the form
+/// `prefer_radius` asks for where it holds the arc), an arc no words can give a line.
+pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], prefer_radius: bool) -> Vec<Segment> {
     let mut from_exact = start;
-    let mut from = grid.round(start);
+    let mut from = grid.point(start);
     let mut out = Vec::with_capacity(segments.len());
     for segment in segments {
-        let end = grid.round(segment.end());
+        let end = grid.point(segment.end());
         let rounded = match *segment {
-            Segment::Line { .. } => Segment::Line { end },
+            Segment::Line { .. } => Segment::Line { end: grid.to_mm(end) },
             Segment::Arc { end: exact_end, centre, ccw } => {
-                let centre = if radius_arcs && from != end {
-                    let radius = from_exact.distance(centre);
-                    let sweep = geometry::sweep(from_exact, exact_end, centre, ccw);
-                    let signed = if sweep > std::f64::consts::PI + 1e-9 { -radius } else { radius };
-                    let written = grid.length_mm(grid.length(signed));
-                    geometry::centre_from_radius(from, end, written, ccw, f64::INFINITY).unwrap_or(centre)
-                } else {
-                    Xz::new(
-                        from.x + grid.length_mm(grid.length(centre.x - from.x)),
-                        from.z + grid.length_mm(grid.length(centre.z - from.z)),
-                    )
-                };
-                Segment::Arc { end, centre, ccw }
+                let words = grid.arc_words(from_exact, exact_end, centre, ccw, prefer_radius);
+                match grid.arc_centre(from, end, words, ccw) {
+                    Some(centre) => Segment::Arc { end: grid.to_mm(end), centre, ccw },
+                    None => Segment::Line { end: grid.to_mm(end) },
+                }
             }
         };
         out.push(rounded);
@@ -109,14 +102,9 @@ impl Gauge {
 
 /// For every sample, the reference point the control commands when the program writes
 /// the rounded segments of `plans` (`input.commanded` holds the ideal commands).
-pub fn commanded_path(
-    input: &PlanInput<'_>,
-    plans: &[MovePlan],
-    grid_of: impl Fn(usize) -> Grid,
-    radius_arcs: bool,
-) -> Vec<Xz> {
+pub fn commanded_path(input: &PlanInput<'_>, plans: &[MovePlan], grid_of: impl Fn(usize) -> Grid) -> Vec<Xz> {
     let mut out: Vec<Xz> = input.samples.iter().map(|s| s.nominal).collect();
-    commanded_moves(input, 0, plans, grid_of, radius_arcs, &mut out);
+    commanded_moves(input, 0, plans, grid_of, &mut out);
     out
 }
 
@@ -127,7 +115,6 @@ pub fn commanded_moves(
     first: usize,
     plans: &[MovePlan],
     grid_of: impl Fn(usize) -> Grid,
-    radius_arcs: bool,
     out: &mut [Xz],
 ) {
     let (toolpath, samples, tools) = (input.toolpath, input.samples, input.tools);
@@ -145,7 +132,8 @@ pub fn commanded_moves(
             }
             continue;
         }
-        let rounded = quantise(&grid, plan.start, &plan.segments, radius_arcs);
+        let prefer_radius = input.radius.get(index).copied().unwrap_or(false);
+        let rounded = quantise(&grid, plan.start, &plan.segments, prefer_radius);
         let walk = Walk { m, contour_start, start: grid.round(plan.start), segments: &rounded, tools };
         walk.follow(samples, input.commanded, range.clone(), out);
     }

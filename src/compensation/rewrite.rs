@@ -59,14 +59,11 @@ pub struct EditedBlock {
 pub fn writable_moves(program: &Program<'_>, lowered: &Lowered) -> Vec<bool> {
     let moves = &lowered.toolpath.moves;
     let mut writable = vec![false; moves.len()];
-    let mut in_cycle = vec![false; moves.len()];
+    let in_cycle = in_cycle(lowered);
     for expansion in &lowered.expansions {
         let expandable = cycles::expandable(program, lowered, expansion);
-        for k in expansion.moves.clone() {
-            if let (Some(w), Some(c)) = (writable.get_mut(k), in_cycle.get_mut(k)) {
-                *w = expandable;
-                *c = true;
-            }
+        for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
+            *w = expandable;
         }
     }
     let blocks = BlockLookup::new(program);
@@ -79,6 +76,38 @@ pub fn writable_moves(program: &Program<'_>, lowered: &Lowered) -> Vec<bool> {
             .is_some_and(|b| matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove));
     }
     writable
+}
+
+/// For each move, whether the arcs written for it prefer the radius form (`R`/`L`) to the
+/// centre form (`I K`): a motion block's own form (`block::writes_radius`), a cycle's the
+/// program's (`expand` writes its blocks so). `grid::Grid::arc_words` still writes an arc
+/// by its centre where its radius would not hold it.
+pub fn radius_preference(program: &Program<'_>, lowered: &Lowered) -> Vec<bool> {
+    let program_radius_arcs = crate::expand::uses_radius_arcs(program);
+    let moves = &lowered.toolpath.moves;
+    let mut out = vec![program_radius_arcs; moves.len()];
+    let in_cycle = in_cycle(lowered);
+    let blocks = BlockLookup::new(program);
+    for (k, m) in moves.iter().enumerate() {
+        if in_cycle[k] {
+            continue;
+        }
+        if let Some(b) = blocks.index(m.source.start) {
+            out[k] = block::writes_radius(program, b, m.is_arc(), program_radius_arcs);
+        }
+    }
+    out
+}
+
+/// Whether each move is one of a cycle's.
+fn in_cycle(lowered: &Lowered) -> Vec<bool> {
+    let mut out = vec![false; lowered.toolpath.moves.len()];
+    for expansion in &lowered.expansions {
+        for c in out.get_mut(expansion.moves.clone()).unwrap_or_default() {
+            *c = true;
+        }
+    }
+    out
 }
 
 /// Block indices by the start of their span.

@@ -6,6 +6,7 @@
 //! a dwell not at all. The toolpath's start is the machine's position before the program
 //! and is not a sample: nothing commands it.
 
+use std::f64::consts::TAU;
 use std::ops::Range;
 
 use crate::geometry;
@@ -70,10 +71,9 @@ pub fn sample_moves(toolpath: &Toolpath, moves: Range<usize>, tools: &ToolTable,
                 let a0 = geometry::angle(start, m.centre);
                 let sign = if ccw { 1.0 } else { -1.0 };
                 let n = (radius * sweep / step).ceil().max(2.0) as usize;
-                for i in 1..=n {
-                    let t = i as f64 / n as f64;
+                for t in arc_fractions(n, a0, sweep, ccw) {
                     let angle = a0 + sign * sweep * t;
-                    let p = if i == n { m.end } else { geometry::on_circle(m.centre, radius, angle) };
+                    let p = if t >= 1.0 { m.end } else { geometry::on_circle(m.centre, radius, angle) };
                     // The tangent of increasing angle is (cos, −sin) in (x, z).
                     let tangent = Xz::new(sign * angle.cos(), -sign * angle.sin());
                     let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
@@ -83,6 +83,33 @@ pub fn sample_moves(toolpath: &Toolpath, moves: Range<usize>, tools: &ToolTable,
             }
         }
     }
+}
+
+/// The fractions of an arc's sweep to sample at: `n` equal steps, and the points where an
+/// axis reverses (the arc's extremes in X and Z, at the quarter angles). An axis reverses
+/// there, and with it the backlash: the inverse takes up the play at the sample where the
+/// slide's direction changes, and `plan.rs` writes that jump at the sample before it. Were
+/// the reversal between two samples, the path from the sample before it to the reversal
+/// would be written with the play already taken up the other way: off by the play. An
+/// extreme within a hundredth of a step of a sample is that sample.
+fn arc_fractions(n: usize, a0: f64, sweep: f64, ccw: bool) -> impl Iterator<Item = f64> {
+    let mut extremes = [f64::INFINITY; 4];
+    for (k, slot) in extremes.iter_mut().enumerate() {
+        let target = k as f64 * std::f64::consts::FRAC_PI_2;
+        let delta = if ccw { (target - a0).rem_euclid(TAU) } else { (a0 - target).rem_euclid(TAU) };
+        let fraction = delta / sweep;
+        let off_grid = (fraction * n as f64 - (fraction * n as f64).round()).abs() > 0.01;
+        if fraction > 0.0 && fraction < 1.0 && off_grid {
+            *slot = fraction;
+        }
+    }
+    extremes.sort_by(f64::total_cmp);
+    let mut extremes = extremes.into_iter().filter(|f| f.is_finite()).peekable();
+    let mut uniform = (1..=n).map(move |i| i as f64 / n as f64).peekable();
+    std::iter::from_fn(move || match (uniform.peek(), extremes.peek()) {
+        (Some(&u), Some(&e)) if e < u => extremes.next(),
+        _ => uniform.next(),
+    })
 }
 
 fn sample(index: usize, m: &Move, t: f64, p: Xz, normal: Xz, cutting: bool, tip: Xz) -> PathSample {
@@ -125,5 +152,35 @@ pub(crate) fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
                 Xz::new(0.0, 0.0)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compensation::test_support::lower_program;
+
+    #[test]
+    fn an_arc_is_sampled_where_an_axis_reverses_inside_it() {
+        // G02 from X40 Z0 to X40 Z-9 (diameters) with R5.1, centre X22.4 Z-4.5 (radii):
+        // X falls to the circle's bottom, X17.3, between two of the 0.254 mm samples and
+        // rises again.
+        let (lowered, machine) =
+            lower_program("G21 G99\nG97 S1000 M03\nG00 X40. Z2.\nG01 Z0 F0.2\nG02 X40. Z-9. R5.1\nM30\n");
+        let path = &lowered.toolpath;
+        let (index, arc) = path.moves.iter().enumerate().find(|(_, m)| m.is_arc()).unwrap();
+        let samples: Vec<PathSample> = sample_toolpath(path, &ToolTable::from_machine(&machine), 0.254)
+            .into_iter()
+            .filter(|s| s.move_index == index)
+            .collect();
+        let bottom = arc.centre.x - path.start_of(index).distance(arc.centre);
+        assert!((bottom - 17.3).abs() < 1e-3, "{bottom}");
+        let at_bottom: Vec<&PathSample> = samples.iter().filter(|s| (s.nominal.x - bottom).abs() < 1e-9).collect();
+        assert_eq!(at_bottom.len(), 1);
+        // Between uniform samples, not on one: the steps on either side are shorter.
+        let uniform = 1.0 / (samples.len() - 1) as f64;
+        assert!((at_bottom[0].param / uniform - (at_bottom[0].param / uniform).round()).abs() > 0.01);
+        assert!(samples.windows(2).all(|w| w[0].param < w[1].param));
+        assert_eq!(samples.last().map(|s| s.nominal), Some(arc.end));
     }
 }

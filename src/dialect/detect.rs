@@ -412,10 +412,29 @@ fn scan_name(line: &[u8], i: usize, first: bool, start: usize, out: &mut Collect
 
 /// Decide the dialect (when not given) and, for OSP, the machine kind.
 pub fn decide(source: &[u8], given: Option<Dialect>, kind: Option<MachineKind>) -> Detection {
-    // The scan costs a pass over the text; skip it when there is nothing to decide (a Fanuc
-    // program has no machine kind to tell apart).
-    let needed = given.is_none() || (given == Some(Dialect::Osp) && kind.is_none());
-    let evidence = if needed { scan(source) } else { Vec::new() };
+    let evidence = if scan_needed(given, kind) { scan(source) } else { Vec::new() };
+    decide_from(evidence, given, kind)
+}
+
+/// Whether deciding needs the evidence of [`scan`]. The scan costs a pass over the text; it is
+/// skipped when there is nothing to decide (a Fanuc program has no machine kind to tell apart).
+pub fn scan_needed(given: Option<Dialect>, kind: Option<MachineKind>) -> bool {
+    given.is_none() || (given == Some(Dialect::Osp) && kind.is_none())
+}
+
+/// Add the evidence of a later stretch of the same text (its spans already in the text's
+/// offsets) to `into`: what a scan of both stretches together would have found.
+pub fn merge_evidence(into: &mut Vec<Evidence>, later: impl IntoIterator<Item = Evidence>) {
+    for evidence in later {
+        match into.iter_mut().find(|e| e.feature == evidence.feature) {
+            Some(e) => e.count = e.count.saturating_add(evidence.count),
+            None => into.push(evidence),
+        }
+    }
+}
+
+/// [`decide`] from evidence already collected (empty when [`scan_needed`] is false).
+pub fn decide_from(evidence: Vec<Evidence>, given: Option<Dialect>, kind: Option<MachineKind>) -> Detection {
     let mut detection =
         Detection { dialect: Dialect::Fanuc, machine_kind: MachineKind::Lathe, choice: Choice::Default, evidence };
     match given {

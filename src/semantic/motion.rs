@@ -31,9 +31,6 @@ pub(super) struct AxisTarget {
     pub any: bool,
 }
 
-/// The largest end-radius difference of an `I`/`K` arc the controls accept, mm.
-const ARC_RADIUS_MISMATCH_MM: f64 = 0.02;
-
 /// An automatic corner waiting for the move after it.
 #[derive(Debug, Clone)]
 pub(super) struct PendingCorner {
@@ -204,7 +201,7 @@ impl Interpreter<'_, '_> {
         let radius_address = if self.dialect == Dialect::Osp { Address::L } else { Address::R };
         let centre = if let Some(r) = self.address_value(words, radius_address) {
             let r = frame.mm(r);
-            match geometry::centre_from_radius(start, to, r, ccw, 1e-6) {
+            match geometry::centre_from_radius(start, to, r, ccw, geometry::ARC_RADIUS_REACH_MM) {
                 Some(c) => c,
                 None => {
                     let chord = start.distance(to);
@@ -223,19 +220,12 @@ impl Interpreter<'_, '_> {
                 return;
             }
             let centre = Xz::new(start.x + i.unwrap_or(0.0), start.z + k.unwrap_or(0.0));
-            let (r0, r1) = (start.distance(centre), to.distance(centre));
-            if (r0 - r1).abs() > ARC_RADIUS_MISMATCH_MM {
-                self.error(DiagnosticKind::ArcCentreMismatch { start_radius_mm: r0, end_radius_mm: r1 }, span);
-                return;
-            }
-            if (r0 - r1).abs() > 1e-9 && start.distance(to) > 1e-9 {
-                // Onto the chord's perpendicular bisector, nearest the programmed centre.
-                let mid = Xz::new((start.x + to.x) / 2.0, (start.z + to.z) / 2.0);
-                let normal = geometry::left_normal(start, to);
-                let along = (centre.x - mid.x) * normal.x + (centre.z - mid.z) * normal.z;
-                Xz::new(mid.x + normal.x * along, mid.z + normal.z * along)
-            } else {
-                centre
+            match geometry::centre_from_offsets(start, to, centre) {
+                Ok(centre) => centre,
+                Err((r0, r1)) => {
+                    self.error(DiagnosticKind::ArcCentreMismatch { start_radius_mm: r0, end_radius_mm: r1 }, span);
+                    return;
+                }
             }
         };
         let modal = self.modal.clone();

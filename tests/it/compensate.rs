@@ -21,12 +21,14 @@ use crate::support::{repo, with_snapshots};
 
 const MACHINE: &str = "tests/cases/compensate/machine.toml";
 const HOWA: &str = "tests/cases/compensate/howa.toml";
+const RADIUS_LATHE: &str = "tests/cases/compensate/generated.toml";
 
 /// Every program with the model it runs on.
-const PROGRAMS: [(&str, &str); 5] = [
+const PROGRAMS: [(&str, &str); 6] = [
     ("tests/cases/compensate/turn.nc", MACHINE),
     ("tests/cases/compensate/incremental.nc", MACHINE),
     ("tests/cases/compensate/cycle.nc", MACHINE),
+    ("tests/cases/compensate/generated.nc", RADIUS_LATHE),
     ("examples/programs/thesis-o2005-arc.nc", HOWA),
     ("examples/programs/thesis-o2012-turn-face.nc", HOWA),
 ];

@@ -95,7 +95,7 @@ fn noise() -> impl Strategy<Value = Vec<u8>> {
     prop::collection::vec(prop::sample::select(b"GXZNOV0123456789.-+[]#=()$;/% \tAIFLT}\x00\x93\xe9".to_vec()), 0..40)
 }
 
-fn line() -> impl Strategy<Value = Vec<u8>> {
+pub fn line() -> impl Strategy<Value = Vec<u8>> {
     prop_oneof![
         4 => fanuc_block().prop_map(String::into_bytes),
         4 => osp_block().prop_map(String::into_bytes),
@@ -106,7 +106,7 @@ fn line() -> impl Strategy<Value = Vec<u8>> {
     ]
 }
 
-fn program() -> impl Strategy<Value = Vec<u8>> {
+pub fn program() -> impl Strategy<Value = Vec<u8>> {
     (prop::collection::vec((line(), prop::sample::select(vec!["\n", "\r\n", "\r"])), 0..25), any::<bool>()).prop_map(
         |(lines, final_terminator)| {
             let mut out = Vec::new();
@@ -122,7 +122,7 @@ fn program() -> impl Strategy<Value = Vec<u8>> {
     )
 }
 
-fn options() -> impl Strategy<Value = ParseOptions> {
+pub fn options() -> impl Strategy<Value = ParseOptions> {
     (
         prop::sample::select(vec![
             DialectChoice::Auto,

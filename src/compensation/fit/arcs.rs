@@ -52,6 +52,9 @@ struct Run<'a> {
     points: &'a [Xz],
     tolerance: f64,
     between: Between,
+    /// The nominal arc's signed curvature (positive counter-clockwise), for a piece with no
+    /// point between its ends; `None` along a nominal line.
+    curvature: Option<f64>,
 }
 
 /// Fit the move's points with arcs and lines (see the module comment).
@@ -60,7 +63,11 @@ pub fn fit(m: &MovePoints<'_>, tolerance_mm: f64) -> Pieces {
         NominalShape::Line => Between::Chords,
         NominalShape::Arc { centre, .. } => Between::Bulge { centre, radius: m.start.distance(centre) },
     };
-    let run = Run { points: m.points, tolerance: tolerance_mm, between };
+    let curvature = match m.nominal {
+        NominalShape::Line => None,
+        NominalShape::Arc { centre, ccw } => Some(if ccw { 1.0 } else { -1.0 } / m.start.distance(centre)),
+    };
+    let run = Run { points: m.points, tolerance: tolerance_mm, between, curvature };
     let count = m.points.len();
     let mut segments = Vec::new();
     let mut worst: f64 = 0.0;
@@ -120,8 +127,19 @@ impl Run<'_> {
         let points = self.points.get(first..=last)?;
         let (&end, interior) = points.split_last()?;
         if interior.is_empty() {
+            // Along a nominal arc the path to the next point is the arc's bulge: the circle
+            // of the nominal curvature through both ends follows it where a line would cut
+            // inside by its sagitta.
+            let nominal = self.curvature.and_then(|c| pinned::through_ends(at, end, &[], None, Some(c), false));
+            if let Some(piece) = nominal.filter(Bend::writable).and_then(|bend| self.accept(at, &bend, end, points)) {
+                return Some(piece);
+            }
+            // A line to the next point always passes its points (it is measured as what it
+            // is, the bulge included).
             let tangent = (at.distance(end) > 0.0).then(|| geometry::direction(at, end));
-            return Some(Piece { segment: Segment::Line { end }, tangent, deviation: 0.0 });
+            let segment = Segment::Line { end };
+            let deviation = self.bulge_deviation(at, &segment, points);
+            return Some(Piece { segment, tangent, deviation });
         }
         let bend = pinned::through_ends(at, end, interior, None, None, false)?;
         let bend =
@@ -133,12 +151,15 @@ impl Run<'_> {
     fn accept(&self, at: Xz, bend: &Bend, end: Xz, points: &[Xz]) -> Option<Piece> {
         let segment = bend.segment_to(end);
         let mut deviation = deviation::segment_deviation(at, &segment, points);
-        if let Segment::Arc { centre, ccw, .. } = segment {
-            if geometry::sweep(at, end, centre, ccw) > PI + 1e-12 {
-                return None;
+        match segment {
+            Segment::Arc { centre, ccw, .. } => {
+                if geometry::sweep(at, end, centre, ccw) > PI + 1e-12 {
+                    return None;
+                }
+                let radius = at.distance(centre);
+                deviation = deviation.max(deviation::chord_deviation(at, points, centre, radius, self.between));
             }
-            let radius = at.distance(centre);
-            deviation = deviation.max(deviation::chord_deviation(at, points, centre, radius, self.between));
+            Segment::Line { .. } => deviation = deviation.max(self.bulge_deviation(at, &segment, points)),
         }
         if deviation.is_nan() || deviation > self.tolerance {
             return None;
@@ -148,6 +169,14 @@ impl Run<'_> {
             Segment::Line { .. } => (at.distance(end) > 0.0).then(|| geometry::direction(at, end)),
         };
         Some(Piece { segment, tangent, deviation })
+    }
+
+    /// How far a line from `at` over `points` strays from the path between them where that
+    /// path is a nominal arc's bulge (`deviation::bulge_middles`); zero along a nominal line,
+    /// where the path between points is their chord.
+    fn bulge_deviation(&self, at: Xz, line: &Segment, points: &[Xz]) -> f64 {
+        let Between::Bulge { centre, radius } = self.between else { return 0.0 };
+        deviation::segment_deviation(at, line, &deviation::bulge_middles(at, points, centre, radius))
     }
 }
 

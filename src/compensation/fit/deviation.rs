@@ -212,6 +212,30 @@ pub enum Between {
     Bulge { centre: Xz, radius: f64 },
 }
 
+/// The middle of the path between `a` and `b` sampled along a nominal arc (`centre`,
+/// `radius`): their chord's midpoint pushed out by the nominal sagitta.
+fn bulge_middle(a: Xz, b: Xz, centre: Xz, radius: f64) -> Xz {
+    let middle = Xz::new((a.x + b.x) / 2.0, (a.z + b.z) / 2.0);
+    let half = a.distance(b) / 2.0;
+    let sagitta = if half < radius { radius - (radius * radius - half * half).sqrt() } else { 0.0 };
+    let outward = geometry::direction(centre, middle);
+    Xz::new(middle.x + outward.x * sagitta, middle.z + outward.z * sagitta)
+}
+
+/// The middles of the path between consecutive points of `from`, `points…` sampled along a
+/// nominal arc (`centre`, `radius`), for holding a line to that path.
+pub fn bulge_middles(from: Xz, points: &[Xz], centre: Xz, radius: f64) -> Vec<Xz> {
+    let mut a = from;
+    points
+        .iter()
+        .map(|&b| {
+            let middle = bulge_middle(a, b, centre, radius);
+            a = b;
+            middle
+        })
+        .collect()
+}
+
 /// The largest gap between the circle (`centre`, `radius`) and the path between
 /// consecutive points of `from`, `points…` (see the module comment).
 pub fn chord_deviation(from: Xz, points: &[Xz], centre: Xz, radius: f64, between: Between) -> f64 {
@@ -230,16 +254,7 @@ pub fn chord_deviation(from: Xz, points: &[Xz], centre: Xz, radius: f64, between
                 }
             }
             Between::Bulge { centre: nominal, radius: nominal_radius } => {
-                let middle = Xz::new((a.x + b.x) / 2.0, (a.z + b.z) / 2.0);
-                let half = a.distance(b) / 2.0;
-                let sagitta = if half < nominal_radius {
-                    nominal_radius - (nominal_radius * nominal_radius - half * half).sqrt()
-                } else {
-                    0.0
-                };
-                let outward = geometry::direction(nominal, middle);
-                let bowed = Xz::new(middle.x + outward.x * sagitta, middle.z + outward.z * sagitta);
-                (bowed.distance(centre) - radius).abs()
+                (bulge_middle(a, b, nominal, nominal_radius).distance(centre) - radius).abs()
             }
         };
         worst = worst.max(gap);

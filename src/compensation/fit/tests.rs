@@ -38,6 +38,34 @@ fn densify_at_a_step_writes_one_line_per_step() {
     assert!((lines[0].end().z - 2.54).abs() < 1e-9);
 }
 
+#[test]
+fn densify_along_a_small_arc_holds_its_lines_to_the_arc_between_the_samples() {
+    // A 1.6 mm fillet sampled every 0.254 mm: a line from one sample to the next cuts
+    // 0.254² / (8 · 1.6) = 5 µm inside the arc, ten times the tolerance, and no sample lies
+    // between them to show it.
+    let (centre, radius) = (Xz::new(20.0, -30.0), 1.6);
+    let step = 0.254 / radius;
+    let points: Vec<Xz> = (1..=12).map(|i| crate::geometry::on_circle(centre, radius, f64::from(i) * step)).collect();
+    let m = MovePoints {
+        start: crate::geometry::on_circle(centre, radius, 0.0),
+        points: &points,
+        nominal: NominalShape::Arc { centre, ccw: true },
+    };
+    for step_mm in [None, Some(0.508)] {
+        let lines = densify(&m, TOLERANCE, step_mm);
+        assert_eq!(lines.last().map(Segment::end), points.last().copied());
+        // The arc, finely, stays within the tolerance of the lines.
+        let worst = (0..=1200)
+            .map(|k| crate::geometry::on_circle(centre, radius, 12.0 * step * f64::from(k) / 1200.0))
+            .map(|p| max_deviation(m.start, &lines, &[p]))
+            .fold(0.0, f64::max);
+        assert!(worst <= TOLERANCE, "{step_mm:?}: {worst}");
+    }
+    // What `fit_move` reports for densify is measured on the arc between the samples too.
+    let fitted = fit_move(&m, &FitOptions { strategy: Strategy::Densify, tolerance_mm: TOLERANCE, step_mm: None });
+    assert!(fitted.max_deviation_mm <= TOLERANCE && fitted.segments.len() > 3 * points.len());
+}
+
 // ---------------------------------------------------------------------------------------
 // The strategies on synthetic compensated arcs.
 // ---------------------------------------------------------------------------------------

@@ -34,12 +34,15 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
     let compensated = compensate_samples(&samples, path.start, &model, &inverse);
     let ranges = sample_ranges(path.moves.len(), &samples);
     let writable = vec![true; path.moves.len()];
+    // The program writes no arc: any arc written would take the centre form.
+    let radius = vec![false; path.moves.len()];
     let input = PlanInput {
         toolpath: path,
         samples: &samples,
         commanded: &compensated.commanded,
         ranges: &ranges,
         writable: &writable,
+        radius: &radius,
         tools: &tools,
     };
     let grid = crate::compensation::grid::Grid::new(&lowered.coordinates_at(0));
@@ -91,4 +94,31 @@ fn the_backlash_at_an_x_reversal_is_its_own_move_at_the_reversal_point() {
     // The shoulder reversed X too; nothing else does (and rapids are never split).
     let jumps: Vec<usize> = plans.iter().map(|p| p.jumps).collect();
     assert_eq!(jumps, [0, 0, 1, 1, 0, 0]);
+}
+
+#[test]
+fn an_arc_the_control_would_run_off_after_rounding_is_cut_until_each_piece_runs_on_it() {
+    // 340° about X47.9651 Z-63.6953 (radius 13.5): I K from the rounded start leave the
+    // rounded end radii apart, and over the 4.5 mm chord the control's centre moves along
+    // the chord by several times that.
+    let grid = Grid::new(&lower_program("G21 G99\nM30\n").0.coordinates_at(0));
+    let (centre, radius) = (Xz::new(47.965_13, -63.695_27), 13.502_3);
+    let on = |degrees: f64| crate::geometry::on_circle(centre, radius, degrees.to_radians());
+    let (start, end) = (on(160.33), on(141.13));
+    let whole = Segment::Arc { end, centre, ccw: true };
+    let words = grid.arc_words(start, end, centre, true, false);
+    assert!(grid.arc_gap(start, end, centre, true, words) > grid.increment_mm(), "{words:?}");
+    let plan = MovePlan { start, segments: vec![whole], changed: true, jumps: 0, lead_in: false };
+    let settled = settle_arcs(plan, &grid, false);
+    assert!(settled.segments.len() >= 2, "{:?}", settled.segments);
+    assert_eq!(settled.end(), end);
+    let mut from = start;
+    for segment in &settled.segments {
+        let Segment::Arc { end, centre: c, ccw: true } = *segment else { panic!("{segment:?}") };
+        assert_eq!(c, centre);
+        assert!((end.distance(centre) - radius).abs() < 1e-9);
+        let words = grid.arc_words(from, end, c, true, false);
+        assert!(grid.arc_gap(from, end, c, true, words) <= grid.increment_mm(), "{from:?} -> {end:?}");
+        from = end;
+    }
 }

@@ -56,7 +56,8 @@ pub struct Context<'a> {
     pub limits: Option<Limits>,
     pub step: f64,
     pub writable: Vec<bool>,
-    pub radius_arcs: bool,
+    /// `rewrite::radius_preference`.
+    pub radius: Vec<bool>,
     pub path: LocalPath<'a>,
     pub plan_options: PlanOptions,
     /// `rewrite::move_runs`.
@@ -227,6 +228,7 @@ fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_check: &SyncSender
             commanded: &piece.commanded,
             ranges: &ranges,
             writable: &context.writable,
+            radius: &context.radius,
             tools: context.tools,
         };
         let mut plans = std::mem::take(&mut piece.plans);
@@ -268,18 +270,12 @@ fn check<'a, 'src>(
             commanded: &piece.commanded,
             ranges: &ranges,
             writable: &context.writable,
+            radius: &context.radius,
             tools: context.tools,
         };
         piece.rounded.extend(piece.samples.iter().map(|s| s.nominal));
         let grid = |k| context.grid(k);
-        quantised::commanded_moves(
-            &input,
-            piece.moves.start,
-            &piece.plans,
-            grid,
-            context.radius_arcs,
-            &mut piece.rounded,
-        );
+        quantised::commanded_moves(&input, piece.moves.start, &piece.plans, grid, &mut piece.rounded);
         let fresh = piece.fresh();
         let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
         let commanded = piece.commanded.get(fresh.clone()).unwrap_or_default();

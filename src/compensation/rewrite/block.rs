@@ -14,7 +14,6 @@
 //! code alone restores it for the blocks that follow.
 
 use crate::dialect::{Address, AddressKind, Code, Dialect, GFunction};
-use crate::geometry;
 use crate::printer::{NewBlock, NewWord};
 use crate::semantic::CoordinateMark;
 use crate::semantic::nose_radius::ToolTable;
@@ -22,7 +21,7 @@ use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::{Motion, Move, Xz};
 
 use super::super::fit::Segment;
-use super::super::grid::Grid;
+use super::super::grid::{ArcWords, Grid};
 use super::super::plan::{MovePlan, nominal_segment};
 
 /// The motion a written block performs.
@@ -109,19 +108,7 @@ type Words = Vec<(Slot, i64)>;
 
 impl BlockContext<'_, '_> {
     fn slot(&self, address: Address, is_arc: bool) -> Option<Slot> {
-        let dialect = self.program.config().dialect;
-        let radius = if dialect == Dialect::Osp { Address::L } else { Address::R };
-        match address {
-            Address::X => Some(Slot::X),
-            Address::Z => Some(Slot::Z),
-            Address::U if dialect == Dialect::Fanuc => Some(Slot::X),
-            Address::W if dialect == Dialect::Fanuc => Some(Slot::Z),
-            Address::A if dialect == Dialect::Osp && !is_arc => Some(Slot::Angle),
-            a if a == radius && is_arc => Some(Slot::Radius),
-            Address::I if is_arc => Some(Slot::I),
-            Address::K if is_arc => Some(Slot::K),
-            _ => None,
-        }
+        slot(self.program.config().dialect, address, is_arc)
     }
 
     fn form(&self, is_arc: bool) -> Form {
@@ -137,7 +124,6 @@ impl BlockContext<'_, '_> {
             z_named: false,
         };
         let block = self.program.block(self.block);
-        let (mut radius, mut centre) = (false, false);
         for word in self.program.words_of(block) {
             let (WordKind::Number { address, .. } | WordKind::Expr { address, .. }) = word.kind else { continue };
             match self.slot(address, is_arc) {
@@ -153,14 +139,10 @@ impl BlockContext<'_, '_> {
                     form.x_named = true;
                     form.z_named = true;
                 }
-                Some(Slot::Radius) => radius = true,
-                Some(Slot::I | Slot::K) => centre = true,
-                None => {}
+                _ => {}
             }
         }
-        if radius || centre {
-            form.radius_arcs = radius;
-        }
+        form.radius_arcs = writes_radius(self.program, self.block, is_arc, self.radius_arcs);
         // An axis the block does not name is written the way it writes the other one
         // (`W-20.` gains a `U`, not an `X`).
         if form.z_named && !form.x_named && !form.z.1 {
@@ -186,16 +168,19 @@ impl BlockContext<'_, '_> {
             out.push((Slot::Z, axis(form.z.1, to.z, from.z)));
         }
         if let Segment::Arc { end, centre, ccw } = *segment {
-            // A full circle has no radius form: its end meets its start.
-            if form.radius_arcs && from != to {
-                let radius = start.distance(centre);
-                let sweep = geometry::sweep(start, end, centre, ccw);
-                let signed = if sweep > std::f64::consts::PI + 1e-9 { -radius } else { radius };
-                out.push((Slot::Radius, grid.length(signed)));
-            } else {
-                let at = grid.to_mm(from);
-                out.push((Slot::I, grid.length(centre.x - at.x)));
-                out.push((Slot::K, grid.length(centre.z - at.z)));
+            match grid.arc_words(start, end, centre, ccw, form.radius_arcs) {
+                ArcWords::Radius(radius) => out.push((Slot::Radius, radius)),
+                ArcWords::Centre { i, k } => {
+                    out.push((Slot::I, i));
+                    out.push((Slot::K, k));
+                }
+                // The plan writes such an arc as a line (`plan::settle_arcs`); were one
+                // to come here, its centre offsets are still words a control runs.
+                ArcWords::Line => {
+                    let at = grid.to_mm(from);
+                    out.push((Slot::I, grid.length(centre.x - at.x)));
+                    out.push((Slot::K, grid.length(centre.z - at.z)));
+                }
             }
         }
         out
@@ -386,6 +371,41 @@ impl BlockContext<'_, '_> {
         }
         NewBlock::new(out)
     }
+}
+
+/// Which coordinate the word at `address` gives in a block of `dialect` (`is_arc`: the
+/// block's move is an arc, where `R`/`L`, `I` and `K` place the centre).
+fn slot(dialect: Dialect, address: Address, is_arc: bool) -> Option<Slot> {
+    let radius = if dialect == Dialect::Osp { Address::L } else { Address::R };
+    match address {
+        Address::X => Some(Slot::X),
+        Address::Z => Some(Slot::Z),
+        Address::U if dialect == Dialect::Fanuc => Some(Slot::X),
+        Address::W if dialect == Dialect::Fanuc => Some(Slot::Z),
+        Address::A if dialect == Dialect::Osp && !is_arc => Some(Slot::Angle),
+        a if a == radius && is_arc => Some(Slot::Radius),
+        Address::I if is_arc => Some(Slot::I),
+        Address::K if is_arc => Some(Slot::K),
+        _ => None,
+    }
+}
+
+/// Whether the arcs written for `block` (whose move is an arc when `is_arc`) prefer the
+/// radius form: as the block writes its own arc (`R`/`L`, or `I K`), else as the program
+/// mostly does (`program_radius_arcs`). A line block has no arc words (an `R` there is no
+/// radius).
+pub(super) fn writes_radius(program: &Program<'_>, block: usize, is_arc: bool, program_radius_arcs: bool) -> bool {
+    let dialect = program.config().dialect;
+    let (mut radius, mut centre) = (false, false);
+    for word in program.words_of(program.block(block)) {
+        let (WordKind::Number { address, .. } | WordKind::Expr { address, .. }) = word.kind else { continue };
+        match slot(dialect, address, is_arc) {
+            Some(Slot::Radius) => radius = true,
+            Some(Slot::I | Slot::K) => centre = true,
+            _ => {}
+        }
+    }
+    if radius || centre { radius } else { program_radius_arcs }
 }
 
 /// Whether the word at `address` is written with the address the form uses for `slot`.

@@ -102,3 +102,23 @@ fn no_arc_sweeps_more_than_half_a_turn_or_is_too_flat_for_a_control() {
     }
     assert!(max_deviation(m.start, &pieces.segments, &bow) <= 0.0005);
 }
+
+#[test]
+fn one_point_after_a_step_on_a_small_arc_follows_the_arc_not_its_chord() {
+    // After a backlash step the rest of a move may be one sample 0.254 mm on along a
+    // 4.7 mm arc: the chord to it cuts 1.7 µm inside the arc between them, more than the
+    // tolerance, and no point shows it. The piece follows the nominal curvature instead.
+    let (centre, radius) = (Xz::new(70.0, -50.0), 4.7);
+    let start = on_circle(centre, radius, 1.0);
+    let end = on_circle(centre, radius, 1.0 - 0.254 / radius);
+    let m = MovePoints { start, points: &[end], nominal: NominalShape::Arc { centre, ccw: false } };
+    let pieces = fit(&m, 0.0005);
+    let [Segment::Arc { end: written, centre: fitted, ccw: false }] = pieces.segments[..] else {
+        panic!("{:?}", pieces.segments)
+    };
+    assert_eq!(written, end);
+    assert!(fitted.distance(centre) < 1e-9, "{fitted:?}");
+    // Along a nominal line the path between points is their chord: a line it stays.
+    let m = MovePoints { start, points: &[end], nominal: NominalShape::Line };
+    assert_eq!(fit(&m, 0.0005).segments, vec![Segment::Line { end }]);
+}

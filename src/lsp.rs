@@ -1,0 +1,25 @@
+//! The language server's analysis: what `turnpass lsp` tells an editor about a program.
+//!
+//! Everything here is pure: a [`Document`] holds a program's text and keeps it parsed as
+//! the editor changes it (re-parsing only the blocks an edit touches, see
+//! `lsp/document.rs`); the other modules answer the protocol's questions from a document
+//! (diagnostics, hover, symbols, definitions, formatting). The message loop in `server.rs`
+//! ties them to the protocol and reads no file itself: it asks a [`server::Host`] for the
+//! settings files. `stdio.rs` is the I/O layer: the stdio connection, the message loop, the
+//! worker threads, and the host that reads `turnpass.toml`.
+
+pub mod analysis;
+mod assemble;
+mod chunk;
+pub mod definition;
+pub mod document;
+pub mod format;
+pub mod hover;
+pub mod position;
+pub mod roles;
+pub mod server;
+pub mod settings;
+pub mod stdio;
+pub mod symbols;
+
+pub use document::{Document, LinePosition, Snapshot};

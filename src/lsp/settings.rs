@@ -1,0 +1,84 @@
+//! How the server reads a program: dialect, G-code system and machine settings.
+//!
+//! As on the command line: the `[machine]` table of the nearest `turnpass.toml` above the
+//! program (or of the `model` file the client names), and options the client gives at
+//! initialisation override it as command-line flags would. The client may also give a
+//! `machine` table, used when no file is found. Reading files is the server's I/O layer's
+//! job; this module only decides from text and values.
+
+use serde::Deserialize;
+
+use crate::dialect::{DecimalInput, DialectChoice, GCodeSystem};
+use crate::machine::{MachineSettings, ModelFile};
+use crate::printer::CanonicalOptions;
+use crate::syntax::ParseOptions;
+
+/// `initializationOptions`, all optional:
+///
+/// ```json
+/// { "dialect": "osp", "gcodeSystem": "B", "decimalInput": "increment",
+///   "model": "/path/to/machine.toml", "machine": { "units": "mm" },
+///   "semanticInlineLimit": 262144, "maxDiagnostics": 200 }
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+#[serde(rename_all = "camelCase", deny_unknown_fields)]
+pub struct InitOptions {
+    /// `auto`, `osp` or `fanuc`.
+    pub dialect: Option<String>,
+    /// `A`, `B` or `C`.
+    pub gcode_system: Option<String>,
+    pub decimal_input: Option<DecimalInput>,
+    /// A model file to read instead of looking for `turnpass.toml`.
+    pub model: Option<String>,
+    /// Machine settings for programs with no `turnpass.toml` above them.
+    pub machine: Option<MachineSettings>,
+    /// Programs up to this many bytes get their semantic diagnostics in the same publish as
+    /// their parse diagnostics; larger ones get them from a worker thread, later.
+    pub semantic_inline_limit: Option<usize>,
+    /// How many diagnostics a publish holds at most, the rest summed up in a note; 0 is no
+    /// limit.
+    pub max_diagnostics: Option<usize>,
+}
+
+/// Everything a document is read and checked with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    pub parse: ParseOptions,
+    pub machine: MachineSettings,
+    pub canonical: CanonicalOptions,
+}
+
+impl InitOptions {
+    /// Read the client's options; the message says what is wrong with them.
+    pub fn from_json(value: Option<serde_json::Value>) -> Result<InitOptions, String> {
+        match value {
+            None | Some(serde_json::Value::Null) => Ok(InitOptions::default()),
+            Some(value) => serde_json::from_value(value).map_err(|e| format!("initializationOptions: {e}")),
+        }
+    }
+
+    /// The settings for a program, from the text of its model file (`turnpass.toml`) if
+    /// one was found. Problems (a file that does not read, an unknown dialect name) leave
+    /// the defaults in place and are returned as messages for the user.
+    pub fn settings(&self, model_file: Option<&str>) -> (Settings, Vec<String>) {
+        let mut problems = Vec::new();
+        let from_file = model_file.and_then(|text| match ModelFile::from_toml(text) {
+            Ok(file) => Some(file.machine),
+            Err(error) => {
+                problems.push(format!("machine settings: {error}"));
+                None
+            }
+        });
+        let settings = from_file.or_else(|| self.machine.clone()).unwrap_or_default();
+        let dialect =
+            self.dialect.as_deref().and_then(|d| d.parse::<DialectChoice>().map_err(|e| problems.push(e)).ok());
+        let gcode_system =
+            self.gcode_system.as_deref().and_then(|s| s.parse::<GCodeSystem>().map_err(|e| problems.push(e)).ok());
+        let dialect = dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
+        let gcode_system = gcode_system.or(settings.gcode_system).unwrap_or_default();
+        let decimal_input = self.decimal_input.or(settings.decimal_input).unwrap_or_default();
+        let machine = MachineSettings { decimal_input: Some(decimal_input), ..settings };
+        let canonical = CanonicalOptions { decimal_input, increment_places: machine.increment_places() };
+        (Settings { parse: ParseOptions { dialect, gcode_system, machine_kind: None }, machine, canonical }, problems)
+    }
+}
