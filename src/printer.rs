@@ -68,7 +68,7 @@ fn print_blocks(
     range: std::ops::Range<usize>,
     out: &mut Vec<u8>,
 ) {
-    let mut writer = Writer { program, style, out, open_line: false };
+    let mut writer = Writer { program, style, out, open_line: false, text: String::new() };
     let first = range.start;
     for (index, block) in program.blocks().get(range).unwrap_or_default().iter().enumerate() {
         let index = first + index;
@@ -111,6 +111,8 @@ struct Writer<'w, 'p, 'src> {
     out: &'w mut Vec<u8>,
     /// The last line written has no terminator yet (the source's last line had none).
     open_line: bool,
+    /// The text of the new block being written (kept for the next one's).
+    text: String,
 }
 
 impl Writer<'_, '_, '_> {
@@ -139,9 +141,9 @@ impl Writer<'_, '_, '_> {
     }
 
     fn block_text(&mut self, block: &NewBlock) {
-        let mut text = String::new();
-        write_new_block(&mut text, self.program, self.style, block);
-        self.out.extend_from_slice(text.as_bytes());
+        self.text.clear();
+        write_new_block(&mut self.text, self.program, self.style, block);
+        self.out.extend_from_slice(self.text.as_bytes());
     }
 }
 
