@@ -55,9 +55,7 @@ impl ErrorModel {
     /// The displacement less the backlash, which the tracker's play operator gives (the
     /// part of the error that is a function of the commanded point and the state).
     pub fn displacement_without_play(&self, sample: &Sample) -> Xz {
-        let d = self.displacement(sample);
-        let take = |play: f64, offset: f64| if play > 0.0 { offset } else { 0.0 };
-        Xz::new(d.x - take(sample.play.x, sample.backlash.x), d.z - take(sample.play.z, sample.backlash.z))
+        without_play(sample, self.displacement(sample))
     }
 
     /// Where the tool really goes when `sample.at` is commanded.
@@ -75,6 +73,16 @@ impl ErrorModel {
     pub fn is_empty(&self) -> bool {
         self.tables.is_none() && self.effects.is_empty()
     }
+}
+
+/// `displacement` (the model's at `sample`) less the backlash the tracker's play operator
+/// gives: `ErrorModel::displacement_without_play` for a displacement already evaluated.
+pub fn without_play(sample: &Sample, displacement: Xz) -> Xz {
+    let take = |play: f64, offset: f64| if play > 0.0 { offset } else { 0.0 };
+    Xz::new(
+        displacement.x - take(sample.play.x, sample.backlash.x),
+        displacement.z - take(sample.play.z, sample.backlash.z),
+    )
 }
 
 #[cfg(test)]

@@ -25,6 +25,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
     let mut edits = Edits::new();
     let mut notes = Vec::new();
     let calls: std::collections::HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
+    let radius_arcs = uses_radius_arcs(program);
     for expansion in &lowered.expansions {
         let moves = &lowered.toolpath.moves[expansion.moves.clone()];
         let start = lowered.toolpath.start_of(expansion.moves.start);
@@ -37,7 +38,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(expansion.moves.start).shift;
-        match expansion_blocks(program, expansion, moves, start, compensation_before, shift) {
+        match expansion_blocks(program, expansion, moves, start, compensation_before, shift, radius_arcs) {
             ExpansionBlocks::Keep => {}
             ExpansionBlocks::Blocks(blocks) => {
                 edits.replace(expansion.block, blocks);
@@ -65,7 +66,8 @@ pub(crate) enum ExpansionBlocks {
 /// The blocks that replace `expansion`'s call block when the cycle makes `moves` from
 /// `start` (programmed contour points: `Move.contour`, arcs about `Move.centre`), with
 /// `compensation_before` in force before it and the program's coordinates shifted by
-/// `shift` (`G50 X Z`). `expand` passes the cycle's own moves, the compensation pass its
+/// `shift` (`G50 X Z`), arcs by radius when `radius_arcs` (`uses_radius_arcs`, read once per
+/// program: it reads every block). `expand` passes the cycle's own moves, the compensation pass its
 /// compensated ones.
 pub(crate) fn expansion_blocks(
     program: &Program<'_>,
@@ -74,6 +76,7 @@ pub(crate) fn expansion_blocks(
     start: Xz,
     compensation_before: Compensation,
     shift: Xz,
+    radius_arcs: bool,
 ) -> ExpansionBlocks {
     let tables = program.config().tables();
     let thread_code = tables.code_for(GFunction::ThreadMove);
@@ -90,7 +93,7 @@ pub(crate) fn expansion_blocks(
         frame,
         shift,
         places: increment_places(frame.increment),
-        radius_arcs: uses_radius_arcs(program),
+        radius_arcs,
         dialect: program.config().dialect,
         thread_code: thread_code.unwrap_or(Code::whole(32)),
         compensation_codes,

@@ -35,8 +35,43 @@ pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
         return out;
     }
     let style = ProgramStyle::infer(program);
-    let mut writer = Writer { program, style: &style, out: &mut out, open_line: false };
-    for (index, block) in program.blocks().iter().enumerate() {
+    let blocks = program.blocks().len();
+    // Two halves on two threads, split after a block that ends its line, so the second
+    // half starts as the first would go on (on a fresh line).
+    let middle = (blocks / 2..blocks).find(|&k| k > 0 && !program.terminator(k - 1).is_empty());
+    let Some(middle) = middle.filter(|_| blocks >= PARALLEL_BLOCKS) else {
+        print_blocks(program, edits, &style, 0..blocks, &mut out);
+        return out;
+    };
+    let capacity = out.capacity() / 2;
+    let second = std::thread::scope(|scope| {
+        let second = scope.spawn(|| {
+            let mut second = Vec::with_capacity(capacity);
+            print_blocks(program, edits, &style, middle..blocks, &mut second);
+            second
+        });
+        print_blocks(program, edits, &style, 0..middle, &mut out);
+        second.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
+    });
+    out.extend_from_slice(&second);
+    out
+}
+
+/// Programs of at least this many blocks are printed in two halves at once.
+const PARALLEL_BLOCKS: usize = 100_000;
+
+/// Print the blocks `range` with `edits` applied, appending to `out`.
+fn print_blocks(
+    program: &Program<'_>,
+    edits: &Edits,
+    style: &ProgramStyle,
+    range: std::ops::Range<usize>,
+    out: &mut Vec<u8>,
+) {
+    let mut writer = Writer { program, style, out, open_line: false, text: String::new() };
+    let first = range.start;
+    for (index, block) in program.blocks().get(range).unwrap_or_default().iter().enumerate() {
+        let index = first + index;
         let edit = edits.get(index);
         if let Some(edit) = edit {
             for new in &edit.before {
@@ -63,7 +98,6 @@ pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
             }
         }
     }
-    out
 }
 
 /// Print `program` with `edits` applied, as text (lossy where the source is not UTF-8).
@@ -77,6 +111,8 @@ struct Writer<'w, 'p, 'src> {
     out: &'w mut Vec<u8>,
     /// The last line written has no terminator yet (the source's last line had none).
     open_line: bool,
+    /// The text of the new block being written (kept for the next one's).
+    text: String,
 }
 
 impl Writer<'_, '_, '_> {
@@ -105,9 +141,9 @@ impl Writer<'_, '_, '_> {
     }
 
     fn block_text(&mut self, block: &NewBlock) {
-        let mut text = String::new();
-        write_new_block(&mut text, self.program, self.style, block);
-        self.out.extend_from_slice(text.as_bytes());
+        self.text.clear();
+        write_new_block(&mut self.text, self.program, self.style, block);
+        self.out.extend_from_slice(self.text.as_bytes());
     }
 }
 

@@ -114,6 +114,7 @@ impl FitArgs {
             },
             max_shift_mm: self.max_shift,
             expand_cycles: self.expand_cycles,
+            paths: false,
         }
     }
 
@@ -126,9 +127,10 @@ impl FitArgs {
         Ok(model)
     }
 
-    /// Compensate a ready program with `model`.
-    pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel) -> Outcome {
-        let options = self.options(&program.machine);
+    /// Compensate a ready program with `model`; `paths` keeps every sample's paths (for
+    /// `plot`).
+    pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool) -> Outcome {
+        let options = CompensateOptions { paths, ..self.options(&program.machine) };
         compensate_program(&program.parsed.program, &program.lowered, &program.valid, &program.machine, model, &options)
     }
 }
@@ -184,7 +186,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         Ok(program) => program,
         Err(text) => return Ok(FileResult::failed(1, text)),
     };
-    let outcome = args.fit.compensate(&program, &model);
+    let outcome = args.fit.compensate(&program, &model, false);
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
@@ -206,5 +208,6 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         .as_bytes(),
     );
     let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
-    Ok(FileResult { code: 0, messages, output: Some(printer::print(&program.parsed.program, &outcome.edits)), report })
+    let printed = printer::print(&program.parsed.program, &outcome.edits);
+    Ok(FileResult { code: 0, messages, output: Some(printed), report })
 }

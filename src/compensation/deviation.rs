@@ -2,8 +2,20 @@
 //!
 //! The deviation of a predicted point is its distance to the closest point of the nominal
 //! path (lines and arcs as programmed), not to the sample it came from: a point that slid
-//! along the path is on the part. `PathIndex` finds the closest element through a uniform
-//! grid of cells, so a whole program is measured in time linear in its size.
+//! along the path is on the part.
+//!
+//! `compensate` knows which sample each predicted point belongs to, and measures it
+//! against the stretch of path around that sample (`LocalPath`): the cutting moves within
+//! twice the point's distance from its sample, along the path. A closer point of the path
+//! can only be nearer than that along the path, or belong to another pass; another pass
+//! is not the surface being cut, and on a program whose passes pile up over the same area
+//! it would be found ever closer (a generated 50 MB program crosses every square
+//! micrometre of its area several times) and ever more expensive to search. The stretch
+//! holds a few moves, so a whole program is measured in time linear in its size.
+//!
+//! `verify` compares two programs whose moves do not correspond, and measures against the
+//! whole original path (`PathIndex`, a uniform grid of cells): linear in the program's
+//! size while its passes keep their distance, as real passes do.
 //!
 //! **SSQ** is the thesis' eq. 5.8, the root of the sum of the squares of the errors,
 //! `SSQ = [Σ P_i²]^½`, where the thesis' `P_i` is the radial error of the ball bar (for
@@ -13,11 +25,13 @@
 //! figures compare only at the same sampling.
 
 use std::collections::HashMap;
+use std::f64::consts::TAU;
 
 use crate::geometry;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
 use super::fit::distance_to_chord;
+use super::sampling::PathSample;
 
 /// Max, RMS and SSQ of a set of distances, mm.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -36,23 +50,50 @@ impl Figures {
     }
 
     pub fn of(distances: impl IntoIterator<Item = f64>) -> Figures {
-        let (mut max, mut sum2, mut n) = (0.0f64, 0.0, 0usize);
+        let mut tally = Tally::default();
         for d in distances {
-            max = max.max(d);
-            sum2 += d * d;
-            n += 1;
+            tally.add(d);
         }
-        Figures {
-            max_mm: max,
-            rms_mm: if n > 0 { (sum2 / n as f64).sqrt() } else { 0.0 },
-            ssq_mm: sum2.sqrt(),
-            points: n,
-        }
+        tally.figures()
     }
 
     /// How much smaller `after` is than `self`, percent of `self` (by RMS).
     pub fn improvement_percent(&self, after: &Figures) -> f64 {
         if self.rms_mm > 0.0 { 100.0 * (1.0 - after.rms_mm / self.rms_mm) } else { 0.0 }
+    }
+}
+
+/// The running sums `Figures` are made of, for distances that come one at a time: added in
+/// the same order, they give the same figures as `Figures::of`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Tally {
+    max: f64,
+    sum2: f64,
+    n: usize,
+}
+
+impl Tally {
+    pub fn add(&mut self, d: f64) {
+        self.max = self.max.max(d);
+        self.sum2 += d * d;
+        self.n += 1;
+    }
+
+    /// Both tallies, `other`'s distances counted after `self`'s (the sum of squares is then
+    /// added as one term, so the figures may differ from one tally of all the distances in
+    /// the last place).
+    pub fn merged(self, other: Tally) -> Tally {
+        Tally { max: self.max.max(other.max), sum2: self.sum2 + other.sum2, n: self.n + other.n }
+    }
+
+    pub fn figures(&self) -> Figures {
+        let n = self.n;
+        Figures {
+            max_mm: self.max,
+            rms_mm: if n > 0 { (self.sum2 / n as f64).sqrt() } else { 0.0 },
+            ssq_mm: self.sum2.sqrt(),
+            points: n,
+        }
     }
 }
 
@@ -77,6 +118,106 @@ pub fn distance_to_move(p: Xz, start: Xz, m: &Move) -> f64 {
         _ => distance_to_chord(p, start, m.end),
     }
 }
+
+/// The nominal path as stretches around samples (see the module documentation).
+pub struct LocalPath<'a> {
+    toolpath: &'a Toolpath,
+    /// The length of the path up to the end of each move, mm.
+    ends: Vec<f64>,
+    /// Each arc's constants (`None` for other moves), computed once for its many samples.
+    arcs: Vec<Option<ArcConstants>>,
+}
+
+/// What `distance_to_move` computes of an arc before it looks at the point.
+#[derive(Debug, Clone, Copy)]
+struct ArcConstants {
+    radius: f64,
+    /// The angle of its start, and the angle it sweeps (`geometry::sweep`).
+    a0: f64,
+    total: f64,
+}
+
+impl<'a> LocalPath<'a> {
+    pub fn new(toolpath: &'a Toolpath) -> LocalPath<'a> {
+        let mut total = 0.0;
+        let mut ends = Vec::with_capacity(toolpath.moves.len());
+        let mut arcs = Vec::with_capacity(toolpath.moves.len());
+        for (k, m) in toolpath.moves.iter().enumerate() {
+            let start = toolpath.start_of(k);
+            total += move_length(start, m);
+            ends.push(total);
+            arcs.push(m.is_arc().then(|| ArcConstants {
+                radius: start.distance(m.centre),
+                a0: geometry::angle(start, m.centre),
+                total: geometry::sweep(start, m.end, m.centre, m.motion == Motion::Ccw),
+            }));
+        }
+        LocalPath { toolpath, ends, arcs }
+    }
+
+    /// The distance from `p`, predicted for `sample`, to the closest cutting move within
+    /// twice its distance from the sample along the path; `None` for a sample that does not
+    /// cut.
+    pub fn distance(&self, sample: &PathSample, p: Xz) -> Option<f64> {
+        let k = sample.move_index;
+        let m = self.toolpath.moves.get(k)?;
+        if !sample.cutting || !m.cutting || m.motion == Motion::Dwell {
+            return None;
+        }
+        let end = self.ends.get(k).copied().unwrap_or(0.0);
+        let start = if k == 0 { 0.0 } else { self.ends.get(k - 1).copied().unwrap_or(0.0) };
+        let at = start + (end - start) * sample.param.clamp(0.0, 1.0);
+        let reach = 2.0 * p.distance(sample.nominal);
+        let mut best = self.distance_to(p, k);
+        for before in (0..k).rev() {
+            if at - self.ends[before] > reach {
+                break;
+            }
+            best = best.min(self.distance_to(p, before));
+        }
+        for after in k + 1..self.toolpath.moves.len() {
+            if self.ends[after - 1] - at > reach {
+                break;
+            }
+            best = best.min(self.distance_to(p, after));
+        }
+        best.is_finite().then_some(best)
+    }
+
+    /// The distance to move `k` when it cuts (infinity otherwise): `distance_to_move`, with
+    /// an arc's constants taken from `arcs`.
+    fn distance_to(&self, p: Xz, k: usize) -> f64 {
+        let Some(m) = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell) else {
+            return f64::INFINITY;
+        };
+        let start = self.toolpath.start_of(k);
+        match self.arcs.get(k).copied().flatten() {
+            Some(ArcConstants { radius, a0, total }) => {
+                // `geometry::angle_within`.
+                let a = geometry::angle(p, m.centre);
+                let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+                if delta <= total + 1e-12 {
+                    (p.distance(m.centre) - radius).abs()
+                } else {
+                    p.distance(start).min(p.distance(m.end))
+                }
+            }
+            None => distance_to_move(p, start, m),
+        }
+    }
+}
+
+/// The length of move `m` from `start`, mm (the arc length of an arc).
+fn move_length(start: Xz, m: &Move) -> f64 {
+    match m.motion {
+        Motion::Dwell => 0.0,
+        Motion::Cw | Motion::Ccw => geometry::arc_length(start, m.end, m.centre, m.motion == Motion::Ccw),
+        _ => start.distance(m.end),
+    }
+}
+
+#[cfg(test)]
+mod tests;
 
 /// A nominal path for closest-point queries.
 pub struct PathIndex<'a> {

@@ -321,7 +321,12 @@ impl Fitting<'_, '_> {
     }
 
     fn circles(&self, centre: Xz, ccw: bool, cuts: &[f64], strategy: Strategy) -> Result<Fitted, f64> {
-        let segments = split::circles(self.m, centre, ccw, cuts, self.tolerance)?;
+        self.circles_at(centre, ccw, &split::cut_indices(self.m, centre, ccw, cuts), strategy)
+    }
+
+    /// `circles` with the pieces' last points given (`split::cut_indices`).
+    fn circles_at(&self, centre: Xz, ccw: bool, ends: &[usize], strategy: Strategy) -> Result<Fitted, f64> {
+        let segments = split::circles_at(self.m, centre, ccw, ends, self.tolerance)?;
         let max_deviation_mm = max_deviation(self.m.start, &segments, self.m.points);
         if max_deviation_mm <= self.tolerance {
             Ok(Fitted { segments, strategy_used: strategy, max_deviation_mm, rejected: None })
@@ -333,20 +338,25 @@ impl Fitting<'_, '_> {
     fn cheapest_for_arc(&self, centre: Xz, ccw: bool) -> Fitted {
         let mut best: Option<Fitted> = None;
         let mut tried = Vec::new();
+        let travel = split::Travel::new(self.m, centre, ccw);
         for (cuts, strategy) in [
             (&[][..], Strategy::Circle),
             (&SEMICIRCLE_CUTS[..], Strategy::Semicircle),
             (&QUADRANT_CUTS[..], Strategy::Quadrant),
         ] {
+            // Nothing takes fewer than one segment, and a tie keeps the earlier fit.
+            if best.as_ref().is_some_and(|b| b.segments.len() == 1) {
+                break;
+            }
             // A split that cuts nowhere new is a fit already tried.
-            let pieces = split::cut_indices(self.m, centre, ccw, cuts);
+            let pieces = travel.cut_indices(cuts);
             if tried.contains(&pieces) {
                 continue;
             }
-            tried.push(pieces);
-            if let Ok(fitted) = self.circles(centre, ccw, cuts, strategy) {
+            if let Ok(fitted) = self.circles_at(centre, ccw, &pieces, strategy) {
                 self.keep_cheaper(&mut best, fitted);
             }
+            tried.push(pieces);
         }
         // Nothing takes fewer than one segment.
         if let Some(one) = best.take_if(|b| b.segments.len() == 1) {

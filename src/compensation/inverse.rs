@@ -28,7 +28,7 @@
 //! by a few nanometres (a squareness term drifting as the other axis moves) stays where it
 //! is, within the tolerance, instead of jumping across its play.
 
-use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker};
+use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker, without_play};
 use crate::toolpath::Xz;
 
 use super::sampling::PathSample;
@@ -73,25 +73,63 @@ pub fn compensate_samples(
 ) -> Compensated {
     let nominal: Vec<Xz> = samples.iter().map(|s| s.nominal).collect();
     let uncompensated = predict(samples, &nominal, start, model);
-    let mut tracker = Tracker::new(start, model.play());
+    let mut inverse = Inverse::new(start, model, options);
     let mut commanded = Vec::with_capacity(samples.len());
     let mut predicted = Vec::with_capacity(samples.len());
-    let mut iterations = 0;
-    let mut max_residual: f64 = 0.0;
-    // The previous sample's correction: the first guess of the next (see `solve`).
-    let mut correction = Xz::new(0.0, 0.0);
-    for s in samples {
-        let inputs = inputs_of(s, model);
-        let guess = Xz::new(s.nominal.x + correction.x, s.nominal.z + correction.z);
-        let (c, a, steps) = solve(&tracker, s, guess, &inputs, model, options);
-        correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
-        tracker.advance(c, s.tool, s.cutting);
-        iterations = iterations.max(steps);
-        max_residual = max_residual.max(s.nominal.distance(a));
-        commanded.push(c);
-        predicted.push(a);
+    inverse.solve(samples, &mut commanded, &mut predicted);
+    Compensated {
+        commanded,
+        predicted,
+        uncompensated,
+        iterations: inverse.iterations,
+        max_residual_mm: inverse.max_residual_mm,
     }
-    Compensated { commanded, predicted, uncompensated, iterations, max_residual_mm: max_residual }
+}
+
+/// The inverse solved in path order over successive runs of samples: a path solved in
+/// pieces gives the same points as solved whole (`compensate_samples`).
+#[derive(Debug, Clone)]
+pub struct Inverse<'m> {
+    model: &'m ErrorModel,
+    options: InverseOptions,
+    tracker: Tracker,
+    /// The previous sample's correction: the first guess of the next (see `solve`).
+    correction: Xz,
+    /// The most steps one sample took so far.
+    pub iterations: u32,
+    /// The largest |nominal − predicted| so far, mm.
+    pub max_residual_mm: f64,
+}
+
+impl<'m> Inverse<'m> {
+    /// The inverse from the machine's position `start`.
+    pub fn new(start: Xz, model: &'m ErrorModel, options: &InverseOptions) -> Inverse<'m> {
+        Inverse {
+            model,
+            options: *options,
+            tracker: Tracker::new(start, model.play()),
+            correction: Xz::new(0.0, 0.0),
+            iterations: 0,
+            max_residual_mm: 0.0,
+        }
+    }
+
+    /// Solve the next `samples`, appending the point to command for each to `commanded`
+    /// and where the model predicts it goes to `predicted`.
+    pub fn solve(&mut self, samples: &[PathSample], commanded: &mut Vec<Xz>, predicted: &mut Vec<Xz>) {
+        let model = self.model;
+        for s in samples {
+            let inputs = inputs_of(s, model);
+            let guess = Xz::new(s.nominal.x + self.correction.x, s.nominal.z + self.correction.z);
+            let (c, a, steps) = solve(&self.tracker, s, guess, &inputs, model, &self.options);
+            self.correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
+            self.tracker.advance(c, s.tool, s.cutting);
+            self.iterations = self.iterations.max(steps);
+            self.max_residual_mm = self.max_residual_mm.max(s.nominal.distance(a));
+            commanded.push(c);
+            predicted.push(a);
+        }
+    }
 }
 
 /// The point to command for one sample from the tracker's state, where the model predicts
@@ -117,14 +155,17 @@ fn solve(
     let mut steps = 0;
     loop {
         let state = tracker.peek(c, s.tool, s.cutting, inputs);
-        let actual = model.actual(&state);
+        // One evaluation of the model gives both the actual point and the rest of the error
+        // (`ErrorModel::actual` and `displacement_without_play` of the same state).
+        let displacement = model.displacement(&state);
+        let actual = Xz::new(state.at.x + displacement.x, state.at.z + displacement.z);
         let residual = s.nominal.distance(actual);
         if residual <= options.tolerance_mm * 1e-3 || steps >= options.max_iterations || !residual.is_finite() {
             return (c, actual, steps);
         }
         steps += 1;
         // The rest of the error at this command, and where the slide must go for it.
-        let rest = model.displacement_without_play(&state);
+        let rest = without_play(&state, displacement);
         let target = Xz::new(s.nominal.x - rest.x, s.nominal.z - rest.z);
         let next = Xz::new(
             command_for(
@@ -181,9 +222,45 @@ fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
     SampleInputs { t_min: model.start_min + s.t_s / 60.0, velocity: s.velocity, normal: s.normal, tip: s.tip }
 }
 
-/// Where the tool goes when `commanded` (one point per sample) is commanded in order.
+/// Where the tool goes when `commanded` (one point per sample) is commanded in order: the
+/// model at each of `states`, evaluated as the tracker walks (the states are not kept).
 pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Xz> {
-    states(samples, commanded, start, model).iter().map(|state| model.actual(state)).collect()
+    let mut out = Vec::with_capacity(samples.len());
+    Predictor::new(start, model).predict(samples, commanded, &mut out);
+    out
+}
+
+/// `predict` over successive runs of samples, in path order.
+#[derive(Debug, Clone)]
+pub struct Predictor<'m> {
+    model: &'m ErrorModel,
+    tracker: Tracker,
+}
+
+impl<'m> Predictor<'m> {
+    pub fn new(start: Xz, model: &'m ErrorModel) -> Predictor<'m> {
+        Predictor { model, tracker: Tracker::new(start, model.play()) }
+    }
+
+    /// Where the tool goes for the next `samples` commanded at `commanded`, appended to `out`.
+    pub fn predict(&mut self, samples: &[PathSample], commanded: &[Xz], out: &mut Vec<Xz>) {
+        let model = self.model;
+        out.extend(samples.iter().zip(commanded).map(|(s, &c)| {
+            let actual = model.actual(&self.tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model)));
+            self.tracker.advance(c, s.tool, s.cutting);
+            actual
+        }));
+    }
+
+    /// `predict` of the samples' nominal points (the program as written).
+    pub fn predict_nominal(&mut self, samples: &[PathSample], out: &mut Vec<Xz>) {
+        let model = self.model;
+        out.extend(samples.iter().map(|s| {
+            let actual = model.actual(&self.tracker.peek(s.nominal, s.tool, s.cutting, &inputs_of(s, model)));
+            self.tracker.advance(s.nominal, s.tool, s.cutting);
+            actual
+        }));
+    }
 }
 
 /// The machine state at each sample when `commanded` is commanded in order: what

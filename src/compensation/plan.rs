@@ -85,10 +85,27 @@ pub struct PlanInput<'a> {
 
 /// Plan every move.
 pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, options: &PlanOptions) -> Vec<MovePlan> {
+    let mut plans = Vec::with_capacity(input.toolpath.moves.len());
+    plan_range(input, 0..input.toolpath.moves.len(), input.toolpath.start, grid_of, options, &mut plans);
+    plans
+}
+
+/// Plan the moves `moves`, the first written from `at` (the end of the previous move's
+/// plan), appending to `plans`; returns where the last ends. `input.ranges` must give the
+/// samples of these moves (a program planned in pieces plans as it does whole, given each
+/// piece's samples and the one before them, which `jumps` compares the first with).
+pub fn plan_range(
+    input: &PlanInput<'_>,
+    moves: Range<usize>,
+    mut at: Xz,
+    grid_of: impl Fn(usize) -> Grid,
+    options: &PlanOptions,
+    plans: &mut Vec<MovePlan>,
+) -> Xz {
     let toolpath = input.toolpath;
-    let mut plans = Vec::with_capacity(toolpath.moves.len());
-    let mut at = toolpath.start;
-    for (index, m) in toolpath.moves.iter().enumerate() {
+    let first = moves.start;
+    for (index, m) in toolpath.moves.get(moves).unwrap_or_default().iter().enumerate() {
+        let index = first + index;
         let contour_start = written::contour_start(toolpath, index);
         let range = input.ranges.get(index).cloned().unwrap_or(0..0);
         let plan = if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
@@ -120,7 +137,7 @@ pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, option
         at = plan.end();
         plans.push(plan);
     }
-    plans
+    at
 }
 
 /// The plan with its arcs made writable on `grid`: an arc that no words can write (its

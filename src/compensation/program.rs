@@ -7,6 +7,8 @@
 //! predict the rounded program through the model and report (`quantised.rs`,
 //! `report.rs`).
 
+mod stream;
+
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::error_model::ErrorModel;
 use crate::printer::Edits;
@@ -15,14 +17,12 @@ use crate::semantic::{Lowered, Machine};
 use crate::syntax::Program;
 use crate::toolpath::{ValidToolpath, Xz};
 
-use super::deviation::PathIndex;
+use super::deviation::LocalPath;
 use super::fit::FitOptions;
-use super::grid::Grid;
-use super::inverse::{InverseOptions, compensate_samples, predict};
-use super::plan::{PlanInput, PlanOptions, plan_moves};
+use super::plan::PlanOptions;
 use super::report::{Report, ReportInput};
-use super::sampling::{PathSample, sample_toolpath};
-use super::{quantised, rewrite, safety, written};
+use super::rewrite;
+use super::sampling::PathSample;
 
 /// Samples along cutting moves at most this far apart, mm: the thesis interpolated its
 /// error tables every 0.254 mm (0.01 in).
@@ -35,6 +35,9 @@ pub struct CompensateOptions {
     pub max_shift_mm: f64,
     /// Expand every cycle, not only those whose motion changes.
     pub expand_cycles: bool,
+    /// Keep every sample's paths in `Outcome::paths` (for `plot`; a long program has
+    /// millions of samples).
+    pub paths: bool,
 }
 
 /// What `compensate` produced.
@@ -44,6 +47,7 @@ pub struct Outcome {
     /// Errors (refusals: write nothing), warnings and notes, in program order.
     pub diagnostics: Vec<Diagnostic>,
     pub report: Report,
+    /// Empty unless `CompensateOptions::paths`.
     pub paths: Paths,
     /// The blocks edited (motion blocks and expanded cycle calls).
     pub edited: Vec<rewrite::EditedBlock>,
@@ -86,91 +90,50 @@ pub fn compensate_program(
 ) -> Outcome {
     let toolpath = valid.toolpath();
     let tools = ToolTable::from_machine(machine);
-    let samples = sample_toolpath(toolpath, &tools, sample_step(&options.fit));
-    let inverse = InverseOptions { tolerance_mm: options.fit.tolerance_mm, ..InverseOptions::default() };
-    let compensated = compensate_samples(&samples, toolpath.start, model, &inverse);
-    let ranges = written::sample_ranges(toolpath.moves.len(), &samples);
-    let writable = rewrite::writable_moves(program, lowered);
-    let radius = rewrite::radius_preference(program, lowered);
-    let grid_of = |index: usize| Grid::new(&lowered.coordinates_at(index));
-    let input = PlanInput {
-        toolpath,
-        samples: &samples,
-        commanded: &compensated.commanded,
-        ranges: &ranges,
-        writable: &writable,
-        radius: &radius,
-        tools: &tools,
-    };
-    let plans = plan_moves(&input, grid_of, &PlanOptions { fit: options.fit, play: model.play() });
-
-    let mut diagnostics =
-        safety::check(toolpath, &samples, &compensated.commanded, options.max_shift_mm, machine.limits);
-    diagnostics.extend(unwritable_cycles(
+    let context = stream::Context {
         program,
+        toolpath,
+        tools: &tools,
         lowered,
-        &samples,
-        &compensated.commanded,
-        &ranges,
-        &writable,
+        model,
         options,
-    ));
-    let rewritten = rewrite::rewrite(program, lowered, &plans, &tools, options.expand_cycles);
+        limits: machine.limits,
+        step: sample_step(&options.fit),
+        writable: rewrite::writable_moves(program, lowered),
+        radius: rewrite::radius_preference(program, lowered),
+        path: LocalPath::new(toolpath),
+        plan_options: PlanOptions { fit: options.fit, play: model.play() },
+        runs: rewrite::move_runs(lowered),
+    };
+    let stream::Streamed { plans, mut diagnostics, figures, totals, paths, needs, motion } = stream::run(&context);
+    diagnostics.extend(unwritable_cycles(program, lowered, &needs, &context.writable));
+    let rewritten = rewrite::finish(program, lowered, &plans, options.expand_cycles, motion);
     diagnostics.extend(rewritten.diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
-
-    let commanded = quantised::commanded_path(&input, &plans, grid_of);
-    let after = predict(&samples, &commanded, toolpath.start, model);
-    let index = PathIndex::new(toolpath, |m| m.cutting);
-    let distance = |points: &[Xz]| -> Vec<Option<f64>> {
-        samples.iter().zip(points).map(|(s, &p)| if s.cutting { index.distance(p) } else { None }).collect()
-    };
-    let before_distances = distance(&compensated.uncompensated);
-    let after_distances = distance(&after);
     let report = super::report::build(&ReportInput {
         program,
-        toolpath,
-        samples: &samples,
-        ranges: &ranges,
-        commanded: &compensated.commanded,
-        before: &before_distances,
-        after: &after_distances,
+        runs: &figures,
+        before: totals.before,
+        after: totals.after,
+        max_correction_mm: totals.max_correction_mm,
+        samples: totals.samples,
         plans: &plans,
         edited: &rewritten.edited,
-        inverse_iterations: compensated.iterations,
-        inverse_residual_mm: compensated.max_residual_mm,
+        inverse_iterations: totals.inverse_iterations,
+        inverse_residual_mm: totals.inverse_residual_mm,
     });
-    Outcome {
-        edits: rewritten.edits,
-        diagnostics,
-        report,
-        paths: Paths { samples, uncompensated: compensated.uncompensated, compensated: after },
-        edited: rewritten.edited,
-    }
+    Outcome { edits: rewritten.edits, diagnostics, report, paths, edited: rewritten.edited }
 }
 
 /// A warning on each cycle that cannot be written back while its points need a
-/// correction larger than the tolerance.
-fn unwritable_cycles(
-    program: &Program<'_>,
-    lowered: &Lowered,
-    samples: &[PathSample],
-    commanded: &[Xz],
-    ranges: &[std::ops::Range<usize>],
-    writable: &[bool],
-    options: &CompensateOptions,
-) -> Vec<Diagnostic> {
+/// correction larger than the tolerance (`needs`, per move).
+fn unwritable_cycles(program: &Program<'_>, lowered: &Lowered, needs: &[bool], writable: &[bool]) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     for expansion in &lowered.expansions {
         if writable.get(expansion.moves.start).copied().unwrap_or(true) {
             continue;
         }
-        let first = ranges.get(expansion.moves.start).map_or(0, |r| r.start);
-        let last = expansion.moves.end.checked_sub(1).and_then(|k| ranges.get(k)).map_or(first, |r| r.end);
-        let needs = (first..last.max(first)).any(|j| {
-            matches!((samples.get(j), commanded.get(j)), (Some(s), Some(c)) if c.distance(s.nominal) > options.fit.tolerance_mm)
-        });
-        if needs {
+        if needs.get(expansion.moves.clone()).is_some_and(|moves| moves.iter().any(|&n| n)) {
             let span = program.block(expansion.block).span;
             out.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
         }

@@ -3,6 +3,7 @@
 //! point it commands there. The report and `plot` predict the machine along this path, so
 //! their residuals include the re-expression and the rounding, not only the inverse.
 
+use std::f64::consts::TAU;
 use std::ops::Range;
 
 use crate::geometry;
@@ -44,24 +45,56 @@ pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], prefer_radius: boo
 
 /// The point of a segment (from `start`) closest to `p`.
 pub fn closest_on_segment(p: Xz, start: Xz, segment: &Segment) -> Xz {
-    match *segment {
-        Segment::Line { end } => {
-            let (dx, dz) = (end.x - start.x, end.z - start.z);
-            let length2 = dx * dx + dz * dz;
-            if length2 <= 0.0 {
-                return start;
+    Gauge::new(start, segment).closest(p)
+}
+
+/// A segment's constants, computed once for the many samples measured against it.
+#[derive(Debug, Clone, Copy)]
+enum Gauge {
+    Line { start: Xz, dx: f64, dz: f64, length2: f64 },
+    Arc { start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64, a0: f64, total: f64 },
+}
+
+impl Gauge {
+    fn new(start: Xz, segment: &Segment) -> Gauge {
+        match *segment {
+            Segment::Line { end } => {
+                let (dx, dz) = (end.x - start.x, end.z - start.z);
+                Gauge::Line { start, dx, dz, length2: dx * dx + dz * dz }
             }
-            let t = (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0);
-            Xz::new(start.x + dx * t, start.z + dz * t)
+            Segment::Arc { end, centre, ccw } => Gauge::Arc {
+                start,
+                end,
+                centre,
+                ccw,
+                radius: start.distance(centre),
+                a0: geometry::angle(start, centre),
+                total: geometry::sweep(start, end, centre, ccw),
+            },
         }
-        Segment::Arc { end, centre, ccw } => {
-            if geometry::angle_within(p, start, end, centre, ccw) && p.distance(centre) > 0.0 {
-                let radius = start.distance(centre);
-                geometry::on_circle(centre, radius, geometry::angle(p, centre))
-            } else if p.distance(start) <= p.distance(end) {
-                start
-            } else {
-                end
+    }
+
+    /// The closest point to `p`; an arc's is found as `geometry::angle_within` and
+    /// `geometry::on_circle` would, with the arc's angles computed once.
+    fn closest(&self, p: Xz) -> Xz {
+        match *self {
+            Gauge::Line { start, dx, dz, length2 } => {
+                if length2 <= 0.0 {
+                    return start;
+                }
+                let t = (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0);
+                Xz::new(start.x + dx * t, start.z + dz * t)
+            }
+            Gauge::Arc { start, end, centre, ccw, radius, a0, total } => {
+                let a = geometry::angle(p, centre);
+                let delta = if ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+                if delta <= total + 1e-12 && p.distance(centre) > 0.0 {
+                    geometry::on_circle(centre, radius, a)
+                } else if p.distance(start) <= p.distance(end) {
+                    start
+                } else {
+                    end
+                }
             }
         }
     }
@@ -70,9 +103,24 @@ pub fn closest_on_segment(p: Xz, start: Xz, segment: &Segment) -> Xz {
 /// For every sample, the reference point the control commands when the program writes
 /// the rounded segments of `plans` (`input.commanded` holds the ideal commands).
 pub fn commanded_path(input: &PlanInput<'_>, plans: &[MovePlan], grid_of: impl Fn(usize) -> Grid) -> Vec<Xz> {
+    let mut out: Vec<Xz> = input.samples.iter().map(|s| s.nominal).collect();
+    commanded_moves(input, 0, plans, grid_of, &mut out);
+    out
+}
+
+/// `commanded_path` for the moves from `first` planned by `plans`, into `out` (one point
+/// per sample of `input.samples`; the samples of other moves are left alone).
+pub fn commanded_moves(
+    input: &PlanInput<'_>,
+    first: usize,
+    plans: &[MovePlan],
+    grid_of: impl Fn(usize) -> Grid,
+    out: &mut [Xz],
+) {
     let (toolpath, samples, tools) = (input.toolpath, input.samples, input.tools);
-    let mut out: Vec<Xz> = samples.iter().map(|s| s.nominal).collect();
-    for (index, (m, plan)) in toolpath.moves.iter().zip(plans).enumerate() {
+    let moves = toolpath.moves.get(first..).unwrap_or_default();
+    for (index, (m, plan)) in moves.iter().zip(plans).enumerate() {
+        let index = first + index;
         let Some(range) = input.ranges.get(index).filter(|r| !r.is_empty()) else { continue };
         let contour_start = written::contour_start(toolpath, index);
         let grid = grid_of(index);
@@ -87,9 +135,8 @@ pub fn commanded_path(input: &PlanInput<'_>, plans: &[MovePlan], grid_of: impl F
         let prefer_radius = input.radius.get(index).copied().unwrap_or(false);
         let rounded = quantise(&grid, plan.start, &plan.segments, prefer_radius);
         let walk = Walk { m, contour_start, start: grid.round(plan.start), segments: &rounded, tools };
-        walk.follow(samples, input.commanded, range.clone(), &mut out);
+        walk.follow(samples, input.commanded, range.clone(), out);
     }
-    out
 }
 
 /// One move's rounded segments, from their rounded start.
@@ -107,14 +154,16 @@ impl Walk<'_> {
         // Samples and segments both run along the move: search a window ahead of the last
         // segment used.
         const WINDOW: usize = 16;
-        let starts: Vec<Xz> = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end)).collect();
+        let starts = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end));
+        let gauges: Vec<Gauge> =
+            self.segments.iter().zip(starts).map(|(segment, from)| Gauge::new(from, segment)).collect();
         let mut cursor = 0usize;
         for j in range {
             let target = written::written_point(self.m, self.contour_start, &samples[j], ideal[j], self.tools);
             let (mut best, mut best_k, mut best_d) = (self.start, cursor, f64::INFINITY);
             let first = cursor.saturating_sub(1);
-            for (k, (segment, &from)) in self.segments.iter().zip(&starts).enumerate().skip(first).take(WINDOW + 1) {
-                let q = closest_on_segment(target, from, segment);
+            for (k, gauge) in gauges.iter().enumerate().skip(first).take(WINDOW + 1) {
+                let q = gauge.closest(target);
                 let d = q.distance(target);
                 if d < best_d {
                     (best, best_k, best_d) = (q, k, d);

@@ -7,17 +7,17 @@
 //! (`deviation.rs`) of its cutting points before (the program as it was) and after. The
 //! totals cover every cutting point of the program.
 
+use std::ops::Range;
+
 use serde::Serialize;
 
 use crate::source::LineIndex;
 use crate::syntax::Program;
-use crate::toolpath::{Toolpath, Xz};
 
-use super::deviation::{Figures, nm};
+use super::deviation::{Figures, Tally, nm};
 use super::fit::Segment;
 use super::plan::MovePlan;
 use super::rewrite::EditedBlock;
-use super::sampling::PathSample;
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
@@ -65,17 +65,29 @@ pub struct Totals {
     pub improvement_percent: f64,
 }
 
+/// The figures of one run of moves (`rewrite::move_runs`: the moves an edited block can
+/// write), tallied over its samples in path order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RunFigures {
+    pub moves: Range<usize>,
+    /// |commanded − nominal| of every sample.
+    pub correction: Tally,
+    /// Distance from the nominal path of each cutting sample's predicted point, before
+    /// (the program as written) and after (the compensated program, rounded as written).
+    pub before: Tally,
+    pub after: Tally,
+}
+
 /// Everything the report is computed from.
 pub struct ReportInput<'a> {
     pub program: &'a Program<'a>,
-    pub toolpath: &'a Toolpath,
-    pub samples: &'a [PathSample],
-    pub ranges: &'a [std::ops::Range<usize>],
-    pub commanded: &'a [Xz],
-    /// Distance from the nominal path of each sample's predicted point, before and after
-    /// (`None` for a sample that does not cut).
-    pub before: &'a [Option<f64>],
-    pub after: &'a [Option<f64>],
+    /// Every run of moves, in path order.
+    pub runs: &'a [RunFigures],
+    /// The same tallies over the whole program, and its number of samples.
+    pub before: Tally,
+    pub after: Tally,
+    pub max_correction_mm: f64,
+    pub samples: usize,
     pub plans: &'a [MovePlan],
     pub edited: &'a [EditedBlock],
     pub inverse_iterations: u32,
@@ -84,16 +96,48 @@ pub struct ReportInput<'a> {
 
 pub fn build(input: &ReportInput<'_>) -> Report {
     let lines = LineIndex::new(input.program.source());
-    let corrections: Vec<f64> = input.samples.iter().zip(input.commanded).map(|(s, c)| c.distance(s.nominal)).collect();
-    let blocks = input
-        .edited
+    let edited = input.edited;
+    // A long program's blocks are reported in two halves at once.
+    let blocks = if edited.len() >= PARALLEL_BLOCKS {
+        let (first, second) = edited.split_at(edited.len() / 2);
+        std::thread::scope(|scope| {
+            let second = scope.spawn(|| block_reports(input, &lines, second));
+            let mut blocks = block_reports(input, &lines, first);
+            blocks.extend(second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
+            blocks
+        })
+    } else {
+        block_reports(input, &lines, edited)
+    };
+    let before = input.before.figures();
+    let after = input.after.figures();
+    Report {
+        blocks,
+        totals: Totals {
+            edited_blocks: input.edited.iter().filter(|e| !e.cycle).count(),
+            expanded_cycles: input.edited.iter().filter(|e| e.cycle).count(),
+            samples: input.samples,
+            max_correction_mm: nm(input.max_correction_mm),
+            inverse_iterations: input.inverse_iterations,
+            inverse_residual_mm: nm(input.inverse_residual_mm),
+            before: before.rounded(),
+            after: after.rounded(),
+            improvement_percent: (before.improvement_percent(&after) * 1e4).round() / 1e4,
+        },
+    }
+}
+
+/// Programs with at least this many edited blocks have them reported on two threads.
+const PARALLEL_BLOCKS: usize = 50_000;
+
+/// The reports of `edited`, in order.
+fn block_reports(input: &ReportInput<'_>, lines: &LineIndex, edited: &[EditedBlock]) -> Vec<BlockReport> {
+    edited
         .iter()
         .map(|edited| {
-            let samples = sample_span(input.ranges, edited.moves.clone());
             let plans = input.plans.get(edited.moves.clone()).unwrap_or(&[]);
-            let correction = Figures::of(corrections.get(samples.clone()).unwrap_or(&[]).iter().copied());
-            let before = Figures::of(input.before.get(samples.clone()).unwrap_or(&[]).iter().flatten().copied());
-            let after = Figures::of(input.after.get(samples).unwrap_or(&[]).iter().flatten().copied());
+            let run = run_figures(input.runs, edited.moves.clone());
+            let (correction, before, after) = (run.correction.figures(), run.before.figures(), run.after.figures());
             let arcs = plans
                 .iter()
                 .flat_map(|p| {
@@ -125,28 +169,21 @@ pub fn build(input: &ReportInput<'_>) -> Report {
                 ssq_after_mm: nm(after.ssq_mm),
             }
         })
-        .collect();
-    let before = Figures::of(input.before.iter().flatten().copied());
-    let after = Figures::of(input.after.iter().flatten().copied());
-    Report {
-        blocks,
-        totals: Totals {
-            edited_blocks: input.edited.iter().filter(|e| !e.cycle).count(),
-            expanded_cycles: input.edited.iter().filter(|e| e.cycle).count(),
-            samples: input.samples.len(),
-            max_correction_mm: nm(corrections.iter().copied().fold(0.0, f64::max)),
-            inverse_iterations: input.inverse_iterations,
-            inverse_residual_mm: nm(input.inverse_residual_mm),
-            before: before.rounded(),
-            after: after.rounded(),
-            improvement_percent: (before.improvement_percent(&after) * 1e4).round() / 1e4,
-        },
-    }
+        .collect()
 }
 
-/// The samples of a range of moves.
-fn sample_span(ranges: &[std::ops::Range<usize>], moves: std::ops::Range<usize>) -> std::ops::Range<usize> {
-    let start = ranges.get(moves.start).map_or(0, |r| r.start);
-    let end = moves.end.checked_sub(1).and_then(|k| ranges.get(k)).map_or(start, |r| r.end);
-    start..end.max(start)
+/// The tallies of the moves `moves`: an edited block covers one run exactly; should it
+/// cover several, their tallies are merged.
+fn run_figures(runs: &[RunFigures], moves: Range<usize>) -> RunFigures {
+    if moves.is_empty() {
+        return RunFigures { moves, ..RunFigures::default() };
+    }
+    let first = runs.partition_point(|r| r.moves.end <= moves.start);
+    let covered = runs.get(first..).unwrap_or_default().iter().take_while(|r| r.moves.start < moves.end);
+    covered.fold(RunFigures { moves: moves.clone(), ..RunFigures::default() }, |acc, r| RunFigures {
+        moves: acc.moves,
+        correction: acc.correction.merged(r.correction),
+        before: acc.before.merged(r.before),
+        after: acc.after.merged(r.after),
+    })
 }

@@ -133,15 +133,36 @@ pub fn rewrite(
     tools: &ToolTable,
     expand_cycles: bool,
 ) -> Rewrite {
+    let mut motion = MotionBlocks::new(program, lowered, tools);
+    for run in move_runs(lowered) {
+        motion.add(&run, plans.get(run.moves.clone()).unwrap_or_default());
+    }
+    finish(program, lowered, plans, expand_cycles, motion)
+}
+
+/// The edits, once every move is planned and every run of a motion block was given to
+/// `motion`: the cycles, then the motion blocks.
+pub fn finish(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    plans: &[MovePlan],
+    expand_cycles: bool,
+    motion: MotionBlocks<'_, '_>,
+) -> Rewrite {
     let mut out = Rewrite::default();
     let chosen = cycles::chosen(program, lowered, plans, expand_cycles, &mut out.diagnostics);
     let expanded = cycles::write(program, lowered, plans, &chosen, &mut out.edits, &mut out.diagnostics);
+    // The first expansion of each call block (a call that runs several times has several).
+    let mut first_expansion: HashMap<usize, usize> = HashMap::new();
+    for (k, e) in lowered.expansions.iter().enumerate() {
+        first_expansion.entry(e.block).or_insert(k);
+    }
     for block in expanded {
-        if let Some(e) = lowered.expansions.iter().find(|e| e.block == block) {
+        if let Some(e) = first_expansion.get(&block).and_then(|&k| lowered.expansions.get(k)) {
             out.edited.push(EditedBlock { block, moves: e.moves.clone(), cycle: true });
         }
     }
-    motion_blocks(program, lowered, plans, tools, &mut out);
+    motion.finish(&mut out);
     out.edited.sort_by_key(|e| e.block);
     out.diagnostics.sort_by_key(|d| d.span.start);
     out
@@ -153,43 +174,107 @@ struct Run {
     blocks: Option<Vec<NewBlock>>,
 }
 
-fn motion_blocks(program: &Program<'_>, lowered: &Lowered, plans: &[MovePlan], tools: &ToolTable, out: &mut Rewrite) {
+/// A stretch of moves one edited block can write: the moves of one cycle call, or a run
+/// of consecutive moves of one block outside cycles (one run of a block that runs several
+/// times).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MoveRun {
+    pub moves: Range<usize>,
+    pub cycle: bool,
+}
+
+/// Every move's run, in path order: each `EditedBlock` writes the moves of one of them.
+pub fn move_runs(lowered: &Lowered) -> Vec<MoveRun> {
     let moves = &lowered.toolpath.moves;
-    let in_cycle = in_cycle(lowered);
-    let lookup = BlockLookup::new(program);
-    let radius_arcs = crate::expand::uses_radius_arcs(program);
-    let mut runs: HashMap<usize, Vec<Run>> = HashMap::new();
-    let mut refused: HashSet<usize> = HashSet::new();
+    // The cycle each move belongs to (the first that lists it).
+    let mut cycle_of: Vec<Option<usize>> = vec![None; moves.len()];
+    for (index, e) in lowered.expansions.iter().enumerate() {
+        for k in e.moves.clone() {
+            if let Some(c) = cycle_of.get_mut(k) {
+                c.get_or_insert(index);
+            }
+        }
+    }
+    let mut runs = Vec::new();
     let mut k = 0;
     while k < moves.len() {
-        let source = moves[k].source;
+        let (source, cycle) = (moves[k].source, cycle_of[k]);
         let first = k;
-        while k < moves.len() && moves[k].source == source && !in_cycle[k] {
+        while k < moves.len() && cycle_of[k] == cycle && (cycle.is_some() || moves[k].source == source) {
             k += 1;
         }
-        if k == first {
-            k += 1;
-            continue;
+        runs.push(MoveRun { moves: first..k, cycle: cycle.is_some() });
+    }
+    runs
+}
+
+/// The motion blocks rewritten run by run, in path order (`add`), then settled (`finish`):
+/// a block that runs several times is edited only if every run asks for the same words.
+pub struct MotionBlocks<'a, 'src> {
+    program: &'a Program<'src>,
+    lowered: &'a Lowered,
+    tools: &'a ToolTable,
+    lookup: BlockLookup,
+    radius_arcs: bool,
+    /// Each run of a motion block, in path order.
+    runs: Vec<(usize, Run)>,
+    refused: HashSet<usize>,
+    diagnostics: Vec<Diagnostic>,
+}
+
+impl<'a, 'src> MotionBlocks<'a, 'src> {
+    pub fn new(program: &'a Program<'src>, lowered: &'a Lowered, tools: &'a ToolTable) -> MotionBlocks<'a, 'src> {
+        MotionBlocks {
+            program,
+            lowered,
+            tools,
+            lookup: BlockLookup::new(program),
+            radius_arcs: crate::expand::uses_radius_arcs(program),
+            runs: Vec::new(),
+            refused: HashSet::new(),
+            diagnostics: Vec::new(),
         }
-        let Some(block) = lookup.index(source.start) else { continue };
+    }
+
+    /// The next run (after those given before it), with the plans of its moves; a cycle's
+    /// run is the cycles' business (`finish`).
+    pub fn add(&mut self, run: &MoveRun, plans: &[MovePlan]) {
+        let (program, lowered, tools) = (self.program, self.lowered, self.tools);
+        let moves = &lowered.toolpath.moves;
+        let first = run.moves.start;
+        let Some(source) = moves.get(first).map(|m| m.source) else { return };
+        if run.cycle {
+            return;
+        }
+        let Some(block) = self.lookup.index(source.start) else { return };
         if !matches!(program.block(block).statement, Statement::Motion | Statement::ThreadMove) {
-            continue;
+            return;
         }
         // The moves the block writes (not dwells or corners the control makes).
         let written: Vec<usize> =
-            (first..k).filter(|&i| plans.get(i).is_some_and(|p| !p.segments.is_empty())).collect();
-        let any_change = written.iter().any(|&i| plans[i].changed);
+            run.moves.clone().filter(|&i| plans.get(i - first).is_some_and(|p| !p.segments.is_empty())).collect();
+        let any_change = written.iter().any(|&i| plans.get(i - first).is_some_and(|p| p.changed));
         let blocks = match written.as_slice() {
             [] => None,
             [single] => {
                 let mark = lowered.coordinates_at(*single);
-                let context = block::BlockContext { program, block, mark, grid: Grid::new(&mark), radius_arcs, tools };
+                let context = block::BlockContext {
+                    program,
+                    block,
+                    mark,
+                    grid: Grid::new(&mark),
+                    radius_arcs: self.radius_arcs,
+                    tools,
+                };
                 let contour_start = written::contour_start(&lowered.toolpath, *single);
-                context.rewrite(&moves[*single], contour_start, &plans[*single])
+                match (moves.get(*single), plans.get(*single - first)) {
+                    (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan),
+                    _ => None,
+                }
             }
             _ if any_change => {
-                if refused.insert(block) {
-                    out.diagnostics.push(Diagnostic::error(
+                if self.refused.insert(block) {
+                    self.diagnostics.push(Diagnostic::error(
                         DiagnosticKind::CannotRewriteBlock {
                             reason: "it makes several moves (an automatic corner), which cannot each carry a correction",
                         },
@@ -200,30 +285,39 @@ fn motion_blocks(program: &Program<'_>, lowered: &Lowered, plans: &[MovePlan], t
             }
             _ => None,
         };
-        runs.entry(block).or_default().push(Run { moves: first..k, blocks });
+        self.runs.push((block, Run { moves: run.moves.clone(), blocks }));
     }
-    let mut blocks: Vec<usize> = runs.keys().copied().collect();
-    blocks.sort_unstable();
-    for block in blocks {
-        let Some(block_runs) = runs.get(&block) else { continue };
-        let Some(first) = block_runs.first() else { continue };
-        if block_runs.iter().all(|r| r.blocks.is_none()) {
-            continue;
-        }
-        if block_runs.iter().any(|r| r.blocks != first.blocks) {
-            if refused.insert(block) {
-                out.diagnostics.push(Diagnostic::error(
-                    DiagnosticKind::CannotRewriteBlock {
-                        reason: "it runs more than once, and its runs need different corrections",
-                    },
-                    program.block(block).span,
-                ));
+
+    /// The edits of the motion blocks, after the cycles' in `out`.
+    fn finish(mut self, out: &mut Rewrite) {
+        let program = self.program;
+        out.diagnostics.append(&mut self.diagnostics);
+        // By block, each block's runs in path order (a stable sort; the runs mostly come in
+        // block order already).
+        self.runs.sort_by_key(|(block, _)| *block);
+        for block_runs in self.runs.chunk_by_mut(|a, b| a.0 == b.0) {
+            let Some((block, first)) = block_runs.first() else { continue };
+            let block = *block;
+            if block_runs.iter().all(|(_, r)| r.blocks.is_none()) {
+                continue;
             }
-            continue;
-        }
-        if let Some(new) = &first.blocks {
-            out.edits.replace(block, new.clone());
-            out.edited.push(EditedBlock { block, moves: first.moves.clone(), cycle: false });
+            if block_runs.iter().skip(1).any(|(_, r)| r.blocks != first.blocks) {
+                if self.refused.insert(block) {
+                    out.diagnostics.push(Diagnostic::error(
+                        DiagnosticKind::CannotRewriteBlock {
+                            reason: "it runs more than once, and its runs need different corrections",
+                        },
+                        program.block(block).span,
+                    ));
+                }
+                continue;
+            }
+            if let Some((_, first)) = block_runs.first_mut()
+                && let Some(new) = first.blocks.take()
+            {
+                out.edits.replace(block, new);
+                out.edited.push(EditedBlock { block, moves: first.moves.clone(), cycle: false });
+            }
         }
     }
 }

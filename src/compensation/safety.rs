@@ -26,38 +26,62 @@ pub fn check(
     max_shift_mm: f64,
     limits: Option<Limits>,
 ) -> Vec<Diagnostic> {
-    // Per block (keyed by span start, so the diagnostics come out in program order): the
-    // largest correction, and the first point outside the travel.
-    let mut shifts: BTreeMap<u32, (Span, f64)> = BTreeMap::new();
-    let mut outside: BTreeMap<u32, (Span, Xz)> = BTreeMap::new();
-    for (s, &c) in samples.iter().zip(commanded) {
-        let Some(m) = toolpath.moves.get(s.move_index) else { continue };
-        let span = m.source;
-        let shift = c.distance(s.nominal);
-        let shift = if shift.is_finite() { shift } else { f64::INFINITY };
-        if shift > max_shift_mm {
-            let entry = shifts.entry(span.start).or_insert((span, shift));
-            entry.1 = entry.1.max(shift);
-        }
-        if let Some(limits) = limits
-            && !inside(&limits, c)
-        {
-            outside.entry(span.start).or_insert((span, c));
+    let mut check = Check::new(max_shift_mm, limits);
+    check.add(toolpath, samples, commanded);
+    check.finish()
+}
+
+/// `check` over successive runs of samples, in path order.
+#[derive(Debug, Clone)]
+pub struct Check {
+    max_shift_mm: f64,
+    limits: Option<Limits>,
+    /// Per block (keyed by span start, so the diagnostics come out in program order): the
+    /// largest correction, and the first point outside the travel.
+    shifts: BTreeMap<u32, (Span, f64)>,
+    outside: BTreeMap<u32, (Span, Xz)>,
+}
+
+impl Check {
+    pub fn new(max_shift_mm: f64, limits: Option<Limits>) -> Check {
+        Check { max_shift_mm, limits, shifts: BTreeMap::new(), outside: BTreeMap::new() }
+    }
+
+    /// Check the next samples and their commanded points.
+    pub fn add(&mut self, toolpath: &Toolpath, samples: &[PathSample], commanded: &[Xz]) {
+        for (s, &c) in samples.iter().zip(commanded) {
+            let Some(m) = toolpath.moves.get(s.move_index) else { continue };
+            let span = m.source;
+            let shift = c.distance(s.nominal);
+            let shift = if shift.is_finite() { shift } else { f64::INFINITY };
+            if shift > self.max_shift_mm {
+                let entry = self.shifts.entry(span.start).or_insert((span, shift));
+                entry.1 = entry.1.max(shift);
+            }
+            if let Some(limits) = self.limits
+                && !inside(&limits, c)
+            {
+                self.outside.entry(span.start).or_insert((span, c));
+            }
         }
     }
-    let mut out: Vec<Diagnostic> = shifts
-        .into_values()
-        .map(|(span, shift)| {
-            Diagnostic::error(DiagnosticKind::CorrectionTooLarge { shift_mm: shift, max_mm: max_shift_mm }, span)
-        })
-        .collect();
-    out.extend(
-        outside.into_values().map(|(span, p)| {
+
+    /// The refusals, in program order.
+    pub fn finish(self) -> Vec<Diagnostic> {
+        let max_mm = self.max_shift_mm;
+        let mut out: Vec<Diagnostic> = self
+            .shifts
+            .into_values()
+            .map(|(span, shift)| {
+                Diagnostic::error(DiagnosticKind::CorrectionTooLarge { shift_mm: shift, max_mm }, span)
+            })
+            .collect();
+        out.extend(self.outside.into_values().map(|(span, p)| {
             Diagnostic::error(DiagnosticKind::CompensatedOutsideTravel { x_mm: p.x, z_mm: p.z }, span)
-        }),
-    );
-    out.sort_by_key(|d| d.span.start);
-    out
+        }));
+        out.sort_by_key(|d| d.span.start);
+        out
+    }
 }
 
 fn inside(limits: &Limits, p: Xz) -> bool {

@@ -7,6 +7,7 @@
 //! and is not a sample: nothing commands it.
 
 use std::f64::consts::TAU;
+use std::ops::Range;
 
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
@@ -34,9 +35,17 @@ pub struct PathSample {
 
 /// Sample every move of `toolpath`; cutting moves at most `step` mm apart.
 pub fn sample_toolpath(toolpath: &Toolpath, tools: &ToolTable, step: f64) -> Vec<PathSample> {
-    let step = if step.is_finite() && step > 0.0 { step } else { 0.254 };
     let mut out = Vec::with_capacity(toolpath.moves.len() * 2);
-    for (index, m) in toolpath.moves.iter().enumerate() {
+    sample_moves(toolpath, 0..toolpath.moves.len(), tools, step, &mut out);
+    out
+}
+
+/// Sample the moves `moves` of `toolpath` as `sample_toolpath` does, appending to `out`.
+pub fn sample_moves(toolpath: &Toolpath, moves: Range<usize>, tools: &ToolTable, step: f64, out: &mut Vec<PathSample>) {
+    let step = if step.is_finite() && step > 0.0 { step } else { 0.254 };
+    let first = moves.start;
+    for (index, m) in toolpath.moves.get(moves).unwrap_or_default().iter().enumerate() {
+        let index = first + index;
         let start = toolpath.start_of(index);
         let (_, tip) = tools.lookup(m.tool, m.offset);
         let tip = tip_vector(tip);
@@ -74,7 +83,6 @@ pub fn sample_toolpath(toolpath: &Toolpath, tools: &ToolTable, step: f64) -> Vec
             }
         }
     }
-    out
 }
 
 /// The fractions of an arc's sweep to sample at: `n` equal steps, and the points where an

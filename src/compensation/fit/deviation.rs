@@ -40,6 +40,28 @@ pub fn segment_deviation(from: Xz, segment: &Segment, points: &[Xz]) -> f64 {
     if points.iter().all(|p| p.is_finite()) && !worst.is_nan() { worst } else { f64::INFINITY }
 }
 
+/// `distance_to_segment` for one segment, its constants computed once.
+enum Gauge {
+    Line { from: Xz, end: Xz },
+    Arc(ArcGauge),
+}
+
+impl Gauge {
+    fn new(from: Xz, segment: &Segment) -> Gauge {
+        match *segment {
+            Segment::Line { end } => Gauge::Line { from, end },
+            Segment::Arc { end, centre, ccw } => Gauge::Arc(ArcGauge::new(from, end, centre, ccw)),
+        }
+    }
+
+    fn distance(&self, p: Xz) -> f64 {
+        match self {
+            Gauge::Line { from, end } => distance_to_chord(p, *from, *end),
+            Gauge::Arc(gauge) => gauge.distance(p),
+        }
+    }
+}
+
 /// An arc's constants, computed once for the many points measured against it.
 struct ArcGauge {
     from: Xz,
@@ -126,11 +148,12 @@ pub fn max_deviation(start: Xz, segments: &[Segment], points: &[Xz]) -> f64 {
     if segments.is_empty() {
         return f64::INFINITY;
     }
-    let mut starts = Vec::with_capacity(segments.len());
+    // Each segment's gauge (`distance_to_segment` with its constants computed once) and box.
+    let mut gauges = Vec::with_capacity(segments.len());
     let mut bounds = Vec::with_capacity(segments.len());
     let mut from = start;
     for segment in segments {
-        starts.push(from);
+        gauges.push(Gauge::new(from, segment));
         bounds.push(Bounds::of(from, segment));
         from = segment.end();
     }
@@ -142,13 +165,12 @@ pub fn max_deviation(start: Xz, segments: &[Segment], points: &[Xz]) -> f64 {
         if !p.is_finite() {
             return f64::INFINITY;
         }
-        let mut best =
-            segments.get(guess).zip(starts.get(guess)).map_or(f64::INFINITY, |(s, &f)| distance_to_segment(p, f, s));
-        for (index, ((segment, &from), bound)) in segments.iter().zip(&starts).zip(&bounds).enumerate() {
+        let mut best = gauges.get(guess).map_or(f64::INFINITY, |g| g.distance(p));
+        for (index, (gauge, bound)) in gauges.iter().zip(&bounds).enumerate() {
             if index == guess || bound.distance(p) >= best {
                 continue;
             }
-            let d = distance_to_segment(p, from, segment);
+            let d = gauge.distance(p);
             if d < best {
                 best = d;
                 guess = index;

@@ -33,12 +33,13 @@ pub const SEMICIRCLE_CUTS: [f64; 2] = [0.0, PI];
 /// Where `quadrant` cuts: every quarter turn, the reversals of both axes.
 pub const QUADRANT_CUTS: [f64; 4] = [0.0, FRAC_PI_2, PI, -FRAC_PI_2];
 
-/// The fitted pieces, or the largest deviation of the best attempt at the piece that failed.
-pub fn circles(
+/// The fitted pieces, ending at the points `ends` (`cut_indices`), or the largest deviation
+/// of the best attempt at the piece that failed.
+pub fn circles_at(
     m: &MovePoints<'_>,
     centre: Xz,
     ccw: bool,
-    cuts: &[f64],
+    ends: &[usize],
     tolerance_mm: f64,
 ) -> Result<Vec<Segment>, f64> {
     let radius = m.start.distance(centre);
@@ -51,7 +52,7 @@ pub fn circles(
     let mut segments = Vec::new();
     let mut from = m.start;
     let mut first = 0;
-    for last in cut_indices(m, centre, ccw, cuts) {
+    for &last in ends {
         let points = m.points.get(first..=last).ok_or(f64::INFINITY)?;
         let written = context.fit(from, points, tolerance_mm)?;
         segments.extend(written);
@@ -63,56 +64,76 @@ pub fn circles(
 
 /// The index of the last point of each piece, the move's last point included.
 pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> Vec<usize> {
-    let sense = if ccw { 1.0 } else { -1.0 };
-    // The angle each point has travelled from the start, unwrapped along the points.
-    let a0 = geometry::angle(m.start, centre);
-    let mut previous = a0;
-    let mut travelled = 0.0;
-    let travel: Vec<f64> = m
-        .points
-        .iter()
-        .map(|&p| {
-            let a = geometry::angle(p, centre);
-            let mut step = (a - previous).rem_euclid(TAU);
-            if step > PI {
-                step -= TAU;
-            }
-            previous = a;
-            travelled += sense * step;
-            travelled
-        })
-        .collect();
-    let total = travel.last().copied().unwrap_or(0.0);
-    // A cut within half a sample of either end of the move is no cut: compensation moves
-    // the points off the nominal angles by a little, and a move that starts or ends on a cut
-    // would otherwise grow a piece of one point.
-    let margin = total.abs() / (2.0 * travel.len().max(1) as f64);
-    let mut crossings: Vec<f64> = Vec::new();
-    for &cut in cuts {
-        let mut at = (sense * (cut - a0)).rem_euclid(TAU);
-        while at < total - margin {
-            if at > margin {
-                crossings.push(at);
-            }
-            at += TAU;
-        }
+    Travel::new(m, centre, ccw).cut_indices(cuts)
+}
+
+/// The angle each point of a move has travelled about a centre from the move's start,
+/// unwrapped along the points: what `cut_indices` cuts, computed once for every set of
+/// cuts.
+pub struct Travel {
+    sense: f64,
+    a0: f64,
+    travel: Vec<f64>,
+}
+
+impl Travel {
+    pub fn new(m: &MovePoints<'_>, centre: Xz, ccw: bool) -> Travel {
+        let sense = if ccw { 1.0 } else { -1.0 };
+        let a0 = geometry::angle(m.start, centre);
+        let mut previous = a0;
+        let mut travelled = 0.0;
+        let travel: Vec<f64> = m
+            .points
+            .iter()
+            .map(|&p| {
+                let a = geometry::angle(p, centre);
+                let mut step = (a - previous).rem_euclid(TAU);
+                if step > PI {
+                    step -= TAU;
+                }
+                previous = a;
+                travelled += sense * step;
+                travelled
+            })
+            .collect();
+        Travel { sense, a0, travel }
     }
-    crossings.sort_by(f64::total_cmp);
-    let mut ends = Vec::new();
-    for crossing in crossings {
-        // The last point at or before the crossing ends a piece, unless it ends the move.
-        let count_before = travel.partition_point(|&t| t <= crossing);
-        if let Some(last) = count_before.checked_sub(1)
-            && last + 1 < travel.len()
-            && ends.last().is_none_or(|&previous| last > previous)
-        {
+
+    /// `cut_indices` of the move.
+    pub fn cut_indices(&self, cuts: &[f64]) -> Vec<usize> {
+        let Travel { sense, a0, ref travel } = *self;
+        let total = travel.last().copied().unwrap_or(0.0);
+        // A cut within half a sample of either end of the move is no cut: compensation moves
+        // the points off the nominal angles by a little, and a move that starts or ends on a cut
+        // would otherwise grow a piece of one point.
+        let margin = total.abs() / (2.0 * travel.len().max(1) as f64);
+        let mut crossings: Vec<f64> = Vec::new();
+        for &cut in cuts {
+            let mut at = (sense * (cut - a0)).rem_euclid(TAU);
+            while at < total - margin {
+                if at > margin {
+                    crossings.push(at);
+                }
+                at += TAU;
+            }
+        }
+        crossings.sort_by(f64::total_cmp);
+        let mut ends = Vec::new();
+        for crossing in crossings {
+            // The last point at or before the crossing ends a piece, unless it ends the move.
+            let count_before = travel.partition_point(|&t| t <= crossing);
+            if let Some(last) = count_before.checked_sub(1)
+                && last + 1 < travel.len()
+                && ends.last().is_none_or(|&previous| last > previous)
+            {
+                ends.push(last);
+            }
+        }
+        if let Some(last) = travel.len().checked_sub(1) {
             ends.push(last);
         }
+        ends
     }
-    if let Some(last) = m.points.len().checked_sub(1) {
-        ends.push(last);
-    }
-    ends
 }
 
 struct Piece {
@@ -153,10 +174,14 @@ impl Piece {
     /// the tolerance; else the circle pinned to both ends by a least-squares fit of the
     /// points between.
     fn arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
-        let pinned = self.pinned_arc(from, points);
-        let Some(free) = self.free_arc(from, points) else { return pinned };
-        match pinned {
-            Some(p) if p.1 < free.1 && free.1 > self.tolerance => Some(p),
+        let Some(free) = self.free_arc(from, points) else { return self.pinned_arc(from, points) };
+        // A free circle within the tolerance is taken whatever the pinned one gives, so the
+        // pinned one is fitted only when it could be taken.
+        if free.1 <= self.tolerance {
+            return Some(free);
+        }
+        match self.pinned_arc(from, points) {
+            Some(p) if p.1 < free.1 => Some(p),
             _ => Some(free),
         }
     }

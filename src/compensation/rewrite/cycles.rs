@@ -143,6 +143,7 @@ pub(super) fn write(
     let mut by_block: BTreeMap<usize, Vec<NewBlock>> = BTreeMap::new();
     let mut refused = HashSet::new();
     let mut written = Vec::new();
+    let radius_arcs = expand::uses_radius_arcs(program);
     for (expansion, _) in lowered.expansions.iter().zip(chosen).filter(|(_, chosen)| **chosen) {
         let range = expansion.moves.clone();
         let (Some(moves), Some(cycle_plans)) = (lowered.toolpath.moves.get(range.clone()), plans.get(range.clone()))
@@ -157,8 +158,15 @@ pub(super) fn write(
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(range.start).shift;
         let compensated = compensated_moves(moves, cycle_plans, compensation_before);
-        let blocks = match expand::expansion_blocks(program, expansion, &compensated, start, compensation_before, shift)
-        {
+        let blocks = match expand::expansion_blocks(
+            program,
+            expansion,
+            &compensated,
+            start,
+            compensation_before,
+            shift,
+            radius_arcs,
+        ) {
             ExpansionBlocks::Blocks(blocks) => with_call_words(program, expansion.block, blocks),
             ExpansionBlocks::Keep | ExpansionBlocks::NotExpandable => {
                 let span = program.block(expansion.block).span;

@@ -1,0 +1,192 @@
+//! `turnpass compensate` end to end on generated programs: the release binary run as a
+//! child process on a file, timed from spawn to exit, so the figure covers everything a
+//! user waits for (read, parse, lower, sample, invert, fit, rewrite, print, write).
+//!
+//! Run with `cargo bench --bench compensate`. Inputs: `python3 ../shared/bench/gen_lathe.py
+//! target/bench-data/big-<MB>.nc <MB>` (generated on first use; the bench says so and
+//! measures nothing when python3 is missing), compensated for `benches/compensate-model.toml`
+//! (backlash, tool offset, scale, squareness, warm-up). The main figure is the 50 MB program
+//! (`TURNPASS_BENCH_MB` overrides it); 1, 2, 5 and 10 MB show how the time scales. Each size
+//! is run `TURNPASS_BENCH_ROUNDS` times (default 3 for the largest, 5 for the others),
+//! interleaved, and the bench prints the median wall time, MB/s, the median CPU time of the
+//! child (both cores count) and seconds per MB, which is what the README quotes.
+//!
+//! A criterion group then times the library path in-process (parse, lower, compensate,
+//! print) on the 1 MB program, for comparing builds.
+
+#![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
+
+use std::hint::black_box;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use turnpass::compensation::fit::{FitOptions, Strategy};
+use turnpass::compensation::{CompensateOptions, compensate_program};
+use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem, MachineKind};
+use turnpass::error_model::model_file::ModelSpec;
+use turnpass::machine::ModelFile;
+use turnpass::printer::print;
+use turnpass::semantic::{LowerOptions, Machine, lower};
+use turnpass::syntax::{ParseOptions, parse};
+use turnpass::toolpath::validate;
+
+const SCALING_MB: [&str; 4] = ["1", "2", "5", "10"];
+
+fn manifest() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn model_path() -> PathBuf {
+    manifest().join("benches/compensate-model.toml")
+}
+
+/// The generated program of `megabytes`, or `None` when it cannot be generated.
+fn generated(megabytes: &str) -> Option<PathBuf> {
+    let dir = manifest().join("target/bench-data");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(format!("big-{megabytes}.nc"));
+    if !path.exists() {
+        let script = manifest().join("../shared/bench/gen_lathe.py");
+        match Command::new("python3").arg(&script).arg(&path).arg(megabytes).status() {
+            Ok(status) if status.success() => {}
+            Ok(status) => {
+                println!("turnpass-bench: gen_lathe.py failed ({status}); nothing measured");
+                return None;
+            }
+            Err(error) => {
+                println!("turnpass-bench: python3 cannot run ({error}); nothing measured");
+                return None;
+            }
+        }
+    }
+    Some(path)
+}
+
+/// CPU seconds used by finished children so far (user + system).
+#[cfg(target_os = "linux")]
+fn children_cpu() -> f64 {
+    // SAFETY: getrusage writes the struct it is given and nothing else.
+    let usage = unsafe {
+        let mut usage: libc::rusage = std::mem::zeroed();
+        libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage);
+        usage
+    };
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    seconds(usage.ru_utime) + seconds(usage.ru_stime)
+}
+
+#[cfg(not(target_os = "linux"))]
+fn children_cpu() -> f64 {
+    f64::NAN
+}
+
+/// One run of the binary on `input`: wall and CPU seconds.
+fn run_once(input: &Path, output: &Path) -> (f64, f64) {
+    let cpu = children_cpu();
+    let start = Instant::now();
+    let result = Command::new(env!("CARGO_BIN_EXE_turnpass"))
+        .arg("compensate")
+        .arg(input)
+        .arg("--model")
+        .arg(model_path())
+        .arg("-o")
+        .arg(output)
+        .output()
+        .unwrap();
+    let wall = start.elapsed().as_secs_f64();
+    assert!(result.status.success(), "compensate failed: {}", String::from_utf8_lossy(&result.stderr));
+    (wall, children_cpu() - cpu)
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+fn env_or(name: &str, default: &str) -> String {
+    std::env::var(name).unwrap_or_else(|_| default.to_string())
+}
+
+fn end_to_end(c: &mut Criterion) {
+    let big = env_or("TURNPASS_BENCH_MB", "50");
+    let mut sizes: Vec<String> = SCALING_MB.iter().map(|s| s.to_string()).collect();
+    if !sizes.contains(&big) {
+        sizes.push(big.clone());
+    }
+    let mut inputs = Vec::new();
+    for size in &sizes {
+        let Some(path) = generated(size) else { return };
+        inputs.push((size.clone(), path));
+    }
+    let output = manifest().join("target/bench-data/compensated.nc");
+    let rounds = |size: &str| -> usize {
+        let default = if *size == big { "3" } else { "5" };
+        env_or("TURNPASS_BENCH_ROUNDS", default).parse().unwrap()
+    };
+    // Interleaved rounds: a busy moment of the machine spreads over every size.
+    let mut times: Vec<(Vec<f64>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); inputs.len()];
+    let most = inputs.iter().map(|(size, _)| rounds(size)).max().unwrap_or(0);
+    for round in 0..most {
+        for ((size, path), (walls, cpus)) in inputs.iter().zip(&mut times) {
+            if round < rounds(size) {
+                let (wall, cpu) = run_once(path, &output);
+                walls.push(wall);
+                cpus.push(cpu);
+            }
+        }
+    }
+    println!("\nturnpass-bench: compensate end to end, {} (median of the rounds)", model_path().display());
+    for ((size, path), (walls, cpus)) in inputs.iter().zip(times) {
+        let mb = std::fs::metadata(path).unwrap().len() as f64 / 1e6;
+        let (n, wall, cpu) = (walls.len(), median(walls), median(cpus));
+        println!(
+            "turnpass-bench: {size:>3} MB file ({mb:.1} MB): {wall:.2} s wall, {:.1} MB/s, {cpu:.2} s CPU, {:.3} s/MB ({n} runs)",
+            mb / wall,
+            wall / mb
+        );
+    }
+    println!();
+    std::fs::remove_file(&output).ok();
+
+    // The library path in-process on the smallest program, for criterion.
+    let Some((_, small)) = inputs.first() else { return };
+    let bytes = std::fs::read(small).unwrap();
+    let text = std::fs::read_to_string(model_path()).unwrap();
+    let settings = ModelFile::from_toml(&text).unwrap().machine;
+    let model = ModelSpec::from_toml(&text).unwrap().build(|_| Err("no tables".into())).unwrap();
+    let machine = Machine::from_settings(&settings);
+    let parse_options = ParseOptions {
+        dialect: DialectChoice::Fixed(Dialect::Fanuc),
+        gcode_system: GCodeSystem::A,
+        machine_kind: Some(MachineKind::Lathe),
+    };
+    let lower_options = LowerOptions { nose_radius_compensation: true, ..LowerOptions::new(false) };
+    let options = CompensateOptions {
+        fit: FitOptions {
+            strategy: Strategy::Auto,
+            tolerance_mm: machine.increment * machine.scale() / 2.0,
+            step_mm: None,
+        },
+        max_shift_mm: 0.1,
+        expand_cycles: false,
+        paths: false,
+    };
+    let mut group = c.benchmark_group("compensate");
+    group.throughput(Throughput::Bytes(bytes.len() as u64));
+    group.sample_size(10);
+    group.bench_function("library_1mb", |b| {
+        b.iter(|| {
+            let parsed = parse(black_box(&bytes), &parse_options);
+            let lowered = lower(&parsed.program, &machine, &lower_options);
+            let valid = validate(lowered.toolpath.clone(), machine.limits).unwrap();
+            let outcome = compensate_program(&parsed.program, &lowered, &valid, &machine, &model, &options);
+            print(&parsed.program, &outcome.edits)
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, end_to_end);
+criterion_main!(benches);

@@ -1,0 +1,359 @@
+//! The program streamed through the compensation in pieces of moves, on three threads.
+//!
+//! Each piece's samples are made, solved, planned, rounded, predicted and measured, then
+//! dropped: memory follows the moves, not the samples (a 50 MB program has 39 million
+//! samples). The stages that carry state along the path run in path order, each on its
+//! own thread, and hand each piece on to the next:
+//!
+//! 1. **solve**: sample the piece, invert the model (`Inverse`: its tracker and the previous
+//!    sample's correction carry over), predict the program as written, and measure that
+//!    against the nominal path;
+//! 2. **plan**: plan each move (`plan_range`: where the previous written move ends carries
+//!    over);
+//! 3. **check** (the calling thread): round the plans onto the grid, predict the rounded
+//!    program, measure it, check the corrections (`safety::Check`), tally the figures and
+//!    rewrite each motion block's run (`MotionBlocks`).
+//!
+//! A piece's samples start with the previous piece's last one (`lead`), which `jumps`
+//! compares the first with, so the pieces plan as the whole program would. A piece ends
+//! between two runs of moves (`MoveRun`), or inside a cycle's, whose blocks are written
+//! only after every move is planned; so every motion block's run lies in one piece.
+
+use std::ops::Range;
+use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
+
+use crate::diagnostic::Diagnostic;
+use crate::error_model::ErrorModel;
+use crate::semantic::Lowered;
+use crate::semantic::nose_radius::ToolTable;
+use crate::syntax::Program;
+use crate::toolpath::{Limits, Toolpath, Xz};
+
+use super::super::deviation::{LocalPath, Tally};
+use super::super::grid::Grid;
+use super::super::inverse::{Inverse, InverseOptions, Predictor};
+use super::super::plan::{MovePlan, PlanInput, PlanOptions, plan_range};
+use super::super::report::RunFigures;
+use super::super::rewrite::{MotionBlocks, MoveRun};
+use super::super::sampling::{PathSample, sample_moves};
+use super::super::{quantised, safety};
+use super::{CompensateOptions, Paths};
+
+/// Moves per piece (more where a piece would end inside a motion block's run).
+const PIECE_MOVES: usize = 2048;
+
+/// Pieces a stage may run ahead of the next.
+const QUEUE: usize = 2;
+
+/// What every piece is compensated with.
+pub struct Context<'a> {
+    pub program: &'a Program<'a>,
+    pub toolpath: &'a Toolpath,
+    pub tools: &'a ToolTable,
+    pub lowered: &'a Lowered,
+    pub model: &'a ErrorModel,
+    pub options: &'a CompensateOptions,
+    pub limits: Option<Limits>,
+    pub step: f64,
+    pub writable: Vec<bool>,
+    /// `rewrite::radius_preference`.
+    pub radius: Vec<bool>,
+    pub path: LocalPath<'a>,
+    pub plan_options: PlanOptions,
+    /// `rewrite::move_runs`.
+    pub runs: Vec<MoveRun>,
+}
+
+impl Context<'_> {
+    fn grid(&self, index: usize) -> Grid {
+        Grid::new(&self.lowered.coordinates_at(index))
+    }
+}
+
+/// Program-wide figures, tallied over every sample in path order.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Totals {
+    pub before: Tally,
+    pub after: Tally,
+    pub max_correction_mm: f64,
+    pub samples: usize,
+    pub inverse_iterations: u32,
+    pub inverse_residual_mm: f64,
+}
+
+/// What streaming leaves: everything the rewrite and the report need, none of the samples
+/// (unless `paths` were asked for).
+pub struct Streamed<'a, 'src> {
+    pub plans: Vec<MovePlan>,
+    /// The safety checks' refusals.
+    pub diagnostics: Vec<Diagnostic>,
+    /// One per run of moves, in path order.
+    pub figures: Vec<RunFigures>,
+    pub totals: Totals,
+    pub paths: Paths,
+    /// Per move: some sample's correction exceeds the tolerance.
+    pub needs: Vec<bool>,
+    pub motion: MotionBlocks<'a, 'src>,
+}
+
+/// What the check stage leaves (`Streamed` but for the inverse's figures).
+struct Checked<'a, 'src> {
+    plans: Vec<MovePlan>,
+    diagnostics: Vec<Diagnostic>,
+    figures: Vec<RunFigures>,
+    totals: Totals,
+    paths: Paths,
+    needs: Vec<bool>,
+    motion: MotionBlocks<'a, 'src>,
+}
+
+/// One piece's samples and what is computed for them. `samples` and `commanded` (and
+/// `rounded`) start with the previous piece's last sample when there is one (`lead`); the
+/// other vectors hold only the piece's own samples.
+#[derive(Default)]
+struct Piece {
+    moves: Range<usize>,
+    lead: usize,
+    samples: Vec<PathSample>,
+    commanded: Vec<Xz>,
+    predicted: Vec<Xz>,
+    uncompensated: Vec<Xz>,
+    before: Vec<Option<f64>>,
+    rounded: Vec<Xz>,
+    after: Vec<Xz>,
+    plans: Vec<MovePlan>,
+}
+
+impl Piece {
+    fn clear(&mut self) {
+        self.samples.clear();
+        self.commanded.clear();
+        self.predicted.clear();
+        self.uncompensated.clear();
+        self.before.clear();
+        self.rounded.clear();
+        self.after.clear();
+        self.plans.clear();
+    }
+
+    /// The piece's own samples (after the lead).
+    fn fresh(&self) -> Range<usize> {
+        self.lead..self.samples.len()
+    }
+}
+
+/// Stream the whole program (see the module documentation).
+pub fn run<'a, 'src>(context: &'a Context<'src>) -> Streamed<'a, 'src> {
+    let (to_plan, planning) = sync_channel::<Piece>(QUEUE);
+    let (to_check, checking) = sync_channel::<Piece>(QUEUE);
+    // Checked pieces go back to be filled again.
+    let (to_reuse, reusable) = sync_channel::<Piece>(QUEUE * 2 + 2);
+    std::thread::scope(|scope| {
+        let solver = scope.spawn(move || solve(context, &to_plan, &reusable));
+        let planner = scope.spawn(move || plan(context, &planning, &to_check));
+        let Checked { plans, diagnostics, figures, mut totals, paths, needs, motion } =
+            check(context, &checking, &to_reuse);
+        // Neither thread can fail on any input; a panic in one is a bug, and is passed on.
+        let (iterations, residual) = solver.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        planner.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        totals.inverse_iterations = iterations;
+        totals.inverse_residual_mm = residual;
+        Streamed { plans, diagnostics, figures, totals, paths, needs, motion }
+    })
+}
+
+/// The pieces: about `PIECE_MOVES` moves each, ending between runs or inside a cycle's.
+fn pieces(context: &Context<'_>) -> Vec<Range<usize>> {
+    let count = context.toolpath.moves.len();
+    let mut out = Vec::new();
+    let mut first = 0;
+    let mut run = 0;
+    while first < count {
+        let mut end = (first + PIECE_MOVES).min(count);
+        while context.runs.get(run).is_some_and(|r| r.moves.end <= end) {
+            run += 1;
+        }
+        if let Some(r) = context.runs.get(run).filter(|r| !r.cycle && r.moves.start < end) {
+            end = r.moves.end;
+        }
+        out.push(first..end);
+        first = end;
+    }
+    out
+}
+
+/// Stage 1: sample, solve, predict as written, measure that.
+fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver<Piece>) -> (u32, f64) {
+    let Context { toolpath, model, options, .. } = *context;
+    let inverse_options = InverseOptions { tolerance_mm: options.fit.tolerance_mm, ..InverseOptions::default() };
+    let mut inverse = Inverse::new(toolpath.start, model, &inverse_options);
+    let mut as_written = Predictor::new(toolpath.start, model);
+    let mut last: Option<(PathSample, Xz)> = None;
+    for moves in pieces(context) {
+        let mut piece = reusable.try_recv().unwrap_or_default();
+        piece.clear();
+        piece.moves = moves.clone();
+        piece.lead = match last {
+            Some((sample, commanded)) => {
+                piece.samples.push(sample);
+                piece.commanded.push(commanded);
+                1
+            }
+            None => 0,
+        };
+        sample_moves(toolpath, moves, context.tools, context.step, &mut piece.samples);
+        let fresh = piece.fresh();
+        let samples = piece.samples.get(fresh).unwrap_or_default();
+        inverse.solve(samples, &mut piece.commanded, &mut piece.predicted);
+        as_written.predict_nominal(samples, &mut piece.uncompensated);
+        piece.before.extend(samples.iter().zip(&piece.uncompensated).map(|(s, &p)| context.path.distance(s, p)));
+        last = piece.samples.last().copied().zip(piece.commanded.last().copied());
+        if to_plan.send(piece).is_err() {
+            break;
+        }
+    }
+    (inverse.iterations, inverse.max_residual_mm)
+}
+
+/// Stage 2: plan the moves.
+fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_check: &SyncSender<Piece>) {
+    let toolpath = context.toolpath;
+    let mut ranges = vec![0..0; toolpath.moves.len()];
+    let mut at = toolpath.start;
+    while let Ok(mut piece) = planning.recv() {
+        fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
+        let input = PlanInput {
+            toolpath,
+            samples: &piece.samples,
+            commanded: &piece.commanded,
+            ranges: &ranges,
+            writable: &context.writable,
+            radius: &context.radius,
+            tools: context.tools,
+        };
+        let mut plans = std::mem::take(&mut piece.plans);
+        at = plan_range(&input, piece.moves.clone(), at, |k| context.grid(k), &context.plan_options, &mut plans);
+        piece.plans = plans;
+        if to_check.send(piece).is_err() {
+            break;
+        }
+    }
+}
+
+/// Stage 3: round, predict as rounded, measure, check, tally, rewrite.
+fn check<'a, 'src>(
+    context: &'a Context<'src>,
+    checking: &Receiver<Piece>,
+    to_reuse: &SyncSender<Piece>,
+) -> Checked<'a, 'src> {
+    let Context { toolpath, model, options, .. } = *context;
+    let count = toolpath.moves.len();
+    let mut as_rounded = Predictor::new(toolpath.start, model);
+    let mut safety = safety::Check::new(options.max_shift_mm, context.limits);
+    let mut out = Checked {
+        plans: Vec::with_capacity(count),
+        diagnostics: Vec::new(),
+        figures: context.runs.iter().map(|r| RunFigures { moves: r.moves.clone(), ..RunFigures::default() }).collect(),
+        totals: Totals::default(),
+        paths: Paths::default(),
+        needs: vec![false; count],
+        motion: MotionBlocks::new(context.program, context.lowered, context.tools),
+    };
+    let mut ranges = vec![0..0; count];
+    let mut run = 0;
+    let mut rewritten = 0;
+    while let Ok(mut piece) = checking.recv() {
+        fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
+        let input = PlanInput {
+            toolpath,
+            samples: &piece.samples,
+            commanded: &piece.commanded,
+            ranges: &ranges,
+            writable: &context.writable,
+            radius: &context.radius,
+            tools: context.tools,
+        };
+        piece.rounded.extend(piece.samples.iter().map(|s| s.nominal));
+        let grid = |k| context.grid(k);
+        quantised::commanded_moves(&input, piece.moves.start, &piece.plans, grid, &mut piece.rounded);
+        let fresh = piece.fresh();
+        let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
+        let commanded = piece.commanded.get(fresh.clone()).unwrap_or_default();
+        as_rounded.predict(samples, piece.rounded.get(fresh).unwrap_or_default(), &mut piece.after);
+        safety.add(toolpath, samples, commanded);
+        measure(context, &piece, &mut out, &mut run);
+        if options.paths {
+            out.paths.samples.extend_from_slice(samples);
+            out.paths.uncompensated.extend_from_slice(&piece.uncompensated);
+            out.paths.compensated.extend_from_slice(&piece.after);
+        }
+        // Every motion block's run that ends in this piece lies in it (`pieces`).
+        while let Some(r) = context.runs.get(rewritten).filter(|r| r.moves.end <= piece.moves.end) {
+            let first = r.moves.start.max(piece.moves.start) - piece.moves.start;
+            let last = r.moves.end - piece.moves.start;
+            out.motion.add(r, piece.plans.get(first..last).unwrap_or_default());
+            rewritten += 1;
+        }
+        out.plans.append(&mut piece.plans);
+        // The solver may have finished: then the piece is dropped.
+        let _ = to_reuse.try_send(piece);
+    }
+    out.diagnostics = safety.finish();
+    out
+}
+
+/// Tally a piece's own samples into the run figures and the totals, and mark the moves
+/// whose correction exceeds the tolerance.
+fn measure(context: &Context<'_>, piece: &Piece, out: &mut Checked<'_, '_>, run: &mut usize) {
+    let tolerance = context.options.fit.tolerance_mm;
+    let fresh = piece.fresh();
+    let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
+    let commanded = piece.commanded.get(fresh).unwrap_or_default();
+    let points = samples.iter().zip(commanded).zip(&piece.before).zip(&piece.after);
+    for (((s, c), &before), &after) in points {
+        let correction = c.distance(s.nominal);
+        let after = context.path.distance(s, after);
+        let totals = &mut out.totals;
+        totals.samples += 1;
+        totals.max_correction_mm = totals.max_correction_mm.max(correction);
+        if correction > tolerance
+            && let Some(needs) = out.needs.get_mut(s.move_index)
+        {
+            *needs = true;
+        }
+        if let Some(d) = before {
+            totals.before.add(d);
+        }
+        if let Some(d) = after {
+            totals.after.add(d);
+        }
+        while out.figures.get(*run).is_some_and(|r| r.moves.end <= s.move_index) {
+            *run += 1;
+        }
+        if let Some(figures) = out.figures.get_mut(*run) {
+            figures.correction.add(correction);
+            if let Some(d) = before {
+                figures.before.add(d);
+            }
+            if let Some(d) = after {
+                figures.after.add(d);
+            }
+        }
+    }
+}
+
+/// The samples of each of `moves` (`written::sample_ranges`), as indices into a piece's
+/// samples whose first `lead` belong to earlier moves.
+fn fill_ranges(ranges: &mut [Range<usize>], moves: Range<usize>, samples: &[PathSample], lead: usize) {
+    let mut k = lead;
+    // A dwell (no samples) sits at the end of the previous move's samples.
+    for index in moves {
+        let start = k;
+        while samples.get(k).is_some_and(|s| s.move_index == index) {
+            k += 1;
+        }
+        if let Some(range) = ranges.get_mut(index) {
+            *range = start..k;
+        }
+    }
+}
