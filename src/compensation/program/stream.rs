@@ -68,6 +68,25 @@ impl Context<'_> {
     fn grid(&self, index: usize) -> Grid {
         Grid::new(&self.lowered.coordinates_at(index))
     }
+
+    /// What planning and rounding read of a piece (its samples and their ideal commands),
+    /// with the sample ranges of its moves.
+    fn plan_input<'p>(
+        &'p self,
+        samples: &'p [PathSample],
+        commanded: &'p [Xz],
+        ranges: &'p [Range<usize>],
+    ) -> PlanInput<'p> {
+        PlanInput {
+            toolpath: self.toolpath,
+            samples,
+            commanded,
+            ranges,
+            writable: &self.writable,
+            radius: &self.radius,
+            tools: self.tools,
+        }
+    }
 }
 
 /// Program-wide figures, tallied over every sample in path order.
@@ -222,16 +241,8 @@ fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_check: &SyncSender
     let mut at = toolpath.start;
     while let Ok(mut piece) = planning.recv() {
         fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
-        let input = PlanInput {
-            toolpath,
-            samples: &piece.samples,
-            commanded: &piece.commanded,
-            ranges: &ranges,
-            writable: &context.writable,
-            radius: &context.radius,
-            tools: context.tools,
-        };
         let mut plans = std::mem::take(&mut piece.plans);
+        let input = context.plan_input(&piece.samples, &piece.commanded, &ranges);
         at = plan_range(&input, piece.moves.clone(), at, |k| context.grid(k), &context.plan_options, &mut plans);
         piece.plans = plans;
         if to_check.send(piece).is_err() {
@@ -264,17 +275,9 @@ fn check<'a, 'src>(
     let mut rewritten = 0;
     while let Ok(mut piece) = checking.recv() {
         fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
-        let input = PlanInput {
-            toolpath,
-            samples: &piece.samples,
-            commanded: &piece.commanded,
-            ranges: &ranges,
-            writable: &context.writable,
-            radius: &context.radius,
-            tools: context.tools,
-        };
         piece.rounded.extend(piece.samples.iter().map(|s| s.nominal));
         let grid = |k| context.grid(k);
+        let input = context.plan_input(&piece.samples, &piece.commanded, &ranges);
         quantised::commanded_moves(&input, piece.moves.start, &piece.plans, grid, &mut piece.rounded);
         let fresh = piece.fresh();
         let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
