@@ -14,32 +14,38 @@
 //! **The own point.** An original's sample knows its own point. A compensated sample's
 //! nominal point `c` lies on the compensated path, whose moves do not correspond to the
 //! original's one for one (edited blocks, densified lines, moves added at reversals), so its
-//! own point is found by a monotone walk: the first cutting move of the original, from the
-//! previous match's move forward over `WINDOW_MM` of cutting length (and the `NEIGHBOURS`
-//! next cutting moves, however long), that comes within `MATCH_MM` of `c`, and its closest
-//! point to `c`.
+//! own point is found by a monotone walk. The candidates are the cutting moves of the
+//! original from the previous match's move forward over `WINDOW_MM` of cutting length (and
+//! the `NEIGHBOURS` next cutting moves, however long); the match is the first candidate
+//! within `SLACK_MM` of the closest candidate's distance to `c` (and within `MATCH_MM`), at
+//! its closest point to `c`. The point is then measured against the moves within the window
+//! about the match and the rest of the candidates.
 //!
 //! **Why the walk is exact.** Both programs cut in the same order, and `compensate` moves
 //! each point by its correction, at most `--max-shift` (`MATCH_MM`, 0.1 mm, by default; a few
-//! micrometres on a healthy machine). So `c` is within `MATCH_MM` of the original point `n`
-//! it was corrected from, on the move `own`. The walk never passes `own`: `own` itself is a
-//! candidate within `MATCH_MM`, and the walk takes the first candidate. Nor does it fall
-//! far behind: from one sample to the next the compensated path goes on by at most a
-//! sampling step and `n` by at most a step and twice the shift along the original's cutting
-//! path (rapids and other moves that do not cut count for no length: a cut resumes where the
-//! next pass starts), far less than the window, so `own` is in the window searched; the
-//! match is `own` or an earlier move that also comes within `MATCH_MM` of `c` — the move
-//! just before a corner, or a pass that crosses `own` — and the window about that match
-//! holds `own` again, with every pass overlapping within the window, and so the closest of
-//! them. Taking the closest candidate instead of the first would run ahead onto a later
-//! pass that happens to come closer to `c`, and lose `own` behind it.
+//! micrometres on a healthy machine). So `c` is within the shift of the original point `n`
+//! it was corrected from, on the move `own`. From one sample to the next the compensated
+//! path goes on by at most a sampling step and `n` by at most a step and twice the shift
+//! along the original's cutting path (rapids and other moves that do not cut count for no
+//! length: a cut resumes where the next pass starts), far less than the window, so `own` is
+//! a candidate while the previous match is not past it. The match is never past `own`: a
+//! later candidate is taken only where `own` is further from `c` than the closest candidate
+//! by more than `SLACK_MM`, which a correction of micrometres never is. It may be an earlier
+//! move that comes as close to `c` (the move before a corner, a pass crossing `own`, the
+//! way back of a zigzag running beside its way out); the moves measured against hold the
+//! candidates, and so `own` and every pass overlapping it ahead within the window, and the
+//! window about the match every pass overlapping behind. The closest of them is found. With
+//! the first candidate within `MATCH_MM` as the match, the walk would stay on the way out of
+//! a zigzag while its way back goes on beside it, beyond the window; with the closest, it
+//! would run ahead onto a later pass that happens to come closer to `c`, and lose `own`
+//! behind it.
 //!
 //! **Where the walk fails.** A compensated point further than `MATCH_MM` from every
 //! candidate (an added excursion, a program that is not a compensation of the original, a
-//! `--max-shift` above the default) is matched over the whole original path (`PathIndex`,
-//! built the first time it is needed), and the walk resumes from there; a point further
-//! than `MATCH_MM` from the whole path is measured against the whole path. Such points cost
-//! a whole-path search each.
+//! `--max-shift` above the default) is measured against the whole original path
+//! (`PathIndex`, built the first time it is needed), and the walk resumes from the whole
+//! path's closest point to `c` where that is within `MATCH_MM`. Such points cost a
+//! whole-path search each.
 
 use std::cell::OnceCell;
 use std::ops::RangeInclusive;
@@ -51,6 +57,9 @@ use crate::toolpath::{Motion, Xz};
 /// next match is searched for, and how far either side of a point's own point its closest
 /// point is, mm: many sampling steps and shifts.
 const WINDOW_MM: f64 = 10.0;
+/// How much further from a compensated nominal point than the closest candidate the match
+/// may be, mm: the first candidate this close is taken (see the module documentation).
+const SLACK_MM: f64 = 0.02;
 /// The cutting moves either side of a match that every window holds, however long.
 const NEIGHBOURS: usize = 2;
 /// The farthest a compensated nominal point is taken to be from its own point on the
@@ -89,26 +98,42 @@ impl<'a> Follower<'a> {
     /// The distance of `p`, predicted for the cutting sample at `nominal`, from the
     /// original's nominal path (see the module documentation).
     pub fn distance(&mut self, nominal: Xz, p: Xz) -> Option<f64> {
-        let ahead = self.window(0.0, WINDOW_MM);
-        let ahead = self.move_index.max(*ahead.start())..=*ahead.end();
-        let first = ahead.filter_map(|k| self.path.closest_on(k, nominal).map(|c| (c.distance, k, c)));
-        let matched = first.into_iter().find(|&(distance, _, _)| distance <= MATCH_MM).or_else(|| {
-            let (distance, k) = self.index().closest(nominal)?;
-            (distance <= MATCH_MM).then(|| self.path.closest_on(k, nominal).map(|c| (c.distance, k, c)))?
-        });
-        match matched {
-            Some((_, k, closest)) => self.distance_from(k, closest.param, p),
-            None => self.index().distance(p),
-        }
+        let window = self.window(0.0, WINDOW_MM);
+        let ahead = self.move_index.max(*window.start())..=*window.end();
+        let candidates: Vec<_> =
+            ahead.clone().filter_map(|k| self.path.closest_on(k, nominal).map(|c| (c.distance, k, c))).collect();
+        let best = candidates.iter().map(|&(distance, _, _)| distance).fold(f64::INFINITY, f64::min);
+        let limit = MATCH_MM.min(best + SLACK_MM);
+        let matched = candidates.into_iter().find(|&(distance, _, _)| distance <= limit);
+        let Some((_, k, closest)) = matched else {
+            // Lost: match over the whole path, measure against the whole path.
+            if let Some((distance, k)) = self.index().closest(nominal)
+                && distance <= MATCH_MM
+                && let Some(closest) = self.path.closest_on(k, nominal)
+            {
+                self.move_to(k, closest.param);
+            }
+            return self.index().distance(p);
+        };
+        self.move_to(k, closest.param);
+        // The window about the match, and the rest of the window searched, which holds the
+        // point's own move wherever the match is an earlier move that comes as close.
+        let around = self.window(WINDOW_MM, WINDOW_MM);
+        let moves = *around.start().min(ahead.start())..=*around.end().max(ahead.end());
+        self.closest_in(moves, p).map(|(distance, _, _)| distance)
+    }
+
+    fn move_to(&mut self, k: usize, param: f64) {
+        let start = if k == 0 { 0.0 } else { self.cut_ends.get(k - 1).copied().unwrap_or(0.0) };
+        self.move_index = k;
+        self.at = start + self.path.length_of(k) * param.clamp(0.0, 1.0);
     }
 
     /// The distance of `p`, predicted for the point at `param` of the original's move `k`,
     /// from the original's nominal path: the closest cutting move within `WINDOW_MM` of that
     /// point (and the `NEIGHBOURS` cutting moves either side).
     pub fn distance_from(&mut self, k: usize, param: f64, p: Xz) -> Option<f64> {
-        let start = if k == 0 { 0.0 } else { self.cut_ends.get(k - 1).copied().unwrap_or(0.0) };
-        self.move_index = k;
-        self.at = start + self.path.length_of(k) * param.clamp(0.0, 1.0);
+        self.move_to(k, param);
         self.closest_in(self.window(WINDOW_MM, WINDOW_MM), p).map(|(distance, _, _)| distance)
     }
 

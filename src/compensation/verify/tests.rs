@@ -167,3 +167,22 @@ fn a_program_verified_against_itself_deviates_as_much_before_as_after() {
     assert!(figures.before.max_mm > 0.001, "{figures:?}");
     assert_eq!(figures.before, figures.after);
 }
+
+/// A pass, then 0.05 mm above it the way back in two feeds: every point of the way back is
+/// within the shift of the first pass, which comes earlier (the generator's zigzags do this,
+/// an arc and the feeds back beside it). `shift` moves the compensated program's X.
+fn there_and_back(shift: f64, pieces: bool) -> String {
+    let middle = if pieces { "Z-3.\nZ-9.\n" } else { "" };
+    format!(
+        "G21 G99\nG97 S1000 M03\nG00 X{a:.3} Z1.\nG01 Z0. F0.2\n{middle}Z-12.\nX{b:.3}\nZ-6.\nZ1.\nG00 X50. Z5.\nM30\n",
+        a = 20.0 + shift,
+        b = 20.1 + shift
+    )
+}
+
+#[test]
+fn the_way_back_beside_a_pass_is_measured_against_itself_not_the_pass() {
+    let (original, _) = lower_program(&there_and_back(0.0, false));
+    let (compensated, _) = lower_program(&there_and_back(0.006, true));
+    assert_equal(&followed_and_brute_force(&original.toolpath, &compensated.toolpath));
+}
