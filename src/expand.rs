@@ -25,7 +25,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
     let mut edits = Edits::new();
     let mut notes = Vec::new();
     let calls: std::collections::HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
-    let radius_arcs = uses_radius_arcs(program);
+    let style = ProgramStyle::of(program);
     for expansion in &lowered.expansions {
         let moves = &lowered.toolpath.moves[expansion.moves.clone()];
         let start = lowered.toolpath.start_of(expansion.moves.start);
@@ -38,7 +38,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(expansion.moves.start).shift;
-        match expansion_blocks(program, expansion, moves, start, compensation_before, shift, radius_arcs) {
+        match expansion_blocks(program, expansion, moves, start, compensation_before, shift, style) {
             ExpansionBlocks::Keep => {}
             ExpansionBlocks::Blocks(blocks) => {
                 edits.replace(expansion.block, blocks);
@@ -66,8 +66,8 @@ pub(crate) enum ExpansionBlocks {
 /// The blocks that replace `expansion`'s call block when the cycle makes `moves` from
 /// `start` (programmed contour points: `Move.contour`, arcs about `Move.centre`), with
 /// `compensation_before` in force before it and the program's coordinates shifted by
-/// `shift` (`G50 X Z`), arcs by radius when `radius_arcs` (`uses_radius_arcs`, read once per
-/// program: it reads every block). `expand` passes the cycle's own moves, the compensation pass its
+/// `shift` (`G50 X Z`), in the program's `style` (`ProgramStyle::of`, read once per program:
+/// it reads every block). `expand` passes the cycle's own moves, the compensation pass its
 /// compensated ones.
 pub(crate) fn expansion_blocks(
     program: &Program<'_>,
@@ -76,7 +76,7 @@ pub(crate) fn expansion_blocks(
     start: Xz,
     compensation_before: Compensation,
     shift: Xz,
-    radius_arcs: bool,
+    style: ProgramStyle,
 ) -> ExpansionBlocks {
     let tables = program.config().tables();
     let thread_code = tables.code_for(GFunction::ThreadMove);
@@ -93,7 +93,7 @@ pub(crate) fn expansion_blocks(
         frame,
         shift,
         places: increment_places(frame.increment),
-        radius_arcs,
+        radius_arcs: style.radius_arcs,
         dialect: program.config().dialect,
         thread_code: thread_code.unwrap_or(Code::whole(32)),
         compensation_codes,
@@ -104,7 +104,7 @@ pub(crate) fn expansion_blocks(
     };
     if thread_code.is_none() && moves.iter().any(|m| m.threading) {
         // No thread move in this dialect: passes become single-pass cycle blocks.
-        return match thread_pass::expand(program, expansion, moves, start, &mut writer) {
+        return match thread_pass::expand(program, expansion, moves, start, style, &mut writer) {
             thread_pass::Threads::Keep => ExpansionBlocks::Keep,
             thread_pass::Threads::Blocks(blocks) => ExpansionBlocks::Blocks(blocks),
             thread_pass::Threads::NotExpandable => ExpansionBlocks::NotExpandable,
@@ -146,6 +146,37 @@ pub(crate) fn increment_places(increment: f64) -> u8 {
         places += 1;
     }
     places
+}
+
+/// What the blocks written for a cycle take from the whole program. Each reads every block,
+/// so a pass that writes many cycles reads them once (`ProgramStyle::of`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ProgramStyle {
+    /// Arcs are written with a radius (`uses_radius_arcs`).
+    pub radius_arcs: bool,
+    /// Some block turns thread chamfering on (OSP `M23`): an unchamfered thread pass then
+    /// writes chamfering off (`thread_pass.rs`).
+    pub thread_chamfering: bool,
+}
+
+impl ProgramStyle {
+    pub(crate) fn of(program: &Program<'_>) -> ProgramStyle {
+        let chamfer_on = program.config().tables().m_functions.thread_chamfer_on.first().copied();
+        ProgramStyle {
+            radius_arcs: uses_radius_arcs(program),
+            thread_chamfering: chamfer_on.is_some_and(|m| program_uses_m(program, m)),
+        }
+    }
+}
+
+/// Whether any block of the program writes M code `m`.
+fn program_uses_m(program: &Program<'_>, m: u16) -> bool {
+    program.blocks().iter().any(|block| {
+        program
+            .words_of(block)
+            .iter()
+            .any(|w| matches!(w.kind, WordKind::Code { letter: CodeLetter::M, code } if code.major() == m))
+    })
 }
 
 /// Whether the program writes its arcs with a radius (`R`, OSP `L`) rather than `I K`.

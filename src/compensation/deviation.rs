@@ -13,9 +13,10 @@
 //! micrometre of its area several times) and ever more expensive to search. The stretch
 //! holds a few moves, so a whole program is measured in time linear in its size.
 //!
-//! `verify` compares two programs whose moves do not correspond, and measures against the
-//! whole original path (`PathIndex`, a uniform grid of cells): linear in the program's
-//! size while its passes keep their distance, as real passes do.
+//! `verify` compares two programs whose moves do not correspond: it follows the original's
+//! path along the compensated program (`verify/follow.rs`) and measures against a window of
+//! the original's path around each point's own point, falling back to the whole path
+//! (`PathIndex`, a uniform grid of cells) for points that stray from it.
 //!
 //! **SSQ** is the thesis' eq. 5.8, the root of the sum of the squares of the errors,
 //! `SSQ = [Σ P_i²]^½`, where the thesis' `P_i` is the radial error of the ball bar (for
@@ -128,6 +129,14 @@ pub struct LocalPath<'a> {
     arcs: Vec<Option<ArcConstants>>,
 }
 
+/// The closest point of a move to a point (`LocalPath::closest_on`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Closest {
+    pub distance: f64,
+    pub param: f64,
+    pub point: Xz,
+}
+
 /// What `distance_to_move` computes of an arc before it looks at the point.
 #[derive(Debug, Clone, Copy)]
 struct ArcConstants {
@@ -159,15 +168,24 @@ impl<'a> LocalPath<'a> {
     /// twice its distance from the sample along the path; `None` for a sample that does not
     /// cut.
     pub fn distance(&self, sample: &PathSample, p: Xz) -> Option<f64> {
-        let k = sample.move_index;
+        if !sample.cutting {
+            return None;
+        }
+        self.distance_around(sample.move_index, sample.param, sample.nominal, p)
+    }
+
+    /// The distance from `p` to the closest cutting move within twice its distance from
+    /// `anchor` along the path, where `anchor` is the point at `param` of move `k`; `None`
+    /// when move `k` does not cut.
+    pub fn distance_around(&self, k: usize, param: f64, anchor: Xz, p: Xz) -> Option<f64> {
         let m = self.toolpath.moves.get(k)?;
-        if !sample.cutting || !m.cutting || m.motion == Motion::Dwell {
+        if !m.cutting || m.motion == Motion::Dwell {
             return None;
         }
         let end = self.ends.get(k).copied().unwrap_or(0.0);
         let start = if k == 0 { 0.0 } else { self.ends.get(k - 1).copied().unwrap_or(0.0) };
-        let at = start + (end - start) * sample.param.clamp(0.0, 1.0);
-        let reach = 2.0 * p.distance(sample.nominal);
+        let at = start + (end - start) * param.clamp(0.0, 1.0);
+        let reach = 2.0 * p.distance(anchor);
         let mut best = self.distance_to(p, k);
         for before in (0..k).rev() {
             if at - self.ends[before] > reach {
@@ -182,6 +200,52 @@ impl<'a> LocalPath<'a> {
             best = best.min(self.distance_to(p, after));
         }
         best.is_finite().then_some(best)
+    }
+
+    /// The toolpath it measures against.
+    pub fn toolpath(&self) -> &'a Toolpath {
+        self.toolpath
+    }
+
+    /// The length of move `k`, mm (0 for a dwell or a move that does not exist).
+    pub fn length_of(&self, k: usize) -> f64 {
+        let end = self.ends.get(k).copied().unwrap_or(0.0);
+        let start = if k == 0 { 0.0 } else { self.ends.get(k - 1).copied().unwrap_or(end) };
+        (end - start).max(0.0)
+    }
+
+    /// The closest point of move `k` to `p` when the move cuts: its distance (as
+    /// `distance_to` measures it), its parameter along the move (0 at the start, 1 at the
+    /// end; by length along an arc) and the point.
+    pub fn closest_on(&self, k: usize, p: Xz) -> Option<Closest> {
+        let m = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell)?;
+        let start = self.toolpath.start_of(k);
+        let endpoint = |param: f64, point: Xz| Closest { distance: p.distance(point), param, point };
+        let closest = match self.arcs.get(k).copied().flatten() {
+            Some(ArcConstants { radius, a0, total }) => {
+                let a = geometry::angle(p, m.centre);
+                let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+                if delta <= total + 1e-12 {
+                    let param = if total > 0.0 { (delta / total).min(1.0) } else { 0.0 };
+                    let distance = (p.distance(m.centre) - radius).abs();
+                    Closest { distance, param, point: geometry::on_circle(m.centre, radius, a) }
+                } else {
+                    let (from_start, from_end) = (endpoint(0.0, start), endpoint(1.0, m.end));
+                    if from_end.distance < from_start.distance { from_end } else { from_start }
+                }
+            }
+            None => {
+                let (dx, dz) = (m.end.x - start.x, m.end.z - start.z);
+                let length2 = dx * dx + dz * dz;
+                let t = if length2 > 0.0 {
+                    (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                endpoint(t, Xz::new(start.x + dx * t, start.z + dz * t))
+            }
+        };
+        Some(Closest { distance: self.distance_to(p, k), ..closest })
     }
 
     /// The distance to move `k` when it cuts (infinity otherwise): `distance_to_move`, with
@@ -266,7 +330,23 @@ impl<'a> PathIndex<'a> {
 
     /// The distance from `p` to the closest indexed move, if any.
     pub fn distance(&self, p: Xz) -> Option<f64> {
-        let mut best = self.large.iter().map(|&k| self.distance_to(p, k)).fold(f64::INFINITY, f64::min);
+        self.closest(p).map(|(distance, _)| distance)
+    }
+
+    /// The distance from `p` to the closest indexed move and that move's index, if any (the
+    /// first such move in the program where several are equally close).
+    pub fn closest(&self, p: Xz) -> Option<(f64, usize)> {
+        let mut best = (f64::INFINITY, usize::MAX);
+        let consider = |k: u32, best: &mut (f64, usize)| {
+            let d = self.distance_to(p, k);
+            let k = k as usize;
+            if d < best.0 || (d == best.0 && k < best.1) {
+                *best = (d, k);
+            }
+        };
+        for &k in &self.large {
+            consider(k, &mut best);
+        }
         let (cx, cz) = self.key(p);
         // Search rings of cells outward: after ring r every unseen move is at least
         // r cells away.
@@ -278,22 +358,22 @@ impl<'a> PathIndex<'a> {
                     }
                     if let Some(moves) = self.cells.get(&(x, z)) {
                         for &k in moves {
-                            best = best.min(self.distance_to(p, k));
+                            consider(k, &mut best);
                         }
                     }
                 }
             }
-            if best <= r as f64 * self.cell {
+            if best.0 <= r as f64 * self.cell {
                 return Some(best);
             }
         }
         // Far from everything: look at every move.
         for moves in self.cells.values() {
             for &k in moves {
-                best = best.min(self.distance_to(p, k));
+                consider(k, &mut best);
             }
         }
-        best.is_finite().then_some(best)
+        best.0.is_finite().then_some(best)
     }
 
     fn distance_to(&self, p: Xz, k: u32) -> f64 {

@@ -5,8 +5,10 @@
 //! **Deviation.** Both programs are sampled and run through the model as written (the
 //! forward model, `inverse::predict`, with the nominal path of each as its command). Each
 //! predicted cutting point is measured against the ORIGINAL's nominal path, by its closest
-//! point (`deviation.rs`): the original's own prediction gives the error before
-//! compensation, the compensated program's the error after.
+//! point within a window of the original's path about the point's own nominal point
+//! (`follow.rs`, which finds a compensated point's own point by following the original
+//! along): the original's own prediction gives the error before compensation, the
+//! compensated program's the error after.
 //!
 //! **Words.** Every word that is not motion — M codes, T, comments, block-delete slashes,
 //! program names and numbers — must appear in the compensated program in the same order
@@ -20,9 +22,15 @@ use crate::source::Span;
 use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::Toolpath;
 
-use super::deviation::{Figures, PathIndex};
+use super::deviation::{Figures, LocalPath};
 use super::inverse::predict;
 use super::sampling::sample_toolpath;
+
+mod follow;
+#[cfg(test)]
+mod tests;
+
+use follow::Follower;
 
 /// The predicted deviation from the original's nominal path, before and after.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -40,15 +48,25 @@ pub fn deviation(
     model: &ErrorModel,
     step_mm: f64,
 ) -> Deviation {
-    let index = PathIndex::new(original, |m| m.cutting);
-    let measure = |toolpath: &Toolpath| {
+    let predicted = |toolpath: &Toolpath| {
         let samples = sample_toolpath(toolpath, tools, step_mm);
         let nominal: Vec<_> = samples.iter().map(|s| s.nominal).collect();
         let predicted = predict(&samples, &nominal, toolpath.start, model);
-        Figures::of(samples.iter().zip(&predicted).filter(|(s, _)| s.cutting).filter_map(|(_, &p)| index.distance(p)))
+        (samples, predicted)
     };
-    let before = measure(original);
-    let after = measure(compensated);
+    let path = LocalPath::new(original);
+    let before = {
+        let (samples, points) = predicted(original);
+        let mut follower = Follower::new(&path);
+        let cutting = samples.iter().zip(&points).filter(|(s, _)| s.cutting);
+        Figures::of(cutting.filter_map(|(s, &p)| follower.distance_from(s.move_index, s.param, p)))
+    };
+    let after = {
+        let (samples, points) = predicted(compensated);
+        let mut follower = Follower::new(&path);
+        let cutting = samples.iter().zip(&points).filter(|(s, _)| s.cutting);
+        Figures::of(cutting.filter_map(|(s, &p)| follower.distance(s.nominal, p)))
+    };
     let improvement_percent = (before.improvement_percent(&after) * 1e4).round() / 1e4;
     Deviation { before: before.rounded(), after: after.rounded(), improvement_percent }
 }

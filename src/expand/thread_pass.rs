@@ -25,7 +25,7 @@ use crate::semantic::cycles::thread_pass::{Axes, Pass};
 use crate::syntax::{CodeLetter, Command, Program, Statement, WordKind};
 use crate::toolpath::{Motion, Move, Xz};
 
-use super::{BlockWriter, feed_number};
+use super::{BlockWriter, ProgramStyle, feed_number};
 
 /// What to do with a cycle whose moves include thread moves.
 pub(super) enum Threads {
@@ -46,6 +46,7 @@ pub(super) fn expand(
     expansion: &Expansion,
     moves: &[Move],
     start: Xz,
+    style: ProgramStyle,
     writer: &mut BlockWriter,
 ) -> Threads {
     let tables = program.config().tables();
@@ -88,7 +89,7 @@ pub(super) fn expand(
     let speed_word = command.param(Role::Speed).map(NewWord::Copy);
     let chamfer_on = tables.m_functions.thread_chamfer_on.first().copied();
     let chamfer_off = tables.m_functions.thread_chamfer_off.first().copied();
-    let chamfering_used = chamfer_on.is_some_and(|m| program_uses_m(program, m));
+    let chamfering_used = style.thread_chamfering;
 
     let mut blocks = Vec::new();
     // The words of each pass, and where its block goes among `blocks`.
@@ -167,16 +168,6 @@ fn call_command<'p>(program: &'p Program<'_>, block: usize) -> Option<&'p Comman
         Statement::Cycle(id) | Statement::LapCall(id) => Some(program.command(id)),
         _ => None,
     }
-}
-
-/// Whether any block of the program writes M code `m`.
-fn program_uses_m(program: &Program<'_>, m: u16) -> bool {
-    program.blocks().iter().any(|block| {
-        program
-            .words_of(block)
-            .iter()
-            .any(|w| matches!(w.kind, WordKind::Code { letter: CodeLetter::M, code } if code.major() == m))
-    })
 }
 
 /// The pass beginning at `moves[0]` (tool at `from`), and how many moves it takes, if the

@@ -143,7 +143,7 @@ pub(super) fn write(
     let mut by_block: BTreeMap<usize, Vec<NewBlock>> = BTreeMap::new();
     let mut refused = HashSet::new();
     let mut written = Vec::new();
-    let radius_arcs = expand::uses_radius_arcs(program);
+    let style = expand::ProgramStyle::of(program);
     for (expansion, _) in lowered.expansions.iter().zip(chosen).filter(|(_, chosen)| **chosen) {
         let range = expansion.moves.clone();
         let (Some(moves), Some(cycle_plans)) = (lowered.toolpath.moves.get(range.clone()), plans.get(range.clone()))
@@ -165,7 +165,7 @@ pub(super) fn write(
             start,
             compensation_before,
             shift,
-            radius_arcs,
+            style,
         ) {
             ExpansionBlocks::Blocks(blocks) => with_call_words(program, expansion.block, blocks),
             ExpansionBlocks::Keep | ExpansionBlocks::NotExpandable => {

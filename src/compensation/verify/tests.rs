@@ -1,0 +1,188 @@
+use super::*;
+use crate::compensation::deviation::distance_to_move;
+use crate::compensation::sampling::PathSample;
+use crate::compensation::test_support::lower_program;
+use crate::error_model::effects::*;
+use crate::toolpath::{Motion, Xz};
+
+/// The closest cutting move of the whole of `toolpath` to `p`, by looking at every move.
+fn brute_force(toolpath: &Toolpath, p: Xz) -> f64 {
+    (toolpath.moves.iter().enumerate())
+        .filter(|(_, m)| m.cutting && m.motion != Motion::Dwell)
+        .map(|(k, m)| distance_to_move(p, toolpath.start_of(k), m))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// A point a few micrometres off `sample`, different for each sample (a model's errors).
+fn predicted(index: usize, sample: &PathSample) -> Xz {
+    let angle = index as f64 * 2.399_963;
+    let size = 0.002 + 0.008 * ((index * 7919) % 101) as f64 / 100.0;
+    Xz::new(sample.nominal.x + size * angle.sin(), sample.nominal.z + size * angle.cos())
+}
+
+/// Every cutting sample of `compensated` followed along `original` and measured, against the
+/// brute-force closest point of the whole of `original`.
+fn followed_and_brute_force(original: &Toolpath, compensated: &Toolpath) -> Vec<(f64, f64)> {
+    let path = LocalPath::new(original);
+    let mut follower = Follower::new(&path);
+    let samples = sample_toolpath(compensated, &ToolTable::default(), 0.254);
+    let cutting = samples.iter().enumerate().filter(|(_, s)| s.cutting);
+    let pairs: Vec<_> = cutting
+        .map(|(i, s)| {
+            let p = predicted(i, s);
+            (follower.distance(s.nominal, p).expect("a distance"), brute_force(original, p))
+        })
+        .collect();
+    assert!(pairs.len() > 20, "{}", pairs.len());
+    pairs
+}
+
+fn assert_equal(pairs: &[(f64, f64)]) {
+    for (i, (followed, brute)) in pairs.iter().enumerate() {
+        assert!((followed - brute).abs() < 1e-9, "point {i}: followed {followed}, whole path {brute}");
+    }
+}
+
+/// Passes piled up over the same square millimetre in the generator's style: short feeds
+/// back and forth across each other, arcs through them, the tool away and back by rapids,
+/// each pass crossing the others again and again. Radius programming is not needed: X is
+/// a diameter, so the square is 2 mm of diameter by 1 mm of Z.
+const PILED: &str = "\
+G21 G99
+G97 S1000 M03
+G00 X22. Z1.
+G01 X20. Z0. F0.1
+X21.6 Z-0.8
+X20.2 Z-0.3
+G02 X21.8 Z-0.2 R0.9
+G01 X20.4 Z-0.9
+G00 X24. Z1.
+X21.9 Z0.1
+G01 X20.1 Z-0.6
+G03 X21.5 Z-0.95 R0.8
+G01 X20.05 Z-0.05
+X21.95 Z-0.5
+G00 X24. Z1.
+M30
+";
+
+/// The same passes as `PILED` as a compensated program writes them: every point moved by a
+/// few micrometres, and one feed cut in two where a correction changes along it.
+const PILED_COMPENSATED: &str = "\
+G21 G99
+G97 S1000 M03
+G00 X22.006 Z0.997
+G01 X20.004 Z-0.002 F0.1
+X20.805 Z-0.402
+X21.598 Z-0.803
+X20.206 Z-0.301
+G02 X21.802 Z-0.203 R0.9
+G01 X20.397 Z-0.904
+G00 X24. Z1.
+X21.903 Z0.098
+G01 X20.104 Z-0.603
+G03 X21.497 Z-0.951 R0.8
+G01 X20.053 Z-0.047
+X21.956 Z-0.502
+G00 X24. Z1.
+M30
+";
+
+#[test]
+fn passes_piled_up_over_each_other_are_measured_against_the_closest_of_them() {
+    let (original, _) = lower_program(PILED);
+    let (compensated, _) = lower_program(PILED_COMPENSATED);
+    let pairs = followed_and_brute_force(&original.toolpath, &compensated.toolpath);
+    // The test means something only if some points are closer to another pass than to
+    // their own: the brute-force closest of those is another pass, and it must be found.
+    let path = LocalPath::new(&original.toolpath);
+    let samples = sample_toolpath(&original.toolpath, &ToolTable::default(), 0.254);
+    let elsewhere = (samples.iter().enumerate().filter(|(_, s)| s.cutting))
+        .filter(|&(i, s)| {
+            let p = predicted(i, s);
+            let own = path.closest_on(s.move_index, p).map_or(f64::INFINITY, |c| c.distance);
+            brute_force(&original.toolpath, p) < own - 1e-6
+        })
+        .count();
+    assert!(elsewhere > 0);
+    assert_equal(&pairs);
+}
+
+/// Roughing passes 0.5 mm apart in diameter, each 20 mm long and up 0.2 mm at its end,
+/// away and back by rapids, then a finishing contour with an arc below them all: no pass
+/// comes within 0.1 mm of another (a model's errors are micrometres), and the walk must
+/// cross the rapids and keep up with a compensated program that writes the long feeds in
+/// pieces.
+fn roughing(compensated: bool) -> String {
+    let mut text = String::from("G21 G99\nG97 S1000 M03\nG00 X42. Z2.\n");
+    let shift = if compensated { 0.006 } else { 0.0 };
+    for pass in 0..12 {
+        let x = 40.0 - 0.5 * pass as f64;
+        text.push_str(&format!("G00 X{:.3} Z1.\nG01 Z0. F0.2\n", x + shift));
+        if compensated {
+            text.push_str("Z-7.003\nZ-13.997\n");
+        }
+        text.push_str(&format!("Z-20.\nX{:.3}\nG00 X42. Z1.\n", x + 0.2 + shift));
+    }
+    text.push_str(&format!(
+        "G00 X30. Z1.\nG01 X{:.3} Z0.\nG03 X{:.3} Z-1.5 R1.5\nG01 Z-20.\nX{:.3}\nG00 X50. Z50.\nM30\n",
+        30.0 + shift,
+        33.0 + shift,
+        34.0 + shift
+    ));
+    text
+}
+
+#[test]
+fn passes_that_keep_their_distance_are_measured_as_the_whole_path_measures_them() {
+    let (original, _) = lower_program(&roughing(false));
+    let (compensated, _) = lower_program(&roughing(true));
+    assert_equal(&followed_and_brute_force(&original.toolpath, &compensated.toolpath));
+}
+
+#[test]
+fn a_point_that_strays_from_the_original_is_measured_against_the_whole_path() {
+    // Half-way along its first pass the compensated program cuts out to 3 mm above every
+    // pass of the original and back: no candidate of the walk comes within the shift
+    // there, the whole path answers, and the walk picks up the pass again where it returns.
+    let original = roughing(false);
+    let strayed = roughing(true).replacen("Z-13.997\n", "X46.006\nZ-13.997\nX40.006\n", 1);
+    let (original, _) = lower_program(&original);
+    let (compensated, _) = lower_program(&strayed);
+    let pairs = followed_and_brute_force(&original.toolpath, &compensated.toolpath);
+    assert!(pairs.iter().any(|&(_, brute)| brute > 1.0));
+    assert_equal(&pairs);
+}
+
+#[test]
+fn a_program_verified_against_itself_deviates_as_much_before_as_after() {
+    let (lowered, machine) = lower_program(PILED);
+    let tools = ToolTable::from_machine(&machine);
+    let model = ErrorModel {
+        tables: None,
+        effects: vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.004 }), Effect::BacklashZ(BacklashZ { b: 0.003 })],
+        start_min: 0.0,
+    };
+    let figures = deviation(&lowered.toolpath, &lowered.toolpath, &tools, &model, 0.254);
+    assert!(figures.before.max_mm > 0.001, "{figures:?}");
+    assert_eq!(figures.before, figures.after);
+}
+
+/// A pass, then 0.05 mm above it the way back in two feeds: every point of the way back is
+/// within the shift of the first pass, which comes earlier (the generator's zigzags do this,
+/// an arc and the feeds back beside it). `shift` moves the compensated program's X.
+fn there_and_back(shift: f64, pieces: bool) -> String {
+    let middle = if pieces { "Z-3.\nZ-9.\n" } else { "" };
+    format!(
+        "G21 G99\nG97 S1000 M03\nG00 X{a:.3} Z1.\nG01 Z0. F0.2\n{middle}Z-12.\nX{b:.3}\nZ-6.\nZ1.\nG00 X50. Z5.\nM30\n",
+        a = 20.0 + shift,
+        b = 20.1 + shift
+    )
+}
+
+#[test]
+fn the_way_back_beside_a_pass_is_measured_against_itself_not_the_pass() {
+    let (original, _) = lower_program(&there_and_back(0.0, false));
+    let (compensated, _) = lower_program(&there_and_back(0.006, true));
+    assert_equal(&followed_and_brute_force(&original.toolpath, &compensated.toolpath));
+}
