@@ -118,6 +118,13 @@ impl Grid {
     /// half circle or stops with "radius too small" turns on its own arithmetic.) A full
     /// circle has only the centre form.
     pub fn arc_words(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, prefer_radius: bool) -> ArcWords {
+        self.arc_words_with_gap(from, end, centre, ccw, prefer_radius).0
+    }
+
+    /// [`Grid::arc_words`], and how far the arc the control runs for them strays from the
+    /// exact arc (as [`Grid::arc_gap`] gives it; infinite for [`ArcWords::Line`]), which the
+    /// choice has measured already.
+    pub fn arc_words_with_gap(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, prefer_radius: bool) -> (ArcWords, f64) {
         let (start, stop) = (self.point(from), self.point(end));
         let exact = ArcSpan::new(from, end, centre, ccw);
         // Rounded ends that meet make the control run a full circle: what an arc of more
@@ -125,13 +132,13 @@ impl Grid {
         // near a shorter one.
         let full = start == stop;
         if full && exact.sweep <= PI {
-            return ArcWords::Line;
+            return (ArcWords::Line, f64::INFINITY);
         }
         let at = self.to_mm(start);
         let by_centre = ArcWords::Centre { i: self.length(centre.x - at.x), k: self.length(centre.z - at.z) };
         let centre_gap = self.gap(&exact, start, stop, by_centre, ccw);
         if full {
-            return if centre_gap.is_finite() { by_centre } else { ArcWords::Line };
+            return if centre_gap.is_finite() { (by_centre, centre_gap) } else { (ArcWords::Line, f64::INFINITY) };
         }
         let radius = from.distance(centre);
         let signed = if exact.sweep > PI + 1e-9 { -radius } else { radius };
@@ -142,10 +149,10 @@ impl Grid {
         let reaches = self.length_mm(count).abs() - at.distance(self.to_mm(stop)) / 2.0 >= increment - 1e-12;
         let radius_holds = reaches && radius_gap <= (increment / 2.0).max(centre_gap);
         match (prefer_radius, radius_holds) {
-            (true, true) => by_radius,
-            _ if centre_gap.is_finite() => by_centre,
-            _ if radius_gap.is_finite() => by_radius,
-            _ => ArcWords::Line,
+            (true, true) => (by_radius, radius_gap),
+            _ if centre_gap.is_finite() => (by_centre, centre_gap),
+            _ if radius_gap.is_finite() => (by_radius, radius_gap),
+            _ => (ArcWords::Line, f64::INFINITY),
         }
     }
 
@@ -293,6 +300,7 @@ mod tests {
                 let signed = if sweep > 180.0 { -radius } else { radius };
                 let by_radius = g.arc_gap(from, end, centre, ccw, ArcWords::Radius(g.length(signed)));
                 let by_centre = g.arc_gap(from, end, centre, ccw, words);
+                assert_eq!(g.arc_words_with_gap(from, end, centre, ccw, true), (words, by_centre));
                 // Rounded up, R puts the centre some 0.03–0.06 mm from where it is.
                 assert!(by_radius > 0.02, "{radius} {sweep}°: R strays {by_radius}");
                 // I K strays by its rounding only: the centre and the ends by half an

@@ -169,12 +169,12 @@ fn settle(grid: &Grid, prefer_radius: bool, from: Xz, segment: Segment, halvings
         out.push(segment);
         return;
     };
-    let words = grid.arc_words(from, end, centre, ccw, prefer_radius);
+    let (words, gap) = grid.arc_words_with_gap(from, end, centre, ccw, prefer_radius);
     if words == ArcWords::Line {
         out.push(Segment::Line { end });
         return;
     }
-    if halvings > 0 && grid.arc_gap(from, end, centre, ccw, words) > grid.increment_mm() {
+    if halvings > 0 && gap > grid.increment_mm() {
         let sweep = geometry::sweep(from, end, centre, ccw);
         let sign = if ccw { 1.0 } else { -1.0 };
         let radius = (from.distance(centre) + end.distance(centre)) / 2.0;
