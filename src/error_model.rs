@@ -21,9 +21,11 @@ pub mod htm;
 pub mod interferometer;
 pub mod model_file;
 pub mod report;
+pub mod spacing;
 pub mod state;
 
 pub use effects::Effect;
+pub use spacing::Spacing;
 pub use state::{Sample, SampleInputs, Tracker};
 
 use crate::toolpath::Xz;
@@ -67,6 +69,15 @@ impl ErrorModel {
     /// The total play of each axis' drive (its backlash effects), for the `Tracker`.
     pub fn play(&self) -> Xz {
         self.effects.iter().map(Effect::play).fold(Xz::new(0.0, 0.0), |a, p| Xz::new(a.x + p.x, a.z + p.z))
+    }
+
+    /// How closely a move must be sampled for the straight interpolation between samples
+    /// to follow the whole model within `allowance` mm; `reach` is the farthest the
+    /// program goes from the origin in each axis (mm, X as a radius). Axis tables keep the
+    /// thesis' step (`spacing.rs`).
+    pub fn spacing(&self, allowance: f64, reach: Xz) -> Spacing {
+        let tables = if self.tables.is_some() { Spacing::mm(spacing::TABLE_STEP_MM) } else { Spacing::ANY };
+        self.effects.iter().fold(tables, |spacing, effect| spacing.closer(effect.spacing(allowance, reach)))
     }
 
     /// Whether the model has any term (an empty model moves nothing).

@@ -66,17 +66,35 @@ impl Figures {
 
 /// The running sums `Figures` are made of, for distances that come one at a time: added in
 /// the same order, they give the same figures as `Figures::of`.
+///
+/// A distance may stand for more or less than one point (`add_along`): compensation
+/// samples a path as sparsely as its model allows, and weighs each sample by the length of
+/// path it stands for, in the thesis' 0.254 mm steps, so that its RMS is the RMS along the
+/// path and its SSQ the one the thesis' sampling would give, however the path was sampled.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Tally {
     max: f64,
     sum2: f64,
+    weight: f64,
     n: usize,
 }
 
 impl Tally {
     pub fn add(&mut self, d: f64) {
-        self.max = self.max.max(d);
-        self.sum2 += d * d;
+        self.add_along(d, None, 1.0);
+    }
+
+    /// A distance at the end of `weight` points of path whose other end is at `previous`
+    /// (`None`: nothing measured there, such as the end of a rapid): the square of the
+    /// distance along them is taken by the trapezoid rule, and the maximum is over both
+    /// ends (the start is on the path the figures describe, even when it was measured as
+    /// the end of the block before).
+    pub fn add_along(&mut self, d: f64, previous: Option<f64>, weight: f64) {
+        let weight = if weight.is_finite() && weight > 0.0 { weight } else { 0.0 };
+        let start = if weight > 0.0 { previous.unwrap_or(d) } else { d };
+        self.max = self.max.max(d).max(start);
+        self.sum2 += weight * (start * start + d * d) / 2.0;
+        self.weight += weight;
         self.n += 1;
     }
 
@@ -84,16 +102,20 @@ impl Tally {
     /// added as one term, so the figures may differ from one tally of all the distances in
     /// the last place).
     pub fn merged(self, other: Tally) -> Tally {
-        Tally { max: self.max.max(other.max), sum2: self.sum2 + other.sum2, n: self.n + other.n }
+        Tally {
+            max: self.max.max(other.max),
+            sum2: self.sum2 + other.sum2,
+            weight: self.weight + other.weight,
+            n: self.n + other.n,
+        }
     }
 
     pub fn figures(&self) -> Figures {
-        let n = self.n;
         Figures {
             max_mm: self.max,
-            rms_mm: if n > 0 { (self.sum2 / n as f64).sqrt() } else { 0.0 },
+            rms_mm: if self.weight > 0.0 { (self.sum2 / self.weight).sqrt() } else { 0.0 },
             ssq_mm: self.sum2.sqrt(),
-            points: n,
+            points: self.n,
         }
     }
 }

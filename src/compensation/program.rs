@@ -11,22 +11,27 @@ mod stream;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::error_model::ErrorModel;
+use crate::error_model::spacing::TABLE_STEP_MM;
 use crate::printer::Edits;
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Lowered, Machine};
 use crate::syntax::Program;
-use crate::toolpath::{ValidToolpath, Xz};
+use crate::toolpath::{Toolpath, ValidToolpath, Xz};
 
 use super::deviation::LocalPath;
 use super::fit::FitOptions;
 use super::plan::PlanOptions;
 use super::report::{Report, ReportInput};
 use super::rewrite;
-use super::sampling::PathSample;
+use super::sampling::{PathSample, Sampling};
 
-/// Samples along cutting moves at most this far apart, mm: the thesis interpolated its
-/// error tables every 0.254 mm (0.01 in).
-pub const SAMPLE_STEP_MM: f64 = 0.254;
+/// Samples along cutting moves at most this far apart where an axis table or a measure
+/// independent of the model needs them, mm: the thesis interpolated its error tables
+/// every 0.254 mm (0.01 in).
+pub const SAMPLE_STEP_MM: f64 = TABLE_STEP_MM;
+
+/// The share of the tolerance the straight interpolation between samples may use.
+const INTERPOLATION_SHARE: f64 = 0.1;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CompensateOptions {
@@ -69,13 +74,33 @@ impl Outcome {
     }
 }
 
-/// The sampling step for `fit`: the thesis' 0.254 mm, or a divisor of the `densify` step so
-/// that its points fall on samples.
-pub fn sample_step(fit: &FitOptions) -> f64 {
-    match fit.step_mm.filter(|s| s.is_finite() && *s > 0.0) {
-        Some(step) => step / (step / SAMPLE_STEP_MM).ceil().max(1.0),
-        None => SAMPLE_STEP_MM,
+/// How closely `compensate` samples `toolpath` for `model`: as the model needs for the
+/// path between samples to follow its correction within a tenth of the tolerance
+/// (`error_model/spacing.rs`), every sixteenth of a turn on arcs, and, for `densify` at a
+/// fixed step, at a divisor of that step so that its points fall on samples.
+pub fn sampling(fit: &FitOptions, model: &ErrorModel, toolpath: &Toolpath) -> Sampling {
+    let allowance = fit.tolerance_mm * INTERPOLATION_SHARE;
+    let mut spacing = model.spacing(allowance, reach(toolpath));
+    if let Some(step) = fit.step_mm.filter(|s| s.is_finite() && *s > 0.0) {
+        spacing.mm = step / (step / spacing.mm).ceil().max(1.0);
     }
+    Sampling { spacing, arc_radians: Sampling::ARC_RADIANS }
+}
+
+/// The farthest `toolpath` goes from the origin in each axis, mm (X as a radius): an
+/// arc's whole circle counts, which bounds it without finding its extremes.
+fn reach(toolpath: &Toolpath) -> Xz {
+    let mut far = Xz::new(toolpath.start.x.abs(), toolpath.start.z.abs());
+    for (index, m) in toolpath.moves.iter().enumerate() {
+        let extra = if m.is_arc() { toolpath.start_of(index).distance(m.centre) } else { 0.0 };
+        let (x, z) = if m.is_arc() {
+            (m.centre.x.abs() + extra, m.centre.z.abs() + extra)
+        } else {
+            (m.end.x.abs(), m.end.z.abs())
+        };
+        far = Xz::new(far.x.max(x), far.z.max(z));
+    }
+    far
 }
 
 /// Compensate `program` (lowered with nose-radius compensation into `lowered`, whose
@@ -98,7 +123,7 @@ pub fn compensate_program(
         model,
         options,
         limits: machine.limits,
-        step: sample_step(&options.fit),
+        sampling: sampling(&options.fit, model, toolpath),
         writable: rewrite::writable_moves(program, lowered),
         radius: rewrite::radius_preference(program, lowered),
         path: LocalPath::new(toolpath),

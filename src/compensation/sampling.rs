@@ -1,7 +1,10 @@
 //! Sampling a toolpath for the error model: points along every move with the state an
 //! effect needs (time, velocity, tool, whether it cuts, the surface normal, the tip).
 //!
-//! Cutting moves (feeds and arcs) are sampled every `step` mm or closer; a rapid only at
+//! Cutting moves (feeds and arcs) are split evenly into as few steps as a `Sampling`
+//! allows: `compensate` asks its model how closely (`error_model/spacing.rs`: one sample
+//! per line when every term is affine along it), `verify`, `diagnose` and `plot` sample
+//! every 0.254 mm whatever the model. A rapid is sampled only at
 //! its end, where the next cut starts (what the tool does between is not on the part);
 //! a dwell not at all. The toolpath's start is the machine's position before the program
 //! and is not a sample: nothing commands it.
@@ -9,6 +12,8 @@
 use std::f64::consts::TAU;
 use std::ops::Range;
 
+use crate::error_model::Spacing;
+use crate::error_model::spacing::TABLE_STEP_MM;
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
@@ -21,6 +26,10 @@ pub struct PathSample {
     pub param: f64,
     /// The nominal tool reference point, mm, X as a radius.
     pub nominal: Xz,
+    /// The length of path this sample stands for, mm: from the previous sample of its move
+    /// (or the move's start) to it. Figures along the path weigh each sample by it, so they
+    /// do not depend on how closely the path was sampled.
+    pub covers_mm: f64,
     /// Seconds since the program started.
     pub t_s: f64,
     /// Commanded velocity, mm/min.
@@ -33,16 +42,46 @@ pub struct PathSample {
     pub tip: Xz,
 }
 
+/// How far apart the samples of a cutting move may be.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sampling {
+    /// Along the path and in time (`Spacing::steps` splits each move evenly).
+    pub spacing: Spacing,
+    /// The largest angle an arc turns between two samples, radians. A correction that
+    /// varies with the direction of travel or with the position (the velocity of servo lag,
+    /// the normal of a nose radius, an affine term seen around an arc) is a sum of the
+    /// arc's first harmonics; at a sixteenth of a turn the chord between samples follows
+    /// such a term to half a percent of its size.
+    pub arc_radians: f64,
+}
+
+impl Sampling {
+    /// The largest angle between an arc's samples when the model would allow fewer.
+    pub const ARC_RADIANS: f64 = std::f64::consts::PI / 16.0;
+
+    /// Every `step` mm along cutting moves, whatever the model: how `verify`, `diagnose`
+    /// and `plot` measure a path, and how the thesis sampled.
+    pub fn every_mm(step: f64) -> Sampling {
+        let step = if step.is_finite() && step > 0.0 { step } else { TABLE_STEP_MM };
+        Sampling { spacing: Spacing::mm(step), arc_radians: f64::INFINITY }
+    }
+}
+
 /// Sample every move of `toolpath`; cutting moves at most `step` mm apart.
 pub fn sample_toolpath(toolpath: &Toolpath, tools: &ToolTable, step: f64) -> Vec<PathSample> {
     let mut out = Vec::with_capacity(toolpath.moves.len() * 2);
-    sample_moves(toolpath, 0..toolpath.moves.len(), tools, step, &mut out);
+    sample_moves(toolpath, 0..toolpath.moves.len(), tools, &Sampling::every_mm(step), &mut out);
     out
 }
 
-/// Sample the moves `moves` of `toolpath` as `sample_toolpath` does, appending to `out`.
-pub fn sample_moves(toolpath: &Toolpath, moves: Range<usize>, tools: &ToolTable, step: f64, out: &mut Vec<PathSample>) {
-    let step = if step.is_finite() && step > 0.0 { step } else { 0.254 };
+/// Sample the moves `moves` of `toolpath` as `sampling` allows, appending to `out`.
+pub fn sample_moves(
+    toolpath: &Toolpath,
+    moves: Range<usize>,
+    tools: &ToolTable,
+    sampling: &Sampling,
+    out: &mut Vec<PathSample>,
+) {
     let first = moves.start;
     for (index, m) in toolpath.moves.get(moves).unwrap_or_default().iter().enumerate() {
         let index = first + index;
@@ -51,17 +90,21 @@ pub fn sample_moves(toolpath: &Toolpath, moves: Range<usize>, tools: &ToolTable,
         let tip = tip_vector(tip);
         match m.motion {
             Motion::Dwell => {}
-            Motion::Rapid => out.push(sample(index, m, 1.0, m.end, Xz::new(0.0, 0.0), false, tip)),
+            Motion::Rapid => out.push(PathSample {
+                covers_mm: start.distance(m.end),
+                ..sample(index, m, 1.0, m.end, Xz::new(0.0, 0.0), false, tip)
+            }),
             Motion::Feed => {
                 let length = start.distance(m.end);
-                let n = (length / step).ceil().max(1.0) as usize;
+                let n = sampling.spacing.steps(length, minutes(m));
                 let direction = unit(Xz::new(m.end.x - start.x, m.end.z - start.z));
                 let velocity = Xz::new(direction.x * m.feed, direction.z * m.feed);
                 let normal = if m.cutting { surface_normal(direction, m, tip) } else { Xz::new(0.0, 0.0) };
                 for i in 1..=n {
                     let t = i as f64 / n as f64;
                     let p = Xz::new(start.x + (m.end.x - start.x) * t, start.z + (m.end.z - start.z) * t);
-                    out.push(PathSample { velocity, ..sample(index, m, t, p, normal, m.cutting, tip) });
+                    let covers_mm = length / n as f64;
+                    out.push(PathSample { velocity, covers_mm, ..sample(index, m, t, p, normal, m.cutting, tip) });
                 }
             }
             Motion::Cw | Motion::Ccw => {
@@ -70,15 +113,19 @@ pub fn sample_moves(toolpath: &Toolpath, moves: Range<usize>, tools: &ToolTable,
                 let sweep = geometry::sweep(start, m.end, m.centre, ccw);
                 let a0 = geometry::angle(start, m.centre);
                 let sign = if ccw { 1.0 } else { -1.0 };
-                let n = (radius * sweep / step).ceil().max(2.0) as usize;
+                let by_angle = if sampling.arc_radians > 0.0 { (sweep / sampling.arc_radians).ceil() } else { 0.0 };
+                let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle as usize).max(2);
+                let mut previous = 0.0;
                 for t in arc_fractions(n, a0, sweep, ccw) {
+                    let covers_mm = radius * sweep * (t - previous);
+                    previous = t;
                     let angle = a0 + sign * sweep * t;
                     let p = if t >= 1.0 { m.end } else { geometry::on_circle(m.centre, radius, angle) };
                     // The tangent of increasing angle is (cos, −sin) in (x, z).
                     let tangent = Xz::new(sign * angle.cos(), -sign * angle.sin());
                     let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
                     let normal = if m.cutting { surface_normal(tangent, m, tip) } else { Xz::new(0.0, 0.0) };
-                    out.push(PathSample { velocity, ..sample(index, m, t, p, normal, m.cutting, tip) });
+                    out.push(PathSample { velocity, covers_mm, ..sample(index, m, t, p, normal, m.cutting, tip) });
                 }
             }
         }
@@ -117,6 +164,7 @@ fn sample(index: usize, m: &Move, t: f64, p: Xz, normal: Xz, cutting: bool, tip:
         move_index: index,
         param: t,
         nominal: p,
+        covers_mm: 0.0,
         t_s: m.t_start + (m.t_end - m.t_start) * t,
         velocity: Xz::new(0.0, 0.0),
         tool: m.tool,
@@ -124,6 +172,11 @@ fn sample(index: usize, m: &Move, t: f64, p: Xz, normal: Xz, cutting: bool, tip:
         normal,
         tip,
     }
+}
+
+/// How long a move takes, minutes.
+fn minutes(m: &Move) -> f64 {
+    (m.t_end - m.t_start) / 60.0
 }
 
 fn unit(v: Xz) -> Xz {

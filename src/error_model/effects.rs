@@ -49,6 +49,7 @@ pub use tool_wear::ToolWear;
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
+use crate::error_model::spacing::Spacing;
 use crate::toolpath::Xz;
 
 /// One parametric effect.
@@ -130,6 +131,37 @@ impl Effect {
         }
     }
 
+    /// How closely a move must be sampled for the straight interpolation between samples
+    /// to follow this effect within `allowance` mm (`spacing.rs`); `reach` is the farthest
+    /// the program goes from the origin in each axis (mm, X as a radius).
+    pub fn spacing(&self, allowance: f64, reach: Xz) -> Spacing {
+        match self {
+            Effect::CyclicX(e) => e.spacing(allowance),
+            Effect::CyclicZ(e) => e.spacing(allowance),
+            Effect::ThermalX(e) => e.spacing(allowance),
+            Effect::ThermalZ(e) => e.spacing(allowance),
+            Effect::ReversalSpikeX(e) => e.spacing(allowance),
+            Effect::ReversalSpikeZ(e) => e.spacing(allowance),
+            Effect::StraightnessX(e) => e.spacing(allowance, reach.z),
+            Effect::StraightnessZ(e) => e.spacing(allowance, reach.x),
+            // Constant or affine in the position along a straight move: offsets, scale and
+            // squareness; backlash, which changes only where an axis reverses (at a line's
+            // ends, and at the samples `sampling.rs` puts at an arc's extremes); servo lag
+            // and the nose radius, constant at a line's constant velocity and normal; wear,
+            // linear in the length cut.
+            Effect::ToolOffsetX(_)
+            | Effect::ToolOffsetZ(_)
+            | Effect::ScaleX(_)
+            | Effect::ScaleZ(_)
+            | Effect::Squareness(_)
+            | Effect::BacklashX(_)
+            | Effect::BacklashZ(_)
+            | Effect::ServoMismatch(_)
+            | Effect::ToolWear(_)
+            | Effect::NoseRadius(_) => Spacing::ANY,
+        }
+    }
+
     /// The effect's name as the model file writes it.
     pub fn name(&self) -> &'static str {
         match self {
@@ -169,6 +201,13 @@ pub(crate) fn warm_up(amp: f64, tau_min: f64, t_min: f64) -> f64 {
 /// same formula, `−d·b/2` with `d` the direction of the last motion, so the slide leads.
 pub(crate) fn backlash_share(b: f64, play: f64, slide_offset: f64, direction: i8) -> f64 {
     if b > 0.0 { if play > 0.0 { slide_offset * b / play } else { 0.0 } } else { -f64::from(direction) * b / 2.0 }
+}
+
+/// A bound on the second derivative of `bow(coeffs, p)` for `|p| ≤ reach`:
+/// `Σ |coeffs[k]|·(k+2)(k+1)·reach^k`.
+pub(crate) fn bow_curvature(coeffs: &[f64], reach: f64) -> f64 {
+    let reach = reach.abs();
+    coeffs.iter().enumerate().map(|(k, c)| c.abs() * ((k + 2) * (k + 1)) as f64 * reach.powi(k as i32)).sum()
 }
 
 /// A reversal spike: `h · direction · e^(−s/decay)`.

@@ -159,6 +159,18 @@ impl Piece {
             [step, rest @ ..] if !rest.is_empty() => self.arc(*step, rest).map(|(s, d)| (*step, s, d)),
             _ => None,
         };
+        // The step is held to the path it replaces: along a nominal arc that is the arc's
+        // bulge to the first point, which a straight step cuts inside by its sagitta.
+        let stepped = stepped.map(|(step, segment, deviation)| {
+            let line = Segment::Line { end: step };
+            let bulge = match self.between {
+                Between::Bulge { centre, radius } => {
+                    deviation::segment_deviation(from, &line, &deviation::bulge_middles(from, &[step], centre, radius))
+                }
+                Between::Chords => 0.0,
+            };
+            (step, segment, deviation.max(bulge))
+        });
         if let Some((step, segment, deviation)) = stepped
             && deviation <= tolerance
         {

@@ -159,8 +159,11 @@ fn circle_absorbs_a_radius_error_and_a_centre_offset_exactly() {
 #[test]
 fn semicircle_absorbs_a_backlash_step_that_defeats_one_circle() {
     let errors = Errors { radius: 0.003, centre: Xz::new(-0.002, 0.004), backlash_z: 0.004, ..Errors::default() };
-    // A quarter across 0°, where Z reverses; 45 steps of 2° put no sample on 0° itself.
-    let (start, points) = compensated_arc(Xz::new(10.0, -30.0), 20.0, -45.0, 90.0, 45, errors);
+    // A quarter across 0°, where Z reverses; 301 steps put no sample on 0° itself. The
+    // step is written as a straight line between the samples either side of it, held to
+    // the arc's bulge between them: 0.068 µm at these 0.3° steps (at 2° it would be 3 µm,
+    // and the step could not be written within the tolerance).
+    let (start, points) = compensated_arc(Xz::new(10.0, -30.0), 20.0, -45.0, 90.0, 301, errors);
     let m = arc_move(start, &points, Xz::new(10.0, -30.0), 90.0);
 
     let circle = fit_move(&m, &options(Strategy::Circle));
@@ -187,6 +190,22 @@ fn semicircle_absorbs_a_backlash_step_that_defeats_one_circle() {
     let auto = fit_move(&m, &options(Strategy::Auto));
     check(&m, &auto);
     assert_eq!((auto.strategy_used, auto.segments.len()), (Strategy::Semicircle, 3));
+}
+
+#[test]
+fn a_step_whose_straight_line_would_cut_inside_the_arc_is_not_written() {
+    // The same quarter sampled every 2°: the samples either side of the reversal are 0.7 mm
+    // apart, and a straight step between them cuts inside the arc by 3 µm. Semicircle
+    // cannot write the step within the tolerance, says so, and the move is densified.
+    let errors = Errors { radius: 0.003, centre: Xz::new(-0.002, 0.004), backlash_z: 0.004, ..Errors::default() };
+    let (start, points) = compensated_arc(Xz::new(10.0, -30.0), 20.0, -45.0, 90.0, 45, errors);
+    let m = arc_move(start, &points, Xz::new(10.0, -30.0), 90.0);
+    let halves = fit_move(&m, &options(Strategy::Semicircle));
+    check(&m, &halves);
+    let rejected = halves.rejected.expect("the step cannot be written straight");
+    assert_eq!(rejected.strategy, Strategy::Semicircle);
+    assert!(rejected.deviation_mm > 0.003 && rejected.deviation_mm < 0.0031, "{}", rejected.deviation_mm);
+    assert_eq!(halves.strategy_used, Strategy::Densify);
 }
 
 #[test]

@@ -35,9 +35,9 @@ use super::super::inverse::{Inverse, InverseOptions, Predictor};
 use super::super::plan::{MovePlan, PlanInput, PlanOptions, plan_range};
 use super::super::report::RunFigures;
 use super::super::rewrite::{MotionBlocks, MoveRun};
-use super::super::sampling::{PathSample, sample_moves};
+use super::super::sampling::{PathSample, Sampling, sample_moves};
 use super::super::{quantised, safety};
-use super::{CompensateOptions, Paths};
+use super::{CompensateOptions, Paths, SAMPLE_STEP_MM};
 
 /// Moves per piece (more where a piece would end inside a motion block's run).
 const PIECE_MOVES: usize = 2048;
@@ -54,7 +54,7 @@ pub struct Context<'a> {
     pub model: &'a ErrorModel,
     pub options: &'a CompensateOptions,
     pub limits: Option<Limits>,
-    pub step: f64,
+    pub sampling: Sampling,
     pub writable: Vec<bool>,
     /// `rewrite::radius_preference`.
     pub radius: Vec<bool>,
@@ -220,7 +220,7 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
             }
             None => 0,
         };
-        sample_moves(toolpath, moves, context.tools, context.step, &mut piece.samples);
+        sample_moves(toolpath, moves, context.tools, &context.sampling, &mut piece.samples);
         let fresh = piece.fresh();
         let samples = piece.samples.get(fresh).unwrap_or_default();
         inverse.solve(samples, &mut piece.commanded, &mut piece.predicted);
@@ -272,6 +272,7 @@ fn check<'a, 'src>(
     };
     let mut ranges = vec![0..0; count];
     let mut run = 0;
+    let mut trail = Trail::default();
     let mut rewritten = 0;
     while let Ok(mut piece) = checking.recv() {
         fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
@@ -284,7 +285,7 @@ fn check<'a, 'src>(
         let commanded = piece.commanded.get(fresh.clone()).unwrap_or_default();
         as_rounded.predict(samples, piece.rounded.get(fresh).unwrap_or_default(), &mut piece.after);
         safety.add(toolpath, samples, commanded);
-        measure(context, &piece, &mut out, &mut run);
+        measure(context, &piece, &mut out, &mut run, &mut trail);
         if options.paths {
             out.paths.samples.extend_from_slice(samples);
             out.paths.uncompensated.extend_from_slice(&piece.uncompensated);
@@ -305,15 +306,26 @@ fn check<'a, 'src>(
     out
 }
 
+/// What was measured at the sample before, for the stretch of path up to the next.
+#[derive(Debug, Clone, Copy, Default)]
+struct Trail {
+    correction: Option<f64>,
+    before: Option<f64>,
+    after: Option<f64>,
+}
+
 /// Tally a piece's own samples into the run figures and the totals, and mark the moves
-/// whose correction exceeds the tolerance.
-fn measure(context: &Context<'_>, piece: &Piece, out: &mut Checked<'_, '_>, run: &mut usize) {
+/// whose correction exceeds the tolerance. Each sample stands for the path from the sample
+/// before it (`PathSample::covers_mm`, in the thesis' steps): the figures are along the
+/// path, the same however closely the model let it be sampled.
+fn measure(context: &Context<'_>, piece: &Piece, out: &mut Checked<'_, '_>, run: &mut usize, trail: &mut Trail) {
     let tolerance = context.options.fit.tolerance_mm;
     let fresh = piece.fresh();
     let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
     let commanded = piece.commanded.get(fresh).unwrap_or_default();
     let points = samples.iter().zip(commanded).zip(&piece.before).zip(&piece.after);
     for (((s, c), &before), &after) in points {
+        let weight = s.covers_mm / SAMPLE_STEP_MM;
         let correction = c.distance(s.nominal);
         let after = context.path.distance(s, after);
         let totals = &mut out.totals;
@@ -325,23 +337,24 @@ fn measure(context: &Context<'_>, piece: &Piece, out: &mut Checked<'_, '_>, run:
             *needs = true;
         }
         if let Some(d) = before {
-            totals.before.add(d);
+            totals.before.add_along(d, trail.before, weight);
         }
         if let Some(d) = after {
-            totals.after.add(d);
+            totals.after.add_along(d, trail.after, weight);
         }
         while out.figures.get(*run).is_some_and(|r| r.moves.end <= s.move_index) {
             *run += 1;
         }
         if let Some(figures) = out.figures.get_mut(*run) {
-            figures.correction.add(correction);
+            figures.correction.add_along(correction, trail.correction, weight);
             if let Some(d) = before {
-                figures.before.add(d);
+                figures.before.add_along(d, trail.before, weight);
             }
             if let Some(d) = after {
-                figures.after.add(d);
+                figures.after.add_along(d, trail.after, weight);
             }
         }
+        *trail = Trail { correction: Some(correction), before, after };
     }
 }
 

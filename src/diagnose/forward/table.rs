@@ -45,6 +45,7 @@ pub(super) fn forward(axis: Axis, table: &SlideTable) -> Forward {
         move_index: 0,
         param: 1.0,
         nominal: at(position),
+        covers_mm: 0.0,
         t_s: 0.0,
         velocity: Xz::default(),
         tool: 0,

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
+use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -20,5 +21,12 @@ pub struct CyclicX {
 impl CyclicX {
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(self.amp * (std::f64::consts::TAU * s.at.x / self.pitch + self.phase).sin(), 0.0)
+    }
+
+    /// `amp·sin` curves by at most `amp·(2π/pitch)²` per mm² of travel along the screw,
+    /// and a move's travel along it is never longer than the move.
+    pub fn spacing(&self, allowance: f64) -> Spacing {
+        let wavenumber = std::f64::consts::TAU / self.pitch;
+        Spacing::mm(step_for_curvature(self.amp * wavenumber * wavenumber, allowance))
     }
 }

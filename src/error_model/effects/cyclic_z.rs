@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
+use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -20,5 +21,12 @@ pub struct CyclicZ {
 impl CyclicZ {
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(0.0, self.amp * (std::f64::consts::TAU * s.at.z / self.pitch + self.phase).sin())
+    }
+
+    /// `amp·sin` curves by at most `amp·(2π/pitch)²` per mm² of travel along the screw,
+    /// and a move's travel along it is never longer than the move.
+    pub fn spacing(&self, allowance: f64) -> Spacing {
+        let wavenumber = std::f64::consts::TAU / self.pitch;
+        Spacing::mm(step_for_curvature(self.amp * wavenumber * wavenumber, allowance))
     }
 }

@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
+use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
 use super::spike;
@@ -21,5 +22,10 @@ pub struct ReversalSpikeX {
 impl ReversalSpikeX {
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(spike(self.h, self.decay_mm, s.direction.x, s.since_reversal.x), 0.0)
+    }
+
+    /// The spike's decay bends most at the reversal: `h/decay²` per mm² of travel.
+    pub fn spacing(&self, allowance: f64) -> Spacing {
+        Spacing::mm(step_for_curvature(self.h / (self.decay_mm * self.decay_mm), allowance))
     }
 }

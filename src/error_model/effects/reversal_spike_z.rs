@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
+use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
 use super::spike;
@@ -20,5 +21,10 @@ pub struct ReversalSpikeZ {
 impl ReversalSpikeZ {
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(0.0, spike(self.h, self.decay_mm, s.direction.z, s.since_reversal.z))
+    }
+
+    /// The spike's decay bends most at the reversal: `h/decay²` per mm² of travel.
+    pub fn spacing(&self, allowance: f64) -> Spacing {
+        Spacing::mm(step_for_curvature(self.h / (self.decay_mm * self.decay_mm), allowance))
     }
 }

@@ -5,9 +5,10 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
+use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
-use super::bow;
+use super::{bow, bow_curvature};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -19,5 +20,11 @@ pub struct StraightnessX {
 impl StraightnessX {
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(bow(&self.coeffs, s.at.z), 0.0)
+    }
+
+    /// The bow's second derivative, `Σ |coeffs[k]|·(k+2)(k+1)·|z|^k`, is largest at the
+    /// farthest Z the program reaches (`reach_z`, mm).
+    pub fn spacing(&self, allowance: f64, reach_z: f64) -> Spacing {
+        Spacing::mm(step_for_curvature(bow_curvature(&self.coeffs, reach_z), allowance))
     }
 }

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
+use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
 use super::warm_up;
@@ -20,5 +21,10 @@ pub struct ThermalZ {
 impl ThermalZ {
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(0.0, warm_up(self.amp, self.tau_min, s.t_min))
+    }
+
+    /// The warm-up curve bends most at the start: `amp/τ²` per minute², whatever the path.
+    pub fn spacing(&self, allowance: f64) -> Spacing {
+        Spacing::minutes(step_for_curvature(self.amp / (self.tau_min * self.tau_min), allowance))
     }
 }

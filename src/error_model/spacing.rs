@@ -1,0 +1,94 @@
+//! How closely a path must be sampled for a model's correction to be followed between
+//! samples.
+//!
+//! Compensation inverts the model at samples along each move and joins them; between two
+//! samples the correction is taken as the straight interpolation of theirs. A correction
+//! that is constant or affine along a straight move (tool offsets, scale, squareness, the
+//! play of a slide that does not reverse, servo lag at a constant velocity, wear that grows
+//! with the cut length) is followed exactly by one sample at each end, so a model made of
+//! such terms needs no sample inside a line at all. A curved correction departs from the
+//! chord between samples `h` apart by at most `c·h²/8`, where `c` bounds its second
+//! derivative; each effect with one gives the step at which that reaches the allowance.
+//!
+//! Measured axis tables are interpolated linearly between their nodes, with a kink at
+//! each: they keep the thesis' step of 0.254 mm (0.01 in), at which its own compensation
+//! (Table 8) was computed.
+
+/// The thesis' sampling step, mm: it interpolated its error tables every 0.01 in.
+pub const TABLE_STEP_MM: f64 = 0.254;
+
+/// The longest distance between two samples along a move: in path length and in time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spacing {
+    /// Path length, mm.
+    pub mm: f64,
+    /// Time, minutes (for corrections that drift with time, not position).
+    pub minutes: f64,
+}
+
+impl Spacing {
+    /// No bound: one sample at each end of a straight move follows the correction.
+    pub const ANY: Spacing = Spacing { mm: f64::INFINITY, minutes: f64::INFINITY };
+
+    /// A bound in path length only.
+    pub fn mm(mm: f64) -> Spacing {
+        Spacing { mm, minutes: f64::INFINITY }
+    }
+
+    /// A bound in time only.
+    pub fn minutes(minutes: f64) -> Spacing {
+        Spacing { mm: f64::INFINITY, minutes }
+    }
+
+    /// The closer of two spacings, in each measure.
+    pub fn closer(self, other: Spacing) -> Spacing {
+        Spacing { mm: self.mm.min(other.mm), minutes: self.minutes.min(other.minutes) }
+    }
+
+    /// How many equal steps a move of `length_mm` taking `duration_min` needs, at least one.
+    pub fn steps(&self, length_mm: f64, duration_min: f64) -> usize {
+        let count = |extent: f64, step: f64| if step > 0.0 && extent > 0.0 { (extent / step).ceil() } else { 0.0 };
+        let n = count(length_mm, self.mm).max(count(duration_min, self.minutes));
+        // `as` saturates, and a NaN (a degenerate move) becomes 0: one step either way.
+        (n as usize).max(1)
+    }
+}
+
+/// The step over which a function whose second derivative is at most `curvature` departs
+/// from its chord by `allowance`: `√(8·allowance/curvature)`; unbounded for a straight one.
+pub fn step_for_curvature(curvature: f64, allowance: f64) -> f64 {
+    let curvature = curvature.abs();
+    if curvature > 0.0 && curvature.is_finite() && allowance > 0.0 {
+        (8.0 * allowance / curvature).sqrt()
+    } else if curvature > 0.0 {
+        // No allowance (or an infinite curvature): as fine as the thesis sampled.
+        TABLE_STEP_MM
+    } else {
+        f64::INFINITY
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_parabola_sampled_at_the_step_departs_from_its_chords_by_the_allowance() {
+        // f(s) = a·s², f'' = 2a: the chord over [0, h] misses the midpoint by a·h²/4.
+        let a = 3e-6;
+        let allowance = 5e-5;
+        let h = step_for_curvature(2.0 * a, allowance);
+        let sag = a * h * h / 4.0;
+        assert!((sag - allowance).abs() < 1e-12, "{sag}");
+    }
+
+    #[test]
+    fn a_straight_correction_needs_no_inner_sample() {
+        assert_eq!(step_for_curvature(0.0, 1e-4), f64::INFINITY);
+        assert_eq!(Spacing::ANY.steps(120.0, 3.0), 1);
+        assert_eq!(Spacing::mm(0.254).steps(2.54, 1.0), 10);
+        assert_eq!(Spacing::minutes(0.5).steps(1.0, 1.2), 3);
+        assert_eq!(Spacing::mm(0.254).steps(0.0, 0.0), 1);
+        assert_eq!(Spacing::mm(0.254).steps(f64::NAN, 0.0), 1);
+    }
+}
