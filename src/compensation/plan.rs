@@ -45,6 +45,10 @@ pub struct MovePlan {
     /// The first segment takes up the play before a move that switches nose-radius
     /// compensation: it is written as a positioning block of its own, before the block.
     pub lead_in: bool,
+    /// For each segment, the words `settle_arcs` chose for it (`ArcWords::Line` for a
+    /// line), so that rounding and rewriting do not choose them again; empty for a plan
+    /// that was not settled (the move as programmed).
+    pub words: Vec<ArcWords>,
 }
 
 impl MovePlan {
@@ -109,7 +113,7 @@ pub fn plan_range(
         let contour_start = written::contour_start(toolpath, index);
         let range = input.ranges.get(index).cloned().unwrap_or(0..0);
         let plan = if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
-            MovePlan { start: at, segments: Vec::new(), changed: false, jumps: 0, lead_in: false }
+            MovePlan { start: at, segments: Vec::new(), changed: false, jumps: 0, lead_in: false, words: Vec::new() }
         } else if range.is_empty() || !input.writable.get(index).copied().unwrap_or(false) {
             nominal_plan(m, at, input.tools)
         } else {
@@ -152,26 +156,38 @@ pub fn plan_range(
 /// chord. Cutting keeps the exact geometry; only the cut point is rounded.
 fn settle_arcs(mut plan: MovePlan, grid: &Grid, prefer_radius: bool) -> MovePlan {
     let mut segments = Vec::with_capacity(plan.segments.len());
+    let mut words = Vec::with_capacity(plan.segments.len());
     let mut from = plan.start;
     for &segment in &plan.segments {
-        settle(grid, prefer_radius, from, segment, MAX_HALVINGS, &mut segments);
+        settle(grid, prefer_radius, from, segment, MAX_HALVINGS, &mut segments, &mut words);
         from = segment.end();
     }
     plan.segments = segments;
+    plan.words = words;
     plan
 }
 
 /// At most this many halvings of one arc (into 2⁴ pieces).
 const MAX_HALVINGS: u32 = 4;
 
-fn settle(grid: &Grid, prefer_radius: bool, from: Xz, segment: Segment, halvings: u32, out: &mut Vec<Segment>) {
+fn settle(
+    grid: &Grid,
+    prefer_radius: bool,
+    from: Xz,
+    segment: Segment,
+    halvings: u32,
+    out: &mut Vec<Segment>,
+    words_out: &mut Vec<ArcWords>,
+) {
     let Segment::Arc { end, centre, ccw } = segment else {
         out.push(segment);
+        words_out.push(ArcWords::Line);
         return;
     };
     let (words, gap) = grid.arc_words_with_gap(from, end, centre, ccw, prefer_radius);
     if words == ArcWords::Line {
         out.push(Segment::Line { end });
+        words_out.push(ArcWords::Line);
         return;
     }
     if halvings > 0 && gap > grid.increment_mm() {
@@ -179,11 +195,13 @@ fn settle(grid: &Grid, prefer_radius: bool, from: Xz, segment: Segment, halvings
         let sign = if ccw { 1.0 } else { -1.0 };
         let radius = (from.distance(centre) + end.distance(centre)) / 2.0;
         let middle = geometry::on_circle(centre, radius, geometry::angle(from, centre) + sign * sweep / 2.0);
-        settle(grid, prefer_radius, from, Segment::Arc { end: middle, centre, ccw }, halvings - 1, out);
-        settle(grid, prefer_radius, middle, segment, halvings - 1, out);
+        let half = Segment::Arc { end: middle, centre, ccw };
+        settle(grid, prefer_radius, from, half, halvings - 1, out, words_out);
+        settle(grid, prefer_radius, middle, segment, halvings - 1, out, words_out);
         return;
     }
     out.push(segment);
+    words_out.push(words);
 }
 
 /// The programmed move as a segment of the contour.
@@ -196,7 +214,14 @@ pub(crate) fn nominal_segment(m: &Move, tools: &ToolTable) -> Segment {
 }
 
 fn nominal_plan(m: &Move, start: Xz, tools: &ToolTable) -> MovePlan {
-    MovePlan { start, segments: vec![nominal_segment(m, tools)], changed: false, jumps: 0, lead_in: false }
+    MovePlan {
+        start,
+        segments: vec![nominal_segment(m, tools)],
+        changed: false,
+        jumps: 0,
+        lead_in: false,
+        words: Vec::new(),
+    }
 }
 
 /// One move to plan: where its written form starts, the points to write for its samples
@@ -219,6 +244,7 @@ fn one_move(piece: &Piece<'_>, tools: &ToolTable) -> MovePlan {
             changed: true,
             jumps: 0,
             lead_in: false,
+            words: Vec::new(),
         },
         _ => nominal_plan(m, *at, tools),
     }
@@ -239,6 +265,7 @@ fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>, play: Xz) -> MovePla
         changed: true,
         jumps: 1,
         lead_in: true,
+        words: Vec::new(),
     }
 }
 
@@ -271,7 +298,7 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
     if piece < points.len() {
         segments.extend(choose_segments(&MovePoints { start: from, points: &points[piece..], nominal }, &options.fit));
     }
-    MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false }
+    MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false, words: Vec::new() }
 }
 
 /// Whether the programmed element (an arc about the contour's `centre`), started from

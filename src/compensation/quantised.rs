@@ -11,7 +11,7 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Move, Xz};
 
 use super::fit::Segment;
-use super::grid::Grid;
+use super::grid::{ArcWords, Grid};
 use super::plan::{MovePlan, PlanInput};
 use super::sampling::PathSample;
 use super::written;
@@ -19,17 +19,21 @@ use super::written;
 /// A move's segments rounded onto `grid`, from its rounded start, as the control runs the
 /// words `rewrite` writes for them: each end rounded from its exact value, each arc about
 /// the centre the control finds from its words (`Grid::arc_words`, in the form
-/// `prefer_radius` asks for where it holds the arc), an arc no words can give a line.
-pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], prefer_radius: bool) -> Vec<Segment> {
+/// `prefer_radius` asks for where it holds the arc; the plan's own `words` where it chose
+/// them), an arc no words can give a line.
+pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], words: &[ArcWords], prefer_radius: bool) -> Vec<Segment> {
     let mut from_exact = start;
     let mut from = grid.point(start);
     let mut out = Vec::with_capacity(segments.len());
-    for segment in segments {
+    for (index, segment) in segments.iter().enumerate() {
         let end = grid.point(segment.end());
         let rounded = match *segment {
             Segment::Line { .. } => Segment::Line { end: grid.to_mm(end) },
             Segment::Arc { end: exact_end, centre, ccw } => {
-                let words = grid.arc_words(from_exact, exact_end, centre, ccw, prefer_radius);
+                let words = match words.get(index) {
+                    Some(&chosen) => chosen,
+                    None => grid.arc_words(from_exact, exact_end, centre, ccw, prefer_radius),
+                };
                 match grid.arc_centre(from, end, words, ccw) {
                     Some(centre) => Segment::Arc { end: grid.to_mm(end), centre, ccw },
                     None => Segment::Line { end: grid.to_mm(end) },
@@ -133,7 +137,7 @@ pub fn commanded_moves(
             continue;
         }
         let prefer_radius = input.radius.get(index).copied().unwrap_or(false);
-        let rounded = quantise(&grid, plan.start, &plan.segments, prefer_radius);
+        let rounded = quantise(&grid, plan.start, &plan.segments, &plan.words, prefer_radius);
         let walk = Walk { m, contour_start, start: grid.round(plan.start), segments: &rounded, tools };
         walk.follow(samples, input.commanded, range.clone(), out);
     }

@@ -154,8 +154,9 @@ impl BlockContext<'_, '_> {
         form
     }
 
-    /// The words of `segment` from `start` (exact), in `form`.
-    fn words(&self, form: &Form, start: Xz, segment: &Segment) -> Words {
+    /// The words of `segment` from `start` (exact), in `form`; an arc's are `chosen` where
+    /// the plan chose them already (`MovePlan::words`).
+    fn words(&self, form: &Form, start: Xz, segment: &Segment, chosen: Option<ArcWords>) -> Words {
         let grid = &self.grid;
         let from = grid.point(start);
         let to = grid.point(segment.end());
@@ -168,7 +169,8 @@ impl BlockContext<'_, '_> {
             out.push((Slot::Z, axis(form.z.1, to.z, from.z)));
         }
         if let Segment::Arc { end, centre, ccw } = *segment {
-            match grid.arc_words(start, end, centre, ccw, form.radius_arcs) {
+            let words = chosen.unwrap_or_else(|| grid.arc_words(start, end, centre, ccw, form.radius_arcs));
+            match words {
                 ArcWords::Radius(radius) => out.push((Slot::Radius, radius)),
                 ArcWords::Centre { i, k } => {
                     out.push((Slot::I, i));
@@ -191,7 +193,7 @@ impl BlockContext<'_, '_> {
     fn original_words(&self, form: &Form, m: &Move, contour_start: Xz) -> Vec<(Slot, Option<i64>)> {
         let block = self.program.block(self.block);
         let tables = self.program.config().tables();
-        let nominal = self.words(form, contour_start, &nominal_segment(m, self.tools));
+        let nominal = self.words(form, contour_start, &nominal_segment(m, self.tools), None);
         let mut out = Vec::new();
         for word in self.program.words_of(block) {
             let (address, literal) = match word.kind {
@@ -258,12 +260,14 @@ impl BlockContext<'_, '_> {
         // The motion code the block's own words run under, when it is not the modal one.
         let mut in_force = original_kind;
         let mut segments = plan.segments.as_slice();
+        let mut chosen = plan.words.iter().map(|&w| Some(w)).chain(std::iter::repeat(None));
         if plan.lead_in
             && let Some((lead, rest)) = segments.split_first()
         {
             // The play taken up before the block, by a positioning move of its own.
             let mut words = vec![self.code(Kind::Rapid)];
-            words.extend(self.words(&form, at, lead).into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
+            let lead_words = self.words(&form, at, lead, chosen.next().flatten());
+            words.extend(lead_words.into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
             blocks.push(NewBlock::new(words));
             in_force = Kind::Rapid;
             at = lead.end();
@@ -272,7 +276,7 @@ impl BlockContext<'_, '_> {
         let (first, rest) = segments.split_first()?;
         let first_kind = Kind::of_segment(first, original_kind);
         let original = self.original_words(&form, m, contour_start);
-        let new = self.words(&form, at, first);
+        let new = self.words(&form, at, first, chosen.next().flatten());
         let same_words = original.len() == new.len()
             && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
         if blocks.is_empty() && rest.is_empty() && first_kind == original_kind && same_words {
@@ -289,7 +293,8 @@ impl BlockContext<'_, '_> {
                 words.push(self.code(segment_kind));
                 kind = segment_kind;
             }
-            words.extend(self.words(&form, at, segment).into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
+            let segment_words = self.words(&form, at, segment, chosen.next().flatten());
+            words.extend(segment_words.into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
             blocks.push(NewBlock::new(words));
             at = segment.end();
         }
