@@ -115,6 +115,14 @@ pub fn compensate_program(
 ) -> Outcome {
     let toolpath = valid.toolpath();
     let tools = ToolTable::from_machine(machine);
+    // The per-move tables are independent of each other: two are built beside the rest.
+    let ((writable, radius), (path, runs, sampling)) = std::thread::scope(|scope| {
+        let blocks =
+            scope.spawn(|| (rewrite::writable_moves(program, lowered), rewrite::radius_preference(program, lowered)));
+        let rest = (LocalPath::new(toolpath), rewrite::move_runs(lowered), sampling(&options.fit, model, toolpath));
+        // Neither can fail on any input; a panic is a bug, and is passed on.
+        (blocks.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
+    });
     let context = stream::Context {
         program,
         toolpath,
@@ -123,12 +131,12 @@ pub fn compensate_program(
         model,
         options,
         limits: machine.limits,
-        sampling: sampling(&options.fit, model, toolpath),
-        writable: rewrite::writable_moves(program, lowered),
-        radius: rewrite::radius_preference(program, lowered),
-        path: LocalPath::new(toolpath),
+        sampling,
+        writable,
+        radius,
+        path,
         plan_options: PlanOptions { fit: options.fit, play: model.play() },
-        runs: rewrite::move_runs(lowered),
+        runs,
     };
     let stream::Streamed { plans, mut diagnostics, figures, totals, paths, needs, motion } = stream::run(&context);
     diagnostics.extend(unwritable_cycles(program, lowered, &needs, &context.writable));
