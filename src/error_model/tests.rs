@@ -119,3 +119,71 @@ fn htm_composes_slide_errors_as_eq_8_12() {
     assert!(close(d.x, linear_x + straightness_zx - pitch * 5.0 + yaw * pitch * (-50.0 + linear_z)));
     assert!(close(d.z, linear_z + straightness_xz + yaw * 5.0));
 }
+
+/// The largest gap between `f` and its chords `step` apart, over `0..=length`, each chord
+/// tried from many starting points.
+fn worst_chord_gap(f: impl Fn(f64) -> f64, length: f64, step: f64) -> f64 {
+    let mut worst: f64 = 0.0;
+    let starts = 400;
+    for i in 0..=starts {
+        let a = (length - step) * i as f64 / starts as f64;
+        let (fa, fb) = (f(a), f(a + step));
+        for k in 1..20 {
+            let t = k as f64 / 20.0;
+            worst = worst.max((f(a + step * t) - (fa + (fb - fa) * t)).abs());
+        }
+    }
+    worst
+}
+
+#[test]
+fn curved_effects_sampled_at_their_spacing_stay_within_the_allowance_of_the_chords() {
+    let allowance = 5e-5;
+    let reach = Xz::new(80.0, 300.0);
+    let step = |e: &Effect| e.spacing(allowance, reach);
+    // Along Z through the screw, along X through the X screw.
+    let cyclic_z = Effect::CyclicZ(CyclicZ { amp: 0.004, pitch: 11.94, phase: 0.3 });
+    let h = step(&cyclic_z).mm;
+    assert!((h - 0.6007).abs() < 1e-3, "{h}");
+    let gap = worst_chord_gap(|z| cyclic_z.displacement(&sample(20.0, -z)).z, 60.0, h);
+    assert!(gap <= allowance * 1.0001 && gap > allowance * 0.9, "{gap}");
+    let cyclic_x = Effect::CyclicX(CyclicX { amp: 0.002, pitch: 5.0, phase: 0.0 });
+    let h = step(&cyclic_x).mm;
+    let gap = worst_chord_gap(|x| cyclic_x.displacement(&sample(x, -10.0)).x, 40.0, h);
+    assert!(gap <= allowance * 1.0001 && gap > allowance * 0.9, "{gap}");
+    // A bow, to the farthest Z the program reaches.
+    let bow = Effect::StraightnessX(StraightnessX { coeffs: vec![2e-7, 1e-9] });
+    let h = step(&bow).mm;
+    let gap = worst_chord_gap(|z| bow.displacement(&sample(20.0, -z)).x, reach.z, h);
+    assert!(gap <= allowance * 1.0001 && gap > allowance * 0.5, "{gap}");
+    // A reversal spike, along the travel since the reversal.
+    let spike = Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 0.8 });
+    let h = step(&spike).mm;
+    let at = |s: f64| {
+        let sample = Sample { since_reversal: Xz::new(s, 0.0), ..sample(20.0, -10.0) };
+        spike.displacement(&sample).x
+    };
+    let gap = worst_chord_gap(at, 10.0, h);
+    assert!(gap <= allowance * 1.0001 && gap > allowance * 0.5, "{gap}");
+    // Warm-up, in time.
+    let thermal = Effect::ThermalZ(ThermalZ { amp: 0.008, tau_min: 54.59 });
+    let minutes = step(&thermal).minutes;
+    assert!((minutes - 54.59 * (8.0 * allowance / 0.008f64).sqrt()).abs() < 1e-9, "{minutes}");
+    let gap = worst_chord_gap(|t| thermal.displacement(&Sample { t_min: t, ..sample(20.0, -10.0) }).z, 240.0, minutes);
+    assert!(gap <= allowance * 1.0001 && gap > allowance * 0.5, "{gap}");
+    // Terms that are affine along a line need no inner sample, and a model of them none.
+    for affine in [
+        Effect::ScaleZ(ScaleZ { ppm: 30.0 }),
+        Effect::Squareness(Squareness { urad: 20.0 }),
+        Effect::BacklashX(BacklashX { b: 0.004 }),
+        Effect::ServoMismatch(ServoMismatch { dt_ms: 1.0 }),
+        Effect::ToolWear(ToolWear { um_per_m: 2.0 }),
+    ] {
+        assert_eq!(step(&affine), Spacing::ANY, "{}", affine.name());
+    }
+    let model =
+        ErrorModel { effects: vec![Effect::ScaleZ(ScaleZ { ppm: 30.0 }), cyclic_z.clone()], ..ErrorModel::default() };
+    assert_eq!(model.spacing(allowance, reach), step(&cyclic_z));
+    let tables = ErrorModel { tables: Some(htm::AxisTables::default()), ..ErrorModel::default() };
+    assert_eq!(tables.spacing(allowance, reach), Spacing::mm(spacing::TABLE_STEP_MM));
+}
