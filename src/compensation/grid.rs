@@ -136,24 +136,39 @@ impl Grid {
         }
         let at = self.to_mm(start);
         let by_centre = ArcWords::Centre { i: self.length(centre.x - at.x), k: self.length(centre.z - at.z) };
-        let centre_gap = self.gap(&exact, start, stop, by_centre, ccw);
+        // Each gap runs the control's arc; it is measured only where the choice needs it
+        // (the choice is the same as measuring both every time).
+        let centre_gap = std::cell::OnceCell::new();
+        let centre_gap = || *centre_gap.get_or_init(|| self.gap(&exact, start, stop, by_centre, ccw));
         if full {
-            return if centre_gap.is_finite() { (by_centre, centre_gap) } else { (ArcWords::Line, f64::INFINITY) };
+            let gap = centre_gap();
+            return if gap.is_finite() { (by_centre, gap) } else { (ArcWords::Line, f64::INFINITY) };
         }
         let radius = from.distance(centre);
         let signed = if exact.sweep > PI + 1e-9 { -radius } else { radius };
         let count = self.length(signed);
         let by_radius = ArcWords::Radius(count);
-        let radius_gap = self.gap(&exact, start, stop, by_radius, ccw);
-        let increment = self.increment_mm();
-        let reaches = self.length_mm(count).abs() - at.distance(self.to_mm(stop)) / 2.0 >= increment - 1e-12;
-        let radius_holds = reaches && radius_gap <= (increment / 2.0).max(centre_gap);
-        match (prefer_radius, radius_holds) {
-            (true, true) => (by_radius, radius_gap),
-            _ if centre_gap.is_finite() => (by_centre, centre_gap),
-            _ if radius_gap.is_finite() => (by_radius, radius_gap),
-            _ => (ArcWords::Line, f64::INFINITY),
+        if prefer_radius {
+            let radius_gap = self.gap(&exact, start, stop, by_radius, ccw);
+            let increment = self.increment_mm();
+            let reaches = self.length_mm(count).abs() - at.distance(self.to_mm(stop)) / 2.0 >= increment - 1e-12;
+            let radius_holds = reaches && (radius_gap <= increment / 2.0 || radius_gap <= centre_gap());
+            if radius_holds {
+                return (by_radius, radius_gap);
+            }
+            return if centre_gap().is_finite() {
+                (by_centre, centre_gap())
+            } else if radius_gap.is_finite() {
+                (by_radius, radius_gap)
+            } else {
+                (ArcWords::Line, f64::INFINITY)
+            };
         }
+        if centre_gap().is_finite() {
+            return (by_centre, centre_gap());
+        }
+        let radius_gap = self.gap(&exact, start, stop, by_radius, ccw);
+        if radius_gap.is_finite() { (by_radius, radius_gap) } else { (ArcWords::Line, f64::INFINITY) }
     }
 
     /// The centre the control takes for an arc written with `words` from `start` to `stop`
