@@ -193,7 +193,10 @@ impl BlockContext<'_, '_> {
     fn original_words(&self, form: &Form, m: &Move, contour_start: Xz) -> Vec<(Slot, Option<i64>)> {
         let block = self.program.block(self.block);
         let tables = self.program.config().tables();
-        let nominal = self.words(form, contour_start, &nominal_segment(m, self.tools), None);
+        // The programmed move's words, for a word written as an expression: computed only
+        // for such a block.
+        let nominal = std::cell::OnceCell::new();
+        let nominal = || nominal.get_or_init(|| self.words(form, contour_start, &nominal_segment(m, self.tools), None));
         let mut out = Vec::new();
         for word in self.program.words_of(block) {
             let (address, literal) = match word.kind {
@@ -207,7 +210,7 @@ impl BlockContext<'_, '_> {
                     let kind = tables.address(address).map(|s| s.kind).or(Some(AddressKind::Length));
                     Some(self.grid.count(self.mark.frame.literal(number, kind)))
                 }
-                None => nominal.iter().find(|(s, _)| *s == slot).map(|&(_, v)| v),
+                None => nominal().iter().find(|(s, _)| *s == slot).map(|&(_, v)| v),
             };
             out.push((slot, value));
         }
