@@ -172,6 +172,7 @@ fn end_to_end(c: &mut Criterion) {
         max_shift_mm: 0.1,
         expand_cycles: false,
         paths: false,
+        block_reports: false,
     };
     let mut group = c.benchmark_group("compensate");
     group.throughput(Throughput::Bytes(bytes.len() as u64));

@@ -115,6 +115,7 @@ impl FitArgs {
             max_shift_mm: self.max_shift,
             expand_cycles: self.expand_cycles,
             paths: false,
+            block_reports: true,
         }
     }
 
@@ -128,9 +129,9 @@ impl FitArgs {
     }
 
     /// Compensate a ready program with `model`; `paths` keeps every sample's paths (for
-    /// `plot`).
-    pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool) -> Outcome {
-        let options = CompensateOptions { paths, ..self.options(&program.machine) };
+    /// `plot`), `block_reports` reports every edited block (for `--report json`).
+    pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
+        let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
         compensate_program(&program.parsed.program, &program.lowered, &program.valid, &program.machine, model, &options)
     }
 }
@@ -186,7 +187,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         Ok(program) => program,
         Err(text) => return Ok(FileResult::failed(1, text)),
     };
-    let outcome = args.fit.compensate(&program, &model, false);
+    let outcome = args.fit.compensate(&program, &model, false, args.report.is_some());
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());

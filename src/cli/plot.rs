@@ -44,7 +44,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
             return Ok(ExitCode::from(1));
         }
     };
-    let outcome = args.fit.compensate(&program, &model, true);
+    let outcome = args.fit.compensate(&program, &model, true, false);
     // The plot shows what compensation would do even where `compensate` would refuse.
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     let _ = std::io::stderr().write_all(&messages);

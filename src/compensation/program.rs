@@ -43,6 +43,9 @@ pub struct CompensateOptions {
     /// Keep every sample's paths in `Outcome::paths` (for `plot`; a long program has
     /// millions of samples).
     pub paths: bool,
+    /// Report every edited block (`Report::blocks`, for `--report json`); the totals are
+    /// always reported.
+    pub block_reports: bool,
 }
 
 /// What `compensate` produced.
@@ -154,6 +157,7 @@ pub fn compensate_program(
         edited: &rewritten.edited,
         inverse_iterations: totals.inverse_iterations,
         inverse_residual_mm: totals.inverse_residual_mm,
+        block_reports: options.block_reports,
     });
     Outcome { edits: rewritten.edits, diagnostics, report, paths, edited: rewritten.edited }
 }

@@ -92,13 +92,17 @@ pub struct ReportInput<'a> {
     pub edited: &'a [EditedBlock],
     pub inverse_iterations: u32,
     pub inverse_residual_mm: f64,
+    /// Report every edited block, not only the totals.
+    pub block_reports: bool,
 }
 
 pub fn build(input: &ReportInput<'_>) -> Report {
     let lines = LineIndex::new(input.program.source());
     let edited = input.edited;
     // A long program's blocks are reported in two halves at once.
-    let blocks = if edited.len() >= PARALLEL_BLOCKS {
+    let blocks = if !input.block_reports {
+        Vec::new()
+    } else if edited.len() >= PARALLEL_BLOCKS {
         let (first, second) = edited.split_at(edited.len() / 2);
         std::thread::scope(|scope| {
             let second = scope.spawn(|| block_reports(input, &lines, second));
