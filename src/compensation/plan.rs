@@ -108,6 +108,7 @@ pub fn plan_range(
 ) -> Xz {
     let toolpath = input.toolpath;
     let first = moves.start;
+    let mut points: Vec<Xz> = Vec::new();
     for (index, m) in toolpath.moves.get(moves).unwrap_or_default().iter().enumerate() {
         let index = first + index;
         let contour_start = written::contour_start(toolpath, index);
@@ -117,10 +118,13 @@ pub fn plan_range(
         } else if range.is_empty() || !input.writable.get(index).copied().unwrap_or(false) {
             nominal_plan(m, at, input.tools)
         } else {
-            let points: Vec<Xz> = range
-                .clone()
-                .map(|j| written::written_point(m, contour_start, &input.samples[j], input.commanded[j], input.tools))
-                .collect();
+            // One buffer for every move's points: most moves have one or a few.
+            points.clear();
+            points.extend(
+                range.clone().map(|j| {
+                    written::written_point(m, contour_start, &input.samples[j], input.commanded[j], input.tools)
+                }),
+            );
             let switches = index > 0
                 && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
                     != Some(m.compensation);
@@ -155,6 +159,10 @@ pub fn plan_range(
 /// arc of radius 13.5): the far side of the circle moves with it. Each half has a long
 /// chord. Cutting keeps the exact geometry; only the cut point is rounded.
 fn settle_arcs(mut plan: MovePlan, grid: &Grid, prefer_radius: bool) -> MovePlan {
+    if !plan.segments.iter().any(|s| matches!(s, Segment::Arc { .. })) {
+        // Nothing to choose: lines have no words to keep.
+        return plan;
+    }
     let mut segments = Vec::with_capacity(plan.segments.len());
     let mut words = Vec::with_capacity(plan.segments.len());
     let mut from = plan.start;

@@ -20,11 +20,18 @@ use super::written;
 /// words `rewrite` writes for them: each end rounded from its exact value, each arc about
 /// the centre the control finds from its words (`Grid::arc_words`, in the form
 /// `prefer_radius` asks for where it holds the arc; the plan's own `words` where it chose
-/// them), an arc no words can give a line.
-pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], words: &[ArcWords], prefer_radius: bool) -> Vec<Segment> {
+/// them), an arc no words can give a line. Into `out`, which is cleared first.
+pub fn quantise(
+    grid: &Grid,
+    start: Xz,
+    segments: &[Segment],
+    words: &[ArcWords],
+    prefer_radius: bool,
+    out: &mut Vec<Segment>,
+) {
     let mut from_exact = start;
     let mut from = grid.point(start);
-    let mut out = Vec::with_capacity(segments.len());
+    out.clear();
     for (index, segment) in segments.iter().enumerate() {
         let end = grid.point(segment.end());
         let rounded = match *segment {
@@ -44,7 +51,6 @@ pub fn quantise(grid: &Grid, start: Xz, segments: &[Segment], words: &[ArcWords]
         from = end;
         from_exact = segment.end();
     }
-    out
 }
 
 /// The point of a segment (from `start`) closest to `p`.
@@ -123,6 +129,8 @@ pub fn commanded_moves(
 ) {
     let (toolpath, samples, tools) = (input.toolpath, input.samples, input.tools);
     let moves = toolpath.moves.get(first..).unwrap_or_default();
+    // Buffers for every move's rounded segments and their gauges.
+    let (mut rounded, mut gauges) = (Vec::new(), Vec::new());
     for (index, (m, plan)) in moves.iter().zip(plans).enumerate() {
         let index = first + index;
         let Some(range) = input.ranges.get(index).filter(|r| !r.is_empty()) else { continue };
@@ -137,9 +145,9 @@ pub fn commanded_moves(
             continue;
         }
         let prefer_radius = input.radius.get(index).copied().unwrap_or(false);
-        let rounded = quantise(&grid, plan.start, &plan.segments, &plan.words, prefer_radius);
+        quantise(&grid, plan.start, &plan.segments, &plan.words, prefer_radius, &mut rounded);
         let walk = Walk { m, contour_start, start: grid.round(plan.start), segments: &rounded, tools };
-        walk.follow(samples, input.commanded, range.clone(), out);
+        walk.follow(samples, input.commanded, range.clone(), &mut gauges, out);
     }
 }
 
@@ -154,13 +162,20 @@ struct Walk<'a> {
 
 impl Walk<'_> {
     /// Walk the samples of the move along the segments, each to its closest point.
-    fn follow(&self, samples: &[PathSample], ideal: &[Xz], range: Range<usize>, out: &mut [Xz]) {
+    fn follow(
+        &self,
+        samples: &[PathSample],
+        ideal: &[Xz],
+        range: Range<usize>,
+        gauges: &mut Vec<Gauge>,
+        out: &mut [Xz],
+    ) {
         // Samples and segments both run along the move: search a window ahead of the last
         // segment used.
         const WINDOW: usize = 16;
         let starts = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end));
-        let gauges: Vec<Gauge> =
-            self.segments.iter().zip(starts).map(|(segment, from)| Gauge::new(from, segment)).collect();
+        gauges.clear();
+        gauges.extend(self.segments.iter().zip(starts).map(|(segment, from)| Gauge::new(from, segment)));
         let mut cursor = 0usize;
         for j in range {
             let target = written::written_point(self.m, self.contour_start, &samples[j], ideal[j], self.tools);
