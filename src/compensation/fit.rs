@@ -338,7 +338,9 @@ impl Fitting<'_, '_> {
     fn cheapest_for_arc(&self, centre: Xz, ccw: bool) -> Fitted {
         let mut best: Option<Fitted> = None;
         let mut tried = Vec::new();
-        let travel = split::Travel::new(self.m, centre, ccw);
+        // The angles travelled, for the splits; one circle needs none.
+        let travel = std::cell::OnceCell::new();
+        let travel = || travel.get_or_init(|| split::Travel::new(self.m, centre, ccw));
         for (cuts, strategy) in [
             (&[][..], Strategy::Circle),
             (&SEMICIRCLE_CUTS[..], Strategy::Semicircle),
@@ -349,7 +351,11 @@ impl Fitting<'_, '_> {
                 break;
             }
             // A split that cuts nowhere new is a fit already tried.
-            let pieces = travel.cut_indices(cuts);
+            let pieces = if cuts.is_empty() {
+                self.m.points.len().checked_sub(1).into_iter().collect()
+            } else {
+                travel().cut_indices(cuts)
+            };
             if tried.contains(&pieces) {
                 continue;
             }

@@ -64,6 +64,10 @@ pub fn circles_at(
 
 /// The index of the last point of each piece, the move's last point included.
 pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> Vec<usize> {
+    if cuts.is_empty() {
+        // One piece: no angle needs measuring.
+        return m.points.len().checked_sub(1).into_iter().collect();
+    }
     Travel::new(m, centre, ccw).cut_indices(cuts)
 }
 
