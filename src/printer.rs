@@ -70,9 +70,11 @@ fn print_blocks(
 ) {
     let mut writer = Writer { program, style, out, open_line: false, text: String::new() };
     let first = range.start;
+    // The edits come in block order: walk them beside the blocks rather than look each up.
+    let mut pending = edits.from(first).peekable();
     for (index, block) in program.blocks().get(range).unwrap_or_default().iter().enumerate() {
         let index = first + index;
-        let edit = edits.get(index);
+        let edit = pending.next_if(|&(at, _)| at == index).map(|(_, edit)| edit);
         if let Some(edit) = edit {
             for new in &edit.before {
                 writer.new_line(new);

@@ -84,7 +84,8 @@ impl Edits {
         self.blocks.get(&index).is_some_and(|e| e.replacement.is_some())
     }
 
-    pub(crate) fn get(&self, index: usize) -> Option<&BlockEdit> {
-        self.blocks.get(&index)
+    /// The edits of block `first` and after, in block order.
+    pub(crate) fn from(&self, first: usize) -> impl Iterator<Item = (usize, &BlockEdit)> {
+        self.blocks.range(first..).map(|(&index, edit)| (index, edit))
     }
 }
