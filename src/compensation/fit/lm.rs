@@ -79,6 +79,10 @@ pub(crate) fn minimise<const N: usize>(
                 equations = problem.normal_equations(&params)?;
                 lambda = (lambda / 10.0).max(1e-15);
             }
+            // A step this small that does not lower the cost is rounding noise: the
+            // minimum is found, and raising the damping up to its limit would only shorten
+            // the step further (that tail was most of the iterations on near-exact circles).
+            _ if step.norm() <= 1e-12 * (1.0 + params.norm()) => break,
             _ => {
                 lambda *= 10.0;
                 if lambda > 1e16 {
