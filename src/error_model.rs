@@ -80,6 +80,12 @@ impl ErrorModel {
         self.effects.iter().fold(tables, |spacing, effect| spacing.closer(effect.spacing(allowance, reach)))
     }
 
+    /// What makes the whole model's correction turn around an arc (`spacing::ArcTerms`).
+    /// Axis tables add none here: they keep the thesis' 0.254 mm along the arc.
+    pub fn arc_terms(&self, reach: Xz) -> spacing::ArcTerms {
+        self.effects.iter().fold(spacing::ArcTerms::default(), |terms, effect| terms.plus(effect.arc_terms(reach)))
+    }
+
     /// Whether the model has any term (an empty model moves nothing).
     pub fn is_empty(&self) -> bool {
         self.tables.is_none() && self.effects.is_empty()

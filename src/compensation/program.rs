@@ -79,15 +79,17 @@ impl Outcome {
 
 /// How closely `compensate` samples `toolpath` for `model`: as the model needs for the
 /// path between samples to follow its correction within a tenth of the tolerance
-/// (`error_model/spacing.rs`), every sixteenth of a turn on arcs, and, for `densify` at a
-/// fixed step, at a divisor of that step so that its points fall on samples.
+/// (`error_model/spacing.rs`), on arcs as closely as the terms that turn with them need and
+/// at least every sixteenth of a turn, and, for `densify` at a fixed step, at a divisor of that
+/// step so that its points fall on samples.
 pub fn sampling(fit: &FitOptions, model: &ErrorModel, toolpath: &Toolpath) -> Sampling {
     let allowance = fit.tolerance_mm * INTERPOLATION_SHARE;
-    let mut spacing = model.spacing(allowance, reach(toolpath));
+    let reach = reach(toolpath);
+    let mut spacing = model.spacing(allowance, reach);
     if let Some(step) = fit.step_mm.filter(|s| s.is_finite() && *s > 0.0) {
         spacing.mm = step / (step / spacing.mm).ceil().max(1.0);
     }
-    Sampling { spacing, arc_radians: Sampling::ARC_RADIANS }
+    Sampling { spacing, arc: model.arc_terms(reach), allowance }
 }
 
 /// The farthest `toolpath` goes from the origin in each axis, mm (X as a radius): an

@@ -13,7 +13,7 @@ use std::f64::consts::TAU;
 use std::ops::Range;
 
 use crate::error_model::Spacing;
-use crate::error_model::spacing::TABLE_STEP_MM;
+use crate::error_model::spacing::{ArcTerms, TABLE_STEP_MM};
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
@@ -47,23 +47,41 @@ pub struct PathSample {
 pub struct Sampling {
     /// Along the path and in time (`Spacing::steps` splits each move evenly).
     pub spacing: Spacing,
-    /// The largest angle an arc turns between two samples, radians. A correction that
-    /// varies with the direction of travel or with the position (the velocity of servo lag,
-    /// the normal of a nose radius, an affine term seen around an arc) is a sum of the
-    /// arc's first harmonics; at a sixteenth of a turn the chord between samples follows
-    /// such a term to half a percent of its size.
-    pub arc_radians: f64,
+    /// What turns the correction around an arc: an arc is sampled at least at the angle
+    /// step `ArcTerms::radians` gives for its radius and feed with `allowance`, and at
+    /// least every `MAX_ARC_RADIANS`.
+    pub arc: ArcTerms,
+    /// How far the chord between samples may stray from the correction, mm (zero, with no
+    /// arc terms: no angle step at all, as `every_mm` samples).
+    pub allowance: f64,
 }
 
 impl Sampling {
-    /// The largest angle between an arc's samples when the model would allow fewer.
-    pub const ARC_RADIANS: f64 = std::f64::consts::PI / 16.0;
+    /// The largest angle between an arc's samples, whatever the model: a sixteenth of a
+    /// turn. The fits take the path between two samples of an arc as the nominal arc's bulge
+    /// over their chord (`fit/deviation.rs`); a correction of size c that changes the radius
+    /// about the nominal centre changes that bulge by c·(1 − cos(θ/2)) over an angle θ:
+    /// 0.5 % of c at this step (0.05 µm for a 10 µm correction, the allowance at the
+    /// default tolerance), 7.6 % at an eighth of a turn, which the generated programs showed
+    /// as false deviations and arcs cut in two.
+    pub const MAX_ARC_RADIANS: f64 = std::f64::consts::PI / 16.0;
 
     /// Every `step` mm along cutting moves, whatever the model: how `verify`, `diagnose`
     /// and `plot` measure a path, and how the thesis sampled.
     pub fn every_mm(step: f64) -> Sampling {
         let step = if step.is_finite() && step > 0.0 { step } else { TABLE_STEP_MM };
-        Sampling { spacing: Spacing::mm(step), arc_radians: f64::INFINITY }
+        Sampling { spacing: Spacing::mm(step), arc: ArcTerms::default(), allowance: 0.0 }
+    }
+
+    /// How many equal steps an arc of `radius` sweeping `sweep` radians at `feed` needs by
+    /// its angle (`every_mm` asks none).
+    fn arc_steps(&self, radius: f64, sweep: f64, feed: f64) -> usize {
+        if self.allowance <= 0.0 && self.arc == ArcTerms::default() {
+            return 0;
+        }
+        let step = self.arc.radians(radius, feed, self.allowance).min(Self::MAX_ARC_RADIANS);
+        // `as` saturates; a NaN (a degenerate arc) is no step.
+        if step > 0.0 { (sweep / step).ceil() as usize } else { 0 }
     }
 }
 
@@ -113,8 +131,8 @@ pub fn sample_moves(
                 let sweep = geometry::sweep(start, m.end, m.centre, ccw);
                 let a0 = geometry::angle(start, m.centre);
                 let sign = if ccw { 1.0 } else { -1.0 };
-                let by_angle = if sampling.arc_radians > 0.0 { (sweep / sampling.arc_radians).ceil() } else { 0.0 };
-                let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle as usize).max(2);
+                let by_angle = sampling.arc_steps(radius, sweep, m.feed);
+                let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2);
                 let mut previous = 0.0;
                 for t in arc_fractions(n, a0, sweep, ccw) {
                     let covers_mm = radius * sweep * (t - previous);

@@ -49,7 +49,7 @@ pub use tool_wear::ToolWear;
 use serde::{Deserialize, Serialize};
 
 use crate::error_model::Sample;
-use crate::error_model::spacing::Spacing;
+use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
 
 /// One parametric effect.
@@ -162,6 +162,35 @@ impl Effect {
         }
     }
 
+    /// What makes this effect's correction turn around an arc (`spacing::ArcTerms`); `reach`
+    /// as for `spacing`.
+    pub fn arc_terms(&self, reach: Xz) -> ArcTerms {
+        let gradient = |gradient: f64| ArcTerms { gradient: gradient.abs(), ..ArcTerms::default() };
+        match self {
+            Effect::ScaleX(e) => gradient(e.ppm * 1e-6),
+            Effect::ScaleZ(e) => gradient(e.ppm * 1e-6),
+            Effect::Squareness(e) => gradient(e.urad * 1e-6),
+            Effect::CyclicX(e) => gradient(e.amp * std::f64::consts::TAU / e.pitch),
+            Effect::CyclicZ(e) => gradient(e.amp * std::f64::consts::TAU / e.pitch),
+            Effect::StraightnessX(e) => gradient(bow_slope(&e.coeffs, reach.z)),
+            Effect::StraightnessZ(e) => gradient(bow_slope(&e.coeffs, reach.x)),
+            Effect::ServoMismatch(e) => ArcTerms { lag_min: e.dt_ms.abs() / 60_000.0, ..ArcTerms::default() },
+            Effect::NoseRadius(e) => ArcTerms { nose_mm: e.dr.abs(), ..ArcTerms::default() },
+            // Constant (offsets), a step where an axis reverses (backlash, sampled there), a
+            // function of time (warm-up), of the length cut (wear) or of the travel since a
+            // reversal (spikes, in `spacing`): nothing that turns with the arc.
+            Effect::ToolOffsetX(_)
+            | Effect::ToolOffsetZ(_)
+            | Effect::BacklashX(_)
+            | Effect::BacklashZ(_)
+            | Effect::ThermalX(_)
+            | Effect::ThermalZ(_)
+            | Effect::ToolWear(_)
+            | Effect::ReversalSpikeX(_)
+            | Effect::ReversalSpikeZ(_) => ArcTerms::default(),
+        }
+    }
+
     /// The effect's name as the model file writes it.
     pub fn name(&self) -> &'static str {
         match self {
@@ -208,6 +237,13 @@ pub(crate) fn backlash_share(b: f64, play: f64, slide_offset: f64, direction: i8
 pub(crate) fn bow_curvature(coeffs: &[f64], reach: f64) -> f64 {
     let reach = reach.abs();
     coeffs.iter().enumerate().map(|(k, c)| c.abs() * ((k + 2) * (k + 1)) as f64 * reach.powi(k as i32)).sum()
+}
+
+/// A bound on the slope of `bow(coeffs, p)` for `|p| ≤ reach`:
+/// `Σ |coeffs[k]|·(k+2)·reach^(k+1)`.
+pub(crate) fn bow_slope(coeffs: &[f64], reach: f64) -> f64 {
+    let reach = reach.abs();
+    coeffs.iter().enumerate().map(|(k, c)| c.abs() * (k + 2) as f64 * reach.powi(k as i32 + 1)).sum()
 }
 
 /// A reversal spike: `h · direction · e^(−s/decay)`.

@@ -17,6 +17,11 @@
 /// The thesis' sampling step, mm: it interpolated its error tables every 0.01 in.
 pub const TABLE_STEP_MM: f64 = 0.254;
 
+/// The finest step any term asks for (a thousandth of a millimetre, a minute or a radian):
+/// finer than a least increment helps nothing, and a tolerance near zero would otherwise ask
+/// for unboundedly many samples.
+pub const FINEST_STEP: f64 = 1e-3;
+
 /// The longest distance between two samples along a move: in path length and in time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Spacing {
@@ -54,12 +59,47 @@ impl Spacing {
     }
 }
 
+/// What makes a correction turn as the tool goes round an arc, for sampling arcs. Around
+/// an arc of radius R at feed F, the correction's second derivative by the angle is at most
+/// `gradient·R + lag_min·F + nose_mm`: a term of the position turns with the radius vector
+/// (its gradient times R), servo lag with the velocity (F times the lag), a nose radius
+/// error with the surface normal (its size). What curves along the path itself is in
+/// `Spacing`, in path length.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ArcTerms {
+    /// A bound on the gradient of the position's terms, mm of correction per mm of travel.
+    pub gradient: f64,
+    /// The lag of an axis behind its command, minutes.
+    pub lag_min: f64,
+    /// The size of a nose radius error, mm.
+    pub nose_mm: f64,
+}
+
+impl ArcTerms {
+    /// Both sets of terms.
+    pub fn plus(self, other: ArcTerms) -> ArcTerms {
+        ArcTerms {
+            gradient: self.gradient + other.gradient,
+            lag_min: self.lag_min + other.lag_min,
+            nose_mm: self.nose_mm + other.nose_mm,
+        }
+    }
+
+    /// The largest angle between samples of an arc of `radius_mm` at `feed` mm/min for the
+    /// chord between them to follow these terms within `allowance` mm; unbounded for none.
+    pub fn radians(&self, radius_mm: f64, feed: f64, allowance: f64) -> f64 {
+        let turning = self.gradient.abs() * radius_mm.abs() + self.lag_min.abs() * feed.abs() + self.nose_mm.abs();
+        step_for_curvature(turning, allowance)
+    }
+}
+
 /// The step over which a function whose second derivative is at most `curvature` departs
-/// from its chord by `allowance`: `√(8·allowance/curvature)`; unbounded for a straight one.
+/// from its chord by `allowance`: `√(8·allowance/curvature)`; unbounded for a straight one,
+/// and never below `FINEST_STEP`.
 pub fn step_for_curvature(curvature: f64, allowance: f64) -> f64 {
     let curvature = curvature.abs();
     if curvature > 0.0 && curvature.is_finite() && allowance > 0.0 {
-        (8.0 * allowance / curvature).sqrt()
+        (8.0 * allowance / curvature).sqrt().max(FINEST_STEP)
     } else if curvature > 0.0 {
         // No allowance (or an infinite curvature): as fine as the thesis sampled.
         TABLE_STEP_MM

@@ -187,3 +187,61 @@ fn curved_effects_sampled_at_their_spacing_stay_within_the_allowance_of_the_chor
     let tables = ErrorModel { tables: Some(htm::AxisTables::default()), ..ErrorModel::default() };
     assert_eq!(tables.spacing(allowance, reach), Spacing::mm(spacing::TABLE_STEP_MM));
 }
+
+#[test]
+fn terms_that_turn_with_an_arc_stay_within_the_allowance_at_their_angle_step() {
+    let allowance = 5e-5;
+    let reach = Xz::new(80.0, 300.0);
+    let (centre, radius, feed) = (Xz::new(30.0, -40.0), 12.0, 300.0);
+    // The correction of `effect` at angle `a` of a counter-clockwise arc at `feed`.
+    let around = |effect: &Effect, a: f64| {
+        let at = Xz::new(centre.x + radius * a.sin(), centre.z + radius * a.cos());
+        // The tangent of increasing angle, and the normal pointing out of the arc.
+        let tangent = Xz::new(a.cos(), -a.sin());
+        let normal = Xz::new(a.sin(), a.cos());
+        let s = Sample {
+            velocity: Xz::new(tangent.x * feed, tangent.z * feed),
+            normal,
+            tip: Xz::new(-1.0, -1.0),
+            ..sample(at.x, at.z)
+        };
+        let d = effect.displacement(&s);
+        (d.x, d.z)
+    };
+    for effect in [
+        Effect::ScaleX(ScaleX { ppm: 40.0 }),
+        Effect::ScaleZ(ScaleZ { ppm: 30.0 }),
+        Effect::Squareness(Squareness { urad: 25.0 }),
+        Effect::ServoMismatch(ServoMismatch { dt_ms: 0.8 }),
+        Effect::NoseRadius(NoseRadius { dr: 0.004 }),
+    ] {
+        let terms = effect.arc_terms(reach);
+        let step = terms.radians(radius, feed, allowance);
+        assert!(step.is_finite() && step > 0.0, "{}", effect.name());
+        for component in [0, 1] {
+            let f = |a: f64| {
+                let (x, z) = around(&effect, a);
+                if component == 0 { x } else { z }
+            };
+            let gap = worst_chord_gap(f, std::f64::consts::TAU, step);
+            assert!(gap <= allowance * 1.0001, "{}: {gap}", effect.name());
+        }
+        // The bound is not loose by more than the sum of the two axes' shares.
+        let gap = (0..2)
+            .map(|component| {
+                worst_chord_gap(
+                    |a| {
+                        let (x, z) = around(&effect, a);
+                        if component == 0 { x } else { z }
+                    },
+                    std::f64::consts::TAU,
+                    step * 2.0,
+                )
+            })
+            .fold(0.0, f64::max);
+        assert!(gap > allowance, "{}: twice the step gives {gap}", effect.name());
+    }
+    // Terms with nothing that turns with the arc ask no angle step.
+    let none = Effect::BacklashZ(BacklashZ { b: 0.003 }).arc_terms(reach);
+    assert_eq!(none.radians(radius, feed, allowance), f64::INFINITY);
+}
