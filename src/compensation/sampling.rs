@@ -58,12 +58,10 @@ pub struct Sampling {
 
 impl Sampling {
     /// The largest angle between an arc's samples, whatever the model: a sixteenth of a
-    /// turn. The fits take the path between two samples of an arc as the nominal arc's bulge
-    /// over their chord (`fit/deviation.rs`); a correction of size c that changes the radius
-    /// about the nominal centre changes that bulge by c·(1 − cos(θ/2)) over an angle θ:
-    /// 0.5 % of c at this step (0.05 µm for a 10 µm correction, the allowance at the
-    /// default tolerance), 7.6 % at an eighth of a turn, which the generated programs showed
-    /// as false deviations and arcs cut in two.
+    /// turn. The fits hold an arc to the path between its samples as the nominal arc's
+    /// bulge over their chord (`fit/deviation.rs`), and the inverse holds a slide still in
+    /// its play near an arc's extreme; both weigh more the fewer the points. At an eighth of
+    /// a turn the generated programs' arcs were cut in two where one arc had held.
     pub const MAX_ARC_RADIANS: f64 = std::f64::consts::PI / 16.0;
 
     /// Every `step` mm along cutting moves, whatever the model: how `verify`, `diagnose`
