@@ -34,33 +34,50 @@ pub fn write_number(out: &mut String, number: Number, style: Style) {
     } else if style.as_written && number.flags.contains(NumberFlags::PLUS) {
         out.push('+');
     }
-    let digits = number.mantissa.unsigned_abs().to_string();
-    let scale = number.scale as usize;
-    let (integer, fraction) = if digits.len() > scale {
-        (digits[..digits.len() - scale].to_string(), digits[digits.len() - scale..].to_string())
-    } else {
-        (String::new(), format!("{}{}", "0".repeat(scale - digits.len()), digits))
-    };
-    let mut fraction = fraction;
-    if style.trim_zeros {
-        while fraction.ends_with('0') {
-            fraction.pop();
+    // The mantissa's digits, most significant first, on the stack: a compensated program
+    // prints millions of numbers, and building each from strings cost a few allocations.
+    let mut buffer = [0u8; 20];
+    let mut value = number.mantissa.unsigned_abs();
+    let mut start = buffer.len();
+    loop {
+        start -= 1;
+        buffer[start] = b'0' + (value % 10) as u8;
+        value /= 10;
+        if value == 0 {
+            break;
         }
     }
-    let integer = integer.trim_start_matches('0');
-    let point = if style.as_written { number.has_point() } else { style.force_point || !fraction.is_empty() };
+    let digits = &buffer[start..];
+    let scale = number.scale as usize;
+    // The fraction is `pad` zeros and then `fraction`.
+    let (integer, fraction, pad) = match digits.len().checked_sub(scale) {
+        Some(split) if split > 0 => (&digits[..split], &digits[split..], 0),
+        _ => (&digits[..0], digits, scale - digits.len()),
+    };
+    let mut kept = fraction.len();
+    if style.trim_zeros {
+        while kept > 0 && fraction[kept - 1] == b'0' {
+            kept -= 1;
+        }
+    }
+    // Trimming through every digit trims the padding zeros too.
+    let pad = if style.trim_zeros && kept == 0 { 0 } else { pad };
+    let fraction_empty = pad + kept == 0;
+    let integer = &integer[integer.iter().take_while(|&&d| d == b'0').count()..];
+    let point = if style.as_written { number.has_point() } else { style.force_point || !fraction_empty };
     let leading =
         if style.as_written { !number.flags.contains(NumberFlags::NO_INTEGER_DIGITS) } else { style.leading_zero };
     if integer.is_empty() {
-        if leading || !point || fraction.is_empty() {
+        if leading || !point || fraction_empty {
             out.push('0');
         }
     } else {
-        out.push_str(integer);
+        out.extend(integer.iter().map(|&d| char::from(d)));
     }
     if point {
         out.push('.');
-        out.push_str(&fraction);
+        out.extend(std::iter::repeat_n('0', pad));
+        out.extend(fraction[..kept].iter().map(|&d| char::from(d)));
     }
 }
 
@@ -92,5 +109,71 @@ mod tests {
         out.clear();
         write_number(&mut out, number(0, 0, false), style);
         assert_eq!(out, "0.");
+    }
+
+    /// The spelling as it was first written, with strings: the reference the stack-buffer
+    /// version must agree with.
+    fn by_strings(out: &mut String, number: Number, style: Style) {
+        let negative = number.mantissa < 0 || number.flags.contains(NumberFlags::MINUS);
+        if negative {
+            out.push('-');
+        } else if style.as_written && number.flags.contains(NumberFlags::PLUS) {
+            out.push('+');
+        }
+        let digits = number.mantissa.unsigned_abs().to_string();
+        let scale = number.scale as usize;
+        let (integer, fraction) = if digits.len() > scale {
+            (digits[..digits.len() - scale].to_string(), digits[digits.len() - scale..].to_string())
+        } else {
+            (String::new(), format!("{}{}", "0".repeat(scale - digits.len()), digits))
+        };
+        let mut fraction = fraction;
+        if style.trim_zeros {
+            while fraction.ends_with('0') {
+                fraction.pop();
+            }
+        }
+        let integer = integer.trim_start_matches('0');
+        let point = if style.as_written { number.has_point() } else { style.force_point || !fraction.is_empty() };
+        let leading =
+            if style.as_written { !number.flags.contains(NumberFlags::NO_INTEGER_DIGITS) } else { style.leading_zero };
+        if integer.is_empty() {
+            if leading || !point || fraction.is_empty() {
+                out.push('0');
+            }
+        } else {
+            out.push_str(integer);
+        }
+        if point {
+            out.push('.');
+            out.push_str(&fraction);
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn the_stack_spelling_is_the_string_spelling(
+            mantissa in proptest::prop_oneof![proptest::num::i64::ANY, -100_000i64..100_000, proptest::strategy::Just(0i64)],
+            scale in 0u8..=20,
+            flags in 0u8..32,
+            style in 0u8..16,
+        ) {
+            let mut n = Number::new(mantissa, scale, flags & 1 != 0);
+            for (bit, flag) in [(2, NumberFlags::PLUS), (4, NumberFlags::MINUS), (8, NumberFlags::NO_INTEGER_DIGITS), (16, NumberFlags::LEADING_ZEROS)] {
+                if flags & bit != 0 {
+                    n.flags.insert(flag);
+                }
+            }
+            let style = Style {
+                leading_zero: style & 1 != 0,
+                force_point: style & 2 != 0,
+                as_written: style & 4 != 0,
+                trim_zeros: style & 8 != 0,
+            };
+            let (mut fast, mut reference) = (String::new(), String::new());
+            write_number(&mut fast, n, style);
+            by_strings(&mut reference, n, style);
+            proptest::prop_assert_eq!(fast, reference);
+        }
     }
 }
