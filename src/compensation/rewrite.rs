@@ -295,6 +295,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         // By block, each block's runs in path order (a stable sort; the runs mostly come in
         // block order already).
         self.runs.sort_by_key(|(block, _)| *block);
+        let mut replacements = Vec::with_capacity(self.runs.len());
         for block_runs in self.runs.chunk_by_mut(|a, b| a.0 == b.0) {
             let Some((block, first)) = block_runs.first() else { continue };
             let block = *block;
@@ -315,9 +316,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             if let Some((_, first)) = block_runs.first_mut()
                 && let Some(new) = first.blocks.take()
             {
-                out.edits.replace(block, new);
+                replacements.push((block, new));
                 out.edited.push(EditedBlock { block, moves: first.moves.clone(), cycle: false });
             }
         }
+        out.edits.replace_all(replacements);
     }
 }

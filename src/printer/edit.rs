@@ -67,6 +67,20 @@ impl Edits {
         self.blocks.entry(index).or_default().replacement = Some(blocks);
     }
 
+    /// `replace` for each of `replacements`, in one go: when there are no edits yet and the
+    /// indices come in order (a compensated program's motion blocks), the map is built in
+    /// bulk rather than block by block.
+    pub fn replace_all(&mut self, replacements: Vec<(usize, Vec<NewBlock>)>) {
+        let edit = |blocks| BlockEdit { replacement: Some(blocks), ..BlockEdit::default() };
+        if self.blocks.is_empty() {
+            self.blocks = replacements.into_iter().map(|(index, blocks)| (index, edit(blocks))).collect();
+        } else {
+            for (index, blocks) in replacements {
+                self.replace(index, blocks);
+            }
+        }
+    }
+
     pub fn delete(&mut self, index: usize) {
         self.replace(index, Vec::new());
     }
