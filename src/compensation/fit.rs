@@ -79,7 +79,13 @@ pub struct FitOptions {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NominalShape {
     Line,
-    Arc { centre: Xz, ccw: bool },
+    /// The programmed arc: its centre, sense and radius (the contour's, as programmed; the
+    /// compensated points lie off it by their corrections).
+    Arc {
+        centre: Xz,
+        ccw: bool,
+        radius: f64,
+    },
 }
 
 /// One compensated move: where it starts (the end of the previous written move) and the
@@ -142,13 +148,17 @@ pub fn densify(m: &MovePoints<'_>, tolerance_mm: f64, step_mm: Option<f64>) -> V
 /// A line between two samples of an arc of radius R a chord c apart cuts inside the arc by
 /// c²/8R: 5 µm for the 0.254 mm sampling step on a 1.6 mm fillet, ten times a half-micron
 /// tolerance, and no sample lies between them to show it. The path between two samples is
-/// taken as the `chord_deviation` bulge takes it: the nominal arc, its radius moving from
-/// one point's to the other's (their corrections vary smoothly between samples).
+/// taken as the `chord_deviation` bulge takes it: the arc of the programmed radius through
+/// both, bulging the way the programmed arc does (exact where the correction moves the arc
+/// without turning it between the samples, which the sampling sees to). Where no such arc
+/// reaches across the chord, the arc about the programmed centre, its radius moving from
+/// one point's to the other's.
 pub fn path_between(nominal: NominalShape, from: Xz, points: &[Xz], tolerance: f64) -> Vec<Xz> {
-    let NominalShape::Arc { centre, .. } = nominal else { return points.to_vec() };
+    let NominalShape::Arc { centre: programmed, radius, .. } = nominal else { return points.to_vec() };
     let mut out = Vec::with_capacity(points.len());
     let mut a = from;
     for &b in points {
+        let centre = through_both(a, b, radius, programmed).unwrap_or(programmed);
         let (ra, rb) = (a.distance(centre), b.distance(centre));
         let chord = a.distance(b);
         // Pieces of length √(2·R·tolerance) stray by a quarter of the tolerance.
@@ -172,6 +182,23 @@ pub fn path_between(nominal: NominalShape, from: Xz, points: &[Xz], tolerance: f
         a = b;
     }
     out
+}
+
+/// The centre of the circle of `radius` through `a` and `b` on the side of `programmed` (the
+/// programmed centre): the short way round, as consecutive samples are.
+fn through_both(a: Xz, b: Xz, radius: f64, programmed: Xz) -> Option<Xz> {
+    let middle = Xz::new((a.x + b.x) / 2.0, (a.z + b.z) / 2.0);
+    let half = a.distance(b) / 2.0;
+    let height = (radius * radius - half * half).sqrt();
+    if !(height.is_finite() && half > 0.0) {
+        return None;
+    }
+    // The chord's normal, turned toward the programmed centre.
+    let mut normal = Xz::new(-(b.z - a.z) / (2.0 * half), (b.x - a.x) / (2.0 * half));
+    if normal.x * (programmed.x - middle.x) + normal.z * (programmed.z - middle.z) < 0.0 {
+        normal = Xz::new(-normal.x, -normal.z);
+    }
+    Some(Xz::new(middle.x + normal.x * height, middle.z + normal.z * height))
 }
 
 /// At most this many pieces between two points (a tolerance near zero would ask for
@@ -264,7 +291,7 @@ pub fn fit_move(m: &MovePoints<'_>, options: &FitOptions) -> Fitted {
                 Strategy::Circle | Strategy::Semicircle | Strategy::Quadrant | Strategy::Densify => fitting.densify(),
             }
         }
-        NominalShape::Arc { centre, ccw } => {
+        NominalShape::Arc { centre, ccw, .. } => {
             let cuts: &[f64] = match options.strategy {
                 Strategy::Semicircle => &SEMICIRCLE_CUTS,
                 Strategy::Quadrant => &QUADRANT_CUTS,

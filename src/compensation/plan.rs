@@ -287,8 +287,11 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
     if !end_moves && jumps.is_empty() && nominal_holds(m, centre, at, points, tolerance) {
         return nominal_plan(m, at, input.tools);
     }
-    let nominal =
-        if m.is_arc() { NominalShape::Arc { centre, ccw: m.motion == Motion::Ccw } } else { NominalShape::Line };
+    let nominal = if m.is_arc() {
+        NominalShape::Arc { centre, ccw: m.motion == Motion::Ccw, radius: m.contour.distance(centre) }
+    } else {
+        NominalShape::Line
+    };
     let mut segments = Vec::new();
     let mut from = at;
     let mut piece = 0;

@@ -66,7 +66,7 @@ fn table_7_circle_fit_of_the_compensated_quarter_arc() {
     let m = MovePoints {
         start,
         points: &by_move[arc],
-        nominal: NominalShape::Arc { centre: Xz::new(0.0, 0.0), ccw: false },
+        nominal: NominalShape::Arc { centre: Xz::new(0.0, 0.0), ccw: false, radius: 25.4 },
     };
     let pinned = fit::fit_move(&m, &FitOptions { strategy: Strategy::Circle, tolerance_mm: 0.00127, step_mm: None });
     let [Segment::Arc { centre: pc, end: pe, .. }] = pinned.segments[..] else {

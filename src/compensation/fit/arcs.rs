@@ -61,11 +61,14 @@ struct Run<'a> {
 pub fn fit(m: &MovePoints<'_>, tolerance_mm: f64) -> Pieces {
     let between = match m.nominal {
         NominalShape::Line => Between::Chords,
-        NominalShape::Arc { centre, .. } => Between::Bulge { centre, radius: m.start.distance(centre) },
+        // The programmed radius: the compensated start lies off the programmed circle by its
+        // correction, and a bulge taken with its distance from the centre would be off by
+        // that correction times 1 − cos of half the angle between points.
+        NominalShape::Arc { centre, radius, .. } => Between::Bulge { centre, radius },
     };
     let curvature = match m.nominal {
         NominalShape::Line => None,
-        NominalShape::Arc { centre, ccw } => Some(if ccw { 1.0 } else { -1.0 } / m.start.distance(centre)),
+        NominalShape::Arc { ccw, radius, .. } => Some(if ccw { 1.0 } else { -1.0 } / radius),
     };
     let run = Run { points: m.points, tolerance: tolerance_mm, between, curvature };
     let count = m.points.len();

@@ -19,7 +19,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use super::deviation::{self, Between};
 use super::pinned;
-use super::{MovePoints, Segment};
+use super::{MovePoints, NominalShape, Segment};
 use crate::geometry;
 use crate::toolpath::Xz;
 
@@ -42,7 +42,11 @@ pub fn circles_at(
     ends: &[usize],
     tolerance_mm: f64,
 ) -> Result<Vec<Segment>, f64> {
-    let radius = m.start.distance(centre);
+    // The programmed radius, for the bulge between points (see `arcs.rs`).
+    let radius = match m.nominal {
+        NominalShape::Arc { radius, .. } => radius,
+        NominalShape::Line => m.start.distance(centre),
+    };
     let context = Piece {
         ccw,
         tolerance: tolerance_mm,

@@ -49,7 +49,7 @@ fn densify_along_a_small_arc_holds_its_lines_to_the_arc_between_the_samples() {
     let m = MovePoints {
         start: crate::geometry::on_circle(centre, radius, 0.0),
         points: &points,
-        nominal: NominalShape::Arc { centre, ccw: true },
+        nominal: NominalShape::Arc { centre, ccw: true, radius },
     };
     for step_mm in [None, Some(0.508)] {
         let lines = densify(&m, TOLERANCE, step_mm);
@@ -107,8 +107,8 @@ fn compensated_arc(centre: Xz, radius: f64, from_deg: f64, sweep_deg: f64, n: us
     (point(0), (1..=n).map(point).collect())
 }
 
-fn arc_move<'a>(start: Xz, points: &'a [Xz], centre: Xz, sweep_deg: f64) -> MovePoints<'a> {
-    MovePoints { start, points, nominal: NominalShape::Arc { centre, ccw: sweep_deg > 0.0 } }
+fn arc_move<'a>(start: Xz, points: &'a [Xz], centre: Xz, radius: f64, sweep_deg: f64) -> MovePoints<'a> {
+    MovePoints { start, points, nominal: NominalShape::Arc { centre, ccw: sweep_deg > 0.0, radius } }
 }
 
 fn options(strategy: Strategy) -> FitOptions {
@@ -143,7 +143,7 @@ fn circle_absorbs_a_radius_error_and_a_centre_offset_exactly() {
     // The thesis' Table 7 quarter, G02 from (x 25.4, z 0) to (x 0, z 25.4) about the origin.
     let errors = Errors { radius: -0.0042, centre: Xz::new(0.0051, 0.0057), ..Errors::default() };
     let (start, points) = compensated_arc(Xz::new(0.0, 0.0), 25.4, 90.0, -90.0, 100, errors);
-    let m = arc_move(start, &points, Xz::new(0.0, 0.0), -90.0);
+    let m = arc_move(start, &points, Xz::new(0.0, 0.0), 25.4, -90.0);
     let fitted = fit_move(&m, &options(Strategy::Circle));
     check(&m, &fitted);
     assert_eq!(fitted.strategy_used, Strategy::Circle);
@@ -164,7 +164,7 @@ fn semicircle_absorbs_a_backlash_step_that_defeats_one_circle() {
     // the arc's bulge between them: 0.068 µm at these 0.3° steps (at 2° it would be 3 µm,
     // and the step could not be written within the tolerance).
     let (start, points) = compensated_arc(Xz::new(10.0, -30.0), 20.0, -45.0, 90.0, 301, errors);
-    let m = arc_move(start, &points, Xz::new(10.0, -30.0), 90.0);
+    let m = arc_move(start, &points, Xz::new(10.0, -30.0), 20.0, 90.0);
 
     let circle = fit_move(&m, &options(Strategy::Circle));
     check(&m, &circle);
@@ -199,7 +199,7 @@ fn a_step_whose_straight_line_would_cut_inside_the_arc_is_not_written() {
     // cannot write the step within the tolerance, says so, and the move is densified.
     let errors = Errors { radius: 0.003, centre: Xz::new(-0.002, 0.004), backlash_z: 0.004, ..Errors::default() };
     let (start, points) = compensated_arc(Xz::new(10.0, -30.0), 20.0, -45.0, 90.0, 45, errors);
-    let m = arc_move(start, &points, Xz::new(10.0, -30.0), 90.0);
+    let m = arc_move(start, &points, Xz::new(10.0, -30.0), 20.0, 90.0);
     let halves = fit_move(&m, &options(Strategy::Semicircle));
     check(&m, &halves);
     let rejected = halves.rejected.expect("the step cannot be written straight");
@@ -213,7 +213,7 @@ fn quadrant_approximates_an_oval_that_defeats_one_circle_and_two_halves() {
     // A full circle with a 2 µm oval: one circle leaves 2 µm, a half 0.7 µm, a quarter 0.34 µm.
     let errors = Errors { radius: 0.002, centre: Xz::new(0.0153, 0.0930), oval: 0.002, ..Errors::default() };
     let (start, points) = compensated_arc(Xz::new(0.0, 0.0), 100.0, 0.0, 360.0, 720, errors);
-    let m = arc_move(start, &points, Xz::new(0.0, 0.0), 360.0);
+    let m = arc_move(start, &points, Xz::new(0.0, 0.0), 100.0, 360.0);
     for strategy in [Strategy::Circle, Strategy::Semicircle] {
         let fitted = fit_move(&m, &options(strategy));
         check(&m, &fitted);
@@ -234,7 +234,7 @@ fn arcs_and_densify_meet_the_tolerance_on_every_error_at_once() {
         Errors { radius: 0.005, centre: Xz::new(0.0051, 0.0057), backlash_z: 0.004, oval: 0.003, third: 0.002 };
     for (from, sweep, n) in [(-45.0, 90.0, 225), (135.0, -270.0, 675), (10.0, 350.0, 875)] {
         let (start, points) = compensated_arc(Xz::new(0.0, 0.0), 25.4, from, sweep, n, errors);
-        let m = arc_move(start, &points, Xz::new(0.0, 0.0), sweep);
+        let m = arc_move(start, &points, Xz::new(0.0, 0.0), 25.4, sweep);
         let arcs = fit_move(&m, &options(Strategy::Arcs));
         let lines = fit_move(&m, &options(Strategy::Densify));
         check(&m, &arcs);
@@ -278,7 +278,7 @@ fn directions(start: Xz, segments: &[Segment]) -> Vec<(Xz, Xz)> {
 fn arcs_join_smoothly_where_the_path_is_smooth() {
     let errors = Errors { radius: 0.005, oval: 0.003, third: 0.002, ..Errors::default() };
     let (start, points) = compensated_arc(Xz::new(0.0, 0.0), 25.4, 180.0, -180.0, 400, errors);
-    let m = arc_move(start, &points, Xz::new(0.0, 0.0), -180.0);
+    let m = arc_move(start, &points, Xz::new(0.0, 0.0), 25.4, -180.0);
     let arcs = fit_move(&m, &options(Strategy::Arcs));
     check(&m, &arcs);
     assert!(arcs.segments.len() >= 3, "{}", arcs.segments.len());
@@ -292,7 +292,7 @@ fn arcs_join_smoothly_where_the_path_is_smooth() {
     // With a backlash step the path has a corner, and so do the arcs.
     let stepped = Errors { backlash_z: 0.004, ..errors };
     let (start, points) = compensated_arc(Xz::new(0.0, 0.0), 25.4, 45.0, -90.0, 201, stepped);
-    let m = arc_move(start, &points, Xz::new(0.0, 0.0), -90.0);
+    let m = arc_move(start, &points, Xz::new(0.0, 0.0), 25.4, -90.0);
     let arcs = fit_move(&m, &options(Strategy::Arcs));
     check(&m, &arcs);
     let turns: Vec<f64> =
@@ -357,10 +357,10 @@ fn degenerate_moves_do_not_panic() {
     for points in [&same[..], &bad[..], &[Xz::new(2.0, 2.0)][..]] {
         for nominal in [
             NominalShape::Line,
-            NominalShape::Arc { centre: Xz::new(1.0, 0.0), ccw: true },
+            NominalShape::Arc { centre: Xz::new(1.0, 0.0), ccw: true, radius: 1.0 },
             // A centre on the start (radius zero), and one that is not a number.
-            NominalShape::Arc { centre: Xz::new(1.0, 1.0), ccw: false },
-            NominalShape::Arc { centre: Xz::new(f64::NAN, 0.0), ccw: true },
+            NominalShape::Arc { centre: Xz::new(1.0, 1.0), ccw: false, radius: 0.0 },
+            NominalShape::Arc { centre: Xz::new(f64::NAN, 0.0), ccw: true, radius: f64::NAN },
         ] {
             for strategy in [
                 Strategy::Auto,
@@ -403,7 +403,7 @@ proptest! {
         let n = ((radius * sweep.abs().to_radians() / step).ceil() as usize).clamp(3, 3000);
         let centre = Xz::new(30.0, -20.0);
         let (start, points) = compensated_arc(centre, radius, from, sweep, n, errors);
-        let m = arc_move(start, &points, centre, sweep);
+        let m = arc_move(start, &points, centre, radius, sweep);
         for strategy in ALL {
             let fitted = fit_move(&m, &options(strategy));
             check(&m, &fitted);

@@ -62,7 +62,8 @@ fn the_chord_test_refuses_an_arc_that_only_meets_the_points() {
     assert_eq!(pieces.segments.len(), 7);
     // Sampled from a nominal arc, the path between the points is that arc's bulge, and
     // the circle follows it: 210° in two arcs of at most half a turn each.
-    let nominal = NominalShape::Arc { centre: Xz::new(0.0, 0.0), ccw: true };
+    let nominal =
+        NominalShape::Arc { centre: Xz::new(0.0, 0.0), ccw: true, radius: polyline.start.distance(Xz::new(0.0, 0.0)) };
     let sampled = MovePoints { nominal, ..polyline };
     let pieces = fit(&sampled, 0.01);
     assert!(pieces.segments.iter().all(|s| matches!(s, Segment::Arc { .. })), "{:?}", pieces.segments);
@@ -74,7 +75,11 @@ fn the_chord_test_refuses_an_arc_that_only_meets_the_points() {
 fn no_arc_sweeps_more_than_half_a_turn_or_is_too_flat_for_a_control() {
     let centre = Xz::new(0.0, 0.0);
     let points: Vec<Xz> = (1..=360).map(|i| on_circle(centre, 20.0, f64::from(i).to_radians())).collect();
-    let m = MovePoints { start: Xz::new(0.0, 20.0), points: &points, nominal: NominalShape::Arc { centre, ccw: true } };
+    let m = MovePoints {
+        start: Xz::new(0.0, 20.0),
+        points: &points,
+        nominal: NominalShape::Arc { centre, ccw: true, radius: 20.0 },
+    };
     let pieces = fit(&m, 0.0005);
     let mut from = m.start;
     for s in &pieces.segments {
@@ -111,7 +116,7 @@ fn one_point_after_a_step_on_a_small_arc_follows_the_arc_not_its_chord() {
     let (centre, radius) = (Xz::new(70.0, -50.0), 4.7);
     let start = on_circle(centre, radius, 1.0);
     let end = on_circle(centre, radius, 1.0 - 0.254 / radius);
-    let m = MovePoints { start, points: &[end], nominal: NominalShape::Arc { centre, ccw: false } };
+    let m = MovePoints { start, points: &[end], nominal: NominalShape::Arc { centre, ccw: false, radius } };
     let pieces = fit(&m, 0.0005);
     let [Segment::Arc { end: written, centre: fitted, ccw: false }] = pieces.segments[..] else {
         panic!("{:?}", pieces.segments)
