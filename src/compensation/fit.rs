@@ -378,11 +378,7 @@ impl Fitting<'_, '_> {
                 break;
             }
             // A split that cuts nowhere new is a fit already tried.
-            let pieces = if cuts.is_empty() {
-                self.m.points.len().checked_sub(1).into_iter().collect()
-            } else {
-                travel().cut_indices(cuts)
-            };
+            let pieces = if cuts.is_empty() { split::one_piece(self.m) } else { travel().cut_indices(cuts) };
             if tried.contains(&pieces) {
                 continue;
             }

@@ -97,9 +97,9 @@ pub fn sampling(fit: &FitOptions, model: &ErrorModel, toolpath: &Toolpath) -> Sa
 fn reach(toolpath: &Toolpath) -> Xz {
     let mut far = Xz::new(toolpath.start.x.abs(), toolpath.start.z.abs());
     for (index, m) in toolpath.moves.iter().enumerate() {
-        let extra = if m.is_arc() { toolpath.start_of(index).distance(m.centre) } else { 0.0 };
         let (x, z) = if m.is_arc() {
-            (m.centre.x.abs() + extra, m.centre.z.abs() + extra)
+            let radius = toolpath.start_of(index).distance(m.centre);
+            (m.centre.x.abs() + radius, m.centre.z.abs() + radius)
         } else {
             (m.end.x.abs(), m.end.z.abs())
         };

@@ -141,7 +141,7 @@ impl Run<'_> {
             // is, the bulge included).
             let tangent = (at.distance(end) > 0.0).then(|| geometry::direction(at, end));
             let segment = Segment::Line { end };
-            let deviation = self.bulge_deviation(at, &segment, points);
+            let deviation = deviation::line_bulge_deviation(at, &segment, points, self.between);
             return Some(Piece { segment, tangent, deviation });
         }
         let bend = pinned::through_ends(at, end, interior, None, None, false)?;
@@ -162,7 +162,9 @@ impl Run<'_> {
                 let radius = at.distance(centre);
                 deviation = deviation.max(deviation::chord_deviation(at, points, centre, radius, self.between));
             }
-            Segment::Line { .. } => deviation = deviation.max(self.bulge_deviation(at, &segment, points)),
+            Segment::Line { .. } => {
+                deviation = deviation.max(deviation::line_bulge_deviation(at, &segment, points, self.between))
+            }
         }
         if deviation.is_nan() || deviation > self.tolerance {
             return None;
@@ -172,14 +174,6 @@ impl Run<'_> {
             Segment::Line { .. } => (at.distance(end) > 0.0).then(|| geometry::direction(at, end)),
         };
         Some(Piece { segment, tangent, deviation })
-    }
-
-    /// How far a line from `at` over `points` strays from the path between them where that
-    /// path is a nominal arc's bulge (`deviation::bulge_middles`); zero along a nominal line,
-    /// where the path between points is their chord.
-    fn bulge_deviation(&self, at: Xz, line: &Segment, points: &[Xz]) -> f64 {
-        let Between::Bulge { centre, radius } = self.between else { return 0.0 };
-        deviation::segment_deviation(at, line, &deviation::bulge_middles(at, points, centre, radius))
     }
 }
 

@@ -236,6 +236,14 @@ pub fn bulge_middles(from: Xz, points: &[Xz], centre: Xz, radius: f64) -> Vec<Xz
         .collect()
 }
 
+/// How far a line from `from` over `points` strays from the path between them where that
+/// path is a nominal arc's bulge (`bulge_middles`); zero along a nominal line, where the
+/// path between points is their chord.
+pub fn line_bulge_deviation(from: Xz, line: &Segment, points: &[Xz], between: Between) -> f64 {
+    let Between::Bulge { centre, radius } = between else { return 0.0 };
+    segment_deviation(from, line, &bulge_middles(from, points, centre, radius))
+}
+
 /// The largest gap between the circle (`centre`, `radius`) and the path between
 /// consecutive points of `from`, `points…` (see the module comment).
 pub fn chord_deviation(from: Xz, points: &[Xz], centre: Xz, radius: f64, between: Between) -> f64 {

@@ -69,10 +69,15 @@ pub fn circles_at(
 /// The index of the last point of each piece, the move's last point included.
 pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> Vec<usize> {
     if cuts.is_empty() {
-        // One piece: no angle needs measuring.
-        return m.points.len().checked_sub(1).into_iter().collect();
+        return one_piece(m);
     }
     Travel::new(m, centre, ccw).cut_indices(cuts)
+}
+
+/// `cut_indices` with no cuts: the move's last point ends its one piece, and no angle needs
+/// measuring.
+pub fn one_piece(m: &MovePoints<'_>) -> Vec<usize> {
+    m.points.len().checked_sub(1).into_iter().collect()
 }
 
 /// The angle each point of a move has travelled about a centre from the move's start,
@@ -170,13 +175,7 @@ impl Piece {
         // The step is held to the path it replaces: along a nominal arc that is the arc's
         // bulge to the first point, which a straight step cuts inside by its sagitta.
         let stepped = stepped.map(|(step, segment, deviation)| {
-            let line = Segment::Line { end: step };
-            let bulge = match self.between {
-                Between::Bulge { centre, radius } => {
-                    deviation::segment_deviation(from, &line, &deviation::bulge_middles(from, &[step], centre, radius))
-                }
-                Between::Chords => 0.0,
-            };
+            let bulge = deviation::line_bulge_deviation(from, &Segment::Line { end: step }, &[step], self.between);
             (step, segment, deviation.max(bulge))
         });
         if let Some((step, segment, deviation)) = stepped
