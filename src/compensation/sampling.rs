@@ -61,9 +61,9 @@ impl Sampling {
     /// turn. The fits follow an eighth as well (they hold an arc to the programmed arc's
     /// bulge between two points with the programmed radius, which a translation of the arc
     /// leaves as it is), but compensate's own prediction, measured at the samples, then
-    /// overstates `densify`: its lines may pass a skipped sample by up to the tolerance, and
-    /// with few samples those points weigh for long stretches of path (0.52 µm RMS predicted
-    /// against 0.29 µm by `verify` on `tests/cases/compensate/generated.nc`).
+    /// overstates `densify` (on `tests/cases/compensate/generated.nc` beyond the bound the
+    /// closed-loop test holds it to): its lines may pass a skipped sample by up to the
+    /// tolerance, and with few samples those points weigh for long stretches of path.
     pub const MAX_ARC_RADIANS: f64 = std::f64::consts::PI / 16.0;
 
     /// Every `step` mm along cutting moves, whatever the model: how `verify`, `diagnose`
