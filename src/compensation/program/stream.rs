@@ -264,7 +264,12 @@ fn check<'a, 'src>(
     let mut out = Checked {
         plans: Vec::with_capacity(count),
         diagnostics: Vec::new(),
-        figures: context.runs.iter().map(|r| RunFigures { moves: r.moves.clone(), ..RunFigures::default() }).collect(),
+        // Each run's figures are read only by the per-block report.
+        figures: if options.block_reports {
+            context.runs.iter().map(|r| RunFigures { moves: r.moves.clone(), ..RunFigures::default() }).collect()
+        } else {
+            Vec::new()
+        },
         totals: Totals::default(),
         paths: Paths::default(),
         needs: vec![false; count],
@@ -274,6 +279,7 @@ fn check<'a, 'src>(
     let mut run = 0;
     let mut trail = Trail::default();
     let mut rewritten = 0;
+    let read_after = cycle_moves(context);
     while let Ok(mut piece) = checking.recv() {
         fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
         piece.rounded.extend(piece.samples.iter().map(|s| s.nominal));
@@ -298,12 +304,45 @@ fn check<'a, 'src>(
             out.motion.add(r, piece.plans.get(first..last).unwrap_or_default());
             rewritten += 1;
         }
-        out.plans.append(&mut piece.plans);
+        keep_plans(&mut piece.plans, piece.moves.start, read_after.as_deref(), &mut out.plans);
         // The solver may have finished: then the piece is dropped.
         let _ = to_reuse.try_send(piece);
     }
     out.diagnostics = safety.finish();
     out
+}
+
+/// Move a piece's plans into `kept` (one per move), whole where something reads them after
+/// the stream (`read_after`: a cycle's moves, which are written only when every move is
+/// planned, or every move for the per-block report), emptied elsewhere: a motion block's
+/// plans were rewritten in the piece, and their segments are better freed for the next
+/// pieces than kept to the end of a long program.
+fn keep_plans(plans: &mut Vec<MovePlan>, first: usize, read_after: Option<&[bool]>, kept: &mut Vec<MovePlan>) {
+    let Some(read_after) = read_after else {
+        kept.append(plans);
+        return;
+    };
+    for (index, plan) in (first..).zip(plans.drain(..)) {
+        if read_after.get(index).copied().unwrap_or(true) {
+            kept.push(plan);
+        } else {
+            kept.push(MovePlan { segments: Default::default(), words: Default::default(), ..plan });
+        }
+    }
+}
+
+/// Per move, whether it belongs to a cycle's expansion; `None` when every plan is kept.
+fn cycle_moves(context: &Context<'_>) -> Option<Vec<bool>> {
+    if context.options.block_reports {
+        return None;
+    }
+    let mut out = vec![false; context.toolpath.moves.len()];
+    for expansion in &context.lowered.expansions {
+        if let Some(moves) = out.get_mut(expansion.moves.clone()) {
+            moves.fill(true);
+        }
+    }
+    Some(out)
 }
 
 /// What was measured at the sample before, for the stretch of path up to the next.
