@@ -166,6 +166,8 @@ struct ArcConstants {
     /// The angle of its start, and the angle it sweeps (`geometry::sweep`).
     a0: f64,
     total: f64,
+    /// The same extent for the tests that need no angle.
+    sector: geometry::Sector,
 }
 
 impl<'a> LocalPath<'a> {
@@ -181,6 +183,7 @@ impl<'a> LocalPath<'a> {
                 radius: start.distance(m.centre),
                 a0: geometry::angle(start, m.centre),
                 total: geometry::sweep(start, m.end, m.centre, m.motion == Motion::Ccw),
+                sector: geometry::Sector::new(start, m.end, m.centre, m.motion == Motion::Ccw),
             }));
         }
         LocalPath { toolpath, ends, arcs }
@@ -244,7 +247,7 @@ impl<'a> LocalPath<'a> {
         let start = self.toolpath.start_of(k);
         let endpoint = |param: f64, point: Xz| Closest { distance: p.distance(point), param, point };
         let closest = match self.arcs.get(k).copied().flatten() {
-            Some(ArcConstants { radius, a0, total }) => {
+            Some(ArcConstants { radius, a0, total, .. }) => {
                 let a = geometry::angle(p, m.centre);
                 let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
                 if delta <= total + 1e-12 {
@@ -278,11 +281,8 @@ impl<'a> LocalPath<'a> {
         };
         let start = self.toolpath.start_of(k);
         match self.arcs.get(k).copied().flatten() {
-            Some(ArcConstants { radius, a0, total }) => {
-                // `geometry::angle_within`.
-                let a = geometry::angle(p, m.centre);
-                let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
-                if delta <= total + 1e-12 {
+            Some(ArcConstants { radius, sector, .. }) => {
+                if sector.contains(Xz::new(p.x - m.centre.x, p.z - m.centre.z)) {
                     (p.distance(m.centre) - radius).abs()
                 } else {
                     p.distance(start).min(p.distance(m.end))

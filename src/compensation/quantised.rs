@@ -3,7 +3,6 @@
 //! point it commands there. The report and `plot` predict the machine along this path, so
 //! their residuals include the re-expression and the rounding, not only the inverse.
 
-use std::f64::consts::TAU;
 use std::ops::Range;
 
 use crate::geometry;
@@ -62,7 +61,7 @@ pub fn closest_on_segment(p: Xz, start: Xz, segment: &Segment) -> Xz {
 #[derive(Debug, Clone, Copy)]
 enum Gauge {
     Line { start: Xz, dx: f64, dz: f64, length2: f64 },
-    Arc { start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64, a0: f64, total: f64 },
+    Arc { start: Xz, end: Xz, centre: Xz, radius: f64, sector: geometry::Sector },
 }
 
 impl Gauge {
@@ -76,16 +75,14 @@ impl Gauge {
                 start,
                 end,
                 centre,
-                ccw,
                 radius: start.distance(centre),
-                a0: geometry::angle(start, centre),
-                total: geometry::sweep(start, end, centre, ccw),
+                sector: geometry::Sector::new(start, end, centre, ccw),
             },
         }
     }
 
-    /// The closest point to `p`; an arc's is found as `geometry::angle_within` and
-    /// `geometry::on_circle` would, with the arc's angles computed once.
+    /// The closest point to `p`; an arc's is where the ray from its centre through `p`
+    /// meets it, or the nearer end when the ray misses the arc.
     fn closest(&self, p: Xz) -> Xz {
         match *self {
             Gauge::Line { start, dx, dz, length2 } => {
@@ -95,11 +92,12 @@ impl Gauge {
                 let t = (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0);
                 Xz::new(start.x + dx * t, start.z + dz * t)
             }
-            Gauge::Arc { start, end, centre, ccw, radius, a0, total } => {
-                let a = geometry::angle(p, centre);
-                let delta = if ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
-                if delta <= total + 1e-12 && p.distance(centre) > 0.0 {
-                    geometry::on_circle(centre, radius, a)
+            Gauge::Arc { start, end, centre, radius, sector } => {
+                let offset = Xz::new(p.x - centre.x, p.z - centre.z);
+                let length = p.distance(centre);
+                if length > 0.0 && sector.contains(offset) {
+                    let scale = radius / length;
+                    Xz::new(centre.x + offset.x * scale, centre.z + offset.z * scale)
                 } else if p.distance(start) <= p.distance(end) {
                     start
                 } else {

@@ -54,3 +54,47 @@ fn left_normal_of_a_cut_toward_the_chuck_points_to_larger_x() {
     assert!(close(n, Xz::new(-1.0, 0.0)) || close(n, Xz::new(1.0, 0.0)));
     assert!(n.x.abs() > 0.99);
 }
+
+mod sector {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// `Sector::contains` decides as `angle_within` does, for every point not within
+        /// a millionth of a radian of the arc's end rays (where either answer measures the
+        /// same distance, and the two may differ by the last bits of an angle).
+        #[test]
+        fn decides_as_angle_within(
+            a0 in -4.0f64..4.0, sweep_angle in 0.001f64..6.2, radius in 0.01f64..500.0,
+            a in -4.0f64..4.0, distance in 0.0f64..3.0, ccw: bool,
+            cx in -200.0f64..200.0, cz in -200.0f64..200.0,
+        ) {
+            let centre = Xz::new(cx, cz);
+            let a1 = if ccw { a0 + sweep_angle } else { a0 - sweep_angle };
+            let (start, end) = (on_circle(centre, radius, a0), on_circle(centre, radius, a1));
+            let point = on_circle(centre, radius * distance, a);
+            let near = |ray: f64| (a - ray).rem_euclid(TAU).min((ray - a).rem_euclid(TAU)) < 1e-6;
+            prop_assume!(!near(a0) && !near(a1) && distance > 1e-9);
+            let sector = Sector::new(start, end, centre, ccw);
+            let offset = Xz::new(point.x - centre.x, point.z - centre.z);
+            prop_assert_eq!(sector.contains(offset), angle_within(point, start, end, centre, ccw));
+        }
+    }
+
+    #[test]
+    fn a_full_circle_contains_every_direction_and_a_half_circle_its_end_rays() {
+        let centre = Xz::new(1.0, 2.0);
+        let start = Xz::new(1.0, 7.0);
+        let full = Sector::new(start, start, centre, true);
+        for k in 0..16 {
+            let a = f64::from(k) * TAU / 16.0;
+            assert!(full.contains(Xz::new(a.sin(), a.cos())));
+        }
+        // G03 from +Z to −Z about the centre sweeps through +X.
+        let half = Sector::new(start, Xz::new(1.0, -3.0), centre, true);
+        assert!(half.contains(Xz::new(0.0, 1.0)) && half.contains(Xz::new(0.0, -1.0)));
+        assert!(half.contains(Xz::new(1.0, 0.0)) && !half.contains(Xz::new(-1.0, 0.0)));
+        let half_cw = Sector::new(start, Xz::new(1.0, -3.0), centre, false);
+        assert!(half_cw.contains(Xz::new(-1.0, 0.0)) && !half_cw.contains(Xz::new(1.0, 0.0)));
+    }
+}
