@@ -147,9 +147,17 @@ pub struct LocalPath<'a> {
     toolpath: &'a Toolpath,
     /// The length of the path up to the end of each move, mm.
     ends: Vec<f64>,
-    /// Each arc's constants (`None` for other moves), computed once for its many samples.
-    arcs: Vec<Option<ArcConstants>>,
+    /// Per move, where its arc's constants are in `arcs` (`NO_ARC` for other moves): most
+    /// moves are lines, and a table of options for every move cost a hundred megabytes on
+    /// a 50 MB program.
+    arc_of: Vec<u32>,
+    /// Each arc's constants, computed once for its many samples.
+    arcs: Vec<ArcConstants>,
 }
+
+/// `LocalPath::arc_of` for a move that is no arc, or whose constants are not kept (past
+/// four thousand million arcs; they are then computed when asked for).
+const NO_ARC: u32 = u32::MAX;
 
 /// The closest point of a move to a point (`LocalPath::closest_on`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -163,30 +171,56 @@ pub struct Closest {
 #[derive(Debug, Clone, Copy)]
 struct ArcConstants {
     radius: f64,
-    /// The angle of its start, and the angle it sweeps (`geometry::sweep`).
-    a0: f64,
-    total: f64,
-    /// The same extent for the tests that need no angle.
     sector: geometry::Sector,
+}
+
+impl ArcConstants {
+    fn of(start: Xz, m: &Move) -> ArcConstants {
+        ArcConstants {
+            radius: start.distance(m.centre),
+            sector: geometry::Sector::new(start, m.end, m.centre, m.motion == Motion::Ccw),
+        }
+    }
 }
 
 impl<'a> LocalPath<'a> {
     pub fn new(toolpath: &'a Toolpath) -> LocalPath<'a> {
         let mut total = 0.0;
         let mut ends = Vec::with_capacity(toolpath.moves.len());
-        let mut arcs = Vec::with_capacity(toolpath.moves.len());
+        let mut arc_of = Vec::with_capacity(toolpath.moves.len());
+        let mut arcs = Vec::new();
         for (k, m) in toolpath.moves.iter().enumerate() {
             let start = toolpath.start_of(k);
-            total += move_length(start, m);
+            let index = match m.is_arc().then(|| ArcConstants::of(start, m)) {
+                Some(arc) => {
+                    // `move_length`, with the sweep the constants hold.
+                    total += arc.radius * arc.sector.total();
+                    let index = u32::try_from(arcs.len()).unwrap_or(NO_ARC);
+                    if index != NO_ARC {
+                        arcs.push(arc);
+                    }
+                    index
+                }
+                None => {
+                    total += move_length(start, m);
+                    NO_ARC
+                }
+            };
             ends.push(total);
-            arcs.push(m.is_arc().then(|| ArcConstants {
-                radius: start.distance(m.centre),
-                a0: geometry::angle(start, m.centre),
-                total: geometry::sweep(start, m.end, m.centre, m.motion == Motion::Ccw),
-                sector: geometry::Sector::new(start, m.end, m.centre, m.motion == Motion::Ccw),
-            }));
+            arc_of.push(index);
         }
-        LocalPath { toolpath, ends, arcs }
+        LocalPath { toolpath, ends, arc_of, arcs }
+    }
+
+    /// The constants of move `k` when it is an arc.
+    fn arc(&self, k: usize, m: &Move) -> Option<ArcConstants> {
+        if !m.is_arc() {
+            return None;
+        }
+        match self.arc_of.get(k).and_then(|&index| self.arcs.get(index as usize)) {
+            Some(arc) => Some(*arc),
+            None => Some(ArcConstants::of(self.toolpath.start_of(k), m)),
+        }
     }
 
     /// The distance from `p`, predicted for `sample`, to the closest cutting move within
@@ -246,8 +280,9 @@ impl<'a> LocalPath<'a> {
         let m = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell)?;
         let start = self.toolpath.start_of(k);
         let endpoint = |param: f64, point: Xz| Closest { distance: p.distance(point), param, point };
-        let closest = match self.arcs.get(k).copied().flatten() {
-            Some(ArcConstants { radius, a0, total, .. }) => {
+        let closest = match self.arc(k, m) {
+            Some(ArcConstants { radius, sector }) => {
+                let (a0, total) = (geometry::angle(start, m.centre), sector.total());
                 let a = geometry::angle(p, m.centre);
                 let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
                 if delta <= total + 1e-12 {
@@ -280,8 +315,8 @@ impl<'a> LocalPath<'a> {
             return f64::INFINITY;
         };
         let start = self.toolpath.start_of(k);
-        match self.arcs.get(k).copied().flatten() {
-            Some(ArcConstants { radius, sector, .. }) => {
+        match self.arc(k, m) {
+            Some(ArcConstants { radius, sector }) => {
                 if sector.contains(Xz::new(p.x - m.centre.x, p.z - m.centre.z)) {
                     (p.distance(m.centre) - radius).abs()
                 } else {
