@@ -86,6 +86,12 @@ impl ErrorModel {
         self.effects.iter().fold(spacing::ArcTerms::default(), |terms, effect| terms.plus(effect.arc_terms(reach)))
     }
 
+    /// Whether a term of the model depends on the length the tool has cut (wear): the
+    /// trackers follow it only then.
+    pub fn wears(&self) -> bool {
+        self.effects.iter().any(|e| matches!(e, Effect::ToolWear(_)))
+    }
+
     /// Whether the model has any term (an empty model moves nothing).
     pub fn is_empty(&self) -> bool {
         self.tables.is_none() && self.effects.is_empty()

@@ -107,7 +107,7 @@ impl<'m> Inverse<'m> {
         Inverse {
             model,
             options: *options,
-            tracker: Tracker::new(start, model.play()),
+            tracker: Tracker::new(start, model.play()).counting_cut(model.wears()),
             correction: Xz::new(0.0, 0.0),
             iterations: 0,
             max_residual_mm: 0.0,
@@ -239,7 +239,7 @@ pub struct Predictor<'m> {
 
 impl<'m> Predictor<'m> {
     pub fn new(start: Xz, model: &'m ErrorModel) -> Predictor<'m> {
-        Predictor { model, tracker: Tracker::new(start, model.play()) }
+        Predictor { model, tracker: Tracker::new(start, model.play()).counting_cut(model.wears()) }
     }
 
     /// Where the tool goes for the next `samples` commanded at `commanded`, appended to `out`.

@@ -90,6 +90,8 @@ pub struct Tracker {
     since_reversal: Xz,
     /// Cut length per tool (turret station), m: wear belongs to the tool, not the program.
     cut: Vec<(u16, f64)>,
+    /// Whether the cut length is followed (`counting_cut`).
+    counts_cut: bool,
 }
 
 impl Tracker {
@@ -104,7 +106,15 @@ impl Tracker {
             direction: Signs { x: 1, z: 1 },
             since_reversal: Xz::new(f64::INFINITY, f64::INFINITY),
             cut: Vec::new(),
+            counts_cut: true,
         }
+    }
+
+    /// The tracker, following each tool's cut length only when `count` holds: a model
+    /// without wear never reads it, and measuring every step's length was the largest cost
+    /// of solving a sample. Samples then say the tools have cut nothing.
+    pub fn counting_cut(self, count: bool) -> Tracker {
+        Tracker { counts_cut: count, ..self }
     }
 
     /// The commanded point the tracker stands at.
@@ -134,7 +144,7 @@ impl Tracker {
         advance_axis(to.x, self.play.x, &mut slide.x, &mut direction.x, &mut since.x);
         advance_axis(to.z, self.play.z, &mut slide.z, &mut direction.z, &mut since.z);
         let mut cut = self.cut_length(tool);
-        if cutting {
+        if cutting && self.counts_cut {
             cut += self.at.distance(to) / 1000.0;
         }
         Sample {
@@ -160,7 +170,7 @@ impl Tracker {
         let (dx, dz) = (to.x - self.at.x, to.z - self.at.z);
         advance_axis(to.x, self.play.x, &mut self.slide.x, &mut self.direction.x, &mut self.since_reversal.x);
         advance_axis(to.z, self.play.z, &mut self.slide.z, &mut self.direction.z, &mut self.since_reversal.z);
-        if cutting {
+        if cutting && self.counts_cut {
             let length_m = (dx * dx + dz * dz).sqrt() / 1000.0;
             match self.cut.iter_mut().find(|(t, _)| *t == tool) {
                 Some((_, m)) => *m += length_m,

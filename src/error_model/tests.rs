@@ -245,3 +245,18 @@ fn terms_that_turn_with_an_arc_stay_within_the_allowance_at_their_angle_step() {
     let none = Effect::BacklashZ(BacklashZ { b: 0.003 }).arc_terms(reach);
     assert_eq!(none.radians(radius, feed, allowance), f64::INFINITY);
 }
+
+#[test]
+fn cut_length_is_followed_only_for_a_model_that_wears() {
+    let wear = ErrorModel { effects: vec![Effect::ToolWear(ToolWear { um_per_m: 2.0 })], ..ErrorModel::default() };
+    let offset = ErrorModel { effects: vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.01 })], ..ErrorModel::default() };
+    assert!(wear.wears() && !offset.wears());
+    let zero = Xz::new(0.0, 0.0);
+    let walk = |model: &ErrorModel| {
+        let mut tracker = Tracker::new(Xz::new(10.0, 0.0), model.play()).counting_cut(model.wears());
+        tracker.advance(Xz::new(10.0, -30.0), 1, true);
+        tracker.sample(0.0, zero, 1, zero, zero).cut_length_m
+    };
+    assert!(close(walk(&wear), 0.03));
+    assert_eq!(walk(&offset), 0.0);
+}
