@@ -182,7 +182,7 @@ fn end_to_end(c: &mut Criterion) {
         b.iter(|| {
             let parsed = parse(black_box(&bytes), &parse_options);
             let lowered = lower(&parsed.program, &machine, &lower_options);
-            let valid = validate(lowered.toolpath.clone(), machine.limits).unwrap();
+            let valid = validate(&lowered.toolpath, machine.limits).unwrap();
             let outcome = compensate_program(&parsed.program, &lowered, &valid, &machine, &model, &options);
             print(&parsed.program, &outcome.edits)
         })

@@ -38,8 +38,11 @@ pub fn on_circle(centre: Xz, radius: f64, angle: f64) -> Xz {
 /// The swept angle from `start` to `end` about `centre`, positive, in `(0, 2π]`: an arc whose
 /// end meets its start is a full circle.
 pub fn sweep(start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
-    let a0 = angle(start, centre);
-    let a1 = angle(end, centre);
+    sweep_from_angles(start, end, angle(start, centre), angle(end, centre), ccw)
+}
+
+/// [`sweep`] when the angles of `start` (`a0`) and `end` (`a1`) about the centre are known.
+pub fn sweep_from_angles(start: Xz, end: Xz, a0: f64, a1: f64, ccw: bool) -> f64 {
     let raw = if ccw { a1 - a0 } else { a0 - a1 };
     let mut s = raw.rem_euclid(TAU);
     // A chord shorter than a nanometre is a full circle, not an empty arc.

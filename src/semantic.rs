@@ -187,6 +187,13 @@ pub struct CoordinateMark {
     pub shift: Xz,
 }
 
+/// What `toolpath::Validated` checks of a lowered program: its toolpath.
+impl AsRef<Toolpath> for Lowered {
+    fn as_ref(&self) -> &Toolpath {
+        &self.toolpath
+    }
+}
+
 impl Lowered {
     /// The coordinates in force for move `index`.
     pub fn coordinates_at(&self, index: usize) -> CoordinateMark {

@@ -14,6 +14,7 @@ mod block;
 mod classify;
 mod expr;
 mod lexer;
+pub(crate) mod relocate;
 
 pub use ast::{
     BinaryOp, Block, CodeLetter, Command, CommandId, CommentKind, Expr, ExprId, ExprKind, Number, NumberFlags, Param,
@@ -71,41 +72,174 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
 
     if source.len() >= u32::MAX as usize {
         diagnostics.push(Diagnostic::error(DiagnosticKind::SourceTooLarge, Span::new(0, 0)));
-        let program =
-            Program { source, config, blocks: Vec::new(), words: Vec::new(), exprs: Vec::new(), commands: Vec::new() };
+        let program = Program {
+            source,
+            config,
+            blocks: Vec::new(),
+            words: Vec::new(),
+            later_words: Vec::new(),
+            exprs: Vec::new(),
+            commands: Vec::new(),
+        };
         return Parsed { program, diagnostics, detection };
     }
+    let split = if source.len() >= PARALLEL_BYTES { split_point(source) } else { None };
+    let program = parse_lines(source, config, split, &mut diagnostics);
+    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+    Parsed { program, diagnostics, detection }
+}
 
-    let mut program = Program {
-        source,
-        config,
-        // Lines average 20-30 bytes and words 6-8 bytes in real and generated programs;
-        // reserving a little more than that avoids regrowth (which would lose the huge-page
-        // advice below); what is not used is never touched, and is given back at the end.
-        blocks: crate::memory::huge_page_vec(source.len() / 16 + 1),
-        words: crate::memory::huge_page_vec(source.len() / 6 + 1),
-        exprs: Vec::new(),
-        commands: Vec::new(),
+/// Programs of at least this many bytes are parsed in two runs of lines at once.
+const PARALLEL_BYTES: usize = 1 << 20;
+
+/// Where a second run of lines may start near the middle of `source`: after a line feed,
+/// before a line that is not an OSP `$` continuation (nor a `$…%` header). Every such place
+/// starts a new block in a parse from the top, whatever the lines before it say.
+fn split_point(source: &[u8]) -> Option<usize> {
+    let middle = source.len() / 2;
+    let mut from = middle;
+    while let Some(at) = memchr::memchr(b'\n', source.get(from..)?) {
+        let split = from + at + 1;
+        match source.get(split) {
+            None => return None,
+            Some(b'$') => from = split,
+            Some(_) => return Some(split),
+        }
+    }
+    None
+}
+
+/// Parse every line of `source`, adding the parser's diagnostics to `diagnostics` in the
+/// order of the lines. With a `split`, the lines from there on are parsed on a second
+/// thread beside the lines before it, and the two runs are joined: the program and the
+/// diagnostics are those of one run from the top (`split` must be a place `split_point`
+/// gives).
+pub(crate) fn parse_lines<'src>(
+    source: &'src [u8],
+    config: DialectConfig,
+    split: Option<usize>,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Program<'src> {
+    // Lines average 20-30 bytes in real and generated programs: the block arena has room
+    // for all of them, the second run's included.
+    let block_capacity = source.len() / 16 + 1;
+    let (mut program, end) = match split {
+        None => {
+            let run = Run::parse(source, 0, config, Tape::Before, block_capacity);
+            diagnostics.extend(run.diagnostics);
+            (run.program, run.end)
+        }
+        Some(split) => {
+            // The second run assumes the tape is open where it starts, as it is in every
+            // program with a `%` at its top; the first run says whether it was.
+            let (first, second) = std::thread::scope(|scope| {
+                let second = scope.spawn(|| Run::parse(source, split, config, Tape::Open, 1));
+                let first = Run::parse(&source[..split], 0, config, Tape::Before, block_capacity);
+                (first, second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            });
+            let mut program = first.program;
+            program.source = source;
+            diagnostics.extend(first.diagnostics);
+            match first.end {
+                // The tape closed in the first run: the rest of the text is trailing.
+                end @ (Tape::Closed, _) => (program, end),
+                (tape, _) => {
+                    // Before the tape the lines parse as inside it up to the first tape mark,
+                    // which opens the tape rather than closing it; a second run that met one
+                    // is parsed again from the right state.
+                    let second = if tape == Tape::Before && second.end.0 == Tape::Closed {
+                        Run::parse(source, split, config, tape, 1)
+                    } else {
+                        second
+                    };
+                    diagnostics.extend(second.diagnostics);
+                    program.append(second.program);
+                    (program, second.end)
+                }
+            }
+        }
     };
-    let mut builder = Builder {
-        program: &mut program,
-        diagnostics: &mut diagnostics,
-        warnings: Vec::new(),
-        codes: Vec::new(),
-        document_start: true,
-    };
-    if let (Tape::Closed, Some(next)) = builder.run(Tape::Before)
+    if let (Tape::Closed, Some(next)) = end
         && next < source.len()
     {
         // Controls stop reading at the closing `%`; keep the rest verbatim.
-        builder.push_block(Span::new(next as u32, source.len() as u32), ast::Statement::Trailing, 0, 0);
+        let span = Span::new(next as u32, source.len() as u32);
+        program.blocks.push(ast::Block { span, statement: ast::Statement::Trailing, first_word: 0, word_count: 0 });
     }
     // Growth doubles the arenas; give back what the program does not use.
     program.blocks.shrink_to_fit();
     program.words.shrink_to_fit();
+    program.later_words.shrink_to_fit();
     program.exprs.shrink_to_fit();
-    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
-    Parsed { program, diagnostics, detection }
+    program
+}
+
+impl Program<'_> {
+    /// Put the blocks of `later`, a run of the lines after ours over the same source (its
+    /// spans already index it), behind ours: its ids move past ours, its words stay in the
+    /// arena it filled.
+    fn append(&mut self, later: Program<'_>) {
+        let bases = relocate::Bases {
+            offset: 0,
+            word: (self.words.len() + self.later_words.len()) as u32,
+            expr: self.exprs.len() as u32,
+            command: self.commands.len() as u32,
+        };
+        self.blocks.extend(later.blocks.iter().map(|b| relocate::block(b, bases)));
+        self.exprs.extend(later.exprs.iter().map(|e| relocate::expr(e, bases)));
+        self.commands.extend(later.commands.iter().map(|c| relocate::command(c, bases)));
+        let mut words = later.words;
+        // Only expression ids inside words move, and none do when ours hold no expression.
+        if bases.expr > 0 {
+            for word in &mut words {
+                word.kind = relocate::word(word.kind, bases);
+            }
+        }
+        if self.later_words.is_empty() {
+            self.later_words = words;
+        } else {
+            self.later_words.extend(words);
+        }
+    }
+}
+
+/// The lines of a source from a line start on, parsed into arenas of their own.
+struct Run<'src> {
+    /// Spans index the whole source; word, expression and command ids count from the run's
+    /// first.
+    program: Program<'src>,
+    /// In the order of the lines.
+    diagnostics: Vec<Diagnostic>,
+    /// The tape after the run, and where the text after a closing `%` starts.
+    end: (Tape, Option<usize>),
+}
+
+impl<'src> Run<'src> {
+    /// Parse the lines of `source` from `from` on, from the tape state `tape`.
+    fn parse(source: &'src [u8], from: usize, config: DialectConfig, tape: Tape, block_capacity: usize) -> Run<'src> {
+        let mut program = Program {
+            source,
+            config,
+            // Words average 6-8 bytes in real and generated programs; reserving a little
+            // more than that avoids regrowth (which would lose the huge-page advice); what is
+            // not used is never touched, and is given back at the end.
+            blocks: crate::memory::huge_page_vec(block_capacity.max((source.len() - from) / 16 + 1)),
+            words: crate::memory::huge_page_vec((source.len() - from) / 6 + 1),
+            later_words: Vec::new(),
+            exprs: Vec::new(),
+            commands: Vec::new(),
+        };
+        let mut diagnostics = Vec::new();
+        let mut builder = Builder {
+            program: &mut program,
+            diagnostics: &mut diagnostics,
+            warnings: Vec::new(),
+            codes: Vec::new(),
+            document_start: from == 0,
+        };
+        let end = builder.run(tape, from);
+        Run { program, diagnostics, end }
+    }
 }
 
 /// Where the tape stands at a line: before its opening `%` (or `$…%` header), inside it, or
@@ -148,6 +282,7 @@ pub(crate) fn parse_part(text: &[u8], config: DialectConfig, tape: Tape, documen
         config,
         blocks: Vec::with_capacity(text.len() / 16 + 1),
         words: Vec::with_capacity(text.len() / 6 + 1),
+        later_words: Vec::new(),
         exprs: Vec::new(),
         commands: Vec::new(),
     };
@@ -159,7 +294,7 @@ pub(crate) fn parse_part(text: &[u8], config: DialectConfig, tape: Tape, documen
         codes: Vec::new(),
         document_start,
     };
-    let (tape, trailing_from) = builder.run(tape);
+    let (tape, trailing_from) = builder.run(tape, 0);
     program.blocks.shrink_to_fit();
     program.words.shrink_to_fit();
     Part {
@@ -223,14 +358,18 @@ struct Builder<'p, 'src> {
 /// LF, or a CR no LF follows.
 struct Lines<'s> {
     source: &'s [u8],
+    /// Over the source from `from` on.
     terminators: memchr::Memchr2<'s>,
+    from: usize,
     pos: usize,
     peeked: Option<(usize, usize, usize)>,
 }
 
 impl<'s> Lines<'s> {
-    fn new(source: &'s [u8]) -> Lines<'s> {
-        Lines { source, terminators: memchr::memchr2_iter(b'\n', b'\r', source), pos: 0, peeked: None }
+    /// The lines of `source` from `from`, a line start, on.
+    fn new(source: &'s [u8], from: usize) -> Lines<'s> {
+        let terminators = memchr::memchr2_iter(b'\n', b'\r', source.get(from..).unwrap_or_default());
+        Lines { source, terminators, from, pos: from, peeked: None }
     }
 
     /// The next line as (start, end of text, start of the following line).
@@ -244,7 +383,7 @@ impl<'s> Lines<'s> {
         }
         // The LF of a CR LF pair was consumed with its CR; skip it here.
         let at = loop {
-            match self.terminators.next() {
+            match self.terminators.next().map(|at| at + self.from) {
                 Some(at) if at < start => continue,
                 other => break other,
             }
@@ -267,13 +406,14 @@ impl<'s> Lines<'s> {
 }
 
 impl<'src> Builder<'_, 'src> {
-    /// Parse every line from the tape state `tape` on. Returns the tape state at the end and,
-    /// when a closing `%` stopped the run, where the text after its line starts.
-    fn run(&mut self, tape: Tape) -> (Tape, Option<usize>) {
+    /// Parse every line from the line start `from` on, from the tape state `tape`. Returns the
+    /// tape state at the end and, when a closing `%` stopped the run, where the text after
+    /// its line starts.
+    fn run(&mut self, tape: Tape, from: usize) -> (Tape, Option<usize>) {
         let source = self.program.source;
         let tables = self.program.config.tables();
         let osp = self.program.config.dialect == Dialect::Osp;
-        let mut lines = Lines::new(source);
+        let mut lines = Lines::new(source, from);
         let mut tape_open = match tape {
             Tape::Before => false,
             Tape::Open => true,
@@ -396,3 +536,6 @@ impl<'src> Builder<'_, 'src> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

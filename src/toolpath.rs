@@ -18,7 +18,10 @@
 //!
 //! **Validation.** [`validate`] checks finite coordinates, arc end points on their circle
 //! (within 0.001 mm), non-decreasing time, and the travel limits when the machine gives
-//! them. Later passes take a [`ValidToolpath`], which only `validate` can make.
+//! them. Later passes take a [`ValidToolpath`], which only `validate` can make. It borrows
+//! the toolpath it checked rather than owning a copy (a large program's moves are hundreds
+//! of MB), so the toolpath cannot change while the proof lives; [`Validated`] keeps the
+//! proof with the value that owns the toolpath (the lowered program).
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::source::Span;
@@ -166,33 +169,67 @@ impl Limits {
     }
 }
 
-/// A toolpath that passed [`validate`]. Only `validate` makes one.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ValidToolpath(Toolpath);
+/// A toolpath that passed [`validate`], borrowed: while the proof lives the toolpath cannot
+/// change. Only `validate` (and [`Validated::valid`], which holds its result) makes one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ValidToolpath<'a>(&'a Toolpath);
 
-impl ValidToolpath {
-    pub fn toolpath(&self) -> &Toolpath {
-        &self.0
-    }
-
-    pub fn into_inner(self) -> Toolpath {
+impl<'a> ValidToolpath<'a> {
+    pub fn toolpath(self) -> &'a Toolpath {
         self.0
     }
 }
 
-impl std::ops::Deref for ValidToolpath {
+impl std::ops::Deref for ValidToolpath<'_> {
     type Target = Toolpath;
     fn deref(&self) -> &Toolpath {
+        self.0
+    }
+}
+
+/// A value that owns a toolpath (the lowered program, or a toolpath itself) whose toolpath
+/// passed [`validate`]. It gives only shared access to the value, so the toolpath stays the
+/// one that was checked, and [`Validated::valid`] hands out the proof without checking again.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Validated<T>(T);
+
+impl<T: AsRef<Toolpath>> Validated<T> {
+    /// Validate the toolpath `owner` holds; on failure, the owner comes back with the problems.
+    pub fn new(owner: T, limits: Option<Limits>) -> Result<Validated<T>, (T, Vec<Diagnostic>)> {
+        match validate(owner.as_ref(), limits) {
+            Ok(_) => Ok(Validated(owner)),
+            Err(problems) => Err((owner, problems)),
+        }
+    }
+
+    pub fn valid(&self) -> ValidToolpath<'_> {
+        ValidToolpath(self.0.as_ref())
+    }
+
+    pub fn into_inner(self) -> T {
+        self.0
+    }
+}
+
+impl<T> std::ops::Deref for Validated<T> {
+    type Target = T;
+    fn deref(&self) -> &T {
         &self.0
+    }
+}
+
+impl AsRef<Toolpath> for Toolpath {
+    fn as_ref(&self) -> &Toolpath {
+        self
     }
 }
 
 /// Arc end points must lie on their circle within this distance, mm.
 pub const ARC_TOLERANCE: f64 = 0.001;
 
-/// Check the IR's invariants. Returns the valid toolpath, or the problems found (each on
-/// the source block of the offending move).
-pub fn validate(toolpath: Toolpath, limits: Option<Limits>) -> Result<ValidToolpath, Vec<Diagnostic>> {
+/// Check the IR's invariants. Returns the proof that the toolpath is valid, or the problems
+/// found (each on the source block of the offending move).
+pub fn validate(toolpath: &Toolpath, limits: Option<Limits>) -> Result<ValidToolpath<'_>, Vec<Diagnostic>> {
     let mut problems = Vec::new();
     let mut previous_time = 0.0;
     for (index, m) in toolpath.moves.iter().enumerate() {

@@ -15,7 +15,7 @@ use turnpass::error_model::model_file::ModelSpec;
 use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
 use turnpass::syntax::{self, ParseOptions};
-use turnpass::toolpath::ValidToolpath;
+use turnpass::toolpath::{ValidToolpath, Validated};
 
 #[derive(Args, Clone)]
 pub struct RunArgs {
@@ -239,9 +239,15 @@ pub fn plural(n: usize) -> &'static str {
 /// compensation, its toolpath validated.
 pub struct Ready<'b> {
     pub parsed: syntax::Parsed<'b>,
-    pub lowered: Lowered,
-    pub valid: ValidToolpath,
+    pub lowered: Validated<Lowered>,
     pub machine: Machine,
+}
+
+impl Ready<'_> {
+    /// The validated toolpath.
+    pub fn valid(&self) -> ValidToolpath<'_> {
+        self.lowered.valid()
+    }
 }
 
 /// Parse, lower and validate; `Err` holds the rendered diagnostics and a line saying why
@@ -264,12 +270,12 @@ pub fn ready<'b>(
         );
         return Err(text);
     }
-    let Lowering { lowered, valid, machine, diagnostics } = lower_and_validate(&parsed, resolved, run);
+    let Lowering { lowered, machine, diagnostics } = lower_and_validate(&parsed, resolved, run);
     let text = rendered(name, bytes, &diagnostics);
-    match valid {
-        Some(valid) if !diagnostics.iter().any(Diagnostic::is_error) => {
+    match lowered {
+        Ok(lowered) if !diagnostics.iter().any(Diagnostic::is_error) => {
             warnings.extend_from_slice(&text);
-            Ok(Ready { parsed, lowered, valid, machine })
+            Ok(Ready { parsed, lowered, machine })
         }
         _ => {
             let mut text = text;
@@ -281,9 +287,8 @@ pub fn ready<'b>(
 
 /// A parsed program lowered with nose-radius compensation and validated.
 pub struct Lowering {
-    pub lowered: Lowered,
-    /// The toolpath, when it validates.
-    pub valid: Option<ValidToolpath>,
+    /// The lowered program, validated when its toolpath is valid.
+    pub lowered: Result<Validated<Lowered>, Lowered>,
     pub machine: Machine,
     /// Every diagnostic, the parser's included, in program order.
     pub diagnostics: Vec<Diagnostic>,
@@ -294,15 +299,12 @@ pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run:
     let lowered = semantic::lower(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
     let mut diagnostics = parsed.diagnostics.clone();
     diagnostics.extend(lowered.diagnostics.iter().cloned());
-    let valid = match turnpass::toolpath::validate(lowered.toolpath.clone(), machine.limits) {
-        Ok(valid) => Some(valid),
-        Err(problems) => {
-            diagnostics.extend(problems);
-            None
-        }
-    };
+    let lowered = Validated::new(lowered, machine.limits).map_err(|(lowered, problems)| {
+        diagnostics.extend(problems);
+        lowered
+    });
     diagnostics.sort_by_key(|d| d.span.start);
-    Lowering { lowered, valid, machine, diagnostics }
+    Lowering { lowered, machine, diagnostics }
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse

@@ -132,7 +132,14 @@ impl FitArgs {
     /// `plot`), `block_reports` reports every edited block (for `--report json`).
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
         let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
-        compensate_program(&program.parsed.program, &program.lowered, &program.valid, &program.machine, model, &options)
+        compensate_program(
+            &program.parsed.program,
+            &program.lowered,
+            &program.valid(),
+            &program.machine,
+            model,
+            &options,
+        )
     }
 }
 

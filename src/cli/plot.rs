@@ -49,7 +49,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     let _ = std::io::stderr().write_all(&messages);
     let svg = if args.polar {
-        turnpass::plot::polar_svg(&name, &program.valid, &outcome.paths)
+        turnpass::plot::polar_svg(&name, &program.valid(), &outcome.paths)
     } else {
         turnpass::plot::path_svg(&name, &outcome.paths, args.magnify)
     };

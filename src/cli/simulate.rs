@@ -79,9 +79,10 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     if !semantic::lowers(&parsed.program) {
         return Ok(not_lowered("simulate", &name, &bytes, &parsed));
     }
-    let Lowering { lowered, valid, machine, diagnostics } = lower_and_validate(&parsed, &resolved, &args.run);
+    let Lowering { lowered, machine, diagnostics } = lower_and_validate(&parsed, &resolved, &args.run);
     report(&name, &bytes, &diagnostics);
-    let Some(valid) = valid else { return Ok(ExitCode::from(1)) };
+    let Ok(lowered) = lowered else { return Ok(ExitCode::from(1)) };
+    let valid = lowered.valid();
     let rows = simulation::rows(&parsed.program, &valid);
     let summary = simulation::summary(&parsed.program, &lowered, &valid, &machine);
     let output = match args.format {

@@ -56,7 +56,7 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     };
     let _ = std::io::stderr().write_all(&messages);
     let tools = ToolTable::from_machine(&original.machine);
-    let figures = deviation(&original.valid, &compensated.valid, &tools, &model, SAMPLE_STEP_MM);
+    let figures = deviation(&original.valid(), &compensated.valid(), &tools, &model, SAMPLE_STEP_MM);
     let words = check_words(&original.parsed.program, &compensated.parsed.program);
     let machine = &original.machine;
     let limit = args.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());

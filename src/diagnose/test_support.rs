@@ -58,6 +58,6 @@ pub fn nominal(text: &str) -> Nominal {
     let machine = Machine::from_settings(&settings());
     let lowered = lower(&parsed.program, &machine, &LowerOptions::new(false));
     assert!(lowered.diagnostics.iter().all(|d| !d.is_error()), "{:?}", lowered.diagnostics);
-    let valid = validate(lowered.toolpath.clone(), machine.limits).unwrap();
+    let valid = validate(&lowered.toolpath, machine.limits).unwrap();
     Nominal::new(&parsed.program, &lowered, &valid, &machine)
 }

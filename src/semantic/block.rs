@@ -44,26 +44,26 @@ impl Interpreter<'_, '_> {
         self.word_value(&word)
     }
 
-    pub fn g_infos(&self, words: &[Word]) -> Vec<(usize, &'static GInfo)> {
-        words
-            .iter()
-            .enumerate()
-            .filter_map(|(i, w)| match w.kind {
-                WordKind::Code { letter: CodeLetter::G, code } => self.tables.g(code).map(|info| (i, info)),
-                _ => None,
-            })
-            .collect()
+    /// The G codes of `words` the tables know, with their positions. The iterator borrows only
+    /// the words, so the interpreter can change its state while it runs.
+    pub fn g_infos<'w>(&self, words: &'w [Word]) -> impl Iterator<Item = (usize, &'static GInfo)> + use<'w> {
+        let tables = self.tables;
+        words.iter().enumerate().filter_map(move |(i, w)| match w.kind {
+            WordKind::Code { letter: CodeLetter::G, code } => tables.g(code).map(|info| (i, info)),
+            _ => None,
+        })
     }
 
     pub(super) fn machine_block(&mut self, index: usize) -> Flow {
-        let block = *self.program.block(index);
-        let words = effective_words(self.program.words_of(&block), self.options.block_delete).to_vec();
+        // The program outlives the interpreter's borrow: its words need no copy.
+        let program = self.program;
+        let block = *program.block(index);
+        let words = effective_words(program.words_of(&block), self.options.block_delete);
         self.emitter.context = Context { source: block.span, cycle: Span::SYNTHETIC };
-        let codes = self.g_infos(&words);
-        let command = codes.iter().find(|(_, info)| info.kind.rank() >= 3).map(|&(_, info)| info);
+        let command = self.g_infos(words).find(|(_, info)| info.kind.rank() >= 3).map(|(_, info)| info);
 
         // Modal G-codes.
-        for &(_, info) in &codes {
+        for (_, info) in self.g_infos(words) {
             self.apply_modal(info);
         }
         // F: the modal feed, except in the multiple repetitive cycles, whose F is their own
@@ -86,12 +86,12 @@ impl Interpreter<'_, '_> {
         };
         if !cycle_feed
             && !dwell_in_f
-            && let Some(feed) = self.address_value(&words, Address::F)
+            && let Some(feed) = self.address_value(words, Address::F)
         {
             self.modal.feed = feed;
         }
         // S: a spindle clamp with G50/G92, otherwise the speed.
-        if let Some(speed) = self.address_value(&words, Address::S) {
+        if let Some(speed) = self.address_value(words, Address::S) {
             let clamp = command.and_then(|c| c.function) == Some(GFunction::CoordinateSetOrClamp);
             if clamp {
                 self.modal.clamp = speed.min(self.machine.max_rpm);
@@ -100,7 +100,7 @@ impl Interpreter<'_, '_> {
             }
         }
         // Modes set by M codes that the motion of this block already obeys.
-        self.m_code_modes(&words);
+        self.m_code_modes(words);
         if !matches!(block.statement, Statement::LapCall(_))
             && !matches!(command.map(|c| c.kind), Some(GKind::Cycle))
             && let Some(word) = words.iter().find(|w| word_address(w) == Some(Address::T)).copied()
@@ -110,14 +110,14 @@ impl Interpreter<'_, '_> {
 
         self.mark_coordinates();
         let flow = match block.statement {
-            Statement::Motion | Statement::ThreadMove => self.motion_block(index, &words),
+            Statement::Motion | Statement::ThreadMove => self.motion_block(index, words),
             Statement::Dwell(_) => {
-                self.dwell(&words);
+                self.dwell(words);
                 Flow::Next
             }
             Statement::OneShot(_) => {
                 if let Some(info) = command {
-                    self.one_shot(index, info, &words);
+                    self.one_shot(index, info, words);
                 }
                 Flow::Next
             }
@@ -127,23 +127,22 @@ impl Interpreter<'_, '_> {
         };
 
         // M codes that end or leave the program, after the motion.
-        let m_codes: Vec<u16> = words
-            .iter()
-            .filter_map(|w| match w.kind {
+        let m_codes = || {
+            words.iter().filter_map(|w| match w.kind {
                 WordKind::Code { letter: CodeLetter::M, code } => Some(code.major()),
                 _ => None,
             })
-            .collect();
+        };
         let functions = &self.tables.m_functions;
-        if m_codes.iter().any(|m| functions.subprogram_call.contains(m)) {
-            let program = self.address_value(&words, Address::P).unwrap_or(0.0);
-            let count = self.address_value(&words, Address::L).unwrap_or(1.0);
+        if m_codes().any(|m| functions.subprogram_call.contains(&m)) {
+            let program = self.address_value(words, Address::P).unwrap_or(0.0);
+            let count = self.address_value(words, Address::L).unwrap_or(1.0);
             return self.subprogram_call(index, program, count);
         }
-        if m_codes.iter().any(|m| functions.subprogram_return.contains(m)) {
+        if m_codes().any(|m| functions.subprogram_return.contains(&m)) {
             return self.return_from_call();
         }
-        if m_codes.iter().any(|m| functions.end.contains(m)) {
+        if m_codes().any(|m| functions.end.contains(&m)) {
             return Flow::End;
         }
         if flow == Flow::Next
@@ -316,7 +315,7 @@ impl Interpreter<'_, '_> {
         (start + 1..self.program.blocks().len()).find(|&i| {
             let block = self.program.block(i);
             block.statement != Statement::Invalid
-                && self.g_infos(self.program.words_of(block)).iter().any(|(_, g)| g.function == Some(GFunction::LapEnd))
+                && self.g_infos(self.program.words_of(block)).any(|(_, g)| g.function == Some(GFunction::LapEnd))
         })
     }
 }

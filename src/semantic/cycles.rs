@@ -231,7 +231,7 @@ impl Interpreter<'_, '_> {
     /// The block with sequence number `value` (a `P`/`Q` reference), which must be unique.
     pub(super) fn sequence_block(&mut self, value: f64, span: Span) -> Option<usize> {
         let key = (value.round() as i64).to_string();
-        let blocks = self.labels.blocks(&key).to_vec();
+        let blocks = self.labels().blocks(&key).to_vec();
         match blocks.as_slice() {
             [one] => Some(*one),
             [] => {

@@ -66,11 +66,12 @@ impl Emitter {
             Xz::new(if to.x.is_finite() { to.x } else { self.at.x }, if to.z.is_finite() { to.z } else { self.at.z });
     }
 
+    /// Append a move of `length` mm (the caller has it from the move's time) from `self.at`.
     fn push(
         &mut self,
         modal: &Modal,
         (motion, end, centre): (Motion, Xz, Xz),
-        seconds: f64,
+        (length, seconds): (f64, f64),
         cutting: bool,
         threading: bool,
     ) {
@@ -79,11 +80,6 @@ impl Emitter {
         }
         let start_time = self.time;
         self.time += seconds;
-        let length = match motion {
-            Motion::Cw | Motion::Ccw => geometry::arc_length(self.at, end, centre, motion == Motion::Ccw),
-            Motion::Dwell => 0.0,
-            _ => self.at.distance(end),
-        };
         let feed = if matches!(motion, Motion::Rapid | Motion::Dwell) || seconds <= 0.0 {
             0.0
         } else {
@@ -114,19 +110,21 @@ impl Emitter {
 
     /// Positioning at the rapid rate. A rapid that goes nowhere (`G28 U0` from home) is no move.
     pub fn rapid(&mut self, modal: &Modal, to: Xz) {
-        if self.at.distance(to) < 1e-9 {
+        let length = self.at.distance(to);
+        if length < 1e-9 {
             return;
         }
         let dx = (to.x - self.at.x).abs() / self.rapid.x.max(1e-9);
         let dz = (to.z - self.at.z).abs() / self.rapid.z.max(1e-9);
         let seconds = dx.max(dz) * 60.0;
-        self.push(modal, (Motion::Rapid, to, NAN_POINT), seconds, false, false);
+        self.push(modal, (Motion::Rapid, to, NAN_POINT), (length, seconds), false, false);
     }
 
     /// A straight feed move.
     pub fn line(&mut self, modal: &Modal, to: Xz, cutting: bool) {
-        let seconds = self.line_seconds(modal, to);
-        self.push(modal, (Motion::Feed, to, NAN_POINT), seconds, cutting, false);
+        let length = self.at.distance(to);
+        let seconds = self.line_seconds(modal, to, length);
+        self.push(modal, (Motion::Feed, to, NAN_POINT), (length, seconds), cutting, false);
     }
 
     /// A thread-cutting pass: the tool advances `lead_mm` per revolution at the block's rpm.
@@ -134,19 +132,25 @@ impl Emitter {
         let rpm = modal.rpm_at(self.at.x);
         let length = self.at.distance(to);
         let seconds = self.seconds_for(length, lead_mm * rpm);
-        self.push(modal, (Motion::Feed, to, NAN_POINT), seconds, true, true);
+        self.push(modal, (Motion::Feed, to, NAN_POINT), (length, seconds), true, true);
     }
 
     /// An arc about `centre`.
     pub fn arc(&mut self, modal: &Modal, to: Xz, centre: Xz, ccw: bool, cutting: bool) {
-        let seconds = self.arc_seconds(modal, to, centre, ccw);
+        // The angles, the sweep and the length once, for the time and the feed alike.
+        let radius = self.at.distance(centre);
+        let a0 = geometry::angle(self.at, centre);
+        let sweep = geometry::sweep_from_angles(self.at, to, a0, geometry::angle(to, centre), ccw);
+        let arc = ArcShape { centre, radius, a0, sweep, ccw };
+        let length = radius * sweep;
+        let seconds = self.arc_seconds(modal, &arc, length);
         let motion = if ccw { Motion::Ccw } else { Motion::Cw };
-        self.push(modal, (motion, to, centre), seconds, cutting, false);
+        self.push(modal, (motion, to, centre), (length, seconds), cutting, false);
     }
 
     pub fn dwell(&mut self, modal: &Modal, seconds: f64) {
         let at = self.at;
-        self.push(modal, (Motion::Dwell, at, NAN_POINT), seconds.max(0.0), false, false);
+        self.push(modal, (Motion::Dwell, at, NAN_POINT), (0.0, seconds.max(0.0)), false, false);
     }
 
     fn seconds_for(&mut self, length: f64, mm_per_min: f64) -> f64 {
@@ -160,8 +164,7 @@ impl Emitter {
         length / mm_per_min * 60.0
     }
 
-    fn line_seconds(&mut self, modal: &Modal, to: Xz) -> f64 {
-        let length = self.at.distance(to);
+    fn line_seconds(&mut self, modal: &Modal, to: Xz, length: f64) -> f64 {
         let feed_mm = modal.frame.feed_mm(modal.feed);
         if !modal.feed_per_rev {
             return self.seconds_for(length, feed_mm);
@@ -205,8 +208,7 @@ impl Emitter {
         total * 60.0
     }
 
-    fn arc_seconds(&mut self, modal: &Modal, to: Xz, centre: Xz, ccw: bool) -> f64 {
-        let length = geometry::arc_length(self.at, to, centre, ccw);
+    fn arc_seconds(&mut self, modal: &Modal, arc: &ArcShape, length: f64) -> f64 {
         let feed_mm = modal.frame.feed_mm(modal.feed);
         if !modal.feed_per_rev {
             return self.seconds_for(length, feed_mm);
@@ -218,9 +220,7 @@ impl Emitter {
             self.zero_feed = true;
             return 0.0;
         }
-        let radius = self.at.distance(centre);
-        let a0 = geometry::angle(self.at, centre);
-        let sweep = geometry::sweep(self.at, to, centre, ccw);
+        let ArcShape { centre, radius, a0, sweep, ccw } = *arc;
         let sign = if ccw { 1.0 } else { -1.0 };
         let minutes_per_mm = |i: usize| {
             1.0 / (feed_mm
@@ -242,3 +242,13 @@ impl Emitter {
 }
 
 const NAN_POINT: Xz = Xz::new(f64::NAN, f64::NAN);
+
+/// An arc from the emitter's position: its centre, radius, start angle and sweep (radians).
+#[derive(Debug, Clone, Copy)]
+struct ArcShape {
+    centre: Xz,
+    radius: f64,
+    a0: f64,
+    sweep: f64,
+    ccw: bool,
+}

@@ -71,7 +71,9 @@ pub(super) struct Interpreter<'p, 'src> {
     pub modal: Modal,
     pub emitter: Emitter,
     pub variables: Variables,
-    pub labels: Labels,
+    /// Built on the first jump, call or profile lookup: most programs make none, and the
+    /// table is a pass over every word of the program.
+    labels: std::cell::OnceCell<Labels>,
     pub diagnostics: Vec<Diagnostic>,
     pub expansions: Vec<Expansion>,
     pub cycle_memory: CycleMemory,
@@ -126,7 +128,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             // Most blocks make one move; cycles make many more, and the vector grows for them.
             emitter: Emitter::new(start, machine.rapid, program.blocks().len()),
             variables: Variables::default(),
-            labels: Labels::new(program),
+            labels: std::cell::OnceCell::new(),
             diagnostics: Vec::new(),
             expansions: Vec::new(),
             cycle_memory: CycleMemory::default(),
@@ -143,6 +145,11 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             warned_unknown_position: false,
             tape_opened: false,
         }
+    }
+
+    /// Where each sequence name and program name is.
+    pub fn labels(&self) -> &Labels {
+        self.labels.get_or_init(|| Labels::new(self.program))
     }
 
     pub fn evaluator(&self) -> Evaluator<'p, 'src> {
@@ -441,7 +448,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             match word.kind {
                 WordKind::Label { number } => {
                     let key = labels::key(self.dialect, self.program.text(word.span), number);
-                    return match self.labels.jump(&key, index) {
+                    return match self.labels().jump(&key, index) {
                         Some(target) => Flow::Jump(target),
                         None => {
                             self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
@@ -452,7 +459,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 WordKind::Operand { expr } => {
                     let Some(value) = self.value_of(expr) else { return Flow::End };
                     let key = (value.round() as i64).to_string();
-                    return match self.labels.jump(&key, index) {
+                    return match self.labels().jump(&key, index) {
                         Some(target) => Flow::Jump(target),
                         None => {
                             self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
@@ -472,7 +479,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
     fn call_target(&mut self, index: usize, words: &[crate::syntax::Word]) -> Option<usize> {
         let word = words.iter().find(|w| matches!(w.kind, WordKind::ProgramRef))?;
         let key = labels::program_key(self.dialect, self.program.text(word.span));
-        let target = self.labels.program(&key);
+        let target = self.labels().program(&key);
         if target.is_none() {
             self.warning(DiagnosticKind::MissingProgram { name: format!("O{key}") }, word.span);
         }
@@ -547,7 +554,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
     /// Fanuc `M98 P<program> [L<count>]`.
     pub fn subprogram_call(&mut self, index: usize, program_number: f64, count: f64) -> Flow {
         let key = (program_number.round() as i64).to_string();
-        match self.labels.program(&key) {
+        match self.labels().program(&key) {
             Some(target) => self.enter(index, target, count.max(1.0) as u32, Vec::new()),
             None => {
                 let span = self.program.block(index).span;

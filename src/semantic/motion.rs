@@ -105,8 +105,7 @@ impl Interpreter<'_, '_> {
             self.emitter.arrive(to);
             return;
         }
-        let modal = self.modal.clone();
-        self.emitter.rapid(&modal, to);
+        self.emitter.rapid(&self.modal, to);
     }
 
     /// A straight feed move to `to` (cutting), through any pending corner.
@@ -120,8 +119,7 @@ impl Interpreter<'_, '_> {
             self.corner_then_line(to);
             return;
         }
-        let modal = self.modal.clone();
-        self.emitter.line(&modal, to, true);
+        self.emitter.line(&self.modal, to, true);
         self.report_zero_feed(span);
     }
 
@@ -135,8 +133,7 @@ impl Interpreter<'_, '_> {
         let block = *self.program.block(index);
         let span = block.span;
         let axes = self.axis_target(words);
-        let codes = self.g_infos(words);
-        let corner = codes.iter().find_map(|(_, g)| match g.function {
+        let corner = self.g_infos(words).find_map(|(_, g)| match g.function {
             Some(GFunction::ChamferCorner) => Some(false),
             Some(GFunction::RoundCorner) => Some(true),
             _ => None,
@@ -228,8 +225,7 @@ impl Interpreter<'_, '_> {
                 }
             }
         };
-        let modal = self.modal.clone();
-        self.emitter.arc(&modal, to, centre, ccw, true);
+        self.emitter.arc(&self.modal, to, centre, ccw, true);
         self.report_zero_feed(span);
     }
 

@@ -160,9 +160,12 @@ impl MoveMap {
 pub fn apply(toolpath: &mut Toolpath, setup: &Setup, diagnostics: &mut Vec<Diagnostic>) -> MoveMap {
     // Moves to insert, each in front of the (old) index it leads into, in index order.
     let mut inserted: Vec<(usize, Move)> = Vec::new();
+    // Whether any dwell needs standing where the tool is, found on the same pass.
+    let mut dwells = false;
     let mut i = 0;
     while i < toolpath.moves.len() {
         if toolpath.moves[i].compensation == Compensation::Off {
+            dwells |= toolpath.moves[i].motion == Motion::Dwell;
             i += 1;
             continue;
         }
@@ -173,6 +176,7 @@ pub fn apply(toolpath: &mut Toolpath, setup: &Setup, diagnostics: &mut Vec<Diagn
             && toolpath.moves[i].tool == first.tool
             && toolpath.moves[i].offset == first.offset
         {
+            dwells |= toolpath.moves[i].motion == Motion::Dwell;
             i += 1;
         }
         let (radius, tip) = setup.tools.lookup(first.tool, first.offset);
@@ -182,7 +186,7 @@ pub fn apply(toolpath: &mut Toolpath, setup: &Setup, diagnostics: &mut Vec<Diagn
             straighten_cancel_arc(toolpath, i, &setup.tools, diagnostics);
         }
     }
-    merge(toolpath, inserted)
+    merge(toolpath, inserted, dwells)
 }
 
 /// One run of compensated moves and its tool.
@@ -336,10 +340,12 @@ fn straighten_cancel_arc(
 }
 
 /// Put the inserted moves in place, delay every later move by their time, and stand each
-/// dwell where the move before it ended.
-fn merge(toolpath: &mut Toolpath, inserted: Vec<(usize, Move)>) -> MoveMap {
+/// dwell (there are some when `dwells`) where the move before it ended.
+fn merge(toolpath: &mut Toolpath, inserted: Vec<(usize, Move)>, dwells: bool) -> MoveMap {
     if inserted.is_empty() {
-        stand_dwells(toolpath);
+        if dwells {
+            stand_dwells(toolpath);
+        }
         return MoveMap::identity(toolpath.moves.len());
     }
     let old = std::mem::take(&mut toolpath.moves);
@@ -363,7 +369,9 @@ fn merge(toolpath: &mut Toolpath, inserted: Vec<(usize, Move)>) -> MoveMap {
     first.push(moves.len());
     let len = moves.len();
     toolpath.moves = moves;
-    stand_dwells(toolpath);
+    if dwells {
+        stand_dwells(toolpath);
+    }
     MoveMap { first, len }
 }
 

@@ -103,8 +103,7 @@ impl Interpreter<'_, '_> {
                 }
             }
             self.emitter.context.source = block.span;
-            let codes = self.g_infos(&words);
-            for &(_, info) in &codes {
+            for (_, info) in self.g_infos(&words) {
                 if info.function == Some(GFunction::LapEnd) {
                     continue;
                 }

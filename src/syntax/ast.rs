@@ -406,14 +406,40 @@ impl Block {
 ///
 /// Only the parser builds a `Program`, so its spans are known to index its source and its
 /// blocks to tile it; the printer relies on both.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct Program<'src> {
     pub(crate) source: &'src [u8],
     pub(crate) config: DialectConfig,
     pub(crate) blocks: Vec<Block>,
     pub(crate) words: Vec<Word>,
+    /// The words after `words`, their ids going on from `words.len()`: a large program is
+    /// parsed in two runs of lines on two threads, and the second run's words stay in the
+    /// arena it filled rather than being copied behind the first's. A block's words lie in
+    /// one arena. Empty for every other program.
+    pub(crate) later_words: Vec<Word>,
     pub(crate) exprs: Vec<Expr>,
     pub(crate) commands: Vec<Command>,
+}
+
+/// The program as one list of words, however many arenas hold them: a program parsed in two
+/// runs reads the same as one parsed in one.
+impl std::fmt::Debug for Program<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        struct Words<'a>(&'a [Word], &'a [Word]);
+        impl std::fmt::Debug for Words<'_> {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.debug_list().entries(self.0.iter().chain(self.1)).finish()
+            }
+        }
+        f.debug_struct("Program")
+            .field("source", &self.source)
+            .field("config", &self.config)
+            .field("blocks", &self.blocks)
+            .field("words", &Words(&self.words, &self.later_words))
+            .field("exprs", &self.exprs)
+            .field("commands", &self.commands)
+            .finish()
+    }
 }
 
 impl<'src> Program<'src> {
@@ -434,11 +460,19 @@ impl<'src> Program<'src> {
     }
 
     pub fn word(&self, id: WordId) -> &Word {
-        &self.words[id as usize]
+        let id = id as usize;
+        match id.checked_sub(self.words.len()) {
+            None => &self.words[id],
+            Some(later) => &self.later_words[later],
+        }
     }
 
     pub fn words_of(&self, block: &Block) -> &[Word] {
-        &self.words[block.first_word as usize..block.first_word as usize + block.word_count as usize]
+        let (start, end) = (block.first_word as usize, block.first_word as usize + block.word_count as usize);
+        match start.checked_sub(self.words.len()) {
+            None => &self.words[start..end],
+            Some(later) => &self.later_words[later..end - self.words.len()],
+        }
     }
 
     pub fn expr(&self, id: ExprId) -> &Expr {
@@ -477,7 +511,7 @@ impl<'src> Program<'src> {
     /// Heap bytes held by the AST (not counting the source), for the memory budget.
     pub fn heap_bytes(&self) -> usize {
         self.blocks.capacity() * std::mem::size_of::<Block>()
-            + self.words.capacity() * std::mem::size_of::<Word>()
+            + (self.words.capacity() + self.later_words.capacity()) * std::mem::size_of::<Word>()
             + self.exprs.capacity() * std::mem::size_of::<Expr>()
             + self.commands.capacity() * std::mem::size_of::<Command>()
             + self.commands.iter().map(|c| c.params.capacity() * std::mem::size_of::<Param>()).sum::<usize>()

@@ -26,7 +26,7 @@ fn feed(end: Xz) -> Move {
 #[test]
 fn a_clean_path_validates() {
     let path = Toolpath { start: Xz::new(0.0, 0.0), moves: vec![feed(Xz::new(1.0, 0.0))] };
-    assert!(validate(path, None).is_ok());
+    assert!(validate(&path, None).is_ok());
 }
 
 #[test]
@@ -35,7 +35,7 @@ fn an_arc_whose_end_is_off_its_circle_is_rejected() {
     arc.motion = Motion::Ccw;
     arc.centre = Xz::new(0.0, 0.0);
     let path = Toolpath { start: Xz::new(1.0, 0.0), moves: vec![arc] };
-    let problems = validate(path, None).unwrap_err();
+    let problems = validate(&path, None).unwrap_err();
     assert!(matches!(problems[0].kind, DiagnosticKind::ArcEndOffCircle { .. }));
 }
 
@@ -47,7 +47,7 @@ fn travel_limits_catch_an_arc_bulging_out() {
     // From Z0 to Z-2 about Z-1 counter-clockwise bulges to X+1 at the top.
     let path = Toolpath { start: Xz::new(0.0, 0.0), moves: vec![arc] };
     let limits = Limits { x_min: -0.5, x_max: 0.5, z_min: -10.0, z_max: 10.0 };
-    let problems = validate(path, Some(limits)).unwrap_err();
+    let problems = validate(&path, Some(limits)).unwrap_err();
     assert!(matches!(problems[0].kind, DiagnosticKind::OutsideTravel { .. }));
 }
 
@@ -59,6 +59,6 @@ fn non_finite_points_and_time_running_back_are_rejected() {
     back.t_start = 0.5;
     back.t_end = 0.4;
     let path = Toolpath { start: Xz::default(), moves: vec![bad, back] };
-    let problems = validate(path, None).unwrap_err();
+    let problems = validate(&path, None).unwrap_err();
     assert_eq!(problems.len(), 2);
 }

@@ -118,7 +118,7 @@ impl Compensated {
 
     fn run(&self, program: &Program<'_>, model: &ErrorModel, fit: FitOptions) -> Outcome {
         let lowered = lower(program, &self.machine, &LowerOptions::new(false));
-        let valid = validate(lowered.toolpath.clone(), self.machine.limits).unwrap();
+        let valid = validate(&lowered.toolpath, self.machine.limits).unwrap();
         let options =
             CompensateOptions { fit, max_shift_mm: 0.1, expand_cycles: false, paths: false, block_reports: true };
         compensate_program(program, &lowered, &valid, &self.machine, model, &options)

@@ -99,8 +99,8 @@ fn run(path: &Path, name: &str, entry: &Entry) -> String {
     }
     let errors = diagnostics.iter().any(|d| d.is_error());
     match &valid {
-        Ok(valid) => {
-            let summary = turnpass::simulation::summary(&parsed.program, &lowered, valid.toolpath(), &machine);
+        Ok(()) => {
+            let summary = turnpass::simulation::summary(&parsed.program, &lowered, &lowered.toolpath, &machine);
             let _ = writeln!(
                 out,
                 "----- SUMMARY\n{} moves, cycle {:.3} s, cutting {:.3} s, path {:.3} mm, cutting {:.3} mm",

@@ -85,8 +85,8 @@ pub fn nominal_for(program: &Path, settings: &MachineSettings) -> Nominal {
     let parsed = parse(&source, &parse_options(settings));
     let checked = lower_and_validate(&parsed, settings);
     assert!(!checked.diagnostics.iter().any(|d| d.is_error()), "{}", program.display());
-    let valid = checked.valid.unwrap();
-    let mut nominal = Nominal::new(&parsed.program, &checked.lowered, &valid, &checked.machine);
+    assert!(checked.valid.is_ok(), "{}: the toolpath validates", program.display());
+    let mut nominal = Nominal::new(&parsed.program, &checked.lowered, &checked.lowered.toolpath, &checked.machine);
     nominal.screw_pitch = settings.ball_screw_pitch_mm.unwrap_or_default();
     nominal
 }

@@ -78,6 +78,6 @@ proptest! {
             let count = lowered.toolpath.moves.iter().filter(|m| m.cycle == span).count();
             prop_assert_eq!(count, moves.len());
         }
-        prop_assert!(validate(lowered.toolpath.clone(), machine.limits).is_ok());
+        prop_assert!(validate(&lowered.toolpath, machine.limits).is_ok());
     }
 }

@@ -15,7 +15,7 @@ use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::printer::print;
 use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
 use turnpass::syntax::{ParseOptions, Parsed, parse};
-use turnpass::toolpath::{Motion, Toolpath, ValidToolpath, validate};
+use turnpass::toolpath::{Motion, Toolpath, validate};
 
 use crate::support::{check_spans, render, repo, with_snapshots};
 
@@ -78,7 +78,8 @@ pub struct Checked {
     pub machine: Machine,
     pub options: LowerOptions,
     pub lowered: Lowered,
-    pub valid: Result<ValidToolpath, Vec<Diagnostic>>,
+    /// `Ok` when the toolpath validates.
+    pub valid: Result<(), Vec<Diagnostic>>,
     /// The diagnostics of the parse, the lowering and the validation, in source order.
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -89,7 +90,7 @@ pub fn lower_and_validate(parsed: &Parsed<'_>, settings: &MachineSettings) -> Ch
     let machine = Machine::from_settings(settings);
     let options = LowerOptions::new(settings.block_delete.unwrap_or(false));
     let lowered = semantic::lower(&parsed.program, &machine, &options);
-    let valid = validate(lowered.toolpath.clone(), machine.limits);
+    let valid = validate(&lowered.toolpath, machine.limits).map(|_| ());
     let mut diagnostics = parsed.diagnostics.clone();
     diagnostics.extend(lowered.diagnostics.iter().cloned());
     if let Err(problems) = &valid {
@@ -113,8 +114,8 @@ fn run_case(path: &Path) -> String {
     let mut out = String::new();
     let _ = writeln!(out, "----- SOURCE\n{}", String::from_utf8_lossy(&source).trim_end());
     let _ = writeln!(out, "----- DIAGNOSTICS\n{}", render(&name, &source, &diagnostics).trim_end());
-    if let Ok(valid) = &valid {
-        let summary = turnpass::simulation::summary(&parsed.program, &lowered, valid.toolpath(), &machine);
+    if valid.is_ok() {
+        let summary = turnpass::simulation::summary(&parsed.program, &lowered, &lowered.toolpath, &machine);
         let _ = writeln!(
             out,
             "----- SUMMARY\ncycle {:.3} s, cutting {:.3} s, path {:.3} mm, cutting {:.3} mm, {} moves",

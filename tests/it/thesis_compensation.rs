@@ -13,7 +13,7 @@ use turnpass::machine::ModelFile;
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::semantic::{LowerOptions, Machine, lower};
 use turnpass::syntax::parse;
-use turnpass::toolpath::{Motion, Xz, validate};
+use turnpass::toolpath::{Motion, Validated, Xz};
 
 use crate::simulate::parse_options;
 use crate::support::{check_spans, repo};
@@ -32,7 +32,7 @@ fn compensate(program: &str, model_toml: &str, step: f64) -> (turnpass::toolpath
     let machine = Machine::from_settings(&settings);
     let lowered = lower(&parsed.program, &machine, &LowerOptions::new(false));
     assert!(lowered.diagnostics.iter().all(|d| !d.is_error()), "{:?}", lowered.diagnostics);
-    let toolpath = validate(lowered.toolpath, machine.limits).unwrap().into_inner();
+    let toolpath = Validated::new(lowered.toolpath, machine.limits).unwrap().into_inner();
     let samples = sample_toolpath(&toolpath, &ToolTable::from_machine(&machine), step);
     let options = InverseOptions { tolerance_mm: 1e-6, ..InverseOptions::default() };
     let result = compensate_samples(&samples, toolpath.start, &model, &options);

@@ -153,7 +153,7 @@ pub(super) fn find(interp: &mut Interpreter<'_, '_>, index: usize, command: &Com
     let word = *interp.program.word(command.param(Role::ContourName)?);
     let WordKind::Label { number } = word.kind else { return None };
     let key = labels::key(interp.dialect, interp.program.text(word.span), number);
-    let named = interp.labels.blocks(&key).to_vec();
+    let named = interp.labels().blocks(&key).to_vec();
     let contours: Vec<(usize, GFunction)> =
         named.iter().filter_map(|&b| contour_function(interp, b).map(|f| (b, f))).collect();
     let Some(&(first, function)) = contours.iter().find(|(b, _)| *b > index).or_else(|| contours.first()) else {
@@ -212,7 +212,7 @@ fn contour_function(interp: &Interpreter<'_, '_>, index: usize) -> Option<GFunct
     if !matches!(block.statement, Statement::LapMarker(_)) {
         return None;
     }
-    interp.g_infos(interp.program.words_of(block)).iter().find_map(|(_, g)| match g.function {
+    interp.g_infos(interp.program.words_of(block)).find_map(|(_, g)| match g.function {
         Some(f @ (GFunction::LapContourLongitudinal | GFunction::LapContourTransverse | GFunction::LapBlank)) => {
             Some(f)
         }

@@ -486,7 +486,7 @@ impl Interpreter<'_, '_> {
     pub(in crate::semantic) fn after_profile(&mut self, command: &Command, index: usize) -> Flow {
         let Some(q) = self.param(command, Role::ProfileEnd) else { return Flow::Next };
         let key = (q.round() as i64).to_string();
-        match self.labels.blocks(&key) {
+        match self.labels().blocks(&key) {
             [one] if *one > index => Flow::Jump(one + 1),
             _ => Flow::Next,
         }

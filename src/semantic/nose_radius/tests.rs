@@ -276,7 +276,7 @@ fn the_g42_case_gets_one_corner_arc_timed_at_the_feed_and_the_clock_stays_contin
     assert_eq!(map.range(3..4), 3..5, "the corner arc belongs to the move it leads into");
     assert_eq!(map.range(4..7), 5..8);
     assert_eq!(map.range(7..7), 8..8);
-    assert!(validate(toolpath, None).is_ok());
+    assert!(validate(&toolpath, None).is_ok());
 }
 
 #[test]
@@ -328,7 +328,7 @@ fn a_start_up_straight_into_an_arc_ends_on_the_arcs_offset_circle() {
     assert!(close(toolpath.moves[0].end, Xz::new(10.0, -0.4), 1e-12), "{:?}", toolpath.moves[0].end);
     assert!(close(toolpath.moves[1].end, Xz::new(14.6, -5.0), 1e-12), "{:?}", toolpath.moves[1].end);
     assert_eq!(toolpath.moves[1].centre, Xz::new(10.0, -5.0));
-    assert!(validate(toolpath, None).is_ok());
+    assert!(validate(&toolpath, None).is_ok());
 }
 
 #[test]
@@ -351,7 +351,7 @@ fn arcs_that_start_or_end_compensation_are_made_straight_with_a_warning() {
         vec![DiagnosticKind::CompensationOnArc { cancel: false }, DiagnosticKind::CompensationOnArc { cancel: true }]
     );
     assert!(toolpath.moves.iter().all(|m| m.motion == Motion::Feed));
-    assert!(validate(toolpath, None).is_ok());
+    assert!(validate(&toolpath, None).is_ok());
 }
 
 #[test]
@@ -378,7 +378,7 @@ fn an_arc_after_a_run_under_a_tool_with_no_nose_radius_cancels_like_g40() {
     apply(&mut toolpath, &setup(0.4, 0), &mut diagnostics);
     assert_eq!(diagnostics.len(), 1);
     assert_eq!(toolpath.moves[2].motion, Motion::Feed);
-    assert!(validate(toolpath, None).is_ok());
+    assert!(validate(&toolpath, None).is_ok());
 }
 
 #[test]
@@ -697,7 +697,7 @@ fn check(contour: &[Curve], r: f64, tip: u8, side: f64, groups: &[usize]) -> Res
     prop_assume!(!diagnostics.iter().any(|d| matches!(d.kind, DiagnosticKind::NoseDoesNotFit { .. })));
     prop_assert!(diagnostics.is_empty(), "{diagnostics:?}");
 
-    let valid = validate(toolpath.clone(), Some(Limits { x_min: -1e6, x_max: 1e6, z_min: -1e6, z_max: 1e6 }));
+    let valid = validate(&toolpath, Some(Limits { x_min: -1e6, x_max: 1e6, z_min: -1e6, z_max: 1e6 }));
     prop_assert!(valid.is_ok(), "{:?}", valid.err());
 
     // The clock: continuous, and each inserted move takes its length at its feed.
