@@ -80,7 +80,7 @@ impl Outcome {
 /// How closely `compensate` samples `toolpath` for `model`: as the model needs for the
 /// path between samples to follow its correction within a tenth of the tolerance
 /// (`error_model/spacing.rs`), on arcs as closely as the terms that turn with them need and
-/// at least every sixteenth of a turn, and, for `densify` at a fixed step, at a divisor of that
+/// at least every eighth of a turn, and, for `densify` at a fixed step, at a divisor of that
 /// step so that its points fall on samples.
 pub fn sampling(fit: &FitOptions, model: &ErrorModel, toolpath: &Toolpath) -> Sampling {
     let allowance = fit.tolerance_mm * INTERPOLATION_SHARE;

@@ -169,8 +169,9 @@ impl Walk<'_> {
         out: &mut [Xz],
     ) {
         // Samples and segments both run along the move: search a window ahead of the last
-        // segment used.
-        const WINDOW: usize = 16;
+        // segment used, wide enough to pass the segments between two samples (densified
+        // lines along an arc may be twenty or more to a sample interval).
+        let window = 16 + 2 * self.segments.len().div_ceil(range.len().max(1));
         let starts = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end));
         gauges.clear();
         gauges.extend(self.segments.iter().zip(starts).map(|(segment, from)| Gauge::new(from, segment)));
@@ -179,7 +180,7 @@ impl Walk<'_> {
             let target = written::written_point(self.m, self.contour_start, &samples[j], ideal[j], self.tools);
             let (mut best, mut best_k, mut best_d) = (self.start, cursor, f64::INFINITY);
             let first = cursor.saturating_sub(1);
-            for (k, gauge) in gauges.iter().enumerate().skip(first).take(WINDOW + 1) {
+            for (k, gauge) in gauges.iter().enumerate().skip(first).take(window + 1) {
                 let q = gauge.closest(target);
                 let d = q.distance(target);
                 if d < best_d {
@@ -191,3 +192,6 @@ impl Walk<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

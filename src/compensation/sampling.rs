@@ -57,14 +57,12 @@ pub struct Sampling {
 }
 
 impl Sampling {
-    /// The largest angle between an arc's samples, whatever the model: a sixteenth of a
-    /// turn. The fits follow an eighth as well (they hold an arc to the programmed arc's
-    /// bulge between two points with the programmed radius, which a translation of the arc
-    /// leaves as it is), but compensate's own prediction, measured at the samples, then
-    /// overstates `densify` (on `tests/cases/compensate/generated.nc` beyond the bound the
-    /// closed-loop test holds it to): its lines may pass a skipped sample by up to the
-    /// tolerance, and with few samples those points weigh for long stretches of path.
-    pub const MAX_ARC_RADIANS: f64 = std::f64::consts::PI / 16.0;
+    /// The largest angle between an arc's samples, whatever the model: an eighth of a
+    /// turn. The fits follow it (they hold an arc to the programmed arc's bulge between two
+    /// points with the programmed radius, which a translation of the arc leaves as it is),
+    /// and so does compensate's own prediction of `densify`, whose rounded path is walked
+    /// to each sample across all the lines between two samples (`quantised::Walk`).
+    pub const MAX_ARC_RADIANS: f64 = std::f64::consts::PI / 8.0;
 
     /// Every `step` mm along cutting moves, whatever the model: how `verify`, `diagnose`
     /// and `plot` measure a path, and how the thesis sampled.
