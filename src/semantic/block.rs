@@ -60,10 +60,14 @@ impl Interpreter<'_, '_> {
         let block = *program.block(index);
         let words = effective_words(program.words_of(&block), self.options.block_delete);
         self.emitter.context = Context { source: block.span, cycle: Span::SYNTHETIC };
-        let command = self.g_infos(words).find(|(_, info)| info.kind.rank() >= 3).map(|(_, info)| info);
+        let found = Found::in_words(words);
 
-        // Modal G-codes.
+        // Modal G-codes, and the G code that commands the block.
+        let mut command = None;
         for (_, info) in self.g_infos(words) {
+            if command.is_none() && info.kind.rank() >= 3 {
+                command = Some(info);
+            }
             self.apply_modal(info);
         }
         // F: the modal feed, except in the multiple repetitive cycles, whose F is their own
@@ -86,12 +90,12 @@ impl Interpreter<'_, '_> {
         };
         if !cycle_feed
             && !dwell_in_f
-            && let Some(feed) = self.address_value(words, Address::F)
+            && let Some(feed) = found.feed.and_then(|word| self.word_value(word))
         {
             self.modal.feed = feed;
         }
         // S: a spindle clamp with G50/G92, otherwise the speed.
-        if let Some(speed) = self.address_value(words, Address::S) {
+        if let Some(speed) = found.speed.and_then(|word| self.word_value(word)) {
             let clamp = command.and_then(|c| c.function) == Some(GFunction::CoordinateSetOrClamp);
             if clamp {
                 self.modal.clamp = speed.min(self.machine.max_rpm);
@@ -100,12 +104,14 @@ impl Interpreter<'_, '_> {
             }
         }
         // Modes set by M codes that the motion of this block already obeys.
-        self.m_code_modes(words);
+        if found.m_codes {
+            self.m_code_modes(words);
+        }
         if !matches!(block.statement, Statement::LapCall(_))
             && !matches!(command.map(|c| c.kind), Some(GKind::Cycle))
-            && let Some(word) = words.iter().find(|w| word_address(w) == Some(Address::T)).copied()
+            && let Some(word) = found.tool
         {
-            self.tool_change(&word);
+            self.tool_change(word);
         }
 
         self.mark_coordinates();
@@ -127,6 +133,9 @@ impl Interpreter<'_, '_> {
         };
 
         // M codes that end or leave the program, after the motion.
+        if !found.m_codes {
+            return self.modal_call_after(index, block.statement, flow);
+        }
         let m_codes = || {
             words.iter().filter_map(|w| match w.kind {
                 WordKind::Code { letter: CodeLetter::M, code } => Some(code.major()),
@@ -145,8 +154,13 @@ impl Interpreter<'_, '_> {
         if m_codes().any(|m| functions.end.contains(&m)) {
             return Flow::End;
         }
+        self.modal_call_after(index, block.statement, flow)
+    }
+
+    /// OSP `MODIN`: a motion block that goes on to the next block calls the modal subprogram.
+    fn modal_call_after(&mut self, index: usize, statement: Statement, flow: Flow) -> Flow {
         if flow == Flow::Next
-            && matches!(block.statement, Statement::Motion)
+            && matches!(statement, Statement::Motion)
             && let Some(target) = self.modal_call
         {
             return self.enter(index, target, 1, Vec::new());
@@ -355,6 +369,31 @@ fn sets_modal_feed(function: GFunction) -> bool {
             | GFunction::StockRemovalFacing
             | GFunction::PatternRepeat
     )
+}
+
+/// The words of a block that `machine_block` looks for, found in one pass: the first F, S and
+/// T words, and whether there is any M code (most blocks are an axis move without one).
+struct Found<'w> {
+    feed: Option<&'w Word>,
+    speed: Option<&'w Word>,
+    tool: Option<&'w Word>,
+    m_codes: bool,
+}
+
+impl<'w> Found<'w> {
+    fn in_words(words: &'w [Word]) -> Found<'w> {
+        let mut found = Found { feed: None, speed: None, tool: None, m_codes: false };
+        for word in words {
+            match word_address(word) {
+                Some(Address::F) => found.feed = found.feed.or(Some(word)),
+                Some(Address::S) => found.speed = found.speed.or(Some(word)),
+                Some(Address::T) => found.tool = found.tool.or(Some(word)),
+                Some(_) => {}
+                None => found.m_codes |= matches!(word.kind, WordKind::Code { letter: CodeLetter::M, .. }),
+            }
+        }
+        found
+    }
 }
 
 pub(super) fn word_address(word: &Word) -> Option<Address> {

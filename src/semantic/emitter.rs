@@ -15,7 +15,7 @@ use std::f64::consts::TAU;
 
 use crate::geometry;
 use crate::source::Span;
-use crate::toolpath::{Motion, Move, Xz};
+use crate::toolpath::{Compensation, Motion, Move, Xz};
 
 use super::modal::{Modal, SpindleMode};
 
@@ -40,6 +40,11 @@ pub struct Emitter {
     pub zero_feed: bool,
     /// Where the first move started.
     pub first_start: Option<Xz>,
+    /// Whether a move was made under nose-radius compensation, or a dwell: nose-radius
+    /// compensation has nothing to do without either. (A dry run's moves, dropped again, may
+    /// leave them set; that only costs the pass.)
+    pub compensated: bool,
+    pub dwelled: bool,
 }
 
 /// Samples for Simpson's rule on arcs under constant surface speed.
@@ -56,6 +61,8 @@ impl Emitter {
             context: Context { source: Span::SYNTHETIC, cycle: Span::SYNTHETIC },
             zero_feed: false,
             first_start: None,
+            compensated: false,
+            dwelled: false,
         }
     }
 
@@ -78,6 +85,8 @@ impl Emitter {
         if self.first_start.is_none() {
             self.first_start = Some(self.at);
         }
+        self.compensated |= modal.compensation != Compensation::Off;
+        self.dwelled |= motion == Motion::Dwell;
         let start_time = self.time;
         self.time += seconds;
         let feed = if matches!(motion, Motion::Rapid | Motion::Dwell) || seconds <= 0.0 {

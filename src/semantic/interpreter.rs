@@ -201,8 +201,14 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         let mut toolpath = Toolpath { start, moves: std::mem::take(&mut self.emitter.moves) };
         if self.options.nose_radius_compensation {
             let setup = super::nose_radius::Setup::new(self.machine, self.modal.frame.scale());
-            // Compensation inserts corner arcs: the cycles' move ranges follow them.
-            let moved = super::nose_radius::apply(&mut toolpath, &setup, &mut self.diagnostics);
+            // Compensation inserts corner arcs: the cycles' move ranges follow them. Without
+            // a compensated move or a dwell it changes nothing, and its pass over the moves
+            // is skipped.
+            let moved = if self.emitter.compensated || self.emitter.dwelled {
+                super::nose_radius::apply(&mut toolpath, &setup, &mut self.diagnostics)
+            } else {
+                super::nose_radius::MoveMap::identity(toolpath.moves.len())
+            };
             for expansion in &mut self.expansions {
                 expansion.moves = moved.range(expansion.moves.clone());
             }

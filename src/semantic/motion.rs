@@ -133,11 +133,6 @@ impl Interpreter<'_, '_> {
         let block = *self.program.block(index);
         let span = block.span;
         let axes = self.axis_target(words);
-        let corner = self.g_infos(words).find_map(|(_, g)| match g.function {
-            Some(GFunction::ChamferCorner) => Some(false),
-            Some(GFunction::RoundCorner) => Some(true),
-            _ => None,
-        });
         match self.modal.motion {
             MotionMode::TurningCycle | MotionMode::ThreadCycle | MotionMode::FacingCycle => {
                 // A single cycle repeats with the new end point.
@@ -153,6 +148,11 @@ impl Interpreter<'_, '_> {
                     self.finish_corner();
                     return Flow::Next;
                 };
+                let corner = self.g_infos(words).find_map(|(_, g)| match g.function {
+                    Some(GFunction::ChamferCorner) => Some(false),
+                    Some(GFunction::RoundCorner) => Some(true),
+                    _ => None,
+                });
                 match corner {
                     Some(round) => self.start_corner(round, to, words, span),
                     None => self.line_to(to, span),
