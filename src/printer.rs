@@ -12,10 +12,12 @@ pub mod canonical;
 pub mod edit;
 pub mod number;
 pub mod style;
+pub mod written;
 
 pub use canonical::{CanonicalOptions, print_canonical};
 pub use edit::{Edits, NewBlock, NewWord};
 pub use style::ProgramStyle;
+pub use written::{BlockWriter, WrittenText};
 
 use crate::dialect::{Address, AddressKind, Dialect};
 use crate::syntax::{CodeLetter, Number, Program};
@@ -34,7 +36,9 @@ pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
         }
         return out;
     }
-    let style = ProgramStyle::infer(program);
+    // Replacements written ahead (`Edits::replace_written`) were written in the program's
+    // style, which they carry.
+    let style = edits.written.style.clone().unwrap_or_else(|| ProgramStyle::infer(program));
     let blocks = program.blocks().len();
     // Two halves on two threads, split after a block that ends its line, so the second
     // half starts as the first would go on (on a fresh line).
@@ -72,6 +76,7 @@ fn print_blocks(
     let first = range.start;
     // The edits come in block order: walk them beside the blocks rather than look each up.
     let mut pending = edits.from(first).peekable();
+    let mut written = edits.written_from(first).peekable();
     for (index, block) in program.blocks().get(range).unwrap_or_default().iter().enumerate() {
         let index = first + index;
         let edit = pending.next_if(|&(at, _)| at == index).map(|(_, edit)| edit);
@@ -80,9 +85,11 @@ fn print_blocks(
                 writer.new_line(new);
             }
         }
-        match edit.and_then(|e| e.replacement.as_ref()) {
-            None => writer.original(block.span.range(), program.terminator(index)),
-            Some(replacement) => {
+        let written = written.next_if(|&(at, _)| at == index).map(|(_, text)| text);
+        match (written, edit.and_then(|e| e.replacement.as_ref())) {
+            (Some(text), _) => writer.written(text, program.terminator(index)),
+            (None, None) => writer.original(block.span.range(), program.terminator(index)),
+            (None, Some(replacement)) => {
                 for (k, new) in replacement.iter().enumerate() {
                     if k + 1 == replacement.len() {
                         writer.start_line();
@@ -131,6 +138,14 @@ impl Writer<'_, '_, '_> {
         self.end_with(terminator);
     }
 
+    /// A replacement written ahead (`WrittenText`): its blocks, the last ending as the
+    /// replaced block did.
+    fn written(&mut self, text: &str, terminator: &[u8]) {
+        self.start_line();
+        self.out.extend_from_slice(text.as_bytes());
+        self.end_with(terminator);
+    }
+
     fn end_with(&mut self, terminator: &[u8]) {
         self.out.extend_from_slice(terminator);
         self.open_line = terminator.is_empty();
@@ -151,48 +166,79 @@ impl Writer<'_, '_, '_> {
 
 /// Write a new block in `style`.
 pub fn write_new_block(out: &mut String, program: &Program<'_>, style: &ProgramStyle, block: &NewBlock) {
-    let separator = style.word_separator();
-    let mut first = true;
+    let mut line_start = true;
     if let Some(sequence) = &block.sequence {
-        out.push_str(sequence);
-        // OSP requires a blank after the sequence name.
-        out.push_str(if style.dialect == Dialect::Osp { " " } else { separator });
-        first = true;
+        write_sequence(out, style, sequence);
     }
     for word in &block.words {
-        if !first {
-            out.push_str(separator);
+        write_word(out, program, style, word, &mut line_start);
+    }
+}
+
+/// Write a new block's sequence name, at the start of its line.
+fn write_sequence(out: &mut String, style: &ProgramStyle, sequence: &str) {
+    out.push_str(sequence);
+    // OSP requires a blank after the sequence name.
+    out.push_str(if style.dialect == Dialect::Osp { " " } else { style.word_separator() });
+}
+
+/// Write `word` of a new block, after a separator unless it starts the line (`line_start`,
+/// which it then leaves as the next word needs it).
+pub(crate) fn write_word(
+    out: &mut String,
+    program: &Program<'_>,
+    style: &ProgramStyle,
+    word: &NewWord,
+    line_start: &mut bool,
+) {
+    if !*line_start {
+        out.push_str(style.word_separator());
+    }
+    *line_start = false;
+    match word {
+        NewWord::Code(letter, code) => write_code(out, *letter, code.major(), code.minor(), style.two_digit_codes),
+        NewWord::Number(address, number) => write_address_number(out, program, style, *address, *number),
+        NewWord::Copy(id) => {
+            out.push_str(&String::from_utf8_lossy(program.text(program.word(*id).span)));
+            // A block-delete slash is written against what follows it (`/N120`).
+            *line_start = matches!(program.word(*id).kind, crate::syntax::WordKind::BlockDelete { .. });
         }
-        first = false;
-        match word {
-            NewWord::Code(letter, code) => write_code(out, *letter, code.major(), code.minor(), style.two_digit_codes),
-            NewWord::Number(address, number) => write_address_number(out, program, style, *address, *number),
-            NewWord::Copy(id) => {
-                out.push_str(&String::from_utf8_lossy(program.text(program.word(*id).span)));
-                // A block-delete slash is written against what follows it (`/N120`).
-                first = matches!(program.word(*id).kind, crate::syntax::WordKind::BlockDelete { .. });
-            }
-            NewWord::Comment(text) => {
-                out.push('(');
-                out.push_str(text);
-                out.push(')');
-            }
-            NewWord::TapeMark => out.push('%'),
+        NewWord::Comment(text) => {
+            out.push('(');
+            out.push_str(text);
+            out.push(')');
         }
+        NewWord::TapeMark => out.push('%'),
     }
 }
 
 pub(crate) fn write_code(out: &mut String, letter: CodeLetter, major: u16, minor: u16, two_digits: bool) {
     out.push(letter.as_char());
-    if two_digits {
-        out.push_str(&format!("{major:02}"));
-    } else {
-        out.push_str(&major.to_string());
+    if two_digits && major < 10 {
+        out.push('0');
     }
+    write_whole(out, u64::from(major));
     if minor != 0 {
         out.push('.');
-        out.push_str(&minor.to_string());
+        write_whole(out, u64::from(minor));
     }
+}
+
+/// Write `value`'s decimal digits (a printed program has millions of codes and addresses:
+/// `format!` and `to_string` cost an allocation each).
+fn write_whole(out: &mut String, value: u64) {
+    let mut buffer = [0u8; 20];
+    let mut rest = value;
+    let mut start = buffer.len();
+    loop {
+        start -= 1;
+        buffer[start] = b'0' + (rest % 10) as u8;
+        rest /= 10;
+        if rest == 0 {
+            break;
+        }
+    }
+    out.extend(buffer[start..].iter().map(|&digit| char::from(digit)));
 }
 
 fn write_address_number(
@@ -202,7 +248,8 @@ fn write_address_number(
     address: Address,
     number: Number,
 ) {
-    out.push_str(&address.name());
+    let (letters, length) = address.bytes();
+    out.extend(letters[..length].iter().map(|&letter| char::from(letter)));
     if !address.is_letter() {
         out.push('=');
     }

@@ -120,13 +120,13 @@ pub fn compensate_program(
 ) -> Outcome {
     let toolpath = valid.toolpath();
     let tools = ToolTable::from_machine(machine);
-    // The per-move tables are independent of each other: two are built beside the rest.
-    let ((writable, radius), (path, runs, sampling)) = std::thread::scope(|scope| {
-        let blocks =
-            scope.spawn(|| (rewrite::writable_moves(program, lowered), rewrite::radius_preference(program, lowered)));
+    // The per-move tables are independent of each other: what can be written for each
+    // move is found beside the rest.
+    let (forms, (path, runs, sampling)) = std::thread::scope(|scope| {
+        let forms = scope.spawn(|| rewrite::move_forms(program, lowered));
         let rest = (LocalPath::new(toolpath), rewrite::move_runs(lowered), sampling(&options.fit, model, toolpath));
         // Neither can fail on any input; a panic is a bug, and is passed on.
-        (blocks.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
+        (forms.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
     });
     let context = stream::Context {
         program,
@@ -137,8 +137,8 @@ pub fn compensate_program(
         options,
         limits: machine.limits,
         sampling,
-        writable,
-        radius,
+        writable: forms.writable,
+        radius: forms.radius,
         path,
         plan_options: PlanOptions { fit: options.fit, play: model.play() },
         runs,

@@ -8,7 +8,7 @@
 //!
 //! * **Motion blocks** (`G00`–`G03`, a thread move) are written back in their own form
 //!   (`rewrite/block.rs`). A block that runs more than once (a subprogram called twice, a
-//!   loop) is edited only if every run asks for the same words; a block that makes several
+//!   loop) is edited only if every run writes the same text; a block that makes several
 //!   moves (an OSP automatic corner) cannot carry several corrections. Both refuse with a
 //!   diagnostic when their motion must change.
 //! * **Under `G41`/`G42`** the program describes the contour, and so does the rewritten
@@ -27,7 +27,7 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::printer::{Edits, NewBlock};
+use crate::printer::{BlockWriter, Edits, WrittenText};
 use crate::semantic::Lowered;
 use crate::semantic::nose_radius::ToolTable;
 use crate::syntax::{Program, Statement};
@@ -54,11 +54,25 @@ pub struct EditedBlock {
     pub cycle: bool,
 }
 
-/// Which moves can be written back: moves of motion blocks, and of cycles that can be
-/// expanded.
-pub fn writable_moves(program: &Program<'_>, lowered: &Lowered) -> Vec<bool> {
+/// Per move, what can be written for it (`move_forms`).
+#[derive(Debug, Clone, Default)]
+pub struct MoveForms {
+    /// The move can be written back: a move of a motion block, or of a cycle that can be
+    /// expanded.
+    pub writable: Vec<bool>,
+    /// The arcs written for the move prefer the radius form (`R`/`L`) to the centre form
+    /// (`I K`): a motion block's own form (`block::writes_radius`), a cycle's the
+    /// program's (`expand` writes its blocks so). `grid::Grid::arc_words` still writes an
+    /// arc by its centre where its radius would not hold it.
+    pub radius: Vec<bool>,
+}
+
+/// What can be written for each move (`MoveForms`), in one pass over the moves.
+pub fn move_forms(program: &Program<'_>, lowered: &Lowered) -> MoveForms {
     let moves = &lowered.toolpath.moves;
+    let program_radius_arcs = crate::expand::uses_radius_arcs(program);
     let mut writable = vec![false; moves.len()];
+    let mut radius = vec![program_radius_arcs; moves.len()];
     let in_cycle = in_cycle(lowered);
     for expansion in &lowered.expansions {
         let expandable = cycles::expandable(program, lowered, expansion);
@@ -67,36 +81,16 @@ pub fn writable_moves(program: &Program<'_>, lowered: &Lowered) -> Vec<bool> {
         }
     }
     let blocks = BlockLookup::new(program);
+    let mut near = 0;
     for (k, m) in moves.iter().enumerate() {
         if in_cycle[k] {
             continue;
         }
-        writable[k] = blocks
-            .index(m.source.start)
-            .is_some_and(|b| matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove));
+        let Some(b) = blocks.index_near(m.source.start, &mut near) else { continue };
+        writable[k] = matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove);
+        radius[k] = block::writes_radius(program, b, m.is_arc(), program_radius_arcs);
     }
-    writable
-}
-
-/// For each move, whether the arcs written for it prefer the radius form (`R`/`L`) to the
-/// centre form (`I K`): a motion block's own form (`block::writes_radius`), a cycle's the
-/// program's (`expand` writes its blocks so). `grid::Grid::arc_words` still writes an arc
-/// by its centre where its radius would not hold it.
-pub fn radius_preference(program: &Program<'_>, lowered: &Lowered) -> Vec<bool> {
-    let program_radius_arcs = crate::expand::uses_radius_arcs(program);
-    let moves = &lowered.toolpath.moves;
-    let mut out = vec![program_radius_arcs; moves.len()];
-    let in_cycle = in_cycle(lowered);
-    let blocks = BlockLookup::new(program);
-    for (k, m) in moves.iter().enumerate() {
-        if in_cycle[k] {
-            continue;
-        }
-        if let Some(b) = blocks.index(m.source.start) {
-            out[k] = block::writes_radius(program, b, m.is_arc(), program_radius_arcs);
-        }
-    }
-    out
+    MoveForms { writable, radius }
 }
 
 /// Whether each move is one of a cycle's.
@@ -122,6 +116,17 @@ impl BlockLookup {
 
     fn index(&self, start: u32) -> Option<usize> {
         self.starts.binary_search(&start).ok()
+    }
+
+    /// `index`, trying the block `near` and the one after it first (moves come mostly in
+    /// block order, and a block's moves one after another); `near` becomes the block found.
+    fn index_near(&self, start: u32, near: &mut usize) -> Option<usize> {
+        let found = [*near, *near + 1]
+            .into_iter()
+            .find(|&k| self.starts.get(k) == Some(&start))
+            .or_else(|| self.index(start))?;
+        *near = found;
+        Some(found)
     }
 }
 
@@ -168,12 +173,6 @@ pub fn finish(
     out
 }
 
-/// One run of a block: its moves, and the new blocks (`None`: as written).
-struct Run {
-    moves: Range<usize>,
-    blocks: Option<Vec<NewBlock>>,
-}
-
 /// A stretch of moves one edited block can write: the moves of one cycle call, or a run
 /// of consecutive moves of one block outside cycles (one run of a block that runs several
 /// times).
@@ -209,18 +208,40 @@ pub fn move_runs(lowered: &Lowered) -> Vec<MoveRun> {
 }
 
 /// The motion blocks rewritten run by run, in path order (`add`), then settled (`finish`):
-/// a block that runs several times is edited only if every run asks for the same words.
+/// a block that runs several times is edited only if every run writes the same text.
+///
+/// Each run's blocks are written to text as they are made (`BlockWriter`); a block's first
+/// run keeps its text, a later run's is only compared with it.
 pub struct MotionBlocks<'a, 'src> {
     program: &'a Program<'src>,
     lowered: &'a Lowered,
     tools: &'a ToolTable,
     lookup: BlockLookup,
+    /// The block looked up last (`BlockLookup::index_near`).
+    near: usize,
     radius_arcs: bool,
-    /// Each run of a motion block, in path order.
-    runs: Vec<(usize, Run)>,
+    writer: BlockWriter<'a, 'src>,
+    /// Each motion block's first run, in path order.
+    first_runs: Vec<FirstRun>,
+    /// Per block of the program, its first run's index in `first_runs` (`NO_RUN` before it
+    /// runs).
+    first_run_of: Vec<usize>,
     refused: HashSet<usize>,
     diagnostics: Vec<Diagnostic>,
 }
+
+/// A motion block's first run.
+struct FirstRun {
+    block: usize,
+    moves: Range<usize>,
+    /// Its blocks (`None`: as written).
+    text: Option<WrittenText>,
+    /// A later run wrote other blocks: the block is not edited.
+    differs: bool,
+}
+
+/// `MotionBlocks::first_run_of` of a block that has not run.
+const NO_RUN: usize = usize::MAX;
 
 impl<'a, 'src> MotionBlocks<'a, 'src> {
     pub fn new(program: &'a Program<'src>, lowered: &'a Lowered, tools: &'a ToolTable) -> MotionBlocks<'a, 'src> {
@@ -229,8 +250,11 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             lowered,
             tools,
             lookup: BlockLookup::new(program),
+            near: 0,
             radius_arcs: crate::expand::uses_radius_arcs(program),
-            runs: Vec::new(),
+            writer: BlockWriter::new(program),
+            first_runs: Vec::new(),
+            first_run_of: vec![NO_RUN; program.blocks().len()],
             refused: HashSet::new(),
             diagnostics: Vec::new(),
         }
@@ -246,18 +270,23 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         if run.cycle {
             return;
         }
-        let Some(block) = self.lookup.index(source.start) else { return };
+        let Some(block) = self.lookup.index_near(source.start, &mut self.near) else { return };
         if !matches!(program.block(block).statement, Statement::Motion | Statement::ThreadMove) {
             return;
         }
-        // The moves the block writes (not dwells or corners the control makes).
-        let written: Vec<usize> =
-            run.moves.clone().filter(|&i| plans.get(i - first).is_some_and(|p| !p.segments.is_empty())).collect();
-        let any_change = written.iter().any(|&i| plans.get(i - first).is_some_and(|p| p.changed));
-        let blocks = match written.as_slice() {
-            [] => None,
-            [single] => {
-                let mark = lowered.coordinates_at(*single);
+        // The moves the block writes (not dwells or corners the control makes): none, one
+        // (`single`), or several.
+        let (mut single, mut several, mut any_change) = (None, false, false);
+        for (index, plan) in run.moves.clone().zip(plans).filter(|(_, p)| !p.segments.is_empty()) {
+            several |= single.is_some();
+            single.get_or_insert(index);
+            any_change |= plan.changed;
+        }
+        let start = self.writer.begin();
+        let text = match single {
+            None => None,
+            Some(single) if !several => {
+                let mark = lowered.coordinates_at(single);
                 let context = block::BlockContext {
                     program,
                     block,
@@ -266,13 +295,13 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     radius_arcs: self.radius_arcs,
                     tools,
                 };
-                let contour_start = written::contour_start(&lowered.toolpath, *single);
-                match (moves.get(*single), plans.get(*single - first)) {
-                    (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan),
+                let contour_start = written::contour_start(&lowered.toolpath, single);
+                match (moves.get(single), plans.get(single - first)) {
+                    (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan, &mut self.writer),
                     _ => None,
                 }
             }
-            _ if any_change => {
+            Some(_) if any_change => {
                 if self.refused.insert(block) {
                     self.diagnostics.push(Diagnostic::error(
                         DiagnosticKind::CannotRewriteBlock {
@@ -283,43 +312,55 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                 }
                 None
             }
-            _ => None,
+            Some(_) => None,
         };
-        self.runs.push((block, Run { moves: run.moves.clone(), blocks }));
+        match self.first_run_of.get(block).copied() {
+            Some(NO_RUN) => {
+                if let Some(slot) = self.first_run_of.get_mut(block) {
+                    *slot = self.first_runs.len();
+                }
+                self.first_runs.push(FirstRun { block, moves: run.moves.clone(), text, differs: false });
+            }
+            Some(k) => {
+                // A later run: only its text is compared, none of it is kept.
+                if let Some(first) = self.first_runs.get_mut(k) {
+                    let writer = &self.writer;
+                    first.differs |= first.text.map(|t| writer.text(t)) != text.map(|t| writer.text(t));
+                }
+                self.writer.discard(start);
+            }
+            None => self.writer.discard(start),
+        }
     }
 
     /// The edits of the motion blocks, after the cycles' in `out`.
     fn finish(mut self, out: &mut Rewrite) {
         let program = self.program;
         out.diagnostics.append(&mut self.diagnostics);
-        // By block, each block's runs in path order (a stable sort; the runs mostly come in
-        // block order already).
-        self.runs.sort_by_key(|(block, _)| *block);
-        let mut replacements = Vec::with_capacity(self.runs.len());
-        for block_runs in self.runs.chunk_by_mut(|a, b| a.0 == b.0) {
-            let Some((block, first)) = block_runs.first() else { continue };
-            let block = *block;
-            if block_runs.iter().all(|(_, r)| r.blocks.is_none()) {
-                continue;
-            }
-            if block_runs.iter().skip(1).any(|(_, r)| r.blocks != first.blocks) {
-                if self.refused.insert(block) {
+        // By block (they come in block order but where a block runs again, as a
+        // subprogram's do).
+        if !self.first_runs.is_sorted_by_key(|r| r.block) {
+            self.first_runs.sort_unstable_by_key(|r| r.block);
+        }
+        let mut replacements = Vec::with_capacity(self.first_runs.len());
+        out.edited.reserve(self.first_runs.len());
+        for run in self.first_runs {
+            if run.differs {
+                if self.refused.insert(run.block) {
                     out.diagnostics.push(Diagnostic::error(
                         DiagnosticKind::CannotRewriteBlock {
                             reason: "it runs more than once, and its runs need different corrections",
                         },
-                        program.block(block).span,
+                        program.block(run.block).span,
                     ));
                 }
                 continue;
             }
-            if let Some((_, first)) = block_runs.first_mut()
-                && let Some(new) = first.blocks.take()
-            {
-                replacements.push((block, new));
-                out.edited.push(EditedBlock { block, moves: first.moves.clone(), cycle: false });
+            if let Some(text) = run.text {
+                replacements.push((run.block, text));
+                out.edited.push(EditedBlock { block: run.block, moves: run.moves, cycle: false });
             }
         }
-        out.edits.replace_all(replacements);
+        out.edits.replace_written(self.writer, replacements);
     }
 }

@@ -55,8 +55,9 @@ pub struct Context<'a> {
     pub options: &'a CompensateOptions,
     pub limits: Option<Limits>,
     pub sampling: Sampling,
+    /// `rewrite::MoveForms::writable`.
     pub writable: Vec<bool>,
-    /// `rewrite::radius_preference`.
+    /// `rewrite::MoveForms::radius`.
     pub radius: Vec<bool>,
     pub path: LocalPath<'a>,
     pub plan_options: PlanOptions,
