@@ -54,7 +54,7 @@ pub struct EditedBlock {
     pub cycle: bool,
 }
 
-/// Per move, what can be written for it (`move_forms`).
+/// Per move, what can be written for it (`MotionBlocks::move_forms`).
 #[derive(Debug, Clone, Default)]
 pub struct MoveForms {
     /// The move can be written back: a move of a motion block, or of a cycle that can be
@@ -65,32 +65,6 @@ pub struct MoveForms {
     /// program's (`expand` writes its blocks so). `grid::Grid::arc_words` still writes an
     /// arc by its centre where its radius would not hold it.
     pub radius: Vec<bool>,
-}
-
-/// What can be written for each move (`MoveForms`), in one pass over the moves.
-pub fn move_forms(program: &Program<'_>, lowered: &Lowered) -> MoveForms {
-    let moves = &lowered.toolpath.moves;
-    let program_radius_arcs = crate::expand::uses_radius_arcs(program);
-    let mut writable = vec![false; moves.len()];
-    let mut radius = vec![program_radius_arcs; moves.len()];
-    let in_cycle = in_cycle(lowered);
-    for expansion in &lowered.expansions {
-        let expandable = cycles::expandable(program, lowered, expansion);
-        for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
-            *w = expandable;
-        }
-    }
-    let blocks = BlockLookup::new(program);
-    let mut near = 0;
-    for (k, m) in moves.iter().enumerate() {
-        if in_cycle[k] {
-            continue;
-        }
-        let Some(b) = blocks.index_near(m.source.start, &mut near) else { continue };
-        writable[k] = matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove);
-        radius[k] = block::writes_radius(program, b, m.is_arc(), program_radius_arcs);
-    }
-    MoveForms { writable, radius }
 }
 
 /// Whether each move is one of a cycle's.
@@ -221,27 +195,27 @@ pub struct MotionBlocks<'a, 'src> {
     near: usize,
     radius_arcs: bool,
     writer: BlockWriter<'a, 'src>,
-    /// Each motion block's first run, in path order.
+    /// Each block replaced, with its first run's text, in path order.
+    replacements: Vec<(usize, WrittenText)>,
+    /// The same blocks, with their first run's moves.
+    edited: Vec<EditedBlock>,
+    /// Per block of the program, what its first run wrote.
     first_runs: Vec<FirstRun>,
-    /// Per block of the program, its first run's index in `first_runs` (`NO_RUN` before it
-    /// runs).
-    first_run_of: Vec<usize>,
+    /// Blocks whose runs wrote different blocks: not edited.
+    differing: HashSet<usize>,
     refused: HashSet<usize>,
     diagnostics: Vec<Diagnostic>,
 }
 
-/// A motion block's first run.
-struct FirstRun {
-    block: usize,
-    moves: Range<usize>,
-    /// Its blocks (`None`: as written).
-    text: Option<WrittenText>,
-    /// A later run wrote other blocks: the block is not edited.
-    differs: bool,
+/// What a block's first run wrote.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum FirstRun {
+    NotYet,
+    /// Nothing: the block writes its move already.
+    AsWritten,
+    /// The blocks of `MotionBlocks::replacements` at this index.
+    Replaced(usize),
 }
-
-/// `MotionBlocks::first_run_of` of a block that has not run.
-const NO_RUN: usize = usize::MAX;
 
 impl<'a, 'src> MotionBlocks<'a, 'src> {
     pub fn new(program: &'a Program<'src>, lowered: &'a Lowered, tools: &'a ToolTable) -> MotionBlocks<'a, 'src> {
@@ -253,11 +227,38 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             near: 0,
             radius_arcs: crate::expand::uses_radius_arcs(program),
             writer: BlockWriter::new(program),
-            first_runs: Vec::new(),
-            first_run_of: vec![NO_RUN; program.blocks().len()],
+            replacements: Vec::new(),
+            edited: Vec::new(),
+            first_runs: vec![FirstRun::NotYet; program.blocks().len()],
+            differing: HashSet::new(),
             refused: HashSet::new(),
             diagnostics: Vec::new(),
         }
+    }
+
+    /// What can be written for each move (`MoveForms`), in one pass over the moves.
+    pub fn move_forms(&self) -> MoveForms {
+        let (program, lowered) = (self.program, self.lowered);
+        let moves = &lowered.toolpath.moves;
+        let mut writable = vec![false; moves.len()];
+        let mut radius = vec![self.radius_arcs; moves.len()];
+        let in_cycle = in_cycle(lowered);
+        for expansion in &lowered.expansions {
+            let expandable = cycles::expandable(program, lowered, expansion);
+            for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
+                *w = expandable;
+            }
+        }
+        let mut near = 0;
+        for (k, m) in moves.iter().enumerate() {
+            if in_cycle[k] {
+                continue;
+            }
+            let Some(b) = self.lookup.index_near(m.source.start, &mut near) else { continue };
+            writable[k] = matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove);
+            radius[k] = block::writes_radius(program, b, m.is_arc(), self.radius_arcs);
+        }
+        MoveForms { writable, radius }
     }
 
     /// The next run (after those given before it), with the plans of its moves; a cycle's
@@ -282,7 +283,6 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             single.get_or_insert(index);
             any_change |= plan.changed;
         }
-        let start = self.writer.begin();
         let text = match single {
             None => None,
             Some(single) if !several => {
@@ -314,22 +314,29 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             }
             Some(_) => None,
         };
-        match self.first_run_of.get(block).copied() {
-            Some(NO_RUN) => {
-                if let Some(slot) = self.first_run_of.get_mut(block) {
-                    *slot = self.first_runs.len();
-                }
-                self.first_runs.push(FirstRun { block, moves: run.moves.clone(), text, differs: false });
+        let Some(first_run) = self.first_runs.get_mut(block) else { return };
+        match (*first_run, text) {
+            (FirstRun::NotYet, None) => *first_run = FirstRun::AsWritten,
+            (FirstRun::NotYet, Some(text)) => {
+                *first_run = FirstRun::Replaced(self.replacements.len());
+                self.replacements.push((block, text));
+                self.edited.push(EditedBlock { block, moves: run.moves.clone(), cycle: false });
             }
-            Some(k) => {
-                // A later run: only its text is compared, none of it is kept.
-                if let Some(first) = self.first_runs.get_mut(k) {
-                    let writer = &self.writer;
-                    first.differs |= first.text.map(|t| writer.text(t)) != text.map(|t| writer.text(t));
-                }
-                self.writer.discard(start);
+            (FirstRun::AsWritten, None) => {}
+            (FirstRun::AsWritten, Some(text)) => {
+                self.differing.insert(block);
+                self.writer.discard(text);
             }
-            None => self.writer.discard(start),
+            (FirstRun::Replaced(k), text) => {
+                // A later run: its text is only compared with the first run's, and dropped.
+                let first_text = self.replacements.get(k).map(|&(_, t)| self.writer.text(t));
+                if first_text != text.map(|t| self.writer.text(t)) {
+                    self.differing.insert(block);
+                }
+                if let Some(text) = text {
+                    self.writer.discard(text);
+                }
+            }
         }
     }
 
@@ -337,30 +344,32 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     fn finish(mut self, out: &mut Rewrite) {
         let program = self.program;
         out.diagnostics.append(&mut self.diagnostics);
-        // By block (they come in block order but where a block runs again, as a
-        // subprogram's do).
-        if !self.first_runs.is_sorted_by_key(|r| r.block) {
-            self.first_runs.sort_unstable_by_key(|r| r.block);
-        }
-        let mut replacements = Vec::with_capacity(self.first_runs.len());
-        out.edited.reserve(self.first_runs.len());
-        for run in self.first_runs {
-            if run.differs {
-                if self.refused.insert(run.block) {
+        if !self.differing.is_empty() {
+            let mut differing: Vec<usize> = self.differing.iter().copied().collect();
+            differing.sort_unstable();
+            for block in differing {
+                if self.refused.insert(block) {
                     out.diagnostics.push(Diagnostic::error(
                         DiagnosticKind::CannotRewriteBlock {
                             reason: "it runs more than once, and its runs need different corrections",
                         },
-                        program.block(run.block).span,
+                        program.block(block).span,
                     ));
                 }
-                continue;
             }
-            if let Some(text) = run.text {
-                replacements.push((run.block, text));
-                out.edited.push(EditedBlock { block: run.block, moves: run.moves, cycle: false });
-            }
+            self.replacements.retain(|(block, _)| !self.differing.contains(block));
+            self.edited.retain(|e| !self.differing.contains(&e.block));
         }
-        out.edits.replace_written(self.writer, replacements);
+        // By block: they come in block order but where a block runs again (a subprogram's).
+        if !self.replacements.is_sorted_by_key(|&(block, _)| block) {
+            self.replacements.sort_unstable_by_key(|&(block, _)| block);
+            self.edited.sort_unstable_by_key(|e| e.block);
+        }
+        if out.edited.is_empty() {
+            out.edited = self.edited;
+        } else {
+            out.edited.append(&mut self.edited);
+        }
+        out.edits.replace_written(self.writer, self.replacements);
     }
 }

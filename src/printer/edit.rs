@@ -69,7 +69,7 @@ pub(crate) struct Written {
     /// The style they were written in, the program's: the printer writes its own new blocks in
     /// it too rather than infer it again.
     pub style: Option<ProgramStyle>,
-    pub text: String,
+    pub text: Vec<u8>,
     /// Each replaced block and its replacement's text, in block order, one per block. A
     /// block here prints this text in place of any `replacement` of its `BlockEdit`; the
     /// blocks that edit inserts before or after it still print.
@@ -126,7 +126,7 @@ impl Edits {
             written.text = text;
         } else {
             let offset = written.text.len();
-            written.text.push_str(&text);
+            written.text.extend_from_slice(&text);
             for (_, replacement) in &mut replacements {
                 *replacement = replacement.shifted(offset);
             }
@@ -174,7 +174,7 @@ impl Edits {
     }
 
     /// The written replacements of block `first` and after, in block order, with their text.
-    pub(crate) fn written_from(&self, first: usize) -> impl Iterator<Item = (usize, &str)> {
+    pub(crate) fn written_from(&self, first: usize) -> impl Iterator<Item = (usize, &[u8])> {
         let start = self.written.blocks.partition_point(|&(block, _)| block < first);
         let written = &self.written;
         written

@@ -17,7 +17,7 @@ use super::{NewBlock, NewWord, write_sequence, write_word};
 pub struct BlockWriter<'p, 'src> {
     program: &'p Program<'src>,
     style: ProgramStyle,
-    text: String,
+    text: Vec<u8>,
     /// The next word starts its line (no separator before it).
     line_start: bool,
 }
@@ -31,7 +31,7 @@ pub struct WrittenText {
 }
 
 impl WrittenText {
-    pub(crate) fn of(self, text: &str) -> &str {
+    pub(crate) fn of(self, text: &[u8]) -> &[u8] {
         text.get(self.start..self.end).unwrap_or_default()
     }
 
@@ -47,7 +47,7 @@ pub struct Mark(usize);
 impl<'p, 'src> BlockWriter<'p, 'src> {
     /// A writer in `program`'s style (`ProgramStyle::infer`).
     pub fn new(program: &'p Program<'src>) -> BlockWriter<'p, 'src> {
-        BlockWriter { program, style: ProgramStyle::infer(program), text: String::new(), line_start: true }
+        BlockWriter { program, style: ProgramStyle::infer(program), text: Vec::new(), line_start: true }
     }
 
     /// Start a replacement; what follows is its first block.
@@ -58,7 +58,7 @@ impl<'p, 'src> BlockWriter<'p, 'src> {
 
     /// End the replacement's current block and start its next one.
     pub fn next_block(&mut self) {
-        self.text.push_str(self.style.line_ending);
+        self.text.extend_from_slice(self.style.line_ending.as_bytes());
         self.line_start = true;
     }
 
@@ -82,21 +82,20 @@ impl<'p, 'src> BlockWriter<'p, 'src> {
         WrittenText { start: mark.0, end: self.text.len() }
     }
 
-    /// Forget everything written since `mark`.
-    pub fn discard(&mut self, mark: Mark) {
-        // A mark from before an earlier `discard` may no longer fall between characters.
-        if self.text.is_char_boundary(mark.0) {
-            self.text.truncate(mark.0);
+    /// Forget the replacement written last, `written`.
+    pub fn discard(&mut self, written: WrittenText) {
+        if written.end == self.text.len() {
+            self.text.truncate(written.start);
         }
         self.line_start = true;
     }
 
     /// The text of a replacement this writer wrote.
-    pub fn text(&self, written: WrittenText) -> &str {
+    pub fn text(&self, written: WrittenText) -> &[u8] {
         written.of(&self.text)
     }
 
-    pub(crate) fn into_parts(self) -> (ProgramStyle, String) {
+    pub(crate) fn into_parts(self) -> (ProgramStyle, Vec<u8>) {
         (self.style, self.text)
     }
 }
