@@ -12,10 +12,14 @@ pub mod canonical;
 pub mod edit;
 pub mod number;
 pub mod style;
+pub mod text;
+pub mod written;
 
 pub use canonical::{CanonicalOptions, print_canonical};
 pub use edit::{Edits, NewBlock, NewWord};
 pub use style::ProgramStyle;
+pub use text::Text;
+pub use written::{BlockWriter, WrittenText};
 
 use crate::dialect::{Address, AddressKind, Dialect};
 use crate::syntax::{CodeLetter, Number, Program};
@@ -34,7 +38,9 @@ pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
         }
         return out;
     }
-    let style = ProgramStyle::infer(program);
+    // Replacements written ahead (`Edits::replace_written`) were written in the program's
+    // style, which they carry.
+    let style = edits.written.style.clone().unwrap_or_else(|| ProgramStyle::infer(program));
     let blocks = program.blocks().len();
     // Two halves on two threads, split after a block that ends its line, so the second
     // half starts as the first would go on (on a fresh line).
@@ -68,10 +74,11 @@ fn print_blocks(
     range: std::ops::Range<usize>,
     out: &mut Vec<u8>,
 ) {
-    let mut writer = Writer { program, style, out, open_line: false, text: String::new() };
+    let mut writer = Writer { program, style, out, open_line: false, text: Vec::new() };
     let first = range.start;
     // The edits come in block order: walk them beside the blocks rather than look each up.
     let mut pending = edits.from(first).peekable();
+    let mut written = edits.written_from(first).peekable();
     for (index, block) in program.blocks().get(range).unwrap_or_default().iter().enumerate() {
         let index = first + index;
         let edit = pending.next_if(|&(at, _)| at == index).map(|(_, edit)| edit);
@@ -80,9 +87,11 @@ fn print_blocks(
                 writer.new_line(new);
             }
         }
-        match edit.and_then(|e| e.replacement.as_ref()) {
-            None => writer.original(block.span.range(), program.terminator(index)),
-            Some(replacement) => {
+        let written = written.next_if(|&(at, _)| at == index).map(|(_, text)| text);
+        match (written, edit.and_then(|e| e.replacement.as_ref())) {
+            (Some(text), _) => writer.written(text, program.terminator(index)),
+            (None, None) => writer.original(block.span.range(), program.terminator(index)),
+            (None, Some(replacement)) => {
                 for (k, new) in replacement.iter().enumerate() {
                     if k + 1 == replacement.len() {
                         writer.start_line();
@@ -114,7 +123,7 @@ struct Writer<'w, 'p, 'src> {
     /// The last line written has no terminator yet (the source's last line had none).
     open_line: bool,
     /// The text of the new block being written (kept for the next one's).
-    text: String,
+    text: Vec<u8>,
 }
 
 impl Writer<'_, '_, '_> {
@@ -128,6 +137,14 @@ impl Writer<'_, '_, '_> {
     fn original(&mut self, range: std::ops::Range<usize>, terminator: &[u8]) {
         self.start_line();
         self.out.extend_from_slice(&self.program.source()[range]);
+        self.end_with(terminator);
+    }
+
+    /// A replacement written ahead (`WrittenText`): its blocks, the last ending as the
+    /// replaced block did.
+    fn written(&mut self, text: &[u8], terminator: &[u8]) {
+        self.start_line();
+        self.out.extend_from_slice(text);
         self.end_with(terminator);
     }
 
@@ -145,66 +162,107 @@ impl Writer<'_, '_, '_> {
     fn block_text(&mut self, block: &NewBlock) {
         self.text.clear();
         write_new_block(&mut self.text, self.program, self.style, block);
-        self.out.extend_from_slice(self.text.as_bytes());
+        self.out.extend_from_slice(&self.text);
     }
 }
 
 /// Write a new block in `style`.
-pub fn write_new_block(out: &mut String, program: &Program<'_>, style: &ProgramStyle, block: &NewBlock) {
-    let separator = style.word_separator();
-    let mut first = true;
+pub fn write_new_block(out: &mut impl Text, program: &Program<'_>, style: &ProgramStyle, block: &NewBlock) {
+    let mut line_start = true;
     if let Some(sequence) = &block.sequence {
-        out.push_str(sequence);
-        // OSP requires a blank after the sequence name.
-        out.push_str(if style.dialect == Dialect::Osp { " " } else { separator });
-        first = true;
+        write_sequence(out, style, sequence);
     }
     for word in &block.words {
-        if !first {
-            out.push_str(separator);
-        }
-        first = false;
-        match word {
-            NewWord::Code(letter, code) => write_code(out, *letter, code.major(), code.minor(), style.two_digit_codes),
-            NewWord::Number(address, number) => write_address_number(out, program, style, *address, *number),
-            NewWord::Copy(id) => {
-                out.push_str(&String::from_utf8_lossy(program.text(program.word(*id).span)));
-                // A block-delete slash is written against what follows it (`/N120`).
-                first = matches!(program.word(*id).kind, crate::syntax::WordKind::BlockDelete { .. });
-            }
-            NewWord::Comment(text) => {
-                out.push('(');
-                out.push_str(text);
-                out.push(')');
-            }
-            NewWord::TapeMark => out.push('%'),
-        }
+        write_word(out, program, style, word, &mut line_start);
     }
 }
 
-pub(crate) fn write_code(out: &mut String, letter: CodeLetter, major: u16, minor: u16, two_digits: bool) {
-    out.push(letter.as_char());
-    if two_digits {
-        out.push_str(&format!("{major:02}"));
-    } else {
-        out.push_str(&major.to_string());
+/// Write a new block's sequence name, at the start of its line.
+fn write_sequence(out: &mut impl Text, style: &ProgramStyle, sequence: &str) {
+    out.push_str(sequence);
+    // OSP requires a blank after the sequence name.
+    out.push_str(if style.dialect == Dialect::Osp { " " } else { style.word_separator() });
+}
+
+/// Write `word` of a new block, after a separator unless it starts the line (`line_start`,
+/// which it then leaves as the next word needs it).
+pub(crate) fn write_word(
+    out: &mut impl Text,
+    program: &Program<'_>,
+    style: &ProgramStyle,
+    word: &NewWord,
+    line_start: &mut bool,
+) {
+    if !*line_start {
+        out.push_str(style.word_separator());
     }
+    *line_start = false;
+    match word {
+        NewWord::Code(letter, code) => write_code(out, *letter, code.major(), code.minor(), style.two_digit_codes),
+        NewWord::Number(address, number) => write_address_number(out, program, style, *address, *number),
+        NewWord::Copy(id) => {
+            let text = program.text(program.word(*id).span);
+            if text.is_ascii() {
+                out.push_ascii(text);
+            } else {
+                out.push_str(&String::from_utf8_lossy(text));
+            }
+            // A block-delete slash is written against what follows it (`/N120`).
+            *line_start = matches!(program.word(*id).kind, crate::syntax::WordKind::BlockDelete { .. });
+        }
+        NewWord::Comment(text) => {
+            out.push_byte(b'(');
+            out.push_str(text);
+            out.push_byte(b')');
+        }
+        NewWord::TapeMark => out.push_byte(b'%'),
+    }
+}
+
+pub(crate) fn write_code(out: &mut impl Text, letter: CodeLetter, major: u16, minor: u16, two_digits: bool) {
+    let letter = match letter {
+        CodeLetter::G => b'G',
+        CodeLetter::M => b'M',
+    };
+    out.push_byte(letter);
+    if two_digits && major < 10 {
+        out.push_byte(b'0');
+    }
+    write_whole(out, u64::from(major));
     if minor != 0 {
-        out.push('.');
-        out.push_str(&minor.to_string());
+        out.push_byte(b'.');
+        write_whole(out, u64::from(minor));
     }
+}
+
+/// Write `value`'s decimal digits (a printed program has millions of codes and addresses:
+/// `format!` and `to_string` cost an allocation each).
+fn write_whole(out: &mut impl Text, value: u64) {
+    let mut buffer = [0u8; 20];
+    let mut rest = value;
+    let mut start = buffer.len();
+    while let Some(at) = start.checked_sub(1) {
+        start = at;
+        buffer[at] = b'0' + (rest % 10) as u8;
+        rest /= 10;
+        if rest == 0 {
+            break;
+        }
+    }
+    out.push_ascii(buffer.get(start..).unwrap_or_default());
 }
 
 fn write_address_number(
-    out: &mut String,
+    out: &mut impl Text,
     program: &Program<'_>,
     style: &ProgramStyle,
     address: Address,
     number: Number,
 ) {
-    out.push_str(&address.name());
+    let (letters, length) = address.bytes();
+    out.push_ascii(letters.get(..length).unwrap_or_default());
     if !address.is_letter() {
-        out.push('=');
+        out.push_byte(b'=');
     }
     let kind = program.config().tables().address(address).map(|s| s.kind);
     match kind {
@@ -229,7 +287,7 @@ fn write_address_number(
             };
             write_number(out, number, number_style);
             if whole && !fixed && style.whole_numbers == WholeNumbers::PointZero {
-                out.push('0');
+                out.push_byte(b'0');
             }
         }
         Some(AddressKind::Tool) => {

@@ -82,7 +82,7 @@ pub struct PlanInput<'a> {
     /// Whether each move can be written back (its block is a motion block, or it belongs
     /// to a cycle that can be expanded).
     pub writable: &'a [bool],
-    /// Whether each move's arcs prefer the radius form (`rewrite::radius_preference`).
+    /// Whether each move's arcs prefer the radius form (`rewrite::MoveForms::radius`).
     pub radius: &'a [bool],
     pub tools: &'a ToolTable,
 }

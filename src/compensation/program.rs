@@ -120,16 +120,19 @@ pub fn compensate_program(
 ) -> Outcome {
     let toolpath = valid.toolpath();
     let tools = ToolTable::from_machine(machine);
-    // The per-move tables are independent of each other: two are built beside the rest.
-    let ((writable, radius), (path, runs, sampling)) = std::thread::scope(|scope| {
-        let blocks =
-            scope.spawn(|| (rewrite::writable_moves(program, lowered), rewrite::radius_preference(program, lowered)));
+    // The per-move tables are independent of each other: the rewrite's (what can be written
+    // for each move, and the rewrite itself, which reads the whole program) are made beside
+    // the rest.
+    let ((forms, motion), (path, runs, sampling)) = std::thread::scope(|scope| {
+        let rewrite = scope.spawn(|| {
+            let motion = rewrite::MotionBlocks::new(program, lowered, &tools);
+            (motion.move_forms(), motion)
+        });
         let rest = (LocalPath::new(toolpath), rewrite::move_runs(lowered), sampling(&options.fit, model, toolpath));
         // Neither can fail on any input; a panic is a bug, and is passed on.
-        (blocks.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
+        (rewrite.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
     });
     let context = stream::Context {
-        program,
         toolpath,
         tools: &tools,
         lowered,
@@ -137,13 +140,14 @@ pub fn compensate_program(
         options,
         limits: machine.limits,
         sampling,
-        writable,
-        radius,
+        writable: forms.writable,
+        radius: forms.radius,
         path,
         plan_options: PlanOptions { fit: options.fit, play: model.play() },
         runs,
     };
-    let stream::Streamed { plans, mut diagnostics, figures, totals, paths, needs, motion } = stream::run(&context);
+    let stream::Streamed { plans, mut diagnostics, figures, totals, paths, needs, motion } =
+        stream::run(&context, motion);
     diagnostics.extend(unwritable_cycles(program, lowered, &needs, &context.writable));
     let rewritten = rewrite::finish(program, lowered, &plans, options.expand_cycles, motion);
     diagnostics.extend(rewritten.diagnostics);

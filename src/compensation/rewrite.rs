@@ -8,7 +8,7 @@
 //!
 //! * **Motion blocks** (`G00`–`G03`, a thread move) are written back in their own form
 //!   (`rewrite/block.rs`). A block that runs more than once (a subprogram called twice, a
-//!   loop) is edited only if every run asks for the same words; a block that makes several
+//!   loop) is edited only if every run writes the same text; a block that makes several
 //!   moves (an OSP automatic corner) cannot carry several corrections. Both refuse with a
 //!   diagnostic when their motion must change.
 //! * **Under `G41`/`G42`** the program describes the contour, and so does the rewritten
@@ -27,7 +27,7 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::printer::{Edits, NewBlock};
+use crate::printer::{BlockWriter, Edits, WrittenText};
 use crate::semantic::Lowered;
 use crate::semantic::nose_radius::ToolTable;
 use crate::syntax::{Program, Statement};
@@ -54,49 +54,17 @@ pub struct EditedBlock {
     pub cycle: bool,
 }
 
-/// Which moves can be written back: moves of motion blocks, and of cycles that can be
-/// expanded.
-pub fn writable_moves(program: &Program<'_>, lowered: &Lowered) -> Vec<bool> {
-    let moves = &lowered.toolpath.moves;
-    let mut writable = vec![false; moves.len()];
-    let in_cycle = in_cycle(lowered);
-    for expansion in &lowered.expansions {
-        let expandable = cycles::expandable(program, lowered, expansion);
-        for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
-            *w = expandable;
-        }
-    }
-    let blocks = BlockLookup::new(program);
-    for (k, m) in moves.iter().enumerate() {
-        if in_cycle[k] {
-            continue;
-        }
-        writable[k] = blocks
-            .index(m.source.start)
-            .is_some_and(|b| matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove));
-    }
-    writable
-}
-
-/// For each move, whether the arcs written for it prefer the radius form (`R`/`L`) to the
-/// centre form (`I K`): a motion block's own form (`block::writes_radius`), a cycle's the
-/// program's (`expand` writes its blocks so). `grid::Grid::arc_words` still writes an arc
-/// by its centre where its radius would not hold it.
-pub fn radius_preference(program: &Program<'_>, lowered: &Lowered) -> Vec<bool> {
-    let program_radius_arcs = crate::expand::uses_radius_arcs(program);
-    let moves = &lowered.toolpath.moves;
-    let mut out = vec![program_radius_arcs; moves.len()];
-    let in_cycle = in_cycle(lowered);
-    let blocks = BlockLookup::new(program);
-    for (k, m) in moves.iter().enumerate() {
-        if in_cycle[k] {
-            continue;
-        }
-        if let Some(b) = blocks.index(m.source.start) {
-            out[k] = block::writes_radius(program, b, m.is_arc(), program_radius_arcs);
-        }
-    }
-    out
+/// Per move, what can be written for it (`MotionBlocks::move_forms`).
+#[derive(Debug, Clone, Default)]
+pub struct MoveForms {
+    /// The move can be written back: a move of a motion block, or of a cycle that can be
+    /// expanded.
+    pub writable: Vec<bool>,
+    /// The arcs written for the move prefer the radius form (`R`/`L`) to the centre form
+    /// (`I K`): a motion block's own form (`block::writes_radius`), a cycle's the
+    /// program's (`expand` writes its blocks so). `grid::Grid::arc_words` still writes an
+    /// arc by its centre where its radius would not hold it.
+    pub radius: Vec<bool>,
 }
 
 /// Whether each move is one of a cycle's.
@@ -122,6 +90,17 @@ impl BlockLookup {
 
     fn index(&self, start: u32) -> Option<usize> {
         self.starts.binary_search(&start).ok()
+    }
+
+    /// `index`, trying the block `near` and the one after it first (moves come mostly in
+    /// block order, and a block's moves one after another); `near` becomes the block found.
+    fn index_near(&self, start: u32, near: &mut usize) -> Option<usize> {
+        let found = [*near, *near + 1]
+            .into_iter()
+            .find(|&k| self.starts.get(k) == Some(&start))
+            .or_else(|| self.index(start))?;
+        *near = found;
+        Some(found)
     }
 }
 
@@ -168,12 +147,6 @@ pub fn finish(
     out
 }
 
-/// One run of a block: its moves, and the new blocks (`None`: as written).
-struct Run {
-    moves: Range<usize>,
-    blocks: Option<Vec<NewBlock>>,
-}
-
 /// A stretch of moves one edited block can write: the moves of one cycle call, or a run
 /// of consecutive moves of one block outside cycles (one run of a block that runs several
 /// times).
@@ -209,17 +182,39 @@ pub fn move_runs(lowered: &Lowered) -> Vec<MoveRun> {
 }
 
 /// The motion blocks rewritten run by run, in path order (`add`), then settled (`finish`):
-/// a block that runs several times is edited only if every run asks for the same words.
+/// a block that runs several times is edited only if every run writes the same text.
+///
+/// Each run's blocks are written to text as they are made (`BlockWriter`); a block's first
+/// run keeps its text, a later run's is only compared with it.
 pub struct MotionBlocks<'a, 'src> {
     program: &'a Program<'src>,
     lowered: &'a Lowered,
     tools: &'a ToolTable,
     lookup: BlockLookup,
+    /// The block looked up last (`BlockLookup::index_near`).
+    near: usize,
     radius_arcs: bool,
-    /// Each run of a motion block, in path order.
-    runs: Vec<(usize, Run)>,
+    writer: BlockWriter<'a, 'src>,
+    /// Each block replaced, with its first run's text, in path order.
+    replacements: Vec<(usize, WrittenText)>,
+    /// The same blocks, with their first run's moves.
+    edited: Vec<EditedBlock>,
+    /// Per block of the program, what its first run wrote.
+    first_runs: Vec<FirstRun>,
+    /// Blocks whose runs wrote different blocks: not edited.
+    differing: HashSet<usize>,
     refused: HashSet<usize>,
     diagnostics: Vec<Diagnostic>,
+}
+
+/// What a block's first run wrote.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum FirstRun {
+    NotYet,
+    /// Nothing: the block writes its move already.
+    AsWritten,
+    /// The blocks of `MotionBlocks::replacements` at this index.
+    Replaced(usize),
 }
 
 impl<'a, 'src> MotionBlocks<'a, 'src> {
@@ -229,11 +224,41 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             lowered,
             tools,
             lookup: BlockLookup::new(program),
+            near: 0,
             radius_arcs: crate::expand::uses_radius_arcs(program),
-            runs: Vec::new(),
+            writer: BlockWriter::new(program),
+            replacements: Vec::new(),
+            edited: Vec::new(),
+            first_runs: vec![FirstRun::NotYet; program.blocks().len()],
+            differing: HashSet::new(),
             refused: HashSet::new(),
             diagnostics: Vec::new(),
         }
+    }
+
+    /// What can be written for each move (`MoveForms`), in one pass over the moves.
+    pub fn move_forms(&self) -> MoveForms {
+        let (program, lowered) = (self.program, self.lowered);
+        let moves = &lowered.toolpath.moves;
+        let mut writable = vec![false; moves.len()];
+        let mut radius = vec![self.radius_arcs; moves.len()];
+        let in_cycle = in_cycle(lowered);
+        for expansion in &lowered.expansions {
+            let expandable = cycles::expandable(program, lowered, expansion);
+            for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
+                *w = expandable;
+            }
+        }
+        let mut near = 0;
+        for (k, m) in moves.iter().enumerate() {
+            if in_cycle[k] {
+                continue;
+            }
+            let Some(b) = self.lookup.index_near(m.source.start, &mut near) else { continue };
+            writable[k] = matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove);
+            radius[k] = block::writes_radius(program, b, m.is_arc(), self.radius_arcs);
+        }
+        MoveForms { writable, radius }
     }
 
     /// The next run (after those given before it), with the plans of its moves; a cycle's
@@ -246,18 +271,22 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         if run.cycle {
             return;
         }
-        let Some(block) = self.lookup.index(source.start) else { return };
+        let Some(block) = self.lookup.index_near(source.start, &mut self.near) else { return };
         if !matches!(program.block(block).statement, Statement::Motion | Statement::ThreadMove) {
             return;
         }
-        // The moves the block writes (not dwells or corners the control makes).
-        let written: Vec<usize> =
-            run.moves.clone().filter(|&i| plans.get(i - first).is_some_and(|p| !p.segments.is_empty())).collect();
-        let any_change = written.iter().any(|&i| plans.get(i - first).is_some_and(|p| p.changed));
-        let blocks = match written.as_slice() {
-            [] => None,
-            [single] => {
-                let mark = lowered.coordinates_at(*single);
+        // The moves the block writes (not dwells or corners the control makes): none, one
+        // (`single`), or several.
+        let (mut single, mut several, mut any_change) = (None, false, false);
+        for (index, plan) in run.moves.clone().zip(plans).filter(|(_, p)| !p.segments.is_empty()) {
+            several |= single.is_some();
+            single.get_or_insert(index);
+            any_change |= plan.changed;
+        }
+        let text = match single {
+            None => None,
+            Some(single) if !several => {
+                let mark = lowered.coordinates_at(single);
                 let context = block::BlockContext {
                     program,
                     block,
@@ -266,13 +295,13 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     radius_arcs: self.radius_arcs,
                     tools,
                 };
-                let contour_start = written::contour_start(&lowered.toolpath, *single);
-                match (moves.get(*single), plans.get(*single - first)) {
-                    (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan),
+                let contour_start = written::contour_start(&lowered.toolpath, single);
+                match (moves.get(single), plans.get(single - first)) {
+                    (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan, &mut self.writer),
                     _ => None,
                 }
             }
-            _ if any_change => {
+            Some(_) if any_change => {
                 if self.refused.insert(block) {
                     self.diagnostics.push(Diagnostic::error(
                         DiagnosticKind::CannotRewriteBlock {
@@ -283,26 +312,42 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                 }
                 None
             }
-            _ => None,
+            Some(_) => None,
         };
-        self.runs.push((block, Run { moves: run.moves.clone(), blocks }));
+        let Some(first_run) = self.first_runs.get_mut(block) else { return };
+        match (*first_run, text) {
+            (FirstRun::NotYet, None) => *first_run = FirstRun::AsWritten,
+            (FirstRun::NotYet, Some(text)) => {
+                *first_run = FirstRun::Replaced(self.replacements.len());
+                self.replacements.push((block, text));
+                self.edited.push(EditedBlock { block, moves: run.moves.clone(), cycle: false });
+            }
+            (FirstRun::AsWritten, None) => {}
+            (FirstRun::AsWritten, Some(text)) => {
+                self.differing.insert(block);
+                self.writer.discard(text);
+            }
+            (FirstRun::Replaced(k), text) => {
+                // A later run: its text is only compared with the first run's, and dropped.
+                let first_text = self.replacements.get(k).map(|&(_, t)| self.writer.text(t));
+                if first_text != text.map(|t| self.writer.text(t)) {
+                    self.differing.insert(block);
+                }
+                if let Some(text) = text {
+                    self.writer.discard(text);
+                }
+            }
+        }
     }
 
     /// The edits of the motion blocks, after the cycles' in `out`.
     fn finish(mut self, out: &mut Rewrite) {
         let program = self.program;
         out.diagnostics.append(&mut self.diagnostics);
-        // By block, each block's runs in path order (a stable sort; the runs mostly come in
-        // block order already).
-        self.runs.sort_by_key(|(block, _)| *block);
-        let mut replacements = Vec::with_capacity(self.runs.len());
-        for block_runs in self.runs.chunk_by_mut(|a, b| a.0 == b.0) {
-            let Some((block, first)) = block_runs.first() else { continue };
-            let block = *block;
-            if block_runs.iter().all(|(_, r)| r.blocks.is_none()) {
-                continue;
-            }
-            if block_runs.iter().skip(1).any(|(_, r)| r.blocks != first.blocks) {
+        if !self.differing.is_empty() {
+            let mut differing: Vec<usize> = self.differing.iter().copied().collect();
+            differing.sort_unstable();
+            for block in differing {
                 if self.refused.insert(block) {
                     out.diagnostics.push(Diagnostic::error(
                         DiagnosticKind::CannotRewriteBlock {
@@ -311,15 +356,20 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                         program.block(block).span,
                     ));
                 }
-                continue;
             }
-            if let Some((_, first)) = block_runs.first_mut()
-                && let Some(new) = first.blocks.take()
-            {
-                replacements.push((block, new));
-                out.edited.push(EditedBlock { block, moves: first.moves.clone(), cycle: false });
-            }
+            self.replacements.retain(|(block, _)| !self.differing.contains(block));
+            self.edited.retain(|e| !self.differing.contains(&e.block));
         }
-        out.edits.replace_all(replacements);
+        // By block: they come in block order but where a block runs again (a subprogram's).
+        if !self.replacements.is_sorted_by_key(|&(block, _)| block) {
+            self.replacements.sort_unstable_by_key(|&(block, _)| block);
+            self.edited.sort_unstable_by_key(|e| e.block);
+        }
+        if out.edited.is_empty() {
+            out.edited = self.edited;
+        } else {
+            out.edited.append(&mut self.edited);
+        }
+        out.edits.replace_written(self.writer, self.replacements);
     }
 }

@@ -3,11 +3,20 @@
 //! Later passes never rebuild a program. They record edits against the parsed program, and
 //! the printer copies every block nobody touched byte for byte and writes the new blocks in
 //! the program's own style ([`super::style::ProgramStyle`]).
+//!
+//! A pass that replaces most blocks of a long program (a compensated program rewrites nearly
+//! every motion block) writes its replacements to text as it makes them, with a
+//! [`BlockWriter`](super::BlockWriter), and hands them over with [`Edits::replace_written`]:
+//! the same text the printer would write for the same words, without a list of words per
+//! block kept until printing.
 
 use std::collections::BTreeMap;
 
 use crate::dialect::{Address, Code};
 use crate::syntax::{CodeLetter, Number, WordId};
+
+use super::style::ProgramStyle;
+use super::written::{BlockWriter, WrittenText};
 
 /// A word of a new block.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,6 +60,27 @@ pub(crate) struct BlockEdit {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Edits {
     pub(crate) blocks: BTreeMap<usize, BlockEdit>,
+    pub(crate) written: Written,
+}
+
+/// Replacements written as text (`replace_written`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Written {
+    /// The style they were written in, the program's: the printer writes its own new blocks in
+    /// it too rather than infer it again.
+    pub style: Option<ProgramStyle>,
+    pub text: Vec<u8>,
+    /// Each replaced block and its replacement's text, in block order, one per block. A
+    /// block here prints this text in place of any `replacement` of its `BlockEdit`; the
+    /// blocks that edit inserts before or after it still print.
+    pub blocks: Vec<(usize, WrittenText)>,
+}
+
+impl Written {
+    /// Where block `index` is in `blocks`.
+    fn find(&self, index: usize) -> Result<usize, usize> {
+        self.blocks.binary_search_by_key(&index, |&(block, _)| block)
+    }
 }
 
 impl Edits {
@@ -59,11 +89,15 @@ impl Edits {
     }
 
     pub fn is_empty(&self) -> bool {
-        self.blocks.is_empty()
+        self.blocks.is_empty() && self.written.blocks.is_empty()
     }
 
     /// Replace block `index` with `blocks` (in order).
     pub fn replace(&mut self, index: usize, blocks: Vec<NewBlock>) {
+        // The last replacement given wins, a written one too.
+        if let Ok(at) = self.written.find(index) {
+            self.written.blocks.remove(at);
+        }
         self.blocks.entry(index).or_default().replacement = Some(blocks);
     }
 
@@ -81,6 +115,42 @@ impl Edits {
         }
     }
 
+    /// Replace each of `replacements`' blocks with the blocks `writer` wrote for it
+    /// (`BlockWriter::finish`), as `replace` would with the same blocks as words; a later
+    /// replacement of the same block wins.
+    pub fn replace_written(&mut self, writer: BlockWriter<'_, '_>, replacements: Vec<(usize, WrittenText)>) {
+        let (style, text) = writer.into_parts();
+        let written = &mut self.written;
+        let mut replacements = replacements;
+        if written.text.is_empty() && written.blocks.is_empty() {
+            written.text = text;
+        } else {
+            let offset = written.text.len();
+            written.text.extend_from_slice(&text);
+            for (_, replacement) in &mut replacements {
+                *replacement = replacement.shifted(offset);
+            }
+        }
+        written.style.get_or_insert(style);
+        if written.blocks.is_empty() {
+            written.blocks = replacements;
+        } else {
+            written.blocks.append(&mut replacements);
+        }
+        // They mostly come in block order already; a stable sort keeps the later of two
+        // replacements of one block after the earlier, and that one is kept.
+        if !written.blocks.is_sorted_by_key(|&(block, _)| block) {
+            written.blocks.sort_by_key(|&(block, _)| block);
+        }
+        written.blocks.dedup_by(|later, earlier| {
+            let same = later.0 == earlier.0;
+            if same {
+                earlier.1 = later.1;
+            }
+            same
+        });
+    }
+
     pub fn delete(&mut self, index: usize) {
         self.replace(index, Vec::new());
     }
@@ -95,11 +165,23 @@ impl Edits {
 
     /// Whether block `index` is replaced or deleted.
     pub fn touches(&self, index: usize) -> bool {
-        self.blocks.get(&index).is_some_and(|e| e.replacement.is_some())
+        self.blocks.get(&index).is_some_and(|e| e.replacement.is_some()) || self.written.find(index).is_ok()
     }
 
     /// The edits of block `first` and after, in block order.
     pub(crate) fn from(&self, first: usize) -> impl Iterator<Item = (usize, &BlockEdit)> {
         self.blocks.range(first..).map(|(&index, edit)| (index, edit))
+    }
+
+    /// The written replacements of block `first` and after, in block order, with their text.
+    pub(crate) fn written_from(&self, first: usize) -> impl Iterator<Item = (usize, &[u8])> {
+        let start = self.written.blocks.partition_point(|&(block, _)| block < first);
+        let written = &self.written;
+        written
+            .blocks
+            .get(start..)
+            .unwrap_or_default()
+            .iter()
+            .map(|&(block, replacement)| (block, replacement.of(&written.text)))
     }
 }

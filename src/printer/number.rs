@@ -2,6 +2,8 @@
 
 use crate::syntax::{Number, NumberFlags};
 
+use super::text::Text;
+
 /// The plain decimal spelling of a number: sign, integer digits, point and fraction digits as
 /// the number's flags say (`.075`, `-0.`, `0600`-style leading zeros are not reproduced).
 pub fn plain(number: Number) -> String {
@@ -27,57 +29,54 @@ impl Style {
     pub const AS_WRITTEN: Style = Style { leading_zero: true, force_point: false, as_written: true, trim_zeros: false };
 }
 
-pub fn write_number(out: &mut String, number: Number, style: Style) {
-    let negative = number.mantissa < 0 || number.flags.contains(NumberFlags::MINUS);
-    if negative {
-        out.push('-');
-    } else if style.as_written && number.flags.contains(NumberFlags::PLUS) {
-        out.push('+');
-    }
-    // The mantissa's digits, most significant first, on the stack: a compensated program
+pub fn write_number(out: &mut impl Text, number: Number, style: Style) {
+    // The mantissa's digits, least significant first, on the stack: a compensated program
     // prints millions of numbers, and building each from strings cost a few allocations.
-    let mut buffer = [0u8; 20];
+    let mut digits = [0u8; 20];
+    let mut count = 0;
     let mut value = number.mantissa.unsigned_abs();
-    let mut start = buffer.len();
-    loop {
-        start -= 1;
-        buffer[start] = b'0' + (value % 10) as u8;
+    while value > 0 {
+        if let Some(slot) = digits.get_mut(count) {
+            *slot = (value % 10) as u8;
+        }
         value /= 10;
-        if value == 0 {
-            break;
-        }
+        count += 1;
     }
-    let digits = &buffer[start..];
-    let scale = number.scale as usize;
-    // The fraction is `pad` zeros and then `fraction`.
-    let (integer, fraction, pad) = match digits.len().checked_sub(scale) {
-        Some(split) if split > 0 => (&digits[..split], &digits[split..], 0),
-        _ => (&digits[..0], digits, scale - digits.len()),
-    };
-    let mut kept = fraction.len();
+    // Digit `k` of the mantissa (0 the last); a fraction longer than the mantissa starts
+    // with zeros.
+    let digit = |k: usize| b'0' + digits.get(k).copied().unwrap_or(0);
+    let scale = usize::from(number.scale);
+    // The fraction's digits written are those from `last_place` up.
+    let mut last_place = 0;
     if style.trim_zeros {
-        while kept > 0 && fraction[kept - 1] == b'0' {
-            kept -= 1;
+        // Trailing zeros of the fraction go, and with a fraction of zeros only, every one.
+        while last_place < scale && digit(last_place) == b'0' {
+            last_place += 1;
         }
     }
-    // Trimming through every digit trims the padding zeros too.
-    let pad = if style.trim_zeros && kept == 0 { 0 } else { pad };
-    let fraction_empty = pad + kept == 0;
-    let integer = &integer[integer.iter().take_while(|&&d| d == b'0').count()..];
+    let fraction_empty = last_place == scale;
     let point = if style.as_written { number.has_point() } else { style.force_point || !fraction_empty };
     let leading =
         if style.as_written { !number.flags.contains(NumberFlags::NO_INTEGER_DIGITS) } else { style.leading_zero };
-    if integer.is_empty() {
-        if leading || !point || fraction_empty {
-            out.push('0');
+    let negative = number.mantissa < 0 || number.flags.contains(NumberFlags::MINUS);
+    if negative {
+        out.push_byte(b'-');
+    } else if style.as_written && number.flags.contains(NumberFlags::PLUS) {
+        out.push_byte(b'+');
+    }
+    // The integer part: the digits above the fraction (the first of them is not a zero).
+    if count > scale {
+        for k in (scale..count).rev() {
+            out.push_byte(digit(k));
         }
-    } else {
-        out.extend(integer.iter().map(|&d| char::from(d)));
+    } else if leading || !point || fraction_empty {
+        out.push_byte(b'0');
     }
     if point {
-        out.push('.');
-        out.extend(std::iter::repeat_n('0', pad));
-        out.extend(fraction[..kept].iter().map(|&d| char::from(d)));
+        out.push_byte(b'.');
+        for k in (last_place..scale).rev() {
+            out.push_byte(digit(k));
+        }
     }
 }
 

@@ -6,7 +6,7 @@
 //! to the printer as typed words, so the case tests the style, not the text.
 
 use serde::Deserialize;
-use turnpass::printer::{CanonicalOptions, Edits, NewBlock, NewWord, print, print_canonical};
+use turnpass::printer::{BlockWriter, CanonicalOptions, Edits, NewBlock, NewWord, print, print_canonical};
 use turnpass::source::LineIndex;
 use turnpass::syntax::{ParseOptions, Program, WordKind, parse};
 
@@ -83,6 +83,41 @@ fn run_edit_case(path: &std::path::Path) -> String {
         }
     }
     let output = print(program, &edits);
+    // The same replacements written ahead as text (`BlockWriter`, as compensation writes its
+    // blocks) print the same.
+    let mut written_edits = Edits::new();
+    let mut writer = BlockWriter::new(program);
+    let mut written = Vec::new();
+    for edit in &file.edit {
+        let index = block_at_line(edit.line);
+        match (&edit.replace, edit.delete) {
+            // A written replacement has at least one block; none is a deletion.
+            (Some(replacement), false) if !replacement.is_empty() => {
+                let start = writer.begin();
+                for (k, text) in replacement.iter().enumerate() {
+                    if k > 0 {
+                        writer.next_block();
+                    }
+                    writer.block(&new_block(text, &options));
+                }
+                written.push((index, writer.finish(start)));
+            }
+            (Some(_), _) | (None, true) => written_edits.delete(index),
+            (None, false) => {}
+        }
+        for text in &edit.insert_before {
+            written_edits.insert_before(index, new_block(text, &options));
+        }
+        for text in &edit.insert_after {
+            written_edits.insert_after(index, new_block(text, &options));
+        }
+    }
+    written_edits.replace_written(writer, written);
+    assert_eq!(
+        String::from_utf8_lossy(&print(program, &written_edits)),
+        String::from_utf8_lossy(&output),
+        "replacements written ahead print as the same blocks given as words"
+    );
     // Every untouched block appears byte for byte, with its terminator, in order.
     let mut cursor = 0;
     for (index, block) in program.blocks().iter().enumerate() {
@@ -149,6 +184,10 @@ fn a_long_program_prints_in_two_halves_as_in_one() {
     assert_eq!(parsed.program.blocks().len(), count);
     let comment = |c: &str| NewBlock::new(vec![NewWord::Comment(c.to_string())]);
     let mut edits = Edits::new();
+    // Some blocks are replaced by text written ahead, the last one (which has no line end)
+    // among them, beside the other edits.
+    let mut writer = BlockWriter::new(&parsed.program);
+    let mut written = Vec::new();
     let mut expected = Vec::new();
     for (i, line) in source.iter().enumerate() {
         let edited = i > 0 && i + 1 < count;
@@ -158,6 +197,13 @@ fn a_long_program_prints_in_two_halves_as_in_one() {
         }
         if edited && i % 7 == 0 {
             edits.delete(i);
+        } else if i % 5 == 0 || i + 1 == count {
+            let start = writer.begin();
+            writer.word(&NewWord::Comment(format!("W{i}")));
+            writer.next_block();
+            writer.word(&NewWord::Comment("W".to_string()));
+            written.push((i, writer.finish(start)));
+            expected.push(format!("(W{i})\r\n(W)"));
         } else {
             expected.push(line.clone());
         }
@@ -166,5 +212,6 @@ fn a_long_program_prints_in_two_halves_as_in_one() {
             expected.push("(A)".to_string());
         }
     }
+    edits.replace_written(writer, written);
     assert_eq!(String::from_utf8(print(&parsed.program, &edits)).unwrap(), expected.join("\r\n"));
 }

@@ -26,7 +26,6 @@ use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
 use crate::semantic::Lowered;
 use crate::semantic::nose_radius::ToolTable;
-use crate::syntax::Program;
 use crate::toolpath::{Limits, Toolpath, Xz};
 
 use super::super::deviation::{LocalPath, Tally};
@@ -47,7 +46,6 @@ const QUEUE: usize = 2;
 
 /// What every piece is compensated with.
 pub struct Context<'a> {
-    pub program: &'a Program<'a>,
     pub toolpath: &'a Toolpath,
     pub tools: &'a ToolTable,
     pub lowered: &'a Lowered,
@@ -55,8 +53,9 @@ pub struct Context<'a> {
     pub options: &'a CompensateOptions,
     pub limits: Option<Limits>,
     pub sampling: Sampling,
+    /// `rewrite::MoveForms::writable`.
     pub writable: Vec<bool>,
-    /// `rewrite::radius_preference`.
+    /// `rewrite::MoveForms::radius`.
     pub radius: Vec<bool>,
     pub path: LocalPath<'a>,
     pub plan_options: PlanOptions,
@@ -161,8 +160,9 @@ impl Piece {
     }
 }
 
-/// Stream the whole program (see the module documentation).
-pub fn run<'a, 'src>(context: &'a Context<'src>) -> Streamed<'a, 'src> {
+/// Stream the whole program (see the module documentation); the check stage rewrites the
+/// motion blocks into `motion`.
+pub fn run<'a, 'src>(context: &Context<'src>, motion: MotionBlocks<'a, 'src>) -> Streamed<'a, 'src> {
     let (to_plan, planning) = sync_channel::<Piece>(QUEUE);
     let (to_check, checking) = sync_channel::<Piece>(QUEUE);
     // Checked pieces go back to be filled again.
@@ -171,7 +171,7 @@ pub fn run<'a, 'src>(context: &'a Context<'src>) -> Streamed<'a, 'src> {
         let solver = scope.spawn(move || solve(context, &to_plan, &reusable));
         let planner = scope.spawn(move || plan(context, &planning, &to_check));
         let Checked { plans, diagnostics, figures, mut totals, paths, needs, motion } =
-            check(context, &checking, &to_reuse);
+            check(context, motion, &checking, &to_reuse);
         // Neither thread can fail on any input; a panic in one is a bug, and is passed on.
         let (iterations, residual) = solver.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
         planner.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
@@ -253,7 +253,8 @@ fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_check: &SyncSender
 
 /// Stage 3: round, predict as rounded, measure, check, tally, rewrite.
 fn check<'a, 'src>(
-    context: &'a Context<'src>,
+    context: &Context<'src>,
+    motion: MotionBlocks<'a, 'src>,
     checking: &Receiver<Piece>,
     to_reuse: &SyncSender<Piece>,
 ) -> Checked<'a, 'src> {
@@ -273,7 +274,7 @@ fn check<'a, 'src>(
         totals: Totals::default(),
         paths: Paths::default(),
         needs: vec![false; count],
-        motion: MotionBlocks::new(context.program, context.lowered, context.tools),
+        motion,
     };
     let mut ranges = vec![0..0; count];
     let mut run = 0;

@@ -13,8 +13,10 @@
 //! leaves a different motion code in force than the original block did, a block with that
 //! code alone restores it for the blocks that follow.
 
+use smallvec::SmallVec;
+
 use crate::dialect::{Address, AddressKind, Code, Dialect, GFunction};
-use crate::printer::{NewBlock, NewWord};
+use crate::printer::{BlockWriter, NewWord, WrittenText};
 use crate::semantic::CoordinateMark;
 use crate::semantic::nose_radius::ToolTable;
 use crate::syntax::{CodeLetter, Program, WordKind};
@@ -103,8 +105,13 @@ pub(super) struct BlockContext<'a, 'src> {
     pub tools: &'a ToolTable,
 }
 
-/// The coordinate words of one segment, by slot, as counts of the increment.
-type Words = Vec<(Slot, i64)>;
+/// The coordinate words of one segment, by slot, as counts of the increment (at most four:
+/// `X Z`, and `R` or `I K`).
+type Words = SmallVec<[(Slot, i64); 4]>;
+
+/// The coordinate words a block writes, by slot: a literal's value, or for an expression the
+/// value it had on this run (`None` when the run has no such word).
+type OriginalWords = SmallVec<[(Slot, Option<i64>); 4]>;
 
 impl BlockContext<'_, '_> {
     fn slot(&self, address: Address, is_arc: bool) -> Option<Slot> {
@@ -160,7 +167,7 @@ impl BlockContext<'_, '_> {
         let grid = &self.grid;
         let from = grid.point(start);
         let to = grid.point(segment.end());
-        let mut out = Vec::new();
+        let mut out = Words::new();
         let axis = |absolute: bool, end: i64, begin: i64| if absolute { end } else { end - begin };
         if form.x_named || to.x != from.x {
             out.push((Slot::X, axis(form.x.1, to.x, from.x)));
@@ -190,14 +197,14 @@ impl BlockContext<'_, '_> {
 
     /// What the block's coordinate words say now: a literal's value, or for an expression
     /// the value it had on this run (the nominal move).
-    fn original_words(&self, form: &Form, m: &Move, contour_start: Xz) -> Vec<(Slot, Option<i64>)> {
+    fn original_words(&self, form: &Form, m: &Move, contour_start: Xz) -> OriginalWords {
         let block = self.program.block(self.block);
         let tables = self.program.config().tables();
         // The programmed move's words, for a word written as an expression: computed only
         // for such a block.
         let nominal = std::cell::OnceCell::new();
         let nominal = || nominal.get_or_init(|| self.words(form, contour_start, &nominal_segment(m, self.tools), None));
-        let mut out = Vec::new();
+        let mut out = OriginalWords::new();
         for word in self.program.words_of(block) {
             let (address, literal) = match word.kind {
                 WordKind::Number { address, number } => (address, Some(number)),
@@ -249,29 +256,32 @@ impl BlockContext<'_, '_> {
         NewWord::Number(address, self.grid.number(value))
     }
 
-    /// The blocks that replace this block for one move and its plan, or `None` when the
-    /// block already writes it.
-    pub(super) fn rewrite(&self, m: &Move, contour_start: Xz, plan: &MovePlan) -> Option<Vec<NewBlock>> {
+    /// Write the blocks that replace this block for one move and its plan to `out`, or
+    /// nothing (`None`) when the block already writes it.
+    pub(super) fn rewrite(
+        &self,
+        m: &Move,
+        contour_start: Xz,
+        plan: &MovePlan,
+        out: &mut BlockWriter<'_, '_>,
+    ) -> Option<WrittenText> {
         if !plan.changed && self.grid.point(plan.start) == self.grid.point(contour_start) {
             // The move is as programmed, from where the program puts it.
             return None;
         }
         let original_kind = Kind::of(m);
         let form = self.form(m.is_arc());
-        let mut blocks = Vec::new();
         let mut at = plan.start;
         // The motion code the block's own words run under, when it is not the modal one.
         let mut in_force = original_kind;
         let mut segments = plan.segments.as_slice();
         let mut chosen = plan.words.iter().map(|&w| Some(w)).chain(std::iter::repeat(None));
+        // The play taken up before the block, by a positioning move of its own.
+        let mut lead_words = None;
         if plan.lead_in
             && let Some((lead, rest)) = segments.split_first()
         {
-            // The play taken up before the block, by a positioning move of its own.
-            let mut words = vec![self.code(Kind::Rapid)];
-            let lead_words = self.words(&form, at, lead, chosen.next().flatten());
-            words.extend(lead_words.into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
-            blocks.push(NewBlock::new(words));
+            lead_words = Some(self.words(&form, at, lead, chosen.next().flatten()));
             in_force = Kind::Rapid;
             at = lead.end();
             segments = rest;
@@ -282,41 +292,51 @@ impl BlockContext<'_, '_> {
         let new = self.words(&form, at, first, chosen.next().flatten());
         let same_words = original.len() == new.len()
             && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
-        if blocks.is_empty() && rest.is_empty() && first_kind == original_kind && same_words {
+        if lead_words.is_none() && rest.is_empty() && first_kind == original_kind && same_words {
             return None;
         }
+        let mark = out.begin();
+        if let Some(lead_words) = lead_words {
+            out.word(&self.code(Kind::Rapid));
+            for (slot, value) in lead_words {
+                out.word(&self.new_word(&form, slot, value));
+            }
+            out.next_block();
+        }
         let code_changes = first_kind != original_kind || in_force != original_kind;
-        blocks.push(self.first_block(&form, m, &new, &original, first_kind, code_changes));
+        self.first_block(&form, m, &new, &original, code_changes.then_some(first_kind), out);
         let mut kind = first_kind;
         at = first.end();
         for segment in rest {
+            out.next_block();
             let segment_kind = Kind::of_segment(segment, original_kind);
-            let mut words = Vec::new();
             if segment_kind != kind {
-                words.push(self.code(segment_kind));
+                out.word(&self.code(segment_kind));
                 kind = segment_kind;
             }
-            let segment_words = self.words(&form, at, segment, chosen.next().flatten());
-            words.extend(segment_words.into_iter().map(|(slot, v)| self.new_word(&form, slot, v)));
-            blocks.push(NewBlock::new(words));
+            for (slot, value) in self.words(&form, at, segment, chosen.next().flatten()) {
+                out.word(&self.new_word(&form, slot, value));
+            }
             at = segment.end();
         }
         if kind != original_kind {
-            blocks.push(NewBlock::new(vec![self.code(original_kind)]));
+            out.next_block();
+            out.word(&self.code(original_kind));
         }
-        Some(blocks)
+        Some(out.finish(mark))
     }
 
-    /// The block's own words with the first segment's coordinates (and motion code).
+    /// Write the block's own words with the first segment's coordinates, and the motion
+    /// code `new_code` where it changes.
     fn first_block(
         &self,
         form: &Form,
         m: &Move,
         new: &Words,
         original: &[(Slot, Option<i64>)],
-        kind: Kind,
-        code_changes: bool,
-    ) -> NewBlock {
+        new_code: Option<Kind>,
+        out: &mut BlockWriter<'_, '_>,
+    ) {
         let block = self.program.block(self.block);
         let words = self.program.words_of(block);
         // The block's coordinate words, read as the original move reads them (an `R` in a
@@ -329,26 +349,28 @@ impl BlockContext<'_, '_> {
         };
         let last_coordinate = words.iter().rposition(coordinate);
         let first_coordinate = words.iter().position(coordinate);
-        let mut out = Vec::new();
-        let mut written: Vec<Slot> = Vec::new();
+        let mut written: SmallVec<[Slot; 4]> = SmallVec::new();
         let mut code_written = false;
         let first = block.first_word;
         for (k, word) in words.iter().enumerate() {
             let id = first + k as u32;
-            if code_changes && !code_written && first_coordinate == Some(k) {
-                out.push(self.code(kind));
+            if let Some(kind) = new_code
+                && !code_written
+                && first_coordinate == Some(k)
+            {
+                out.word(&self.code(kind));
                 code_written = true;
             }
-            match word.kind {
-                WordKind::Code { letter: CodeLetter::G, code } if self.is_motion_code(code) && code_changes => {
+            match (word.kind, new_code) {
+                (WordKind::Code { letter: CodeLetter::G, code }, Some(kind)) if self.is_motion_code(code) => {
                     if !code_written {
                         let same =
                             self.program.config().tables().g(code).and_then(|g| g.function) == Some(kind.function());
-                        out.push(if same { NewWord::Copy(id) } else { self.code(kind) });
+                        out.word(&if same { NewWord::Copy(id) } else { self.code(kind) });
                         code_written = true;
                     }
                 }
-                WordKind::Number { address, .. } | WordKind::Expr { address, .. } if coordinate(word) => {
+                (WordKind::Number { address, .. } | WordKind::Expr { address, .. }, _) if coordinate(word) => {
                     let slot = self.slot(address, m.is_arc());
                     if let Some((slot, value)) = slot.and_then(|s| new.iter().find(|(n, _)| *n == s)).copied()
                         && !written.contains(&slot)
@@ -356,28 +378,31 @@ impl BlockContext<'_, '_> {
                         let unchanged = original.iter().any(|(s, v)| *s == slot && *v == Some(value))
                             && matches!(word.kind, WordKind::Number { .. })
                             && same_address(form, slot, address);
-                        out.push(if unchanged { NewWord::Copy(id) } else { self.new_word(form, slot, value) });
+                        out.word(&if unchanged { NewWord::Copy(id) } else { self.new_word(form, slot, value) });
                         written.push(slot);
                     }
                 }
-                _ => out.push(NewWord::Copy(id)),
+                _ => out.word(&NewWord::Copy(id)),
             }
             if last_coordinate == Some(k) {
                 for &(slot, value) in new {
                     if !written.contains(&slot) {
-                        out.push(self.new_word(form, slot, value));
+                        out.word(&self.new_word(form, slot, value));
                         written.push(slot);
                     }
                 }
             }
         }
         if last_coordinate.is_none() {
-            if code_changes && !code_written {
-                out.push(self.code(kind));
+            if let Some(kind) = new_code
+                && !code_written
+            {
+                out.word(&self.code(kind));
             }
-            out.extend(new.iter().map(|&(slot, value)| self.new_word(form, slot, value)));
+            for &(slot, value) in new {
+                out.word(&self.new_word(form, slot, value));
+            }
         }
-        NewBlock::new(out)
     }
 }
 

@@ -143,7 +143,8 @@ pub(super) fn write(
     let mut by_block: BTreeMap<usize, Vec<NewBlock>> = BTreeMap::new();
     let mut refused = HashSet::new();
     let mut written = Vec::new();
-    let style = expand::ProgramStyle::of(program);
+    // Read from every block, so only once a cycle is written.
+    let mut style = None;
     for (expansion, _) in lowered.expansions.iter().zip(chosen).filter(|(_, chosen)| **chosen) {
         let range = expansion.moves.clone();
         let (Some(moves), Some(cycle_plans)) = (lowered.toolpath.moves.get(range.clone()), plans.get(range.clone()))
@@ -165,7 +166,7 @@ pub(super) fn write(
             start,
             compensation_before,
             shift,
-            style,
+            *style.get_or_insert_with(|| expand::ProgramStyle::of(program)),
         ) {
             ExpansionBlocks::Blocks(blocks) => with_call_words(program, expansion.block, blocks),
             ExpansionBlocks::Keep | ExpansionBlocks::NotExpandable => {

@@ -1,7 +1,7 @@
 use super::*;
 use crate::compensation::test_support::lower_program;
 use crate::dialect::{DialectChoice, GCodeSystem};
-use crate::printer::{Edits, print_string};
+use crate::printer::{BlockWriter, Edits, print_string};
 use crate::semantic::{LowerOptions, lower};
 use crate::syntax::{ParseOptions, parse};
 use crate::toolpath::Motion;
@@ -38,8 +38,10 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
     let mark = lowered.coordinates_at(index);
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
     let context = BlockContext { program, block, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
+    let mut writer = BlockWriter::new(program);
+    let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
-    edits.replace(block, context.rewrite(&m, start, &plan).unwrap());
+    edits.replace_written(writer, vec![(block, text)]);
     let text = print_string(program, &edits);
     let reparsed = parse(text.as_bytes(), &options);
     assert_eq!(reparsed.error_count(), 0, "{text}");
@@ -92,9 +94,10 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
         radius_arcs: true,
         tools: &tools,
     };
-    let blocks = context.rewrite(&m, start, &plan).unwrap();
+    let mut writer = BlockWriter::new(&parsed.program);
+    let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
-    edits.replace(4, blocks);
+    edits.replace_written(writer, vec![(4, text)]);
     let text = print_string(&parsed.program, &edits);
     let lines: Vec<&str> = text.lines().skip(4).take(4).collect();
     assert_eq!(lines, ["G01 X44. Z-13.5", "X50. Z-15.", "G02", "G03 U10. W-5. I0 K-5."], "{text}");

@@ -1,0 +1,43 @@
+//! Where the printer writes: a `String` (the canonical form, `number::plain`), or the bytes
+//! of a printed program (new blocks, `written.rs`), which take a spelled number in one copy
+//! rather than one character at a time.
+
+/// Text the printer appends to.
+pub trait Text {
+    fn push_str(&mut self, text: &str);
+
+    /// Append `ascii`, which holds ASCII characters only (digits, letters, signs).
+    fn push_ascii(&mut self, ascii: &[u8]);
+
+    fn push_byte(&mut self, ascii: u8) {
+        self.push_ascii(&[ascii]);
+    }
+}
+
+impl Text for String {
+    fn push_str(&mut self, text: &str) {
+        String::push_str(self, text);
+    }
+
+    fn push_ascii(&mut self, ascii: &[u8]) {
+        self.extend(ascii.iter().map(|&byte| char::from(byte)));
+    }
+
+    fn push_byte(&mut self, ascii: u8) {
+        self.push(char::from(ascii));
+    }
+}
+
+impl Text for Vec<u8> {
+    fn push_str(&mut self, text: &str) {
+        self.extend_from_slice(text.as_bytes());
+    }
+
+    fn push_ascii(&mut self, ascii: &[u8]) {
+        self.extend_from_slice(ascii);
+    }
+
+    fn push_byte(&mut self, ascii: u8) {
+        self.push(ascii);
+    }
+}
