@@ -353,8 +353,8 @@ impl Fitting<'_, '_> {
 
     /// `circles` with the pieces' last points given (`split::cut_indices`).
     fn circles_at(&self, centre: Xz, ccw: bool, ends: &[usize], strategy: Strategy) -> Result<Fitted, f64> {
-        let segments = split::circles_at(self.m, centre, ccw, ends, self.tolerance)?;
-        let max_deviation_mm = max_deviation(self.m.start, &segments, self.m.points);
+        let split::Circles { segments, deviation } = split::circles_at(self.m, centre, ccw, ends, self.tolerance)?;
+        let max_deviation_mm = deviation.unwrap_or_else(|| max_deviation(self.m.start, &segments, self.m.points));
         if max_deviation_mm <= self.tolerance {
             Ok(Fitted { segments, strategy_used: strategy, max_deviation_mm, rejected: None })
         } else {

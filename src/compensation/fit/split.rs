@@ -33,6 +33,15 @@ pub const SEMICIRCLE_CUTS: [f64; 2] = [0.0, PI];
 /// Where `quadrant` cuts: every quarter turn, the reversals of both axes.
 pub const QUADRANT_CUTS: [f64; 4] = [0.0, FRAC_PI_2, PI, -FRAC_PI_2];
 
+/// The segments `circles_at` writes.
+pub struct Circles {
+    pub segments: Vec<Segment>,
+    /// When they are one arc: the largest distance of a point from it, which the fit has
+    /// measured already and which is all `max_deviation` would measure of a path of one
+    /// segment.
+    pub deviation: Option<f64>,
+}
+
 /// The fitted pieces, ending at the points `ends` (`cut_indices`), or the largest deviation
 /// of the best attempt at the piece that failed.
 pub fn circles_at(
@@ -41,7 +50,7 @@ pub fn circles_at(
     ccw: bool,
     ends: &[usize],
     tolerance_mm: f64,
-) -> Result<Vec<Segment>, f64> {
+) -> Result<Circles, f64> {
     // The programmed radius, for the bulge between points (see `arcs.rs`).
     let radius = match m.nominal {
         NominalShape::Arc { radius, .. } => radius,
@@ -54,16 +63,23 @@ pub fn circles_at(
         between: Between::Bulge { centre, radius },
     };
     let mut segments = Vec::new();
+    let mut deviation = None;
     let mut from = m.start;
     let mut first = 0;
     for &last in ends {
         let points = m.points.get(first..=last).ok_or(f64::INFINITY)?;
-        let written = context.fit(from, points, tolerance_mm)?;
-        segments.extend(written);
+        match context.fit(from, points, tolerance_mm)? {
+            Fit::Arc(arc) => {
+                segments.push(arc.segment);
+                deviation = Some(arc.points);
+            }
+            Fit::Stepped { step, arc } => segments.extend([Segment::Line { end: step }, arc]),
+        }
         from = segments.last().map_or(from, Segment::end);
         first = last + 1;
     }
-    Ok(segments)
+    let deviation = deviation.filter(|_| segments.len() == 1);
+    Ok(Circles { segments, deviation })
 }
 
 /// The index of the last point of each piece, the move's last point included.
@@ -149,6 +165,26 @@ impl Travel {
     }
 }
 
+/// A circle fitted to a piece.
+#[derive(Clone, Copy)]
+struct Arc {
+    segment: Segment,
+    /// The largest distance of a point from it (`segment_deviation`).
+    points: f64,
+    /// That, or the chord test's largest gap where that is larger: what the piece is held to.
+    worst: f64,
+}
+
+/// How a piece is written.
+enum Fit {
+    Arc(Arc),
+    /// A straight step to the piece's first point, and the circle from there.
+    Stepped {
+        step: Xz,
+        arc: Segment,
+    },
+}
+
 struct Piece {
     ccw: bool,
     /// The tolerance the free circle must meet to be preferred over the pinned one.
@@ -161,15 +197,13 @@ struct Piece {
 impl Piece {
     /// One circle from `from` over `points`, or a step to the first point and the circle
     /// from there; `Err` with the smaller deviation of the two when neither passes.
-    fn fit(&self, from: Xz, points: &[Xz], tolerance: f64) -> Result<Vec<Segment>, f64> {
+    fn fit(&self, from: Xz, points: &[Xz], tolerance: f64) -> Result<Fit, f64> {
         let direct = self.arc(from, points);
-        if let Some((segment, deviation)) = direct
-            && deviation <= tolerance
-        {
-            return Ok(vec![segment]);
+        if let Some(arc) = direct.filter(|arc| arc.worst <= tolerance) {
+            return Ok(Fit::Arc(arc));
         }
         let stepped = match points {
-            [step, rest @ ..] if !rest.is_empty() => self.arc(*step, rest).map(|(s, d)| (*step, s, d)),
+            [step, rest @ ..] if !rest.is_empty() => self.arc(*step, rest).map(|arc| (*step, arc.segment, arc.worst)),
             _ => None,
         };
         // The step is held to the path it replaces: along a nominal arc that is the arc's
@@ -181,9 +215,10 @@ impl Piece {
         if let Some((step, segment, deviation)) = stepped
             && deviation <= tolerance
         {
-            return Ok(vec![Segment::Line { end: step }, segment]);
+            return Ok(Fit::Stepped { step, arc: segment });
         }
-        let best = [direct.map(|d| d.1), stepped.map(|s| s.2)].into_iter().flatten().fold(f64::INFINITY, f64::min);
+        let best =
+            [direct.map(|arc| arc.worst), stepped.map(|s| s.2)].into_iter().flatten().fold(f64::INFINITY, f64::min);
         Err(best)
     }
 
@@ -192,20 +227,20 @@ impl Piece {
     /// centre moved onto the perpendicular bisector of the exact ends, when that stays within
     /// the tolerance; else the circle pinned to both ends by a least-squares fit of the
     /// points between.
-    fn arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+    fn arc(&self, from: Xz, points: &[Xz]) -> Option<Arc> {
         let Some(free) = self.free_arc(from, points) else { return self.pinned_arc(from, points) };
         // A free circle within the tolerance is taken whatever the pinned one gives, so the
         // pinned one is fitted only when it could be taken.
-        if free.1 <= self.tolerance {
+        if free.worst <= self.tolerance {
             return Some(free);
         }
         match self.pinned_arc(from, points) {
-            Some(p) if p.1 < free.1 => Some(p),
+            Some(p) if p.worst < free.worst => Some(p),
             _ => Some(free),
         }
     }
 
-    fn free_arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+    fn free_arc(&self, from: Xz, points: &[Xz]) -> Option<Arc> {
         let (&end, _) = points.split_last()?;
         if from.distance(end) <= 1e-9 || points.len() < 2 {
             return None;
@@ -223,12 +258,13 @@ impl Piece {
         let centre = Xz::new(circle.centre.x - along * chord.x, circle.centre.z - along * chord.z);
         let segment = Segment::Arc { end, centre, ccw: self.ccw };
         // The same sense as programmed, and a sweep the nominal arc could have.
-        let mut worst = deviation::segment_deviation(from, &segment, points);
-        worst = worst.max(deviation::chord_deviation(from, points, centre, from.distance(centre), self.between));
-        worst.is_finite().then_some((segment, worst))
+        let deviation = deviation::segment_deviation(from, &segment, points);
+        let worst =
+            deviation.max(deviation::chord_deviation(from, points, centre, from.distance(centre), self.between));
+        worst.is_finite().then_some(Arc { segment, points: deviation, worst })
     }
 
-    fn pinned_arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+    fn pinned_arc(&self, from: Xz, points: &[Xz]) -> Option<Arc> {
         let (&end, interior) = points.split_last()?;
         let segment = if from.distance(end) <= 1e-9 {
             if interior.is_empty() {
@@ -244,11 +280,12 @@ impl Piece {
             }
             bend.segment_to(end)
         };
-        let mut worst = deviation::segment_deviation(from, &segment, points);
+        let deviation = deviation::segment_deviation(from, &segment, points);
+        let mut worst = deviation;
         if let Segment::Arc { centre, .. } = segment {
             let chords = deviation::chord_deviation(from, points, centre, from.distance(centre), self.between);
             worst = worst.max(chords);
         }
-        Some((segment, worst))
+        Some(Arc { segment, points: deviation, worst })
     }
 }
