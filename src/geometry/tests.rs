@@ -54,3 +54,46 @@ fn left_normal_of_a_cut_toward_the_chuck_points_to_larger_x() {
     assert!(close(n, Xz::new(-1.0, 0.0)) || close(n, Xz::new(1.0, 0.0)));
     assert!(n.x.abs() > 0.99);
 }
+
+/// Whether `p` lies inside the sweep as the arc gauges measure it, by the angles.
+fn inside_by_angles(p: Xz, start: Xz, end: Xz, centre: Xz, ccw: bool) -> bool {
+    let (a0, a) = (angle(start, centre), angle(p, centre));
+    let delta = if ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+    delta <= sweep(start, end, centre, ccw)
+}
+
+#[test]
+fn sweep_sides_place_points_as_the_angles_do_and_leave_the_ends_to_them() {
+    let centre = Xz::new(20.0, -30.0);
+    let on = |degrees: f64| on_circle(centre, 5.0, degrees.to_radians());
+    // A quarter from 10° to 100° counter-clockwise: 55° is inside, 200° outside; both ways
+    // round, the clockwise arc is the rest of the turn.
+    let sides = SweepSides::new(on(10.0), on(100.0), centre, true);
+    assert_eq!((sides.inside(on(55.0)), sides.inside(on(200.0))), (Some(true), Some(false)));
+    let sides = SweepSides::new(on(10.0), on(100.0), centre, false);
+    assert_eq!((sides.inside(on(55.0)), sides.inside(on(200.0))), (Some(false), Some(true)));
+    // Within a nanoradian of an end, only the angles can tell.
+    let sides = SweepSides::new(on(10.0), on(100.0), centre, true);
+    assert_eq!(sides.inside(on(10.0 + 1e-9_f64.to_degrees())), None);
+    // An arc whose ends meet may be a full circle (`sweep`): nothing is outside it.
+    let sides = SweepSides::new(on(10.0), on(10.0), centre, true);
+    assert_eq!(sides.inside(on(200.0)), None);
+}
+
+proptest::proptest! {
+    #[test]
+    fn sweep_sides_agree_with_the_angles_wherever_they_answer(
+        from in -4.0f64..4.0, span in -7.0f64..7.0, at in -4.0f64..4.0, off in -0.01f64..0.01,
+        near in proptest::bool::ANY, ccw in proptest::bool::ANY,
+    ) {
+        let centre = Xz::new(31.7, -12.3);
+        let start = on_circle(centre, 7.5, from);
+        let end = on_circle(centre, 7.5 + off, from + span);
+        // Points anywhere, and points within a few micro-radians of the ends.
+        let a = if near { from + span + at * 1e-6 } else { at };
+        let p = on_circle(centre, 7.5 - off, a);
+        if let Some(inside) = SweepSides::new(start, end, centre, ccw).inside(p) {
+            proptest::prop_assert_eq!(inside, inside_by_angles(p, start, end, centre, ccw));
+        }
+    }
+}

@@ -17,9 +17,11 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
+use smallvec::SmallVec;
+
 use super::deviation::{self, Between};
 use super::pinned;
-use super::{MovePoints, NominalShape, Segment};
+use super::{MovePoints, NominalShape, Segment, Segments};
 use crate::geometry;
 use crate::toolpath::Xz;
 
@@ -35,7 +37,7 @@ pub const QUADRANT_CUTS: [f64; 4] = [0.0, FRAC_PI_2, PI, -FRAC_PI_2];
 
 /// The segments `circles_at` writes.
 pub struct Circles {
-    pub segments: Vec<Segment>,
+    pub segments: Segments,
     /// When they are one arc: the largest distance of a point from it, which the fit has
     /// measured already and which is all `max_deviation` would measure of a path of one
     /// segment.
@@ -62,7 +64,7 @@ pub fn circles_at(
         curvature: if ccw { 1.0 } else { -1.0 } / radius,
         between: Between::Bulge { centre, radius },
     };
-    let mut segments = Vec::new();
+    let mut segments = Segments::new();
     let mut deviation = None;
     let mut from = m.start;
     let mut first = 0;
@@ -82,8 +84,12 @@ pub fn circles_at(
     Ok(Circles { segments, deviation })
 }
 
+/// The index of the last point of each piece (`cut_indices`): an arc has at most five pieces
+/// but where it turns more than a full turn.
+pub type Ends = SmallVec<[usize; 5]>;
+
 /// The index of the last point of each piece, the move's last point included.
-pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> Vec<usize> {
+pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> Ends {
     if cuts.is_empty() {
         return one_piece(m);
     }
@@ -92,7 +98,7 @@ pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> V
 
 /// `cut_indices` with no cuts: the move's last point ends its one piece, and no angle needs
 /// measuring.
-pub fn one_piece(m: &MovePoints<'_>) -> Vec<usize> {
+pub fn one_piece(m: &MovePoints<'_>) -> Ends {
     m.points.len().checked_sub(1).into_iter().collect()
 }
 
@@ -129,14 +135,14 @@ impl Travel {
     }
 
     /// `cut_indices` of the move.
-    pub fn cut_indices(&self, cuts: &[f64]) -> Vec<usize> {
+    pub fn cut_indices(&self, cuts: &[f64]) -> Ends {
         let Travel { sense, a0, ref travel } = *self;
         let total = travel.last().copied().unwrap_or(0.0);
         // A cut within half a sample of either end of the move is no cut: compensation moves
         // the points off the nominal angles by a little, and a move that starts or ends on a cut
         // would otherwise grow a piece of one point.
         let margin = total.abs() / (2.0 * travel.len().max(1) as f64);
-        let mut crossings: Vec<f64> = Vec::new();
+        let mut crossings: SmallVec<[f64; 5]> = SmallVec::new();
         for &cut in cuts {
             let mut at = (sense * (cut - a0)).rem_euclid(TAU);
             while at < total - margin {
@@ -147,7 +153,7 @@ impl Travel {
             }
         }
         crossings.sort_by(f64::total_cmp);
-        let mut ends = Vec::new();
+        let mut ends = Ends::new();
         for crossing in crossings {
             // The last point at or before the crossing ends a piece, unless it ends the move.
             let count_before = travel.partition_point(|&t| t <= crossing);
@@ -245,7 +251,8 @@ impl Piece {
         if from.distance(end) <= 1e-9 || points.len() < 2 {
             return None;
         }
-        let mut all = Vec::with_capacity(points.len() + 1);
+        // Most pieces have a few points: room for them without a heap allocation.
+        let mut all: SmallVec<[Xz; 16]> = SmallVec::with_capacity(points.len() + 1);
         all.push(from);
         all.extend_from_slice(points);
         let circle = super::circle::fit(&all)?;
