@@ -41,6 +41,12 @@ pub fn sweep(start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
     sweep_from_angles(start, end, angle(start, centre), angle(end, centre), ccw)
 }
 
+/// [`sweep`] given the start's angle `a0` (`angle(start, centre)`), which callers that need
+/// it too have measured already.
+pub fn sweep_from(a0: f64, start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
+    sweep_from_angles(start, end, a0, angle(end, centre), ccw)
+}
+
 /// [`sweep`] when the angles of `start` (`a0`) and `end` (`a1`) about the centre are known.
 pub fn sweep_from_angles(start: Xz, end: Xz, a0: f64, a1: f64, ccw: bool) -> f64 {
     let raw = if ccw { a1 - a0 } else { a0 - a1 };
@@ -177,24 +183,29 @@ pub fn angle_within(point: Xz, start: Xz, end: Xz, centre: Xz, ccw: bool) -> boo
     delta <= total + 1e-12
 }
 
-/// An arc's angular extent about its centre, for testing many points against it without
-/// trigonometry: `angle_within` as sign tests on cross products (the measures run it for
+/// An arc's angular extent about its centre, for testing many points against it:
+/// [`angle_within`]'s answer, told by [`SweepSides`] without an arctangent wherever it is
+/// clear, and by the angles only for a point next to an end ray (the measures ask it for
 /// millions of samples, and `atan2` was the largest single cost of a compensation run).
 #[derive(Debug, Clone, Copy)]
 pub struct Sector {
-    /// The sector's first and last rays, taken counter-clockwise (a clockwise arc's rays in
-    /// reverse), as vectors from the centre.
-    first: Xz,
-    last: Xz,
-    /// The angle it sweeps (`sweep`).
+    sides: SweepSides,
+    start: Xz,
+    centre: Xz,
+    ccw: bool,
+    /// The angle it sweeps ([`sweep`]).
     total: f64,
 }
 
 impl Sector {
     pub fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Sector {
-        let (a, b) = (Xz::new(start.x - centre.x, start.z - centre.z), Xz::new(end.x - centre.x, end.z - centre.z));
-        let (first, last) = if ccw { (a, b) } else { (b, a) };
-        Sector { first, last, total: sweep(start, end, centre, ccw) }
+        Sector {
+            sides: SweepSides::new(start, end, centre, ccw),
+            start,
+            centre,
+            ccw,
+            total: sweep(start, end, centre, ccw),
+        }
     }
 
     /// The angle the sector sweeps, radians.
@@ -202,21 +213,102 @@ impl Sector {
         self.total
     }
 
-    /// Whether the ray from the centre through `offset` (point − centre) lies in the
-    /// sector, as `angle_within` decides it (but for points within about 1e-12 rad of an
-    /// end ray, which either answer measures alike).
-    pub fn contains(&self, offset: Xz) -> bool {
-        // `cross(a, b) > 0` when b lies counter-clockwise of a by less than half a turn,
-        // with angles measured from +Z toward +X (see the module documentation).
-        let cross = |a: Xz, b: Xz| a.z * b.x - a.x * b.z;
-        if self.total + 1e-12 >= TAU {
-            true
-        } else if self.total <= PI {
-            cross(self.first, offset) >= 0.0 && cross(offset, self.last) >= 0.0
-        } else {
-            // More than half a turn: inside unless strictly inside the rest of the circle.
-            !(cross(self.last, offset) > 0.0 && cross(offset, self.first) > 0.0)
+    /// Whether `point` lies in the sector, as [`angle_within`] decides it.
+    pub fn contains(&self, point: Xz) -> bool {
+        self.sides.inside(point).unwrap_or_else(|| {
+            let (a0, a) = (angle(self.start, self.centre), angle(point, self.centre));
+            let delta = if self.ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+            delta <= self.total + 1e-12
+        })
+    }
+}
+
+/// How far inside or outside an arc's sweep, as the sine of the angle from the nearer end, a
+/// point must lie for [`SweepSides`] to place it: far more than the rounding of [`angle`] and
+/// [`sweep`] (a few 1e-16 radians), far less than any point measured lies from an end.
+const CLEAR_OF_ENDS: f64 = 1e-8;
+
+/// Whether points lie inside an arc's sweep as [`angle`] and [`sweep`] measure it (the
+/// angle from the start, in the arc's sense, at most the sweep), told by cross products
+/// without an arctangent wherever the answer is clear.
+///
+/// With u₀, u₁ and v the start, the end and the point about the centre, the cross product
+/// u₀ × v taken in the arc's sense is |u₀||v| times the sine of the angle from u₀ to v. Both
+/// u₀ × v > 0 and v × u₁ > 0 put v less than half a turn past the start and less than half a
+/// turn short of the end, which is inside the sweep whatever its size. Both u₁ × v > 0 and
+/// v × u₀ > 0 put it inside the rest of the turn, outside the sweep, where the sweep is
+/// clear of none and of a full turn (`sweep` makes a full circle of an arc whose ends
+/// nearly meet). Each sine must exceed [`CLEAR_OF_ENDS`], so rounding cannot turn the
+/// answer; a point nearer an end, or a half-turn away from one, is left to the angles.
+#[derive(Debug, Clone, Copy)]
+pub struct SweepSides {
+    centre: Xz,
+    /// u₀ and u₁.
+    start: Xz,
+    end: Xz,
+    /// 1 counter-clockwise, −1 clockwise.
+    sense: f64,
+    /// CLEAR_OF_ENDS² |u₀|² and CLEAR_OF_ENDS² |u₁|², to compare squared cross products with.
+    start_limit: f64,
+    end_limit: f64,
+    /// The sweep is clear of none and of a full turn.
+    proper: bool,
+}
+
+impl SweepSides {
+    pub fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> SweepSides {
+        let start = Xz::new(start.x - centre.x, start.z - centre.z);
+        let end = Xz::new(end.x - centre.x, end.z - centre.z);
+        let clear2 = CLEAR_OF_ENDS * CLEAR_OF_ENDS;
+        let mut sides = SweepSides {
+            centre,
+            start,
+            end,
+            sense: if ccw { 1.0 } else { -1.0 },
+            start_limit: clear2 * (start.x * start.x + start.z * start.z),
+            end_limit: clear2 * (end.x * end.x + end.z * end.z),
+            proper: false,
+        };
+        let (ahead, behind) = (sides.turn(start, end), sides.turn(end, start));
+        let limit = sides.start_limit * (end.x * end.x + end.z * end.z);
+        sides.proper =
+            Self::clear(ahead, limit) || Self::clear(behind, limit) || start.x * end.x + start.z * end.z < 0.0;
+        sides
+    }
+
+    /// The cross product a × b in the arc's sense: positive where b lies less than half a
+    /// turn ahead of a.
+    fn turn(&self, a: Xz, b: Xz) -> f64 {
+        self.sense * (b.x * a.z - b.z * a.x)
+    }
+
+    /// Whether a cross product is positive by more than its limit (squared).
+    fn clear(cross: f64, limit: f64) -> bool {
+        cross > 0.0 && cross * cross > limit
+    }
+
+    /// `Some(true)` where `p` lies clearly inside the sweep, `Some(false)` clearly outside,
+    /// `None` where only the angles can tell (or the arc has no extent to tell it by).
+    pub fn inside(&self, p: Xz) -> Option<bool> {
+        let v = Xz::new(p.x - self.centre.x, p.z - self.centre.z);
+        let length2 = v.x * v.x + v.z * v.z;
+        if !(length2 > 0.0 && length2.is_finite() && self.start_limit > 0.0 && self.end_limit > 0.0) {
+            return None;
         }
+        let (start_limit, end_limit) = (self.start_limit * length2, self.end_limit * length2);
+        if !(start_limit.is_finite() && end_limit.is_finite()) {
+            return None;
+        }
+        if Self::clear(self.turn(self.start, v), start_limit) && Self::clear(self.turn(v, self.end), end_limit) {
+            return Some(true);
+        }
+        if self.proper
+            && Self::clear(self.turn(self.end, v), end_limit)
+            && Self::clear(self.turn(v, self.start), start_limit)
+        {
+            return Some(false);
+        }
+        None
     }
 }
 

@@ -317,7 +317,7 @@ impl<'a> LocalPath<'a> {
         let start = self.toolpath.start_of(k);
         match self.arc(k, m) {
             Some(ArcConstants { radius, sector }) => {
-                if sector.contains(Xz::new(p.x - m.centre.x, p.z - m.centre.z)) {
+                if sector.contains(p) {
                     (p.distance(m.centre) - radius).abs()
                 } else {
                     p.distance(start).min(p.distance(m.end))

@@ -30,6 +30,8 @@ mod split;
 
 use std::f64::consts::{PI, TAU};
 
+use smallvec::{SmallVec, smallvec};
+
 use crate::geometry;
 use crate::toolpath::Xz;
 
@@ -46,6 +48,9 @@ pub enum Segment {
     Line { end: Xz },
     Arc { end: Xz, centre: Xz, ccw: bool },
 }
+
+/// A move's segments: most moves are written as one, or two where a backlash jump leads.
+pub type Segments = SmallVec<[Segment; 2]>;
 
 impl Segment {
     pub fn end(&self) -> Xz {
@@ -236,7 +241,7 @@ pub struct Rejected {
 /// A move re-expressed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fitted {
-    pub segments: Vec<Segment>,
+    pub segments: Segments,
     /// What wrote them: never `Auto`; a nominal line kept as one line is `Densify`'s one
     /// `G01`, and a strategy that failed is `Densify` with `rejected` set.
     pub strategy_used: Strategy,
@@ -247,7 +252,7 @@ pub struct Fitted {
 }
 
 /// The segments that write the move `m` (see [`fit_move`]).
-pub fn reexpress(m: &MovePoints<'_>, options: &FitOptions) -> Vec<Segment> {
+pub fn reexpress(m: &MovePoints<'_>, options: &FitOptions) -> Segments {
     fit_move(m, options).segments
 }
 
@@ -267,7 +272,7 @@ pub fn fit_move(m: &MovePoints<'_>, options: &FitOptions) -> Fitted {
         if options.tolerance_mm >= 0.0 && options.tolerance_mm.is_finite() { options.tolerance_mm } else { 0.0 };
     let Some(&last) = m.points.last() else {
         return Fitted {
-            segments: Vec::new(),
+            segments: Segments::new(),
             strategy_used: Strategy::Densify,
             max_deviation_mm: 0.0,
             rejected: None,
@@ -280,7 +285,7 @@ pub fn fit_move(m: &MovePoints<'_>, options: &FitOptions) -> Fitted {
             let deviation = segment_deviation(m.start, &line, m.points);
             if deviation <= tolerance {
                 return Fitted {
-                    segments: vec![line],
+                    segments: smallvec![line],
                     strategy_used: Strategy::Densify,
                     max_deviation_mm: deviation,
                     rejected: None,
@@ -320,7 +325,7 @@ struct Fitting<'a, 'p> {
 
 impl Fitting<'_, '_> {
     fn densify(&self) -> Fitted {
-        let segments = densify(self.m, self.tolerance, self.step);
+        let segments = Segments::from_vec(densify(self.m, self.tolerance, self.step));
         let path = path_between(self.m.nominal, self.m.start, self.m.points, self.tolerance);
         let max_deviation_mm = deviation_by_piece(self.m.start, &segments, &path);
         Fitted { segments, strategy_used: Strategy::Densify, max_deviation_mm, rejected: None }
@@ -329,7 +334,7 @@ impl Fitting<'_, '_> {
     fn arcs(&self) -> Fitted {
         let pieces = arcs::fit(self.m, self.tolerance);
         Fitted {
-            segments: pieces.segments,
+            segments: Segments::from_vec(pieces.segments),
             strategy_used: Strategy::Arcs,
             max_deviation_mm: pieces.max_deviation_mm,
             rejected: None,
@@ -353,8 +358,8 @@ impl Fitting<'_, '_> {
 
     /// `circles` with the pieces' last points given (`split::cut_indices`).
     fn circles_at(&self, centre: Xz, ccw: bool, ends: &[usize], strategy: Strategy) -> Result<Fitted, f64> {
-        let segments = split::circles_at(self.m, centre, ccw, ends, self.tolerance)?;
-        let max_deviation_mm = max_deviation(self.m.start, &segments, self.m.points);
+        let split::Circles { segments, deviation } = split::circles_at(self.m, centre, ccw, ends, self.tolerance)?;
+        let max_deviation_mm = deviation.unwrap_or_else(|| max_deviation(self.m.start, &segments, self.m.points));
         if max_deviation_mm <= self.tolerance {
             Ok(Fitted { segments, strategy_used: strategy, max_deviation_mm, rejected: None })
         } else {
@@ -364,7 +369,7 @@ impl Fitting<'_, '_> {
 
     fn cheapest_for_arc(&self, centre: Xz, ccw: bool) -> Fitted {
         let mut best: Option<Fitted> = None;
-        let mut tried = Vec::new();
+        let mut tried: SmallVec<[split::Ends; 3]> = SmallVec::new();
         // The angles travelled, for the splits; one circle needs none.
         let travel = std::cell::OnceCell::new();
         let travel = || travel.get_or_init(|| split::Travel::new(self.m, centre, ccw));

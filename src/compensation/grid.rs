@@ -11,7 +11,7 @@
 
 use std::f64::consts::{PI, TAU};
 
-use crate::geometry;
+use crate::geometry::{self, SweepSides};
 use crate::semantic::{CoordinateMark, Frame};
 use crate::syntax::Number;
 use crate::toolpath::Xz;
@@ -212,12 +212,15 @@ struct ArcSpan {
     ccw: bool,
     a0: f64,
     sweep: f64,
+    sides: SweepSides,
 }
 
 impl ArcSpan {
     fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> ArcSpan {
-        let sweep = geometry::sweep(start, end, centre, ccw);
-        ArcSpan { start, end, centre, radius: start.distance(centre), ccw, a0: geometry::angle(start, centre), sweep }
+        let a0 = geometry::angle(start, centre);
+        let sweep = geometry::sweep_from(a0, start, end, centre, ccw);
+        let sides = SweepSides::new(start, end, centre, ccw);
+        ArcSpan { start, end, centre, radius: start.distance(centre), ccw, a0, sweep, sides }
     }
 
     /// The point at `fraction` of the sweep.
@@ -228,13 +231,21 @@ impl ArcSpan {
 
     /// The distance from `p` to this arc.
     fn distance(&self, p: Xz) -> f64 {
-        let a = geometry::angle(p, self.centre);
-        let delta = if self.ccw { (a - self.a0).rem_euclid(TAU) } else { (self.a0 - a).rem_euclid(TAU) };
-        if delta <= self.sweep {
+        if self.inside(p) {
             (p.distance(self.centre) - self.radius).abs()
         } else {
             p.distance(self.start).min(p.distance(self.end))
         }
+    }
+
+    /// Whether `p` lies inside the sweep: by the cross products where they tell, by the
+    /// angle where it is near an end.
+    fn inside(&self, p: Xz) -> bool {
+        self.sides.inside(p).unwrap_or_else(|| {
+            let a = geometry::angle(p, self.centre);
+            let delta = if self.ccw { (a - self.a0).rem_euclid(TAU) } else { (self.a0 - a).rem_euclid(TAU) };
+            delta <= self.sweep
+        })
     }
 
     /// The largest distance of a point of `other` from this arc. The distance of a point of

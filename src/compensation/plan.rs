@@ -21,11 +21,13 @@
 
 use std::ops::Range;
 
+use smallvec::{SmallVec, smallvec};
+
 use crate::geometry;
 use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
-use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, distance_to_chord};
+use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, Segments, distance_to_chord};
 use super::grid::{ArcWords, Grid};
 use super::sampling::PathSample;
 use super::written;
@@ -37,7 +39,7 @@ pub struct MovePlan {
     pub start: Xz,
     /// The segments to write, in the contour frame; empty for a move that is not written
     /// (a dwell, a corner the control makes under `G41`/`G42`).
-    pub segments: Vec<Segment>,
+    pub segments: Segments,
     /// Whether the segments differ from the programmed move.
     pub changed: bool,
     /// The backlash jumps written as their own moves.
@@ -48,7 +50,7 @@ pub struct MovePlan {
     /// For each segment, the words `settle_arcs` chose for it (`ArcWords::Line` for a
     /// line), so that rounding and rewriting do not choose them again; empty for a plan
     /// that was not settled (the move as programmed).
-    pub words: Vec<ArcWords>,
+    pub words: SmallVec<[ArcWords; 2]>,
 }
 
 impl MovePlan {
@@ -68,7 +70,7 @@ pub struct PlanOptions {
 
 /// The segments for one move's points, by the strategy asked for (`fit::reexpress`); this
 /// is the one place that chooses.
-pub fn choose_segments(points: &MovePoints<'_>, options: &FitOptions) -> Vec<Segment> {
+pub fn choose_segments(points: &MovePoints<'_>, options: &FitOptions) -> Segments {
     fit::reexpress(points, options)
 }
 
@@ -113,32 +115,39 @@ pub fn plan_range(
         let index = first + index;
         let contour_start = written::contour_start(toolpath, index);
         let range = input.ranges.get(index).cloned().unwrap_or(0..0);
-        let plan = if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
-            MovePlan { start: at, segments: Vec::new(), changed: false, jumps: 0, lead_in: false, words: Vec::new() }
-        } else if range.is_empty() || !input.writable.get(index).copied().unwrap_or(false) {
-            nominal_plan(m, at, input.tools)
-        } else {
-            // One buffer for every move's points: most moves have one or a few.
-            points.clear();
-            points.extend(
-                range.clone().map(|j| {
-                    written::written_point(m, contour_start, &input.samples[j], input.commanded[j], input.tools)
-                }),
-            );
-            let switches = index > 0
-                && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
-                    != Some(m.compensation);
-            let piece = Piece { m, at, points: &points, range, grid: grid_of(index) };
-            if m.motion == Motion::Rapid || m.threading {
-                one_move(&piece, input.tools)
-            } else if switches {
-                switching_move(input, &piece, options.play)
+        let grid = grid_of(index);
+        let plan =
+            if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
+                MovePlan {
+                    start: at,
+                    segments: Segments::new(),
+                    changed: false,
+                    jumps: 0,
+                    lead_in: false,
+                    words: SmallVec::new(),
+                }
+            } else if range.is_empty() || !input.writable.get(index).copied().unwrap_or(false) {
+                nominal_plan(m, at, input.tools)
             } else {
-                plan_one(input, &piece, options)
-            }
-        };
+                // One buffer for every move's points: most moves have one or a few.
+                points.clear();
+                points.extend(range.clone().map(|j| {
+                    written::written_point(m, contour_start, &input.samples[j], input.commanded[j], input.tools)
+                }));
+                let switches = index > 0
+                    && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
+                        != Some(m.compensation);
+                let piece = Piece { m, at, points: &points, range, grid };
+                if m.motion == Motion::Rapid || m.threading {
+                    one_move(&piece, input.tools)
+                } else if switches {
+                    switching_move(input, &piece, options.play)
+                } else {
+                    plan_one(input, &piece, options)
+                }
+            };
         let plan = if plan.changed {
-            settle_arcs(plan, &grid_of(index), input.radius.get(index).copied().unwrap_or(false))
+            settle_arcs(plan, &grid, input.radius.get(index).copied().unwrap_or(false))
         } else {
             plan
         };
@@ -163,8 +172,8 @@ fn settle_arcs(mut plan: MovePlan, grid: &Grid, prefer_radius: bool) -> MovePlan
         // Nothing to choose: lines have no words to keep.
         return plan;
     }
-    let mut segments = Vec::with_capacity(plan.segments.len());
-    let mut words = Vec::with_capacity(plan.segments.len());
+    let mut segments = Segments::new();
+    let mut words = SmallVec::new();
     let mut from = plan.start;
     for &segment in &plan.segments {
         settle(grid, prefer_radius, from, segment, MAX_HALVINGS, &mut segments, &mut words);
@@ -184,8 +193,8 @@ fn settle(
     from: Xz,
     segment: Segment,
     halvings: u32,
-    out: &mut Vec<Segment>,
-    words_out: &mut Vec<ArcWords>,
+    out: &mut Segments,
+    words_out: &mut SmallVec<[ArcWords; 2]>,
 ) {
     let Segment::Arc { end, centre, ccw } = segment else {
         out.push(segment);
@@ -224,11 +233,11 @@ pub(crate) fn nominal_segment(m: &Move, tools: &ToolTable) -> Segment {
 fn nominal_plan(m: &Move, start: Xz, tools: &ToolTable) -> MovePlan {
     MovePlan {
         start,
-        segments: vec![nominal_segment(m, tools)],
+        segments: smallvec![nominal_segment(m, tools)],
         changed: false,
         jumps: 0,
         lead_in: false,
-        words: Vec::new(),
+        words: SmallVec::new(),
     }
 }
 
@@ -248,11 +257,11 @@ fn one_move(piece: &Piece<'_>, tools: &ToolTable) -> MovePlan {
     match points.last() {
         Some(&last) if grid.point(last) != grid.point(m.contour) => MovePlan {
             start: *at,
-            segments: vec![Segment::Line { end: last }],
+            segments: smallvec![Segment::Line { end: last }],
             changed: true,
             jumps: 0,
             lead_in: false,
-            words: Vec::new(),
+            words: SmallVec::new(),
         },
         _ => nominal_plan(m, *at, tools),
     }
@@ -269,11 +278,11 @@ fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>, play: Xz) -> MovePla
     let taken_up = Xz::new(at.x + jump.x, at.z + jump.z);
     MovePlan {
         start: at,
-        segments: vec![Segment::Line { end: taken_up }, Segment::Line { end: last }],
+        segments: smallvec![Segment::Line { end: taken_up }, Segment::Line { end: last }],
         changed: true,
         jumps: 1,
         lead_in: true,
-        words: Vec::new(),
+        words: SmallVec::new(),
     }
 }
 
@@ -292,7 +301,7 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
     } else {
         NominalShape::Line
     };
-    let mut segments = Vec::new();
+    let mut segments = Segments::new();
     let mut from = at;
     let mut piece = 0;
     for &(j, jump) in &jumps {
@@ -309,7 +318,7 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
     if piece < points.len() {
         segments.extend(choose_segments(&MovePoints { start: from, points: &points[piece..], nominal }, &options.fit));
     }
-    MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false, words: Vec::new() }
+    MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false, words: SmallVec::new() }
 }
 
 /// Whether the programmed element (an arc about the contour's `centre`), started from
@@ -326,11 +335,11 @@ fn nominal_holds(m: &Move, centre: Xz, at: Xz, points: &[Xz], tolerance: f64) ->
 
 /// The samples of `range` at which an axis' correction jumps by more than half its play,
 /// with the jump (only the jumping axes).
-fn jumps(input: &PlanInput<'_>, range: Range<usize>, play: Xz) -> Vec<(usize, Xz)> {
+fn jumps(input: &PlanInput<'_>, range: Range<usize>, play: Xz) -> SmallVec<[(usize, Xz); 2]> {
     if play.x <= 0.0 && play.z <= 0.0 {
-        return Vec::new();
+        return SmallVec::new();
     }
-    let mut out = Vec::new();
+    let mut out = SmallVec::new();
     for j in range {
         let now = written::offset(&input.samples[j], input.commanded[j]);
         let before = match j.checked_sub(1) {

@@ -95,7 +95,7 @@ impl Gauge {
             Gauge::Arc { start, end, centre, radius, sector } => {
                 let offset = Xz::new(p.x - centre.x, p.z - centre.z);
                 let length = p.distance(centre);
-                if length > 0.0 && sector.contains(offset) {
+                if length > 0.0 && sector.contains(p) {
                     let scale = radius / length;
                     Xz::new(centre.x + offset.x * scale, centre.z + offset.z * scale)
                 } else if p.distance(start) <= p.distance(end) {

@@ -60,41 +60,83 @@ mod sector {
     use proptest::prelude::*;
 
     proptest! {
-        /// `Sector::contains` decides as `angle_within` does, for every point not within
-        /// a millionth of a radian of the arc's end rays (where either answer measures the
-        /// same distance, and the two may differ by the last bits of an angle).
+        /// `Sector::contains` decides as `angle_within` does, points next to the end rays
+        /// included (there it asks the angles).
         #[test]
         fn decides_as_angle_within(
             a0 in -4.0f64..4.0, sweep_angle in 0.001f64..6.2, radius in 0.01f64..500.0,
-            a in -4.0f64..4.0, distance in 0.0f64..3.0, ccw: bool,
+            a in -4.0f64..4.0, distance in 0.0f64..3.0, ccw: bool, near_end: bool,
             cx in -200.0f64..200.0, cz in -200.0f64..200.0,
         ) {
             let centre = Xz::new(cx, cz);
             let a1 = if ccw { a0 + sweep_angle } else { a0 - sweep_angle };
             let (start, end) = (on_circle(centre, radius, a0), on_circle(centre, radius, a1));
+            let a = if near_end { a1 + a * 1e-9 } else { a };
             let point = on_circle(centre, radius * distance, a);
-            let near = |ray: f64| (a - ray).rem_euclid(TAU).min((ray - a).rem_euclid(TAU)) < 1e-6;
-            prop_assume!(!near(a0) && !near(a1) && distance > 1e-9);
+            prop_assume!(distance > 1e-9);
             let sector = Sector::new(start, end, centre, ccw);
-            let offset = Xz::new(point.x - centre.x, point.z - centre.z);
-            prop_assert_eq!(sector.contains(offset), angle_within(point, start, end, centre, ccw));
+            prop_assert_eq!(sector.contains(point), angle_within(point, start, end, centre, ccw));
         }
     }
 
     #[test]
     fn a_full_circle_contains_every_direction_and_a_half_circle_its_end_rays() {
         let centre = Xz::new(1.0, 2.0);
-        let start = Xz::new(1.0, 7.0);
+        let at = |x: f64, z: f64| Xz::new(centre.x + x, centre.z + z);
+        let start = at(0.0, 5.0);
         let full = Sector::new(start, start, centre, true);
         for k in 0..16 {
             let a = f64::from(k) * TAU / 16.0;
-            assert!(full.contains(Xz::new(a.sin(), a.cos())));
+            assert!(full.contains(at(a.sin(), a.cos())));
         }
         // G03 from +Z to −Z about the centre sweeps through +X.
-        let half = Sector::new(start, Xz::new(1.0, -3.0), centre, true);
-        assert!(half.contains(Xz::new(0.0, 1.0)) && half.contains(Xz::new(0.0, -1.0)));
-        assert!(half.contains(Xz::new(1.0, 0.0)) && !half.contains(Xz::new(-1.0, 0.0)));
-        let half_cw = Sector::new(start, Xz::new(1.0, -3.0), centre, false);
-        assert!(half_cw.contains(Xz::new(-1.0, 0.0)) && !half_cw.contains(Xz::new(1.0, 0.0)));
+        let half = Sector::new(start, at(0.0, -5.0), centre, true);
+        assert!(half.contains(at(0.0, 1.0)) && half.contains(at(0.0, -1.0)));
+        assert!(half.contains(at(1.0, 0.0)) && !half.contains(at(-1.0, 0.0)));
+        let half_cw = Sector::new(start, at(0.0, -5.0), centre, false);
+        assert!(half_cw.contains(at(-1.0, 0.0)) && !half_cw.contains(at(1.0, 0.0)));
+    }
+}
+
+/// Whether `p` lies inside the sweep as the arc gauges measure it, by the angles.
+fn inside_by_angles(p: Xz, start: Xz, end: Xz, centre: Xz, ccw: bool) -> bool {
+    let (a0, a) = (angle(start, centre), angle(p, centre));
+    let delta = if ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+    delta <= sweep(start, end, centre, ccw)
+}
+
+#[test]
+fn sweep_sides_place_points_as_the_angles_do_and_leave_the_ends_to_them() {
+    let centre = Xz::new(20.0, -30.0);
+    let on = |degrees: f64| on_circle(centre, 5.0, degrees.to_radians());
+    // A quarter from 10° to 100° counter-clockwise: 55° is inside, 200° outside; both ways
+    // round, the clockwise arc is the rest of the turn.
+    let sides = SweepSides::new(on(10.0), on(100.0), centre, true);
+    assert_eq!((sides.inside(on(55.0)), sides.inside(on(200.0))), (Some(true), Some(false)));
+    let sides = SweepSides::new(on(10.0), on(100.0), centre, false);
+    assert_eq!((sides.inside(on(55.0)), sides.inside(on(200.0))), (Some(false), Some(true)));
+    // Within a nanoradian of an end, only the angles can tell.
+    let sides = SweepSides::new(on(10.0), on(100.0), centre, true);
+    assert_eq!(sides.inside(on(10.0 + 1e-9_f64.to_degrees())), None);
+    // An arc whose ends meet may be a full circle (`sweep`): nothing is outside it.
+    let sides = SweepSides::new(on(10.0), on(10.0), centre, true);
+    assert_eq!(sides.inside(on(200.0)), None);
+}
+
+proptest::proptest! {
+    #[test]
+    fn sweep_sides_agree_with_the_angles_wherever_they_answer(
+        from in -4.0f64..4.0, span in -7.0f64..7.0, at in -4.0f64..4.0, off in -0.01f64..0.01,
+        near in proptest::bool::ANY, ccw in proptest::bool::ANY,
+    ) {
+        let centre = Xz::new(31.7, -12.3);
+        let start = on_circle(centre, 7.5, from);
+        let end = on_circle(centre, 7.5 + off, from + span);
+        // Points anywhere, and points within a few micro-radians of the ends.
+        let a = if near { from + span + at * 1e-6 } else { at };
+        let p = on_circle(centre, 7.5 - off, a);
+        if let Some(inside) = SweepSides::new(start, end, centre, ccw).inside(p) {
+            proptest::prop_assert_eq!(inside, inside_by_angles(p, start, end, centre, ccw));
+        }
     }
 }

@@ -17,7 +17,7 @@
 use std::f64::consts::TAU;
 
 use super::{Segment, distance_to_chord};
-use crate::geometry;
+use crate::geometry::{self, SweepSides};
 use crate::toolpath::Xz;
 
 /// The distance from `p` to `segment`, drawn from `from`.
@@ -72,19 +72,28 @@ struct ArcGauge {
     r1: f64,
     a0: f64,
     total: f64,
+    sides: SweepSides,
+    /// The end radii are so close that the radius between them rounds to `r0` wherever it
+    /// is taken (`r0 + (r1 − r0)·t` for t in [0, 1] lies between `r0` and `r0 + (r1 − r0)`,
+    /// both rounded, and those are equal): a point inside the sweep then needs no angle.
+    one_radius: bool,
 }
 
 impl ArcGauge {
     fn new(from: Xz, end: Xz, centre: Xz, ccw: bool) -> ArcGauge {
+        let (r0, r1) = (from.distance(centre), end.distance(centre));
+        let a0 = geometry::angle(from, centre);
         ArcGauge {
             from,
             end,
             centre,
             ccw,
-            r0: from.distance(centre),
-            r1: end.distance(centre),
-            a0: geometry::angle(from, centre),
-            total: geometry::sweep(from, end, centre, ccw),
+            r0,
+            r1,
+            a0,
+            total: geometry::sweep_from(a0, from, end, centre, ccw),
+            sides: SweepSides::new(from, end, centre, ccw),
+            one_radius: r0 + (r1 - r0) == r0,
         }
     }
 
@@ -92,6 +101,11 @@ impl ArcGauge {
         let to_ends = p.distance(self.from).min(p.distance(self.end));
         if self.r0 <= 0.0 || self.r1 <= 0.0 {
             return to_ends;
+        }
+        match self.sides.inside(p) {
+            Some(false) => return to_ends,
+            Some(true) if self.one_radius => return (p.distance(self.centre) - self.r0).abs().min(to_ends),
+            _ => {}
         }
         let a = geometry::angle(p, self.centre);
         let swept = if self.ccw { (a - self.a0).rem_euclid(TAU) } else { (self.a0 - a).rem_euclid(TAU) };

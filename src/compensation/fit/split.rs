@@ -17,9 +17,11 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
+use smallvec::SmallVec;
+
 use super::deviation::{self, Between};
 use super::pinned;
-use super::{MovePoints, NominalShape, Segment};
+use super::{MovePoints, NominalShape, Segment, Segments};
 use crate::geometry;
 use crate::toolpath::Xz;
 
@@ -33,6 +35,15 @@ pub const SEMICIRCLE_CUTS: [f64; 2] = [0.0, PI];
 /// Where `quadrant` cuts: every quarter turn, the reversals of both axes.
 pub const QUADRANT_CUTS: [f64; 4] = [0.0, FRAC_PI_2, PI, -FRAC_PI_2];
 
+/// The segments `circles_at` writes.
+pub struct Circles {
+    pub segments: Segments,
+    /// When they are one arc: the largest distance of a point from it, which the fit has
+    /// measured already and which is all `max_deviation` would measure of a path of one
+    /// segment.
+    pub deviation: Option<f64>,
+}
+
 /// The fitted pieces, ending at the points `ends` (`cut_indices`), or the largest deviation
 /// of the best attempt at the piece that failed.
 pub fn circles_at(
@@ -41,7 +52,7 @@ pub fn circles_at(
     ccw: bool,
     ends: &[usize],
     tolerance_mm: f64,
-) -> Result<Vec<Segment>, f64> {
+) -> Result<Circles, f64> {
     // The programmed radius, for the bulge between points (see `arcs.rs`).
     let radius = match m.nominal {
         NominalShape::Arc { radius, .. } => radius,
@@ -53,21 +64,32 @@ pub fn circles_at(
         curvature: if ccw { 1.0 } else { -1.0 } / radius,
         between: Between::Bulge { centre, radius },
     };
-    let mut segments = Vec::new();
+    let mut segments = Segments::new();
+    let mut deviation = None;
     let mut from = m.start;
     let mut first = 0;
     for &last in ends {
         let points = m.points.get(first..=last).ok_or(f64::INFINITY)?;
-        let written = context.fit(from, points, tolerance_mm)?;
-        segments.extend(written);
+        match context.fit(from, points, tolerance_mm)? {
+            Fit::Arc(arc) => {
+                segments.push(arc.segment);
+                deviation = Some(arc.points);
+            }
+            Fit::Stepped { step, arc } => segments.extend([Segment::Line { end: step }, arc]),
+        }
         from = segments.last().map_or(from, Segment::end);
         first = last + 1;
     }
-    Ok(segments)
+    let deviation = deviation.filter(|_| segments.len() == 1);
+    Ok(Circles { segments, deviation })
 }
 
+/// The index of the last point of each piece (`cut_indices`): an arc has at most five pieces
+/// but where it turns more than a full turn.
+pub type Ends = SmallVec<[usize; 5]>;
+
 /// The index of the last point of each piece, the move's last point included.
-pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> Vec<usize> {
+pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> Ends {
     if cuts.is_empty() {
         return one_piece(m);
     }
@@ -76,7 +98,7 @@ pub fn cut_indices(m: &MovePoints<'_>, centre: Xz, ccw: bool, cuts: &[f64]) -> V
 
 /// `cut_indices` with no cuts: the move's last point ends its one piece, and no angle needs
 /// measuring.
-pub fn one_piece(m: &MovePoints<'_>) -> Vec<usize> {
+pub fn one_piece(m: &MovePoints<'_>) -> Ends {
     m.points.len().checked_sub(1).into_iter().collect()
 }
 
@@ -113,14 +135,14 @@ impl Travel {
     }
 
     /// `cut_indices` of the move.
-    pub fn cut_indices(&self, cuts: &[f64]) -> Vec<usize> {
+    pub fn cut_indices(&self, cuts: &[f64]) -> Ends {
         let Travel { sense, a0, ref travel } = *self;
         let total = travel.last().copied().unwrap_or(0.0);
         // A cut within half a sample of either end of the move is no cut: compensation moves
         // the points off the nominal angles by a little, and a move that starts or ends on a cut
         // would otherwise grow a piece of one point.
         let margin = total.abs() / (2.0 * travel.len().max(1) as f64);
-        let mut crossings: Vec<f64> = Vec::new();
+        let mut crossings: SmallVec<[f64; 5]> = SmallVec::new();
         for &cut in cuts {
             let mut at = (sense * (cut - a0)).rem_euclid(TAU);
             while at < total - margin {
@@ -131,7 +153,7 @@ impl Travel {
             }
         }
         crossings.sort_by(f64::total_cmp);
-        let mut ends = Vec::new();
+        let mut ends = Ends::new();
         for crossing in crossings {
             // The last point at or before the crossing ends a piece, unless it ends the move.
             let count_before = travel.partition_point(|&t| t <= crossing);
@@ -149,6 +171,26 @@ impl Travel {
     }
 }
 
+/// A circle fitted to a piece.
+#[derive(Clone, Copy)]
+struct Arc {
+    segment: Segment,
+    /// The largest distance of a point from it (`segment_deviation`).
+    points: f64,
+    /// That, or the chord test's largest gap where that is larger: what the piece is held to.
+    worst: f64,
+}
+
+/// How a piece is written.
+enum Fit {
+    Arc(Arc),
+    /// A straight step to the piece's first point, and the circle from there.
+    Stepped {
+        step: Xz,
+        arc: Segment,
+    },
+}
+
 struct Piece {
     ccw: bool,
     /// The tolerance the free circle must meet to be preferred over the pinned one.
@@ -161,15 +203,13 @@ struct Piece {
 impl Piece {
     /// One circle from `from` over `points`, or a step to the first point and the circle
     /// from there; `Err` with the smaller deviation of the two when neither passes.
-    fn fit(&self, from: Xz, points: &[Xz], tolerance: f64) -> Result<Vec<Segment>, f64> {
+    fn fit(&self, from: Xz, points: &[Xz], tolerance: f64) -> Result<Fit, f64> {
         let direct = self.arc(from, points);
-        if let Some((segment, deviation)) = direct
-            && deviation <= tolerance
-        {
-            return Ok(vec![segment]);
+        if let Some(arc) = direct.filter(|arc| arc.worst <= tolerance) {
+            return Ok(Fit::Arc(arc));
         }
         let stepped = match points {
-            [step, rest @ ..] if !rest.is_empty() => self.arc(*step, rest).map(|(s, d)| (*step, s, d)),
+            [step, rest @ ..] if !rest.is_empty() => self.arc(*step, rest).map(|arc| (*step, arc.segment, arc.worst)),
             _ => None,
         };
         // The step is held to the path it replaces: along a nominal arc that is the arc's
@@ -181,9 +221,10 @@ impl Piece {
         if let Some((step, segment, deviation)) = stepped
             && deviation <= tolerance
         {
-            return Ok(vec![Segment::Line { end: step }, segment]);
+            return Ok(Fit::Stepped { step, arc: segment });
         }
-        let best = [direct.map(|d| d.1), stepped.map(|s| s.2)].into_iter().flatten().fold(f64::INFINITY, f64::min);
+        let best =
+            [direct.map(|arc| arc.worst), stepped.map(|s| s.2)].into_iter().flatten().fold(f64::INFINITY, f64::min);
         Err(best)
     }
 
@@ -192,25 +233,26 @@ impl Piece {
     /// centre moved onto the perpendicular bisector of the exact ends, when that stays within
     /// the tolerance; else the circle pinned to both ends by a least-squares fit of the
     /// points between.
-    fn arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+    fn arc(&self, from: Xz, points: &[Xz]) -> Option<Arc> {
         let Some(free) = self.free_arc(from, points) else { return self.pinned_arc(from, points) };
         // A free circle within the tolerance is taken whatever the pinned one gives, so the
         // pinned one is fitted only when it could be taken.
-        if free.1 <= self.tolerance {
+        if free.worst <= self.tolerance {
             return Some(free);
         }
         match self.pinned_arc(from, points) {
-            Some(p) if p.1 < free.1 => Some(p),
+            Some(p) if p.worst < free.worst => Some(p),
             _ => Some(free),
         }
     }
 
-    fn free_arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+    fn free_arc(&self, from: Xz, points: &[Xz]) -> Option<Arc> {
         let (&end, _) = points.split_last()?;
         if from.distance(end) <= 1e-9 || points.len() < 2 {
             return None;
         }
-        let mut all = Vec::with_capacity(points.len() + 1);
+        // Most pieces have a few points: room for them without a heap allocation.
+        let mut all: SmallVec<[Xz; 16]> = SmallVec::with_capacity(points.len() + 1);
         all.push(from);
         all.extend_from_slice(points);
         let circle = super::circle::fit(&all)?;
@@ -223,12 +265,13 @@ impl Piece {
         let centre = Xz::new(circle.centre.x - along * chord.x, circle.centre.z - along * chord.z);
         let segment = Segment::Arc { end, centre, ccw: self.ccw };
         // The same sense as programmed, and a sweep the nominal arc could have.
-        let mut worst = deviation::segment_deviation(from, &segment, points);
-        worst = worst.max(deviation::chord_deviation(from, points, centre, from.distance(centre), self.between));
-        worst.is_finite().then_some((segment, worst))
+        let deviation = deviation::segment_deviation(from, &segment, points);
+        let worst =
+            deviation.max(deviation::chord_deviation(from, points, centre, from.distance(centre), self.between));
+        worst.is_finite().then_some(Arc { segment, points: deviation, worst })
     }
 
-    fn pinned_arc(&self, from: Xz, points: &[Xz]) -> Option<(Segment, f64)> {
+    fn pinned_arc(&self, from: Xz, points: &[Xz]) -> Option<Arc> {
         let (&end, interior) = points.split_last()?;
         let segment = if from.distance(end) <= 1e-9 {
             if interior.is_empty() {
@@ -244,11 +287,12 @@ impl Piece {
             }
             bend.segment_to(end)
         };
-        let mut worst = deviation::segment_deviation(from, &segment, points);
+        let deviation = deviation::segment_deviation(from, &segment, points);
+        let mut worst = deviation;
         if let Segment::Arc { centre, .. } = segment {
             let chords = deviation::chord_deviation(from, points, centre, from.distance(centre), self.between);
             worst = worst.max(chords);
         }
-        Some((segment, worst))
+        Some(Arc { segment, points: deviation, worst })
     }
 }

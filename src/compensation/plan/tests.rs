@@ -55,7 +55,7 @@ fn without_errors_every_move_keeps_its_programmed_form() {
     let (lowered, plans) = plans(Vec::new());
     for (m, plan) in lowered.toolpath.moves.iter().zip(&plans) {
         assert!(!plan.changed);
-        assert_eq!(plan.segments, vec![nominal_segment(m, &ToolTable::default())]);
+        assert_eq!(plan.segments.as_slice(), [nominal_segment(m, &ToolTable::default())]);
     }
 }
 
@@ -108,7 +108,8 @@ fn an_arc_the_control_would_run_off_after_rounding_is_cut_until_each_piece_runs_
     let whole = Segment::Arc { end, centre, ccw: true };
     let words = grid.arc_words(start, end, centre, true, false);
     assert!(grid.arc_gap(start, end, centre, true, words) > grid.increment_mm(), "{words:?}");
-    let plan = MovePlan { start, segments: vec![whole], changed: true, jumps: 0, lead_in: false, words: Vec::new() };
+    let plan =
+        MovePlan { start, segments: smallvec![whole], changed: true, jumps: 0, lead_in: false, words: SmallVec::new() };
     let settled = settle_arcs(plan, &grid, false);
     assert!(settled.segments.len() >= 2, "{:?}", settled.segments);
     assert_eq!(settled.end(), end);

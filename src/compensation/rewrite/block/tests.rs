@@ -33,7 +33,8 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
     let moved = Xz::new(m.end.x + end_by.x, m.end.z + end_by.z);
     let end = crate::geometry::on_circle(centre, radius, crate::geometry::angle(moved, centre));
     let segment = Segment::Arc { end, centre, ccw: m.motion == Motion::Ccw };
-    let plan = MovePlan { start, segments: vec![segment], changed: true, jumps: 0, lead_in: false, words: Vec::new() };
+    let (segments, words) = (vec![segment].into(), Default::default());
+    let plan = MovePlan { start, segments, changed: true, jumps: 0, lead_in: false, words };
     let block = program.blocks().iter().position(|b| b.span == m.source).unwrap();
     let mark = lowered.coordinates_at(index);
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
@@ -82,8 +83,8 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
     let m = lowered.toolpath.moves[2];
     let start = lowered.toolpath.start_of(2);
     let mid = Xz::new(22.0, -13.5);
-    let segments = vec![Segment::Line { end: mid }, Segment::Line { end: m.end }];
-    let plan = MovePlan { start, segments, changed: true, jumps: 0, lead_in: false, words: Vec::new() };
+    let segments = vec![Segment::Line { end: mid }, Segment::Line { end: m.end }].into();
+    let plan = MovePlan { start, segments, changed: true, jumps: 0, lead_in: false, words: Default::default() };
     let mark = lowered.coordinates_at(2);
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
     let context = BlockContext {
