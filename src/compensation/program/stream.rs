@@ -1,7 +1,7 @@
-//! The program streamed through the compensation in pieces of moves, on three threads.
+//! The program streamed through the compensation in pieces of moves, on four threads.
 //!
 //! Each piece's samples are made, solved, planned, rounded, predicted and measured, then
-//! dropped: memory follows the moves, not the samples (a 50 MB program has 39 million
+//! dropped: memory follows the moves, not the samples (a 50 MB program has millions of
 //! samples). The stages that carry state along the path run in path order, each on its
 //! own thread, and hand each piece on to the next:
 //!
@@ -10,9 +10,14 @@
 //!    against the nominal path;
 //! 2. **plan**: plan each move (`plan_range`: where the previous written move ends carries
 //!    over);
-//! 3. **check** (the calling thread): round the plans onto the grid, predict the rounded
-//!    program, measure it, check the corrections (`safety::Check`), tally the figures and
-//!    rewrite each motion block's run (`MotionBlocks`).
+//! 3. **round**: round the plans onto the grid, predict the rounded program, measure it,
+//!    check the corrections (`safety::Check`) and tally the figures;
+//! 4. **rewrite** (the calling thread): rewrite each motion block's run (`MotionBlocks`)
+//!    and keep the plans that are read after the stream.
+//!
+//! Rounding and rewriting both read only the plans, but each is about as much work as
+//! planning, so they are stages of their own rather than one: on two cores the four keep
+//! both busy.
 //!
 //! A piece's samples start with the previous piece's last one (`lead`), which `jumps`
 //! compares the first with, so the pieces plan as the whole program would. A piece ends
@@ -114,15 +119,13 @@ pub struct Streamed<'a, 'src> {
     pub motion: MotionBlocks<'a, 'src>,
 }
 
-/// What the check stage leaves (`Streamed` but for the inverse's figures).
-struct Checked<'a, 'src> {
-    plans: Vec<MovePlan>,
+/// What the round stage leaves.
+struct Measured {
     diagnostics: Vec<Diagnostic>,
     figures: Vec<RunFigures>,
     totals: Totals,
     paths: Paths,
     needs: Vec<bool>,
-    motion: MotionBlocks<'a, 'src>,
 }
 
 /// One piece's samples and what is computed for them. `samples` and `commanded` (and
@@ -160,21 +163,24 @@ impl Piece {
     }
 }
 
-/// Stream the whole program (see the module documentation); the check stage rewrites the
-/// motion blocks into `motion`.
-pub fn run<'a, 'src>(context: &Context<'src>, motion: MotionBlocks<'a, 'src>) -> Streamed<'a, 'src> {
+/// Stream the whole program (see the module documentation); the rewrite stage rewrites
+/// the motion blocks into `motion`.
+pub fn run<'a, 'src>(context: &Context<'src>, mut motion: MotionBlocks<'a, 'src>) -> Streamed<'a, 'src> {
     let (to_plan, planning) = sync_channel::<Piece>(QUEUE);
-    let (to_check, checking) = sync_channel::<Piece>(QUEUE);
-    // Checked pieces go back to be filled again.
-    let (to_reuse, reusable) = sync_channel::<Piece>(QUEUE * 2 + 2);
+    let (to_round, rounding) = sync_channel::<Piece>(QUEUE);
+    let (to_rewrite, rewriting) = sync_channel::<Piece>(QUEUE);
+    // Rewritten pieces go back to be filled again.
+    let (to_reuse, reusable) = sync_channel::<Piece>(QUEUE * 3 + 2);
     std::thread::scope(|scope| {
         let solver = scope.spawn(move || solve(context, &to_plan, &reusable));
-        let planner = scope.spawn(move || plan(context, &planning, &to_check));
-        let Checked { plans, diagnostics, figures, mut totals, paths, needs, motion } =
-            check(context, motion, &checking, &to_reuse);
-        // Neither thread can fail on any input; a panic in one is a bug, and is passed on.
+        let planner = scope.spawn(move || plan(context, &planning, &to_round));
+        let rounder = scope.spawn(move || round(context, &rounding, &to_rewrite));
+        let plans = rewrite(context, &mut motion, &rewriting, &to_reuse);
+        // No thread can fail on any input; a panic in one is a bug, and is passed on.
         let (iterations, residual) = solver.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
         planner.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        let Measured { diagnostics, figures, mut totals, paths, needs } =
+            rounder.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
         totals.inverse_iterations = iterations;
         totals.inverse_residual_mm = residual;
         Streamed { plans, diagnostics, figures, totals, paths, needs, motion }
@@ -235,7 +241,7 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
 }
 
 /// Stage 2: plan the moves.
-fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_check: &SyncSender<Piece>) {
+fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_round: &SyncSender<Piece>) {
     let toolpath = context.toolpath;
     let mut ranges = vec![0..0; toolpath.moves.len()];
     let mut at = toolpath.start;
@@ -245,25 +251,19 @@ fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_check: &SyncSender
         let input = context.plan_input(&piece.samples, &piece.commanded, &ranges);
         at = plan_range(&input, piece.moves.clone(), at, |k| context.grid(k), &context.plan_options, &mut plans);
         piece.plans = plans;
-        if to_check.send(piece).is_err() {
+        if to_round.send(piece).is_err() {
             break;
         }
     }
 }
 
-/// Stage 3: round, predict as rounded, measure, check, tally, rewrite.
-fn check<'a, 'src>(
-    context: &Context<'src>,
-    motion: MotionBlocks<'a, 'src>,
-    checking: &Receiver<Piece>,
-    to_reuse: &SyncSender<Piece>,
-) -> Checked<'a, 'src> {
+/// Stage 3: round, predict as rounded, measure, check, tally.
+fn round(context: &Context<'_>, rounding: &Receiver<Piece>, to_rewrite: &SyncSender<Piece>) -> Measured {
     let Context { toolpath, model, options, .. } = *context;
     let count = toolpath.moves.len();
     let mut as_rounded = Predictor::new(toolpath.start, model);
     let mut safety = safety::Check::new(options.max_shift_mm, context.limits);
-    let mut out = Checked {
-        plans: Vec::with_capacity(count),
+    let mut out = Measured {
         diagnostics: Vec::new(),
         // Each run's figures are read only by the per-block report.
         figures: if options.block_reports {
@@ -274,14 +274,11 @@ fn check<'a, 'src>(
         totals: Totals::default(),
         paths: Paths::default(),
         needs: vec![false; count],
-        motion,
     };
     let mut ranges = vec![0..0; count];
     let mut run = 0;
     let mut trail = Trail::default();
-    let mut rewritten = 0;
-    let read_after = cycle_moves(context);
-    while let Ok(mut piece) = checking.recv() {
+    while let Ok(mut piece) = rounding.recv() {
         fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
         piece.rounded.extend(piece.samples.iter().map(|s| s.nominal));
         let grid = |k| context.grid(k);
@@ -298,19 +295,38 @@ fn check<'a, 'src>(
             out.paths.uncompensated.extend_from_slice(&piece.uncompensated);
             out.paths.compensated.extend_from_slice(&piece.after);
         }
+        if to_rewrite.send(piece).is_err() {
+            break;
+        }
+    }
+    out.diagnostics = safety.finish();
+    out
+}
+
+/// Stage 4: rewrite the motion blocks of each piece into `motion`; the plans read after
+/// the stream (`keep_plans`), one per move.
+fn rewrite(
+    context: &Context<'_>,
+    motion: &mut MotionBlocks<'_, '_>,
+    rewriting: &Receiver<Piece>,
+    to_reuse: &SyncSender<Piece>,
+) -> Vec<MovePlan> {
+    let mut plans = Vec::with_capacity(context.toolpath.moves.len());
+    let mut rewritten = 0;
+    let read_after = cycle_moves(context);
+    while let Ok(mut piece) = rewriting.recv() {
         // Every motion block's run that ends in this piece lies in it (`pieces`).
         while let Some(r) = context.runs.get(rewritten).filter(|r| r.moves.end <= piece.moves.end) {
             let first = r.moves.start.max(piece.moves.start) - piece.moves.start;
             let last = r.moves.end - piece.moves.start;
-            out.motion.add(r, piece.plans.get(first..last).unwrap_or_default());
+            motion.add(r, piece.plans.get(first..last).unwrap_or_default());
             rewritten += 1;
         }
-        keep_plans(&mut piece.plans, piece.moves.start, read_after.as_deref(), &mut out.plans);
+        keep_plans(&mut piece.plans, piece.moves.start, read_after.as_deref(), &mut plans);
         // The solver may have finished: then the piece is dropped.
         let _ = to_reuse.try_send(piece);
     }
-    out.diagnostics = safety.finish();
-    out
+    plans
 }
 
 /// Move a piece's plans into `kept` (one per move), whole where something reads them after
@@ -358,7 +374,7 @@ struct Trail {
 /// whose correction exceeds the tolerance. Each sample stands for the path from the sample
 /// before it (`PathSample::covers_mm`, in the thesis' steps): the figures are along the
 /// path, the same however closely the model let it be sampled.
-fn measure(context: &Context<'_>, piece: &Piece, out: &mut Checked<'_, '_>, run: &mut usize, trail: &mut Trail) {
+fn measure(context: &Context<'_>, piece: &Piece, out: &mut Measured, run: &mut usize, trail: &mut Trail) {
     let tolerance = context.options.fit.tolerance_mm;
     let fresh = piece.fresh();
     let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
