@@ -86,7 +86,16 @@ impl Number {
 
     /// The value as `f64`, for geometry; the exact value stays in the mantissa.
     pub fn to_f64(self) -> f64 {
-        self.mantissa as f64 / 10f64.powi(self.scale as i32)
+        // Up to 10^22 the powers of ten are exact in f64, and `powi` (which multiplies exact
+        // powers whose products stay exact) gives those same values: the table only saves
+        // the call, which every coordinate word pays.
+        const POWERS_OF_TEN: [f64; 23] = [
+            1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18,
+            1e19, 1e20, 1e21, 1e22,
+        ];
+        let scale = self.scale;
+        let divisor = POWERS_OF_TEN.get(scale as usize).copied().unwrap_or_else(|| 10f64.powi(scale as i32));
+        self.mantissa as f64 / divisor
     }
 
     /// Significant digits as the address limits count them: the integer part without

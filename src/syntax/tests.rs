@@ -97,3 +97,15 @@ fn the_second_run_starts_after_a_line_feed_and_not_on_a_continuation_line() {
     assert_eq!(split_point(b"G00 X1.\nG01 Z2.\n$ X3.\n$ Z4."), None, "only continuation lines after the middle");
     assert_eq!(split_point(b"G00 X1.\nG01 Z2.\n"), None, "nothing after the last line feed");
 }
+
+#[test]
+fn a_number_reads_as_the_same_f64_for_every_scale() {
+    // The table of exact powers of ten in `to_f64` must give what `powi` gives.
+    for scale in 0..=u8::MAX {
+        for mantissa in [1, -7, 123_456_789, i64::MAX, i64::MIN] {
+            let number = Number::new(mantissa, scale, true);
+            let expected = mantissa as f64 / 10f64.powi(scale as i32);
+            assert_eq!(number.to_f64().to_bits(), expected.to_bits(), "{mantissa} e-{scale}");
+        }
+    }
+}
