@@ -215,7 +215,17 @@ impl Sector {
 
     /// Whether `point` lies in the sector, as [`angle_within`] decides it.
     pub fn contains(&self, point: Xz) -> bool {
-        self.sides.inside(point).unwrap_or_else(|| {
+        // Away from half and whole turns the sweep's size is certain, and the cross products
+        // then answer for points all round the circle.
+        const MARGIN: f64 = 1e-6;
+        let answer = if self.total < PI - MARGIN {
+            self.sides.inside_given_half(point, true)
+        } else if self.total > PI + MARGIN && self.total < TAU - MARGIN {
+            self.sides.inside_given_half(point, false)
+        } else {
+            self.sides.inside(point)
+        };
+        answer.unwrap_or_else(|| {
             let (a0, a) = (angle(self.start, self.centre), angle(point, self.centre));
             let delta = if self.ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
             delta <= self.total + 1e-12
@@ -290,6 +300,39 @@ impl SweepSides {
     /// `Some(true)` where `p` lies clearly inside the sweep, `Some(false)` clearly outside,
     /// `None` where only the angles can tell (or the arc has no extent to tell it by).
     pub fn inside(&self, p: Xz) -> Option<bool> {
+        let (from_start, to_end) = self.turns(p)?;
+        if from_start.clear_ahead() && to_end.clear_ahead() {
+            return Some(true);
+        }
+        if self.proper && to_end.clear_behind() && from_start.clear_behind() {
+            return Some(false);
+        }
+        None
+    }
+
+    /// [`SweepSides::inside`] for a sweep known to be less than half a turn (`Some(true)`)
+    /// or more (`Some(false)`), which also answers for the points more than half a turn
+    /// from an end: with less than half a turn, a point clearly behind the start or clearly
+    /// past the end is outside; with more, a point clearly ahead of the start or clearly
+    /// short of the end is inside.
+    pub fn inside_given_half(&self, p: Xz, less_than_half: bool) -> Option<bool> {
+        let (from_start, to_end) = self.turns(p)?;
+        let both_ahead = from_start.clear_ahead() && to_end.clear_ahead();
+        let both_behind = from_start.clear_behind() && to_end.clear_behind();
+        let one_ahead = from_start.clear_ahead() || to_end.clear_ahead();
+        let one_behind = from_start.clear_behind() || to_end.clear_behind();
+        match less_than_half {
+            true if both_ahead => Some(true),
+            true if one_behind => Some(false),
+            false if both_behind => Some(false),
+            false if one_ahead => Some(true),
+            _ => None,
+        }
+    }
+
+    /// The turns from the start to `p` and from `p` to the end, with their limits; `None`
+    /// where they cannot be told (a point at the centre, an arc without extent, overflow).
+    fn turns(&self, p: Xz) -> Option<(Turn, Turn)> {
         let v = Xz::new(p.x - self.centre.x, p.z - self.centre.z);
         let length2 = v.x * v.x + v.z * v.z;
         if !(length2 > 0.0 && length2.is_finite() && self.start_limit > 0.0 && self.end_limit > 0.0) {
@@ -299,16 +342,29 @@ impl SweepSides {
         if !(start_limit.is_finite() && end_limit.is_finite()) {
             return None;
         }
-        if Self::clear(self.turn(self.start, v), start_limit) && Self::clear(self.turn(v, self.end), end_limit) {
-            return Some(true);
-        }
-        if self.proper
-            && Self::clear(self.turn(self.end, v), end_limit)
-            && Self::clear(self.turn(v, self.start), start_limit)
-        {
-            return Some(false);
-        }
-        None
+        Some((
+            Turn { cross: self.turn(self.start, v), limit: start_limit },
+            Turn { cross: self.turn(v, self.end), limit: end_limit },
+        ))
+    }
+}
+
+/// A cross product in an arc's sense and the square it must exceed to tell its sign.
+#[derive(Debug, Clone, Copy)]
+struct Turn {
+    cross: f64,
+    limit: f64,
+}
+
+impl Turn {
+    /// Clearly less than half a turn ahead.
+    fn clear_ahead(self) -> bool {
+        SweepSides::clear(self.cross, self.limit)
+    }
+
+    /// Clearly less than half a turn behind.
+    fn clear_behind(self) -> bool {
+        SweepSides::clear(-self.cross, self.limit)
     }
 }
 
