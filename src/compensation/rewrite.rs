@@ -28,8 +28,8 @@ use std::ops::Range;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::printer::{BlockWriter, Edits, WrittenText};
-use crate::semantic::Lowered;
 use crate::semantic::nose_radius::ToolTable;
+use crate::semantic::{CoordinateMark, Lowered};
 use crate::syntax::{Program, Statement};
 
 use super::grid::Grid;
@@ -194,6 +194,8 @@ pub struct MotionBlocks<'a, 'src> {
     /// The block looked up last (`BlockLookup::index_near`).
     near: usize,
     radius_arcs: bool,
+    /// The grid of the coordinates in force for the last run (they change rarely).
+    grid: Option<(CoordinateMark, Grid)>,
     writer: BlockWriter<'a, 'src>,
     /// Each block replaced, with its first run's text, in path order.
     replacements: Vec<(usize, WrittenText)>,
@@ -226,6 +228,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             lookup: BlockLookup::new(program),
             near: 0,
             radius_arcs: crate::expand::uses_radius_arcs(program),
+            grid: None,
             writer: BlockWriter::new(program),
             replacements: Vec::new(),
             edited: Vec::new(),
@@ -287,14 +290,11 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             None => None,
             Some(single) if !several => {
                 let mark = lowered.coordinates_at(single);
-                let context = block::BlockContext {
-                    program,
-                    block,
-                    mark,
-                    grid: Grid::new(&mark),
-                    radius_arcs: self.radius_arcs,
-                    tools,
+                let grid = match self.grid {
+                    Some((last, grid)) if last == mark => grid,
+                    _ => self.grid.insert((mark, Grid::new(&mark))).1,
                 };
+                let context = block::BlockContext { program, block, mark, grid, radius_arcs: self.radius_arcs, tools };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
                 match (moves.get(single), plans.get(single - first)) {
                     (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan, &mut self.writer),

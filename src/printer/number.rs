@@ -153,7 +153,7 @@ mod tests {
         #[test]
         fn the_stack_spelling_is_the_string_spelling(
             mantissa in proptest::prop_oneof![proptest::num::i64::ANY, -100_000i64..100_000, proptest::strategy::Just(0i64)],
-            scale in 0u8..=20,
+            scale in 0u8..=40,
             flags in 0u8..32,
             style in 0u8..16,
         ) {
