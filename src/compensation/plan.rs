@@ -358,5 +358,8 @@ fn jumps(input: &PlanInput<'_>, range: Range<usize>, play: Xz) -> SmallVec<[(usi
     out
 }
 
+mod kept;
+pub use kept::KeptPlans;
+
 #[cfg(test)]
 mod tests;

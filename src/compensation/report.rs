@@ -16,7 +16,7 @@ use crate::syntax::Program;
 
 use super::deviation::{Figures, Tally, nm};
 use super::fit::Segment;
-use super::plan::MovePlan;
+use super::plan::KeptPlans;
 use super::rewrite::EditedBlock;
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -88,7 +88,7 @@ pub struct ReportInput<'a> {
     pub after: Tally,
     pub max_correction_mm: f64,
     pub samples: usize,
-    pub plans: &'a [MovePlan],
+    pub plans: &'a KeptPlans,
     pub edited: &'a [EditedBlock],
     pub inverse_iterations: u32,
     pub inverse_residual_mm: f64,

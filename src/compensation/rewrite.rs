@@ -33,7 +33,7 @@ use crate::semantic::{CoordinateMark, Lowered};
 use crate::syntax::{Program, Statement};
 
 use super::grid::Grid;
-use super::plan::MovePlan;
+use super::plan::{KeptPlans, MovePlan};
 use super::written;
 
 /// The edits, their problems, and what was edited.
@@ -104,27 +104,12 @@ impl BlockLookup {
     }
 }
 
-/// The edits for `plans` (one per move of `lowered.toolpath`).
-pub fn rewrite(
-    program: &Program<'_>,
-    lowered: &Lowered,
-    plans: &[MovePlan],
-    tools: &ToolTable,
-    expand_cycles: bool,
-) -> Rewrite {
-    let mut motion = MotionBlocks::new(program, lowered, tools);
-    for run in move_runs(lowered) {
-        motion.add(&run, plans.get(run.moves.clone()).unwrap_or_default());
-    }
-    finish(program, lowered, plans, expand_cycles, motion)
-}
-
 /// The edits, once every move is planned and every run of a motion block was given to
 /// `motion`: the cycles, then the motion blocks.
 pub fn finish(
     program: &Program<'_>,
     lowered: &Lowered,
-    plans: &[MovePlan],
+    plans: &KeptPlans,
     expand_cycles: bool,
     motion: MotionBlocks<'_, '_>,
 ) -> Rewrite {

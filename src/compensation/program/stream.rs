@@ -36,7 +36,7 @@ use crate::toolpath::{Limits, Toolpath, Xz};
 use super::super::deviation::{LocalPath, Tally};
 use super::super::grid::Grid;
 use super::super::inverse::{Inverse, InverseOptions, Predictor};
-use super::super::plan::{MovePlan, PlanInput, PlanOptions, plan_range};
+use super::super::plan::{KeptPlans, MovePlan, PlanInput, PlanOptions, plan_range};
 use super::super::report::RunFigures;
 use super::super::rewrite::{MotionBlocks, MoveRun};
 use super::super::sampling::{PathSample, Sampling, sample_moves};
@@ -107,7 +107,7 @@ pub struct Totals {
 /// What streaming leaves: everything the rewrite and the report need, none of the samples
 /// (unless `paths` were asked for).
 pub struct Streamed<'a, 'src> {
-    pub plans: Vec<MovePlan>,
+    pub plans: KeptPlans,
     /// The safety checks' refusals.
     pub diagnostics: Vec<Diagnostic>,
     /// One per run of moves, in path order.
@@ -310,8 +310,8 @@ fn rewrite(
     motion: &mut MotionBlocks<'_, '_>,
     rewriting: &Receiver<Piece>,
     to_reuse: &SyncSender<Piece>,
-) -> Vec<MovePlan> {
-    let mut plans = Vec::with_capacity(context.toolpath.moves.len());
+) -> KeptPlans {
+    let mut plans = KeptPlans::default();
     let mut rewritten = 0;
     let read_after = cycle_moves(context);
     while let Ok(mut piece) = rewriting.recv() {
@@ -329,21 +329,14 @@ fn rewrite(
     plans
 }
 
-/// Move a piece's plans into `kept` (one per move), whole where something reads them after
-/// the stream (`read_after`: a cycle's moves, which are written only when every move is
-/// planned, or every move for the per-block report), emptied elsewhere: a motion block's
-/// plans were rewritten in the piece, and their segments are better freed for the next
-/// pieces than kept to the end of a long program.
-fn keep_plans(plans: &mut Vec<MovePlan>, first: usize, read_after: Option<&[bool]>, kept: &mut Vec<MovePlan>) {
-    let Some(read_after) = read_after else {
-        kept.append(plans);
-        return;
-    };
+/// Keep the plans of a piece whose first move is `first` that are read after the stream
+/// (`read_after`: a cycle's moves, which are written only when every move is planned, or
+/// every move for the per-block report); a motion block's plans were rewritten in the
+/// piece, and are dropped with it.
+fn keep_plans(plans: &mut Vec<MovePlan>, first: usize, read_after: Option<&[bool]>, kept: &mut KeptPlans) {
     for (index, plan) in (first..).zip(plans.drain(..)) {
-        if read_after.get(index).copied().unwrap_or(true) {
-            kept.push(plan);
-        } else {
-            kept.push(MovePlan { segments: Default::default(), words: Default::default(), ..plan });
+        if read_after.is_none_or(|read| read.get(index).copied().unwrap_or(true)) {
+            kept.push(index, plan);
         }
     }
 }

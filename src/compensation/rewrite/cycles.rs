@@ -23,7 +23,7 @@ use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
 use super::super::fit::Segment;
-use super::super::plan::MovePlan;
+use super::super::plan::{KeptPlans, MovePlan};
 
 /// Whether the moves of `expansion` can be written back: on a control with no thread move
 /// (OSP) a cycle's thread passes are written only as the cycle's own single-pass blocks,
@@ -41,7 +41,7 @@ pub fn expandable(program: &Program<'_>, lowered: &Lowered, expansion: &Expansio
 pub(super) fn chosen(
     program: &Program<'_>,
     lowered: &Lowered,
-    plans: &[MovePlan],
+    plans: &KeptPlans,
     all: bool,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<bool> {
@@ -132,7 +132,7 @@ fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Co
 pub(super) fn write(
     program: &Program<'_>,
     lowered: &Lowered,
-    plans: &[MovePlan],
+    plans: &KeptPlans,
     chosen: &[bool],
     edits: &mut Edits,
     diagnostics: &mut Vec<Diagnostic>,
