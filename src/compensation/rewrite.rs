@@ -205,6 +205,7 @@ pub struct MotionBlocks<'a, 'src> {
     first_runs: Vec<FirstRun>,
     /// Blocks whose runs wrote different blocks: not edited.
     differing: HashSet<usize>,
+    /// Blocks refused with a diagnostic already (one per block).
     refused: HashSet<usize>,
     diagnostics: Vec<Diagnostic>,
 }
