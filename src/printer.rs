@@ -30,7 +30,9 @@ use style::WholeNumbers;
 /// Print `program` with `edits` applied.
 pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
     let source = program.source();
-    let mut out = Vec::with_capacity(source.len() + source.len() / 16);
+    // The new blocks written ahead replace blocks of about their length or shorter.
+    let expected = source.len() + source.len() / 16 + edits.written.text.len();
+    let mut out = crate::memory::huge_page_vec(expected);
     if edits.is_empty() {
         for (index, block) in program.blocks().iter().enumerate() {
             let next = program.blocks().get(index + 1).map_or(source.len(), |b| b.span.start as usize);
@@ -52,7 +54,7 @@ pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
     let capacity = out.capacity() / 2;
     let second = std::thread::scope(|scope| {
         let second = scope.spawn(|| {
-            let mut second = Vec::with_capacity(capacity);
+            let mut second = crate::memory::huge_page_vec(capacity);
             print_blocks(program, edits, &style, middle..blocks, &mut second);
             second
         });

@@ -190,6 +190,7 @@ pub struct MotionBlocks<'a, 'src> {
     first_runs: Vec<FirstRun>,
     /// Blocks whose runs wrote different blocks: not edited.
     differing: HashSet<usize>,
+    /// Blocks refused with a diagnostic already (one per block).
     refused: HashSet<usize>,
     diagnostics: Vec<Diagnostic>,
 }
@@ -215,9 +216,15 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             radius_arcs: crate::expand::uses_radius_arcs(program),
             grid: None,
             writer: BlockWriter::new(program),
-            replacements: Vec::new(),
-            edited: Vec::new(),
-            first_runs: vec![FirstRun::NotYet; program.blocks().len()],
+            // At most one of each per block: huge pages where the program is long (written
+            // front to back, they only take the memory they fill).
+            replacements: crate::memory::huge_page_vec(program.blocks().len()),
+            edited: crate::memory::huge_page_vec(program.blocks().len()),
+            first_runs: {
+                let mut first_runs = crate::memory::huge_page_vec(program.blocks().len());
+                first_runs.resize(program.blocks().len(), FirstRun::NotYet);
+                first_runs
+            },
             differing: HashSet::new(),
             refused: HashSet::new(),
             diagnostics: Vec::new(),

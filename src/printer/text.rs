@@ -1,6 +1,7 @@
 //! Where the printer writes: a `String` (the canonical form, `number::plain`), or the bytes
-//! of a printed program (new blocks, `written.rs`), which take a spelled number in one copy
-//! rather than one character at a time.
+//! of a printed program (new blocks, `written.rs`), which take the ASCII of codes,
+//! addresses, numbers and copied words as it is, where a `String` takes it one character
+//! at a time.
 
 /// Text the printer appends to.
 pub trait Text {
