@@ -276,10 +276,10 @@ fn write_address_number(
                 && number.scale < places
             {
                 let extra = (places - number.scale) as u32;
-                number.mantissa = number.mantissa.saturating_mul(10i64.pow(extra));
+                number.mantissa = number.mantissa.saturating_mul(10i64.saturating_pow(extra));
                 number.scale = places;
             }
-            let whole = number.scale == 0 || number.mantissa % 10i64.pow(number.scale as u32) == 0;
+            let whole = number.is_whole();
             let fixed = is_length && style.fixed_decimals.is_some();
             let number_style = NumberStyle {
                 leading_zero: !style.suppress_leading_zero,

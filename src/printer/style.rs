@@ -105,7 +105,7 @@ impl ProgramStyle {
                                     tally.with_trailing_zero += 1;
                                 }
                             }
-                            let whole = number.scale == 0 || number.mantissa % 10i64.pow(number.scale as u32) == 0;
+                            let whole = number.is_whole();
                             if whole {
                                 match (number.has_point(), number.scale) {
                                     (false, _) => tally.no_point += 1,

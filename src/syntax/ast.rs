@@ -65,6 +65,14 @@ impl NumberFlags {
 }
 
 impl Number {
+    /// Whether the value is a whole number. A scale past what `i64` can hold as a power of
+    /// ten (19 places and more) is whole only for a zero mantissa: every non-zero mantissa
+    /// is smaller than that power.
+    pub fn is_whole(&self) -> bool {
+        let (mantissa, scale) = (self.mantissa, self.scale);
+        scale == 0 || 10i64.checked_pow(u32::from(scale)).map_or(mantissa == 0, |p| mantissa % p == 0)
+    }
+
     pub fn new(mantissa: i64, scale: u8, has_point: bool) -> Number {
         let mut flags = NumberFlags::default();
         if has_point {

@@ -109,3 +109,16 @@ fn a_number_reads_as_the_same_f64_for_every_scale() {
         }
     }
 }
+
+/// `Number::is_whole` answers for every scale a number can carry, those past an `i64` power
+/// of ten included (the printer asked `10i64.pow(scale)`, which overflows from 19 places).
+#[test]
+fn whole_numbers_are_told_at_every_scale() {
+    assert!(Number::new(1200, 2, true).is_whole());
+    assert!(!Number::new(1250, 2, true).is_whole());
+    assert!(Number::new(7, 0, false).is_whole());
+    for scale in [18u8, 19, 40, 255] {
+        assert!(Number::new(0, scale, true).is_whole(), "{scale}");
+        assert!(!Number::new(i64::MAX, scale, true).is_whole(), "{scale}");
+    }
+}
