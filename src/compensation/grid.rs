@@ -36,7 +36,7 @@ pub struct GridPoint {
 
 impl Grid {
     pub fn new(mark: &CoordinateMark) -> Grid {
-        Grid { frame: mark.frame, shift: mark.shift, places: crate::expand::increment_places(mark.frame.increment) }
+        Grid { frame: mark.frame, shift: mark.shift, places: places(mark.frame.increment) }
     }
 
     fn scale(&self) -> f64 {
@@ -88,6 +88,18 @@ impl Grid {
     /// The increment in mm (of X as programmed: the diameter on a diameter machine).
     pub fn increment_mm(&self) -> f64 {
         self.frame.mm(self.frame.increment)
+    }
+}
+
+/// `expand::increment_places`: the decimal places of an increment, told at once for the
+/// increments controls use (every move asks for its grid, and the count takes a loop of
+/// library roundings).
+fn places(increment: f64) -> u8 {
+    match increment {
+        0.001 => 3,
+        0.0001 => 4,
+        0.01 => 2,
+        _ => crate::expand::increment_places(increment),
     }
 }
 
@@ -604,6 +616,13 @@ mod tests {
         assert!((run.distance(a) - run.distance(b)).abs() < 1e-12);
         let moved = run.distance(Xz::new(35.0, -20.0));
         assert!(moved > 1e-4 && moved < 1e-3, "{run:?}");
+    }
+
+    #[test]
+    fn the_usual_increments_have_the_places_expand_counts() {
+        for increment in [0.001, 0.0001, 0.01, 0.005, 0.5, 1.0] {
+            assert_eq!(places(increment), crate::expand::increment_places(increment), "{increment}");
+        }
     }
 
     #[test]

@@ -287,11 +287,11 @@ fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>, play: Xz) -> MovePla
 fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> MovePlan {
     let Piece { m, at, points, ref range, grid } = *piece;
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
-    let end_moves = grid.point(last) != grid.point(m.contour);
     let jumps = jumps(input, range.clone(), options.play);
     let tolerance = options.fit.tolerance_mm;
     let centre = written::contour_centre(m, input.tools);
-    if !end_moves && jumps.is_empty() && nominal_holds(m, centre, at, points, tolerance) {
+    let end_stays = || grid.point(last) == grid.point(m.contour);
+    if jumps.is_empty() && end_stays() && nominal_holds(m, centre, at, points, tolerance) {
         return nominal_plan(m, at, input.tools);
     }
     let nominal = if m.is_arc() {
@@ -311,7 +311,7 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
         let local = j - range.start;
         if local > piece {
             let part = MovePoints { start: from, points: &points[piece..local], nominal };
-            segments.extend(choose_segments(&part, &options.fit));
+            segments.extend_from_slice(&choose_segments(&part, &options.fit));
             from = points[local - 1];
         }
         from = Xz::new(from.x + jump.x, from.z + jump.z);
@@ -319,7 +319,8 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
         piece = local;
     }
     if piece < points.len() {
-        segments.extend(choose_segments(&MovePoints { start: from, points: &points[piece..], nominal }, &options.fit));
+        let rest = MovePoints { start: from, points: &points[piece..], nominal };
+        segments.extend_from_slice(&choose_segments(&rest, &options.fit));
     }
     MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false, words: SmallVec::new() }
 }
