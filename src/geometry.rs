@@ -35,6 +35,13 @@ pub fn on_circle(centre: Xz, radius: f64, angle: f64) -> Xz {
     Xz::new(centre.x + radius * angle.sin(), centre.z + radius * angle.cos())
 }
 
+/// `x.rem_euclid(TAU)`: an angle (a difference of two, as a rule) brought into [0, 2π).
+/// Where |x| < 2π, as every difference of two angles is, the remainder of the division is
+/// `x` itself, which spares the library call the remainder is on this target.
+pub fn rem_turn(x: f64) -> f64 {
+    if x.abs() < TAU { if x < 0.0 { x + TAU } else { x } } else { x.rem_euclid(TAU) }
+}
+
 /// The swept angle from `start` to `end` about `centre`, positive, in `(0, 2π]`: an arc whose
 /// end meets its start is a full circle.
 pub fn sweep(start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
@@ -50,7 +57,7 @@ pub fn sweep_from(a0: f64, start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
 /// [`sweep`] when the angles of `start` (`a0`) and `end` (`a1`) about the centre are known.
 pub fn sweep_from_angles(start: Xz, end: Xz, a0: f64, a1: f64, ccw: bool) -> f64 {
     let raw = if ccw { a1 - a0 } else { a0 - a1 };
-    let mut s = raw.rem_euclid(TAU);
+    let mut s = rem_turn(raw);
     // A chord shorter than a nanometre is a full circle, not an empty arc.
     if s < 1e-12 || (start.distance(end) < 1e-9 && s > TAU - 1e-9) {
         s = TAU;
@@ -179,7 +186,7 @@ pub fn angle_within(point: Xz, start: Xz, end: Xz, centre: Xz, ccw: bool) -> boo
     let total = sweep(start, end, centre, ccw);
     let a0 = angle(start, centre);
     let a = angle(point, centre);
-    let delta = if ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
+    let delta = if ccw { rem_turn(a - a0) } else { rem_turn(a0 - a) };
     delta <= total + 1e-12
 }
 
@@ -215,16 +222,7 @@ impl Sector {
 
     /// Whether `point` lies in the sector, as [`angle_within`] decides it.
     pub fn contains(&self, point: Xz) -> bool {
-        // Away from half and whole turns the sweep's size is certain, and the cross products
-        // then answer for points all round the circle.
-        const MARGIN: f64 = 1e-6;
-        let answer = if self.total < PI - MARGIN {
-            self.sides.inside_given_half(point, true)
-        } else if self.total > PI + MARGIN && self.total < TAU - MARGIN {
-            self.sides.inside_given_half(point, false)
-        } else {
-            self.sides.inside(point)
-        };
+        let answer = self.sides.inside(point);
         answer.unwrap_or_else(|| {
             let (a0, a) = (angle(self.start, self.centre), angle(point, self.centre));
             let delta = if self.ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
@@ -243,46 +241,63 @@ const CLEAR_OF_ENDS: f64 = 1e-8;
 /// without an arctangent wherever the answer is clear.
 ///
 /// With u₀, u₁ and v the start, the end and the point about the centre, the cross product
-/// u₀ × v taken in the arc's sense is |u₀||v| times the sine of the angle from u₀ to v. Both
-/// u₀ × v > 0 and v × u₁ > 0 put v less than half a turn past the start and less than half a
-/// turn short of the end, which is inside the sweep whatever its size. Both u₁ × v > 0 and
-/// v × u₀ > 0 put it inside the rest of the turn, outside the sweep, where the sweep is
-/// clear of none and of a full turn (`sweep` makes a full circle of an arc whose ends
-/// nearly meet). Each sine must exceed [`CLEAR_OF_ENDS`], so rounding cannot turn the
-/// answer; a point nearer an end, or a half-turn away from one, is left to the angles.
+/// u₀ × v taken in the arc's sense is |u₀||v| times the sine of the angle from u₀ to v:
+/// positive where v lies less than half a turn past u₀. A sweep of less than half a turn
+/// holds the points less than half a turn past its start *and* short of its end; one of
+/// more than half a turn holds those less than half a turn past its start *or* short of its
+/// end; near half a turn, the first test still holds only points inside. The rest of the
+/// turn, outside the sweep, is told the same way with the ends swapped, where the sweep is
+/// clearly more than none and less than a full turn (`sweep` makes a full circle of an arc
+/// whose ends nearly meet). Each sine must exceed [`CLEAR_OF_ENDS`], so rounding cannot
+/// turn the answer; a point nearer an end, or half a turn from one, is left to the angles.
 #[derive(Debug, Clone, Copy)]
 pub struct SweepSides {
     centre: Xz,
-    /// u₀ and u₁.
+    /// u₀ and u₁, and their lengths.
     start: Xz,
     end: Xz,
+    start_length: f64,
+    end_length: f64,
     /// 1 counter-clockwise, −1 clockwise.
     sense: f64,
-    /// CLEAR_OF_ENDS² |u₀|² and CLEAR_OF_ENDS² |u₁|², to compare squared cross products with.
-    start_limit: f64,
-    end_limit: f64,
-    /// The sweep is clear of none and of a full turn.
-    proper: bool,
+    /// Whether the sweep is more than half a turn, where it clearly is or is not.
+    beyond_half_turn: Option<bool>,
+    /// Both ends lie some finite distance from the centre.
+    measurable: bool,
+}
+
+/// A length is positive and finite (NaN is neither).
+fn measurable(length: f64) -> bool {
+    length > 0.0 && length < f64::INFINITY
 }
 
 impl SweepSides {
     pub fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> SweepSides {
+        let origin = Xz::new(0.0, 0.0);
         let start = Xz::new(start.x - centre.x, start.z - centre.z);
         let end = Xz::new(end.x - centre.x, end.z - centre.z);
-        let clear2 = CLEAR_OF_ENDS * CLEAR_OF_ENDS;
         let mut sides = SweepSides {
             centre,
             start,
             end,
+            start_length: start.distance(origin),
+            end_length: end.distance(origin),
             sense: if ccw { 1.0 } else { -1.0 },
-            start_limit: clear2 * (start.x * start.x + start.z * start.z),
-            end_limit: clear2 * (end.x * end.x + end.z * end.z),
-            proper: false,
+            beyond_half_turn: None,
+            measurable: false,
         };
-        let (ahead, behind) = (sides.turn(start, end), sides.turn(end, start));
-        let limit = sides.start_limit * (end.x * end.x + end.z * end.z);
-        sides.proper =
-            Self::clear(ahead, limit) || Self::clear(behind, limit) || start.x * end.x + start.z * end.z < 0.0;
+        sides.measurable = measurable(sides.start_length) && measurable(sides.end_length);
+        let ahead = sides.turn(start, end);
+        let limit = sides.start_length * sides.end_length * CLEAR_OF_ENDS;
+        sides.beyond_half_turn = if !(limit > 0.0 && limit.is_finite()) {
+            None
+        } else if ahead > limit {
+            Some(false)
+        } else if ahead < -limit {
+            Some(true)
+        } else {
+            None
+        };
         sides
     }
 
@@ -292,79 +307,49 @@ impl SweepSides {
         self.sense * (b.x * a.z - b.z * a.x)
     }
 
-    /// Whether a cross product is positive by more than its limit (squared).
-    fn clear(cross: f64, limit: f64) -> bool {
-        cross > 0.0 && cross * cross > limit
+    /// Whether the sweep is more than half a turn, where it clearly is or is not (the sine of
+    /// the sweep beyond [`CLEAR_OF_ENDS`] either way); `None` near none, half or a full turn.
+    pub fn beyond_half_turn(&self) -> Option<bool> {
+        self.beyond_half_turn
     }
 
     /// `Some(true)` where `p` lies clearly inside the sweep, `Some(false)` clearly outside,
     /// `None` where only the angles can tell (or the arc has no extent to tell it by).
     pub fn inside(&self, p: Xz) -> Option<bool> {
-        let (from_start, to_end) = self.turns(p)?;
-        if from_start.clear_ahead() && to_end.clear_ahead() {
-            return Some(true);
-        }
-        if self.proper && to_end.clear_behind() && from_start.clear_behind() {
-            return Some(false);
-        }
-        None
+        self.inside_within(p, 0.0)
     }
 
-    /// [`SweepSides::inside`] for a sweep known to be less than half a turn (`Some(true)`)
-    /// or more (`Some(false)`), which also answers for the points more than half a turn
-    /// from an end: with less than half a turn, a point clearly behind the start or clearly
-    /// past the end is outside; with more, a point clearly ahead of the start or clearly
-    /// short of the end is inside.
-    pub fn inside_given_half(&self, p: Xz, less_than_half: bool) -> Option<bool> {
-        let (from_start, to_end) = self.turns(p)?;
-        let both_ahead = from_start.clear_ahead() && to_end.clear_ahead();
-        let both_behind = from_start.clear_behind() && to_end.clear_behind();
-        let one_ahead = from_start.clear_ahead() || to_end.clear_ahead();
-        let one_behind = from_start.clear_behind() || to_end.clear_behind();
-        match less_than_half {
-            true if both_ahead => Some(true),
-            true if one_behind => Some(false),
-            false if both_behind => Some(false),
-            false if one_ahead => Some(true),
+    /// [`SweepSides::inside`] for every point within `slack` of `p` alike: `Some` only where
+    /// all of them lie clearly on the one side.
+    ///
+    /// A point w within `slack` of v moves u × w from u × v by at most |u|·slack and |w|
+    /// from |v| by at most `slack`, so u × v > |u|·(CLEAR_OF_ENDS·|v| + 2·slack) keeps
+    /// u × w > CLEAR_OF_ENDS·|u|·|w|.
+    pub fn inside_within(&self, p: Xz, slack: f64) -> Option<bool> {
+        let v = Xz::new(p.x - self.centre.x, p.z - self.centre.z);
+        let length = v.distance(Xz::new(0.0, 0.0));
+        if !(self.measurable && measurable(length) && slack >= 0.0) {
+            return None;
+        }
+        let margin = CLEAR_OF_ENDS * length + 2.0 * slack;
+        // Past the start and short of it, the same cross product's two signs; so for the end.
+        let from_start = self.turn(self.start, v);
+        let from_end = self.turn(self.end, v);
+        let (start, end) = (self.start_length * margin, self.end_length * margin);
+        let (past_start, short_of_start) = (from_start > start, -from_start > start);
+        let (past_end, short_of_end) = (from_end > end, -from_end > end);
+        match self.beyond_half_turn {
+            Some(true) if past_start || short_of_end => Some(true),
+            Some(true) if past_end && short_of_start => Some(false),
+            Some(false) if past_start && short_of_end => Some(true),
+            Some(false) if past_end || short_of_start => Some(false),
+            // Near half a turn (nearer none or a full turn nothing is clearly outside).
+            None if past_start && short_of_end => Some(true),
+            None if past_end && short_of_start && self.start.x * self.end.x + self.start.z * self.end.z < 0.0 => {
+                Some(false)
+            }
             _ => None,
         }
-    }
-
-    /// The turns from the start to `p` and from `p` to the end, with their limits; `None`
-    /// where they cannot be told (a point at the centre, an arc without extent, overflow).
-    fn turns(&self, p: Xz) -> Option<(Turn, Turn)> {
-        let v = Xz::new(p.x - self.centre.x, p.z - self.centre.z);
-        let length2 = v.x * v.x + v.z * v.z;
-        if !(length2 > 0.0 && length2.is_finite() && self.start_limit > 0.0 && self.end_limit > 0.0) {
-            return None;
-        }
-        let (start_limit, end_limit) = (self.start_limit * length2, self.end_limit * length2);
-        if !(start_limit.is_finite() && end_limit.is_finite()) {
-            return None;
-        }
-        Some((
-            Turn { cross: self.turn(self.start, v), limit: start_limit },
-            Turn { cross: self.turn(v, self.end), limit: end_limit },
-        ))
-    }
-}
-
-/// A cross product in an arc's sense and the square it must exceed to tell its sign.
-#[derive(Debug, Clone, Copy)]
-struct Turn {
-    cross: f64,
-    limit: f64,
-}
-
-impl Turn {
-    /// Clearly less than half a turn ahead.
-    fn clear_ahead(self) -> bool {
-        SweepSides::clear(self.cross, self.limit)
-    }
-
-    /// Clearly less than half a turn behind.
-    fn clear_behind(self) -> bool {
-        SweepSides::clear(-self.cross, self.limit)
     }
 }
 

@@ -378,23 +378,20 @@ impl Fitting<'_, '_> {
             (&SEMICIRCLE_CUTS[..], Strategy::Semicircle),
             (&QUADRANT_CUTS[..], Strategy::Quadrant),
         ] {
-            // Nothing takes fewer than one segment, and a tie keeps the earlier fit.
-            if best.as_ref().is_some_and(|b| b.segments.len() == 1) {
-                break;
-            }
             // A split that cuts nowhere new is a fit already tried.
             let pieces = if cuts.is_empty() { split::one_piece(self.m) } else { travel().cut_indices(cuts) };
             if tried.contains(&pieces) {
                 continue;
             }
             if let Ok(fitted) = self.circles_at(centre, ccw, &pieces, strategy) {
+                // Nothing takes fewer than one segment, and a tie keeps the earlier fit (every
+                // fit `circles_at` gives meets the tolerance).
+                if fitted.segments.len() == 1 {
+                    return fitted;
+                }
                 self.keep_cheaper(&mut best, fitted);
             }
             tried.push(pieces);
-        }
-        // Nothing takes fewer than one segment.
-        if let Some(one) = best.take_if(|b| b.segments.len() == 1) {
-            return one;
         }
         self.keep_cheaper(&mut best, self.arcs());
         self.keep_cheaper(&mut best, self.densify());

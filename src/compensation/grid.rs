@@ -9,7 +9,7 @@
 //! Values are kept as integer counts of the increment (`i64` mantissas with the
 //! increment's decimal places), so comparisons and differences are exact.
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::PI;
 
 use crate::geometry::{self, SweepSides};
 use crate::semantic::{CoordinateMark, Frame};
@@ -36,16 +36,19 @@ pub struct GridPoint {
 
 impl Grid {
     pub fn new(mark: &CoordinateMark) -> Grid {
-        Grid { frame: mark.frame, shift: mark.shift, places: crate::expand::increment_places(mark.frame.increment) }
+        Grid { frame: mark.frame, shift: mark.shift, places: places(mark.frame.increment) }
     }
 
     fn scale(&self) -> f64 {
-        10f64.powi(i32::from(self.places))
+        // The powers of ten an increment has places for, each exact in f64 (as `powi` gives
+        // them, which is a library call).
+        const POWERS: [f64; 10] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9];
+        POWERS.get(usize::from(self.places)).copied().unwrap_or_else(|| 10f64.powi(i32::from(self.places)))
     }
 
     /// A value in program units to a count of increments.
     pub fn count(&self, value: f64) -> i64 {
-        (value * self.scale()).round() as i64
+        nearest_whole(value * self.scale())
     }
 
     /// A count of increments as a number to write.
@@ -88,6 +91,40 @@ impl Grid {
     }
 }
 
+/// `expand::increment_places`: the decimal places of an increment, told at once for the
+/// increments controls use (every move asks for its grid, and the count takes a loop of
+/// library roundings).
+fn places(increment: f64) -> u8 {
+    match increment {
+        0.001 => 3,
+        0.0001 => 4,
+        0.01 => 2,
+        _ => crate::expand::increment_places(increment),
+    }
+}
+
+/// `x.round() as i64` (the nearest whole number, halves away from zero), without the library
+/// call `round` is on this target: every grid point takes two. Below 2⁵² in size, the
+/// truncation toward zero and the fraction it leaves are both exact in f64, and the fraction
+/// decides; from 2⁵² on every f64 is whole already, and those, the infinities and NaN take
+/// `round` itself.
+fn nearest_whole(x: f64) -> i64 {
+    const WHOLE_FROM: f64 = 4_503_599_627_370_496.0;
+    if x.abs() < WHOLE_FROM {
+        let whole = x as i64;
+        let fraction = x - whole as f64;
+        if fraction >= 0.5 {
+            whole + 1
+        } else if fraction <= -0.5 {
+            whole - 1
+        } else {
+            whole
+        }
+    } else {
+        x.round() as i64
+    }
+}
+
 /// How an arc is written on the grid (see [`Grid::arc_words`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ArcWords {
@@ -118,57 +155,70 @@ impl Grid {
     /// half circle or stops with "radius too small" turns on its own arithmetic.) A full
     /// circle has only the centre form.
     pub fn arc_words(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, prefer_radius: bool) -> ArcWords {
-        self.arc_words_with_gap(from, end, centre, ccw, prefer_radius).0
+        self.arc_words_straying(from, end, centre, ccw, prefer_radius, f64::INFINITY).0
     }
 
-    /// [`Grid::arc_words`], and how far the arc the control runs for them strays from the
-    /// exact arc (as [`Grid::arc_gap`] gives it; infinite for [`ArcWords::Line`]), which the
-    /// choice has measured already.
-    pub fn arc_words_with_gap(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, prefer_radius: bool) -> (ArcWords, f64) {
+    /// [`Grid::arc_words`], and whether the arc the control runs for them strays from the
+    /// exact arc by more than `limit` (as [`Grid::arc_gap`] measures it; an arc written as
+    /// [`ArcWords::Line`] strays infinitely), which the choice has bounded already.
+    pub fn arc_words_straying(
+        &self,
+        from: Xz,
+        end: Xz,
+        centre: Xz,
+        ccw: bool,
+        prefer_radius: bool,
+        limit: f64,
+    ) -> (ArcWords, bool) {
         let (start, stop) = (self.point(from), self.point(end));
         let exact = ArcSpan::new(from, end, centre, ccw);
         // Rounded ends that meet make the control run a full circle: what an arc of more
         // than half a turn short of one by less than an increment should be, and nothing
         // near a shorter one.
         let full = start == stop;
-        if full && exact.sweep <= PI {
-            return (ArcWords::Line, f64::INFINITY);
+        if full && exact.sweep() <= PI {
+            return (ArcWords::Line, true);
         }
         let at = self.to_mm(start);
         let by_centre = ArcWords::Centre { i: self.length(centre.x - at.x), k: self.length(centre.z - at.z) };
-        // Each gap runs the control's arc; it is measured only where the choice needs it
-        // (the choice is the same as measuring both every time).
-        let centre_gap = std::cell::OnceCell::new();
-        let centre_gap = || *centre_gap.get_or_init(|| self.gap(&exact, start, stop, by_centre, ccw));
+        // Each stray runs the control's arc; it is bounded only where the choice needs it,
+        // and measured only where the bounds do not decide (the choice is the same as
+        // measuring both every time).
+        let stray = |words| Stray::new(self, &exact, start, stop, words, ccw);
+        let centre_stray = std::cell::OnceCell::new();
+        let centre_stray = || centre_stray.get_or_init(|| stray(by_centre));
+        let line = (ArcWords::Line, true);
         if full {
-            let gap = centre_gap();
-            return if gap.is_finite() { (by_centre, gap) } else { (ArcWords::Line, f64::INFINITY) };
+            let by_centre_stray = centre_stray();
+            return if by_centre_stray.is_finite() { (by_centre, !by_centre_stray.at_most(limit)) } else { line };
         }
         let radius = from.distance(centre);
-        let signed = if exact.sweep > PI + 1e-9 { -radius } else { radius };
+        let beyond_half_turn = exact.sides.beyond_half_turn().unwrap_or_else(|| exact.sweep() > PI + 1e-9);
+        let signed = if beyond_half_turn { -radius } else { radius };
         let count = self.length(signed);
         let by_radius = ArcWords::Radius(count);
         if prefer_radius {
-            let radius_gap = self.gap(&exact, start, stop, by_radius, ccw);
+            let radius_stray = stray(by_radius);
             let increment = self.increment_mm();
             let reaches = self.length_mm(count).abs() - at.distance(self.to_mm(stop)) / 2.0 >= increment - 1e-12;
-            let radius_holds = reaches && (radius_gap <= increment / 2.0 || radius_gap <= centre_gap());
+            let radius_holds =
+                reaches && (radius_stray.at_most(increment / 2.0) || radius_stray.at_most_as_far_as(centre_stray()));
             if radius_holds {
-                return (by_radius, radius_gap);
+                return (by_radius, !radius_stray.at_most(limit));
             }
-            return if centre_gap().is_finite() {
-                (by_centre, centre_gap())
-            } else if radius_gap.is_finite() {
-                (by_radius, radius_gap)
+            return if centre_stray().is_finite() {
+                (by_centre, !centre_stray().at_most(limit))
+            } else if radius_stray.is_finite() {
+                (by_radius, !radius_stray.at_most(limit))
             } else {
-                (ArcWords::Line, f64::INFINITY)
+                line
             };
         }
-        if centre_gap().is_finite() {
-            return (by_centre, centre_gap());
+        if centre_stray().is_finite() {
+            return (by_centre, !centre_stray().at_most(limit));
         }
-        let radius_gap = self.gap(&exact, start, stop, by_radius, ccw);
-        if radius_gap.is_finite() { (by_radius, radius_gap) } else { (ArcWords::Line, f64::INFINITY) }
+        let radius_stray = stray(by_radius);
+        if radius_stray.is_finite() { (by_radius, !radius_stray.at_most(limit)) } else { line }
     }
 
     /// The centre the control takes for an arc written with `words` from `start` to `stop`
@@ -190,18 +240,68 @@ impl Grid {
     /// How far the arc the control runs for `words`, written for the arc from `from` to
     /// `end` about `centre` (exact), strays from that arc (infinite when it runs none).
     pub fn arc_gap(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, words: ArcWords) -> f64 {
-        self.gap(&ArcSpan::new(from, end, centre, ccw), self.point(from), self.point(end), words, ccw)
-    }
-
-    /// How far the arc the control runs for `words` strays from the exact arc (infinite
-    /// when it runs none).
-    fn gap(&self, exact: &ArcSpan, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> f64 {
-        match self.arc_centre(start, stop, words, ccw) {
-            Some(centre) => exact.gap(&ArcSpan::new(self.to_mm(start), self.to_mm(stop), centre, ccw)),
-            None => f64::INFINITY,
-        }
+        let (start, stop) = (self.point(from), self.point(end));
+        Stray::new(self, &ArcSpan::new(from, end, centre, ccw), start, stop, words, ccw).measured()
     }
 }
+
+/// How far the arc the control runs for some words strays from the exact arc: bounded
+/// without angles first (`ArcSpan::gap_bounds`), measured (`ArcSpan::gap`) only where a
+/// comparison falls between the bounds.
+struct Stray<'a> {
+    exact: &'a ArcSpan,
+    /// The arc the control runs, `None` where it runs none (the stray is infinite).
+    run: Option<ArcSpan>,
+    low: f64,
+    high: f64,
+    measured: std::cell::OnceCell<f64>,
+}
+
+impl<'a> Stray<'a> {
+    fn new(grid: &Grid, exact: &'a ArcSpan, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> Self {
+        let run =
+            grid.arc_centre(start, stop, words, ccw).map(|c| ArcSpan::new(grid.to_mm(start), grid.to_mm(stop), c, ccw));
+        let (low, high) = match &run {
+            Some(run) => exact.gap_bounds(run).unwrap_or((f64::NEG_INFINITY, f64::INFINITY)),
+            None => (f64::INFINITY, f64::INFINITY),
+        };
+        Stray { exact, run, low, high, measured: std::cell::OnceCell::new() }
+    }
+
+    /// The stray itself (infinite where the control runs no arc).
+    fn measured(&self) -> f64 {
+        *self.measured.get_or_init(|| self.run.as_ref().map_or(f64::INFINITY, |run| self.exact.gap(run)))
+    }
+
+    fn at_most(&self, limit: f64) -> bool {
+        if self.high <= limit {
+            true
+        } else if self.low > limit {
+            false
+        } else {
+            self.measured() <= limit
+        }
+    }
+
+    fn at_most_as_far_as(&self, other: &Stray<'_>) -> bool {
+        if self.high <= other.low {
+            true
+        } else if self.low > other.high {
+            false
+        } else {
+            self.measured() <= other.measured()
+        }
+    }
+
+    fn is_finite(&self) -> bool {
+        self.high.is_finite() || (self.low != f64::INFINITY && self.measured().is_finite())
+    }
+}
+
+/// The shortest chord between unit directions, for `ArcSpan::gap_bounds` to find the
+/// direction halfway between them from: nearer directions leave it too little of the
+/// chord's length to divide by.
+const SHORTEST_UNIT_CHORD: f64 = 1e-3;
 
 /// An arc by its start, centre, radius and sweep.
 struct ArcSpan {
@@ -210,42 +310,60 @@ struct ArcSpan {
     centre: Xz,
     radius: f64,
     ccw: bool,
-    a0: f64,
-    sweep: f64,
     sides: SweepSides,
+    /// The start's angle and the sweep (`geometry::angle`, `geometry::sweep`), measured
+    /// where they are first needed.
+    angles: std::cell::OnceCell<(f64, f64)>,
 }
 
 impl ArcSpan {
     fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> ArcSpan {
-        let a0 = geometry::angle(start, centre);
-        let sweep = geometry::sweep_from(a0, start, end, centre, ccw);
         let sides = SweepSides::new(start, end, centre, ccw);
-        ArcSpan { start, end, centre, radius: start.distance(centre), ccw, a0, sweep, sides }
+        ArcSpan { start, end, centre, radius: start.distance(centre), ccw, sides, angles: std::cell::OnceCell::new() }
+    }
+
+    fn angles(&self) -> (f64, f64) {
+        *self.angles.get_or_init(|| {
+            let a0 = geometry::angle(self.start, self.centre);
+            (a0, geometry::sweep_from(a0, self.start, self.end, self.centre, self.ccw))
+        })
+    }
+
+    fn sweep(&self) -> f64 {
+        self.angles().1
     }
 
     /// The point at `fraction` of the sweep.
     fn at(&self, fraction: f64) -> Xz {
         let sign = if self.ccw { 1.0 } else { -1.0 };
-        geometry::on_circle(self.centre, self.radius, self.a0 + sign * self.sweep * fraction)
+        let (a0, sweep) = self.angles();
+        geometry::on_circle(self.centre, self.radius, a0 + sign * sweep * fraction)
     }
 
     /// The distance from `p` to this arc.
     fn distance(&self, p: Xz) -> f64 {
-        if self.inside(p) {
-            (p.distance(self.centre) - self.radius).abs()
-        } else {
-            p.distance(self.start).min(p.distance(self.end))
-        }
+        if self.inside(p) { self.off_circle(p) } else { self.to_ends(p) }
+    }
+
+    fn off_circle(&self, p: Xz) -> f64 {
+        (p.distance(self.centre) - self.radius).abs()
+    }
+
+    fn to_ends(&self, p: Xz) -> f64 {
+        p.distance(self.start).min(p.distance(self.end))
     }
 
     /// Whether `p` lies inside the sweep: by the cross products where they tell, by the
     /// angle where it is near an end.
     fn inside(&self, p: Xz) -> bool {
-        self.sides.inside(p).unwrap_or_else(|| {
-            let a = geometry::angle(p, self.centre);
-            let delta = if self.ccw { (a - self.a0).rem_euclid(TAU) } else { (self.a0 - a).rem_euclid(TAU) };
-            delta <= self.sweep
-        })
+        self.sides.inside(p).unwrap_or_else(|| self.within_sweep(geometry::angle(p, self.centre)))
+    }
+
+    /// Whether the angle `a` lies inside the sweep.
+    fn within_sweep(&self, a: f64) -> bool {
+        let (a0, sweep) = self.angles();
+        let delta = if self.ccw { geometry::rem_turn(a - a0) } else { geometry::rem_turn(a0 - a) };
+        delta <= sweep
     }
 
     /// The largest distance of a point of `other` from this arc. The distance of a point of
@@ -257,13 +375,75 @@ impl ArcSpan {
         if self.centre.distance(other.centre) > 0.0 {
             let away = geometry::angle(self.centre, other.centre);
             for a in [away, away + PI] {
-                let delta = if other.ccw { (a - other.a0).rem_euclid(TAU) } else { (other.a0 - a).rem_euclid(TAU) };
-                if delta <= other.sweep {
+                if other.within_sweep(a) {
                     worst = worst.max(self.distance(geometry::on_circle(other.centre, other.radius, a)));
                 }
             }
         }
         if worst.is_nan() { f64::INFINITY } else { worst }
+    }
+
+    /// Bounds on [`ArcSpan::gap`] that take no angles, or `None` where they cannot be had
+    /// so (`other` sweeps nearly nothing or a full turn, a point lies too near an end).
+    ///
+    /// `gap` measures points of `other` that it finds by angles: its quarters, by its start
+    /// angle and sweep, and the points where the centres line up, by the angle between the
+    /// centres. The same points follow from unit vectors alone: the direction halfway
+    /// between two, less than a turn apart in the arc's sense, is their difference turned a
+    /// quarter turn against that sense, and the centres' line is their difference. The two
+    /// ways differ by the rounding of a few operations on the coordinates (some 1e-14 of
+    /// their size), and by that divided by the chords the halving divides by; `slack`
+    /// allows a thousand times that. Each point's distance then lies within `slack` of the
+    /// one `gap` measures, where the point lies clearly on one side of this arc's ends for
+    /// everything within `slack` of it (`SweepSides::inside_within`); a point of the
+    /// centres' line that may or may not lie on `other` raises only the upper bound.
+    fn gap_bounds(&self, other: &ArcSpan) -> Option<(f64, f64)> {
+        let (centre, radius) = (other.centre, other.radius);
+        let unit = |p: Xz| {
+            let length = p.distance(centre);
+            Xz::new((p.x - centre.x) / length, (p.z - centre.z) / length)
+        };
+        let sense = if other.ccw { 1.0 } else { -1.0 };
+        let halfway = |a: Xz, b: Xz| {
+            let chord = b.distance(a);
+            (chord >= SHORTEST_UNIT_CHORD).then(|| Xz::new(-sense * (b.z - a.z) / chord, sense * (b.x - a.x) / chord))
+        };
+        let (first, last) = (unit(other.start), unit(other.end));
+        let chord = last.distance(first);
+        let middle = halfway(first, last)?;
+        let quarters = [first, halfway(first, middle)?, middle, halfway(middle, last)?, last];
+        let scale =
+            1.0 + self.centre.x.abs() + self.centre.z.abs() + self.radius + centre.x.abs() + centre.z.abs() + radius;
+        let slack = 1e-11 * scale + 1e-13 * radius / (chord * chord);
+        let on = |u: Xz| Xz::new(centre.x + radius * u.x, centre.z + radius * u.z);
+        let (mut low, mut high) = (0.0_f64, 0.0_f64);
+        for u in quarters {
+            let d = self.distance_within(on(u), slack)?;
+            (low, high) = (low.max(d - slack), high.max(d + slack));
+        }
+        let between = self.centre.distance(centre);
+        if between > 0.0 {
+            let away = Xz::new((self.centre.x - centre.x) / between, (self.centre.z - centre.z) / between);
+            for u in [away, Xz::new(-away.x, -away.z)] {
+                let on_other = other.sides.inside(Xz::new(centre.x + u.x, centre.z + u.z));
+                if on_other == Some(false) {
+                    continue;
+                }
+                let d = self.distance_within(on(u), slack)?;
+                high = high.max(d + slack);
+                if on_other == Some(true) {
+                    low = low.max(d - slack);
+                }
+            }
+        }
+        (low.is_finite() && high.is_finite()).then_some((low, high))
+    }
+
+    /// `distance` of every point within `slack` of `p` to within `slack`, where they all lie
+    /// on one side of the ends.
+    fn distance_within(&self, p: Xz, slack: f64) -> Option<f64> {
+        let inside = self.sides.inside_within(p, slack)?;
+        Some(if inside { self.off_circle(p) } else { self.to_ends(p) })
     }
 }
 
@@ -271,6 +451,7 @@ impl ArcSpan {
 mod tests {
     use super::*;
     use crate::dialect::{DecimalInput, Dialect};
+    use std::f64::consts::TAU;
 
     fn grid(inch: bool, diameter: bool) -> Grid {
         let frame = Frame {
@@ -326,12 +507,72 @@ mod tests {
                 let signed = if sweep > 180.0 { -radius } else { radius };
                 let by_radius = g.arc_gap(from, end, centre, ccw, ArcWords::Radius(g.length(signed)));
                 let by_centre = g.arc_gap(from, end, centre, ccw, words);
-                assert_eq!(g.arc_words_with_gap(from, end, centre, ccw, true), (words, by_centre));
+                // Whether the choice strays further than a limit is what measuring it says, on
+                // either side of it and at it.
+                for limit in [0.0, by_centre * (1.0 - 1e-12), by_centre, g.increment_mm()] {
+                    let straying = g.arc_words_straying(from, end, centre, ccw, true, limit);
+                    assert_eq!(straying, (words, by_centre > limit));
+                }
                 // Rounded up, R puts the centre some 0.03–0.06 mm from where it is.
                 assert!(by_radius > 0.02, "{radius} {sweep}°: R strays {by_radius}");
                 // I K strays by its rounding only: the centre and the ends by half an
                 // increment per axis.
                 assert!(by_centre <= 0.0015, "{radius} {sweep}°: I K strays {by_centre}");
+            }
+        }
+    }
+
+    /// The choice of words as documented on [`Grid::arc_words`], every stray measured.
+    fn measured_choice(g: &Grid, from: Xz, end: Xz, centre: Xz, ccw: bool, prefer_radius: bool) -> (ArcWords, f64) {
+        let (start, stop) = (g.point(from), g.point(end));
+        let sweep = geometry::sweep(from, end, centre, ccw);
+        let line = (ArcWords::Line, f64::INFINITY);
+        if start == stop && sweep <= PI {
+            return line;
+        }
+        let at = g.to_mm(start);
+        let by_centre = ArcWords::Centre { i: g.length(centre.x - at.x), k: g.length(centre.z - at.z) };
+        let centre_gap = g.arc_gap(from, end, centre, ccw, by_centre);
+        if start == stop {
+            return if centre_gap.is_finite() { (by_centre, centre_gap) } else { line };
+        }
+        let radius = from.distance(centre);
+        let count = g.length(if sweep > PI + 1e-9 { -radius } else { radius });
+        let by_radius = ArcWords::Radius(count);
+        let radius_gap = g.arc_gap(from, end, centre, ccw, by_radius);
+        let increment = g.increment_mm();
+        let reaches = g.length_mm(count).abs() - at.distance(g.to_mm(stop)) / 2.0 >= increment - 1e-12;
+        if prefer_radius && reaches && (radius_gap <= increment / 2.0 || radius_gap <= centre_gap) {
+            (by_radius, radius_gap)
+        } else if centre_gap.is_finite() {
+            (by_centre, centre_gap)
+        } else if radius_gap.is_finite() {
+            (by_radius, radius_gap)
+        } else {
+            line
+        }
+    }
+
+    proptest::proptest! {
+        /// The choice bounds the strays and measures one only where the bounds do not decide:
+        /// it is the choice that measures them all, and so is whether it strays past a limit.
+        #[test]
+        fn bounded_strays_choose_as_measured_ones(
+            cx in -80.0f64..80.0, cz in -200.0f64..10.0, radius in 0.3f64..60.0, from in -3.2f64..3.2,
+            sweep in 0.001f64..(TAU - 0.001), near_half in -2e-3f64..2e-3, half in proptest::bool::ANY,
+            ccw in proptest::bool::ANY, prefer_radius in proptest::bool::ANY, inch in proptest::bool::ANY,
+            diameter in proptest::bool::ANY,
+        ) {
+            let g = grid(inch, diameter);
+            let centre = Xz::new(cx, cz);
+            let sweep = if half { PI + near_half } else { sweep };
+            let sense = if ccw { 1.0 } else { -1.0 };
+            let (a, b) = (geometry::on_circle(centre, radius, from), geometry::on_circle(centre, radius, from + sense * sweep));
+            let (words, gap) = measured_choice(&g, a, b, centre, ccw, prefer_radius);
+            proptest::prop_assert_eq!(g.arc_words(a, b, centre, ccw, prefer_radius), words);
+            for limit in [0.0, g.increment_mm() / 2.0, g.increment_mm(), gap, gap * (1.0 - 1e-12), gap * (1.0 + 1e-12)] {
+                let straying = g.arc_words_straying(a, b, centre, ccw, prefer_radius, limit);
+                proptest::prop_assert_eq!(straying, (words, gap > limit), "limit {}", limit);
             }
         }
     }
@@ -375,6 +616,31 @@ mod tests {
         assert!((run.distance(a) - run.distance(b)).abs() < 1e-12);
         let moved = run.distance(Xz::new(35.0, -20.0));
         assert!(moved > 1e-4 && moved < 1e-3, "{run:?}");
+    }
+
+    #[test]
+    fn the_usual_increments_have_the_places_expand_counts() {
+        for increment in [0.001, 0.0001, 0.01, 0.005, 0.5, 1.0] {
+            assert_eq!(places(increment), crate::expand::increment_places(increment), "{increment}");
+        }
+    }
+
+    #[test]
+    fn nearest_whole_is_round_as_a_count() {
+        let halves =
+            [0.5, -0.5, 1.5, -2.5, 0.499_999_999_999_999_94, -0.499_999_999_999_999_94, 4_503_599_627_370_495.5];
+        let edges = [0.0, -0.0, 1e300, -1e300, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 9.3e18, -9.3e18];
+        for x in halves.into_iter().chain(edges) {
+            assert_eq!(nearest_whole(x), x.round() as i64, "{x}");
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn nearest_whole_agrees_with_round(mantissa in -1e7f64..1e7, places in 0u8..10, half in proptest::bool::ANY) {
+            let x = if half { mantissa.trunc() + 0.5 } else { mantissa * 10f64.powi(i32::from(places)) };
+            proptest::prop_assert_eq!(nearest_whole(x), x.round() as i64);
+        }
     }
 
     #[test]

@@ -116,7 +116,7 @@ pub fn plan_range(
         let contour_start = written::contour_start(toolpath, index);
         let range = input.ranges.get(index).cloned().unwrap_or(0..0);
         let grid = grid_of(index);
-        let plan =
+        let mut plan =
             if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
                 MovePlan {
                     start: at,
@@ -146,11 +146,9 @@ pub fn plan_range(
                     plan_one(input, &piece, options)
                 }
             };
-        let plan = if plan.changed {
-            settle_arcs(plan, &grid, input.radius.get(index).copied().unwrap_or(false))
-        } else {
-            plan
-        };
+        if plan.changed {
+            settle_arcs(&mut plan, &grid, input.radius.get(index).copied().unwrap_or(false));
+        }
         at = plan.end();
         plans.push(plan);
     }
@@ -167,13 +165,14 @@ pub fn plan_range(
 /// along the chord by that micrometre times the radius over the chord (3 µm for a 340°
 /// arc of radius 13.5): the far side of the circle moves with it. Each half has a long
 /// chord. Cutting keeps the exact geometry; only the cut point is rounded.
-fn settle_arcs(mut plan: MovePlan, grid: &Grid, prefer_radius: bool) -> MovePlan {
+fn settle_arcs(plan: &mut MovePlan, grid: &Grid, prefer_radius: bool) {
     if !plan.segments.iter().any(|s| matches!(s, Segment::Arc { .. })) {
         // Nothing to choose: lines have no words to keep.
-        return plan;
+        return;
     }
-    let mut segments = Segments::new();
-    let mut words = SmallVec::new();
+    // As many as there are, unless an arc is cut.
+    let mut segments = Segments::with_capacity(plan.segments.len());
+    let mut words = SmallVec::with_capacity(plan.segments.len());
     let mut from = plan.start;
     for &segment in &plan.segments {
         settle(grid, prefer_radius, from, segment, MAX_HALVINGS, &mut segments, &mut words);
@@ -181,7 +180,6 @@ fn settle_arcs(mut plan: MovePlan, grid: &Grid, prefer_radius: bool) -> MovePlan
     }
     plan.segments = segments;
     plan.words = words;
-    plan
 }
 
 /// At most this many halvings of one arc (into 2⁴ pieces).
@@ -201,13 +199,13 @@ fn settle(
         words_out.push(ArcWords::Line);
         return;
     };
-    let (words, gap) = grid.arc_words_with_gap(from, end, centre, ccw, prefer_radius);
+    let (words, strays) = grid.arc_words_straying(from, end, centre, ccw, prefer_radius, grid.increment_mm());
     if words == ArcWords::Line {
         out.push(Segment::Line { end });
         words_out.push(ArcWords::Line);
         return;
     }
-    if halvings > 0 && gap > grid.increment_mm() {
+    if halvings > 0 && strays {
         let sweep = geometry::sweep(from, end, centre, ccw);
         let sign = if ccw { 1.0 } else { -1.0 };
         let radius = (from.distance(centre) + end.distance(centre)) / 2.0;
@@ -289,11 +287,11 @@ fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>, play: Xz) -> MovePla
 fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> MovePlan {
     let Piece { m, at, points, ref range, grid } = *piece;
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
-    let end_moves = grid.point(last) != grid.point(m.contour);
     let jumps = jumps(input, range.clone(), options.play);
     let tolerance = options.fit.tolerance_mm;
     let centre = written::contour_centre(m, input.tools);
-    if !end_moves && jumps.is_empty() && nominal_holds(m, centre, at, points, tolerance) {
+    let end_stays = || grid.point(last) == grid.point(m.contour);
+    if jumps.is_empty() && end_stays() && nominal_holds(m, centre, at, points, tolerance) {
         return nominal_plan(m, at, input.tools);
     }
     let nominal = if m.is_arc() {
@@ -301,14 +299,19 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
     } else {
         NominalShape::Line
     };
-    let mut segments = Segments::new();
+    if jumps.is_empty() {
+        let segments = choose_segments(&MovePoints { start: at, points, nominal }, &options.fit);
+        return MovePlan { start: at, segments, changed: true, jumps: 0, lead_in: false, words: SmallVec::new() };
+    }
+    // A jump and the piece before it each: room for them all but a piece's extra segments.
+    let mut segments = Segments::with_capacity(2 * jumps.len() + 1);
     let mut from = at;
     let mut piece = 0;
     for &(j, jump) in &jumps {
         let local = j - range.start;
         if local > piece {
             let part = MovePoints { start: from, points: &points[piece..local], nominal };
-            segments.extend(choose_segments(&part, &options.fit));
+            segments.extend_from_slice(&choose_segments(&part, &options.fit));
             from = points[local - 1];
         }
         from = Xz::new(from.x + jump.x, from.z + jump.z);
@@ -316,7 +319,8 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
         piece = local;
     }
     if piece < points.len() {
-        segments.extend(choose_segments(&MovePoints { start: from, points: &points[piece..], nominal }, &options.fit));
+        let rest = MovePoints { start: from, points: &points[piece..], nominal };
+        segments.extend_from_slice(&choose_segments(&rest, &options.fit));
     }
     MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false, words: SmallVec::new() }
 }
@@ -339,14 +343,13 @@ fn jumps(input: &PlanInput<'_>, range: Range<usize>, play: Xz) -> SmallVec<[(usi
     if play.x <= 0.0 && play.z <= 0.0 {
         return SmallVec::new();
     }
+    let offset = |j: usize| written::offset(&input.samples[j], input.commanded[j]);
     let mut out = SmallVec::new();
+    let mut before = range.start.checked_sub(1).map_or(Xz::new(0.0, 0.0), offset);
     for j in range {
-        let now = written::offset(&input.samples[j], input.commanded[j]);
-        let before = match j.checked_sub(1) {
-            Some(k) => written::offset(&input.samples[k], input.commanded[k]),
-            None => Xz::new(0.0, 0.0),
-        };
+        let now = offset(j);
         let d = Xz::new(now.x - before.x, now.z - before.z);
+        before = now;
         let jump = Xz::new(
             if play.x > 0.0 && d.x.abs() > play.x / 2.0 { d.x } else { 0.0 },
             if play.z > 0.0 && d.z.abs() > play.z / 2.0 { d.z } else { 0.0 },

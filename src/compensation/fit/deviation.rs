@@ -14,7 +14,9 @@
 //! sampled every 0.254 mm would fail by its own 4 µm sag, and no arc could ever be written
 //! for it.)
 
-use std::f64::consts::TAU;
+use std::cell::OnceCell;
+
+use smallvec::SmallVec;
 
 use super::{Segment, distance_to_chord};
 use crate::geometry::{self, SweepSides};
@@ -32,10 +34,7 @@ pub fn distance_to_segment(p: Xz, from: Xz, segment: &Segment) -> f64 {
 pub fn segment_deviation(from: Xz, segment: &Segment, points: &[Xz]) -> f64 {
     let worst = match *segment {
         Segment::Line { end } => points.iter().map(|&p| distance_to_chord(p, from, end)).fold(0.0, f64::max),
-        Segment::Arc { end, centre, ccw } => {
-            let gauge = ArcGauge::new(from, end, centre, ccw);
-            points.iter().map(|&p| gauge.distance(p)).fold(0.0, f64::max)
-        }
+        Segment::Arc { end, centre, ccw } => ArcGauge::new(from, end, centre, ccw).largest_distance(points),
     };
     if points.iter().all(|p| p.is_finite()) && !worst.is_nan() { worst } else { f64::INFINITY }
 }
@@ -70,19 +69,18 @@ struct ArcGauge {
     ccw: bool,
     r0: f64,
     r1: f64,
-    a0: f64,
-    total: f64,
     sides: SweepSides,
     /// The end radii are so close that the radius between them rounds to `r0` wherever it
     /// is taken (`r0 + (r1 − r0)·t` for t in [0, 1] lies between `r0` and `r0 + (r1 − r0)`,
     /// both rounded, and those are equal): a point inside the sweep then needs no angle.
     one_radius: bool,
+    /// The start's angle and the sweep, measured where a point first needs them.
+    angles: OnceCell<(f64, f64)>,
 }
 
 impl ArcGauge {
     fn new(from: Xz, end: Xz, centre: Xz, ccw: bool) -> ArcGauge {
         let (r0, r1) = (from.distance(centre), end.distance(centre));
-        let a0 = geometry::angle(from, centre);
         ArcGauge {
             from,
             end,
@@ -90,16 +88,24 @@ impl ArcGauge {
             ccw,
             r0,
             r1,
-            a0,
-            total: geometry::sweep_from(a0, from, end, centre, ccw),
             sides: SweepSides::new(from, end, centre, ccw),
             one_radius: r0 + (r1 - r0) == r0,
+            angles: OnceCell::new(),
         }
+    }
+
+    /// The start's angle and the sweep (`geometry::sweep`).
+    fn angles(&self) -> (f64, f64) {
+        *self.angles.get_or_init(|| {
+            let a0 = geometry::angle(self.from, self.centre);
+            (a0, geometry::sweep_from(a0, self.from, self.end, self.centre, self.ccw))
+        })
     }
 
     fn distance(&self, p: Xz) -> f64 {
         let to_ends = p.distance(self.from).min(p.distance(self.end));
-        if self.r0 <= 0.0 || self.r1 <= 0.0 {
+        // At an end (the last point is one), every way of measuring gives that nought.
+        if to_ends == 0.0 || self.r0 <= 0.0 || self.r1 <= 0.0 {
             return to_ends;
         }
         match self.sides.inside(p) {
@@ -107,13 +113,50 @@ impl ArcGauge {
             Some(true) if self.one_radius => return (p.distance(self.centre) - self.r0).abs().min(to_ends),
             _ => {}
         }
+        let (a0, total) = self.angles();
         let a = geometry::angle(p, self.centre);
-        let swept = if self.ccw { (a - self.a0).rem_euclid(TAU) } else { (self.a0 - a).rem_euclid(TAU) };
-        if swept > self.total {
+        let swept = if self.ccw { geometry::rem_turn(a - a0) } else { geometry::rem_turn(a0 - a) };
+        if swept > total {
             return to_ends;
         }
-        let radius = self.r0 + (self.r1 - self.r0) * (swept / self.total);
+        let radius = self.r0 + (self.r1 - self.r0) * (swept / total);
         (p.distance(self.centre) - radius).abs().min(to_ends)
+    }
+
+    /// Bounds on `distance(p)` that need no angle: the distance itself where the point's side
+    /// of the ends (`SweepSides`) tells it and the radius needs no interpolating, else the
+    /// distances with the radius of either end, between which the interpolated radius lies
+    /// (`r0 + (r1 − r0)·t` only grows or only shrinks with t, rounding included, and so does
+    /// the distance on either side of it); where the side is not clear, the distance.
+    fn bounds(&self, p: Xz) -> (f64, f64) {
+        let to_ends = p.distance(self.from).min(p.distance(self.end));
+        if to_ends == 0.0 || self.r0 <= 0.0 || self.r1 <= 0.0 {
+            return (to_ends, to_ends);
+        }
+        match self.sides.inside(p) {
+            Some(false) => (to_ends, to_ends),
+            Some(true) => {
+                let d = p.distance(self.centre);
+                let (a, b) = (d - self.r0, d - (self.r0 + (self.r1 - self.r0)));
+                let high = a.abs().max(b.abs());
+                let low = if (a >= 0.0) == (b >= 0.0) { a.abs().min(b.abs()) } else { 0.0 };
+                (low.min(to_ends), high.min(to_ends))
+            }
+            None => {
+                let d = self.distance(p);
+                (d, d)
+            }
+        }
+    }
+
+    /// The largest `distance` of `points`, as `fold(0, max)` of them gives it: from bounds
+    /// first, measuring the angle only of the points whose upper bound reaches the largest
+    /// lower bound, among which the largest distance must be.
+    fn largest_distance(&self, points: &[Xz]) -> f64 {
+        let bounds: SmallVec<[(f64, f64); 16]> = points.iter().map(|&p| self.bounds(p)).collect();
+        let floor = bounds.iter().fold(0.0, |floor, &(low, _)| f64::max(floor, low));
+        let candidates = points.iter().zip(&bounds).filter(|&(_, &(_, high))| high >= floor);
+        candidates.map(|(&p, &(low, high))| if low == high { low } else { self.distance(p) }).fold(0.0, f64::max)
     }
 }
 

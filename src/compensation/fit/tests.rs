@@ -441,3 +441,25 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    /// `segment_deviation` measures most points by bounds and only the likeliest largest by
+    /// its angle; the figure is the one measuring every point gives, to the bit.
+    #[test]
+    fn segment_deviation_is_the_largest_distance_of_any_point(
+        from in -3.2f64..3.2, sweep in 0.01f64..6.2, radius in 0.5f64..40.0, drift in -1e-14f64..1e-14,
+        ccw in proptest::bool::ANY, offsets in proptest::collection::vec((-0.3f64..1.3, -0.002f64..0.002), 1..12),
+    ) {
+        let centre = Xz::new(31.7, -12.3);
+        let sense = if ccw { 1.0 } else { -1.0 };
+        let start = on_circle(centre, radius, from);
+        let end = on_circle(centre, radius + drift * radius, from + sense * sweep);
+        let arc = Segment::Arc { end, centre, ccw };
+        // Points along the arc and beyond its ends, off it by a few micrometres, and its end.
+        let mut points: Vec<Xz> =
+            offsets.iter().map(|&(t, off)| on_circle(centre, radius + off, from + sense * sweep * t)).collect();
+        points.push(end);
+        let each = points.iter().map(|&p| distance_to_segment(p, start, &arc)).fold(0.0, f64::max);
+        prop_assert_eq!(segment_deviation(start, &arc, &points).to_bits(), each.to_bits());
+    }
+}

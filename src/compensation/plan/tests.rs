@@ -110,7 +110,8 @@ fn an_arc_the_control_would_run_off_after_rounding_is_cut_until_each_piece_runs_
     assert!(grid.arc_gap(start, end, centre, true, words) > grid.increment_mm(), "{words:?}");
     let plan =
         MovePlan { start, segments: smallvec![whole], changed: true, jumps: 0, lead_in: false, words: SmallVec::new() };
-    let settled = settle_arcs(plan, &grid, false);
+    let mut settled = plan;
+    settle_arcs(&mut settled, &grid, false);
     assert!(settled.segments.len() >= 2, "{:?}", settled.segments);
     assert_eq!(settled.end(), end);
     let mut from = start;
