@@ -303,8 +303,7 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
         let segments = choose_segments(&MovePoints { start: at, points, nominal }, &options.fit);
         return MovePlan { start: at, segments, changed: true, jumps: 0, lead_in: false, words: SmallVec::new() };
     }
-    // A jump and the piece before it each: room for them all but a piece's extra segments.
-    let mut segments = Segments::with_capacity(2 * jumps.len() + 1);
+    let mut segments = Segments::new();
     let mut from = at;
     let mut piece = 0;
     for &(j, jump) in &jumps {
