@@ -217,27 +217,14 @@ struct Run<'src> {
 impl<'src> Run<'src> {
     /// Parse the lines of `source` from `from` on, from the tape state `tape`.
     fn parse(source: &'src [u8], from: usize, config: DialectConfig, tape: Tape, block_capacity: usize) -> Run<'src> {
-        let mut program = Program {
-            source,
-            config,
-            // Words average 6-8 bytes in real and generated programs; reserving a little
-            // more than that avoids regrowth (which would lose the huge-page advice); what is
-            // not used is never touched, and is given back at the end.
-            blocks: crate::memory::huge_page_vec(block_capacity.max((source.len() - from) / 16 + 1)),
-            words: crate::memory::huge_page_vec((source.len() - from) / 6 + 1),
-            later_words: Vec::new(),
-            exprs: Vec::new(),
-            commands: Vec::new(),
-        };
+        // Words average 6-8 bytes in real and generated programs; reserving a little more
+        // than that avoids regrowth (which would lose the huge-page advice); what is not used
+        // is never touched, and is given back at the end.
+        let blocks = crate::memory::huge_page_vec(block_capacity.max((source.len() - from) / 16 + 1));
+        let words = crate::memory::huge_page_vec((source.len() - from) / 6 + 1);
+        let mut program = Program::empty(source, config, blocks, words);
         let mut diagnostics = Vec::new();
-        let mut builder = Builder {
-            program: &mut program,
-            diagnostics: &mut diagnostics,
-            warnings: Vec::new(),
-            codes: Vec::new(),
-            document_start: from == 0,
-        };
-        let end = builder.run(tape, from);
+        let end = Builder::new(&mut program, &mut diagnostics, from == 0).run(tape, from);
         Run { program, diagnostics, end }
     }
 }
@@ -277,24 +264,10 @@ pub(crate) struct Part {
 /// starts the program (where a byte-order mark may stand). Dialect detection is the caller's.
 pub(crate) fn parse_part(text: &[u8], config: DialectConfig, tape: Tape, document_start: bool) -> Part {
     // The same reservations as `parse`, for the same reason: no regrowth while parsing.
-    let mut program = Program {
-        source: text,
-        config,
-        blocks: Vec::with_capacity(text.len() / 16 + 1),
-        words: Vec::with_capacity(text.len() / 6 + 1),
-        later_words: Vec::new(),
-        exprs: Vec::new(),
-        commands: Vec::new(),
-    };
+    let blocks = Vec::with_capacity(text.len() / 16 + 1);
+    let mut program = Program::empty(text, config, blocks, Vec::with_capacity(text.len() / 6 + 1));
     let mut diagnostics = Vec::new();
-    let mut builder = Builder {
-        program: &mut program,
-        diagnostics: &mut diagnostics,
-        warnings: Vec::new(),
-        codes: Vec::new(),
-        document_start,
-    };
-    let (tape, trailing_from) = builder.run(tape, 0);
+    let (tape, trailing_from) = Builder::new(&mut program, &mut diagnostics, document_start).run(tape, 0);
     program.blocks.shrink_to_fit();
     program.words.shrink_to_fit();
     Part {
@@ -402,6 +375,12 @@ impl<'s> Lines<'s> {
 
     fn unread(&mut self, line: (usize, usize, usize)) {
         self.peeked = Some(line);
+    }
+}
+
+impl<'p, 'src> Builder<'p, 'src> {
+    fn new(program: &'p mut Program<'src>, diagnostics: &'p mut Vec<Diagnostic>, document_start: bool) -> Self {
+        Builder { program, diagnostics, warnings: Vec::new(), codes: Vec::new(), document_start }
     }
 }
 

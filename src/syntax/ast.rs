@@ -460,6 +460,12 @@ impl std::fmt::Debug for Program<'_> {
 }
 
 impl<'src> Program<'src> {
+    /// A program of `source` with no blocks yet, its block and word lists reserved by the
+    /// caller (`parse` reserves them for the whole program, `parse_part` for one run).
+    pub(crate) fn empty(source: &'src [u8], config: DialectConfig, blocks: Vec<Block>, words: Vec<Word>) -> Self {
+        Program { source, config, blocks, words, later_words: Vec::new(), exprs: Vec::new(), commands: Vec::new() }
+    }
+
     pub fn source(&self) -> &'src [u8] {
         self.source
     }
