@@ -109,47 +109,72 @@ pub(super) struct BlockContext<'a, 'src> {
 /// `X Z`, and `R` or `I K`).
 type Words = SmallVec<[(Slot, i64); 4]>;
 
+/// A word of the block that gives a coordinate of its move.
+#[derive(Debug, Clone, Copy)]
+struct CoordinateWord {
+    /// Its place among the block's words.
+    position: usize,
+    slot: Slot,
+    address: Address,
+    /// Its value when written as a literal (not an expression).
+    literal: Option<crate::syntax::Number>,
+}
+
+/// A block's coordinate words in block order (a block rarely has more than four).
+type CoordinateWords = SmallVec<[CoordinateWord; 4]>;
+
 /// The coordinate words a block writes, by slot: a literal's value, or for an expression the
 /// value it had on this run (`None` when the run has no such word).
 type OriginalWords = SmallVec<[(Slot, Option<i64>); 4]>;
 
 impl BlockContext<'_, '_> {
-    fn slot(&self, address: Address, is_arc: bool) -> Option<Slot> {
-        slot(self.program.config().dialect, address, is_arc)
+    /// The block's coordinate words, found once for everything that reads them.
+    fn coordinate_words(&self, is_arc: bool) -> CoordinateWords {
+        let block = self.program.block(self.block);
+        let dialect = self.program.config().dialect;
+        let mut out = CoordinateWords::new();
+        for (position, word) in self.program.words_of(block).iter().enumerate() {
+            let (address, literal) = match word.kind {
+                WordKind::Number { address, number } => (address, Some(number)),
+                WordKind::Expr { address, .. } => (address, None),
+                _ => continue,
+            };
+            if let Some(slot) = slot(dialect, address, is_arc) {
+                out.push(CoordinateWord { position, slot, address, literal });
+            }
+        }
+        out
     }
 
-    fn form(&self, is_arc: bool) -> Form {
+    fn form(&self, coordinates: &[CoordinateWord]) -> Form {
         let dialect = self.program.config().dialect;
         let absolute = self.mark.absolute;
         let radius_address = if dialect == Dialect::Osp { Address::L } else { Address::R };
         let mut form = Form {
             x: (Address::X, absolute),
             z: (Address::Z, absolute),
-            radius_arcs: self.radius_arcs,
+            radius_arcs: radius_form(coordinates.iter().map(|c| c.slot)).unwrap_or(self.radius_arcs),
             radius_address,
             x_named: false,
             z_named: false,
         };
-        let block = self.program.block(self.block);
-        for word in self.program.words_of(block) {
-            let (WordKind::Number { address, .. } | WordKind::Expr { address, .. }) = word.kind else { continue };
-            match self.slot(address, is_arc) {
-                Some(Slot::X) => {
+        for &CoordinateWord { slot, address, .. } in coordinates {
+            match slot {
+                Slot::X => {
                     form.x = (address, address == Address::X && absolute);
                     form.x_named = true;
                 }
-                Some(Slot::Z) => {
+                Slot::Z => {
                     form.z = (address, address == Address::Z && absolute);
                     form.z_named = true;
                 }
-                Some(Slot::Angle) => {
+                Slot::Angle => {
                     form.x_named = true;
                     form.z_named = true;
                 }
                 _ => {}
             }
         }
-        form.radius_arcs = writes_radius(self.program, self.block, is_arc, self.radius_arcs);
         // An axis the block does not name is written the way it writes the other one
         // (`W-20.` gains a `U`, not an `X`).
         if form.z_named && !form.x_named && !form.z.1 {
@@ -197,21 +222,20 @@ impl BlockContext<'_, '_> {
 
     /// What the block's coordinate words say now: a literal's value, or for an expression
     /// the value it had on this run (the nominal move).
-    fn original_words(&self, form: &Form, m: &Move, contour_start: Xz) -> OriginalWords {
-        let block = self.program.block(self.block);
+    fn original_words(
+        &self,
+        form: &Form,
+        coordinates: &[CoordinateWord],
+        m: &Move,
+        contour_start: Xz,
+    ) -> OriginalWords {
         let tables = self.program.config().tables();
         // The programmed move's words, for a word written as an expression: computed only
         // for such a block.
         let nominal = std::cell::OnceCell::new();
         let nominal = || nominal.get_or_init(|| self.words(form, contour_start, &nominal_segment(m, self.tools), None));
         let mut out = OriginalWords::new();
-        for word in self.program.words_of(block) {
-            let (address, literal) = match word.kind {
-                WordKind::Number { address, number } => (address, Some(number)),
-                WordKind::Expr { address, .. } => (address, None),
-                _ => continue,
-            };
-            let Some(slot) = self.slot(address, m.is_arc()) else { continue };
+        for &CoordinateWord { slot, address, literal, .. } in coordinates {
             let value = match literal {
                 Some(number) => {
                     let kind = tables.address(address).map(|s| s.kind).or(Some(AddressKind::Length));
@@ -270,7 +294,8 @@ impl BlockContext<'_, '_> {
             return None;
         }
         let original_kind = Kind::of(m);
-        let form = self.form(m.is_arc());
+        let coordinates = self.coordinate_words(m.is_arc());
+        let form = self.form(&coordinates);
         let mut at = plan.start;
         // The motion code the block's own words run under, when it is not the modal one.
         let mut in_force = original_kind;
@@ -288,7 +313,7 @@ impl BlockContext<'_, '_> {
         }
         let (first, rest) = segments.split_first()?;
         let first_kind = Kind::of_segment(first, original_kind);
-        let original = self.original_words(&form, m, contour_start);
+        let original = self.original_words(&form, &coordinates, m, contour_start);
         let new = self.words(&form, at, first, chosen.next().flatten());
         let same_words = original.len() == new.len()
             && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
@@ -304,7 +329,7 @@ impl BlockContext<'_, '_> {
             out.next_block();
         }
         let code_changes = first_kind != original_kind || in_force != original_kind;
-        self.first_block(&form, m, &new, &original, code_changes.then_some(first_kind), out);
+        self.first_block(&form, &coordinates, &new, &original, code_changes.then_some(first_kind), out);
         let mut kind = first_kind;
         at = first.end();
         for segment in rest {
@@ -331,7 +356,7 @@ impl BlockContext<'_, '_> {
     fn first_block(
         &self,
         form: &Form,
-        m: &Move,
+        coordinates: &[CoordinateWord],
         new: &Words,
         original: &[(Slot, Option<i64>)],
         new_code: Option<Kind>,
@@ -339,16 +364,10 @@ impl BlockContext<'_, '_> {
     ) {
         let block = self.program.block(self.block);
         let words = self.program.words_of(block);
-        // The block's coordinate words, read as the original move reads them (an `R` in a
-        // line block is no radius).
-        let coordinate = |w: &crate::syntax::Word| match w.kind {
-            WordKind::Number { address, .. } | WordKind::Expr { address, .. } => {
-                self.slot(address, m.is_arc()).is_some()
-            }
-            _ => false,
-        };
-        let last_coordinate = words.iter().rposition(coordinate);
-        let first_coordinate = words.iter().position(coordinate);
+        let last_coordinate = coordinates.last().map(|c| c.position);
+        let first_coordinate = coordinates.first().map(|c| c.position);
+        // The coordinate words still ahead, in block order.
+        let mut ahead = coordinates.iter().peekable();
         let mut written: SmallVec<[Slot; 4]> = SmallVec::new();
         let mut code_written = false;
         let first = block.first_word;
@@ -361,25 +380,25 @@ impl BlockContext<'_, '_> {
                 out.word(&self.code(kind));
                 code_written = true;
             }
-            match (word.kind, new_code) {
-                (WordKind::Code { letter: CodeLetter::G, code }, Some(kind)) if self.is_motion_code(code) => {
+            let coordinate = ahead.next_if(|c| c.position == k);
+            match (word.kind, new_code, coordinate) {
+                (_, _, Some(&CoordinateWord { slot, address, literal, .. })) => {
+                    if let Some((slot, value)) = new.iter().find(|(n, _)| *n == slot).copied()
+                        && !written.contains(&slot)
+                    {
+                        let unchanged = original.iter().any(|(s, v)| *s == slot && *v == Some(value))
+                            && literal.is_some()
+                            && same_address(form, slot, address);
+                        out.word(&if unchanged { NewWord::Copy(id) } else { self.new_word(form, slot, value) });
+                        written.push(slot);
+                    }
+                }
+                (WordKind::Code { letter: CodeLetter::G, code }, Some(kind), None) if self.is_motion_code(code) => {
                     if !code_written {
                         let same =
                             self.program.config().tables().g(code).and_then(|g| g.function) == Some(kind.function());
                         out.word(&if same { NewWord::Copy(id) } else { self.code(kind) });
                         code_written = true;
-                    }
-                }
-                (WordKind::Number { address, .. } | WordKind::Expr { address, .. }, _) if coordinate(word) => {
-                    let slot = self.slot(address, m.is_arc());
-                    if let Some((slot, value)) = slot.and_then(|s| new.iter().find(|(n, _)| *n == s)).copied()
-                        && !written.contains(&slot)
-                    {
-                        let unchanged = original.iter().any(|(s, v)| *s == slot && *v == Some(value))
-                            && matches!(word.kind, WordKind::Number { .. })
-                            && same_address(form, slot, address);
-                        out.word(&if unchanged { NewWord::Copy(id) } else { self.new_word(form, slot, value) });
-                        written.push(slot);
                     }
                 }
                 _ => out.word(&NewWord::Copy(id)),
@@ -429,16 +448,25 @@ fn slot(dialect: Dialect, address: Address, is_arc: bool) -> Option<Slot> {
 /// radius).
 pub(super) fn writes_radius(program: &Program<'_>, block: usize, is_arc: bool, program_radius_arcs: bool) -> bool {
     let dialect = program.config().dialect;
+    let slots = program.words_of(program.block(block)).iter().filter_map(|word| match word.kind {
+        WordKind::Number { address, .. } | WordKind::Expr { address, .. } => slot(dialect, address, is_arc),
+        _ => None,
+    });
+    radius_form(slots).unwrap_or(program_radius_arcs)
+}
+
+/// Whether a block whose coordinate words give `slots` writes its arc by radius, or `None`
+/// when it writes neither a radius nor a centre.
+fn radius_form(slots: impl Iterator<Item = Slot>) -> Option<bool> {
     let (mut radius, mut centre) = (false, false);
-    for word in program.words_of(program.block(block)) {
-        let (WordKind::Number { address, .. } | WordKind::Expr { address, .. }) = word.kind else { continue };
-        match slot(dialect, address, is_arc) {
-            Some(Slot::Radius) => radius = true,
-            Some(Slot::I | Slot::K) => centre = true,
+    for slot in slots {
+        match slot {
+            Slot::Radius => radius = true,
+            Slot::I | Slot::K => centre = true,
             _ => {}
         }
     }
-    if radius || centre { radius } else { program_radius_arcs }
+    (radius || centre).then_some(radius)
 }
 
 /// Whether the word at `address` is written with the address the form uses for `slot`.
