@@ -97,21 +97,24 @@ pub struct ReportInput<'a> {
 }
 
 pub fn build(input: &ReportInput<'_>) -> Report {
-    let lines = LineIndex::new(input.program.source());
     let edited = input.edited;
-    // A long program's blocks are reported in two halves at once.
-    let blocks = if !input.block_reports {
-        Vec::new()
-    } else if edited.len() >= PARALLEL_BLOCKS {
-        let (first, second) = edited.split_at(edited.len() / 2);
-        std::thread::scope(|scope| {
-            let second = scope.spawn(|| block_reports(input, &lines, second));
-            let mut blocks = block_reports(input, &lines, first);
-            blocks.extend(second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
-            blocks
-        })
+    let blocks = if input.block_reports {
+        // Indexed only here: a 50 MB program has two million lines.
+        let lines = LineIndex::new(input.program.source());
+        // A long program's blocks are reported in two halves at once.
+        if edited.len() >= PARALLEL_BLOCKS {
+            let (first, second) = edited.split_at(edited.len() / 2);
+            std::thread::scope(|scope| {
+                let second = scope.spawn(|| block_reports(input, &lines, second));
+                let mut blocks = block_reports(input, &lines, first);
+                blocks.extend(second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
+                blocks
+            })
+        } else {
+            block_reports(input, &lines, edited)
+        }
     } else {
-        block_reports(input, &lines, edited)
+        Vec::new()
     };
     let before = input.before.figures();
     let after = input.after.figures();
