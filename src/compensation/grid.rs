@@ -107,19 +107,15 @@ fn places(increment: f64) -> u8 {
 /// call `round` is on this target: every grid point takes two. Below 2⁵² in size, the
 /// truncation toward zero and the fraction it leaves are both exact in f64, and the fraction
 /// decides; from 2⁵² on every f64 is whole already, and those, the infinities and NaN take
-/// `round` itself.
+/// `round` itself. The fraction is added as two flags rather than chosen by branches: its
+/// side is as good as random from point to point, and a mispredicted branch per count cost
+/// more than the count.
 fn nearest_whole(x: f64) -> i64 {
     const WHOLE_FROM: f64 = 4_503_599_627_370_496.0;
     if x.abs() < WHOLE_FROM {
         let whole = x as i64;
         let fraction = x - whole as f64;
-        if fraction >= 0.5 {
-            whole + 1
-        } else if fraction <= -0.5 {
-            whole - 1
-        } else {
-            whole
-        }
+        whole + i64::from(fraction >= 0.5) - i64::from(fraction <= -0.5)
     } else {
         x.round() as i64
     }
@@ -179,20 +175,22 @@ impl Grid {
         if full && exact.sweep() <= PI {
             return (ArcWords::Line, true);
         }
-        let at = self.to_mm(start);
-        let by_centre = ArcWords::Centre { i: self.length(centre.x - at.x), k: self.length(centre.z - at.z) };
+        // The rounded ends in mm, which every stray's arc runs between.
+        let (at, to) = (self.to_mm(start), self.to_mm(stop));
+        // Most arcs keep the radius form: the centre's words are counted only where asked for.
+        let by_centre = || ArcWords::Centre { i: self.length(centre.x - at.x), k: self.length(centre.z - at.z) };
         // Each stray runs the control's arc; it is bounded only where the choice needs it,
         // and measured only where the bounds do not decide (the choice is the same as
         // measuring both every time).
-        let stray = |words| Stray::new(self, &exact, start, stop, words, ccw);
+        let stray = |words| Stray::new(self, &exact, at, to, words, ccw);
         let centre_stray = std::cell::OnceCell::new();
-        let centre_stray = || centre_stray.get_or_init(|| stray(by_centre));
+        let centre_stray = || centre_stray.get_or_init(|| stray(by_centre()));
         let line = (ArcWords::Line, true);
         if full {
             let by_centre_stray = centre_stray();
-            return if by_centre_stray.is_finite() { (by_centre, !by_centre_stray.at_most(limit)) } else { line };
+            return if by_centre_stray.is_finite() { (by_centre(), !by_centre_stray.at_most(limit)) } else { line };
         }
-        let radius = from.distance(centre);
+        let radius = exact.radius;
         let beyond_half_turn = exact.sides.beyond_half_turn().unwrap_or_else(|| exact.sweep() > PI + 1e-9);
         let signed = if beyond_half_turn { -radius } else { radius };
         let count = self.length(signed);
@@ -200,14 +198,14 @@ impl Grid {
         if prefer_radius {
             let radius_stray = stray(by_radius);
             let increment = self.increment_mm();
-            let reaches = self.length_mm(count).abs() - at.distance(self.to_mm(stop)) / 2.0 >= increment - 1e-12;
+            let reaches = self.length_mm(count).abs() - at.distance(to) / 2.0 >= increment - 1e-12;
             let radius_holds =
                 reaches && (radius_stray.at_most(increment / 2.0) || radius_stray.at_most_as_far_as(centre_stray()));
             if radius_holds {
                 return (by_radius, !radius_stray.at_most(limit));
             }
             return if centre_stray().is_finite() {
-                (by_centre, !centre_stray().at_most(limit))
+                (by_centre(), !centre_stray().at_most(limit))
             } else if radius_stray.is_finite() {
                 (by_radius, !radius_stray.at_most(limit))
             } else {
@@ -215,7 +213,7 @@ impl Grid {
             };
         }
         if centre_stray().is_finite() {
-            return (by_centre, !centre_stray().at_most(limit));
+            return (by_centre(), !centre_stray().at_most(limit));
         }
         let radius_stray = stray(by_radius);
         if radius_stray.is_finite() { (by_radius, !radius_stray.at_most(limit)) } else { line }
@@ -224,7 +222,12 @@ impl Grid {
     /// The centre the control takes for an arc written with `words` from `start` to `stop`
     /// (grid points), in the toolpath frame: as the semantic pass reads the block back.
     pub fn arc_centre(&self, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> Option<Xz> {
-        let (from, to) = (self.to_mm(start), self.to_mm(stop));
+        self.arc_centre_between(self.to_mm(start), self.to_mm(stop), words, ccw)
+    }
+
+    /// [`Grid::arc_centre`] given the grid points in mm (`Grid::to_mm`), for callers that have
+    /// them already.
+    fn arc_centre_between(&self, from: Xz, to: Xz, words: ArcWords, ccw: bool) -> Option<Xz> {
         match words {
             ArcWords::Radius(count) => {
                 geometry::centre_from_radius(from, to, self.length_mm(count), ccw, geometry::ARC_RADIUS_REACH_MM)
@@ -240,7 +243,7 @@ impl Grid {
     /// How far the arc the control runs for `words`, written for the arc from `from` to
     /// `end` about `centre` (exact), strays from that arc (infinite when it runs none).
     pub fn arc_gap(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, words: ArcWords) -> f64 {
-        let (start, stop) = (self.point(from), self.point(end));
+        let (start, stop) = (self.to_mm(self.point(from)), self.to_mm(self.point(end)));
         Stray::new(self, &ArcSpan::new(from, end, centre, ccw), start, stop, words, ccw).measured()
     }
 }
@@ -258,9 +261,10 @@ struct Stray<'a> {
 }
 
 impl<'a> Stray<'a> {
-    fn new(grid: &Grid, exact: &'a ArcSpan, start: GridPoint, stop: GridPoint, words: ArcWords, ccw: bool) -> Self {
-        let run =
-            grid.arc_centre(start, stop, words, ccw).map(|c| ArcSpan::new(grid.to_mm(start), grid.to_mm(stop), c, ccw));
+    /// The stray of the arc the control runs for `words` between the rounded ends `start` and
+    /// `stop` (grid points in mm).
+    fn new(grid: &Grid, exact: &'a ArcSpan, start: Xz, stop: Xz, words: ArcWords, ccw: bool) -> Self {
+        let run = grid.arc_centre_between(start, stop, words, ccw).map(|c| ArcSpan::new(start, stop, c, ccw));
         let (low, high) = match &run {
             Some(run) => exact.gap_bounds(run).unwrap_or((f64::NEG_INFINITY, f64::INFINITY)),
             None => (f64::INFINITY, f64::INFINITY),

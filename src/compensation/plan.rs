@@ -170,15 +170,17 @@ fn settle_arcs(plan: &mut MovePlan, grid: &Grid, prefer_radius: bool) {
         // Nothing to choose: lines have no words to keep.
         return;
     }
-    // As many as there are, unless an arc is cut.
-    let mut segments = Segments::with_capacity(plan.segments.len());
-    let mut words = SmallVec::with_capacity(plan.segments.len());
+    // The settled segments go back into the plan's own storage (a plan of more than two
+    // segments has it on the heap), so only the words take new room: as many as there are
+    // segments, unless an arc is cut.
+    let unsettled: SmallVec<[Segment; 8]> = SmallVec::from_slice(&plan.segments);
+    plan.segments.clear();
+    let mut words = SmallVec::with_capacity(unsettled.len());
     let mut from = plan.start;
-    for &segment in &plan.segments {
-        settle(grid, prefer_radius, from, segment, MAX_HALVINGS, &mut segments, &mut words);
+    for &segment in &unsettled {
+        settle(grid, prefer_radius, from, segment, MAX_HALVINGS, &mut plan.segments, &mut words);
         from = segment.end();
     }
-    plan.segments = segments;
     plan.words = words;
 }
 
