@@ -48,6 +48,9 @@ pub struct LowerOptions {
     /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
     /// under the program's own `G41`/`G42`).
     pub nose_radius_compensation: bool,
+    /// Time arcs on a second thread while the program runs (`emitter/arc_times.rs`) when
+    /// it has at least this many blocks; the times are the same either way.
+    pub arc_times_beside_from_blocks: usize,
 }
 
 impl LowerOptions {
@@ -57,6 +60,8 @@ impl LowerOptions {
             max_executed_blocks: 10_000_000,
             max_moves: 20_000_000,
             nose_radius_compensation: true,
+            // A thread pays for itself on a few thousand arcs.
+            arc_times_beside_from_blocks: 20_000,
         }
     }
 }

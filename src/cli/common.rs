@@ -261,6 +261,20 @@ pub fn ready<'b>(
     command: &str,
     warnings: &mut Vec<u8>,
 ) -> Result<Ready<'b>, Vec<u8>> {
+    ready_beside(name, bytes, resolved, (run, command), warnings, |_| ()).map(|(ready, ())| ready)
+}
+
+/// [`ready`], running `beside` on the parsed program on a second thread while the program is
+/// lowered and validated: lowering runs on one core, and work that needs only the parsed
+/// program can take the other (`beside` does not run when the program is not lowered).
+pub fn ready_beside<'b, T: Send>(
+    name: &str,
+    bytes: &'b [u8],
+    resolved: &Resolved,
+    (run, command): (&RunArgs, &str),
+    warnings: &mut Vec<u8>,
+    beside: impl FnOnce(&syntax::Program<'b>) -> T + Send,
+) -> Result<(Ready<'b>, T), Vec<u8>> {
     let parsed = syntax::parse(bytes, &resolved.options);
     if !semantic::lowers(&parsed.program) {
         let mut text = rendered(name, bytes, &parsed.diagnostics);
@@ -270,12 +284,17 @@ pub fn ready<'b>(
         );
         return Err(text);
     }
-    let Lowering { lowered, machine, diagnostics } = lower_and_validate(&parsed, resolved, run);
+    let (Lowering { lowered, machine, diagnostics }, made) = std::thread::scope(|scope| {
+        let made = scope.spawn(|| beside(&parsed.program));
+        let lowering = lower_and_validate(&parsed, resolved, run);
+        // `beside` cannot fail on any input; a panic is a bug, and is passed on.
+        (lowering, made.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+    });
     let text = rendered(name, bytes, &diagnostics);
     match lowered {
         Ok(lowered) if !diagnostics.iter().any(Diagnostic::is_error) => {
             warnings.extend_from_slice(&text);
-            Ok(Ready { parsed, lowered, machine })
+            Ok((Ready { parsed, lowered, machine }, made))
         }
         _ => {
             let mut text = text;

@@ -13,15 +13,16 @@ use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
-use turnpass::compensation::{CompensateOptions, Outcome, compensate_program};
+use turnpass::compensation::rewrite::ProgramTables;
+use turnpass::compensation::{CompensateOptions, Outcome, compensate_with_tables};
 use turnpass::error_model::ErrorModel;
 use turnpass::printer;
 use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready, rendered, required_error_model,
-    write_output,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready_beside, rendered,
+    required_error_model, write_output,
 };
 
 #[derive(Args)]
@@ -131,14 +132,26 @@ impl FitArgs {
     /// Compensate a ready program with `model`; `paths` keeps every sample's paths (for
     /// `plot`), `block_reports` reports every edited block (for `--report json`).
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
+        self.compensate_with_tables(program, model, (paths, block_reports), None)
+    }
+
+    /// [`FitArgs::compensate`] with the rewrite's tables of the program made already (beside
+    /// its lowering, `ready_beside`).
+    pub fn compensate_with_tables(
+        &self,
+        program: &Ready<'_>,
+        model: &ErrorModel,
+        (paths, block_reports): (bool, bool),
+        tables: Option<ProgramTables>,
+    ) -> Outcome {
         let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
-        compensate_program(
+        compensate_with_tables(
             &program.parsed.program,
             &program.lowered,
             &program.valid(),
-            &program.machine,
-            model,
+            (&program.machine, model),
             &options,
+            tables,
         )
     }
 }
@@ -190,11 +203,13 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let model = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
-    let program = match ready(&name, &bytes, &resolved, &args.run, "compensate", &mut messages) {
-        Ok(program) => program,
-        Err(text) => return Ok(FileResult::failed(1, text)),
-    };
-    let outcome = args.fit.compensate(&program, &model, false, args.report.is_some());
+    // The rewrite's tables of the program are made on the idle core while it is lowered.
+    let (program, tables) =
+        match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, ProgramTables::new) {
+            Ok(ready) => ready,
+            Err(text) => return Ok(FileResult::failed(1, text)),
+        };
+    let outcome = args.fit.compensate_with_tables(&program, &model, (false, args.report.is_some()), Some(tables));
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());

@@ -118,17 +118,31 @@ pub fn compensate_program(
     model: &ErrorModel,
     options: &CompensateOptions,
 ) -> Outcome {
+    compensate_with_tables(program, lowered, valid, (machine, model), options, None)
+}
+
+/// [`compensate_program`] given the rewrite's tables of `program`, when they were made
+/// beside its lowering (`rewrite::ProgramTables`).
+pub fn compensate_with_tables(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    valid: &ValidToolpath,
+    (machine, model): (&Machine, &ErrorModel),
+    options: &CompensateOptions,
+    tables: Option<rewrite::ProgramTables>,
+) -> Outcome {
     let toolpath = valid.toolpath();
     let tools = ToolTable::from_machine(machine);
     // The per-move tables are independent of each other: the rewrite's (what can be written
-    // for each move, and the rewrite itself, which reads the whole program) are made beside
-    // the rest.
-    let ((forms, motion), (path, runs, sampling)) = std::thread::scope(|scope| {
+    // for each move, the runs of moves each edited block writes, and the rewrite itself,
+    // which reads the whole program) are made beside the rest.
+    let ((forms, runs, motion), (path, sampling)) = std::thread::scope(|scope| {
         let rewrite = scope.spawn(|| {
-            let motion = rewrite::MotionBlocks::new(program, lowered, &tools);
-            (motion.move_forms(), motion)
+            let tables = tables.unwrap_or_else(|| rewrite::ProgramTables::new(program));
+            let motion = rewrite::MotionBlocks::with_tables(program, lowered, &tools, tables);
+            (motion.move_forms(), rewrite::move_runs(lowered), motion)
         });
-        let rest = (LocalPath::new(toolpath), rewrite::move_runs(lowered), sampling(&options.fit, model, toolpath));
+        let rest = (LocalPath::new(toolpath), sampling(&options.fit, model, toolpath));
         // Neither can fail on any input; a panic is a bug, and is passed on.
         (rewrite.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
     });

@@ -27,7 +27,7 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::printer::{BlockWriter, Edits, WrittenText};
+use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
 use crate::syntax::{Program, Statement};
@@ -144,8 +144,12 @@ pub struct MoveRun {
 /// Every move's run, in path order: each `EditedBlock` writes the moves of one of them.
 pub fn move_runs(lowered: &Lowered) -> Vec<MoveRun> {
     let moves = &lowered.toolpath.moves;
-    // The cycle each move belongs to (the first that lists it).
-    let mut cycle_of: Vec<Option<usize>> = vec![None; moves.len()];
+    // The cycle each move belongs to (the first that lists it); a program without cycles
+    // needs no table.
+    let mut cycle_of: Vec<Option<usize>> = Vec::new();
+    if !lowered.expansions.is_empty() {
+        cycle_of.resize(moves.len(), None);
+    }
     for (index, e) in lowered.expansions.iter().enumerate() {
         for k in e.moves.clone() {
             if let Some(c) = cycle_of.get_mut(k) {
@@ -153,12 +157,14 @@ pub fn move_runs(lowered: &Lowered) -> Vec<MoveRun> {
             }
         }
     }
-    let mut runs = Vec::new();
+    let cycle_at = |k: usize| cycle_of.get(k).copied().flatten();
+    // At most one run per move, written front to back.
+    let mut runs = crate::memory::huge_page_vec(moves.len());
     let mut k = 0;
     while k < moves.len() {
-        let (source, cycle) = (moves[k].source, cycle_of[k]);
+        let (source, cycle) = (moves[k].source, cycle_at(k));
         let first = k;
-        while k < moves.len() && cycle_of[k] == cycle && (cycle.is_some() || moves[k].source == source) {
+        while k < moves.len() && cycle_at(k) == cycle && (cycle.is_some() || moves[k].source == source) {
             k += 1;
         }
         runs.push(MoveRun { moves: first..k, cycle: cycle.is_some() });
@@ -205,26 +211,70 @@ enum FirstRun {
     Replaced(usize),
 }
 
+/// What the rewrite of the motion blocks needs of the program alone: the block lookup, the
+/// program's arc form and writing style, and the per-block tables. A long program's take
+/// about a tenth of a second to make, so `compensate` makes them on the idle core while the
+/// program is lowered (`cli::common::ready_beside`) and hands them to
+/// `MotionBlocks::with_tables`.
+pub struct ProgramTables {
+    /// The number of blocks of the program they were made for.
+    blocks: usize,
+    lookup: BlockLookup,
+    radius_arcs: bool,
+    style: ProgramStyle,
+    replacements: Vec<(usize, WrittenText)>,
+    edited: Vec<EditedBlock>,
+    first_runs: Vec<FirstRun>,
+}
+
+impl ProgramTables {
+    pub fn new(program: &Program<'_>) -> ProgramTables {
+        let blocks = program.blocks().len();
+        ProgramTables {
+            blocks,
+            lookup: BlockLookup::new(program),
+            radius_arcs: crate::expand::uses_radius_arcs(program),
+            style: ProgramStyle::infer(program),
+            // At most one of each per block: huge pages where the program is long (written
+            // front to back, they only take the memory they fill).
+            replacements: crate::memory::huge_page_vec(blocks),
+            edited: crate::memory::huge_page_vec(blocks),
+            first_runs: {
+                let mut first_runs = crate::memory::huge_page_vec(blocks);
+                first_runs.resize(blocks, FirstRun::NotYet);
+                first_runs
+            },
+        }
+    }
+}
+
 impl<'a, 'src> MotionBlocks<'a, 'src> {
     pub fn new(program: &'a Program<'src>, lowered: &'a Lowered, tools: &'a ToolTable) -> MotionBlocks<'a, 'src> {
+        MotionBlocks::with_tables(program, lowered, tools, ProgramTables::new(program))
+    }
+
+    /// `new` with the program's tables made already (`ProgramTables::new(program)`); tables
+    /// of another program are made again.
+    pub fn with_tables(
+        program: &'a Program<'src>,
+        lowered: &'a Lowered,
+        tools: &'a ToolTable,
+        tables: ProgramTables,
+    ) -> MotionBlocks<'a, 'src> {
+        let tables = if tables.blocks == program.blocks().len() { tables } else { ProgramTables::new(program) };
+        let ProgramTables { lookup, radius_arcs, style, replacements, edited, first_runs, .. } = tables;
         MotionBlocks {
             program,
             lowered,
             tools,
-            lookup: BlockLookup::new(program),
+            lookup,
             near: 0,
-            radius_arcs: crate::expand::uses_radius_arcs(program),
+            radius_arcs,
             grid: None,
-            writer: BlockWriter::new(program),
-            // At most one of each per block: huge pages where the program is long (written
-            // front to back, they only take the memory they fill).
-            replacements: crate::memory::huge_page_vec(program.blocks().len()),
-            edited: crate::memory::huge_page_vec(program.blocks().len()),
-            first_runs: {
-                let mut first_runs = crate::memory::huge_page_vec(program.blocks().len());
-                first_runs.resize(program.blocks().len(), FirstRun::NotYet);
-                first_runs
-            },
+            writer: BlockWriter::with_style(program, style),
+            replacements,
+            edited,
+            first_runs,
             differing: HashSet::new(),
             refused: HashSet::new(),
             diagnostics: Vec::new(),

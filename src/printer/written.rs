@@ -47,10 +47,15 @@ pub struct Mark(usize);
 impl<'p, 'src> BlockWriter<'p, 'src> {
     /// A writer in `program`'s style (`ProgramStyle::infer`).
     pub fn new(program: &'p Program<'src>) -> BlockWriter<'p, 'src> {
+        BlockWriter::with_style(program, ProgramStyle::infer(program))
+    }
+
+    /// A writer in `style`, inferred from `program` already.
+    pub fn with_style(program: &'p Program<'src>, style: ProgramStyle) -> BlockWriter<'p, 'src> {
         // A compensated program's new blocks are about as long as the program: huge pages
         // where there is that much to write.
         let text = crate::memory::huge_page_vec(program.source().len());
-        BlockWriter { program, style: ProgramStyle::infer(program), text, line_start: true }
+        BlockWriter { program, style, text, line_start: true }
     }
 
     /// Start a replacement; what follows is its first block.

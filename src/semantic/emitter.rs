@@ -10,6 +10,11 @@
 //!   radius, `rpm = v / (2π r)` up to the clamp. A straight move's time is integrated in
 //!   closed form (the integrand is linear in r where the clamp is not reached); an arc's by
 //!   Simpson's rule.
+//!
+//! A long program's arcs are timed on a second thread while the interpreter runs on
+//! (`arc_times.rs`): their sines and arctangents were a third of the lowering.
+
+mod arc_times;
 
 use std::f64::consts::TAU;
 
@@ -17,7 +22,9 @@ use crate::geometry;
 use crate::source::Span;
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
-use super::modal::{Modal, SpindleMode};
+use super::modal::{Modal, SpindleMode, SurfaceSpeed};
+
+pub use arc_times::{ArcJob, time_arcs};
 
 /// What the moves of the current block share.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,6 +52,8 @@ pub struct Emitter {
     /// leave them set; that only costs the pass.)
     pub compensated: bool,
     pub dwelled: bool,
+    /// Where arcs go to be timed on another thread, while one does (`time_arcs_beside`).
+    beside: Option<arc_times::Beside>,
 }
 
 /// Samples for Simpson's rule on arcs under constant surface speed.
@@ -63,6 +72,7 @@ impl Emitter {
             first_start: None,
             compensated: false,
             dwelled: false,
+            beside: None,
         }
     }
 
@@ -73,12 +83,12 @@ impl Emitter {
             Xz::new(if to.x.is_finite() { to.x } else { self.at.x }, if to.z.is_finite() { to.z } else { self.at.z });
     }
 
-    /// Append a move of `length` mm (the caller has it from the move's time) from `self.at`.
+    /// Append a move from `self.at` that takes `timing`.
     fn push(
         &mut self,
         modal: &Modal,
         (motion, end, centre): (Motion, Xz, Xz),
-        (length, seconds): (f64, f64),
+        timing: Timing,
         cutting: bool,
         threading: bool,
     ) {
@@ -87,12 +97,19 @@ impl Emitter {
         }
         self.compensated |= modal.compensation != Compensation::Off;
         self.dwelled |= motion == Motion::Dwell;
-        let start_time = self.time;
-        self.time += seconds;
-        let feed = if matches!(motion, Motion::Rapid | Motion::Dwell) || seconds <= 0.0 {
-            0.0
+        let (feed, seconds) = match timing {
+            Timing::Known { length, seconds } => (feed_of(motion, length, seconds), seconds),
+            // Both come back from the other thread (`chain_times`).
+            Timing::Later => (f64::NAN, f64::NAN),
+        };
+        // While arcs are timed beside, a move holds its duration in `t_end` until
+        // `chain_times` makes the clock; otherwise the clock runs here.
+        let (t_start, t_end) = if self.beside.is_some() {
+            (f64::NAN, seconds)
         } else {
-            length / seconds * 60.0
+            let start_time = self.time;
+            self.time += seconds;
+            (start_time, self.time)
         };
         self.moves.push(Move {
             motion,
@@ -109,8 +126,8 @@ impl Emitter {
             f_word: modal.feed,
             s_word: modal.speed,
             rpm: modal.rpm_at(self.at.x),
-            t_start: start_time,
-            t_end: self.time,
+            t_start,
+            t_end,
             source: self.context.source,
             cycle: self.context.cycle,
         });
@@ -126,14 +143,14 @@ impl Emitter {
         let dx = (to.x - self.at.x).abs() / self.rapid.x.max(1e-9);
         let dz = (to.z - self.at.z).abs() / self.rapid.z.max(1e-9);
         let seconds = dx.max(dz) * 60.0;
-        self.push(modal, (Motion::Rapid, to, NAN_POINT), (length, seconds), false, false);
+        self.push(modal, (Motion::Rapid, to, NAN_POINT), Timing::Known { length, seconds }, false, false);
     }
 
     /// A straight feed move.
     pub fn line(&mut self, modal: &Modal, to: Xz, cutting: bool) {
         let length = self.at.distance(to);
         let seconds = self.line_seconds(modal, to, length);
-        self.push(modal, (Motion::Feed, to, NAN_POINT), (length, seconds), cutting, false);
+        self.push(modal, (Motion::Feed, to, NAN_POINT), Timing::Known { length, seconds }, cutting, false);
     }
 
     /// A thread-cutting pass: the tool advances `lead_mm` per revolution at the block's rpm.
@@ -141,36 +158,44 @@ impl Emitter {
         let rpm = modal.rpm_at(self.at.x);
         let length = self.at.distance(to);
         let seconds = self.seconds_for(length, lead_mm * rpm);
-        self.push(modal, (Motion::Feed, to, NAN_POINT), (length, seconds), true, true);
+        self.push(modal, (Motion::Feed, to, NAN_POINT), Timing::Known { length, seconds }, true, true);
     }
 
     /// An arc about `centre`.
     pub fn arc(&mut self, modal: &Modal, to: Xz, centre: Xz, ccw: bool, cutting: bool) {
-        // The angles, the sweep and the length once, for the time and the feed alike.
-        let radius = self.at.distance(centre);
-        let a0 = geometry::angle(self.at, centre);
-        let sweep = geometry::sweep_from_angles(self.at, to, a0, geometry::angle(to, centre), ccw);
-        let arc = ArcShape { centre, radius, a0, sweep, ccw };
-        let length = radius * sweep;
-        let seconds = self.arc_seconds(modal, &arc, length);
         let motion = if ccw { Motion::Ccw } else { Motion::Cw };
-        self.push(modal, (motion, to, centre), (length, seconds), cutting, false);
+        if let Some(beside) = &mut self.beside
+            && let Some(job) = ArcJob::new(self.at, to, centre, ccw, modal)
+        {
+            beside.hand_over(self.moves.len(), job);
+            self.push(modal, (motion, to, centre), Timing::Later, cutting, false);
+            return;
+        }
+        let arc = ArcShape::new(self.at, to, centre, ccw);
+        let seconds = self.arc_seconds(modal, &arc);
+        self.push(modal, (motion, to, centre), Timing::Known { length: arc.length, seconds }, cutting, false);
     }
 
     pub fn dwell(&mut self, modal: &Modal, seconds: f64) {
         let at = self.at;
-        self.push(modal, (Motion::Dwell, at, NAN_POINT), (0.0, seconds.max(0.0)), false, false);
+        self.push(
+            modal,
+            (Motion::Dwell, at, NAN_POINT),
+            Timing::Known { length: 0.0, seconds: seconds.max(0.0) },
+            false,
+            false,
+        );
     }
 
     fn seconds_for(&mut self, length: f64, mm_per_min: f64) -> f64 {
         if length <= 0.0 {
             return 0.0;
         }
-        if mm_per_min.is_nan() || mm_per_min <= 0.0 || !mm_per_min.is_finite() {
+        if !usable_rate(mm_per_min) {
             self.zero_feed = true;
             return 0.0;
         }
-        length / mm_per_min * 60.0
+        seconds_at(length, mm_per_min)
     }
 
     fn line_seconds(&mut self, modal: &Modal, to: Xz, length: f64) -> f64 {
@@ -217,31 +242,19 @@ impl Emitter {
         total * 60.0
     }
 
-    fn arc_seconds(&mut self, modal: &Modal, arc: &ArcShape, length: f64) -> f64 {
+    fn arc_seconds(&mut self, modal: &Modal, arc: &ArcShape) -> f64 {
         let feed_mm = modal.frame.feed_mm(modal.feed);
         if !modal.feed_per_rev {
-            return self.seconds_for(length, feed_mm);
+            return self.seconds_for(arc.length, feed_mm);
         }
         if modal.spindle == SpindleMode::Rpm {
-            return self.seconds_for(length, feed_mm * modal.rpm_at(self.at.x));
+            return self.seconds_for(arc.length, feed_mm * modal.rpm_at(self.at.x));
         }
         if feed_mm.is_nan() || feed_mm <= 0.0 {
             self.zero_feed = true;
             return 0.0;
         }
-        let ArcShape { centre, radius, a0, sweep, ccw } = *arc;
-        let sign = if ccw { 1.0 } else { -1.0 };
-        let minutes_per_mm = |i: usize| {
-            1.0 / (feed_mm
-                * modal.rpm_at(
-                    geometry::on_circle(centre, radius, a0 + sign * sweep * i as f64 / SIMPSON_INTERVALS as f64).x,
-                ))
-        };
-        let mut sum = minutes_per_mm(0) + minutes_per_mm(SIMPSON_INTERVALS);
-        for i in 1..SIMPSON_INTERVALS {
-            sum += if i % 2 == 1 { 4.0 } else { 2.0 } * minutes_per_mm(i);
-        }
-        let total = sum * length / (3.0 * SIMPSON_INTERVALS as f64);
+        let total = simpson_minutes(arc, feed_mm, modal.surface_speed());
         if !total.is_finite() {
             self.zero_feed = true;
             return 0.0;
@@ -250,9 +263,54 @@ impl Emitter {
     }
 }
 
+/// How long a move takes.
+#[derive(Debug, Clone, Copy)]
+enum Timing {
+    Known {
+        length: f64,
+        seconds: f64,
+    },
+    /// An arc timed on another thread.
+    Later,
+}
+
+/// The feed a move of `length` mm in `seconds` makes, mm/min (0 for rapids and dwells).
+fn feed_of(motion: Motion, length: f64, seconds: f64) -> f64 {
+    if matches!(motion, Motion::Rapid | Motion::Dwell) || seconds <= 0.0 { 0.0 } else { length / seconds * 60.0 }
+}
+
+/// A feed in mm/min a move can be timed at.
+fn usable_rate(mm_per_min: f64) -> bool {
+    !(mm_per_min.is_nan() || mm_per_min <= 0.0 || !mm_per_min.is_finite())
+}
+
+/// The seconds `length` mm take at `mm_per_min`.
+fn seconds_at(length: f64, mm_per_min: f64) -> f64 {
+    length / mm_per_min * 60.0
+}
+
+/// The minutes an arc takes at `feed_mm` per revolution under constant surface speed, by
+/// Simpson's rule on the spindle speed along it (infinite or NaN where the speed is not
+/// usable).
+fn simpson_minutes(arc: &ArcShape, feed_mm: f64, spindle: SurfaceSpeed) -> f64 {
+    let ArcShape { centre, radius, a0, sweep, ccw, length } = *arc;
+    let sign = if ccw { 1.0 } else { -1.0 };
+    let minutes_per_mm = |i: usize| {
+        1.0 / (feed_mm
+            * spindle
+                .rpm_at(geometry::on_circle(centre, radius, a0 + sign * sweep * i as f64 / SIMPSON_INTERVALS as f64).x))
+    };
+    let mut sum = minutes_per_mm(0) + minutes_per_mm(SIMPSON_INTERVALS);
+    for i in 1..SIMPSON_INTERVALS {
+        sum += if i % 2 == 1 { 4.0 } else { 2.0 } * minutes_per_mm(i);
+    }
+    sum * length / (3.0 * SIMPSON_INTERVALS as f64)
+}
+
 const NAN_POINT: Xz = Xz::new(f64::NAN, f64::NAN);
 
-/// An arc from the emitter's position: its centre, radius, start angle and sweep (radians).
+/// An arc from the emitter's position: its centre, radius, start angle, sweep (radians)
+/// and length.
 #[derive(Debug, Clone, Copy)]
 struct ArcShape {
     centre: Xz,
@@ -260,4 +318,15 @@ struct ArcShape {
     a0: f64,
     sweep: f64,
     ccw: bool,
+    length: f64,
+}
+
+impl ArcShape {
+    fn new(at: Xz, to: Xz, centre: Xz, ccw: bool) -> ArcShape {
+        // The angles, the sweep and the length once, for the time and the feed alike.
+        let radius = at.distance(centre);
+        let a0 = geometry::angle(at, centre);
+        let sweep = geometry::sweep_from_angles(at, to, a0, geometry::angle(to, centre), ccw);
+        ArcShape { centre, radius, a0, sweep, ccw, length: radius * sweep }
+    }
 }

@@ -173,6 +173,26 @@ impl<'p, 'src> Interpreter<'p, 'src> {
     }
 
     pub fn run(mut self) -> Lowered {
+        if self.program.blocks().len() >= self.options.arc_times_beside_from_blocks {
+            // Arcs are timed on a second thread as the blocks run (`emitter/arc_times.rs`).
+            std::thread::scope(|scope| {
+                let (sender, receiver) = std::sync::mpsc::channel();
+                let timing = scope.spawn(move || super::emitter::time_arcs(receiver));
+                self.emitter.time_arcs_beside(sender);
+                self.execute_blocks();
+                let handed = self.emitter.stop_timing_beside();
+                // Timing cannot fail on any input; a panic is a bug, and is passed on.
+                let timed = timing.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+                self.emitter.chain_times(&handed, &timed);
+            });
+        } else {
+            self.execute_blocks();
+        }
+        self.finish()
+    }
+
+    /// Run the blocks from the first until the program ends.
+    fn execute_blocks(&mut self) {
         let blocks = self.program.blocks();
         let mut pc = 0;
         while pc < blocks.len() {
@@ -197,6 +217,10 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             };
         }
         self.finish_corner();
+    }
+
+    /// The lowered program, once the blocks have run.
+    fn finish(mut self) -> Lowered {
         let start = self.emitter.moves.first().map(|_| self.first_move_start()).unwrap_or(self.emitter.at);
         let mut toolpath = Toolpath { start, moves: std::mem::take(&mut self.emitter.moves) };
         if self.options.nose_radius_compensation {

@@ -69,11 +69,29 @@ impl Modal {
     pub fn rpm_at(&self, x_mm: f64) -> f64 {
         match self.spindle {
             SpindleMode::Rpm => self.speed.min(self.clamp),
-            SpindleMode::SurfaceSpeed => {
-                let v = self.frame.surface_speed_mm_min(self.speed);
-                let r = x_mm.abs();
-                if r < 1e-9 { self.clamp } else { (v / (std::f64::consts::TAU * r)).min(self.clamp) }
-            }
+            SpindleMode::SurfaceSpeed => self.surface_speed().rpm_at(x_mm),
         }
+    }
+
+    /// The constant surface speed in force, as `rpm_at` uses it under `G96`.
+    pub fn surface_speed(&self) -> SurfaceSpeed {
+        SurfaceSpeed { mm_per_min: self.frame.surface_speed_mm_min(self.speed), clamp: self.clamp }
+    }
+}
+
+/// What the spindle speed under constant surface speed depends on, apart from the rest of
+/// the modal state (arcs are timed on another thread with it, `emitter::ArcJob`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceSpeed {
+    pub mm_per_min: f64,
+    /// Spindle speed clamp, rpm.
+    pub clamp: f64,
+}
+
+impl SurfaceSpeed {
+    /// Spindle speed at radius `x_mm`: `v / (2π r)`, never above the clamp.
+    pub fn rpm_at(self, x_mm: f64) -> f64 {
+        let r = x_mm.abs();
+        if r < 1e-9 { self.clamp } else { (self.mm_per_min / (std::f64::consts::TAU * r)).min(self.clamp) }
     }
 }

@@ -166,7 +166,7 @@ impl Interpreter<'_, '_> {
         let raised = self.diagnostics.split_off(saved_diagnostics);
         self.diagnostics.extend(raised.into_iter().filter(|d| d.kind != DiagnosticKind::NoFeed));
         self.emitter.zero_feed = saved_zero_feed;
-        self.emitter.moves.truncate(saved_len);
+        self.emitter.truncate(saved_len);
         self.emitter.at = saved_at;
         self.emitter.time = saved_time;
         self.emitter.context = saved_context;

@@ -62,3 +62,29 @@ fn non_finite_points_and_time_running_back_are_rejected() {
     let problems = validate(&path, None).unwrap_err();
     assert_eq!(problems.len(), 2);
 }
+
+#[test]
+fn a_long_toolpath_checked_in_halves_gives_the_problems_of_one_pass() {
+    // Long enough to be checked on two threads; the middle move is non-finite, so the second
+    // half must take its previous time from the move before it, and the move after the
+    // middle runs back in time from that one.
+    let count = PARALLEL_VALIDATION_MOVES + 1;
+    let middle = count / 2;
+    let mut moves: Vec<Move> = (0..count)
+        .map(|k| {
+            let mut m = feed(Xz::new(k as f64, 0.0));
+            m.t_start = k as f64;
+            m.t_end = k as f64 + 1.0;
+            m
+        })
+        .collect();
+    moves[middle].end.x = f64::NAN;
+    moves[middle + 1].t_start = middle as f64 - 0.5;
+    moves[middle + 1].t_end = middle as f64 - 0.25;
+    moves[count - 1].t_end = 0.0;
+    let path = Toolpath { start: Xz::default(), moves };
+    let problems = validate(&path, None).unwrap_err();
+    assert_eq!(problems, check_moves(&path, 0..count, None));
+    let kinds: Vec<_> = problems.iter().map(|d| d.kind.clone()).collect();
+    assert_eq!(kinds, [DiagnosticKind::NonFiniteMove, DiagnosticKind::TimeGoesBack, DiagnosticKind::TimeGoesBack]);
+}

@@ -5,6 +5,7 @@
 
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod arc_times;
 mod canonical;
 mod cli;
 mod closed_loop;
