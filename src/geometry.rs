@@ -194,30 +194,40 @@ pub fn angle_within(point: Xz, start: Xz, end: Xz, centre: Xz, ccw: bool) -> boo
 /// [`angle_within`]'s answer, told by [`SweepSides`] without an arctangent wherever it is
 /// clear, and by the angles only for a point next to an end ray (the measures ask it for
 /// millions of samples, and `atan2` was the largest single cost of a compensation run).
+///
+/// The sweep itself is measured only when asked for (`total`, and a point next to an end
+/// ray): a sector made for each rounded arc of a move and asked about a few samples, all
+/// placed by the cross products, would spend most of its cost on the two arctangents.
 #[derive(Debug, Clone, Copy)]
 pub struct Sector {
     sides: SweepSides,
     start: Xz,
+    end: Xz,
     centre: Xz,
     ccw: bool,
-    /// The angle it sweeps ([`sweep`]).
-    total: f64,
 }
 
 impl Sector {
     pub fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Sector {
-        Sector {
-            sides: SweepSides::new(start, end, centre, ccw),
-            start,
-            centre,
-            ccw,
-            total: sweep(start, end, centre, ccw),
-        }
+        Sector { sides: SweepSides::new(start, end, centre, ccw), start, end, centre, ccw }
     }
 
-    /// The angle the sector sweeps, radians.
+    /// The angle the sector sweeps, radians ([`sweep`]).
     pub fn total(&self) -> f64 {
-        self.total
+        sweep(self.start, self.end, self.centre, self.ccw)
+    }
+
+    /// Where the arc starts and ends, and its centre.
+    pub fn start(&self) -> Xz {
+        self.start
+    }
+
+    pub fn end(&self) -> Xz {
+        self.end
+    }
+
+    pub fn centre(&self) -> Xz {
+        self.centre
     }
 
     /// Whether `point` lies in the sector, as [`angle_within`] decides it.
@@ -225,8 +235,9 @@ impl Sector {
         let answer = self.sides.inside(point);
         answer.unwrap_or_else(|| {
             let (a0, a) = (angle(self.start, self.centre), angle(point, self.centre));
+            let total = sweep_from(a0, self.start, self.end, self.centre, self.ccw);
             let delta = if self.ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
-            delta <= self.total + 1e-12
+            delta <= total + 1e-12
         })
     }
 }

@@ -25,6 +25,7 @@
 //! it by construction; like the thesis' figure it grows with the number of points, so
 //! figures compare only at the same sampling.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::f64::consts::TAU;
 
@@ -171,15 +172,15 @@ pub struct Closest {
 #[derive(Debug, Clone, Copy)]
 struct ArcConstants {
     radius: f64,
+    /// The angle it sweeps (`Sector::total`).
+    sweep: f64,
     sector: geometry::Sector,
 }
 
 impl ArcConstants {
     fn of(start: Xz, m: &Move) -> ArcConstants {
-        ArcConstants {
-            radius: start.distance(m.centre),
-            sector: geometry::Sector::new(start, m.end, m.centre, m.motion == Motion::Ccw),
-        }
+        let sector = geometry::Sector::new(start, m.end, m.centre, m.motion == Motion::Ccw);
+        ArcConstants { radius: start.distance(m.centre), sweep: sector.total(), sector }
     }
 }
 
@@ -194,7 +195,7 @@ impl<'a> LocalPath<'a> {
             let index = match m.is_arc().then(|| ArcConstants::of(start, m)) {
                 Some(arc) => {
                     // `move_length`, with the sweep the constants hold.
-                    total += arc.radius * arc.sector.total();
+                    total += arc.radius * arc.sweep;
                     let index = u32::try_from(arcs.len()).unwrap_or(NO_ARC);
                     if index != NO_ARC {
                         arcs.push(arc);
@@ -212,14 +213,15 @@ impl<'a> LocalPath<'a> {
         LocalPath { toolpath, ends, arc_of, arcs }
     }
 
-    /// The constants of move `k` when it is an arc.
-    fn arc(&self, k: usize, m: &Move) -> Option<ArcConstants> {
+    /// The constants of move `k` when it is an arc: borrowed from `arcs` (they are read for
+    /// every sample measured against the arc, and a copy of them cost more than reading them).
+    fn arc(&self, k: usize, m: &Move) -> Option<Cow<'_, ArcConstants>> {
         if !m.is_arc() {
             return None;
         }
         match self.arc_of.get(k).and_then(|&index| self.arcs.get(index as usize)) {
-            Some(arc) => Some(*arc),
-            None => Some(ArcConstants::of(self.toolpath.start_of(k), m)),
+            Some(arc) => Some(Cow::Borrowed(arc)),
+            None => Some(Cow::Owned(ArcConstants::of(self.toolpath.start_of(k), m))),
         }
     }
 
@@ -280,9 +282,9 @@ impl<'a> LocalPath<'a> {
         let m = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell)?;
         let start = self.toolpath.start_of(k);
         let endpoint = |param: f64, point: Xz| Closest { distance: p.distance(point), param, point };
-        let closest = match self.arc(k, m) {
-            Some(ArcConstants { radius, sector }) => {
-                let (a0, total) = (geometry::angle(start, m.centre), sector.total());
+        let closest = match self.arc(k, m).as_deref() {
+            Some(&ArcConstants { radius, sweep: total, .. }) => {
+                let a0 = geometry::angle(start, m.centre);
                 let a = geometry::angle(p, m.centre);
                 let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
                 if delta <= total + 1e-12 {
@@ -315,8 +317,8 @@ impl<'a> LocalPath<'a> {
             return f64::INFINITY;
         };
         let start = self.toolpath.start_of(k);
-        match self.arc(k, m) {
-            Some(ArcConstants { radius, sector }) => {
+        match self.arc(k, m).as_deref() {
+            Some(ArcConstants { radius, sector, .. }) => {
                 if sector.contains(p) {
                     (p.distance(m.centre) - radius).abs()
                 } else {

@@ -76,7 +76,9 @@ pub fn compensate_samples(
     let mut inverse = Inverse::new(start, model, options);
     let mut commanded = Vec::with_capacity(samples.len());
     let mut predicted = Vec::with_capacity(samples.len());
-    inverse.solve(samples, &mut commanded, &mut predicted);
+    let mut terms = Vec::new();
+    time_terms(samples, model, &mut terms);
+    inverse.solve(samples, &terms, &mut commanded, Some(&mut predicted));
     Compensated {
         commanded,
         predicted,
@@ -93,6 +95,8 @@ pub struct Inverse<'m> {
     model: &'m ErrorModel,
     options: InverseOptions,
     tracker: Tracker,
+    /// The model's terms of time per sample (`ErrorModel::time_term_count`).
+    time_count: usize,
     /// The previous sample's correction: the first guess of the next (see `solve`).
     correction: Xz,
     /// The most steps one sample took so far.
@@ -108,6 +112,7 @@ impl<'m> Inverse<'m> {
             model,
             options: *options,
             tracker: Tracker::new(start, model.play()).counting_cut(model.wears()),
+            time_count: model.time_term_count(),
             correction: Xz::new(0.0, 0.0),
             iterations: 0,
             max_residual_mm: 0.0,
@@ -115,19 +120,30 @@ impl<'m> Inverse<'m> {
     }
 
     /// Solve the next `samples`, appending the point to command for each to `commanded`
-    /// and where the model predicts it goes to `predicted`.
-    pub fn solve(&mut self, samples: &[PathSample], commanded: &mut Vec<Xz>, predicted: &mut Vec<Xz>) {
+    /// and where the model predicts it goes to `predicted` (when it is asked for);
+    /// `time_terms` holds the model's terms of time at the samples (`time_terms`; empty to
+    /// evaluate them at each command tried).
+    pub fn solve(
+        &mut self,
+        samples: &[PathSample],
+        time_terms: &[Xz],
+        commanded: &mut Vec<Xz>,
+        mut predicted: Option<&mut Vec<Xz>>,
+    ) {
         let model = self.model;
-        for s in samples {
+        for (index, s) in samples.iter().enumerate() {
             let inputs = inputs_of(s, model);
+            let terms = terms_of(time_terms, self.time_count, index);
             let guess = Xz::new(s.nominal.x + self.correction.x, s.nominal.z + self.correction.z);
-            let (c, a, steps) = solve(&self.tracker, s, guess, &inputs, model, &self.options);
+            let (c, a, steps) = solve(&self.tracker, s, guess, &inputs, terms, model, &self.options);
             self.correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
             self.tracker.advance(c, s.tool, s.cutting);
             self.iterations = self.iterations.max(steps);
             self.max_residual_mm = self.max_residual_mm.max(s.nominal.distance(a));
             commanded.push(c);
-            predicted.push(a);
+            if let Some(predicted) = predicted.as_deref_mut() {
+                predicted.push(a);
+            }
         }
     }
 }
@@ -143,6 +159,7 @@ fn solve(
     s: &PathSample,
     guess: Xz,
     inputs: &SampleInputs,
+    time_terms: &[Xz],
     model: &ErrorModel,
     options: &InverseOptions,
 ) -> (Xz, Xz, u32) {
@@ -157,7 +174,7 @@ fn solve(
         let state = tracker.peek(c, s.tool, s.cutting, inputs);
         // One evaluation of the model gives both the actual point and the rest of the error
         // (`ErrorModel::actual` and `displacement_without_play` of the same state).
-        let displacement = model.displacement(&state);
+        let displacement = model.displacement_timed(&state, time_terms);
         let actual = Xz::new(state.at.x + displacement.x, state.at.z + displacement.z);
         let residual = s.nominal.distance(actual);
         if residual <= options.tolerance_mm * 1e-3 || steps >= options.max_iterations || !residual.is_finite() {
@@ -219,14 +236,38 @@ fn command_for(axis: Axis, guess: f64, gain: f64, dead_band: f64) -> f64 {
 }
 
 fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
-    SampleInputs { t_min: model.start_min + s.t_s / 60.0, velocity: s.velocity, normal: s.normal, tip: s.tip }
+    SampleInputs { t_min: t_min(s, model), velocity: s.velocity, normal: s.normal, tip: s.tip }
+}
+
+/// Minutes since the machine started at a sample.
+fn t_min(s: &PathSample, model: &ErrorModel) -> f64 {
+    model.start_min + s.t_s / 60.0
+}
+
+/// The model's terms of time (`ErrorModel::time_terms`) at each of `samples`, appended to
+/// `out`: each sample's are evaluated once here, for every command `Inverse::solve` tries
+/// at it and for each prediction of it (`Predictor`).
+pub fn time_terms(samples: &[PathSample], model: &ErrorModel, out: &mut Vec<Xz>) {
+    if model.time_term_count() == 0 {
+        return;
+    }
+    for s in samples {
+        model.time_terms(t_min(s, model), out);
+    }
+}
+
+/// The terms of time of the `index`-th sample in `terms` (`time_terms`, `count` per sample);
+/// none when they were not given, and the model evaluates them.
+fn terms_of(terms: &[Xz], count: usize, index: usize) -> &[Xz] {
+    let start = index.saturating_mul(count);
+    terms.get(start..start.saturating_add(count)).unwrap_or_default()
 }
 
 /// Where the tool goes when `commanded` (one point per sample) is commanded in order: the
 /// model at each of `states`, evaluated as the tracker walks (the states are not kept).
 pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Xz> {
     let mut out = Vec::with_capacity(samples.len());
-    Predictor::new(start, model).predict(samples, commanded, &mut out);
+    Predictor::new(start, model).predict(samples, &[], commanded, &mut out);
     out
 }
 
@@ -235,28 +276,37 @@ pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &Erro
 pub struct Predictor<'m> {
     model: &'m ErrorModel,
     tracker: Tracker,
+    /// The model's terms of time per sample (`ErrorModel::time_term_count`).
+    time_count: usize,
 }
 
 impl<'m> Predictor<'m> {
     pub fn new(start: Xz, model: &'m ErrorModel) -> Predictor<'m> {
-        Predictor { model, tracker: Tracker::new(start, model.play()).counting_cut(model.wears()) }
+        Predictor {
+            model,
+            tracker: Tracker::new(start, model.play()).counting_cut(model.wears()),
+            time_count: model.time_term_count(),
+        }
     }
 
-    /// Where the tool goes for the next `samples` commanded at `commanded`, appended to `out`.
-    pub fn predict(&mut self, samples: &[PathSample], commanded: &[Xz], out: &mut Vec<Xz>) {
-        let model = self.model;
-        out.extend(samples.iter().zip(commanded).map(|(s, &c)| {
-            let actual = model.actual(&self.tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model)));
+    /// Where the tool goes for the next `samples` commanded at `commanded`, appended to `out`;
+    /// `time_terms` as for `Inverse::solve`.
+    pub fn predict(&mut self, samples: &[PathSample], time_terms: &[Xz], commanded: &[Xz], out: &mut Vec<Xz>) {
+        let (model, count) = (self.model, self.time_count);
+        out.extend(samples.iter().zip(commanded).enumerate().map(|(index, (s, &c))| {
+            let state = self.tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model));
+            let actual = model.actual_timed(&state, terms_of(time_terms, count, index));
             self.tracker.advance(c, s.tool, s.cutting);
             actual
         }));
     }
 
     /// `predict` of the samples' nominal points (the program as written).
-    pub fn predict_nominal(&mut self, samples: &[PathSample], out: &mut Vec<Xz>) {
-        let model = self.model;
-        out.extend(samples.iter().map(|s| {
-            let actual = model.actual(&self.tracker.peek(s.nominal, s.tool, s.cutting, &inputs_of(s, model)));
+    pub fn predict_nominal(&mut self, samples: &[PathSample], time_terms: &[Xz], out: &mut Vec<Xz>) {
+        let (model, count) = (self.model, self.time_count);
+        out.extend(samples.iter().enumerate().map(|(index, s)| {
+            let state = self.tracker.peek(s.nominal, s.tool, s.cutting, &inputs_of(s, model));
+            let actual = model.actual_timed(&state, terms_of(time_terms, count, index));
             self.tracker.advance(s.nominal, s.tool, s.cutting);
             actual
         }));

@@ -61,7 +61,7 @@ pub fn closest_on_segment(p: Xz, start: Xz, segment: &Segment) -> Xz {
 #[derive(Debug, Clone, Copy)]
 enum Gauge {
     Line { start: Xz, dx: f64, dz: f64, length2: f64 },
-    Arc { start: Xz, end: Xz, centre: Xz, radius: f64, sector: geometry::Sector },
+    Arc { radius: f64, sector: geometry::Sector },
 }
 
 impl Gauge {
@@ -71,13 +71,9 @@ impl Gauge {
                 let (dx, dz) = (end.x - start.x, end.z - start.z);
                 Gauge::Line { start, dx, dz, length2: dx * dx + dz * dz }
             }
-            Segment::Arc { end, centre, ccw } => Gauge::Arc {
-                start,
-                end,
-                centre,
-                radius: start.distance(centre),
-                sector: geometry::Sector::new(start, end, centre, ccw),
-            },
+            Segment::Arc { end, centre, ccw } => {
+                Gauge::Arc { radius: start.distance(centre), sector: geometry::Sector::new(start, end, centre, ccw) }
+            }
         }
     }
 
@@ -92,7 +88,8 @@ impl Gauge {
                 let t = (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0);
                 Xz::new(start.x + dx * t, start.z + dz * t)
             }
-            Gauge::Arc { start, end, centre, radius, sector } => {
+            Gauge::Arc { radius, sector } => {
+                let (start, end, centre) = (sector.start(), sector.end(), sector.centre());
                 let offset = Xz::new(p.x - centre.x, p.z - centre.z);
                 let length = p.distance(centre);
                 if length > 0.0 && sector.contains(p) {

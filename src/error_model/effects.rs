@@ -131,6 +131,21 @@ impl Effect {
         }
     }
 
+    /// The displacement of a term that is a function of time alone (warm-up) at `t_min`,
+    /// as `displacement` gives it at a sample of that time; `None` for any other term.
+    pub fn at_time(&self, t_min: f64) -> Option<Xz> {
+        match self {
+            Effect::ThermalX(e) => Some(e.at_time(t_min)),
+            Effect::ThermalZ(e) => Some(e.at_time(t_min)),
+            _ => None,
+        }
+    }
+
+    /// Whether the term is a function of time alone (`at_time`).
+    pub fn is_of_time(&self) -> bool {
+        matches!(self, Effect::ThermalX(_) | Effect::ThermalZ(_))
+    }
+
     /// How closely a move must be sampled for the straight interpolation between samples
     /// to follow this effect within `allowance` mm (`spacing.rs`); `reach` is the farthest
     /// the program goes from the origin in each axis (mm, X as a radius).
