@@ -70,7 +70,11 @@ impl ErrorModel {
     /// The terms of the model that are functions of time alone at `t_min`, in the model's
     /// order, appended to `out` (one per such term: `time_term_count`).
     pub fn time_terms(&self, t_min: f64, out: &mut Vec<Xz>) {
-        out.extend(self.effects.iter().filter_map(|effect| effect.at_time(t_min)));
+        for effect in &self.effects {
+            if let Some(term) = effect.at_time(t_min) {
+                out.push(term);
+            }
+        }
     }
 
     /// How many of the model's terms are functions of time alone.

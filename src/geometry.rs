@@ -194,10 +194,6 @@ pub fn angle_within(point: Xz, start: Xz, end: Xz, centre: Xz, ccw: bool) -> boo
 /// [`angle_within`]'s answer, told by [`SweepSides`] without an arctangent wherever it is
 /// clear, and by the angles only for a point next to an end ray (the measures ask it for
 /// millions of samples, and `atan2` was the largest single cost of a compensation run).
-///
-/// The sweep itself is measured only when asked for (`total`, and a point next to an end
-/// ray): a sector made for each rounded arc of a move and asked about a few samples, all
-/// placed by the cross products, would spend most of its cost on the two arctangents.
 #[derive(Debug, Clone, Copy)]
 pub struct Sector {
     sides: SweepSides,
@@ -205,16 +201,42 @@ pub struct Sector {
     end: Xz,
     centre: Xz,
     ccw: bool,
+    /// The start's angle about the centre ([`angle`]) and the sweep ([`sweep`]), when they
+    /// were measured up front (`new`).
+    angles: Option<(f64, f64)>,
 }
 
 impl Sector {
+    /// A sector whose angles are measured now, for one asked about many points.
     pub fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Sector {
-        Sector { sides: SweepSides::new(start, end, centre, ccw), start, end, centre, ccw }
+        let start_angle = angle(start, centre);
+        let total = sweep_from(start_angle, start, end, centre, ccw);
+        Sector { angles: Some((start_angle, total)), ..Sector::unmeasured(start, end, centre, ccw) }
+    }
+
+    /// A sector whose angles are measured only when a point next to an end ray needs them:
+    /// for one asked about a few points that the cross products place, such as a rounded
+    /// segment's (`quantised`), which would spend most of its cost on the two arctangents.
+    pub fn unmeasured(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Sector {
+        Sector { sides: SweepSides::new(start, end, centre, ccw), start, end, centre, ccw, angles: None }
+    }
+
+    /// The start's angle about the centre and the sweep, as measured up front or now.
+    fn angles(&self) -> (f64, f64) {
+        self.angles.unwrap_or_else(|| {
+            let start_angle = angle(self.start, self.centre);
+            (start_angle, sweep_from(start_angle, self.start, self.end, self.centre, self.ccw))
+        })
     }
 
     /// The angle the sector sweeps, radians ([`sweep`]).
     pub fn total(&self) -> f64 {
-        sweep(self.start, self.end, self.centre, self.ccw)
+        self.angles().1
+    }
+
+    /// The angle of its start about its centre ([`angle`]).
+    pub fn start_angle(&self) -> f64 {
+        self.angles().0
     }
 
     /// Where the arc starts and ends, and its centre.
@@ -234,8 +256,7 @@ impl Sector {
     pub fn contains(&self, point: Xz) -> bool {
         let answer = self.sides.inside(point);
         answer.unwrap_or_else(|| {
-            let (a0, a) = (angle(self.start, self.centre), angle(point, self.centre));
-            let total = sweep_from(a0, self.start, self.end, self.centre, self.ccw);
+            let ((a0, total), a) = (self.angles(), angle(point, self.centre));
             let delta = if self.ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
             delta <= total + 1e-12
         })

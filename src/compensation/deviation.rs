@@ -172,15 +172,15 @@ pub struct Closest {
 #[derive(Debug, Clone, Copy)]
 struct ArcConstants {
     radius: f64,
-    /// The angle it sweeps (`Sector::total`).
-    sweep: f64,
     sector: geometry::Sector,
 }
 
 impl ArcConstants {
     fn of(start: Xz, m: &Move) -> ArcConstants {
-        let sector = geometry::Sector::new(start, m.end, m.centre, m.motion == Motion::Ccw);
-        ArcConstants { radius: start.distance(m.centre), sweep: sector.total(), sector }
+        ArcConstants {
+            radius: start.distance(m.centre),
+            sector: geometry::Sector::new(start, m.end, m.centre, m.motion == Motion::Ccw),
+        }
     }
 }
 
@@ -195,7 +195,7 @@ impl<'a> LocalPath<'a> {
             let index = match m.is_arc().then(|| ArcConstants::of(start, m)) {
                 Some(arc) => {
                     // `move_length`, with the sweep the constants hold.
-                    total += arc.radius * arc.sweep;
+                    total += arc.radius * arc.sector.total();
                     let index = u32::try_from(arcs.len()).unwrap_or(NO_ARC);
                     if index != NO_ARC {
                         arcs.push(arc);
@@ -283,8 +283,8 @@ impl<'a> LocalPath<'a> {
         let start = self.toolpath.start_of(k);
         let endpoint = |param: f64, point: Xz| Closest { distance: p.distance(point), param, point };
         let closest = match self.arc(k, m).as_deref() {
-            Some(&ArcConstants { radius, sweep: total, .. }) => {
-                let a0 = geometry::angle(start, m.centre);
+            Some(ArcConstants { radius, sector }) => {
+                let (radius, a0, total) = (*radius, sector.start_angle(), sector.total());
                 let a = geometry::angle(p, m.centre);
                 let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
                 if delta <= total + 1e-12 {

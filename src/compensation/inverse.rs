@@ -84,7 +84,7 @@ pub fn compensate_samples(
         predicted,
         uncompensated,
         iterations: inverse.iterations,
-        max_residual_mm: inverse.max_residual_mm,
+        max_residual_mm: inverse.max_residual_mm(),
     }
 }
 
@@ -101,11 +101,18 @@ pub struct Inverse<'m> {
     correction: Xz,
     /// The most steps one sample took so far.
     pub iterations: u32,
-    /// The largest |nominal − predicted| so far, mm.
-    pub max_residual_mm: f64,
+    /// The square of the largest |nominal − predicted| so far, mm² (`max_residual_mm`).
+    max_residual_squared: f64,
 }
 
 impl<'m> Inverse<'m> {
+    /// The largest |nominal − predicted| so far, mm. The square root is taken of the largest
+    /// square rather than of each sample's: a rounded square root never decreases as its
+    /// argument grows, so the answer is the same.
+    pub fn max_residual_mm(&self) -> f64 {
+        self.max_residual_squared.sqrt()
+    }
+
     /// The inverse from the machine's position `start`.
     pub fn new(start: Xz, model: &'m ErrorModel, options: &InverseOptions) -> Inverse<'m> {
         Inverse {
@@ -115,7 +122,7 @@ impl<'m> Inverse<'m> {
             time_count: model.time_term_count(),
             correction: Xz::new(0.0, 0.0),
             iterations: 0,
-            max_residual_mm: 0.0,
+            max_residual_squared: 0.0,
         }
     }
 
@@ -139,7 +146,7 @@ impl<'m> Inverse<'m> {
             self.correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
             self.tracker.advance(c, s.tool, s.cutting);
             self.iterations = self.iterations.max(steps);
-            self.max_residual_mm = self.max_residual_mm.max(s.nominal.distance(a));
+            self.max_residual_squared = self.max_residual_squared.max(squared_distance(s.nominal, a));
             commanded.push(c);
             if let Some(predicted) = predicted.as_deref_mut() {
                 predicted.push(a);
@@ -176,8 +183,12 @@ fn solve(
         // (`ErrorModel::actual` and `displacement_without_play` of the same state).
         let displacement = model.displacement_timed(&state, time_terms);
         let actual = Xz::new(state.at.x + displacement.x, state.at.z + displacement.z);
-        let residual = s.nominal.distance(actual);
-        if residual <= options.tolerance_mm * 1e-3 || steps >= options.max_iterations || !residual.is_finite() {
+        // The residual |nominal − actual|, compared as its square (see `root_at_most`).
+        let residual = squared_distance(s.nominal, actual);
+        if root_at_most(residual, options.tolerance_mm * 1e-3)
+            || steps >= options.max_iterations
+            || !residual.is_finite()
+        {
             return (c, actual, steps);
         }
         steps += 1;
@@ -198,11 +209,38 @@ fn solve(
                 dead_band,
             ),
         );
-        if next.distance(c) <= 1e-12 {
+        if root_at_most(squared_distance(next, c), 1e-12) {
             return (c, actual, steps);
         }
         c = next;
     }
+}
+
+/// `a.distance(b)` squared: the same sum of squares `Xz::distance` takes the root of.
+fn squared_distance(a: Xz, b: Xz) -> f64 {
+    let (dx, dz) = (a.x - b.x, a.z - b.z);
+    dx * dx + dz * dz
+}
+
+/// `squared.sqrt() <= limit`, decided by the squares where they clearly tell it: every step
+/// of every sample branches on a residual, and the branch waited on the square root.
+///
+/// For a `limit` whose square is a normal number, the square is within a few units in the
+/// last place of `limit²`: a `squared` a billionth below it has a root below `limit`, whose
+/// rounding cannot pass `limit` (a representable number); one a billionth above has a root
+/// more than a unit in the last place above `limit`. Between the two, and for every other
+/// `limit` or `squared` (NaN included), the root decides.
+fn root_at_most(squared: f64, limit: f64) -> bool {
+    let bound = limit * limit;
+    if limit > 0.0 && bound.is_normal() {
+        if squared <= bound * (1.0 - 1e-9) {
+            return true;
+        }
+        if squared >= bound * (1.0 + 1e-9) {
+            return false;
+        }
+    }
+    squared.sqrt() <= limit
 }
 
 /// One axis of the solve: where its slide must go, where it is, the command it was

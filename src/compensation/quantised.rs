@@ -71,9 +71,10 @@ impl Gauge {
                 let (dx, dz) = (end.x - start.x, end.z - start.z);
                 Gauge::Line { start, dx, dz, length2: dx * dx + dz * dz }
             }
-            Segment::Arc { end, centre, ccw } => {
-                Gauge::Arc { radius: start.distance(centre), sector: geometry::Sector::new(start, end, centre, ccw) }
-            }
+            Segment::Arc { end, centre, ccw } => Gauge::Arc {
+                radius: start.distance(centre),
+                sector: geometry::Sector::unmeasured(start, end, centre, ccw),
+            },
         }
     }
 

@@ -124,3 +124,31 @@ fn terms_of_time_given_once_per_sample_solve_and_predict_as_evaluated_at_each_co
     let nominal: Vec<Xz> = samples.iter().map(|s| s.nominal).collect();
     assert_eq!(predicted(&terms, true), predict(&samples, &nominal, path.start, &m));
 }
+
+proptest::proptest! {
+    /// `root_at_most` answers as the square root compared, bit for bit: near the limit's
+    /// square (a few units in the last place either way), far from it, and at the edges.
+    #[test]
+    fn root_at_most_decides_as_the_square_root(
+        limit in proptest::prop_oneof![1e-12f64..1e-3, 1e-300f64..1e300, proptest::strategy::Just(0.0), -1.0f64..1.0],
+        scale in proptest::prop_oneof![0.0f64..4.0, 0.999_999f64..1.000_001],
+        ulps in -8i64..8,
+    ) {
+        let near = f64::from_bits((limit * limit).to_bits().wrapping_add_signed(ulps));
+        for squared in [limit * limit * scale, near, f64::NAN, f64::INFINITY, 0.0] {
+            proptest::prop_assert_eq!(root_at_most(squared, limit), squared.sqrt() <= limit, "{} {}", squared, limit);
+        }
+    }
+}
+
+#[test]
+fn the_largest_residual_is_the_root_of_the_largest_square() {
+    let (path, machine) = toolpath();
+    let samples = sample_toolpath(&path, &ToolTable::from_machine(&machine), 0.25);
+    let m = model(vec![Effect::BacklashX(BacklashX { b: 0.006 }), Effect::ScaleZ(ScaleZ { ppm: 80.0 })]);
+    let options = InverseOptions { max_iterations: 1, ..InverseOptions::default() };
+    let result = compensate_samples(&samples, path.start, &m, &options);
+    let largest = samples.iter().zip(&result.predicted).map(|(s, &a)| s.nominal.distance(a)).fold(0.0, f64::max);
+    assert!(largest > 0.0);
+    assert_eq!(result.max_residual_mm.to_bits(), largest.to_bits());
+}

@@ -249,7 +249,7 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
             break;
         }
     }
-    (inverse.iterations, inverse.max_residual_mm)
+    (inverse.iterations, inverse.max_residual_mm())
 }
 
 /// Stage 2: plan the moves.
@@ -301,11 +301,9 @@ fn round(context: &Context<'_>, rounding: &Receiver<Piece>, to_rewrite: &SyncSen
         quantised::commanded_moves(&input, piece.moves.start, &piece.plans, grid, &mut piece.rounded);
         let fresh = piece.fresh();
         let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
-        let commanded = piece.commanded.get(fresh.clone()).unwrap_or_default();
         let rounded = piece.rounded.get(fresh).unwrap_or_default();
         as_rounded.predict(samples, &piece.time_terms, rounded, &mut piece.after);
-        safety.add(toolpath, samples, commanded);
-        measure(context, &piece, &mut out, &mut run, &mut trail);
+        measure(context, &piece, &mut safety, &mut out, &mut run, &mut trail);
         if options.paths {
             out.paths.samples.extend_from_slice(samples);
             out.paths.uncompensated.extend_from_slice(&piece.uncompensated);
@@ -379,11 +377,19 @@ struct Trail {
     after: Option<f64>,
 }
 
-/// Tally a piece's own samples into the run figures and the totals, and mark the moves
-/// whose correction exceeds the tolerance. Each sample stands for the path from the sample
-/// before it (`PathSample::covers_mm`, in the thesis' steps): the figures are along the
-/// path, the same however closely the model let it be sampled.
-fn measure(context: &Context<'_>, piece: &Piece, out: &mut Measured, run: &mut usize, trail: &mut Trail) {
+/// Tally a piece's own samples into the run figures and the totals, mark the moves whose
+/// correction exceeds the tolerance, and check each correction (`safety`, which takes the
+/// correction measured here). Each sample stands for the path from the sample before it
+/// (`PathSample::covers_mm`, in the thesis' steps): the figures are along the path, the
+/// same however closely the model let it be sampled.
+fn measure(
+    context: &Context<'_>,
+    piece: &Piece,
+    safety: &mut safety::Check,
+    out: &mut Measured,
+    run: &mut usize,
+    trail: &mut Trail,
+) {
     let tolerance = context.options.fit.tolerance_mm;
     let fresh = piece.fresh();
     let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
@@ -392,6 +398,7 @@ fn measure(context: &Context<'_>, piece: &Piece, out: &mut Measured, run: &mut u
     for (((s, c), &before), &after) in points {
         let weight = s.covers_mm / SAMPLE_STEP_MM;
         let correction = c.distance(s.nominal);
+        safety.add_one(context.toolpath, s, *c, correction);
         let after = context.path.distance(s, after);
         let totals = &mut out.totals;
         totals.samples += 1;
