@@ -32,6 +32,7 @@ use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker, without_play
 use crate::toolpath::Xz;
 
 use super::sampling::PathSample;
+use super::squares::{root_at_most, squared_distance};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InverseOptions {
@@ -214,33 +215,6 @@ fn solve(
         }
         c = next;
     }
-}
-
-/// `a.distance(b)` squared: the same sum of squares `Xz::distance` takes the root of.
-fn squared_distance(a: Xz, b: Xz) -> f64 {
-    let (dx, dz) = (a.x - b.x, a.z - b.z);
-    dx * dx + dz * dz
-}
-
-/// `squared.sqrt() <= limit`, decided by the squares where they clearly tell it: every step
-/// of every sample branches on a residual, and the branch waited on the square root.
-///
-/// For a `limit` whose square is a normal number, the square is within a few units in the
-/// last place of `limit²`: a `squared` a billionth below it has a root below `limit`, whose
-/// rounding cannot pass `limit` (a representable number); one a billionth above has a root
-/// more than a unit in the last place above `limit`. Between the two, and for every other
-/// `limit` or `squared` (NaN included), the root decides.
-fn root_at_most(squared: f64, limit: f64) -> bool {
-    let bound = limit * limit;
-    if limit > 0.0 && bound.is_normal() {
-        if squared <= bound * (1.0 - 1e-9) {
-            return true;
-        }
-        if squared >= bound * (1.0 + 1e-9) {
-            return false;
-        }
-    }
-    squared.sqrt() <= limit
 }
 
 /// One axis of the solve: where its slide must go, where it is, the command it was

@@ -13,6 +13,7 @@ use super::fit::Segment;
 use super::grid::{ArcWords, Grid};
 use super::plan::{MovePlan, PlanInput};
 use super::sampling::PathSample;
+use super::squares::{root_less, squared_distance};
 use super::written;
 
 /// A move's segments rounded onto `grid`, from its rounded start, as the control runs the
@@ -176,12 +177,14 @@ impl Walk<'_> {
         let mut cursor = 0usize;
         for j in range {
             let target = written::written_point(self.m, self.contour_start, &samples[j], ideal[j], self.tools);
+            // The nearest point, the first of equally near ones, by distances compared as
+            // their squares (`root_less`).
             let (mut best, mut best_k, mut best_d) = (self.start, cursor, f64::INFINITY);
             let first = cursor.saturating_sub(1);
             for (k, gauge) in gauges.iter().enumerate().skip(first).take(window + 1) {
                 let q = gauge.closest(target);
-                let d = q.distance(target);
-                if d < best_d {
+                let d = squared_distance(q, target);
+                if root_less(d, best_d) {
                     (best, best_k, best_d) = (q, k, d);
                 }
             }

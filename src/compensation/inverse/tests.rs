@@ -125,22 +125,6 @@ fn terms_of_time_given_once_per_sample_solve_and_predict_as_evaluated_at_each_co
     assert_eq!(predicted(&terms, true), predict(&samples, &nominal, path.start, &m));
 }
 
-proptest::proptest! {
-    /// `root_at_most` answers as the square root compared, bit for bit: near the limit's
-    /// square (a few units in the last place either way), far from it, and at the edges.
-    #[test]
-    fn root_at_most_decides_as_the_square_root(
-        limit in proptest::prop_oneof![1e-12f64..1e-3, 1e-300f64..1e300, proptest::strategy::Just(0.0), -1.0f64..1.0],
-        scale in proptest::prop_oneof![0.0f64..4.0, 0.999_999f64..1.000_001],
-        ulps in -8i64..8,
-    ) {
-        let near = f64::from_bits((limit * limit).to_bits().wrapping_add_signed(ulps));
-        for squared in [limit * limit * scale, near, f64::NAN, f64::INFINITY, 0.0] {
-            proptest::prop_assert_eq!(root_at_most(squared, limit), squared.sqrt() <= limit, "{} {}", squared, limit);
-        }
-    }
-}
-
 #[test]
 fn the_largest_residual_is_the_root_of_the_largest_square() {
     let (path, machine) = toolpath();
