@@ -263,6 +263,13 @@ impl<'a> LocalPath<'a> {
         best.is_finite().then_some(best)
     }
 
+    /// The start angle about its centre and the sweep of move `k` when it is an arc
+    /// (`geometry::angle`, `geometry::sweep`), as measured once for its constants.
+    pub fn arc_angles(&self, k: usize) -> Option<(f64, f64)> {
+        let m = self.toolpath.moves.get(k)?;
+        self.arc(k, m).map(|arc| (arc.sector.start_angle(), arc.sector.total()))
+    }
+
     /// The toolpath it measures against.
     pub fn toolpath(&self) -> &'a Toolpath {
         self.toolpath

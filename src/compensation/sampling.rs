@@ -98,17 +98,20 @@ pub fn sample_moves(
     out: &mut Vec<PathSample>,
 ) {
     for index in moves.start..moves.end.min(toolpath.moves.len()) {
-        sample_move(toolpath, index, tools, sampling, out);
+        sample_move(toolpath, index, tools, sampling, None, out);
     }
 }
 
 /// Sample move `index` of `toolpath` as `sampling` allows, appending to `out` (nothing for a
-/// move that does not exist).
+/// move that does not exist). For an arc, `angles` may give its start's angle about its
+/// centre and its sweep (`geometry::angle` and `geometry::sweep`) where the caller has them
+/// measured already (`LocalPath::arc_angles`); they are measured here otherwise.
 pub fn sample_move(
     toolpath: &Toolpath,
     index: usize,
     tools: &ToolTable,
     sampling: &Sampling,
+    angles: Option<(f64, f64)>,
     out: &mut Vec<PathSample>,
 ) {
     let Some(m) = toolpath.moves.get(index) else { return };
@@ -137,8 +140,10 @@ pub fn sample_move(
         Motion::Cw | Motion::Ccw => {
             let ccw = m.motion == Motion::Ccw;
             let radius = start.distance(m.centre);
-            let a0 = geometry::angle(start, m.centre);
-            let sweep = geometry::sweep_from(a0, start, m.end, m.centre, ccw);
+            let (a0, sweep) = angles.unwrap_or_else(|| {
+                let a0 = geometry::angle(start, m.centre);
+                (a0, geometry::sweep_from(a0, start, m.end, m.centre, ccw))
+            });
             let sign = if ccw { 1.0 } else { -1.0 };
             let by_angle = sampling.arc_steps(radius, sweep, m.feed);
             let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2);
@@ -261,5 +266,23 @@ mod tests {
         assert!((at_bottom[0].param / uniform - (at_bottom[0].param / uniform).round()).abs() > 0.01);
         assert!(samples.windows(2).all(|w| w[0].param < w[1].param));
         assert_eq!(samples.last().map(|s| s.nominal), Some(arc.end));
+    }
+
+    #[test]
+    fn an_arc_sampled_with_the_path_measures_angles_is_sampled_alike() {
+        let (lowered, machine) = lower_program(
+            "G21 G99\nG97 S1000 M03\nG00 X40. Z2.\nG01 Z0 F0.2\nG02 X40. Z-9. R5.1\nG03 X30. Z-20. R12.\nM30\n",
+        );
+        let (path, tools) = (&lowered.toolpath, ToolTable::from_machine(&machine));
+        let measures = crate::compensation::deviation::LocalPath::new(path);
+        let sampling = Sampling::every_mm(0.254);
+        let (mut given, mut measured) = (Vec::new(), Vec::new());
+        for index in 0..path.moves.len() {
+            sample_move(path, index, &tools, &sampling, measures.arc_angles(index), &mut given);
+            sample_move(path, index, &tools, &sampling, None, &mut measured);
+        }
+        assert_eq!(path.moves.iter().filter(|m| m.is_arc()).count(), 2);
+        assert!((0..path.moves.len()).filter(|&k| measures.arc_angles(k).is_some()).count() == 2);
+        assert_eq!(given, measured);
     }
 }

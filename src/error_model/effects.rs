@@ -108,6 +108,10 @@ impl Effect {
         }
     }
 
+    // Inlined into the model's sum (`ErrorModel::displacement_timed`), which evaluates every
+    // effect several times per sample: a call clobbers every floating-point register the
+    // sum and its caller hold, which cost more than most effects' arithmetic.
+    #[inline(always)]
     pub fn displacement(&self, s: &Sample) -> Xz {
         match self {
             Effect::ToolOffsetX(e) => e.displacement(s),

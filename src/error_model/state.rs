@@ -139,6 +139,9 @@ impl Tracker {
 
     /// The sample the tracker would give after `advance(to, tool, cutting)`, without
     /// moving it: for solving where to command a point.
+    // Inlined where the model is evaluated on the sample at once: the parts of the sample
+    // the model does not read need not be written out and read back.
+    #[inline]
     pub fn peek(&self, to: Xz, tool: u16, cutting: bool, inputs: &SampleInputs) -> Sample {
         let (mut slide, mut direction, mut since) = (self.slide, self.direction, self.since_reversal);
         advance_axis(to.x, self.play.x, &mut slide.x, &mut direction.x, &mut since.x);

@@ -233,7 +233,9 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
         };
         for index in moves {
             let first = piece.samples.len();
-            sample_move(toolpath, index, context.tools, &context.sampling, &mut piece.samples);
+            // An arc's angles were measured for the path's measures already.
+            let angles = context.path.arc_angles(index);
+            sample_move(toolpath, index, context.tools, &context.sampling, angles, &mut piece.samples);
             piece.ranges.push(first..piece.samples.len());
         }
         let fresh = piece.fresh();
