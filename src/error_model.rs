@@ -26,7 +26,7 @@ pub mod state;
 
 pub use effects::Effect;
 pub use spacing::Spacing;
-pub use state::{Sample, SampleInputs, Tracker};
+pub use state::{Sample, SampleInputs, Step, Tracker};
 
 use crate::toolpath::Xz;
 

@@ -28,7 +28,7 @@
 //! by a few nanometres (a squareness term drifting as the other axis moves) stays where it
 //! is, within the tolerance, instead of jumping across its play.
 
-use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker, without_play};
+use crate::error_model::{ErrorModel, Sample, SampleInputs, Step, Tracker, without_play};
 use crate::toolpath::Xz;
 
 use super::sampling::PathSample;
@@ -143,9 +143,10 @@ impl<'m> Inverse<'m> {
             let inputs = inputs_of(s, model);
             let terms = terms_of(time_terms, self.time_count, index);
             let guess = Xz::new(s.nominal.x + self.correction.x, s.nominal.z + self.correction.z);
-            let (c, a, steps) = solve(&self.tracker, s, guess, &inputs, terms, model, &self.options);
+            let (step, a, steps) = solve(&self.tracker, s, guess, &inputs, terms, model, &self.options);
+            let c = step.to();
             self.correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
-            self.tracker.advance(c, s.tool, s.cutting);
+            self.tracker.take(&step, s.tool, s.cutting);
             self.iterations = self.iterations.max(steps);
             self.max_residual_squared = self.max_residual_squared.max(squared_distance(s.nominal, a));
             commanded.push(c);
@@ -156,8 +157,8 @@ impl<'m> Inverse<'m> {
     }
 }
 
-/// The point to command for one sample from the tracker's state, where the model predicts
-/// it goes, and the steps it took. The iteration starts from `guess`, the nominal point
+/// The point to command for one sample from the tracker's state (as the tracker's step to
+/// it, for the tracker to take), where the model predicts it goes, and the steps it took. The iteration starts from `guess`, the nominal point
 /// moved by the previous sample's correction: the errors change little from one sample to
 /// the next, and inside an axis' play every command leaves the slide where it is, so of all
 /// the commands that solve the sample the one nearest the previous correction is taken,
@@ -170,7 +171,7 @@ fn solve(
     time_terms: &[Xz],
     model: &ErrorModel,
     options: &InverseOptions,
-) -> (Xz, Xz, u32) {
+) -> (Step, Xz, u32) {
     let play = tracker.play();
     let slide = tracker.slide();
     let before = tracker.position();
@@ -179,7 +180,8 @@ fn solve(
     let mut c = guess;
     let mut steps = 0;
     loop {
-        let state = tracker.peek(c, s.tool, s.cutting, inputs);
+        let step = tracker.step(c);
+        let state = tracker.sample_after(&step, s.tool, s.cutting, inputs);
         // One evaluation of the model gives both the actual point and the rest of the error
         // (`ErrorModel::actual` and `displacement_without_play` of the same state).
         let displacement = model.displacement_timed(&state, time_terms);
@@ -190,7 +192,7 @@ fn solve(
             || steps >= options.max_iterations
             || !residual.is_finite()
         {
-            return (c, actual, steps);
+            return (step, actual, steps);
         }
         steps += 1;
         // The rest of the error at this command, and where the slide must go for it.
@@ -211,7 +213,7 @@ fn solve(
             ),
         );
         if root_at_most(squared_distance(next, c), 1e-12) {
-            return (c, actual, steps);
+            return (step, actual, steps);
         }
         c = next;
     }
@@ -306,9 +308,10 @@ impl<'m> Predictor<'m> {
     pub fn predict(&mut self, samples: &[PathSample], time_terms: &[Xz], commanded: &[Xz], out: &mut Vec<Xz>) {
         let (model, count) = (self.model, self.time_count);
         out.extend(samples.iter().zip(commanded).enumerate().map(|(index, (s, &c))| {
-            let state = self.tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model));
+            let step = self.tracker.step(c);
+            let state = self.tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
             let actual = model.actual_timed(&state, terms_of(time_terms, count, index));
-            self.tracker.advance(c, s.tool, s.cutting);
+            self.tracker.take(&step, s.tool, s.cutting);
             actual
         }));
     }
@@ -317,9 +320,10 @@ impl<'m> Predictor<'m> {
     pub fn predict_nominal(&mut self, samples: &[PathSample], time_terms: &[Xz], out: &mut Vec<Xz>) {
         let (model, count) = (self.model, self.time_count);
         out.extend(samples.iter().enumerate().map(|(index, s)| {
-            let state = self.tracker.peek(s.nominal, s.tool, s.cutting, &inputs_of(s, model));
+            let step = self.tracker.step(s.nominal);
+            let state = self.tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
             let actual = model.actual_timed(&state, terms_of(time_terms, count, index));
-            self.tracker.advance(s.nominal, s.tool, s.cutting);
+            self.tracker.take(&step, s.tool, s.cutting);
             actual
         }));
     }

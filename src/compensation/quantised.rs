@@ -171,12 +171,29 @@ impl Walk<'_> {
         // segment used, wide enough to pass the segments between two samples (densified
         // lines along an arc may be twenty or more to a sample interval).
         let window = 16 + 2 * self.segments.len().div_ceil(range.len().max(1));
-        let starts = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end));
-        gauges.clear();
-        gauges.extend(self.segments.iter().zip(starts).map(|(segment, from)| Gauge::new(from, segment)));
+        // A move of one segment (most are) keeps its gauge here: a gauge is large, and each
+        // was copied into `gauges`.
+        let one: [Gauge; 1];
+        let gauges: &[Gauge] = match self.segments {
+            [segment] => {
+                one = [Gauge::new(self.start, segment)];
+                &one
+            }
+            _ => {
+                gauges.clear();
+                let mut from = self.start;
+                for segment in self.segments {
+                    gauges.push(Gauge::new(from, segment));
+                    from = segment.end();
+                }
+                gauges
+            }
+        };
         let mut cursor = 0usize;
         for j in range {
-            let target = written::written_point(self.m, self.contour_start, &samples[j], ideal[j], self.tools);
+            // The sample's contour point, for the point written and back (`written`).
+            let contour = written::contour_at(self.m, self.contour_start, &samples[j], self.tools);
+            let target = written::written_from(contour, &samples[j], ideal[j]);
             // The nearest point, the first of equally near ones, by distances compared as
             // their squares (`root_less`).
             let (mut best, mut best_k, mut best_d) = (self.start, cursor, f64::INFINITY);
@@ -189,7 +206,7 @@ impl Walk<'_> {
                 }
             }
             cursor = best_k;
-            out[j] = written::reference_point(self.m, self.contour_start, &samples[j], best, self.tools);
+            out[j] = written::reference_from(contour, &samples[j], best);
         }
     }
 }
