@@ -20,7 +20,8 @@ use super::written;
 /// words `rewrite` writes for them: each end rounded from its exact value, each arc about
 /// the centre the control finds from its words (`Grid::arc_words`, in the form
 /// `prefer_radius` asks for where it holds the arc; the plan's own `words` where it chose
-/// them), an arc no words can give a line. Into `out`, which is cleared first.
+/// them), an arc no words can give a line. Into `out`, which is cleared first; the rounded
+/// start (`grid.round(start)`) is returned.
 pub fn quantise(
     grid: &Grid,
     start: Xz,
@@ -28,9 +29,10 @@ pub fn quantise(
     words: &[ArcWords],
     prefer_radius: bool,
     out: &mut Vec<Segment>,
-) {
+) -> Xz {
     let mut from_exact = start;
     let mut from = grid.point(start);
+    let rounded_start = grid.to_mm(from);
     out.clear();
     for (index, segment) in segments.iter().enumerate() {
         let end = grid.point(segment.end());
@@ -51,6 +53,7 @@ pub fn quantise(
         from = end;
         from_exact = segment.end();
     }
+    rounded_start
 }
 
 /// The point of a segment (from `start`) closest to `p`.
@@ -142,8 +145,8 @@ pub fn commanded_moves(
             continue;
         }
         let prefer_radius = input.radius.get(index).copied().unwrap_or(false);
-        quantise(&grid, plan.start, &plan.segments, &plan.words, prefer_radius, &mut rounded);
-        let walk = Walk { m, contour_start, start: grid.round(plan.start), segments: &rounded, tools };
+        let start = quantise(&grid, plan.start, &plan.segments, &plan.words, prefer_radius, &mut rounded);
+        let walk = Walk { m, contour_start, start, segments: &rounded, tools };
         walk.follow(samples, input.commanded, range.clone(), &mut gauges, out);
     }
 }
