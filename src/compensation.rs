@@ -22,6 +22,7 @@ pub mod report;
 pub mod rewrite;
 pub mod safety;
 pub mod sampling;
+mod squares;
 #[cfg(test)]
 mod test_support;
 pub mod verify;

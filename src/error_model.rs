@@ -26,7 +26,7 @@ pub mod state;
 
 pub use effects::Effect;
 pub use spacing::Spacing;
-pub use state::{Sample, SampleInputs, Tracker};
+pub use state::{Sample, SampleInputs, Step, Tracker};
 
 use crate::toolpath::Xz;
 
@@ -43,15 +43,43 @@ pub struct ErrorModel {
 impl ErrorModel {
     /// The displacement of the tool at `sample`: actual − commanded, mm, X as a radius.
     pub fn displacement(&self, sample: &Sample) -> Xz {
+        self.displacement_timed(sample, &[])
+    }
+
+    /// `displacement`, with the terms of time (`Effect::at_time`) taken from `time_terms`
+    /// (`time_terms` at the sample's time, in the model's order) rather than evaluated again:
+    /// the inverse tries several commands at each sample and the stream predicts it twice
+    /// more, all at the sample's one time, and the exponential of a warm-up was the largest
+    /// part of an evaluation. A term `time_terms` lacks is evaluated.
+    pub fn displacement_timed(&self, sample: &Sample, time_terms: &[Xz]) -> Xz {
         let mut d = match &self.tables {
             Some(tables) => tables.displacement(sample),
             None => Xz::new(0.0, 0.0),
         };
+        let mut timed = time_terms.iter();
         for effect in &self.effects {
-            let e = effect.displacement(sample);
+            let e = match effect.is_of_time().then(|| timed.next()).flatten() {
+                Some(&e) => e,
+                None => effect.displacement(sample),
+            };
             d = Xz::new(d.x + e.x, d.z + e.z);
         }
         d
+    }
+
+    /// The terms of the model that are functions of time alone at `t_min`, in the model's
+    /// order, appended to `out` (one per such term: `time_term_count`).
+    pub fn time_terms(&self, t_min: f64, out: &mut Vec<Xz>) {
+        for effect in &self.effects {
+            if let Some(term) = effect.at_time(t_min) {
+                out.push(term);
+            }
+        }
+    }
+
+    /// How many of the model's terms are functions of time alone.
+    pub fn time_term_count(&self) -> usize {
+        self.effects.iter().filter(|effect| effect.is_of_time()).count()
     }
 
     /// The displacement less the backlash, which the tracker's play operator gives (the
@@ -62,7 +90,12 @@ impl ErrorModel {
 
     /// Where the tool really goes when `sample.at` is commanded.
     pub fn actual(&self, sample: &Sample) -> Xz {
-        let d = self.displacement(sample);
+        self.actual_timed(sample, &[])
+    }
+
+    /// `actual`, with the terms of time taken from `time_terms` (`displacement_timed`).
+    pub fn actual_timed(&self, sample: &Sample, time_terms: &[Xz]) -> Xz {
+        let d = self.displacement_timed(sample, time_terms);
         Xz::new(sample.at.x + d.x, sample.at.z + d.z)
     }
 

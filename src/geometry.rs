@@ -198,35 +198,67 @@ pub fn angle_within(point: Xz, start: Xz, end: Xz, centre: Xz, ccw: bool) -> boo
 pub struct Sector {
     sides: SweepSides,
     start: Xz,
+    end: Xz,
     centre: Xz,
     ccw: bool,
-    /// The angle it sweeps ([`sweep`]).
-    total: f64,
+    /// The start's angle about the centre ([`angle`]) and the sweep ([`sweep`]), when they
+    /// were measured up front (`new`).
+    angles: Option<(f64, f64)>,
 }
 
 impl Sector {
+    /// A sector whose angles are measured now, for one asked about many points.
     pub fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Sector {
-        Sector {
-            sides: SweepSides::new(start, end, centre, ccw),
-            start,
-            centre,
-            ccw,
-            total: sweep(start, end, centre, ccw),
-        }
+        let start_angle = angle(start, centre);
+        let total = sweep_from(start_angle, start, end, centre, ccw);
+        Sector { angles: Some((start_angle, total)), ..Sector::unmeasured(start, end, centre, ccw) }
     }
 
-    /// The angle the sector sweeps, radians.
+    /// A sector whose angles are measured only when a point next to an end ray needs them:
+    /// for one asked about a few points that the cross products place, such as a rounded
+    /// segment's (`quantised`), which would spend most of its cost on the two arctangents.
+    pub fn unmeasured(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Sector {
+        Sector { sides: SweepSides::new(start, end, centre, ccw), start, end, centre, ccw, angles: None }
+    }
+
+    /// The start's angle about the centre and the sweep, as measured up front or now.
+    fn angles(&self) -> (f64, f64) {
+        self.angles.unwrap_or_else(|| {
+            let start_angle = angle(self.start, self.centre);
+            (start_angle, sweep_from(start_angle, self.start, self.end, self.centre, self.ccw))
+        })
+    }
+
+    /// The angle the sector sweeps, radians ([`sweep`]).
     pub fn total(&self) -> f64 {
-        self.total
+        self.angles().1
+    }
+
+    /// The angle of its start about its centre ([`angle`]).
+    pub fn start_angle(&self) -> f64 {
+        self.angles().0
+    }
+
+    /// Where the arc starts and ends, and its centre.
+    pub fn start(&self) -> Xz {
+        self.start
+    }
+
+    pub fn end(&self) -> Xz {
+        self.end
+    }
+
+    pub fn centre(&self) -> Xz {
+        self.centre
     }
 
     /// Whether `point` lies in the sector, as [`angle_within`] decides it.
     pub fn contains(&self, point: Xz) -> bool {
         let answer = self.sides.inside(point);
         answer.unwrap_or_else(|| {
-            let (a0, a) = (angle(self.start, self.centre), angle(point, self.centre));
+            let ((a0, total), a) = (self.angles(), angle(point, self.centre));
             let delta = if self.ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
-            delta <= self.total + 1e-12
+            delta <= total + 1e-12
         })
     }
 }

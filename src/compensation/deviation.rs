@@ -25,6 +25,7 @@
 //! it by construction; like the thesis' figure it grows with the number of points, so
 //! figures compare only at the same sampling.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
 use std::f64::consts::TAU;
 
@@ -212,14 +213,15 @@ impl<'a> LocalPath<'a> {
         LocalPath { toolpath, ends, arc_of, arcs }
     }
 
-    /// The constants of move `k` when it is an arc.
-    fn arc(&self, k: usize, m: &Move) -> Option<ArcConstants> {
+    /// The constants of move `k` when it is an arc: borrowed from `arcs` (they are read for
+    /// every sample measured against the arc, and a copy of them cost more than reading them).
+    fn arc(&self, k: usize, m: &Move) -> Option<Cow<'_, ArcConstants>> {
         if !m.is_arc() {
             return None;
         }
         match self.arc_of.get(k).and_then(|&index| self.arcs.get(index as usize)) {
-            Some(arc) => Some(*arc),
-            None => Some(ArcConstants::of(self.toolpath.start_of(k), m)),
+            Some(arc) => Some(Cow::Borrowed(arc)),
+            None => Some(Cow::Owned(ArcConstants::of(self.toolpath.start_of(k), m))),
         }
     }
 
@@ -261,6 +263,13 @@ impl<'a> LocalPath<'a> {
         best.is_finite().then_some(best)
     }
 
+    /// The start angle about its centre and the sweep of move `k` when it is an arc
+    /// (`geometry::angle`, `geometry::sweep`), as measured once for its constants.
+    pub fn arc_angles(&self, k: usize) -> Option<(f64, f64)> {
+        let m = self.toolpath.moves.get(k)?;
+        self.arc(k, m).map(|arc| (arc.sector.start_angle(), arc.sector.total()))
+    }
+
     /// The toolpath it measures against.
     pub fn toolpath(&self) -> &'a Toolpath {
         self.toolpath
@@ -280,9 +289,9 @@ impl<'a> LocalPath<'a> {
         let m = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell)?;
         let start = self.toolpath.start_of(k);
         let endpoint = |param: f64, point: Xz| Closest { distance: p.distance(point), param, point };
-        let closest = match self.arc(k, m) {
+        let closest = match self.arc(k, m).as_deref() {
             Some(ArcConstants { radius, sector }) => {
-                let (a0, total) = (geometry::angle(start, m.centre), sector.total());
+                let (radius, a0, total) = (*radius, sector.start_angle(), sector.total());
                 let a = geometry::angle(p, m.centre);
                 let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
                 if delta <= total + 1e-12 {
@@ -315,8 +324,8 @@ impl<'a> LocalPath<'a> {
             return f64::INFINITY;
         };
         let start = self.toolpath.start_of(k);
-        match self.arc(k, m) {
-            Some(ArcConstants { radius, sector }) => {
+        match self.arc(k, m).as_deref() {
+            Some(ArcConstants { radius, sector, .. }) => {
                 if sector.contains(p) {
                     (p.distance(m.centre) - radius).abs()
                 } else {

@@ -28,10 +28,11 @@
 //! by a few nanometres (a squareness term drifting as the other axis moves) stays where it
 //! is, within the tolerance, instead of jumping across its play.
 
-use crate::error_model::{ErrorModel, Sample, SampleInputs, Tracker, without_play};
+use crate::error_model::{ErrorModel, Sample, SampleInputs, Step, Tracker, without_play};
 use crate::toolpath::Xz;
 
 use super::sampling::PathSample;
+use super::squares::{root_at_most, squared_distance};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InverseOptions {
@@ -76,13 +77,15 @@ pub fn compensate_samples(
     let mut inverse = Inverse::new(start, model, options);
     let mut commanded = Vec::with_capacity(samples.len());
     let mut predicted = Vec::with_capacity(samples.len());
-    inverse.solve(samples, &mut commanded, &mut predicted);
+    let mut terms = Vec::new();
+    time_terms(samples, model, &mut terms);
+    inverse.solve(samples, &terms, &mut commanded, Some(&mut predicted));
     Compensated {
         commanded,
         predicted,
         uncompensated,
         iterations: inverse.iterations,
-        max_residual_mm: inverse.max_residual_mm,
+        max_residual_mm: inverse.max_residual_mm(),
     }
 }
 
@@ -93,47 +96,69 @@ pub struct Inverse<'m> {
     model: &'m ErrorModel,
     options: InverseOptions,
     tracker: Tracker,
+    /// The model's terms of time per sample (`ErrorModel::time_term_count`).
+    time_count: usize,
     /// The previous sample's correction: the first guess of the next (see `solve`).
     correction: Xz,
     /// The most steps one sample took so far.
     pub iterations: u32,
-    /// The largest |nominal − predicted| so far, mm.
-    pub max_residual_mm: f64,
+    /// The square of the largest |nominal − predicted| so far, mm² (`max_residual_mm`).
+    max_residual_squared: f64,
 }
 
 impl<'m> Inverse<'m> {
+    /// The largest |nominal − predicted| so far, mm. The square root is taken of the largest
+    /// square rather than of each sample's: a rounded square root never decreases as its
+    /// argument grows, so the answer is the same.
+    pub fn max_residual_mm(&self) -> f64 {
+        self.max_residual_squared.sqrt()
+    }
+
     /// The inverse from the machine's position `start`.
     pub fn new(start: Xz, model: &'m ErrorModel, options: &InverseOptions) -> Inverse<'m> {
         Inverse {
             model,
             options: *options,
             tracker: Tracker::new(start, model.play()).counting_cut(model.wears()),
+            time_count: model.time_term_count(),
             correction: Xz::new(0.0, 0.0),
             iterations: 0,
-            max_residual_mm: 0.0,
+            max_residual_squared: 0.0,
         }
     }
 
     /// Solve the next `samples`, appending the point to command for each to `commanded`
-    /// and where the model predicts it goes to `predicted`.
-    pub fn solve(&mut self, samples: &[PathSample], commanded: &mut Vec<Xz>, predicted: &mut Vec<Xz>) {
+    /// and where the model predicts it goes to `predicted` (when it is asked for);
+    /// `time_terms` holds the model's terms of time at the samples (`time_terms`; empty to
+    /// evaluate them at each command tried).
+    pub fn solve(
+        &mut self,
+        samples: &[PathSample],
+        time_terms: &[Xz],
+        commanded: &mut Vec<Xz>,
+        mut predicted: Option<&mut Vec<Xz>>,
+    ) {
         let model = self.model;
-        for s in samples {
+        for (index, s) in samples.iter().enumerate() {
             let inputs = inputs_of(s, model);
+            let terms = terms_of(time_terms, self.time_count, index);
             let guess = Xz::new(s.nominal.x + self.correction.x, s.nominal.z + self.correction.z);
-            let (c, a, steps) = solve(&self.tracker, s, guess, &inputs, model, &self.options);
+            let (step, a, steps) = solve(&self.tracker, s, guess, &inputs, terms, model, &self.options);
+            let c = step.to();
             self.correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
-            self.tracker.advance(c, s.tool, s.cutting);
+            self.tracker.take(&step, s.tool, s.cutting);
             self.iterations = self.iterations.max(steps);
-            self.max_residual_mm = self.max_residual_mm.max(s.nominal.distance(a));
+            self.max_residual_squared = self.max_residual_squared.max(squared_distance(s.nominal, a));
             commanded.push(c);
-            predicted.push(a);
+            if let Some(predicted) = predicted.as_deref_mut() {
+                predicted.push(a);
+            }
         }
     }
 }
 
-/// The point to command for one sample from the tracker's state, where the model predicts
-/// it goes, and the steps it took. The iteration starts from `guess`, the nominal point
+/// The point to command for one sample from the tracker's state (as the tracker's step to
+/// it, for the tracker to take), where the model predicts it goes, and the steps it took. The iteration starts from `guess`, the nominal point
 /// moved by the previous sample's correction: the errors change little from one sample to
 /// the next, and inside an axis' play every command leaves the slide where it is, so of all
 /// the commands that solve the sample the one nearest the previous correction is taken,
@@ -143,9 +168,10 @@ fn solve(
     s: &PathSample,
     guess: Xz,
     inputs: &SampleInputs,
+    time_terms: &[Xz],
     model: &ErrorModel,
     options: &InverseOptions,
-) -> (Xz, Xz, u32) {
+) -> (Step, Xz, u32) {
     let play = tracker.play();
     let slide = tracker.slide();
     let before = tracker.position();
@@ -154,14 +180,19 @@ fn solve(
     let mut c = guess;
     let mut steps = 0;
     loop {
-        let state = tracker.peek(c, s.tool, s.cutting, inputs);
+        let step = tracker.step(c);
+        let state = tracker.sample_after(&step, s.tool, s.cutting, inputs);
         // One evaluation of the model gives both the actual point and the rest of the error
         // (`ErrorModel::actual` and `displacement_without_play` of the same state).
-        let displacement = model.displacement(&state);
+        let displacement = model.displacement_timed(&state, time_terms);
         let actual = Xz::new(state.at.x + displacement.x, state.at.z + displacement.z);
-        let residual = s.nominal.distance(actual);
-        if residual <= options.tolerance_mm * 1e-3 || steps >= options.max_iterations || !residual.is_finite() {
-            return (c, actual, steps);
+        // The residual |nominal − actual|, compared as its square (see `root_at_most`).
+        let residual = squared_distance(s.nominal, actual);
+        if root_at_most(residual, options.tolerance_mm * 1e-3)
+            || steps >= options.max_iterations
+            || !residual.is_finite()
+        {
+            return (step, actual, steps);
         }
         steps += 1;
         // The rest of the error at this command, and where the slide must go for it.
@@ -181,8 +212,8 @@ fn solve(
                 dead_band,
             ),
         );
-        if next.distance(c) <= 1e-12 {
-            return (c, actual, steps);
+        if root_at_most(squared_distance(next, c), 1e-12) {
+            return (step, actual, steps);
         }
         c = next;
     }
@@ -219,14 +250,38 @@ fn command_for(axis: Axis, guess: f64, gain: f64, dead_band: f64) -> f64 {
 }
 
 fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
-    SampleInputs { t_min: model.start_min + s.t_s / 60.0, velocity: s.velocity, normal: s.normal, tip: s.tip }
+    SampleInputs { t_min: t_min(s, model), velocity: s.velocity, normal: s.normal, tip: s.tip }
+}
+
+/// Minutes since the machine started at a sample.
+fn t_min(s: &PathSample, model: &ErrorModel) -> f64 {
+    model.start_min + s.t_s / 60.0
+}
+
+/// The model's terms of time (`ErrorModel::time_terms`) at each of `samples`, appended to
+/// `out`: each sample's are evaluated once here, for every command `Inverse::solve` tries
+/// at it and for each prediction of it (`Predictor`).
+pub fn time_terms(samples: &[PathSample], model: &ErrorModel, out: &mut Vec<Xz>) {
+    if model.time_term_count() == 0 {
+        return;
+    }
+    for s in samples {
+        model.time_terms(t_min(s, model), out);
+    }
+}
+
+/// The terms of time of the `index`-th sample in `terms` (`time_terms`, `count` per sample);
+/// none when they were not given, and the model evaluates them.
+fn terms_of(terms: &[Xz], count: usize, index: usize) -> &[Xz] {
+    let start = index.saturating_mul(count);
+    terms.get(start..start.saturating_add(count)).unwrap_or_default()
 }
 
 /// Where the tool goes when `commanded` (one point per sample) is commanded in order: the
 /// model at each of `states`, evaluated as the tracker walks (the states are not kept).
 pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Xz> {
     let mut out = Vec::with_capacity(samples.len());
-    Predictor::new(start, model).predict(samples, commanded, &mut out);
+    Predictor::new(start, model).predict(samples, &[], commanded, &mut out);
     out
 }
 
@@ -235,29 +290,40 @@ pub fn predict(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &Erro
 pub struct Predictor<'m> {
     model: &'m ErrorModel,
     tracker: Tracker,
+    /// The model's terms of time per sample (`ErrorModel::time_term_count`).
+    time_count: usize,
 }
 
 impl<'m> Predictor<'m> {
     pub fn new(start: Xz, model: &'m ErrorModel) -> Predictor<'m> {
-        Predictor { model, tracker: Tracker::new(start, model.play()).counting_cut(model.wears()) }
+        Predictor {
+            model,
+            tracker: Tracker::new(start, model.play()).counting_cut(model.wears()),
+            time_count: model.time_term_count(),
+        }
     }
 
-    /// Where the tool goes for the next `samples` commanded at `commanded`, appended to `out`.
-    pub fn predict(&mut self, samples: &[PathSample], commanded: &[Xz], out: &mut Vec<Xz>) {
-        let model = self.model;
-        out.extend(samples.iter().zip(commanded).map(|(s, &c)| {
-            let actual = model.actual(&self.tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model)));
-            self.tracker.advance(c, s.tool, s.cutting);
+    /// Where the tool goes for the next `samples` commanded at `commanded`, appended to `out`;
+    /// `time_terms` as for `Inverse::solve`.
+    pub fn predict(&mut self, samples: &[PathSample], time_terms: &[Xz], commanded: &[Xz], out: &mut Vec<Xz>) {
+        let (model, count) = (self.model, self.time_count);
+        out.extend(samples.iter().zip(commanded).enumerate().map(|(index, (s, &c))| {
+            let step = self.tracker.step(c);
+            let state = self.tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
+            let actual = model.actual_timed(&state, terms_of(time_terms, count, index));
+            self.tracker.take(&step, s.tool, s.cutting);
             actual
         }));
     }
 
     /// `predict` of the samples' nominal points (the program as written).
-    pub fn predict_nominal(&mut self, samples: &[PathSample], out: &mut Vec<Xz>) {
-        let model = self.model;
-        out.extend(samples.iter().map(|s| {
-            let actual = model.actual(&self.tracker.peek(s.nominal, s.tool, s.cutting, &inputs_of(s, model)));
-            self.tracker.advance(s.nominal, s.tool, s.cutting);
+    pub fn predict_nominal(&mut self, samples: &[PathSample], time_terms: &[Xz], out: &mut Vec<Xz>) {
+        let (model, count) = (self.model, self.time_count);
+        out.extend(samples.iter().enumerate().map(|(index, s)| {
+            let step = self.tracker.step(s.nominal);
+            let state = self.tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
+            let actual = model.actual_timed(&state, terms_of(time_terms, count, index));
+            self.tracker.take(&step, s.tool, s.cutting);
             actual
         }));
     }

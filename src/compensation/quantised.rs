@@ -13,13 +13,15 @@ use super::fit::Segment;
 use super::grid::{ArcWords, Grid};
 use super::plan::{MovePlan, PlanInput};
 use super::sampling::PathSample;
+use super::squares::{root_less, squared_distance};
 use super::written;
 
 /// A move's segments rounded onto `grid`, from its rounded start, as the control runs the
 /// words `rewrite` writes for them: each end rounded from its exact value, each arc about
 /// the centre the control finds from its words (`Grid::arc_words`, in the form
 /// `prefer_radius` asks for where it holds the arc; the plan's own `words` where it chose
-/// them), an arc no words can give a line. Into `out`, which is cleared first.
+/// them), an arc no words can give a line. Into `out`, which is cleared first; the rounded
+/// start (`grid.round(start)`) is returned.
 pub fn quantise(
     grid: &Grid,
     start: Xz,
@@ -27,9 +29,10 @@ pub fn quantise(
     words: &[ArcWords],
     prefer_radius: bool,
     out: &mut Vec<Segment>,
-) {
+) -> Xz {
     let mut from_exact = start;
     let mut from = grid.point(start);
+    let rounded_start = grid.to_mm(from);
     out.clear();
     for (index, segment) in segments.iter().enumerate() {
         let end = grid.point(segment.end());
@@ -50,6 +53,7 @@ pub fn quantise(
         from = end;
         from_exact = segment.end();
     }
+    rounded_start
 }
 
 /// The point of a segment (from `start`) closest to `p`.
@@ -61,7 +65,7 @@ pub fn closest_on_segment(p: Xz, start: Xz, segment: &Segment) -> Xz {
 #[derive(Debug, Clone, Copy)]
 enum Gauge {
     Line { start: Xz, dx: f64, dz: f64, length2: f64 },
-    Arc { start: Xz, end: Xz, centre: Xz, radius: f64, sector: geometry::Sector },
+    Arc { radius: f64, sector: geometry::Sector },
 }
 
 impl Gauge {
@@ -72,11 +76,8 @@ impl Gauge {
                 Gauge::Line { start, dx, dz, length2: dx * dx + dz * dz }
             }
             Segment::Arc { end, centre, ccw } => Gauge::Arc {
-                start,
-                end,
-                centre,
                 radius: start.distance(centre),
-                sector: geometry::Sector::new(start, end, centre, ccw),
+                sector: geometry::Sector::unmeasured(start, end, centre, ccw),
             },
         }
     }
@@ -92,7 +93,8 @@ impl Gauge {
                 let t = (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0);
                 Xz::new(start.x + dx * t, start.z + dz * t)
             }
-            Gauge::Arc { start, end, centre, radius, sector } => {
+            Gauge::Arc { radius, sector } => {
+                let (start, end, centre) = (sector.start(), sector.end(), sector.centre());
                 let offset = Xz::new(p.x - centre.x, p.z - centre.z);
                 let length = p.distance(centre);
                 if length > 0.0 && sector.contains(p) {
@@ -143,8 +145,8 @@ pub fn commanded_moves(
             continue;
         }
         let prefer_radius = input.radius.get(index).copied().unwrap_or(false);
-        quantise(&grid, plan.start, &plan.segments, &plan.words, prefer_radius, &mut rounded);
-        let walk = Walk { m, contour_start, start: grid.round(plan.start), segments: &rounded, tools };
+        let start = quantise(&grid, plan.start, &plan.segments, &plan.words, prefer_radius, &mut rounded);
+        let walk = Walk { m, contour_start, start, segments: &rounded, tools };
         walk.follow(samples, input.commanded, range.clone(), &mut gauges, out);
     }
 }
@@ -172,23 +174,42 @@ impl Walk<'_> {
         // segment used, wide enough to pass the segments between two samples (densified
         // lines along an arc may be twenty or more to a sample interval).
         let window = 16 + 2 * self.segments.len().div_ceil(range.len().max(1));
-        let starts = std::iter::once(self.start).chain(self.segments.iter().map(Segment::end));
-        gauges.clear();
-        gauges.extend(self.segments.iter().zip(starts).map(|(segment, from)| Gauge::new(from, segment)));
+        // A move of one segment (most are) keeps its gauge here: a gauge is large, and each
+        // was copied into `gauges`.
+        let one: [Gauge; 1];
+        let gauges: &[Gauge] = match self.segments {
+            [segment] => {
+                one = [Gauge::new(self.start, segment)];
+                &one
+            }
+            _ => {
+                gauges.clear();
+                let mut from = self.start;
+                for segment in self.segments {
+                    gauges.push(Gauge::new(from, segment));
+                    from = segment.end();
+                }
+                gauges
+            }
+        };
         let mut cursor = 0usize;
         for j in range {
-            let target = written::written_point(self.m, self.contour_start, &samples[j], ideal[j], self.tools);
+            // The sample's contour point, for the point written and back (`written`).
+            let contour = written::contour_at(self.m, self.contour_start, &samples[j], self.tools);
+            let target = written::written_from(contour, &samples[j], ideal[j]);
+            // The nearest point, the first of equally near ones, by distances compared as
+            // their squares (`root_less`).
             let (mut best, mut best_k, mut best_d) = (self.start, cursor, f64::INFINITY);
             let first = cursor.saturating_sub(1);
             for (k, gauge) in gauges.iter().enumerate().skip(first).take(window + 1) {
                 let q = gauge.closest(target);
-                let d = q.distance(target);
-                if d < best_d {
+                let d = squared_distance(q, target);
+                if root_less(d, best_d) {
                     (best, best_k, best_d) = (q, k, d);
                 }
             }
             cursor = best_k;
-            out[j] = written::reference_point(self.m, self.contour_start, &samples[j], best, self.tools);
+            out[j] = written::reference_from(contour, &samples[j], best);
         }
     }
 }

@@ -50,19 +50,24 @@ impl Check {
     /// Check the next samples and their commanded points.
     pub fn add(&mut self, toolpath: &Toolpath, samples: &[PathSample], commanded: &[Xz]) {
         for (s, &c) in samples.iter().zip(commanded) {
-            let Some(m) = toolpath.moves.get(s.move_index) else { continue };
-            let span = m.source;
-            let shift = c.distance(s.nominal);
-            let shift = if shift.is_finite() { shift } else { f64::INFINITY };
-            if shift > self.max_shift_mm {
-                let entry = self.shifts.entry(span.start).or_insert((span, shift));
-                entry.1 = entry.1.max(shift);
-            }
-            if let Some(limits) = self.limits
-                && !inside(&limits, c)
-            {
-                self.outside.entry(span.start).or_insert((span, c));
-            }
+            self.add_one(toolpath, s, c, c.distance(s.nominal));
+        }
+    }
+
+    /// Check the next sample and its commanded point `c`, `shift` (`c.distance(s.nominal)`)
+    /// from it: for a caller that has measured the correction already.
+    pub fn add_one(&mut self, toolpath: &Toolpath, s: &PathSample, c: Xz, shift: f64) {
+        let Some(m) = toolpath.moves.get(s.move_index) else { return };
+        let span = m.source;
+        let shift = if shift.is_finite() { shift } else { f64::INFINITY };
+        if shift > self.max_shift_mm {
+            let entry = self.shifts.entry(span.start).or_insert((span, shift));
+            entry.1 = entry.1.max(shift);
+        }
+        if let Some(limits) = self.limits
+            && !inside(&limits, c)
+        {
+            self.outside.entry(span.start).or_insert((span, c));
         }
     }
 

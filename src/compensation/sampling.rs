@@ -9,11 +9,10 @@
 //! a dwell not at all. The toolpath's start is the machine's position before the program
 //! and is not a sample: nothing commands it.
 
-use std::f64::consts::TAU;
 use std::ops::Range;
 
 use crate::error_model::Spacing;
-use crate::error_model::spacing::{ArcTerms, TABLE_STEP_MM};
+use crate::error_model::spacing::{self, ArcTerms, TABLE_STEP_MM};
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
@@ -79,7 +78,7 @@ impl Sampling {
         }
         let step = self.arc.radians(radius, feed, self.allowance).min(Self::MAX_ARC_RADIANS);
         // `as` saturates; a NaN (a degenerate arc) is no step.
-        if step > 0.0 { (sweep / step).ceil() as usize } else { 0 }
+        if step > 0.0 { spacing::ceil(sweep / step) as usize } else { 0 }
     }
 }
 
@@ -98,51 +97,67 @@ pub fn sample_moves(
     sampling: &Sampling,
     out: &mut Vec<PathSample>,
 ) {
-    let first = moves.start;
-    for (index, m) in toolpath.moves.get(moves).unwrap_or_default().iter().enumerate() {
-        let index = first + index;
-        let start = toolpath.start_of(index);
-        let (_, tip) = tools.lookup(m.tool, m.offset);
-        let tip = tip_vector(tip);
-        match m.motion {
-            Motion::Dwell => {}
-            Motion::Rapid => out.push(PathSample {
-                covers_mm: start.distance(m.end),
-                ..sample(index, m, 1.0, m.end, Xz::new(0.0, 0.0), false, tip)
-            }),
-            Motion::Feed => {
-                let length = start.distance(m.end);
-                let n = sampling.spacing.steps(length, minutes(m));
-                let direction = unit(Xz::new(m.end.x - start.x, m.end.z - start.z));
-                let velocity = Xz::new(direction.x * m.feed, direction.z * m.feed);
-                let normal = if m.cutting { surface_normal(direction, m, tip) } else { Xz::new(0.0, 0.0) };
-                for i in 1..=n {
-                    let t = i as f64 / n as f64;
-                    let p = Xz::new(start.x + (m.end.x - start.x) * t, start.z + (m.end.z - start.z) * t);
-                    let covers_mm = length / n as f64;
-                    out.push(PathSample { velocity, covers_mm, ..sample(index, m, t, p, normal, m.cutting, tip) });
-                }
+    for index in moves.start..moves.end.min(toolpath.moves.len()) {
+        sample_move(toolpath, index, tools, sampling, None, out);
+    }
+}
+
+/// Sample move `index` of `toolpath` as `sampling` allows, appending to `out` (nothing for a
+/// move that does not exist). For an arc, `angles` may give its start's angle about its
+/// centre and its sweep (`geometry::angle` and `geometry::sweep`) where the caller has them
+/// measured already (`LocalPath::arc_angles`); they are measured here otherwise.
+pub fn sample_move(
+    toolpath: &Toolpath,
+    index: usize,
+    tools: &ToolTable,
+    sampling: &Sampling,
+    angles: Option<(f64, f64)>,
+    out: &mut Vec<PathSample>,
+) {
+    let Some(m) = toolpath.moves.get(index) else { return };
+    let start = toolpath.start_of(index);
+    let (_, tip) = tools.lookup(m.tool, m.offset);
+    let tip = tip_vector(tip);
+    match m.motion {
+        Motion::Dwell => {}
+        Motion::Rapid => out.push(PathSample {
+            covers_mm: start.distance(m.end),
+            ..sample(index, m, 1.0, m.end, Xz::new(0.0, 0.0), false, tip)
+        }),
+        Motion::Feed => {
+            let length = start.distance(m.end);
+            let n = sampling.spacing.steps(length, minutes(m));
+            let direction = unit(Xz::new(m.end.x - start.x, m.end.z - start.z));
+            let velocity = Xz::new(direction.x * m.feed, direction.z * m.feed);
+            let normal = if m.cutting { surface_normal(direction, m, tip) } else { Xz::new(0.0, 0.0) };
+            for i in 1..=n {
+                let t = i as f64 / n as f64;
+                let p = Xz::new(start.x + (m.end.x - start.x) * t, start.z + (m.end.z - start.z) * t);
+                let covers_mm = length / n as f64;
+                out.push(PathSample { velocity, covers_mm, ..sample(index, m, t, p, normal, m.cutting, tip) });
             }
-            Motion::Cw | Motion::Ccw => {
-                let ccw = m.motion == Motion::Ccw;
-                let radius = start.distance(m.centre);
-                let sweep = geometry::sweep(start, m.end, m.centre, ccw);
+        }
+        Motion::Cw | Motion::Ccw => {
+            let ccw = m.motion == Motion::Ccw;
+            let radius = start.distance(m.centre);
+            let (a0, sweep) = angles.unwrap_or_else(|| {
                 let a0 = geometry::angle(start, m.centre);
-                let sign = if ccw { 1.0 } else { -1.0 };
-                let by_angle = sampling.arc_steps(radius, sweep, m.feed);
-                let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2);
-                let mut previous = 0.0;
-                for t in arc_fractions(n, a0, sweep, ccw) {
-                    let covers_mm = radius * sweep * (t - previous);
-                    previous = t;
-                    let angle = a0 + sign * sweep * t;
-                    let p = if t >= 1.0 { m.end } else { geometry::on_circle(m.centre, radius, angle) };
-                    // The tangent of increasing angle is (cos, −sin) in (x, z).
-                    let tangent = Xz::new(sign * angle.cos(), -sign * angle.sin());
-                    let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
-                    let normal = if m.cutting { surface_normal(tangent, m, tip) } else { Xz::new(0.0, 0.0) };
-                    out.push(PathSample { velocity, covers_mm, ..sample(index, m, t, p, normal, m.cutting, tip) });
-                }
+                (a0, geometry::sweep_from(a0, start, m.end, m.centre, ccw))
+            });
+            let sign = if ccw { 1.0 } else { -1.0 };
+            let by_angle = sampling.arc_steps(radius, sweep, m.feed);
+            let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2);
+            let mut previous = 0.0;
+            for t in arc_fractions(n, a0, sweep, ccw) {
+                let covers_mm = radius * sweep * (t - previous);
+                previous = t;
+                let angle = a0 + sign * sweep * t;
+                let p = if t >= 1.0 { m.end } else { geometry::on_circle(m.centre, radius, angle) };
+                // The tangent of increasing angle is (cos, −sin) in (x, z).
+                let tangent = Xz::new(sign * angle.cos(), -sign * angle.sin());
+                let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
+                let normal = if m.cutting { surface_normal(tangent, m, tip) } else { Xz::new(0.0, 0.0) };
+                out.push(PathSample { velocity, covers_mm, ..sample(index, m, t, p, normal, m.cutting, tip) });
             }
         }
     }
@@ -159,7 +174,7 @@ fn arc_fractions(n: usize, a0: f64, sweep: f64, ccw: bool) -> impl Iterator<Item
     let mut extremes = [f64::INFINITY; 4];
     for (k, slot) in extremes.iter_mut().enumerate() {
         let target = k as f64 * std::f64::consts::FRAC_PI_2;
-        let delta = if ccw { (target - a0).rem_euclid(TAU) } else { (a0 - target).rem_euclid(TAU) };
+        let delta = if ccw { geometry::rem_turn(target - a0) } else { geometry::rem_turn(a0 - target) };
         let fraction = delta / sweep;
         let off_grid = (fraction * n as f64 - (fraction * n as f64).round()).abs() > 0.01;
         if fraction > 0.0 && fraction < 1.0 && off_grid {
@@ -251,5 +266,23 @@ mod tests {
         assert!((at_bottom[0].param / uniform - (at_bottom[0].param / uniform).round()).abs() > 0.01);
         assert!(samples.windows(2).all(|w| w[0].param < w[1].param));
         assert_eq!(samples.last().map(|s| s.nominal), Some(arc.end));
+    }
+
+    #[test]
+    fn an_arc_sampled_with_the_path_measures_angles_is_sampled_alike() {
+        let (lowered, machine) = lower_program(
+            "G21 G99\nG97 S1000 M03\nG00 X40. Z2.\nG01 Z0 F0.2\nG02 X40. Z-9. R5.1\nG03 X30. Z-20. R12.\nM30\n",
+        );
+        let (path, tools) = (&lowered.toolpath, ToolTable::from_machine(&machine));
+        let measures = crate::compensation::deviation::LocalPath::new(path);
+        let sampling = Sampling::every_mm(0.254);
+        let (mut given, mut measured) = (Vec::new(), Vec::new());
+        for index in 0..path.moves.len() {
+            sample_move(path, index, &tools, &sampling, measures.arc_angles(index), &mut given);
+            sample_move(path, index, &tools, &sampling, None, &mut measured);
+        }
+        assert_eq!(path.moves.iter().filter(|m| m.is_arc()).count(), 2);
+        assert!((0..path.moves.len()).filter(|&k| measures.arc_angles(k).is_some()).count() == 2);
+        assert_eq!(given, measured);
     }
 }

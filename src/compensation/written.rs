@@ -100,7 +100,11 @@ pub fn offset(sample: &PathSample, commanded: Xz) -> Xz {
 
 /// The point the program writes for a sample: its contour point moved by its correction.
 pub fn written_point(m: &Move, contour_start: Xz, sample: &PathSample, commanded: Xz, tools: &ToolTable) -> Xz {
-    let contour = contour_at(m, contour_start, sample, tools);
+    written_from(contour_at(m, contour_start, sample, tools), sample, commanded)
+}
+
+/// `written_point` given the sample's contour point (`contour_at`).
+pub fn written_from(contour: Xz, sample: &PathSample, commanded: Xz) -> Xz {
     let d = offset(sample, commanded);
     Xz::new(contour.x + d.x, contour.z + d.z)
 }
@@ -108,6 +112,10 @@ pub fn written_point(m: &Move, contour_start: Xz, sample: &PathSample, commanded
 /// The reference point the control commands for a written point of a sample (the inverse
 /// of `written_point`).
 pub fn reference_point(m: &Move, contour_start: Xz, sample: &PathSample, written: Xz, tools: &ToolTable) -> Xz {
-    let contour = contour_at(m, contour_start, sample, tools);
+    reference_from(contour_at(m, contour_start, sample, tools), sample, written)
+}
+
+/// `reference_point` given the sample's contour point (`contour_at`).
+pub fn reference_from(contour: Xz, sample: &PathSample, written: Xz) -> Xz {
     Xz::new(written.x + sample.nominal.x - contour.x, written.z + sample.nominal.z - contour.z)
 }

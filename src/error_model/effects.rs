@@ -108,6 +108,10 @@ impl Effect {
         }
     }
 
+    // Inlined into the model's sum (`ErrorModel::displacement_timed`), which evaluates every
+    // effect several times per sample: a call clobbers every floating-point register the
+    // sum and its caller hold, which cost more than most effects' arithmetic.
+    #[inline(always)]
     pub fn displacement(&self, s: &Sample) -> Xz {
         match self {
             Effect::ToolOffsetX(e) => e.displacement(s),
@@ -129,6 +133,21 @@ impl Effect {
             Effect::StraightnessZ(e) => e.displacement(s),
             Effect::NoseRadius(e) => e.displacement(s),
         }
+    }
+
+    /// The displacement of a term that is a function of time alone (warm-up) at `t_min`,
+    /// as `displacement` gives it at a sample of that time; `None` for any other term.
+    pub fn at_time(&self, t_min: f64) -> Option<Xz> {
+        match self {
+            Effect::ThermalX(e) => Some(e.at_time(t_min)),
+            Effect::ThermalZ(e) => Some(e.at_time(t_min)),
+            _ => None,
+        }
+    }
+
+    /// Whether the term is a function of time alone (`at_time`).
+    pub fn is_of_time(&self) -> bool {
+        matches!(self, Effect::ThermalX(_) | Effect::ThermalZ(_))
     }
 
     /// How closely a move must be sampled for the straight interpolation between samples

@@ -76,6 +76,25 @@ pub struct SampleInputs {
     pub tip: Xz,
 }
 
+/// What a move to a commanded point makes of the tracker's axes (`Tracker::step`): where
+/// the slides are, the directions they were last pushed in and the travel since each
+/// reversed. `peek` and `advance` both take it, so a point that is peeked at and then
+/// moved to (every sample solved or predicted) runs the play operator once.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Step {
+    to: Xz,
+    slide: Xz,
+    direction: Signs,
+    since_reversal: Xz,
+}
+
+impl Step {
+    /// The commanded point the step moves to.
+    pub fn to(&self) -> Xz {
+        self.to
+    }
+}
+
 /// Moves below this (mm) do not change an axis' direction: rounding noise is no reversal.
 const STILL_MM: f64 = 1e-9;
 
@@ -140,9 +159,23 @@ impl Tracker {
     /// The sample the tracker would give after `advance(to, tool, cutting)`, without
     /// moving it: for solving where to command a point.
     pub fn peek(&self, to: Xz, tool: u16, cutting: bool, inputs: &SampleInputs) -> Sample {
+        self.sample_after(&self.step(to), tool, cutting, inputs)
+    }
+
+    /// What a move to `to` makes of the axes, without moving the tracker.
+    pub fn step(&self, to: Xz) -> Step {
         let (mut slide, mut direction, mut since) = (self.slide, self.direction, self.since_reversal);
         advance_axis(to.x, self.play.x, &mut slide.x, &mut direction.x, &mut since.x);
         advance_axis(to.z, self.play.z, &mut slide.z, &mut direction.z, &mut since.z);
+        Step { to, slide, direction, since_reversal: since }
+    }
+
+    /// `peek` of the move `step` describes (`step` of this tracker).
+    // Inlined where the model is evaluated on the sample at once: the parts of the sample
+    // the model does not read need not be written out and read back.
+    #[inline]
+    pub fn sample_after(&self, step: &Step, tool: u16, cutting: bool, inputs: &SampleInputs) -> Sample {
+        let Step { to, slide, direction, since_reversal: since } = *step;
         let mut cut = self.cut_length(tool);
         if cutting && self.counts_cut {
             cut += self.at.distance(to) / 1000.0;
@@ -167,9 +200,15 @@ impl Tracker {
 
     /// Move to `to`; `cutting` adds the travel to `tool`'s cut length.
     pub fn advance(&mut self, to: Xz, tool: u16, cutting: bool) {
+        let step = self.step(to);
+        self.take(&step, tool, cutting);
+    }
+
+    /// `advance` by the move `step` describes (`step` of this tracker, not moved since).
+    pub fn take(&mut self, step: &Step, tool: u16, cutting: bool) {
+        let to = step.to;
         let (dx, dz) = (to.x - self.at.x, to.z - self.at.z);
-        advance_axis(to.x, self.play.x, &mut self.slide.x, &mut self.direction.x, &mut self.since_reversal.x);
-        advance_axis(to.z, self.play.z, &mut self.slide.z, &mut self.direction.z, &mut self.since_reversal.z);
+        (self.slide, self.direction, self.since_reversal) = (step.slide, step.direction, step.since_reversal);
         if cutting && self.counts_cut {
             let length_m = (dx * dx + dz * dz).sqrt() / 1000.0;
             match self.cut.iter_mut().find(|(t, _)| *t == tool) {

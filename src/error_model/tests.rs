@@ -260,3 +260,41 @@ fn cut_length_is_followed_only_for_a_model_that_wears() {
     assert!(close(walk(&wear), 0.03));
     assert_eq!(walk(&offset), 0.0);
 }
+
+proptest::proptest! {
+    /// The terms of time evaluated once at a sample's time and taken by `displacement_timed`
+    /// give the displacement bit for bit, wherever they stand among the other terms; terms
+    /// of time it is not given are evaluated.
+    #[test]
+    fn terms_of_time_evaluated_once_give_the_same_displacement(
+        t_min in -10.0f64..500.0,
+        x in -100.0f64..100.0,
+        z in -300.0f64..50.0,
+        amp_x in -0.02f64..0.02,
+        amp_z in -0.02f64..0.02,
+        tau in 0.0f64..100.0,
+        given in 0usize..3,
+    ) {
+        let model = ErrorModel {
+            tables: None,
+            effects: vec![
+                Effect::ThermalX(ThermalX { amp: amp_x, tau_min: tau }),
+                Effect::ScaleZ(ScaleZ { ppm: 30.0 }),
+                Effect::ToolOffsetX(ToolOffsetX { dx: 0.005 }),
+                Effect::ThermalZ(ThermalZ { amp: amp_z, tau_min: tau * 0.7 }),
+                Effect::Squareness(Squareness { urad: 20.0 }),
+            ],
+            start_min: 0.0,
+        };
+        let s = Sample { t_min, ..sample(x, z) };
+        let mut terms = Vec::new();
+        model.time_terms(t_min, &mut terms);
+        proptest::prop_assert_eq!(terms.len(), model.time_term_count());
+        proptest::prop_assert_eq!(terms.len(), 2);
+        let full = model.displacement(&s);
+        let timed = model.displacement_timed(&s, terms.get(..given).unwrap_or_default());
+        proptest::prop_assert_eq!(full.x.to_bits(), timed.x.to_bits());
+        proptest::prop_assert_eq!(full.z.to_bits(), timed.z.to_bits());
+        proptest::prop_assert_eq!(model.actual(&s), model.actual_timed(&s, &terms));
+    }
+}

@@ -76,6 +76,13 @@ mod sector {
             prop_assume!(distance > 1e-9);
             let sector = Sector::new(start, end, centre, ccw);
             prop_assert_eq!(sector.contains(point), angle_within(point, start, end, centre, ccw));
+            // Measured up front or when asked, the angles are the same.
+            let unmeasured = Sector::unmeasured(start, end, centre, ccw);
+            prop_assert_eq!(unmeasured.contains(point), sector.contains(point));
+            prop_assert_eq!(sector.total().to_bits(), sweep(start, end, centre, ccw).to_bits());
+            prop_assert_eq!(unmeasured.total().to_bits(), sector.total().to_bits());
+            prop_assert_eq!(unmeasured.start_angle().to_bits(), angle(start, centre).to_bits());
+            prop_assert_eq!(sector.start_angle().to_bits(), angle(start, centre).to_bits());
         }
     }
 

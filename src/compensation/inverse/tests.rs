@@ -83,3 +83,56 @@ fn rapids_are_sampled_at_their_end_and_dwells_not_at_all() {
         }
     }
 }
+
+#[test]
+fn terms_of_time_given_once_per_sample_solve_and_predict_as_evaluated_at_each_command() {
+    let (path, machine) = toolpath();
+    let samples = sample_toolpath(&path, &ToolTable::from_machine(&machine), 0.25);
+    let m = ErrorModel {
+        start_min: 20.0,
+        ..model(vec![
+            Effect::BacklashX(BacklashX { b: 0.004 }),
+            Effect::ThermalX(ThermalX { amp: -0.003, tau_min: 12.0 }),
+            Effect::ScaleZ(ScaleZ { ppm: 30.0 }),
+            Effect::ThermalZ(ThermalZ { amp: 0.008, tau_min: 54.59 }),
+        ])
+    };
+    let mut terms = Vec::new();
+    time_terms(&samples, &m, &mut terms);
+    assert_eq!(terms.len(), 2 * samples.len());
+    let solved = |terms: &[Xz]| {
+        let mut inverse = Inverse::new(path.start, &m, &InverseOptions::default());
+        let (mut commanded, mut predicted) = (Vec::new(), Vec::new());
+        inverse.solve(&samples, terms, &mut commanded, Some(&mut predicted));
+        (commanded, predicted, inverse.iterations)
+    };
+    let (with_terms, without) = (solved(&terms), solved(&[]));
+    assert_eq!(with_terms, without);
+    assert!(with_terms.2 >= 2, "{}", with_terms.2);
+    let predicted = |terms: &[Xz], nominal: bool| {
+        let mut out = Vec::new();
+        let mut predictor = Predictor::new(path.start, &m);
+        if nominal {
+            predictor.predict_nominal(&samples, terms, &mut out);
+        } else {
+            predictor.predict(&samples, terms, &with_terms.0, &mut out);
+        }
+        out
+    };
+    assert_eq!(predicted(&terms, false), with_terms.1);
+    assert_eq!(predicted(&terms, true), predicted(&[], true));
+    let nominal: Vec<Xz> = samples.iter().map(|s| s.nominal).collect();
+    assert_eq!(predicted(&terms, true), predict(&samples, &nominal, path.start, &m));
+}
+
+#[test]
+fn the_largest_residual_is_the_root_of_the_largest_square() {
+    let (path, machine) = toolpath();
+    let samples = sample_toolpath(&path, &ToolTable::from_machine(&machine), 0.25);
+    let m = model(vec![Effect::BacklashX(BacklashX { b: 0.006 }), Effect::ScaleZ(ScaleZ { ppm: 80.0 })]);
+    let options = InverseOptions { max_iterations: 1, ..InverseOptions::default() };
+    let result = compensate_samples(&samples, path.start, &m, &options);
+    let largest = samples.iter().zip(&result.predicted).map(|(s, &a)| s.nominal.distance(a)).fold(0.0, f64::max);
+    assert!(largest > 0.0);
+    assert_eq!(result.max_residual_mm.to_bits(), largest.to_bits());
+}

@@ -35,11 +35,11 @@ use crate::toolpath::{Limits, Toolpath, Xz};
 
 use super::super::deviation::{LocalPath, Tally};
 use super::super::grid::Grid;
-use super::super::inverse::{Inverse, InverseOptions, Predictor};
+use super::super::inverse::{Inverse, InverseOptions, Predictor, time_terms};
 use super::super::plan::{KeptPlans, MovePlan, PlanInput, PlanOptions, plan_range};
 use super::super::report::RunFigures;
 use super::super::rewrite::{MotionBlocks, MoveRun};
-use super::super::sampling::{PathSample, Sampling, sample_moves};
+use super::super::sampling::{PathSample, Sampling, sample_move};
 use super::super::{quantised, safety};
 use super::{CompensateOptions, Paths, SAMPLE_STEP_MM};
 
@@ -136,8 +136,12 @@ struct Piece {
     moves: Range<usize>,
     lead: usize,
     samples: Vec<PathSample>,
+    /// The samples of each of `moves` (`fill_ranges`), recorded as they are made.
+    ranges: Vec<Range<usize>>,
+    /// The model's terms of time at each sample (`inverse::time_terms`): evaluated once for
+    /// the solve and both predictions.
+    time_terms: Vec<Xz>,
     commanded: Vec<Xz>,
-    predicted: Vec<Xz>,
     uncompensated: Vec<Xz>,
     before: Vec<Option<f64>>,
     rounded: Vec<Xz>,
@@ -148,8 +152,9 @@ struct Piece {
 impl Piece {
     fn clear(&mut self) {
         self.samples.clear();
+        self.ranges.clear();
+        self.time_terms.clear();
         self.commanded.clear();
-        self.predicted.clear();
         self.uncompensated.clear();
         self.before.clear();
         self.rounded.clear();
@@ -226,18 +231,27 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
             }
             None => 0,
         };
-        sample_moves(toolpath, moves, context.tools, &context.sampling, &mut piece.samples);
+        for index in moves {
+            let first = piece.samples.len();
+            // An arc's angles were measured for the path's measures already.
+            let angles = context.path.arc_angles(index);
+            sample_move(toolpath, index, context.tools, &context.sampling, angles, &mut piece.samples);
+            piece.ranges.push(first..piece.samples.len());
+        }
         let fresh = piece.fresh();
         let samples = piece.samples.get(fresh).unwrap_or_default();
-        inverse.solve(samples, &mut piece.commanded, &mut piece.predicted);
-        as_written.predict_nominal(samples, &mut piece.uncompensated);
+        time_terms(samples, model, &mut piece.time_terms);
+        // Where the model predicts the commanded points go is not read: the round stage
+        // predicts the rounded ones.
+        inverse.solve(samples, &piece.time_terms, &mut piece.commanded, None);
+        as_written.predict_nominal(samples, &piece.time_terms, &mut piece.uncompensated);
         piece.before.extend(samples.iter().zip(&piece.uncompensated).map(|(s, &p)| context.path.distance(s, p)));
         last = piece.samples.last().copied().zip(piece.commanded.last().copied());
         if to_plan.send(piece).is_err() {
             break;
         }
     }
-    (inverse.iterations, inverse.max_residual_mm)
+    (inverse.iterations, inverse.max_residual_mm())
 }
 
 /// Stage 2: plan the moves.
@@ -279,17 +293,19 @@ fn round(context: &Context<'_>, rounding: &Receiver<Piece>, to_rewrite: &SyncSen
     let mut run = 0;
     let mut trail = Trail::default();
     while let Ok(mut piece) = rounding.recv() {
-        fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
+        let slots = ranges.get_mut(piece.moves.clone()).unwrap_or_default();
+        for (slot, range) in slots.iter_mut().zip(&piece.ranges) {
+            slot.clone_from(range);
+        }
         piece.rounded.extend(piece.samples.iter().map(|s| s.nominal));
         let grid = |k| context.grid(k);
         let input = context.plan_input(&piece.samples, &piece.commanded, &ranges);
         quantised::commanded_moves(&input, piece.moves.start, &piece.plans, grid, &mut piece.rounded);
         let fresh = piece.fresh();
         let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
-        let commanded = piece.commanded.get(fresh.clone()).unwrap_or_default();
-        as_rounded.predict(samples, piece.rounded.get(fresh).unwrap_or_default(), &mut piece.after);
-        safety.add(toolpath, samples, commanded);
-        measure(context, &piece, &mut out, &mut run, &mut trail);
+        let rounded = piece.rounded.get(fresh).unwrap_or_default();
+        as_rounded.predict(samples, &piece.time_terms, rounded, &mut piece.after);
+        measure(context, &piece, &mut safety, &mut out, &mut run, &mut trail);
         if options.paths {
             out.paths.samples.extend_from_slice(samples);
             out.paths.uncompensated.extend_from_slice(&piece.uncompensated);
@@ -363,11 +379,19 @@ struct Trail {
     after: Option<f64>,
 }
 
-/// Tally a piece's own samples into the run figures and the totals, and mark the moves
-/// whose correction exceeds the tolerance. Each sample stands for the path from the sample
-/// before it (`PathSample::covers_mm`, in the thesis' steps): the figures are along the
-/// path, the same however closely the model let it be sampled.
-fn measure(context: &Context<'_>, piece: &Piece, out: &mut Measured, run: &mut usize, trail: &mut Trail) {
+/// Tally a piece's own samples into the run figures and the totals, mark the moves whose
+/// correction exceeds the tolerance, and check each correction (`safety`, which takes the
+/// correction measured here). Each sample stands for the path from the sample before it
+/// (`PathSample::covers_mm`, in the thesis' steps): the figures are along the path, the
+/// same however closely the model let it be sampled.
+fn measure(
+    context: &Context<'_>,
+    piece: &Piece,
+    safety: &mut safety::Check,
+    out: &mut Measured,
+    run: &mut usize,
+    trail: &mut Trail,
+) {
     let tolerance = context.options.fit.tolerance_mm;
     let fresh = piece.fresh();
     let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
@@ -376,6 +400,7 @@ fn measure(context: &Context<'_>, piece: &Piece, out: &mut Measured, run: &mut u
     for (((s, c), &before), &after) in points {
         let weight = s.covers_mm / SAMPLE_STEP_MM;
         let correction = c.distance(s.nominal);
+        safety.add_one(context.toolpath, s, *c, correction);
         let after = context.path.distance(s, after);
         let totals = &mut out.totals;
         totals.samples += 1;

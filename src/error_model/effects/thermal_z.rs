@@ -20,7 +20,12 @@ pub struct ThermalZ {
 
 impl ThermalZ {
     pub fn displacement(&self, s: &Sample) -> Xz {
-        Xz::new(0.0, warm_up(self.amp, self.tau_min, s.t_min))
+        self.at_time(s.t_min)
+    }
+
+    /// The growth at `t_min` minutes since the machine started.
+    pub fn at_time(&self, t_min: f64) -> Xz {
+        Xz::new(0.0, warm_up(self.amp, self.tau_min, t_min))
     }
 
     /// The warm-up curve bends most at the start: `amp/τ²` per minute², whatever the path.
