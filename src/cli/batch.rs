@@ -14,7 +14,7 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::common::{CliError, write_atomically};
+use super::common::{CliError, write_atomically_parts};
 use super::compensate::{CompensateArgs, FileResult, compensate_file};
 
 pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
@@ -42,7 +42,7 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
             Err(error) => FileResult::failed(2, format!("error: {error}\n").into_bytes()),
         };
         if let Some(output) = result.output.take()
-            && let Err(error) = write_atomically(target, &output)
+            && let Err(error) = write_atomically_parts(target, output.parts())
         {
             result.code = 2;
             result.messages.extend_from_slice(format!("error: {error}\n").as_bytes());

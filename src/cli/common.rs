@@ -340,18 +340,34 @@ pub fn not_lowered(command: &str, name: &str, bytes: &[u8], parsed: &syntax::Par
 
 /// Write to `output` atomically, or to standard output for none or `-`.
 pub fn write_output(output: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
+    write_output_parts(output, [bytes])
+}
+
+/// [`write_output`] of a text given as pieces that follow each other.
+pub fn write_output_parts<'a>(
+    output: Option<&Path>,
+    parts: impl IntoIterator<Item = &'a [u8]>,
+) -> Result<(), CliError> {
     match output {
-        Some(path) if path != Path::new("-") => write_atomically(path, bytes),
-        _ => std::io::stdout()
-            .lock()
-            .write_all(bytes)
-            .map_err(|source| CliError::Write { path: "<stdout>".into(), source }),
+        Some(path) if path != Path::new("-") => write_atomically_parts(path, parts),
+        _ => {
+            let mut stdout = std::io::stdout().lock();
+            for part in parts {
+                stdout.write_all(part).map_err(|source| CliError::Write { path: "<stdout>".into(), source })?;
+            }
+            Ok(())
+        }
     }
 }
 
 /// Write `bytes` to `path` through a temporary file in the same directory and a rename, so
 /// readers see the old file or the whole new one, never a part.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    write_atomically_parts(path, [bytes])
+}
+
+/// [`write_atomically`] of a text given as pieces that follow each other.
+pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), CliError> {
     let error = |source| CliError::Write { path: path.display().to_string(), source };
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     if !dir.is_dir() {
@@ -359,7 +375,9 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
         return Err(error(std::io::Error::new(std::io::ErrorKind::NotFound, message)));
     }
     let mut temp = tempfile::NamedTempFile::new_in(dir).map_err(error)?;
-    temp.write_all(bytes).map_err(error)?;
+    for part in parts {
+        temp.write_all(part).map_err(error)?;
+    }
     temp.flush().map_err(error)?;
     temp.persist(path).map_err(|e| error(e.error))?;
     Ok(())

@@ -22,7 +22,7 @@ use turnpass::semantic::Machine;
 use super::batch;
 use super::common::{
     CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready_beside, rendered,
-    required_error_model, write_output,
+    required_error_model, write_output, write_output_parts,
 };
 
 #[derive(Args)]
@@ -163,7 +163,7 @@ pub struct FileResult {
     /// For standard error: diagnostics and a summary line.
     pub messages: Vec<u8>,
     /// The compensated program (only with code 0).
-    pub output: Option<Vec<u8>>,
+    pub output: Option<printer::Printed>,
     pub report: Option<serde_json::Value>,
 }
 
@@ -183,7 +183,7 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
     let result = compensate_file(path, &args)?;
     let _ = std::io::stderr().write_all(&result.messages);
     if let Some(output) = &result.output {
-        write_output(args.output.as_deref(), output)?;
+        write_output_parts(args.output.as_deref(), output.parts())?;
     }
     if let Some(report) = &result.report {
         let text = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
@@ -231,6 +231,6 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         .as_bytes(),
     );
     let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
-    let printed = printer::print(&program.parsed.program, &outcome.edits);
+    let printed = printer::print_parts(&program.parsed.program, &outcome.edits);
     Ok(FileResult { code: 0, messages, output: Some(printed), report })
 }
