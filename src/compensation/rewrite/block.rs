@@ -304,7 +304,8 @@ impl BlockContext<'_, '_> {
         })
     }
 
-    fn new_word(&self, form: &Form, slot: Slot, value: i64) -> NewWord {
+    /// Write the coordinate word of `slot` with `value` (a count of increments) in `form`.
+    fn write_coordinate(&self, form: &Form, slot: Slot, value: i64, out: &mut BlockWriter<'_, '_>) {
         let address = match slot {
             Slot::X => form.x.0,
             Slot::Z => form.z.0,
@@ -313,7 +314,7 @@ impl BlockContext<'_, '_> {
             Slot::K => Address::K,
             Slot::Angle => Address::A,
         };
-        NewWord::Number(address, self.grid.number(value))
+        out.number(address, self.grid.number(value));
     }
 
     /// Write the blocks that replace this block for one move and its plan to `out`, or
@@ -362,7 +363,7 @@ impl BlockContext<'_, '_> {
         if let Some(lead_words) = lead_words {
             out.word(&self.code(Kind::Rapid));
             for (slot, value) in lead_words {
-                out.word(&self.new_word(&form, slot, value));
+                self.write_coordinate(&form, slot, value, out);
             }
             out.next_block();
         }
@@ -379,7 +380,7 @@ impl BlockContext<'_, '_> {
             }
             let (words, end) = self.words(&form, at, segment, chosen.next().flatten());
             for (slot, value) in words {
-                out.word(&self.new_word(&form, slot, value));
+                self.write_coordinate(&form, slot, value, out);
             }
             at = (segment.end(), end);
         }
@@ -428,7 +429,11 @@ impl BlockContext<'_, '_> {
                         let unchanged = original.iter().any(|(s, v)| *s == slot && *v == Some(value))
                             && literal.is_some()
                             && same_address(form, slot, address);
-                        out.word(&if unchanged { NewWord::Copy(id) } else { self.new_word(form, slot, value) });
+                        if unchanged {
+                            out.copy(id);
+                        } else {
+                            self.write_coordinate(form, slot, value, out);
+                        }
                         written.push(slot);
                     }
                 }
@@ -441,12 +446,12 @@ impl BlockContext<'_, '_> {
                         code_written = true;
                     }
                 }
-                _ => out.word(&NewWord::Copy(id)),
+                _ => out.copy(id),
             }
             if last_coordinate == Some(k) {
                 for &(slot, value) in new {
                     if !written.contains(&slot) {
-                        out.word(&self.new_word(form, slot, value));
+                        self.write_coordinate(form, slot, value, out);
                         written.push(slot);
                     }
                 }
@@ -459,7 +464,7 @@ impl BlockContext<'_, '_> {
                 out.word(&self.code(kind));
             }
             for &(slot, value) in new {
-                out.word(&self.new_word(form, slot, value));
+                self.write_coordinate(form, slot, value, out);
             }
         }
     }
