@@ -233,16 +233,7 @@ pub(crate) fn write_word(
     match word {
         NewWord::Code(letter, code) => write_code(out, *letter, code.major(), code.minor(), style.two_digit_codes),
         NewWord::Number(address, number) => write_address_number(out, program, style, *address, *number),
-        NewWord::Copy(id) => {
-            let text = program.text(program.word(*id).span);
-            if text.is_ascii() {
-                out.push_ascii(text);
-            } else {
-                out.push_str(&String::from_utf8_lossy(text));
-            }
-            // A block-delete slash is written against what follows it (`/N120`).
-            *line_start = matches!(program.word(*id).kind, crate::syntax::WordKind::BlockDelete { .. });
-        }
+        NewWord::Copy(id) => *line_start = write_copy(out, program, *id),
         NewWord::Comment(text) => {
             out.push_byte(b'(');
             out.push_str(text);
@@ -250,6 +241,19 @@ pub(crate) fn write_word(
         }
         NewWord::TapeMark => out.push_byte(b'%'),
     }
+}
+
+/// Write word `id` of the program as it was written; whether the next word starts the line
+/// (a block-delete slash is written against what follows it: `/N120`).
+pub(crate) fn write_copy(out: &mut impl Text, program: &Program<'_>, id: u32) -> bool {
+    let word = program.word(id);
+    let text = program.text(word.span);
+    if text.is_ascii() {
+        out.push_ascii(text);
+    } else {
+        out.push_str(&String::from_utf8_lossy(text));
+    }
+    matches!(word.kind, crate::syntax::WordKind::BlockDelete { .. })
 }
 
 pub(crate) fn write_code(out: &mut impl Text, letter: CodeLetter, major: u16, minor: u16, two_digits: bool) {
@@ -285,7 +289,7 @@ fn write_whole(out: &mut impl Text, value: u64) {
     out.push_ascii(buffer.get(start..).unwrap_or_default());
 }
 
-fn write_address_number(
+pub(crate) fn write_address_number(
     out: &mut impl Text,
     program: &Program<'_>,
     style: &ProgramStyle,

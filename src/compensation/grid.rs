@@ -11,6 +11,7 @@
 
 use std::f64::consts::PI;
 
+use crate::dialect::AddressKind;
 use crate::geometry::{self, SweepSides};
 use crate::semantic::{CoordinateMark, Frame};
 use crate::syntax::Number;
@@ -49,6 +50,21 @@ impl Grid {
     /// A value in program units to a count of increments.
     pub fn count(&self, value: f64) -> i64 {
         nearest_whole(value * self.scale())
+    }
+
+    /// The count of a literal word's value (`Frame::literal`; `kind`, the word's address kind,
+    /// is asked for only where it decides). A literal written with a point and the grid's
+    /// decimal places is its own count: the value's two roundings through f64 (the mantissa
+    /// over a power of ten, and back) stray by less than a quarter of an increment below
+    /// `EXACT_LITERAL_COUNTS`, so the nearest whole count is the mantissa (proptested in
+    /// `tests`). Nearly every coordinate word of a long program is such a literal.
+    pub fn literal_count(&self, number: Number, kind: impl FnOnce() -> Option<AddressKind>) -> i64 {
+        const EXACT_LITERAL_COUNTS: u64 = 1 << 50;
+        if number.has_point() && number.scale == self.places && number.mantissa.unsigned_abs() < EXACT_LITERAL_COUNTS {
+            number.mantissa
+        } else {
+            self.count(self.frame.literal(number, kind()))
+        }
     }
 
     /// A count of increments as a number to write.
@@ -652,5 +668,41 @@ mod tests {
         let g = grid(true, false);
         let p = g.point(Xz::new(25.4 * 1.00004, -25.4 * 0.00006));
         assert_eq!((p.x, p.z), (10_000, -1));
+    }
+
+    proptest::proptest! {
+        /// A literal with the grid's decimal places counts as its mantissa: the same count
+        /// as its value through f64, up to the bound the shortcut takes (and just under it).
+        #[test]
+        fn a_literal_on_the_grid_counts_as_its_value(
+            places in 0u8..=9,
+            mantissa in proptest::prop_oneof![
+                -100_000_000i64..100_000_000,
+                -(1i64 << 50) + 1..(1i64 << 50),
+                ((1i64 << 50) - 1_000_000)..(1i64 << 50),
+                (-(1i64 << 50) + 1)..(-(1i64 << 50) + 1_000_000),
+            ],
+            inch in proptest::bool::ANY,
+            diameter in proptest::bool::ANY,
+        ) {
+            let g = Grid { places, ..grid(inch, diameter) };
+            let number = Number::new(mantissa, places, true);
+            let through_f64 = g.count(g.frame.literal(number, Some(AddressKind::Length)));
+            proptest::prop_assert_eq!(g.literal_count(number, || Some(AddressKind::Length)), through_f64);
+            proptest::prop_assert_eq!(through_f64, mantissa);
+        }
+    }
+
+    /// Literals the shortcut leaves to the f64 path: other decimal places, no point (a
+    /// count of increments on such a Fanuc control), beyond the bound.
+    #[test]
+    fn other_literals_count_through_their_value() {
+        let g = grid(false, false);
+        assert_eq!(g.literal_count(Number::new(552, 1, true), || Some(AddressKind::Length)), 55_200);
+        let increments = Grid { frame: Frame { decimal_input: DecimalInput::Increment, ..g.frame }, ..g };
+        assert_eq!(increments.literal_count(Number::new(552, 0, false), || Some(AddressKind::Length)), 552);
+        assert_eq!(g.literal_count(Number::new(552, 0, false), || Some(AddressKind::Length)), 552_000);
+        let huge = (1i64 << 53) + 1;
+        assert_eq!(g.literal_count(Number::new(huge, 3, true), || None), g.count(Number::new(huge, 3, true).to_f64()));
     }
 }

@@ -185,6 +185,7 @@ pub struct MotionBlocks<'a, 'src> {
     /// The block looked up last (`BlockLookup::index_near`).
     near: usize,
     radius_arcs: bool,
+    vocabulary: block::Vocabulary,
     /// The grid of the coordinates in force for the last run (they change rarely).
     grid: Option<(CoordinateMark, Grid)>,
     writer: BlockWriter<'a, 'src>,
@@ -270,6 +271,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             lookup,
             near: 0,
             radius_arcs,
+            vocabulary: block::Vocabulary::of(program),
             grid: None,
             writer: BlockWriter::with_style(program, style),
             replacements,
@@ -336,7 +338,16 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     Some((last, grid)) if last == mark => grid,
                     _ => self.grid.insert((mark, Grid::new(&mark))).1,
                 };
-                let context = block::BlockContext { program, block, mark, grid, radius_arcs: self.radius_arcs, tools };
+                let vocabulary = self.vocabulary;
+                let context = block::BlockContext {
+                    program,
+                    vocabulary,
+                    block,
+                    mark,
+                    grid,
+                    radius_arcs: self.radius_arcs,
+                    tools,
+                };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
                 match (moves.get(single), plans.get(single - first)) {
                     (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan, &mut self.writer),

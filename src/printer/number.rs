@@ -30,9 +30,94 @@ impl Style {
 }
 
 pub fn write_number(out: &mut impl Text, number: Number, style: Style) {
-    // The mantissa's digits, least significant first, on the stack: a compensated program
-    // prints millions of numbers, and building each from strings cost a few allocations.
-    let mut digits = [0u8; 20];
+    if usize::from(number.scale) > MANTISSA_DIGITS {
+        return write_long_fraction(out, number, style);
+    }
+    // The mantissa's digits on the stack, right-aligned and padded with zeros (a fraction
+    // longer than the mantissa starts with zeros), two digits per division: a compensated
+    // program prints millions of numbers, and building each from strings cost a few
+    // allocations, digit by digit a division each.
+    let mut digits = [b'0'; MANTISSA_DIGITS];
+    let mut start = MANTISSA_DIGITS;
+    let mut value = number.mantissa.unsigned_abs();
+    while value > 0 {
+        let Some(next) = start.checked_sub(2) else { break };
+        let pair = (value % 100) as usize;
+        if let (Some(slot), Some(pair)) = (digits.get_mut(next..start), DIGIT_PAIRS.get(2 * pair..2 * pair + 2)) {
+            slot.copy_from_slice(pair);
+        }
+        value /= 100;
+        start = next;
+    }
+    // A pair whose first digit is the leading zero of an odd count of digits.
+    if digits.get(start) == Some(&b'0') {
+        start += 1;
+    }
+    // The fraction's digits written are `fraction_start..fraction_end`.
+    let fraction_start = MANTISSA_DIGITS - usize::from(number.scale);
+    let mut fraction_end = MANTISSA_DIGITS;
+    if style.trim_zeros {
+        // Trailing zeros of the fraction go, and with a fraction of zeros only, every one.
+        while fraction_end > fraction_start && digits.get(fraction_end - 1) == Some(&b'0') {
+            fraction_end -= 1;
+        }
+    }
+    let fraction_empty = fraction_end == fraction_start;
+    let point = if style.as_written { number.has_point() } else { style.force_point || !fraction_empty };
+    let leading =
+        if style.as_written { !number.flags.contains(NumberFlags::NO_INTEGER_DIGITS) } else { style.leading_zero };
+    // The spelling is put together on the stack and handed over at once (sign, at most one
+    // more digit than the mantissa has, point).
+    let mut spelling = Spelling { bytes: [0; MANTISSA_DIGITS + 3], length: 0 };
+    if number.mantissa < 0 || number.flags.contains(NumberFlags::MINUS) {
+        spelling.push(b"-");
+    } else if style.as_written && number.flags.contains(NumberFlags::PLUS) {
+        spelling.push(b"+");
+    }
+    // The integer part: the digits above the fraction (the first of them is not a zero).
+    if start < fraction_start {
+        spelling.push(digits.get(start..fraction_start).unwrap_or_default());
+    } else if leading || !point || fraction_empty {
+        spelling.push(b"0");
+    }
+    if point {
+        spelling.push(b".");
+        spelling.push(digits.get(fraction_start..fraction_end).unwrap_or_default());
+    }
+    out.push_ascii(spelling.bytes.get(..spelling.length).unwrap_or_default());
+}
+
+/// The most decimal digits a mantissa has (`u64::MAX` has 20).
+const MANTISSA_DIGITS: usize = 20;
+
+/// "00" to "99", for the digits of a number two at a time.
+const DIGIT_PAIRS: &[u8; 200] = b"\
+0001020304050607080910111213141516171819\
+2021222324252627282930313233343536373839\
+4041424344454647484950515253545556575859\
+6061626364656667686970717273747576777879\
+8081828384858687888990919293949596979899";
+
+/// A number's spelling as it is put together.
+struct Spelling {
+    bytes: [u8; MANTISSA_DIGITS + 3],
+    length: usize,
+}
+
+impl Spelling {
+    fn push(&mut self, text: &[u8]) {
+        let end = self.length + text.len();
+        if let Some(slot) = self.bytes.get_mut(self.length..end) {
+            slot.copy_from_slice(text);
+            self.length = end;
+        }
+    }
+}
+
+/// `write_number` for a fraction longer than any mantissa's digits (more than twenty
+/// places), digit by digit.
+fn write_long_fraction(out: &mut impl Text, number: Number, style: Style) {
+    let mut digits = [0u8; MANTISSA_DIGITS];
     let mut count = 0;
     let mut value = number.mantissa.unsigned_abs();
     while value > 0 {

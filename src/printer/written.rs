@@ -8,10 +8,11 @@
 //! The text is what the printer writes for the same words (`write_word`), so a block comes
 //! out the same whichever way it was given.
 
-use crate::syntax::Program;
+use crate::dialect::Address;
+use crate::syntax::{Number, Program};
 
 use super::style::ProgramStyle;
-use super::{NewBlock, NewWord, write_sequence, write_word};
+use super::{NewBlock, NewWord, write_address_number, write_copy, write_sequence, write_word};
 
 /// Writes replacement blocks to text in a program's style.
 pub struct BlockWriter<'p, 'src> {
@@ -73,6 +74,28 @@ impl<'p, 'src> BlockWriter<'p, 'src> {
     /// The next word of the current block.
     pub fn word(&mut self, word: &NewWord) {
         write_word(&mut self.text, self.program, &self.style, word, &mut self.line_start);
+    }
+
+    /// A number word of the current block (`NewWord::Number`), given as its parts: the
+    /// rewrite writes millions, and a word built first to be taken apart here cost more
+    /// than writing it.
+    pub fn number(&mut self, address: Address, number: Number) {
+        self.separate();
+        write_address_number(&mut self.text, self.program, &self.style, address, number);
+    }
+
+    /// Word `id` of the program as it was written (`NewWord::Copy`).
+    pub fn copy(&mut self, id: u32) {
+        self.separate();
+        self.line_start = write_copy(&mut self.text, self.program, id);
+    }
+
+    /// The separator before the next word of the current block, unless it starts the line.
+    fn separate(&mut self) {
+        if !self.line_start {
+            self.text.extend_from_slice(self.style.word_separator().as_bytes());
+        }
+        self.line_start = false;
     }
 
     /// `block`'s sequence name and words as the current block (which has no words yet).

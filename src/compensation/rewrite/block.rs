@@ -15,7 +15,7 @@
 
 use smallvec::SmallVec;
 
-use crate::dialect::{Address, AddressKind, Code, Dialect, GFunction};
+use crate::dialect::{Address, AddressKind, Code, Dialect, GFunction, Tables};
 use crate::printer::{BlockWriter, NewWord, WrittenText};
 use crate::semantic::CoordinateMark;
 use crate::semantic::nose_radius::ToolTable;
@@ -23,7 +23,7 @@ use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::{Motion, Move, Xz};
 
 use super::super::fit::Segment;
-use super::super::grid::{ArcWords, Grid};
+use super::super::grid::{ArcWords, Grid, GridPoint};
 use super::super::plan::{MovePlan, nominal_segment};
 
 /// The motion a written block performs.
@@ -94,9 +94,40 @@ struct Form {
     z_named: bool,
 }
 
+/// What writing a motion block needs of the program's dialect, looked up once for all its
+/// blocks: a long program rewrites millions, and each looked its motion codes up in the
+/// dialect's tables (a scan of every G code) for every code it wrote.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Vocabulary {
+    tables: &'static Tables,
+    dialect: Dialect,
+    /// The code written for each `Kind`, in the order of its variants.
+    codes: [Code; 5],
+}
+
+impl Vocabulary {
+    pub(super) fn of(program: &Program<'_>) -> Vocabulary {
+        let config = program.config();
+        let tables = config.tables();
+        let code = |kind: Kind, fallback| tables.code_for(kind.function()).unwrap_or(Code::whole(fallback));
+        Vocabulary {
+            tables,
+            dialect: config.dialect,
+            codes: [
+                code(Kind::Rapid, 0),
+                code(Kind::Feed, 1),
+                code(Kind::Cw, 2),
+                code(Kind::Ccw, 3),
+                code(Kind::Thread, 32),
+            ],
+        }
+    }
+}
+
 /// The context one block is written in.
 pub(super) struct BlockContext<'a, 'src> {
     pub program: &'a Program<'src>,
+    pub vocabulary: Vocabulary,
     pub block: usize,
     pub mark: CoordinateMark,
     pub grid: Grid,
@@ -131,7 +162,7 @@ impl BlockContext<'_, '_> {
     /// The block's coordinate words, found once for everything that reads them.
     fn coordinate_words(&self, is_arc: bool) -> CoordinateWords {
         let block = self.program.block(self.block);
-        let dialect = self.program.config().dialect;
+        let dialect = self.vocabulary.dialect;
         let mut out = CoordinateWords::new();
         for (position, word) in self.program.words_of(block).iter().enumerate() {
             let (address, literal) = match word.kind {
@@ -147,7 +178,7 @@ impl BlockContext<'_, '_> {
     }
 
     fn form(&self, coordinates: &[CoordinateWord]) -> Form {
-        let dialect = self.program.config().dialect;
+        let dialect = self.vocabulary.dialect;
         let absolute = self.mark.absolute;
         let radius_address = if dialect == Dialect::Osp { Address::L } else { Address::R };
         let mut form = Form {
@@ -186,11 +217,17 @@ impl BlockContext<'_, '_> {
         form
     }
 
-    /// The words of `segment` from `start` (exact), in `form`; an arc's are `chosen` where
-    /// the plan chose them already (`MovePlan::words`).
-    fn words(&self, form: &Form, start: Xz, segment: &Segment, chosen: Option<ArcWords>) -> Words {
+    /// The words of `segment` from `start` (exact; `from` on the grid), in `form`; an arc's
+    /// are `chosen` where the plan chose them already (`MovePlan::words`). Also the segment's
+    /// end on the grid, where the next segment starts.
+    fn words(
+        &self,
+        form: &Form,
+        (start, from): (Xz, GridPoint),
+        segment: &Segment,
+        chosen: Option<ArcWords>,
+    ) -> (Words, GridPoint) {
         let grid = &self.grid;
-        let from = grid.point(start);
         let to = grid.point(segment.end());
         let mut out = Words::new();
         let axis = |absolute: bool, end: i64, begin: i64| if absolute { end } else { end - begin };
@@ -217,7 +254,7 @@ impl BlockContext<'_, '_> {
                 }
             }
         }
-        out
+        (out, to)
     }
 
     /// What the block's coordinate words say now: a literal's value, or for an expression
@@ -229,46 +266,46 @@ impl BlockContext<'_, '_> {
         m: &Move,
         contour_start: Xz,
     ) -> OriginalWords {
-        let tables = self.program.config().tables();
+        let tables = self.vocabulary.tables;
         // The programmed move's words, for a word written as an expression: computed only
         // for such a block.
         let nominal = std::cell::OnceCell::new();
-        let nominal = || nominal.get_or_init(|| self.words(form, contour_start, &nominal_segment(m, self.tools), None));
+        let nominal = || {
+            nominal.get_or_init(|| {
+                let start = (contour_start, self.grid.point(contour_start));
+                self.words(form, start, &nominal_segment(m, self.tools), None).0
+            })
+        };
         let mut out = OriginalWords::new();
         for &CoordinateWord { slot, address, literal, .. } in coordinates {
-            let value = match literal {
-                Some(number) => {
-                    let kind = tables.address(address).map(|s| s.kind).or(Some(AddressKind::Length));
-                    Some(self.grid.count(self.mark.frame.literal(number, kind)))
-                }
-                None => nominal().iter().find(|(s, _)| *s == slot).map(|&(_, v)| v),
-            };
+            let value =
+                match literal {
+                    Some(number) => Some(self.grid.literal_count(number, || {
+                        tables.address(address).map(|s| s.kind).or(Some(AddressKind::Length))
+                    })),
+                    None => nominal().iter().find(|(s, _)| *s == slot).map(|&(_, v)| v),
+                };
             out.push((slot, value));
         }
         out
     }
 
     fn code(&self, kind: Kind) -> NewWord {
-        let tables = self.program.config().tables();
-        let fallback = match kind {
-            Kind::Rapid => 0,
-            Kind::Feed => 1,
-            Kind::Cw => 2,
-            Kind::Ccw => 3,
-            Kind::Thread => 32,
-        };
-        NewWord::Code(CodeLetter::G, tables.code_for(kind.function()).unwrap_or(Code::whole(fallback)))
+        NewWord::Code(CodeLetter::G, self.vocabulary.codes[kind as usize])
     }
 
-    fn is_motion_code(&self, code: Code) -> bool {
-        let tables = self.program.config().tables();
-        matches!(
-            tables.g(code).and_then(|g| g.function),
-            Some(GFunction::Rapid | GFunction::Linear | GFunction::Cw | GFunction::Ccw | GFunction::ThreadMove)
-        )
+    /// The motion a G code performs, if it is a motion code.
+    fn motion_of(&self, code: Code) -> Option<GFunction> {
+        self.vocabulary.tables.g(code).and_then(|g| g.function).filter(|function| {
+            matches!(
+                function,
+                GFunction::Rapid | GFunction::Linear | GFunction::Cw | GFunction::Ccw | GFunction::ThreadMove
+            )
+        })
     }
 
-    fn new_word(&self, form: &Form, slot: Slot, value: i64) -> NewWord {
+    /// Write the coordinate word of `slot` with `value` (a count of increments) in `form`.
+    fn write_coordinate(&self, form: &Form, slot: Slot, value: i64, out: &mut BlockWriter<'_, '_>) {
         let address = match slot {
             Slot::X => form.x.0,
             Slot::Z => form.z.0,
@@ -277,7 +314,7 @@ impl BlockContext<'_, '_> {
             Slot::K => Address::K,
             Slot::Angle => Address::A,
         };
-        NewWord::Number(address, self.grid.number(value))
+        out.number(address, self.grid.number(value));
     }
 
     /// Write the blocks that replace this block for one move and its plan to `out`, or
@@ -289,14 +326,15 @@ impl BlockContext<'_, '_> {
         plan: &MovePlan,
         out: &mut BlockWriter<'_, '_>,
     ) -> Option<WrittenText> {
-        if !plan.changed && self.grid.point(plan.start) == self.grid.point(contour_start) {
+        let start = self.grid.point(plan.start);
+        if !plan.changed && start == self.grid.point(contour_start) {
             // The move is as programmed, from where the program puts it.
             return None;
         }
         let original_kind = Kind::of(m);
         let coordinates = self.coordinate_words(m.is_arc());
         let form = self.form(&coordinates);
-        let mut at = plan.start;
+        let mut at = (plan.start, start);
         // The motion code the block's own words run under, when it is not the modal one.
         let mut in_force = original_kind;
         let mut segments = plan.segments.as_slice();
@@ -306,15 +344,16 @@ impl BlockContext<'_, '_> {
         if plan.lead_in
             && let Some((lead, rest)) = segments.split_first()
         {
-            lead_words = Some(self.words(&form, at, lead, chosen.next().flatten()));
+            let (words, end) = self.words(&form, at, lead, chosen.next().flatten());
+            lead_words = Some(words);
             in_force = Kind::Rapid;
-            at = lead.end();
+            at = (lead.end(), end);
             segments = rest;
         }
         let (first, rest) = segments.split_first()?;
         let first_kind = Kind::of_segment(first, original_kind);
         let original = self.original_words(&form, &coordinates, m, contour_start);
-        let new = self.words(&form, at, first, chosen.next().flatten());
+        let (new, end) = self.words(&form, at, first, chosen.next().flatten());
         let same_words = original.len() == new.len()
             && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
         if lead_words.is_none() && rest.is_empty() && first_kind == original_kind && same_words {
@@ -324,14 +363,14 @@ impl BlockContext<'_, '_> {
         if let Some(lead_words) = lead_words {
             out.word(&self.code(Kind::Rapid));
             for (slot, value) in lead_words {
-                out.word(&self.new_word(&form, slot, value));
+                self.write_coordinate(&form, slot, value, out);
             }
             out.next_block();
         }
         let code_changes = first_kind != original_kind || in_force != original_kind;
         self.first_block(&form, &coordinates, &new, &original, code_changes.then_some(first_kind), out);
         let mut kind = first_kind;
-        at = first.end();
+        at = (first.end(), end);
         for segment in rest {
             out.next_block();
             let segment_kind = Kind::of_segment(segment, original_kind);
@@ -339,10 +378,11 @@ impl BlockContext<'_, '_> {
                 out.word(&self.code(segment_kind));
                 kind = segment_kind;
             }
-            for (slot, value) in self.words(&form, at, segment, chosen.next().flatten()) {
-                out.word(&self.new_word(&form, slot, value));
+            let (words, end) = self.words(&form, at, segment, chosen.next().flatten());
+            for (slot, value) in words {
+                self.write_coordinate(&form, slot, value, out);
             }
-            at = segment.end();
+            at = (segment.end(), end);
         }
         if kind != original_kind {
             out.next_block();
@@ -389,24 +429,29 @@ impl BlockContext<'_, '_> {
                         let unchanged = original.iter().any(|(s, v)| *s == slot && *v == Some(value))
                             && literal.is_some()
                             && same_address(form, slot, address);
-                        out.word(&if unchanged { NewWord::Copy(id) } else { self.new_word(form, slot, value) });
+                        if unchanged {
+                            out.copy(id);
+                        } else {
+                            self.write_coordinate(form, slot, value, out);
+                        }
                         written.push(slot);
                     }
                 }
-                (WordKind::Code { letter: CodeLetter::G, code }, Some(kind), None) if self.is_motion_code(code) => {
+                (WordKind::Code { letter: CodeLetter::G, code }, Some(kind), None)
+                    if self.motion_of(code).is_some() =>
+                {
                     if !code_written {
-                        let same =
-                            self.program.config().tables().g(code).and_then(|g| g.function) == Some(kind.function());
+                        let same = self.motion_of(code) == Some(kind.function());
                         out.word(&if same { NewWord::Copy(id) } else { self.code(kind) });
                         code_written = true;
                     }
                 }
-                _ => out.word(&NewWord::Copy(id)),
+                _ => out.copy(id),
             }
             if last_coordinate == Some(k) {
                 for &(slot, value) in new {
                     if !written.contains(&slot) {
-                        out.word(&self.new_word(form, slot, value));
+                        self.write_coordinate(form, slot, value, out);
                         written.push(slot);
                     }
                 }
@@ -419,7 +464,7 @@ impl BlockContext<'_, '_> {
                 out.word(&self.code(kind));
             }
             for &(slot, value) in new {
-                out.word(&self.new_word(form, slot, value));
+                self.write_coordinate(form, slot, value, out);
             }
         }
     }

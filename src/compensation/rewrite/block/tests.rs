@@ -38,7 +38,9 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
     let block = program.blocks().iter().position(|b| b.span == m.source).unwrap();
     let mark = lowered.coordinates_at(index);
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
-    let context = BlockContext { program, block, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
+    let vocabulary = Vocabulary::of(program);
+    let context =
+        BlockContext { program, vocabulary, block, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
     let mut writer = BlockWriter::new(program);
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
@@ -89,6 +91,7 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
     let context = BlockContext {
         program: &parsed.program,
+        vocabulary: Vocabulary::of(&parsed.program),
         block: 4,
         mark,
         grid: Grid::new(&mark),
