@@ -260,7 +260,10 @@ impl Grid {
     /// `end` about `centre` (exact), strays from that arc (infinite when it runs none).
     pub fn arc_gap(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, words: ArcWords) -> f64 {
         let (start, stop) = (self.to_mm(self.point(from)), self.to_mm(self.point(end)));
-        Stray::new(self, &ArcSpan::new(from, end, centre, ccw), start, stop, words, ccw).measured()
+        // Every point measured, as the bounded choices (`Stray`) are held to.
+        let exact = ArcSpan::new(from, end, centre, ccw);
+        let run = self.arc_centre_between(start, stop, words, ccw).map(|c| ArcSpan::new(start, stop, c, ccw));
+        run.map_or(f64::INFINITY, |run| exact.gap(&run))
     }
 }
 
@@ -273,6 +276,9 @@ struct Stray<'a> {
     run: Option<ArcSpan>,
     low: f64,
     high: f64,
+    /// The upper bound on each point's distance (`GapBounds::points`), for `measured` to
+    /// skip the points that cannot hold the largest.
+    points: [f64; GAP_POINTS],
     measured: std::cell::OnceCell<f64>,
 }
 
@@ -281,16 +287,21 @@ impl<'a> Stray<'a> {
     /// `stop` (grid points in mm).
     fn new(grid: &Grid, exact: &'a ArcSpan, start: Xz, stop: Xz, words: ArcWords, ccw: bool) -> Self {
         let run = grid.arc_centre_between(start, stop, words, ccw).map(|c| ArcSpan::new(start, stop, c, ccw));
-        let (low, high) = match &run {
-            Some(run) => exact.gap_bounds(run).unwrap_or((f64::NEG_INFINITY, f64::INFINITY)),
-            None => (f64::INFINITY, f64::INFINITY),
+        let bounds = match &run {
+            Some(run) => exact.gap_bounds(run).unwrap_or(GapBounds::NONE),
+            None => GapBounds { low: f64::INFINITY, high: f64::INFINITY, points: [f64::INFINITY; GAP_POINTS] },
         };
-        Stray { exact, run, low, high, measured: std::cell::OnceCell::new() }
+        let GapBounds { low, high, points } = bounds;
+        Stray { exact, run, low, high, points, measured: std::cell::OnceCell::new() }
     }
 
-    /// The stray itself (infinite where the control runs no arc).
+    /// The stray itself (infinite where the control runs no arc). A point whose distance is
+    /// bounded below `low` cannot be the farthest (some point `gap` measures is at least
+    /// `low` away), so it is not measured: the largest is the same.
     fn measured(&self) -> f64 {
-        *self.measured.get_or_init(|| self.run.as_ref().map_or(f64::INFINITY, |run| self.exact.gap(run)))
+        *self.measured.get_or_init(|| {
+            self.run.as_ref().map_or(f64::INFINITY, |run| self.exact.gap_above(run, &self.points, self.low))
+        })
     }
 
     fn at_most(&self, limit: f64) -> bool {
@@ -322,6 +333,25 @@ impl<'a> Stray<'a> {
 /// direction halfway between them from: nearer directions leave it too little of the
 /// chord's length to divide by.
 const SHORTEST_UNIT_CHORD: f64 = 1e-3;
+
+/// The points `ArcSpan::gap` measures: the quarters of the sweep (its ends, its middle and
+/// the middles of its halves), then the two where the centres line up.
+const GAP_POINTS: usize = 7;
+
+/// Bounds on [`ArcSpan::gap`] (`ArcSpan::gap_bounds`).
+struct GapBounds {
+    low: f64,
+    high: f64,
+    /// An upper bound on the distance of each of the `GAP_POINTS`, in their order (infinite
+    /// where it is not bounded).
+    points: [f64; GAP_POINTS],
+}
+
+impl GapBounds {
+    /// No bounds at all.
+    const NONE: GapBounds =
+        GapBounds { low: f64::NEG_INFINITY, high: f64::INFINITY, points: [f64::INFINITY; GAP_POINTS] };
+}
 
 /// An arc by its start, centre, radius and sweep.
 struct ArcSpan {
@@ -391,11 +421,26 @@ impl ArcSpan {
     /// up, so `other` is measured there (where that lies on it), at its ends, and at its
     /// quarters (which catch an arc gone round the other way).
     fn gap(&self, other: &ArcSpan) -> f64 {
-        let mut worst = [0.0, 0.25, 0.5, 0.75, 1.0].map(|f| self.distance(other.at(f))).into_iter().fold(0.0, f64::max);
-        if self.centre.distance(other.centre) > 0.0 {
+        self.gap_above(other, &[f64::INFINITY; GAP_POINTS], f64::NEG_INFINITY)
+    }
+
+    /// [`ArcSpan::gap`], measuring only the points whose distance's upper bound `highs` (one
+    /// per point of `GAP_POINTS`) is not below `floor`, a distance that some point it
+    /// measures has at least: the others cannot change the largest.
+    fn gap_above(&self, other: &ArcSpan, highs: &[f64; GAP_POINTS], floor: f64) -> f64 {
+        let [h0, h1, h2, h3, h4, towards, opposite] = *highs;
+        // A bound that is not a number bounds nothing.
+        let measured = |high: f64| high >= floor || high.is_nan();
+        let mut worst: f64 = 0.0;
+        for (f, high) in [(0.0, h0), (0.25, h1), (0.5, h2), (0.75, h3), (1.0, h4)] {
+            if measured(high) {
+                worst = worst.max(self.distance(other.at(f)));
+            }
+        }
+        if self.centre.distance(other.centre) > 0.0 && (measured(towards) || measured(opposite)) {
             let away = geometry::angle(self.centre, other.centre);
-            for a in [away, away + PI] {
-                if other.within_sweep(a) {
+            for (a, high) in [(away, towards), (away + PI, opposite)] {
+                if measured(high) && other.within_sweep(a) {
                     worst = worst.max(self.distance(geometry::on_circle(other.centre, other.radius, a)));
                 }
             }
@@ -417,7 +462,7 @@ impl ArcSpan {
     /// one `gap` measures, where the point lies clearly on one side of this arc's ends for
     /// everything within `slack` of it (`SweepSides::inside_within`); a point of the
     /// centres' line that may or may not lie on `other` raises only the upper bound.
-    fn gap_bounds(&self, other: &ArcSpan) -> Option<(f64, f64)> {
+    fn gap_bounds(&self, other: &ArcSpan) -> Option<GapBounds> {
         let (centre, radius) = (other.centre, other.radius);
         let unit = |p: Xz| {
             let length = p.distance(centre);
@@ -437,26 +482,32 @@ impl ArcSpan {
         let slack = 1e-11 * scale + 1e-13 * radius / (chord * chord);
         let on = |u: Xz| Xz::new(centre.x + radius * u.x, centre.z + radius * u.z);
         let (mut low, mut high) = (0.0_f64, 0.0_f64);
-        for u in quarters {
+        let mut points = [f64::INFINITY; GAP_POINTS];
+        for (u, point) in quarters.into_iter().zip(&mut points) {
             let d = self.distance_within(on(u), slack)?;
             (low, high) = (low.max(d - slack), high.max(d + slack));
+            *point = d + slack;
         }
         let between = self.centre.distance(centre);
         if between > 0.0 {
             let away = Xz::new((self.centre.x - centre.x) / between, (self.centre.z - centre.z) / between);
-            for u in [away, Xz::new(-away.x, -away.z)] {
+            let lined_up = points.get_mut(5..).unwrap_or_default();
+            for (u, point) in [away, Xz::new(-away.x, -away.z)].into_iter().zip(lined_up) {
                 let on_other = other.sides.inside(Xz::new(centre.x + u.x, centre.z + u.z));
+                // A point clearly off `other` is not measured by `gap` either; it keeps no
+                // bound, so `gap_above` decides it by the angles as `gap` does.
                 if on_other == Some(false) {
                     continue;
                 }
                 let d = self.distance_within(on(u), slack)?;
                 high = high.max(d + slack);
+                *point = d + slack;
                 if on_other == Some(true) {
                     low = low.max(d - slack);
                 }
             }
         }
-        (low.is_finite() && high.is_finite()).then_some((low, high))
+        (low.is_finite() && high.is_finite()).then_some(GapBounds { low, high, points })
     }
 
     /// `distance` of every point within `slack` of `p` to within `slack`, where they all lie
@@ -570,6 +621,30 @@ mod tests {
             (by_radius, radius_gap)
         } else {
             line
+        }
+    }
+
+    proptest::proptest! {
+        /// Measuring only the points whose bounds reach the floor (`Stray::measured`) finds
+        /// the largest distance bit for bit, for runs near the exact arc as the control's are
+        /// (its ends and centre moved by up to `shift`) and far from it.
+        #[test]
+        fn a_gap_measured_above_its_floor_is_the_gap(
+            cx in -80.0f64..80.0, cz in -200.0f64..10.0, radius in 0.3f64..60.0, from in -3.2f64..3.2,
+            sweep in 0.001f64..(TAU - 0.001), ccw in proptest::bool::ANY, shift in 0.0f64..0.05,
+            moves in proptest::collection::vec(-1.0f64..1.0, 6),
+        ) {
+            let centre = Xz::new(cx, cz);
+            let sense = if ccw { 1.0 } else { -1.0 };
+            let (a, b) = (geometry::on_circle(centre, radius, from), geometry::on_circle(centre, radius, from + sense * sweep));
+            let moved = |p: Xz, k: usize| Xz::new(p.x + shift * moves[k], p.z + shift * moves[k + 1]);
+            let exact = ArcSpan::new(a, b, centre, ccw);
+            let run = ArcSpan::new(moved(a, 0), moved(b, 2), moved(centre, 4), ccw);
+            if let Some(bounds) = exact.gap_bounds(&run) {
+                let gap = exact.gap(&run);
+                proptest::prop_assert!(bounds.low <= gap && gap <= bounds.high);
+                proptest::prop_assert_eq!(exact.gap_above(&run, &bounds.points, bounds.low).to_bits(), gap.to_bits());
+            }
         }
     }
 

@@ -116,36 +116,33 @@ pub fn plan_range(
         let contour_start = written::contour_start(toolpath, index);
         let range = input.ranges.get(index).cloned().unwrap_or(0..0);
         let grid = grid_of(index);
-        let mut plan =
-            if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
-                MovePlan {
-                    start: at,
-                    segments: Segments::new(),
-                    changed: false,
-                    jumps: 0,
-                    lead_in: false,
-                    words: SmallVec::new(),
-                }
-            } else if range.is_empty() || !input.writable.get(index).copied().unwrap_or(false) {
-                nominal_plan(m, at, input.tools)
+        let mut plan = if m.motion == Motion::Dwell || written::is_corner_of_contour(m, contour_start) {
+            MovePlan {
+                start: at,
+                segments: Segments::new(),
+                changed: false,
+                jumps: 0,
+                lead_in: false,
+                words: SmallVec::new(),
+            }
+        } else if range.is_empty() || !input.writable.get(index).copied().unwrap_or(false) {
+            nominal_plan(m, at, input.tools)
+        } else {
+            // One buffer for every move's points: most moves have one or a few.
+            points.clear();
+            let jumps = written_points(input, m, contour_start, range.clone(), options.play, &mut points);
+            let switches = index > 0
+                && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
+                    != Some(m.compensation);
+            let piece = Piece { m, at, points: &points, range, grid, jumps };
+            if m.motion == Motion::Rapid || m.threading {
+                one_move(&piece, input.tools)
+            } else if switches {
+                switching_move(input, &piece)
             } else {
-                // One buffer for every move's points: most moves have one or a few.
-                points.clear();
-                points.extend(range.clone().map(|j| {
-                    written::written_point(m, contour_start, &input.samples[j], input.commanded[j], input.tools)
-                }));
-                let switches = index > 0
-                    && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
-                        != Some(m.compensation);
-                let piece = Piece { m, at, points: &points, range, grid };
-                if m.motion == Motion::Rapid || m.threading {
-                    one_move(&piece, input.tools)
-                } else if switches {
-                    switching_move(input, &piece, options.play)
-                } else {
-                    plan_one(input, &piece, options)
-                }
-            };
+                plan_one(input, &piece, options)
+            }
+        };
         if plan.changed {
             settle_arcs(&mut plan, &grid, input.radius.get(index).copied().unwrap_or(false));
         }
@@ -242,13 +239,15 @@ fn nominal_plan(m: &Move, start: Xz, tools: &ToolTable) -> MovePlan {
 }
 
 /// One move to plan: where its written form starts, the points to write for its samples
-/// (`range`), and the grid they are rounded on.
+/// (`range`), the backlash jumps among them (`written_points`), and the grid they are
+/// rounded on.
 struct Piece<'a> {
     m: &'a Move,
     at: Xz,
     points: &'a [Xz],
     range: Range<usize>,
     grid: Grid,
+    jumps: Jumps,
 }
 
 /// A move written as one move to its corrected end (when that moved on the grid).
@@ -269,9 +268,9 @@ fn one_move(piece: &Piece<'_>, tools: &ToolTable) -> MovePlan {
 
 /// A move that switches compensation: one move, after the play its start reverses taken
 /// up by a positioning move of its own (`lead_in`).
-fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>, play: Xz) -> MovePlan {
-    let Piece { m, at, points, ref range, .. } = *piece;
-    let Some(&(_, jump)) = jumps(input, range.clone(), play).first().filter(|(j, _)| *j == range.start) else {
+fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>) -> MovePlan {
+    let Piece { m, at, points, ref range, ref jumps, .. } = *piece;
+    let Some(&(_, jump)) = jumps.first().filter(|(j, _)| *j == range.start) else {
         return one_move(piece, input.tools);
     };
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
@@ -287,9 +286,8 @@ fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>, play: Xz) -> MovePla
 }
 
 fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> MovePlan {
-    let Piece { m, at, points, ref range, grid } = *piece;
+    let Piece { m, at, points, ref range, grid, ref jumps } = *piece;
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
-    let jumps = jumps(input, range.clone(), options.play);
     let tolerance = options.fit.tolerance_mm;
     let centre = written::contour_centre(m, input.tools);
     let end_stays = || grid.point(last) == grid.point(m.contour);
@@ -308,7 +306,7 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
     let mut segments = Segments::new();
     let mut from = at;
     let mut piece = 0;
-    for &(j, jump) in &jumps {
+    for &(j, jump) in jumps {
         let local = j - range.start;
         if local > piece {
             let part = MovePoints { start: from, points: &points[piece..local], nominal };
@@ -338,17 +336,35 @@ fn nominal_holds(m: &Move, centre: Xz, at: Xz, points: &[Xz], tolerance: f64) ->
     }
 }
 
-/// The samples of `range` at which an axis' correction jumps by more than half its play,
-/// with the jump (only the jumping axes).
-fn jumps(input: &PlanInput<'_>, range: Range<usize>, play: Xz) -> SmallVec<[(usize, Xz); 2]> {
-    if play.x <= 0.0 && play.z <= 0.0 {
-        return SmallVec::new();
-    }
+/// The backlash jumps of a move: the samples at which an axis' correction jumps by more
+/// than half its play, with the jump (only the jumping axes).
+type Jumps = SmallVec<[(usize, Xz); 2]>;
+
+/// Append to `points` the point to write for each sample of `range` (of move `m`), and
+/// return the move's backlash jumps (`Jumps`; none without play): both read each sample's
+/// correction, which is taken once for both.
+fn written_points(
+    input: &PlanInput<'_>,
+    m: &Move,
+    contour_start: Xz,
+    range: Range<usize>,
+    play: Xz,
+    points: &mut Vec<Xz>,
+) -> Jumps {
     let offset = |j: usize| written::offset(&input.samples[j], input.commanded[j]);
-    let mut out = SmallVec::new();
-    let mut before = range.start.checked_sub(1).map_or(Xz::new(0.0, 0.0), offset);
+    let mut jumps = Jumps::new();
+    let with_play = play.x > 0.0 || play.z > 0.0;
+    let mut before =
+        if with_play { range.start.checked_sub(1).map_or(Xz::new(0.0, 0.0), offset) } else { Xz::default() };
     for j in range {
+        let sample = &input.samples[j];
         let now = offset(j);
+        // `written::written_point`, with the correction taken here.
+        let contour = written::contour_at(m, contour_start, sample, input.tools);
+        points.push(Xz::new(contour.x + now.x, contour.z + now.z));
+        if !with_play {
+            continue;
+        }
         let d = Xz::new(now.x - before.x, now.z - before.z);
         before = now;
         let jump = Xz::new(
@@ -356,10 +372,10 @@ fn jumps(input: &PlanInput<'_>, range: Range<usize>, play: Xz) -> SmallVec<[(usi
             if play.z > 0.0 && d.z.abs() > play.z / 2.0 { d.z } else { 0.0 },
         );
         if jump.x != 0.0 || jump.z != 0.0 {
-            out.push((j, jump));
+            jumps.push((j, jump));
         }
     }
-    out
+    jumps
 }
 
 mod kept;

@@ -206,8 +206,9 @@ pub fn max_deviation(start: Xz, segments: &[Segment], points: &[Xz]) -> f64 {
         return f64::INFINITY;
     }
     // Each segment's gauge (`distance_to_segment` with its constants computed once) and box.
-    let mut gauges = Vec::with_capacity(segments.len());
-    let mut bounds = Vec::with_capacity(segments.len());
+    // On the stack for the few segments most moves are written in.
+    let mut gauges: SmallVec<[Gauge; 4]> = SmallVec::with_capacity(segments.len());
+    let mut bounds: SmallVec<[Bounds; 4]> = SmallVec::with_capacity(segments.len());
     let mut from = start;
     for segment in segments {
         gauges.push(Gauge::new(from, segment));

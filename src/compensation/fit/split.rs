@@ -108,7 +108,8 @@ pub fn one_piece(m: &MovePoints<'_>) -> Ends {
 pub struct Travel {
     sense: f64,
     a0: f64,
-    travel: Vec<f64>,
+    /// On the stack for the few points most moves have.
+    travel: SmallVec<[f64; 16]>,
 }
 
 impl Travel {
@@ -117,7 +118,7 @@ impl Travel {
         let a0 = geometry::angle(m.start, centre);
         let mut previous = a0;
         let mut travelled = 0.0;
-        let travel: Vec<f64> = m
+        let travel: SmallVec<[f64; 16]> = m
             .points
             .iter()
             .map(|&p| {

@@ -136,7 +136,8 @@ struct Piece {
     moves: Range<usize>,
     lead: usize,
     samples: Vec<PathSample>,
-    /// The samples of each of `moves` (`fill_ranges`), recorded as they are made.
+    /// The samples of each of `moves` (`written::sample_ranges`), as indices into `samples`,
+    /// recorded as they are made.
     ranges: Vec<Range<usize>>,
     /// The model's terms of time at each sample (`inverse::time_terms`): evaluated once for
     /// the solve and both predictions.
@@ -160,6 +161,15 @@ impl Piece {
         self.rounded.clear();
         self.after.clear();
         self.plans.clear();
+    }
+
+    /// Copy the sample ranges of the piece's moves into `ranges`, which is indexed by move
+    /// (as `PlanInput::ranges` is).
+    fn spread_ranges(&self, ranges: &mut [Range<usize>]) {
+        let slots = ranges.get_mut(self.moves.clone()).unwrap_or_default();
+        for (slot, range) in slots.iter_mut().zip(&self.ranges) {
+            slot.clone_from(range);
+        }
     }
 
     /// The piece's own samples (after the lead).
@@ -260,7 +270,7 @@ fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_round: &SyncSender
     let mut ranges = vec![0..0; toolpath.moves.len()];
     let mut at = toolpath.start;
     while let Ok(mut piece) = planning.recv() {
-        fill_ranges(&mut ranges, piece.moves.clone(), &piece.samples, piece.lead);
+        piece.spread_ranges(&mut ranges);
         let mut plans = std::mem::take(&mut piece.plans);
         let input = context.plan_input(&piece.samples, &piece.commanded, &ranges);
         at = plan_range(&input, piece.moves.clone(), at, |k| context.grid(k), &context.plan_options, &mut plans);
@@ -293,10 +303,7 @@ fn round(context: &Context<'_>, rounding: &Receiver<Piece>, to_rewrite: &SyncSen
     let mut run = 0;
     let mut trail = Trail::default();
     while let Ok(mut piece) = rounding.recv() {
-        let slots = ranges.get_mut(piece.moves.clone()).unwrap_or_default();
-        for (slot, range) in slots.iter_mut().zip(&piece.ranges) {
-            slot.clone_from(range);
-        }
+        piece.spread_ranges(&mut ranges);
         piece.rounded.extend(piece.samples.iter().map(|s| s.nominal));
         let grid = |k| context.grid(k);
         let input = context.plan_input(&piece.samples, &piece.commanded, &ranges);
@@ -429,21 +436,5 @@ fn measure(
             }
         }
         *trail = Trail { correction: Some(correction), before, after };
-    }
-}
-
-/// The samples of each of `moves` (`written::sample_ranges`), as indices into a piece's
-/// samples whose first `lead` belong to earlier moves.
-fn fill_ranges(ranges: &mut [Range<usize>], moves: Range<usize>, samples: &[PathSample], lead: usize) {
-    let mut k = lead;
-    // A dwell (no samples) sits at the end of the previous move's samples.
-    for index in moves {
-        let start = k;
-        while samples.get(k).is_some_and(|s| s.move_index == index) {
-            k += 1;
-        }
-        if let Some(range) = ranges.get_mut(index) {
-            *range = start..k;
-        }
     }
 }
