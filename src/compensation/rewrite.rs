@@ -27,6 +27,8 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::expand::ArcFormTally;
+use crate::printer::style::StyleTally;
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
@@ -84,10 +86,6 @@ struct BlockLookup {
 }
 
 impl BlockLookup {
-    fn new(program: &Program<'_>) -> BlockLookup {
-        BlockLookup { starts: program.blocks().iter().map(|b| b.span.start).collect() }
-    }
-
     fn index(&self, start: u32) -> Option<usize> {
         self.starts.binary_search(&start).ok()
     }
@@ -230,11 +228,21 @@ pub struct ProgramTables {
 impl ProgramTables {
     pub fn new(program: &Program<'_>) -> ProgramTables {
         let blocks = program.blocks().len();
+        // The block lookup, the arc form and the style each need every block (and the last
+        // two every word): one pass reads a long program's blocks and words from memory once.
+        let mut starts = Vec::with_capacity(blocks);
+        let mut arc_form = ArcFormTally::default();
+        let mut style = StyleTally::new(program);
+        for (index, block) in program.blocks().iter().enumerate() {
+            starts.push(block.span.start);
+            arc_form.add_block(program, block);
+            style.add_block(program, index, block);
+        }
         ProgramTables {
             blocks,
-            lookup: BlockLookup::new(program),
-            radius_arcs: crate::expand::uses_radius_arcs(program),
-            style: ProgramStyle::infer(program),
+            lookup: BlockLookup { starts },
+            radius_arcs: arc_form.radius_arcs(),
+            style: style.style(program.config().dialect),
             // At most one of each per block: huge pages where the program is long (written
             // front to back, they only take the memory they fill).
             replacements: crate::memory::huge_page_vec(blocks),
