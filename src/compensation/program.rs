@@ -140,7 +140,8 @@ pub fn compensate_with_tables(
         let rewrite = scope.spawn(|| {
             let tables = tables.unwrap_or_else(|| rewrite::ProgramTables::new(program));
             let motion = rewrite::MotionBlocks::with_tables(program, lowered, &tools, tables);
-            (motion.move_forms(), rewrite::move_runs(lowered), motion)
+            let (forms, runs) = motion.move_tables();
+            (forms, runs, motion)
         });
         let rest = (LocalPath::new(toolpath), sampling(&options.fit, model, toolpath));
         // Neither can fail on any input; a panic is a bug, and is passed on.

@@ -32,6 +32,7 @@ use crate::printer::style::StyleTally;
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
+use crate::source::Span;
 use crate::syntax::{Program, Statement};
 
 use super::grid::Grid;
@@ -56,7 +57,7 @@ pub struct EditedBlock {
     pub cycle: bool,
 }
 
-/// Per move, what can be written for it (`MotionBlocks::move_forms`).
+/// Per move, what can be written for it (`MotionBlocks::move_tables`).
 #[derive(Debug, Clone, Default)]
 pub struct MoveForms {
     /// The move can be written back: a move of a motion block, or of a cycle that can be
@@ -141,33 +142,65 @@ pub struct MoveRun {
 
 /// Every move's run, in path order: each `EditedBlock` writes the moves of one of them.
 pub fn move_runs(lowered: &Lowered) -> Vec<MoveRun> {
-    let moves = &lowered.toolpath.moves;
-    // The cycle each move belongs to (the first that lists it); a program without cycles
-    // needs no table.
-    let mut cycle_of: Vec<Option<usize>> = Vec::new();
-    if !lowered.expansions.is_empty() {
-        cycle_of.resize(moves.len(), None);
+    let mut runs = RunSplitter::new(lowered);
+    for (k, m) in lowered.toolpath.moves.iter().enumerate() {
+        runs.add(k, m.source);
     }
-    for (index, e) in lowered.expansions.iter().enumerate() {
-        for k in e.moves.clone() {
-            if let Some(c) = cycle_of.get_mut(k) {
-                c.get_or_insert(index);
+    runs.finish()
+}
+
+/// The runs of moves (`move_runs`), split move by move, so that a pass over the moves for
+/// something else (`MotionBlocks::move_tables`) splits them too: a long program's moves are
+/// hundreds of MB, read from memory once rather than twice.
+struct RunSplitter {
+    /// The cycle each move belongs to (the first that lists it); a program without cycles
+    /// needs no table.
+    cycle_of: Vec<Option<usize>>,
+    /// At most one run per move, written front to back.
+    runs: Vec<MoveRun>,
+    /// The run being extended: its first move, that move's block and cycle.
+    current: Option<(usize, Span, Option<usize>)>,
+    /// The number of moves given.
+    moves: usize,
+}
+
+impl RunSplitter {
+    fn new(lowered: &Lowered) -> RunSplitter {
+        let moves = lowered.toolpath.moves.len();
+        let mut cycle_of: Vec<Option<usize>> = Vec::new();
+        if !lowered.expansions.is_empty() {
+            cycle_of.resize(moves, None);
+        }
+        for (index, e) in lowered.expansions.iter().enumerate() {
+            for k in e.moves.clone() {
+                if let Some(c) = cycle_of.get_mut(k) {
+                    c.get_or_insert(index);
+                }
             }
         }
+        RunSplitter { cycle_of, runs: crate::memory::huge_page_vec(moves), current: None, moves: 0 }
     }
-    let cycle_at = |k: usize| cycle_of.get(k).copied().flatten();
-    // At most one run per move, written front to back.
-    let mut runs = crate::memory::huge_page_vec(moves.len());
-    let mut k = 0;
-    while k < moves.len() {
-        let (source, cycle) = (moves[k].source, cycle_at(k));
-        let first = k;
-        while k < moves.len() && cycle_at(k) == cycle && (cycle.is_some() || moves[k].source == source) {
-            k += 1;
+
+    /// Move `k` (the one after the last given), from the block at `source`: it extends the
+    /// current run when it is of the same cycle call, or outside cycles of the same block.
+    fn add(&mut self, k: usize, source: Span) {
+        let cycle = self.cycle_of.get(k).copied().flatten();
+        self.moves = k + 1;
+        if let Some((first, run_source, run_cycle)) = self.current {
+            if run_cycle == cycle && (cycle.is_some() || run_source == source) {
+                return;
+            }
+            self.runs.push(MoveRun { moves: first..k, cycle: run_cycle.is_some() });
         }
-        runs.push(MoveRun { moves: first..k, cycle: cycle.is_some() });
+        self.current = Some((k, source, cycle));
     }
-    runs
+
+    fn finish(mut self) -> Vec<MoveRun> {
+        if let Some((first, _, cycle)) = self.current {
+            self.runs.push(MoveRun { moves: first..self.moves, cycle: cycle.is_some() });
+        }
+        self.runs
+    }
 }
 
 /// The motion blocks rewritten run by run, in path order (`add`), then settled (`finish`):
@@ -289,8 +322,9 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         }
     }
 
-    /// What can be written for each move (`MoveForms`), in one pass over the moves.
-    pub fn move_forms(&self) -> MoveForms {
+    /// What can be written for each move (`MoveForms`), and the runs of moves
+    /// (`move_runs`), in one pass over the moves.
+    pub fn move_tables(&self) -> (MoveForms, Vec<MoveRun>) {
         let (program, lowered) = (self.program, self.lowered);
         let moves = &lowered.toolpath.moves;
         let mut writable = vec![false; moves.len()];
@@ -302,8 +336,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                 *w = expandable;
             }
         }
+        let mut runs = RunSplitter::new(lowered);
         let mut near = 0;
         for (k, m) in moves.iter().enumerate() {
+            runs.add(k, m.source);
             if in_cycle[k] {
                 continue;
             }
@@ -311,7 +347,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             writable[k] = matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove);
             radius[k] = block::writes_radius(program, b, m.is_arc(), self.radius_arcs);
         }
-        MoveForms { writable, radius }
+        (MoveForms { writable, radius }, runs.finish())
     }
 
     /// The next run (after those given before it), with the plans of its moves; a cycle's
