@@ -197,12 +197,27 @@ pub(crate) struct ArcFormTally {
     by_centre: u32,
 }
 
+/// The arc words of one block, as `ArcFormTally::add_block` read them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum BlockArcWords {
+    /// Not a motion block: its words were not read.
+    NotRead,
+    /// Neither a radius nor a centre word.
+    Neither,
+    /// A radius word (`R`, OSP `L`), with or without centre words.
+    Radius,
+    /// Centre words (`I`, `K`) and no radius word.
+    Centre,
+}
+
 impl ArcFormTally {
-    pub(crate) fn add_block(&mut self, program: &Program<'_>, block: &Block) {
+    /// Count `block`'s radius and centre words, and say which it has.
+    pub(crate) fn add_block(&mut self, program: &Program<'_>, block: &Block) -> BlockArcWords {
         if block.statement != Statement::Motion {
-            return;
+            return BlockArcWords::NotRead;
         }
         let radius = if program.config().dialect == Dialect::Osp { Address::L } else { Address::R };
+        let (by_radius, by_centre) = (self.by_radius, self.by_centre);
         for word in program.words_of(block) {
             if let WordKind::Number { address, .. } | WordKind::Expr { address, .. } = word.kind {
                 if address == radius {
@@ -211,6 +226,13 @@ impl ArcFormTally {
                     self.by_centre += 1;
                 }
             }
+        }
+        if self.by_radius > by_radius {
+            BlockArcWords::Radius
+        } else if self.by_centre > by_centre {
+            BlockArcWords::Centre
+        } else {
+            BlockArcWords::Neither
         }
     }
 

@@ -27,7 +27,7 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::expand::ArcFormTally;
+use crate::expand::{ArcFormTally, BlockArcWords};
 use crate::printer::style::StyleTally;
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
@@ -215,6 +215,10 @@ pub struct MotionBlocks<'a, 'src> {
     lookup: BlockLookup,
     /// The block looked up last (`BlockLookup::index_near`).
     near: usize,
+    /// Per block, its arc words, read with the program's arc form (`ProgramTables::new`):
+    /// an arc's form is then known without reading its block's words again, which are far
+    /// apart in a long program's memory.
+    arc_words: Vec<BlockArcWords>,
     radius_arcs: bool,
     /// The grid of the coordinates in force for the last run (they change rarely).
     grid: Option<(CoordinateMark, Grid)>,
@@ -251,6 +255,8 @@ pub struct ProgramTables {
     /// The number of blocks of the program they were made for.
     blocks: usize,
     lookup: BlockLookup,
+    /// Per block, its arc words (`MotionBlocks::arc_words`).
+    arc_words: Vec<BlockArcWords>,
     radius_arcs: bool,
     style: ProgramStyle,
     replacements: Vec<(usize, WrittenText)>,
@@ -264,16 +270,18 @@ impl ProgramTables {
         // The block lookup, the arc form and the style each need every block (and the last
         // two every word): one pass reads a long program's blocks and words from memory once.
         let mut starts = Vec::with_capacity(blocks);
+        let mut arc_words = Vec::with_capacity(blocks);
         let mut arc_form = ArcFormTally::default();
         let mut style = StyleTally::new(program);
         for (index, block) in program.blocks().iter().enumerate() {
             starts.push(block.span.start);
-            arc_form.add_block(program, block);
+            arc_words.push(arc_form.add_block(program, block));
             style.add_block(program, index, block);
         }
         ProgramTables {
             blocks,
             lookup: BlockLookup { starts },
+            arc_words,
             radius_arcs: arc_form.radius_arcs(),
             style: style.style(program.config().dialect),
             // At most one of each per block: huge pages where the program is long (written
@@ -303,13 +311,14 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         tables: ProgramTables,
     ) -> MotionBlocks<'a, 'src> {
         let tables = if tables.blocks == program.blocks().len() { tables } else { ProgramTables::new(program) };
-        let ProgramTables { lookup, radius_arcs, style, replacements, edited, first_runs, .. } = tables;
+        let ProgramTables { lookup, arc_words, radius_arcs, style, replacements, edited, first_runs, .. } = tables;
         MotionBlocks {
             program,
             lowered,
             tools,
             lookup,
             near: 0,
+            arc_words,
             radius_arcs,
             grid: None,
             writer: BlockWriter::with_style(program, style),
@@ -345,9 +354,20 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             }
             let Some(b) = self.lookup.index_near(m.source.start, &mut near) else { continue };
             writable[k] = matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove);
-            radius[k] = block::writes_radius(program, b, m.is_arc(), self.radius_arcs);
+            radius[k] = self.writes_radius(b, m.is_arc());
         }
         (MoveForms { writable, radius }, runs.finish())
+    }
+
+    /// `block::writes_radius` for `block`, from its arc words where they were read.
+    fn writes_radius(&self, block: usize, is_arc: bool) -> bool {
+        match self.arc_words.get(block) {
+            _ if !is_arc => self.radius_arcs,
+            Some(BlockArcWords::Radius) => true,
+            Some(BlockArcWords::Centre) => false,
+            Some(BlockArcWords::Neither) => self.radius_arcs,
+            Some(BlockArcWords::NotRead) | None => block::writes_radius(self.program, block, is_arc, self.radius_arcs),
+        }
     }
 
     /// The next run (after those given before it), with the plans of its moves; a cycle's

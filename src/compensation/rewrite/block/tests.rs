@@ -136,3 +136,31 @@ fn writes_radius_reads_an_arc_blocks_own_form_and_gives_a_line_the_programs() {
         assert_eq!(forms, vec![(p, p), (true, p), (true, p), (false, p), (false, p)]);
     }
 }
+
+/// The arc form `MotionBlocks` takes from the words read with the program's arc form is the
+/// one `writes_radius` reads from the block, for motion blocks and for the others.
+#[test]
+fn the_arc_form_from_the_programs_tables_is_the_blocks_own() {
+    let source = "G21 G99\nG97 S1000 M03\nG00 X40. Z2.\nG01 X44. Z-10. R1. F0.2\nG02 X50. Z-15. R5.\n\
+                  G03 X60. Z-20. I0 K-5.\nG02 X70. Z-25. I5. K0 R5.\nG01 Z-30.\nG04 X1. R2.\nM30\n";
+    let (_, machine) = lower_program(PROGRAM);
+    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let parsed = parse(source.as_bytes(), &options);
+    let program = &parsed.program;
+    // An arc with both a radius and a centre, and a dwell with an `R`, lower with errors:
+    // only the blocks' words matter here.
+    let lowered = lower(program, &machine, &LowerOptions::new(false));
+    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
+    let motion = super::super::MotionBlocks::new(program, &lowered, &tools);
+    for block in 0..program.blocks().len() {
+        for is_arc in [false, true] {
+            let expected = writes_radius(program, block, is_arc, motion.radius_arcs);
+            assert_eq!(motion.writes_radius(block, is_arc), expected, "block {block}, arc {is_arc}");
+        }
+    }
+    // The words were read for the motion blocks, not for the others.
+    assert_eq!(motion.arc_words[4], crate::expand::BlockArcWords::Radius);
+    assert_eq!(motion.arc_words[5], crate::expand::BlockArcWords::Centre);
+    assert_eq!(motion.arc_words[6], crate::expand::BlockArcWords::Radius);
+    assert_eq!(motion.arc_words[8], crate::expand::BlockArcWords::NotRead);
+}
