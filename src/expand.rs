@@ -12,7 +12,7 @@ use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::{Address, Code, Dialect, GFunction};
 use crate::printer::{Edits, NewBlock, NewWord};
 use crate::semantic::{Frame, Lowered, ModalAfter};
-use crate::syntax::{CodeLetter, Number, Program, Statement, WordKind};
+use crate::syntax::{Block, CodeLetter, Number, Program, Statement, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
 mod thread_pass;
@@ -181,23 +181,65 @@ fn program_uses_m(program: &Program<'_>, m: u16) -> bool {
 
 /// Whether the program writes its arcs with a radius (`R`, OSP `L`) rather than `I K`.
 pub(crate) fn uses_radius_arcs(program: &Program<'_>) -> bool {
-    let radius = if program.config().dialect == Dialect::Osp { Address::L } else { Address::R };
-    let (mut by_radius, mut by_centre) = (0, 0);
+    let mut tally = ArcFormTally::default();
     for block in program.blocks() {
+        tally.add_block(program, block);
+    }
+    tally.radius_arcs()
+}
+
+/// The radius and centre words of a program's motion blocks, counted block by block
+/// (`uses_radius_arcs`), so that a caller reading every block anyway counts them in its own
+/// pass (`compensation::rewrite::ProgramTables`).
+#[derive(Default)]
+pub(crate) struct ArcFormTally {
+    by_radius: u32,
+    by_centre: u32,
+}
+
+/// The arc words of one block, as `ArcFormTally::add_block` read them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum BlockArcWords {
+    /// Not a motion block: its words were not read.
+    NotRead,
+    /// Neither a radius nor a centre word.
+    Neither,
+    /// A radius word (`R`, OSP `L`), with or without centre words.
+    Radius,
+    /// Centre words (`I`, `K`) and no radius word.
+    Centre,
+}
+
+impl ArcFormTally {
+    /// Count `block`'s radius and centre words, and say which it has.
+    pub(crate) fn add_block(&mut self, program: &Program<'_>, block: &Block) -> BlockArcWords {
         if block.statement != Statement::Motion {
-            continue;
+            return BlockArcWords::NotRead;
         }
+        let radius = if program.config().dialect == Dialect::Osp { Address::L } else { Address::R };
+        let (by_radius, by_centre) = (self.by_radius, self.by_centre);
         for word in program.words_of(block) {
             if let WordKind::Number { address, .. } | WordKind::Expr { address, .. } = word.kind {
                 if address == radius {
-                    by_radius += 1;
+                    self.by_radius += 1;
                 } else if address == Address::I || address == Address::K {
-                    by_centre += 1;
+                    self.by_centre += 1;
                 }
             }
         }
+        if self.by_radius > by_radius {
+            BlockArcWords::Radius
+        } else if self.by_centre > by_centre {
+            BlockArcWords::Centre
+        } else {
+            BlockArcWords::Neither
+        }
     }
-    by_radius > by_centre
+
+    /// Whether the program, all of whose blocks were counted, writes its arcs with a radius.
+    pub(crate) fn radius_arcs(&self) -> bool {
+        self.by_radius > self.by_centre
+    }
 }
 
 struct BlockWriter {

@@ -154,6 +154,8 @@ pub struct LocalPath<'a> {
     arc_of: Vec<u32>,
     /// Each arc's constants, computed once for its many samples.
     arcs: Vec<ArcConstants>,
+    /// The farthest the path goes from the origin in each axis (`LocalPath::reach`).
+    reach: Xz,
 }
 
 /// `LocalPath::arc_of` for a move that is no arc, or whose constants are not kept (past
@@ -190,10 +192,13 @@ impl<'a> LocalPath<'a> {
         let mut ends = Vec::with_capacity(toolpath.moves.len());
         let mut arc_of = Vec::with_capacity(toolpath.moves.len());
         let mut arcs = Vec::new();
+        let mut reach = Xz::new(toolpath.start.x.abs(), toolpath.start.z.abs());
         for (k, m) in toolpath.moves.iter().enumerate() {
             let start = toolpath.start_of(k);
             let index = match m.is_arc().then(|| ArcConstants::of(start, m)) {
                 Some(arc) => {
+                    let radius = arc.radius;
+                    reach = Xz::new(reach.x.max(m.centre.x.abs() + radius), reach.z.max(m.centre.z.abs() + radius));
                     // `move_length`, with the sweep the constants hold.
                     total += arc.radius * arc.sector.total();
                     let index = u32::try_from(arcs.len()).unwrap_or(NO_ARC);
@@ -203,6 +208,7 @@ impl<'a> LocalPath<'a> {
                     index
                 }
                 None => {
+                    reach = Xz::new(reach.x.max(m.end.x.abs()), reach.z.max(m.end.z.abs()));
                     total += move_length(start, m);
                     NO_ARC
                 }
@@ -210,7 +216,15 @@ impl<'a> LocalPath<'a> {
             ends.push(total);
             arc_of.push(index);
         }
-        LocalPath { toolpath, ends, arc_of, arcs }
+        LocalPath { toolpath, ends, arc_of, arcs, reach }
+    }
+
+    /// The farthest the path goes from the origin in each axis, mm (X as a radius): an
+    /// arc's whole circle counts, which bounds it without finding its extremes. Measured in
+    /// `new`'s pass over the moves, which has each arc's radius, so that `compensate` need
+    /// not read a long program's moves once more for its sampling (`program::sampling`).
+    pub fn reach(&self) -> Xz {
+        self.reach
     }
 
     /// The constants of move `k` when it is an arc: borrowed from `arcs` (they are read for

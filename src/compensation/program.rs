@@ -16,7 +16,7 @@ use crate::printer::Edits;
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Lowered, Machine};
 use crate::syntax::Program;
-use crate::toolpath::{Toolpath, ValidToolpath, Xz};
+use crate::toolpath::{ValidToolpath, Xz};
 
 use super::deviation::LocalPath;
 use super::fit::FitOptions;
@@ -77,35 +77,18 @@ impl Outcome {
     }
 }
 
-/// How closely `compensate` samples `toolpath` for `model`: as the model needs for the
+/// How closely `compensate` samples a toolpath for `model`: as the model needs for the
 /// path between samples to follow its correction within a tenth of the tolerance
 /// (`error_model/spacing.rs`), on arcs as closely as the terms that turn with them need and
 /// at least every eighth of a turn, and, for `densify` at a fixed step, at a divisor of that
-/// step so that its points fall on samples.
-pub fn sampling(fit: &FitOptions, model: &ErrorModel, toolpath: &Toolpath) -> Sampling {
+/// step so that its points fall on samples. `reach` is the farthest the path goes from the origin (`LocalPath::reach`).
+pub fn sampling(fit: &FitOptions, model: &ErrorModel, reach: Xz) -> Sampling {
     let allowance = fit.tolerance_mm * INTERPOLATION_SHARE;
-    let reach = reach(toolpath);
     let mut spacing = model.spacing(allowance, reach);
     if let Some(step) = fit.step_mm.filter(|s| s.is_finite() && *s > 0.0) {
         spacing.mm = step / (step / spacing.mm).ceil().max(1.0);
     }
     Sampling { spacing, arc: model.arc_terms(reach), allowance }
-}
-
-/// The farthest `toolpath` goes from the origin in each axis, mm (X as a radius): an
-/// arc's whole circle counts, which bounds it without finding its extremes.
-fn reach(toolpath: &Toolpath) -> Xz {
-    let mut far = Xz::new(toolpath.start.x.abs(), toolpath.start.z.abs());
-    for (index, m) in toolpath.moves.iter().enumerate() {
-        let (x, z) = if m.is_arc() {
-            let radius = toolpath.start_of(index).distance(m.centre);
-            (m.centre.x.abs() + radius, m.centre.z.abs() + radius)
-        } else {
-            (m.end.x.abs(), m.end.z.abs())
-        };
-        far = Xz::new(far.x.max(x), far.z.max(z));
-    }
-    far
 }
 
 /// Compensate `program` (lowered with nose-radius compensation into `lowered`, whose
@@ -140,9 +123,12 @@ pub fn compensate_with_tables(
         let rewrite = scope.spawn(|| {
             let tables = tables.unwrap_or_else(|| rewrite::ProgramTables::new(program));
             let motion = rewrite::MotionBlocks::with_tables(program, lowered, &tools, tables);
-            (motion.move_forms(), rewrite::move_runs(lowered), motion)
+            let (forms, runs) = motion.move_tables();
+            (forms, runs, motion)
         });
-        let rest = (LocalPath::new(toolpath), sampling(&options.fit, model, toolpath));
+        let path = LocalPath::new(toolpath);
+        let sampling = sampling(&options.fit, model, path.reach());
+        let rest = (path, sampling);
         // Neither can fail on any input; a panic is a bug, and is passed on.
         (rewrite.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
     });

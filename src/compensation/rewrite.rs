@@ -27,9 +27,12 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::expand::{ArcFormTally, BlockArcWords};
+use crate::printer::style::StyleTally;
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
+use crate::source::Span;
 use crate::syntax::{Program, Statement};
 
 use super::grid::Grid;
@@ -54,7 +57,7 @@ pub struct EditedBlock {
     pub cycle: bool,
 }
 
-/// Per move, what can be written for it (`MotionBlocks::move_forms`).
+/// Per move, what can be written for it (`MotionBlocks::move_tables`).
 #[derive(Debug, Clone, Default)]
 pub struct MoveForms {
     /// The move can be written back: a move of a motion block, or of a cycle that can be
@@ -84,10 +87,6 @@ struct BlockLookup {
 }
 
 impl BlockLookup {
-    fn new(program: &Program<'_>) -> BlockLookup {
-        BlockLookup { starts: program.blocks().iter().map(|b| b.span.start).collect() }
-    }
-
     fn index(&self, start: u32) -> Option<usize> {
         self.starts.binary_search(&start).ok()
     }
@@ -143,33 +142,65 @@ pub struct MoveRun {
 
 /// Every move's run, in path order: each `EditedBlock` writes the moves of one of them.
 pub fn move_runs(lowered: &Lowered) -> Vec<MoveRun> {
-    let moves = &lowered.toolpath.moves;
-    // The cycle each move belongs to (the first that lists it); a program without cycles
-    // needs no table.
-    let mut cycle_of: Vec<Option<usize>> = Vec::new();
-    if !lowered.expansions.is_empty() {
-        cycle_of.resize(moves.len(), None);
+    let mut runs = RunSplitter::new(lowered);
+    for (k, m) in lowered.toolpath.moves.iter().enumerate() {
+        runs.add(k, m.source);
     }
-    for (index, e) in lowered.expansions.iter().enumerate() {
-        for k in e.moves.clone() {
-            if let Some(c) = cycle_of.get_mut(k) {
-                c.get_or_insert(index);
+    runs.finish()
+}
+
+/// The runs of moves (`move_runs`), split move by move, so that a pass over the moves for
+/// something else (`MotionBlocks::move_tables`) splits them too: a long program's moves are
+/// hundreds of MB, read from memory once rather than twice.
+struct RunSplitter {
+    /// The cycle each move belongs to (the first that lists it); a program without cycles
+    /// needs no table.
+    cycle_of: Vec<Option<usize>>,
+    /// At most one run per move, written front to back.
+    runs: Vec<MoveRun>,
+    /// The run being extended: its first move, that move's block and cycle.
+    current: Option<(usize, Span, Option<usize>)>,
+    /// The number of moves given.
+    moves: usize,
+}
+
+impl RunSplitter {
+    fn new(lowered: &Lowered) -> RunSplitter {
+        let moves = lowered.toolpath.moves.len();
+        let mut cycle_of: Vec<Option<usize>> = Vec::new();
+        if !lowered.expansions.is_empty() {
+            cycle_of.resize(moves, None);
+        }
+        for (index, e) in lowered.expansions.iter().enumerate() {
+            for k in e.moves.clone() {
+                if let Some(c) = cycle_of.get_mut(k) {
+                    c.get_or_insert(index);
+                }
             }
         }
+        RunSplitter { cycle_of, runs: crate::memory::huge_page_vec(moves), current: None, moves: 0 }
     }
-    let cycle_at = |k: usize| cycle_of.get(k).copied().flatten();
-    // At most one run per move, written front to back.
-    let mut runs = crate::memory::huge_page_vec(moves.len());
-    let mut k = 0;
-    while k < moves.len() {
-        let (source, cycle) = (moves[k].source, cycle_at(k));
-        let first = k;
-        while k < moves.len() && cycle_at(k) == cycle && (cycle.is_some() || moves[k].source == source) {
-            k += 1;
+
+    /// Move `k` (the one after the last given), from the block at `source`: it extends the
+    /// current run when it is of the same cycle call, or outside cycles of the same block.
+    fn add(&mut self, k: usize, source: Span) {
+        let cycle = self.cycle_of.get(k).copied().flatten();
+        self.moves = k + 1;
+        if let Some((first, run_source, run_cycle)) = self.current {
+            if run_cycle == cycle && (cycle.is_some() || run_source == source) {
+                return;
+            }
+            self.runs.push(MoveRun { moves: first..k, cycle: run_cycle.is_some() });
         }
-        runs.push(MoveRun { moves: first..k, cycle: cycle.is_some() });
+        self.current = Some((k, source, cycle));
     }
-    runs
+
+    fn finish(mut self) -> Vec<MoveRun> {
+        if let Some((first, _, cycle)) = self.current {
+            self.runs.push(MoveRun { moves: first..self.moves, cycle: cycle.is_some() });
+        }
+        self.runs
+    }
 }
 
 /// The motion blocks rewritten run by run, in path order (`add`), then settled (`finish`):
@@ -184,6 +215,10 @@ pub struct MotionBlocks<'a, 'src> {
     lookup: BlockLookup,
     /// The block looked up last (`BlockLookup::index_near`).
     near: usize,
+    /// Per block, its arc words, read with the program's arc form (`ProgramTables::new`):
+    /// an arc's form is then known without reading its block's words again, which are far
+    /// apart in a long program's memory.
+    arc_words: Vec<BlockArcWords>,
     radius_arcs: bool,
     vocabulary: block::Vocabulary,
     /// The grid of the coordinates in force for the last run (they change rarely).
@@ -221,6 +256,8 @@ pub struct ProgramTables {
     /// The number of blocks of the program they were made for.
     blocks: usize,
     lookup: BlockLookup,
+    /// Per block, its arc words (`MotionBlocks::arc_words`).
+    arc_words: Vec<BlockArcWords>,
     radius_arcs: bool,
     style: ProgramStyle,
     replacements: Vec<(usize, WrittenText)>,
@@ -231,11 +268,23 @@ pub struct ProgramTables {
 impl ProgramTables {
     pub fn new(program: &Program<'_>) -> ProgramTables {
         let blocks = program.blocks().len();
+        // The block lookup, the arc form and the style each need every block (and the last
+        // two every word): one pass reads a long program's blocks and words from memory once.
+        let mut starts = Vec::with_capacity(blocks);
+        let mut arc_words = Vec::with_capacity(blocks);
+        let mut arc_form = ArcFormTally::default();
+        let mut style = StyleTally::new(program);
+        for (index, block) in program.blocks().iter().enumerate() {
+            starts.push(block.span.start);
+            arc_words.push(arc_form.add_block(program, block));
+            style.add_block(program, index, block);
+        }
         ProgramTables {
             blocks,
-            lookup: BlockLookup::new(program),
-            radius_arcs: crate::expand::uses_radius_arcs(program),
-            style: ProgramStyle::infer(program),
+            lookup: BlockLookup { starts },
+            arc_words,
+            radius_arcs: arc_form.radius_arcs(),
+            style: style.style(program.config().dialect),
             // At most one of each per block: huge pages where the program is long (written
             // front to back, they only take the memory they fill).
             replacements: crate::memory::huge_page_vec(blocks),
@@ -263,13 +312,14 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         tables: ProgramTables,
     ) -> MotionBlocks<'a, 'src> {
         let tables = if tables.blocks == program.blocks().len() { tables } else { ProgramTables::new(program) };
-        let ProgramTables { lookup, radius_arcs, style, replacements, edited, first_runs, .. } = tables;
+        let ProgramTables { lookup, arc_words, radius_arcs, style, replacements, edited, first_runs, .. } = tables;
         MotionBlocks {
             program,
             lowered,
             tools,
             lookup,
             near: 0,
+            arc_words,
             radius_arcs,
             vocabulary: block::Vocabulary::of(program),
             grid: None,
@@ -283,8 +333,9 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         }
     }
 
-    /// What can be written for each move (`MoveForms`), in one pass over the moves.
-    pub fn move_forms(&self) -> MoveForms {
+    /// What can be written for each move (`MoveForms`), and the runs of moves
+    /// (`move_runs`), in one pass over the moves.
+    pub fn move_tables(&self) -> (MoveForms, Vec<MoveRun>) {
         let (program, lowered) = (self.program, self.lowered);
         let moves = &lowered.toolpath.moves;
         let mut writable = vec![false; moves.len()];
@@ -296,16 +347,29 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                 *w = expandable;
             }
         }
+        let mut runs = RunSplitter::new(lowered);
         let mut near = 0;
         for (k, m) in moves.iter().enumerate() {
+            runs.add(k, m.source);
             if in_cycle[k] {
                 continue;
             }
             let Some(b) = self.lookup.index_near(m.source.start, &mut near) else { continue };
             writable[k] = matches!(program.block(b).statement, Statement::Motion | Statement::ThreadMove);
-            radius[k] = block::writes_radius(program, b, m.is_arc(), self.radius_arcs);
+            radius[k] = self.writes_radius(b, m.is_arc());
         }
-        MoveForms { writable, radius }
+        (MoveForms { writable, radius }, runs.finish())
+    }
+
+    /// `block::writes_radius` for `block`, from its arc words where they were read.
+    fn writes_radius(&self, block: usize, is_arc: bool) -> bool {
+        match self.arc_words.get(block) {
+            _ if !is_arc => self.radius_arcs,
+            Some(BlockArcWords::Radius) => true,
+            Some(BlockArcWords::Centre) => false,
+            Some(BlockArcWords::Neither) => self.radius_arcs,
+            Some(BlockArcWords::NotRead) | None => block::writes_radius(self.program, block, is_arc, self.radius_arcs),
+        }
     }
 
     /// The next run (after those given before it), with the plans of its moves; a cycle's

@@ -2,8 +2,8 @@
 //! look like the blocks around them: packed or spaced words, `.075` or `0.075`, `G1` or
 //! `G01`, `X3.` or `X3.0`, fixed decimal places, CR LF or LF.
 
-use crate::dialect::{Address, AddressKind, Dialect};
-use crate::syntax::{CodeLetter, NumberFlags, Program, WordKind};
+use crate::dialect::{Address, AddressKind, Dialect, Tables};
+use crate::syntax::{Block, CodeLetter, Number, NumberFlags, Program, WordKind};
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ProgramStyle {
@@ -29,8 +29,13 @@ pub enum WholeNumbers {
     NoPoint,
 }
 
-#[derive(Default)]
-struct Tally {
+/// The counts the style is decided by, gathered block by block: `ProgramStyle::infer` reads
+/// every block for them, and a caller that reads every block anyway
+/// (`compensation::rewrite::ProgramTables`) gathers them in its own pass, so that the long
+/// arrays of a big program's blocks and words are read from memory once rather than twice.
+pub struct StyleTally {
+    /// The tables of the program's dialect, looked up once rather than per block.
+    tables: &'static Tables,
     packed: u32,
     spaced: u32,
     small_without_zero: u32,
@@ -48,109 +53,161 @@ struct Tally {
     cr: u32,
 }
 
-impl ProgramStyle {
-    pub fn infer(program: &Program<'_>) -> ProgramStyle {
-        let tables = program.config().tables();
-        let source = program.source();
-        let mut tally = Tally::default();
-        for (index, block) in program.blocks().iter().enumerate() {
-            match program.terminator(index) {
-                b"\r\n" => tally.crlf += 1,
-                b"\n" => tally.lf += 1,
-                b"\r" => tally.cr += 1,
+/// `10^n` for every `n` whose power fits `u64`: a table rather than `u64::pow`, whose loop
+/// showed in the profile, for every length and feed of a long program. A larger power is
+/// above every mantissa.
+const POWERS_OF_TEN: [u64; 20] = {
+    let mut powers = [1; 20];
+    let mut n = 1;
+    while n < 20 {
+        powers[n] = powers[n - 1] * 10;
+        n += 1;
+    }
+    powers
+};
+
+impl StyleTally {
+    /// No block counted yet, for `program`.
+    pub fn new(program: &Program<'_>) -> StyleTally {
+        StyleTally {
+            tables: program.config().tables(),
+            packed: 0,
+            spaced: 0,
+            small_without_zero: 0,
+            small_with_zero: 0,
+            one_digit_codes: 0,
+            two_digit_codes: 0,
+            point_only: 0,
+            point_zero: 0,
+            no_point: 0,
+            scales: [0; 10],
+            with_trailing_zero: 0,
+            lengths: 0,
+            crlf: 0,
+            lf: 0,
+            cr: 0,
+        }
+    }
+
+    /// Count block `index` of the program (`block` is `program.block(index)`).
+    pub fn add_block(&mut self, program: &Program<'_>, index: usize, block: &Block) {
+        match program.terminator(index) {
+            b"\r\n" => self.crlf += 1,
+            b"\n" => self.lf += 1,
+            b"\r" => self.cr += 1,
+            _ => {}
+        }
+        // The end of the word before, when it is not a comment: two such words next to each
+        // other are packed when nothing lies between them.
+        let mut significant_end = None;
+        for word in program.words_of(block) {
+            let significant = !matches!(word.kind, WordKind::Comment(_));
+            if let (true, Some(end)) = (significant, significant_end) {
+                if end == word.span.start {
+                    self.packed += 1;
+                } else {
+                    self.spaced += 1;
+                }
+            }
+            significant_end = significant.then_some(word.span.end);
+            match word.kind {
+                WordKind::Code { letter, code } if letter == CodeLetter::G && code.major() < 10 => {
+                    let text = program.text(word.span);
+                    if text.len() >= 3 && text[1] == b'0' {
+                        self.two_digit_codes += 1;
+                    } else {
+                        self.one_digit_codes += 1;
+                    }
+                }
+                WordKind::Number { address, number } => {
+                    let kind = self.tables.address(address).map(|s| s.kind);
+                    if matches!(kind, Some(AddressKind::Length | AddressKind::Feed)) {
+                        self.add_number(number, kind == Some(AddressKind::Length));
+                    }
+                }
                 _ => {}
             }
-            let words = program.words_of(block);
-            for pair in words.windows(2) {
-                let between = &source[pair[0].span.end as usize..pair[1].span.start as usize];
-                let significant = |k: &WordKind| !matches!(k, WordKind::Comment(_));
-                if significant(&pair[0].kind) && significant(&pair[1].kind) {
-                    if between.is_empty() {
-                        tally.packed += 1;
-                    } else {
-                        tally.spaced += 1;
-                    }
-                }
-            }
-            for word in words {
-                match word.kind {
-                    WordKind::Code { letter, code } if letter == CodeLetter::G && code.major() < 10 => {
-                        let text = program.text(word.span);
-                        if text.len() >= 3 && text[1] == b'0' {
-                            tally.two_digit_codes += 1;
-                        } else {
-                            tally.one_digit_codes += 1;
-                        }
-                    }
-                    WordKind::Number { address, number } => {
-                        let kind = tables.address(address).map(|s| s.kind);
-                        if !matches!(kind, Some(AddressKind::Length | AddressKind::Feed)) {
-                            continue;
-                        }
-                        if number.has_point()
-                            && number.mantissa.unsigned_abs() < 10u64.pow(number.scale as u32)
-                            && number.mantissa != 0
-                        {
-                            if number.flags.contains(NumberFlags::NO_INTEGER_DIGITS) {
-                                tally.small_without_zero += 1;
-                            } else {
-                                tally.small_with_zero += 1;
-                            }
-                        }
-                        if kind == Some(AddressKind::Length) {
-                            tally.lengths += 1;
-                            if number.has_point() {
-                                tally.scales[(number.scale as usize).min(9)] += 1;
-                                if number.scale > 0 && number.mantissa % 10 == 0 {
-                                    tally.with_trailing_zero += 1;
-                                }
-                            }
-                            let whole = number.is_whole();
-                            if whole {
-                                match (number.has_point(), number.scale) {
-                                    (false, _) => tally.no_point += 1,
-                                    (true, 0) => tally.point_only += 1,
-                                    (true, _) => tally.point_zero += 1,
-                                }
-                            }
-                        }
-                    }
-                    _ => {}
-                }
+        }
+    }
+
+    /// Count a length or feed number.
+    fn add_number(&mut self, number: Number, is_length: bool) {
+        if number.has_point()
+            && POWERS_OF_TEN.get(usize::from(number.scale)).is_none_or(|&p| number.mantissa.unsigned_abs() < p)
+            && number.mantissa != 0
+        {
+            if number.flags.contains(NumberFlags::NO_INTEGER_DIGITS) {
+                self.small_without_zero += 1;
+            } else {
+                self.small_with_zero += 1;
             }
         }
-        let dialect = program.config().dialect;
-        let line_ending = if tally.crlf >= tally.lf && tally.crlf >= tally.cr && tally.crlf > 0 {
+        if !is_length {
+            return;
+        }
+        self.lengths += 1;
+        let trailing_zero = number.mantissa % 10 == 0;
+        if number.has_point() {
+            self.scales[(number.scale as usize).min(9)] += 1;
+            if number.scale > 0 && trailing_zero {
+                self.with_trailing_zero += 1;
+            }
+        }
+        // A number with decimals and a last digit other than zero is not whole; only the
+        // others need the division by the power of ten.
+        let whole = number.scale == 0 || (trailing_zero && number.is_whole());
+        if whole {
+            match (number.has_point(), number.scale) {
+                (false, _) => self.no_point += 1,
+                (true, 0) => self.point_only += 1,
+                (true, _) => self.point_zero += 1,
+            }
+        }
+    }
+
+    /// The style the counts of every block of a program in `dialect` decide.
+    pub fn style(&self, dialect: Dialect) -> ProgramStyle {
+        let line_ending = if self.crlf >= self.lf && self.crlf >= self.cr && self.crlf > 0 {
             "\r\n"
-        } else if tally.cr > tally.lf {
+        } else if self.cr > self.lf {
             "\r"
         } else {
             "\n"
         };
-        let whole_numbers = if tally.point_zero > tally.point_only && tally.point_zero >= tally.no_point {
+        let whole_numbers = if self.point_zero > self.point_only && self.point_zero >= self.no_point {
             WholeNumbers::PointZero
-        } else if tally.no_point > tally.point_only && dialect == Dialect::Osp {
+        } else if self.no_point > self.point_only && dialect == Dialect::Osp {
             // Only OSP reads `X50` as 50 mm on every machine; on Fanuc it may be 50 increments.
             WholeNumbers::NoPoint
         } else {
             WholeNumbers::PointOnly
         };
         let (top_scale, top_count) =
-            tally.scales.iter().enumerate().max_by_key(|(_, c)| **c).map_or((0, 0), |(s, c)| (s, *c));
+            self.scales.iter().enumerate().max_by_key(|(_, c)| **c).map_or((0, 0), |(s, c)| (s, *c));
         let fixed_decimals = (top_count > 0
             && top_scale > 0
-            && top_count * 10 >= tally.lengths * 8
-            && tally.with_trailing_zero * 10 >= top_count)
+            && top_count * 10 >= self.lengths * 8
+            && self.with_trailing_zero * 10 >= top_count)
             .then_some(top_scale as u8);
         ProgramStyle {
             dialect,
-            packed: dialect == Dialect::Fanuc && tally.packed > tally.spaced,
-            suppress_leading_zero: tally.small_without_zero > tally.small_with_zero,
-            two_digit_codes: tally.two_digit_codes >= tally.one_digit_codes,
+            packed: dialect == Dialect::Fanuc && self.packed > self.spaced,
+            suppress_leading_zero: self.small_without_zero > self.small_with_zero,
+            two_digit_codes: self.two_digit_codes >= self.one_digit_codes,
             whole_numbers,
             fixed_decimals,
             line_ending,
         }
+    }
+}
+
+impl ProgramStyle {
+    pub fn infer(program: &Program<'_>) -> ProgramStyle {
+        let mut tally = StyleTally::new(program);
+        for (index, block) in program.blocks().iter().enumerate() {
+            tally.add_block(program, index, block);
+        }
+        tally.style(program.config().dialect)
     }
 
     /// The style of a new program with nothing to learn from.
@@ -177,3 +234,6 @@ impl ProgramStyle {
         )
     }
 }
+
+#[cfg(test)]
+mod tests;

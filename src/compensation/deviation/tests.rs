@@ -49,3 +49,19 @@ fn a_sample_that_does_not_cut_has_no_deviation() {
     assert!(!sample.cutting);
     assert_eq!(LocalPath::new(toolpath).distance(&sample, Xz::new(10.001, 0.0)), None);
 }
+
+#[test]
+fn the_reach_counts_an_arcs_whole_circle_and_a_lines_end() {
+    // The test machine starts at radius 100, z 50. From x 300 z 2 (radius 150) to z −80,
+    // then a G02 of radius 5 to x 310 (radius 155) z −85 about x 155 z −80 (the centre
+    // that turns it clockwise): the circle reaches radius 160 and z 85.
+    let lines = "G21 G99\nG97 S1000 M03\nG00 X300. Z2.\nG01 Z-80. F0.2\n";
+    let (lowered, _) = lower_program(&format!("{lines}G02 X310. Z-85. R5.\n"));
+    assert_eq!(lowered.toolpath.start, Xz::new(100.0, 50.0));
+    let centre = lowered.toolpath.moves[2].centre;
+    assert!(centre.distance(Xz::new(155.0, -80.0)) < 1e-9, "{centre:?}");
+    assert_eq!(LocalPath::new(&lowered.toolpath).reach(), Xz::new(160.0, 85.0));
+    // Before the arc the line's end is the farthest.
+    let (lowered, _) = lower_program(lines);
+    assert_eq!(LocalPath::new(&lowered.toolpath).reach(), Xz::new(150.0, 80.0));
+}

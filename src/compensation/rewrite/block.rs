@@ -492,6 +492,11 @@ fn slot(dialect: Dialect, address: Address, is_arc: bool) -> Option<Slot> {
 /// mostly does (`program_radius_arcs`). A line block has no arc words (an `R` there is no
 /// radius).
 pub(super) fn writes_radius(program: &Program<'_>, block: usize, is_arc: bool, program_radius_arcs: bool) -> bool {
+    // `slot` gives a line's words no radius or centre slot, so a line takes the program's
+    // form without its words being read (most moves of a long program are lines).
+    if !is_arc {
+        return program_radius_arcs;
+    }
     let dialect = program.config().dialect;
     let slots = program.words_of(program.block(block)).iter().filter_map(|word| match word.kind {
         WordKind::Number { address, .. } | WordKind::Expr { address, .. } => slot(dialect, address, is_arc),

@@ -106,3 +106,64 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
     let lines: Vec<&str> = text.lines().skip(4).take(4).collect();
     assert_eq!(lines, ["G01 X44. Z-13.5", "X50. Z-15.", "G02", "G03 U10. W-5. I0 K-5."], "{text}");
 }
+
+/// A line block takes the program's arc form whatever its words (an `R` there is a corner,
+/// not a radius), and an arc block its own, the same as by reading its slots.
+#[test]
+fn writes_radius_reads_an_arc_blocks_own_form_and_gives_a_line_the_programs() {
+    let source = "G00 X40. Z2.\nG01 X44. Z-10. R1. F0.2\nG02 X50. Z-15. R5.\nG03 X60. Z-20. I0 K-5.\nG01 Z-25. I1.\n";
+    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let parsed = parse(source.as_bytes(), &options);
+    let program = &parsed.program;
+    for program_radius_arcs in [false, true] {
+        let forms: Vec<(bool, bool)> = (0..5)
+            .map(|block| {
+                let by_slots = |is_arc| {
+                    let dialect = program.config().dialect;
+                    let slots = program.words_of(program.block(block)).iter().filter_map(|word| match word.kind {
+                        WordKind::Number { address, .. } | WordKind::Expr { address, .. } => {
+                            slot(dialect, address, is_arc)
+                        }
+                        _ => None,
+                    });
+                    radius_form(slots).unwrap_or(program_radius_arcs)
+                };
+                assert_eq!(writes_radius(program, block, false, program_radius_arcs), by_slots(false));
+                (
+                    writes_radius(program, block, true, program_radius_arcs),
+                    writes_radius(program, block, false, program_radius_arcs),
+                )
+            })
+            .collect();
+        let p = program_radius_arcs;
+        assert_eq!(forms, vec![(p, p), (true, p), (true, p), (false, p), (false, p)]);
+    }
+}
+
+/// The arc form `MotionBlocks` takes from the words read with the program's arc form is the
+/// one `writes_radius` reads from the block, for motion blocks and for the others.
+#[test]
+fn the_arc_form_from_the_programs_tables_is_the_blocks_own() {
+    let source = "G21 G99\nG97 S1000 M03\nG00 X40. Z2.\nG01 X44. Z-10. R1. F0.2\nG02 X50. Z-15. R5.\n\
+                  G03 X60. Z-20. I0 K-5.\nG02 X70. Z-25. I5. K0 R5.\nG01 Z-30.\nG04 X1. R2.\nM30\n";
+    let (_, machine) = lower_program(PROGRAM);
+    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let parsed = parse(source.as_bytes(), &options);
+    let program = &parsed.program;
+    // An arc with both a radius and a centre, and a dwell with an `R`, lower with errors:
+    // only the blocks' words matter here.
+    let lowered = lower(program, &machine, &LowerOptions::new(false));
+    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
+    let motion = super::super::MotionBlocks::new(program, &lowered, &tools);
+    for block in 0..program.blocks().len() {
+        for is_arc in [false, true] {
+            let expected = writes_radius(program, block, is_arc, motion.radius_arcs);
+            assert_eq!(motion.writes_radius(block, is_arc), expected, "block {block}, arc {is_arc}");
+        }
+    }
+    // The words were read for the motion blocks, not for the others.
+    assert_eq!(motion.arc_words[4], crate::expand::BlockArcWords::Radius);
+    assert_eq!(motion.arc_words[5], crate::expand::BlockArcWords::Centre);
+    assert_eq!(motion.arc_words[6], crate::expand::BlockArcWords::Radius);
+    assert_eq!(motion.arc_words[8], crate::expand::BlockArcWords::NotRead);
+}
