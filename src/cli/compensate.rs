@@ -132,26 +132,29 @@ impl FitArgs {
     /// Compensate a ready program with `model`; `paths` keeps every sample's paths (for
     /// `plot`), `block_reports` reports every edited block (for `--report json`).
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
-        self.compensate_with_tables(program, model, (paths, block_reports), None)
+        let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
+        let machine = (&program.machine, model);
+        compensate_with_tables(&program.parsed.program, &program.lowered, &program.valid(), machine, &options, None)
     }
 
-    /// [`FitArgs::compensate`] with the rewrite's tables of the program made already (beside
-    /// its lowering, `ready_beside`).
+    /// [`FitArgs::compensate`] without the paths, with the rewrite's tables of the program
+    /// made already (beside its lowering, `ready_beside`).
     pub fn compensate_with_tables(
         &self,
         program: &Ready<'_>,
         model: &ErrorModel,
-        (paths, block_reports): (bool, bool),
-        tables: Option<ProgramTables>,
+        block_reports: bool,
+        tables: ProgramTables,
     ) -> Outcome {
-        let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
+        let options = CompensateOptions { paths: false, block_reports, ..self.options(&program.machine) };
+        let machine = (&program.machine, model);
         compensate_with_tables(
             &program.parsed.program,
             &program.lowered,
             &program.valid(),
-            (&program.machine, model),
+            machine,
             &options,
-            tables,
+            Some(tables),
         )
     }
 }
@@ -209,7 +212,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             Ok(ready) => ready,
             Err(text) => return Ok(FileResult::failed(1, text)),
         };
-    let outcome = args.fit.compensate_with_tables(&program, &model, (false, args.report.is_some()), Some(tables));
+    let outcome = args.fit.compensate_with_tables(&program, &model, args.report.is_some(), tables);
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
