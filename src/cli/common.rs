@@ -261,7 +261,8 @@ pub fn ready<'b>(
     command: &str,
     warnings: &mut Vec<u8>,
 ) -> Result<Ready<'b>, Vec<u8>> {
-    ready_beside(name, bytes, resolved, (run, command), warnings, |_| ()).map(|(ready, ())| ready)
+    let lower = |parsed: &syntax::Parsed<'b>| (lower_and_validate(parsed, resolved, run), ());
+    ready_with(name, bytes, resolved, command, warnings, lower).map(|(ready, ())| ready)
 }
 
 /// [`ready`], running `beside` on the parsed program on a second thread while the program is
@@ -275,6 +276,27 @@ pub fn ready_beside<'b, T: Send>(
     warnings: &mut Vec<u8>,
     beside: impl FnOnce(&syntax::Program<'b>) -> T + Send,
 ) -> Result<(Ready<'b>, T), Vec<u8>> {
+    let lower = |parsed: &syntax::Parsed<'b>| {
+        std::thread::scope(|scope| {
+            let made = scope.spawn(|| beside(&parsed.program));
+            let lowering = lower_and_validate(parsed, resolved, run);
+            // `beside` cannot fail on any input; a panic is a bug, and is passed on.
+            (lowering, made.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+        })
+    };
+    ready_with(name, bytes, resolved, command, warnings, lower)
+}
+
+/// Parse, then `lower` (lowering and validation, with whatever runs beside them), and tell
+/// whether the program is ready.
+fn ready_with<'b, T>(
+    name: &str,
+    bytes: &'b [u8],
+    resolved: &Resolved,
+    command: &str,
+    warnings: &mut Vec<u8>,
+    lower: impl FnOnce(&syntax::Parsed<'b>) -> (Lowering, T),
+) -> Result<(Ready<'b>, T), Vec<u8>> {
     let parsed = syntax::parse(bytes, &resolved.options);
     if !semantic::lowers(&parsed.program) {
         let mut text = rendered(name, bytes, &parsed.diagnostics);
@@ -284,12 +306,7 @@ pub fn ready_beside<'b, T: Send>(
         );
         return Err(text);
     }
-    let (Lowering { lowered, machine, diagnostics }, made) = std::thread::scope(|scope| {
-        let made = scope.spawn(|| beside(&parsed.program));
-        let lowering = lower_and_validate(&parsed, resolved, run);
-        // `beside` cannot fail on any input; a panic is a bug, and is passed on.
-        (lowering, made.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-    });
+    let (Lowering { lowered, machine, diagnostics }, made) = lower(&parsed);
     let text = rendered(name, bytes, &diagnostics);
     match lowered {
         Ok(lowered) if !diagnostics.iter().any(Diagnostic::is_error) => {

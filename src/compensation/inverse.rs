@@ -339,8 +339,10 @@ pub fn states(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &Error
         .iter()
         .zip(commanded)
         .map(|(s, &c)| {
-            let state = tracker.peek(c, s.tool, s.cutting, &inputs_of(s, model));
-            tracker.advance(c, s.tool, s.cutting);
+            // One step for the state and the move to it: the play operator runs once.
+            let step = tracker.step(c);
+            let state = tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
+            tracker.take(&step, s.tool, s.cutting);
             state
         })
         .collect()

@@ -359,7 +359,7 @@ fn written_points(
     for j in range {
         let sample = &input.samples[j];
         let now = offset(j);
-        // `written::written_point`, with the correction taken here.
+        // `written::written_from`, with the correction taken here.
         let contour = written::contour_at(m, contour_start, sample, input.tools);
         points.push(Xz::new(contour.x + now.x, contour.z + now.z));
         if !with_play {

@@ -65,7 +65,7 @@ pub struct Totals {
     pub improvement_percent: f64,
 }
 
-/// The figures of one run of moves (`rewrite::move_runs`: the moves an edited block can
+/// The figures of one run of moves (`rewrite::MotionBlocks::move_tables`: the moves an edited block can
 /// write), tallied over its samples in path order.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct RunFigures {

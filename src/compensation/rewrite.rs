@@ -70,17 +70,6 @@ pub struct MoveForms {
     pub radius: Vec<bool>,
 }
 
-/// Whether each move is one of a cycle's.
-fn in_cycle(lowered: &Lowered) -> Vec<bool> {
-    let mut out = vec![false; lowered.toolpath.moves.len()];
-    for expansion in &lowered.expansions {
-        for c in out.get_mut(expansion.moves.clone()).unwrap_or_default() {
-            *c = true;
-        }
-    }
-    out
-}
-
 /// Block indices by the start of their span.
 struct BlockLookup {
     starts: Vec<u32>,
@@ -140,18 +129,10 @@ pub struct MoveRun {
     pub cycle: bool,
 }
 
-/// Every move's run, in path order: each `EditedBlock` writes the moves of one of them.
-pub fn move_runs(lowered: &Lowered) -> Vec<MoveRun> {
-    let mut runs = RunSplitter::new(lowered);
-    for (k, m) in lowered.toolpath.moves.iter().enumerate() {
-        runs.add(k, m.source);
-    }
-    runs.finish()
-}
-
-/// The runs of moves (`move_runs`), split move by move, so that a pass over the moves for
-/// something else (`MotionBlocks::move_tables`) splits them too: a long program's moves are
-/// hundreds of MB, read from memory once rather than twice.
+/// Every move's run, in path order (each `EditedBlock` writes the moves of one of them),
+/// split move by move in the pass over the moves that also finds what can be written for
+/// each (`MotionBlocks::move_tables`): a long program's moves are hundreds of MB, read from
+/// memory once rather than twice.
 struct RunSplitter {
     /// The cycle each move belongs to (the first that lists it); a program without cycles
     /// needs no table.
@@ -160,7 +141,7 @@ struct RunSplitter {
     runs: Vec<MoveRun>,
     /// The run being extended: its first move, that move's block and cycle.
     current: Option<(usize, Span, Option<usize>)>,
-    /// The number of moves given.
+    /// The number of moves, all of which are given before `finish`.
     moves: usize,
 }
 
@@ -178,21 +159,22 @@ impl RunSplitter {
                 }
             }
         }
-        RunSplitter { cycle_of, runs: crate::memory::huge_page_vec(moves), current: None, moves: 0 }
+        RunSplitter { cycle_of, runs: crate::memory::huge_page_vec(moves), current: None, moves }
     }
 
     /// Move `k` (the one after the last given), from the block at `source`: it extends the
     /// current run when it is of the same cycle call, or outside cycles of the same block.
-    fn add(&mut self, k: usize, source: Span) {
+    /// Whether the move is one of a cycle's.
+    fn add(&mut self, k: usize, source: Span) -> bool {
         let cycle = self.cycle_of.get(k).copied().flatten();
-        self.moves = k + 1;
         if let Some((first, run_source, run_cycle)) = self.current {
             if run_cycle == cycle && (cycle.is_some() || run_source == source) {
-                return;
+                return cycle.is_some();
             }
             self.runs.push(MoveRun { moves: first..k, cycle: run_cycle.is_some() });
         }
         self.current = Some((k, source, cycle));
+        cycle.is_some()
     }
 
     fn finish(mut self) -> Vec<MoveRun> {
@@ -303,8 +285,9 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         MotionBlocks::with_tables(program, lowered, tools, ProgramTables::new(program))
     }
 
-    /// `new` with the program's tables made already (`ProgramTables::new(program)`); tables
-    /// of another program are made again.
+    /// `new` with the program's tables made already (`ProgramTables::new(program)`, which
+    /// the caller made for this program); tables made for a program with another number of
+    /// blocks are made again.
     pub fn with_tables(
         program: &'a Program<'src>,
         lowered: &'a Lowered,
@@ -334,13 +317,12 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     }
 
     /// What can be written for each move (`MoveForms`), and the runs of moves
-    /// (`move_runs`), in one pass over the moves.
+    /// (`RunSplitter`), in one pass over the moves.
     pub fn move_tables(&self) -> (MoveForms, Vec<MoveRun>) {
         let (program, lowered) = (self.program, self.lowered);
         let moves = &lowered.toolpath.moves;
         let mut writable = vec![false; moves.len()];
         let mut radius = vec![self.radius_arcs; moves.len()];
-        let in_cycle = in_cycle(lowered);
         for expansion in &lowered.expansions {
             let expandable = cycles::expandable(program, lowered, expansion);
             for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
@@ -350,8 +332,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         let mut runs = RunSplitter::new(lowered);
         let mut near = 0;
         for (k, m) in moves.iter().enumerate() {
-            runs.add(k, m.source);
-            if in_cycle[k] {
+            if runs.add(k, m.source) {
                 continue;
             }
             let Some(b) = self.lookup.index_near(m.source.start, &mut near) else { continue };
@@ -363,8 +344,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
 
     /// `block::writes_radius` for `block`, from its arc words where they were read.
     fn writes_radius(&self, block: usize, is_arc: bool) -> bool {
+        if !is_arc {
+            return self.radius_arcs;
+        }
         match self.arc_words.get(block) {
-            _ if !is_arc => self.radius_arcs,
             Some(BlockArcWords::Radius) => true,
             Some(BlockArcWords::Centre) => false,
             Some(BlockArcWords::Neither) => self.radius_arcs,

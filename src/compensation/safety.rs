@@ -18,20 +18,7 @@ use super::sampling::PathSample;
 /// Slack at a travel limit, mm: rounding at a limit is no violation (as `toolpath::validate`).
 const LIMIT_SLACK_MM: f64 = 0.001;
 
-/// The refusals for `commanded` (one point per sample).
-pub fn check(
-    toolpath: &Toolpath,
-    samples: &[PathSample],
-    commanded: &[Xz],
-    max_shift_mm: f64,
-    limits: Option<Limits>,
-) -> Vec<Diagnostic> {
-    let mut check = Check::new(max_shift_mm, limits);
-    check.add(toolpath, samples, commanded);
-    check.finish()
-}
-
-/// `check` over successive runs of samples, in path order.
+/// The refusals for the commanded points of samples given one by one, in path order.
 #[derive(Debug, Clone)]
 pub struct Check {
     max_shift_mm: f64,
@@ -47,16 +34,9 @@ impl Check {
         Check { max_shift_mm, limits, shifts: BTreeMap::new(), outside: BTreeMap::new() }
     }
 
-    /// Check the next samples and their commanded points.
-    pub fn add(&mut self, toolpath: &Toolpath, samples: &[PathSample], commanded: &[Xz]) {
-        for (s, &c) in samples.iter().zip(commanded) {
-            self.add_one(toolpath, s, c, c.distance(s.nominal));
-        }
-    }
-
-    /// Check the next sample and its commanded point `c`, `shift` (`c.distance(s.nominal)`)
-    /// from it: for a caller that has measured the correction already.
-    pub fn add_one(&mut self, toolpath: &Toolpath, s: &PathSample, c: Xz, shift: f64) {
+    /// Check the next sample and its commanded point `c`, `shift` (`c.distance(s.nominal)`,
+    /// which the caller has measured already) from it.
+    pub fn add(&mut self, toolpath: &Toolpath, s: &PathSample, c: Xz, shift: f64) {
         let Some(m) = toolpath.moves.get(s.move_index) else { return };
         let span = m.source;
         let shift = if shift.is_finite() { shift } else { f64::INFINITY };

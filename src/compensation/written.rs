@@ -98,19 +98,15 @@ pub fn offset(sample: &PathSample, commanded: Xz) -> Xz {
     Xz::new(commanded.x - sample.nominal.x, commanded.z - sample.nominal.z)
 }
 
-/// The point the program writes for a sample: its contour point moved by its correction.
-pub fn written_point(m: &Move, contour_start: Xz, sample: &PathSample, commanded: Xz, tools: &ToolTable) -> Xz {
-    written_from(contour_at(m, contour_start, sample, tools), sample, commanded)
-}
-
-/// `written_point` given the sample's contour point (`contour_at`).
+/// The point the program writes for a sample: its contour point (`contour_at`) moved by
+/// its correction.
 pub fn written_from(contour: Xz, sample: &PathSample, commanded: Xz) -> Xz {
     let d = offset(sample, commanded);
     Xz::new(contour.x + d.x, contour.z + d.z)
 }
 
 /// The reference point the control commands for a written point of a sample (the inverse
-/// of `written_point`).
+/// of `written_from`).
 pub fn reference_point(m: &Move, contour_start: Xz, sample: &PathSample, written: Xz, tools: &ToolTable) -> Xz {
     reference_from(contour_at(m, contour_start, sample, tools), sample, written)
 }

@@ -78,7 +78,7 @@ pub struct SampleInputs {
 
 /// What a move to a commanded point makes of the tracker's axes (`Tracker::step`): where
 /// the slides are, the directions they were last pushed in and the travel since each
-/// reversed. `peek` and `advance` both take it, so a point that is peeked at and then
+/// reversed. `sample_after` and `take` both take it, so a point that is looked at and then
 /// moved to (every sample solved or predicted) runs the play operator once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Step {

@@ -36,7 +36,8 @@ pub struct Context {
 #[derive(Debug)]
 pub struct Emitter {
     pub moves: Vec<Move>,
-    /// Seconds since the program started.
+    /// Seconds since the program started (it stands still while arcs are timed beside,
+    /// `time_arcs_beside`, until `chain_times` runs the clock over the moves).
     pub time: f64,
     /// Where the tool is (programmed contour frame; compensation comes later).
     pub at: Xz,

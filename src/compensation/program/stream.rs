@@ -64,7 +64,7 @@ pub struct Context<'a> {
     pub radius: Vec<bool>,
     pub path: LocalPath<'a>,
     pub plan_options: PlanOptions,
-    /// `rewrite::move_runs`.
+    /// The runs of moves (`rewrite::MotionBlocks::move_tables`).
     pub runs: Vec<MoveRun>,
 }
 
@@ -407,7 +407,7 @@ fn measure(
     for (((s, c), &before), &after) in points {
         let weight = s.covers_mm / SAMPLE_STEP_MM;
         let correction = c.distance(s.nominal);
-        safety.add_one(context.toolpath, s, *c, correction);
+        safety.add(context.toolpath, s, *c, correction);
         let after = context.path.distance(s, after);
         let totals = &mut out.totals;
         totals.samples += 1;
