@@ -206,3 +206,6 @@ impl Emitter {
         self.time = time;
     }
 }
+
+#[cfg(test)]
+mod tests;
