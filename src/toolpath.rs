@@ -45,8 +45,13 @@ impl Xz {
     pub fn distance(self, other: Xz) -> f64 {
         // Not `hypot`: lathe coordinates are far from overflow, and the plain square root
         // is several times faster on the hot path of every move.
+        self.distance_squared(other).sqrt()
+    }
+
+    /// The square of `distance`, for comparisons that need no root (`compensation/squares.rs`).
+    pub fn distance_squared(self, other: Xz) -> f64 {
         let (dx, dz) = (self.x - other.x, self.z - other.z);
-        (dx * dx + dz * dz).sqrt()
+        dx * dx + dz * dz
     }
 }
 

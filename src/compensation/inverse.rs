@@ -32,7 +32,7 @@ use crate::error_model::{ErrorModel, Sample, SampleInputs, Step, Tracker, withou
 use crate::toolpath::Xz;
 
 use super::sampling::PathSample;
-use super::squares::{root_at_most, squared_distance};
+use super::squares::root_at_most;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InverseOptions {
@@ -148,7 +148,7 @@ impl<'m> Inverse<'m> {
             self.correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
             self.tracker.take(&step, s.tool, s.cutting);
             self.iterations = self.iterations.max(steps);
-            self.max_residual_squared = self.max_residual_squared.max(squared_distance(s.nominal, a));
+            self.max_residual_squared = self.max_residual_squared.max(s.nominal.distance_squared(a));
             commanded.push(c);
             if let Some(predicted) = predicted.as_deref_mut() {
                 predicted.push(a);
@@ -187,7 +187,7 @@ fn solve(
         let displacement = model.displacement_timed(&state, time_terms);
         let actual = Xz::new(state.at.x + displacement.x, state.at.z + displacement.z);
         // The residual |nominal − actual|, compared as its square (see `root_at_most`).
-        let residual = squared_distance(s.nominal, actual);
+        let residual = s.nominal.distance_squared(actual);
         if root_at_most(residual, options.tolerance_mm * 1e-3)
             || steps >= options.max_iterations
             || !residual.is_finite()
@@ -212,7 +212,7 @@ fn solve(
                 dead_band,
             ),
         );
-        if root_at_most(squared_distance(next, c), 1e-12) {
+        if root_at_most(next.distance_squared(c), 1e-12) {
             return (step, actual, steps);
         }
         c = next;

@@ -13,7 +13,7 @@ use super::fit::Segment;
 use super::grid::{ArcWords, Grid};
 use super::plan::{MovePlan, PlanInput};
 use super::sampling::PathSample;
-use super::squares::{root_less, squared_distance};
+use super::squares::root_less;
 use super::written;
 
 /// A move's segments rounded onto `grid`, from its rounded start, as the control runs the
@@ -203,7 +203,7 @@ impl Walk<'_> {
             let first = cursor.saturating_sub(1);
             for (k, gauge) in gauges.iter().enumerate().skip(first).take(window + 1) {
                 let q = gauge.closest(target);
-                let d = squared_distance(q, target);
+                let d = q.distance_squared(target);
                 if root_less(d, best_d) {
                     (best, best_k, best_d) = (q, k, d);
                 }

@@ -266,7 +266,7 @@ impl ProgramTables {
             lookup: BlockLookup { starts },
             arc_words,
             radius_arcs: arc_form.radius_arcs(),
-            style: style.style(program.config().dialect),
+            style: style.style(),
             // At most one of each per block: huge pages where the program is long (written
             // front to back, they only take the memory they fill).
             replacements: crate::memory::huge_page_vec(blocks),

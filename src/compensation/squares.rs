@@ -7,18 +7,10 @@
 //! they differ clearly; only where they lie within a billionth of each other (where two
 //! roots may round alike) are the roots taken and compared.
 
-use crate::toolpath::Xz;
-
 /// How far apart, relatively, two squares must lie for their order to be their roots'
 /// order after rounding: far more than the few units in the last place (about 1e-16) a
 /// square and a rounded root are off by.
 const CLEAR: f64 = 1e-9;
-
-/// `a.distance(b)` squared: the same sum of squares `Xz::distance` takes the root of.
-pub fn squared_distance(a: Xz, b: Xz) -> f64 {
-    let (dx, dz) = (a.x - b.x, a.z - b.z);
-    dx * dx + dz * dz
-}
 
 /// `squared.sqrt() <= limit`, decided by the squares where they clearly tell it.
 ///

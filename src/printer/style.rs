@@ -34,7 +34,8 @@ pub enum WholeNumbers {
 /// (`compensation::rewrite::ProgramTables`) gathers them in its own pass, so that the long
 /// arrays of a big program's blocks and words are read from memory once rather than twice.
 pub struct StyleTally {
-    /// The tables of the program's dialect, looked up once rather than per block.
+    /// The program's dialect and its tables, looked up once rather than per block.
+    dialect: Dialect,
     tables: &'static Tables,
     packed: u32,
     spaced: u32,
@@ -53,23 +54,11 @@ pub struct StyleTally {
     cr: u32,
 }
 
-/// `10^n` for every `n` whose power fits `u64`: a table rather than `u64::pow`, whose loop
-/// showed in the profile, for every length and feed of a long program. A larger power is
-/// above every mantissa.
-const POWERS_OF_TEN: [u64; 20] = {
-    let mut powers = [1; 20];
-    let mut n = 1;
-    while n < 20 {
-        powers[n] = powers[n - 1] * 10;
-        n += 1;
-    }
-    powers
-};
-
 impl StyleTally {
     /// No block counted yet, for `program`.
     pub fn new(program: &Program<'_>) -> StyleTally {
         StyleTally {
+            dialect: program.config().dialect,
             tables: program.config().tables(),
             packed: 0,
             spaced: 0,
@@ -133,7 +122,7 @@ impl StyleTally {
     /// Count a length or feed number.
     fn add_number(&mut self, number: Number, is_length: bool) {
         if number.has_point()
-            && POWERS_OF_TEN.get(usize::from(number.scale)).is_none_or(|&p| number.mantissa.unsigned_abs() < p)
+            && Number::power_of_ten(number.scale).is_none_or(|p| number.mantissa.unsigned_abs() < p)
             && number.mantissa != 0
         {
             if number.flags.contains(NumberFlags::NO_INTEGER_DIGITS) {
@@ -146,17 +135,13 @@ impl StyleTally {
             return;
         }
         self.lengths += 1;
-        let trailing_zero = number.mantissa % 10 == 0;
         if number.has_point() {
             self.scales[(number.scale as usize).min(9)] += 1;
-            if number.scale > 0 && trailing_zero {
+            if number.scale > 0 && number.mantissa % 10 == 0 {
                 self.with_trailing_zero += 1;
             }
         }
-        // A number with decimals and a last digit other than zero is not whole; only the
-        // others need the division by the power of ten.
-        let whole = number.scale == 0 || (trailing_zero && number.is_whole());
-        if whole {
+        if number.is_whole() {
             match (number.has_point(), number.scale) {
                 (false, _) => self.no_point += 1,
                 (true, 0) => self.point_only += 1,
@@ -165,8 +150,9 @@ impl StyleTally {
         }
     }
 
-    /// The style the counts of every block of a program in `dialect` decide.
-    pub fn style(&self, dialect: Dialect) -> ProgramStyle {
+    /// The style the counts of every block of the program decide.
+    pub fn style(&self) -> ProgramStyle {
+        let dialect = self.dialect;
         let line_ending = if self.crlf >= self.lf && self.crlf >= self.cr && self.crlf > 0 {
             "\r\n"
         } else if self.cr > self.lf {
@@ -207,7 +193,7 @@ impl ProgramStyle {
         for (index, block) in program.blocks().iter().enumerate() {
             tally.add_block(program, index, block);
         }
-        tally.style(program.config().dialect)
+        tally.style()
     }
 
     /// The style of a new program with nothing to learn from.

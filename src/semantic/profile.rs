@@ -76,6 +76,9 @@ impl Interpreter<'_, '_> {
         let saved_len = self.emitter.moves.len();
         let saved_diagnostics = self.diagnostics.len();
         let saved_zero_feed = self.emitter.zero_feed;
+        // The scratch moves' times are never read: their arcs are not handed to the arc
+        // timer (`emitter/arc_times.rs`), so dropping the moves drops nothing of its work.
+        let timing_beside = self.emitter.pause_timing_beside();
         self.emitter.at = start;
 
         let mut first_block_has_both_axes = false;
@@ -166,7 +169,8 @@ impl Interpreter<'_, '_> {
         let raised = self.diagnostics.split_off(saved_diagnostics);
         self.diagnostics.extend(raised.into_iter().filter(|d| d.kind != DiagnosticKind::NoFeed));
         self.emitter.zero_feed = saved_zero_feed;
-        self.emitter.truncate(saved_len);
+        self.emitter.moves.truncate(saved_len);
+        self.emitter.resume_timing_beside(timing_beside);
         self.emitter.at = saved_at;
         self.emitter.time = saved_time;
         self.emitter.context = saved_context;

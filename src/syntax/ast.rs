@@ -70,7 +70,26 @@ impl Number {
     /// is smaller than that power.
     pub fn is_whole(&self) -> bool {
         let (mantissa, scale) = (self.mantissa, self.scale);
-        scale == 0 || 10i64.checked_pow(u32::from(scale)).map_or(mantissa == 0, |p| mantissa % p == 0)
+        // A last digit other than zero decides most numbers with decimals without the
+        // division by a power of ten that is not a constant (the printer asks of millions).
+        scale == 0
+            || (mantissa % 10 == 0
+                && Number::power_of_ten(scale).map_or(mantissa == 0, |p| mantissa.unsigned_abs() % p == 0))
+    }
+
+    /// `10^scale` for every scale whose power fits `u64`; a larger power is above every
+    /// mantissa. A table rather than `u64::pow`, whose loop showed in profiles.
+    pub fn power_of_ten(scale: u8) -> Option<u64> {
+        const POWERS: [u64; 20] = {
+            let mut powers = [1; 20];
+            let mut n = 1;
+            while n < 20 {
+                powers[n] = powers[n - 1] * 10;
+                n += 1;
+            }
+            powers
+        };
+        POWERS.get(usize::from(scale)).copied()
     }
 
     pub fn new(mantissa: i64, scale: u8, has_point: bool) -> Number {

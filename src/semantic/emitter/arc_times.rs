@@ -116,8 +116,8 @@ pub fn time_arcs(jobs: Receiver<Vec<ArcJob>>) -> Vec<Timed> {
     out
 }
 
-/// What was handed over: the move of each arc, in order (`DROPPED` for a move dropped
-/// again, `Emitter::truncate`), and the first move timed at the end.
+/// What was handed over: the move of each arc, in order, and the first move timed at the
+/// end.
 #[derive(Debug, Default)]
 pub struct JobMoves {
     moves: Vec<usize>,
@@ -126,14 +126,11 @@ pub struct JobMoves {
 
 /// The emitter's side of the hand-over.
 #[derive(Debug)]
-pub(super) struct Beside {
+pub(in crate::semantic) struct Beside {
     sender: Sender<Vec<ArcJob>>,
     batch: Vec<ArcJob>,
     handed: JobMoves,
 }
-
-/// `JobMoves::moves` of a move dropped after its arc was handed over.
-const DROPPED: usize = usize::MAX;
 
 impl Beside {
     pub(super) fn hand_over(&mut self, move_index: usize, job: ArcJob) {
@@ -168,21 +165,14 @@ impl Emitter {
         beside.handed
     }
 
-    /// Drop the moves from `len` on (a profile's scratch moves); arcs of theirs handed over
-    /// are left out when their times come back.
-    pub fn truncate(&mut self, len: usize) {
-        self.moves.truncate(len);
-        if let Some(beside) = &mut self.beside {
-            for index in beside.handed.moves.iter_mut().rev() {
-                if *index == DROPPED {
-                    continue;
-                }
-                if *index < len {
-                    break;
-                }
-                *index = DROPPED;
-            }
-        }
+    /// Time arcs in place for a while (a profile's scratch moves, which are dropped
+    /// again): what `resume_timing_beside` takes back.
+    pub(in crate::semantic) fn pause_timing_beside(&mut self) -> Option<Beside> {
+        self.beside.take()
+    }
+
+    pub(in crate::semantic) fn resume_timing_beside(&mut self, paused: Option<Beside>) {
+        self.beside = paused;
     }
 
     /// After `stop_timing_beside`: the handed-over arcs' times and feeds (`timed`, from
