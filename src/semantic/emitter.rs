@@ -244,23 +244,48 @@ impl Emitter {
     }
 
     fn arc_seconds(&mut self, modal: &Modal, arc: &ArcShape) -> f64 {
+        Rate::of(modal, self.at).seconds(arc).unwrap_or_else(|| {
+            self.zero_feed = true;
+            0.0
+        })
+    }
+}
+
+/// How an arc's time follows from its length: the one rule for arcs timed here and on the
+/// arc timer's thread (`arc_times.rs`).
+#[derive(Debug, Clone, Copy)]
+enum Rate {
+    /// A feed in mm/min (per minute, or per revolution at a fixed spindle speed).
+    PerMinute(f64),
+    /// Per revolution under constant surface speed (Simpson's rule, `simpson_minutes`).
+    SurfaceSpeed { feed_mm: f64, spindle: SurfaceSpeed },
+}
+
+impl Rate {
+    /// The rate of an arc starting at `at` under `modal`.
+    fn of(modal: &Modal, at: Xz) -> Rate {
         let feed_mm = modal.frame.feed_mm(modal.feed);
         if !modal.feed_per_rev {
-            return self.seconds_for(arc.length, feed_mm);
+            Rate::PerMinute(feed_mm)
+        } else if modal.spindle == SpindleMode::Rpm {
+            Rate::PerMinute(feed_mm * modal.rpm_at(at.x))
+        } else {
+            Rate::SurfaceSpeed { feed_mm, spindle: modal.surface_speed() }
         }
-        if modal.spindle == SpindleMode::Rpm {
-            return self.seconds_for(arc.length, feed_mm * modal.rpm_at(self.at.x));
+    }
+
+    /// The seconds `arc` takes, or `None` where the rate gives no usable time (no feed).
+    fn seconds(self, arc: &ArcShape) -> Option<f64> {
+        match self {
+            // A move of no length takes no time, whatever the feed.
+            Rate::PerMinute(_) if arc.length <= 0.0 => Some(0.0),
+            Rate::PerMinute(mm_per_min) => usable_rate(mm_per_min).then(|| seconds_at(arc.length, mm_per_min)),
+            Rate::SurfaceSpeed { feed_mm, .. } if feed_mm.is_nan() || feed_mm <= 0.0 => None,
+            Rate::SurfaceSpeed { feed_mm, spindle } => {
+                let total = simpson_minutes(arc, feed_mm, spindle);
+                total.is_finite().then_some(total * 60.0)
+            }
         }
-        if feed_mm.is_nan() || feed_mm <= 0.0 {
-            self.zero_feed = true;
-            return 0.0;
-        }
-        let total = simpson_minutes(arc, feed_mm, modal.surface_speed());
-        if !total.is_finite() {
-            self.zero_feed = true;
-            return 0.0;
-        }
-        total * 60.0
     }
 }
 

@@ -16,7 +16,7 @@ use std::sync::mpsc::{Receiver, Sender};
 
 use crate::toolpath::{Motion, Xz};
 
-use super::{ArcShape, Emitter, Modal, SpindleMode, SurfaceSpeed, feed_of, seconds_at, simpson_minutes, usable_rate};
+use super::{ArcShape, Emitter, Modal, Rate, feed_of, usable_rate};
 
 /// Arcs are sent to the other thread this many at a time.
 const BATCH: usize = 1024;
@@ -29,15 +29,6 @@ pub struct ArcJob {
     centre: Xz,
     ccw: bool,
     rate: Rate,
-}
-
-/// How an arc's time follows from its length.
-#[derive(Debug, Clone, Copy)]
-enum Rate {
-    /// A feed in mm/min (per minute, or per revolution at a fixed spindle speed).
-    PerMinute(f64),
-    /// Per revolution under constant surface speed (Simpson's rule, `simpson_minutes`).
-    SurfaceSpeed { feed_mm: f64, spindle: SurfaceSpeed },
 }
 
 /// Bounds within which an arc under constant surface speed certainly has a finite time:
@@ -53,48 +44,27 @@ impl ArcJob {
     /// another thread: when it is certainly usable. `None` for the others, which the
     /// emitter times itself (and reports when unusable).
     pub(super) fn new(at: Xz, to: Xz, centre: Xz, ccw: bool, modal: &Modal) -> Option<ArcJob> {
-        let feed_mm = modal.frame.feed_mm(modal.feed);
-        let rate = if !modal.feed_per_rev {
-            Rate::PerMinute(feed_mm)
-        } else if modal.spindle == SpindleMode::Rpm {
-            Rate::PerMinute(feed_mm * modal.rpm_at(at.x))
-        } else {
-            let spindle = modal.surface_speed();
-            let bounded = |p: Xz| p.is_finite() && p.x.abs() <= MAX_COORDINATE_MM && p.z.abs() <= MAX_COORDINATE_MM;
-            let usable = bounded(at)
-                && bounded(to)
-                && bounded(centre)
-                && FEED_MM.contains(&feed_mm)
-                && SURFACE_SPEED_MM_MIN.contains(&spindle.mm_per_min)
-                && spindle.clamp >= MIN_CLAMP_RPM;
-            if !usable {
-                return None;
+        let rate = Rate::of(modal, at);
+        let usable = match rate {
+            Rate::PerMinute(mm_per_min) => usable_rate(mm_per_min),
+            Rate::SurfaceSpeed { feed_mm, spindle } => {
+                let bounded = |p: Xz| p.is_finite() && p.x.abs() <= MAX_COORDINATE_MM && p.z.abs() <= MAX_COORDINATE_MM;
+                bounded(at)
+                    && bounded(to)
+                    && bounded(centre)
+                    && FEED_MM.contains(&feed_mm)
+                    && SURFACE_SPEED_MM_MIN.contains(&spindle.mm_per_min)
+                    && spindle.clamp >= MIN_CLAMP_RPM
             }
-            Rate::SurfaceSpeed { feed_mm, spindle }
         };
-        if let Rate::PerMinute(mm_per_min) = rate
-            && !usable_rate(mm_per_min)
-        {
-            return None;
-        }
-        Some(ArcJob { at, to, centre, ccw, rate })
+        usable.then_some(ArcJob { at, to, centre, ccw, rate })
     }
 
     /// The arc's time and feed, as `Emitter::arc` makes them.
     fn timed(&self) -> Timed {
         let arc = ArcShape::new(self.at, self.to, self.centre, self.ccw);
-        let seconds = match self.rate {
-            // `Emitter::seconds_for` with a usable rate.
-            Rate::PerMinute(mm_per_min) => {
-                if arc.length <= 0.0 {
-                    0.0
-                } else {
-                    seconds_at(arc.length, mm_per_min)
-                }
-            }
-            // Finite within the bounds `new` checked.
-            Rate::SurfaceSpeed { feed_mm, spindle } => simpson_minutes(&arc, feed_mm, spindle) * 60.0,
-        };
+        // `new` handed over only arcs whose rate gives a time.
+        let seconds = self.rate.seconds(&arc).unwrap_or(0.0);
         let motion = if self.ccw { Motion::Ccw } else { Motion::Cw };
         Timed { seconds, feed: feed_of(motion, arc.length, seconds) }
     }
