@@ -538,6 +538,9 @@ pub struct Tables {
     keywords: Vec<(String, KeywordInfo)>,
     g_index: Vec<u16>,
     g_infos: Vec<GInfo>,
+    /// The code that performs each function (the lowest, when several do), found once: the
+    /// printer and the passes that write blocks ask for every block they write.
+    code_for: HashMap<GFunction, Code>,
     /// Codes this configuration lacks but a sibling has (another G-code system, or the other
     /// OSP machine kind), for hints.
     g_elsewhere: HashMap<Code, Elsewhere>,
@@ -597,7 +600,7 @@ impl Tables {
 
     /// The code that performs `function` in this configuration (the lowest, when several do).
     pub fn code_for(&self, function: GFunction) -> Option<Code> {
-        self.g_infos.iter().filter(|g| g.function == Some(function)).map(|g| g.code).min_by_key(|c| c.0)
+        self.code_for.get(&function).copied()
     }
 
     pub fn g_elsewhere(&self, code: Code) -> Option<&Elsewhere> {
@@ -764,6 +767,15 @@ fn compile(config: DialectConfig) -> Tables {
         .filter_map(|(name, meaning)| parse_code(name).ok().map(|(_, code)| (code.major(), meaning.clone())))
         .collect();
 
+    let mut code_for: HashMap<GFunction, Code> = HashMap::new();
+    for g in &g_infos {
+        if let Some(function) = g.function {
+            let code = code_for.entry(function).or_insert(g.code);
+            if g.code.0 < code.0 {
+                *code = g.code;
+            }
+        }
+    }
     Tables {
         config,
         title: raw.title,
@@ -774,6 +786,7 @@ fn compile(config: DialectConfig) -> Tables {
         keywords,
         g_index,
         g_infos,
+        code_for,
         g_elsewhere,
         foreign_g,
         m,

@@ -95,32 +95,17 @@ struct Form {
 }
 
 /// What writing a motion block needs of the program's dialect, looked up once for all its
-/// blocks: a long program rewrites millions, and each looked its motion codes up in the
-/// dialect's tables (a scan of every G code) for every code it wrote.
+/// blocks (a long program rewrites millions).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Vocabulary {
     tables: &'static Tables,
     dialect: Dialect,
-    /// The code written for each `Kind`, in the order of its variants.
-    codes: [Code; 5],
 }
 
 impl Vocabulary {
     pub(super) fn of(program: &Program<'_>) -> Vocabulary {
         let config = program.config();
-        let tables = config.tables();
-        let code = |kind: Kind, fallback| tables.code_for(kind.function()).unwrap_or(Code::whole(fallback));
-        Vocabulary {
-            tables,
-            dialect: config.dialect,
-            codes: [
-                code(Kind::Rapid, 0),
-                code(Kind::Feed, 1),
-                code(Kind::Cw, 2),
-                code(Kind::Ccw, 3),
-                code(Kind::Thread, 32),
-            ],
-        }
+        Vocabulary { tables: config.tables(), dialect: config.dialect }
     }
 }
 
@@ -291,7 +276,14 @@ impl BlockContext<'_, '_> {
     }
 
     fn code(&self, kind: Kind) -> NewWord {
-        NewWord::Code(CodeLetter::G, self.vocabulary.codes[kind as usize])
+        let fallback = match kind {
+            Kind::Rapid => 0,
+            Kind::Feed => 1,
+            Kind::Cw => 2,
+            Kind::Ccw => 3,
+            Kind::Thread => 32,
+        };
+        NewWord::Code(CodeLetter::G, self.vocabulary.tables.code_for(kind.function()).unwrap_or(Code::whole(fallback)))
     }
 
     /// The motion a G code performs, if it is a motion code.
