@@ -70,11 +70,15 @@ impl ErrorModel {
     /// The terms of the model that are functions of time alone at `t_min`, in the model's
     /// order, appended to `out` (one per such term: `time_term_count`).
     pub fn time_terms(&self, t_min: f64, out: &mut Vec<Xz>) {
+        let before = out.len();
         for effect in &self.effects {
             if let Some(term) = effect.at_time(t_min) {
                 out.push(term);
             }
         }
+        // `displacement_timed` pairs the terms with the effects by `Effect::is_of_time`: the
+        // two lists of time-only effects must agree.
+        debug_assert_eq!(out.len() - before, self.time_term_count(), "Effect::at_time and is_of_time disagree");
     }
 
     /// How many of the model's terms are functions of time alone.
