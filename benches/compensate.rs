@@ -12,8 +12,8 @@
 //! child (both cores count) and seconds per MB, which is what the README quotes.
 //!
 //! A criterion group then times the library path in-process (parse, lower, compensate,
-//! print) on the 1 MB program, for comparing builds. The README quotes both (50 MB: 1.87 s
-//! wall, 3.22 s CPU; 1 MB in process: 41.9 ms).
+//! print) on the 1 MB program, for comparing builds. The README quotes both (50 MB: 1.78 s
+//! wall, 3.02 s CPU; 1 MB in process: 39.1 ms).
 
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
 
