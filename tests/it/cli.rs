@@ -1,4 +1,5 @@
-//! The command line, driven by `tests/cases/cli.toml`.
+//! The command line, driven by the case lists in `tests/cases/commands/` (one file per topic;
+//! the cases of all of them run in file order, each with its own snapshot).
 
 use std::collections::BTreeMap;
 use std::process::{Command, Stdio};
@@ -27,8 +28,20 @@ struct Case {
 
 #[test]
 fn command_line_cases() {
-    let cases: Cases = toml::from_str(&std::fs::read_to_string(repo().join("tests/cases/cli.toml")).unwrap()).unwrap();
-    for case in cases.case {
+    let mut lists: Vec<_> = std::fs::read_dir(repo().join("tests/cases/commands"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    lists.sort();
+    let mut names = std::collections::BTreeSet::new();
+    let cases = lists.iter().flat_map(|path| {
+        let cases: Cases = toml::from_str(&std::fs::read_to_string(path).unwrap())
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        cases.case
+    });
+    for case in cases {
+        assert!(names.insert(case.name.clone()), "two command cases are named {}", case.name);
         let tmp = tempfile::tempdir().unwrap();
         let tmp_text = tmp.path().to_string_lossy().into_owned();
         for (from, to) in &case.setup {
