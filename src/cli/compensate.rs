@@ -21,7 +21,7 @@ use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready_beside, rendered,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, model_source, read_program, ready_beside, rendered,
     required_error_model, write_output, write_output_parts,
 };
 
@@ -48,6 +48,9 @@ pub struct CompensateArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// Also say, for each program, where the machine settings and the model come from.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -206,6 +209,9 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let model = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
+    if args.verbose {
+        messages.extend_from_slice(format!("compensate: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
+    }
     // The rewrite's tables of the program are made on the idle core while it is lowered.
     let (program, tables) =
         match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, ProgramTables::new) {
