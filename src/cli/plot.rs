@@ -38,6 +38,7 @@ pub struct PlotArgs {
 }
 
 pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
+    args.fit.check()?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let model = args.fit.error_model(&resolved, "plot")?;
     let name = display_name(&args.file);
