@@ -4,11 +4,11 @@
 //! guessed from a program, so they come from here (or from the command line).
 //! This module parses text; finding and reading the file is the binary's job.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use crate::dialect::{DecimalInput, Dialect, GCodeSystem};
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
     Mm,
@@ -115,6 +115,11 @@ impl ModelFile {
 }
 
 impl MachineSettings {
+    /// The block-delete switch in force: off unless the settings turn it on.
+    pub fn block_delete_switch(&self) -> bool {
+        self.block_delete.unwrap_or(false)
+    }
+
     /// Decimal places of the least increment: 3 for 0.001, 4 for 0.0001.
     pub fn increment_places(&self) -> u8 {
         let increment = self.least_increment.unwrap_or(match self.units {

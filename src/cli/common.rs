@@ -162,13 +162,92 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         Some(DecimalInputArg::Increment) => DecimalInput::Increment,
         None => settings.decimal_input.unwrap_or_default(),
     };
+    let fixed_dialect = match dialect {
+        DialectChoice::Fixed(dialect) => Some(dialect),
+        DialectChoice::Auto => None,
+    };
     Ok(Resolved {
         options: ParseOptions { dialect, gcode_system, machine_kind: None },
         decimal_input,
         increment_places: settings.increment_places(),
-        settings: MachineSettings { decimal_input: Some(decimal_input), ..settings },
+        // The settings in force, the command line's included.
+        settings: MachineSettings {
+            dialect: fixed_dialect,
+            gcode_system: Some(gcode_system),
+            decimal_input: Some(decimal_input),
+            ..settings
+        },
         model,
     })
+}
+
+/// The model file of `resolved` as a user would name it: relative to the current
+/// directory when it lies below it (a found `turnpass.toml` is looked up from the
+/// program's canonical path).
+pub fn model_file_name(resolved: &Resolved) -> Option<String> {
+    let (path, _) = resolved.model.as_ref()?;
+    let cwd = std::env::current_dir().ok().and_then(|d| std::fs::canonicalize(d).ok());
+    let shown = cwd.as_deref().and_then(|cwd| path.strip_prefix(cwd).ok()).unwrap_or(path);
+    Some(shown.display().to_string())
+}
+
+/// Where `resolved`'s machine settings come from, for `--verbose`: the `--model` file, the
+/// `turnpass.toml` found above the program, or none (the machine defaults).
+pub fn model_source(read: &ReadArgs, resolved: &Resolved) -> String {
+    match model_file_name(resolved) {
+        Some(name) if read.model.is_some() => format!("model file {name} (--model)"),
+        Some(name) => format!("model file {name} (the nearest turnpass.toml above the program)"),
+        None => "no model file: machine defaults".to_string(),
+    }
+}
+
+/// What a command that runs a program says about its settings before anything else on
+/// standard error: the machine defaults note when no model file gives them, and with
+/// `verbose` where they come from.
+pub fn announce_settings(
+    command: &str,
+    name: &str,
+    (read, run): (&ReadArgs, &RunArgs),
+    resolved: &Resolved,
+    verbose: bool,
+) {
+    note_machine_defaults(resolved, Some(run));
+    if verbose {
+        let _ = writeln!(std::io::stderr(), "{command}: {name}: {}", model_source(read, resolved));
+    }
+}
+
+/// Say once per run, at the top of standard error, that no model file gives `resolved`'s
+/// settings, which machine defaults are in force (the options given on the command line
+/// included; `run` for a command that runs the program) and how to set them. Nothing when a
+/// model file gives them.
+pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>) {
+    static SAID: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    if resolved.model.is_some() || SAID.swap(true, std::sync::atomic::Ordering::Relaxed) {
+        return;
+    }
+    let mut settings = resolved.settings.clone();
+    if let Some(run) = run {
+        settings.block_delete = Some(lower_options(run, &settings, false).block_delete);
+    }
+    let mut text =
+        String::from("note: no model file (no --model, no turnpass.toml found): machine settings in force:\n");
+    let mut line = String::new();
+    for word in semantic::settings_in_force(&settings).split(' ') {
+        if !line.is_empty() && line.len() + 1 + word.len() > 96 {
+            text.push_str(&format!("  {line}\n"));
+            line.clear();
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    text.push_str(&format!("  {line}\n"));
+    text.push_str(
+        "  = set them with --model FILE, or a [machine] table in a turnpass.toml in the program's directory or above\n",
+    );
+    let _ = std::io::stderr().write_all(text.as_bytes());
 }
 
 /// The error model of a model file: `[model]`, `[[axis_table]]` (files read relative to
@@ -194,7 +273,20 @@ pub fn read_table(dir: &Path, file: &str) -> Result<String, String> {
 /// The error model `resolved` names; a command that needs one fails without it.
 pub fn required_error_model(resolved: &Resolved, command: &str) -> Result<ErrorModel, CliError> {
     match &resolved.model {
-        Some((path, text)) => load_error_model(path, text),
+        Some((path, text)) => {
+            let model = load_error_model(path, text)?;
+            if model.is_empty() {
+                // A settings-only file (a `turnpass.toml` beside the programs) is found as
+                // readily as a measured model: say that this one moves nothing.
+                let _ = writeln!(
+                    std::io::stderr(),
+                    "note: {} has no error terms ([[axis_table]] or [[effect]]): {command} takes the machine as \
+                     perfect; give --model FILE for a measured machine",
+                    model_file_name(resolved).unwrap_or_else(|| path.display().to_string())
+                );
+            }
+            Ok(model)
+        }
         None => Err(CliError::Usage(format!(
             "{command} needs a machine model: give --model FILE, or put a turnpass.toml in the program's \
              directory or above it"
@@ -213,7 +305,7 @@ pub fn lower_options(run: &RunArgs, settings: &MachineSettings, compensation: bo
     let block_delete = match run.block_delete {
         Some(Switch::On) => true,
         Some(Switch::Off) => false,
-        None => settings.block_delete.unwrap_or(false),
+        None => settings.block_delete_switch(),
     };
     LowerOptions { nose_radius_compensation: compensation, ..LowerOptions::new(block_delete) }
 }

@@ -21,7 +21,7 @@ use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready_beside, rendered,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, model_source, read_program, ready_beside, rendered,
     required_error_model, write_output, write_output_parts,
 };
 
@@ -48,6 +48,9 @@ pub struct CompensateArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// Also say, for each program, where the machine settings and the model come from.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -66,7 +69,7 @@ pub struct FitArgs {
     /// least increment).
     #[arg(long, value_name = "MM", value_parser = positive)]
     pub tolerance: Option<f64>,
-    /// With --strategy densify: one G01 every MM of path (default: as few as the
+    /// Only with --strategy densify: one G01 every MM of path (default: as few as the
     /// tolerance allows).
     #[arg(long, value_name = "MM", value_parser = positive)]
     pub step: Option<f64>,
@@ -105,6 +108,21 @@ fn positive(s: &str) -> Result<f64, String> {
 }
 
 impl FitArgs {
+    /// Refuse options that do not go together: `--step` is the length of each line
+    /// `--strategy densify` writes, and the other strategies choose their own segments, so
+    /// with them it would only change how closely the path is sampled, which no option
+    /// promises.
+    pub fn check(&self) -> Result<(), CliError> {
+        if self.step.is_some() && self.strategy != Strategy::Densify {
+            let name = STRATEGIES.iter().find(|(_, s)| *s == self.strategy).map_or("auto", |(n, _)| *n);
+            return Err(CliError::Usage(format!(
+                "--step is the length of each G01 that --strategy densify writes, and --strategy {name} chooses \
+                 its own segments: give --strategy densify with --step, or leave --step out"
+            )));
+        }
+        Ok(())
+    }
+
     pub fn options(&self, machine: &Machine) -> CompensateOptions {
         let half_increment = machine.increment * machine.scale() / 2.0;
         CompensateOptions {
@@ -177,6 +195,7 @@ impl FileResult {
 }
 
 pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
+    args.fit.check()?;
     if args.out_dir.is_some() {
         return batch::run(&args);
     }
@@ -206,6 +225,9 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let model = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
+    if args.verbose {
+        messages.extend_from_slice(format!("compensate: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
+    }
     // The rewrite's tables of the program are made on the idle core while it is lowered.
     let (program, tables) =
         match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, ProgramTables::new) {

@@ -10,7 +10,7 @@ use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::printer::{self, CanonicalOptions, Edits};
 use turnpass::syntax;
 
-use super::common::{CliError, ReadArgs, display_name, read_input, resolve, write_output};
+use super::common::{CliError, ReadArgs, display_name, note_machine_defaults, read_input, resolve, write_output};
 
 #[derive(Args)]
 pub struct FmtArgs {
@@ -32,6 +32,7 @@ pub struct FmtArgs {
 pub fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
     let resolved = resolve(&args.read, &args.file)?;
     let bytes = read_input(&args.file)?;
+    note_machine_defaults(&resolved, None);
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);
     let output = if args.canonical {

@@ -13,8 +13,8 @@ use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::LineIndex;
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, display_name, read_input, read_program, ready, required_error_model,
-    write_output,
+    CliError, Format, ReadArgs, RunArgs, display_name, model_source, read_input, read_program, ready,
+    required_error_model, write_output,
 };
 
 #[derive(Args)]
@@ -33,6 +33,9 @@ pub struct VerifyArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// Also say where the machine settings and the model come from.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
@@ -42,6 +45,9 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     let model = required_error_model(&resolved, "verify")?;
     let (original_name, compensated_name) = (display_name(&args.original), display_name(&args.compensated));
     let mut messages = Vec::new();
+    if args.verbose {
+        messages.extend_from_slice(format!("verify: {}\n", model_source(&args.read, &resolved)).as_bytes());
+    }
     let original = ready(&original_name, &original_bytes, &resolved, &args.run, "verify", &mut messages);
     let compensated = ready(&compensated_name, &compensated_bytes, &resolved, &args.run, "verify", &mut messages);
     let (original, compensated) = match (original, compensated) {

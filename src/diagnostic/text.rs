@@ -194,11 +194,12 @@ impl DiagnosticKind {
             CompensationOnArc { cancel: true } => {
                 "nose-radius compensation ends on an arc; the move is made straight".to_string()
             }
-            HomeUnknown => "the machine settings give no home position".to_string(),
-            UnknownStartPosition => {
-                "the machine settings give no home position; the toolpath starts at the first programmed point"
-                    .to_string()
-            }
+            HomeUnknown => "the machine settings give no home position; after this block, and after every later \
+                            return to home, the toolpath resumes at the next programmed point"
+                .to_string(),
+            UnknownStartPosition => "the machine settings give no home position; the toolpath starts at the first \
+                                     programmed point, and after every return to home resumes at the next one"
+                .to_string(),
             LapContourNotClosed => "LAP contour with no `G80` after it".to_string(),
             LapContourMissing { name } => format!("no `G81`/`G82` contour block is named `{name}`"),
             LapContourEmpty => "the LAP contour has no move after its first block".to_string(),
