@@ -6,7 +6,7 @@ use std::process::{Command, Stdio};
 
 use serde::Deserialize;
 
-use crate::support::{repo, with_snapshots};
+use crate::support::{external, repo, with_snapshots};
 
 #[derive(Deserialize)]
 struct Cases {
@@ -14,6 +14,7 @@ struct Cases {
 }
 
 #[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
 struct Case {
     name: String,
     args: Vec<String>,
@@ -24,6 +25,16 @@ struct Case {
     setup: BTreeMap<String, String>,
     #[serde(default)]
     expect_files: BTreeMap<String, bool>,
+    /// What the case reads from outside the repository (`support::external`).
+    #[serde(default)]
+    requires: Vec<Requirement>,
+}
+
+#[derive(Deserialize, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum Requirement {
+    /// The third-party corpus, `../shared/corpus/`.
+    Corpus,
 }
 
 #[test]
@@ -42,6 +53,21 @@ fn command_line_cases() {
     });
     for case in cases {
         assert!(names.insert(case.name.clone()), "two command cases are named {}", case.name);
+        let uses_corpus = case.args.iter().any(|a| a.contains("{corpus}"));
+        assert_eq!(
+            uses_corpus,
+            case.requires.contains(&Requirement::Corpus),
+            "{}: a case names {{corpus}} in its arguments exactly when it requires the corpus",
+            case.name
+        );
+        let corpus = if uses_corpus {
+            match external::corpus_for(&format!("command case `{}`", case.name)) {
+                Some(dir) => dir.to_string_lossy().into_owned(),
+                None => continue,
+            }
+        } else {
+            String::new()
+        };
         let tmp = tempfile::tempdir().unwrap();
         let tmp_text = tmp.path().to_string_lossy().into_owned();
         for (from, to) in &case.setup {
@@ -49,7 +75,13 @@ fn command_line_cases() {
             std::fs::create_dir_all(target.parent().unwrap()).unwrap();
             std::fs::copy(repo().join(from), target).unwrap();
         }
-        let args: Vec<String> = case.args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect();
+        let args: Vec<String> =
+            case.args.iter().map(|a| a.replace("{tmp}", &tmp_text).replace("{corpus}", &corpus)).collect();
+        // The snapshot names the corpus by its placeholder, wherever it is.
+        let placeholders = |text: &str| {
+            let text = text.replace(&tmp_text, "{tmp}");
+            if corpus.is_empty() { text } else { text.replace(&corpus, "{corpus}") }
+        };
         let mut command = Command::new(env!("CARGO_BIN_EXE_turnpass"));
         command.args(&args).current_dir(repo()).env("NO_COLOR", "1");
         command.stdin(match &case.stdin {
@@ -57,8 +89,8 @@ fn command_line_cases() {
             None => Stdio::null(),
         });
         let output = command.output().unwrap();
-        let stdout = String::from_utf8_lossy(&output.stdout).replace(&tmp_text, "{tmp}");
-        let stderr = String::from_utf8_lossy(&output.stderr).replace(&tmp_text, "{tmp}");
+        let stdout = placeholders(&String::from_utf8_lossy(&output.stdout));
+        let stderr = placeholders(&String::from_utf8_lossy(&output.stderr));
         assert_eq!(
             output.status.code(),
             Some(case.code),
@@ -76,7 +108,7 @@ fn command_line_cases() {
         assert!(leftovers.is_empty(), "{}: leftovers {leftovers:?}", case.name);
         let text = format!(
             "$ turnpass {}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
-            args.join(" ").replace(&tmp_text, "{tmp}"),
+            placeholders(&args.join(" ")),
             case.code
         );
         with_snapshots("cli", || insta::assert_snapshot!(case.name.clone(), text));
