@@ -53,7 +53,8 @@ use crate::error_model::Sample;
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
 
-/// One parametric effect.
+/// One parametric effect. It is written with its name as `kind` beside its parameters
+/// (`Serialize`); a model file's `[[effect]]` is read by that name, `Effect::deserialize_kind`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Effect {
