@@ -11,7 +11,7 @@ use turnpass::diagnostic::Diagnostic;
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
-use turnpass::error_model::model_file::ModelSpec;
+use turnpass::error_model::model_file::{ModelError, ModelSpec};
 use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
 use turnpass::syntax::{self, ParseOptions};
@@ -91,10 +91,10 @@ pub enum CliError {
     Read { path: String, source: std::io::Error },
     #[error("cannot write {path}: {source}")]
     Write { path: String, source: std::io::Error },
-    #[error("invalid machine settings in {path}: {message}")]
-    Settings { path: String, message: String },
-    #[error("invalid machine model in {path}: {message}")]
-    Model { path: String, message: String },
+    /// A model file that does not read, or holds values out of range: its diagnostics,
+    /// rendered as a program's are, printed as they are.
+    #[error("{0}")]
+    Diagnosed(String),
     #[error("{0}")]
     Usage(String),
     /// The language server's connection failed (the client broke the protocol or went away).
@@ -150,7 +150,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
     let settings = match &model {
         Some((path, text)) => {
             ModelFile::from_toml(text)
-                .map_err(|e| CliError::Settings { path: path.display().to_string(), message: e.to_string() })?
+                .map_err(|problems| model_problems(path, text, ModelError::File(problems)))?
                 .machine
         }
         None => MachineSettings::default(),
@@ -254,20 +254,41 @@ pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>) {
 /// the model file's directory) and `[[effect]]`.
 pub fn load_error_model(path: &Path, text: &str) -> Result<ErrorModel, CliError> {
     let (spec, dir) = model_spec(path, text)?;
-    spec.build(|file| read_table(&dir, file))
-        .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })
+    spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, text, e))
 }
 
 /// A model file's spec and the directory its tables are read from.
 pub fn model_spec(path: &Path, text: &str) -> Result<(ModelSpec, PathBuf), CliError> {
-    let spec = ModelSpec::from_toml(text)
-        .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })?;
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf();
-    Ok((spec, dir))
+    let spec = ModelSpec::read(text).map_err(|problems| model_problems(path, text, ModelError::File(problems)))?;
+    Ok((spec, folder_of(path).to_path_buf()))
 }
 
+/// The folder a file is in (`.` for a bare name).
+pub fn folder_of(path: &Path) -> &Path {
+    path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."))
+}
+
+/// A model's table file, read relative to the model file's folder `dir`; the error says
+/// the path it tried.
 pub fn read_table(dir: &Path, file: &str) -> Result<String, String> {
-    std::fs::read_to_string(dir.join(file)).map_err(|e| e.to_string())
+    let path = dir.join(file);
+    std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The problems of the model file at `path` (its text `text`) rendered as diagnostics on it,
+/// or on the table file they are in, as the error that ends the run.
+pub fn model_problems(path: &Path, text: &str, error: ModelError) -> CliError {
+    let name = path.display().to_string();
+    let mut out = match &error {
+        ModelError::File(problems) => rendered(&name, text.as_bytes(), &problems.diagnostics),
+        ModelError::Model(diagnostic) => rendered(&name, text.as_bytes(), std::slice::from_ref(diagnostic)),
+        ModelError::TableFile { file, text, diagnostic } => {
+            let table = folder_of(path).join(file).display().to_string();
+            rendered(&table, text.as_bytes(), std::slice::from_ref(diagnostic))
+        }
+    };
+    out.extend_from_slice(format!("error: invalid machine model {name}\n").as_bytes());
+    CliError::Diagnosed(String::from_utf8_lossy(&out).into_owned())
 }
 
 /// The error model `resolved` names; a command that needs one fails without it.

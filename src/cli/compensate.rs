@@ -24,6 +24,7 @@ use super::common::{
     CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, model_source, read_program, ready_beside, rendered,
     required_error_model, write_output, write_output_parts,
 };
+use super::numbers::{self, within};
 
 #[derive(Args)]
 pub struct CompensateArgs {
@@ -67,21 +68,27 @@ pub struct FitArgs {
     pub strategy: Strategy,
     /// Every commanded point lies this close to the written path, mm (default: half the
     /// least increment).
-    #[arg(long, value_name = "MM", value_parser = positive)]
+    #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::TOLERANCE_MM))]
     pub tolerance: Option<f64>,
     /// Only with --strategy densify: one G01 every MM of path (default: as few as the
     /// tolerance allows).
-    #[arg(long, value_name = "MM", value_parser = positive)]
+    #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::STEP_MM))]
     pub step: Option<f64>,
     /// Refuse the program when the model moves any point by more than MM.
-    #[arg(long, value_name = "MM", default_value_t = 0.1, value_parser = positive)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "MM",
+        default_value_t = 0.1,
+        value_parser = within(numbers::MAX_SHIFT_MM),
+    )]
     pub max_shift: f64,
     /// Expand every canned cycle, not only those whose motion changes.
     #[arg(long)]
     pub expand_cycles: bool,
     /// Minutes since the machine started when the program starts (thermal effects;
     /// default: the model's `start_min`).
-    #[arg(long, value_name = "MIN")]
+    #[arg(long, allow_negative_numbers = true, value_name = "MIN", value_parser = within(numbers::MINUTES))]
     pub start_min: Option<f64>,
 }
 
@@ -98,13 +105,6 @@ const STRATEGIES: [(&str, Strategy); 6] = [
 fn strategy_parser() -> impl TypedValueParser<Value = Strategy> {
     PossibleValuesParser::new(STRATEGIES.map(|(name, _)| name))
         .map(|name| STRATEGIES.iter().find(|(n, _)| *n == name).map_or(Strategy::Auto, |(_, s)| *s))
-}
-
-fn positive(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("`{s}` is not a positive number of millimetres")),
-    }
 }
 
 impl FitArgs {

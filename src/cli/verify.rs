@@ -16,6 +16,7 @@ use super::common::{
     CliError, Format, ReadArgs, RunArgs, display_name, model_source, read_input, read_program, ready,
     required_error_model, write_output,
 };
+use super::numbers::{self, within};
 
 #[derive(Args)]
 pub struct VerifyArgs {
@@ -25,7 +26,7 @@ pub struct VerifyArgs {
     pub compensated: PathBuf,
     /// Fail when the predicted deviation from the nominal part exceeds MM (default: twice
     /// the least increment).
-    #[arg(long, value_name = "MM")]
+    #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::MAX_DEVIATION_MM))]
     pub max_deviation: Option<f64>,
     #[arg(long, value_enum, default_value = "human")]
     pub format: Format,

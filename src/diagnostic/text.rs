@@ -48,6 +48,7 @@ impl DiagnosticKind {
             DialectConflict { .. } => "dialect-conflict",
             MachiningCentreProgram => "machining-centre-program",
             SourceTooLarge => "source-too-large",
+            ModelFile(problem) => problem.code(),
             TooManyWords { .. } => "too-many-words",
             OrphanContinuation => "orphan-continuation",
             NonFiniteMove => "non-finite-move",
@@ -175,6 +176,7 @@ impl DiagnosticKind {
             }
             MachiningCentreProgram => "this is an OSP machining-centre program; only its syntax is checked".to_string(),
             SourceTooLarge => "the program is 4 GiB or larger".to_string(),
+            ModelFile(problem) => problem.message(),
             TooManyWords { max } => format!("the block has more than {max} words"),
             OrphanContinuation => "continuation line with no block before it".to_string(),
             NonFiniteMove => "a move of this block has no finite position, feed or time".to_string(),
@@ -386,6 +388,7 @@ impl DiagnosticKind {
             DialectConflict { chosen, .. } => format!("evidence for {chosen}"),
             MachiningCentreProgram => "machining-centre evidence".to_string(),
             SourceTooLarge => "too large".to_string(),
+            ModelFile(problem) => problem.label(),
             TooManyWords { .. } => "this block".to_string(),
             OrphanContinuation => "`$`".to_string(),
             NonFiniteMove | ArcEndOffCircle { .. } | TimeGoesBack | OutsideTravel { .. } => "this block".to_string(),
@@ -518,6 +521,7 @@ impl DiagnosticKind {
             }
             MachiningCentreProgram => None,
             SourceTooLarge => None,
+            ModelFile(problem) => problem.hint(),
             TooManyWords { .. } => Some("no control reads a block this long; split it".to_string()),
             OrphanContinuation => Some("a `$` line continues the block on the line before it".to_string()),
             NonFiniteMove | TimeGoesBack => None,

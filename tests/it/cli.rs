@@ -28,6 +28,10 @@ struct Case {
     /// What the case reads from outside the repository (`support::external`).
     #[serde(default)]
     requires: Vec<Requirement>,
+    /// Commands run after `args`, in order, each with its exit code; their output follows
+    /// the first command's in the snapshot (to read back what it wrote).
+    #[serde(default)]
+    then: Vec<Then>,
 }
 
 #[derive(Deserialize, PartialEq)]
@@ -35,6 +39,12 @@ struct Case {
 enum Requirement {
     /// The third-party corpus, `../shared/corpus/`.
     Corpus,
+}
+
+#[derive(Deserialize)]
+struct Then {
+    args: Vec<String>,
+    code: i32,
 }
 
 #[test]
@@ -106,11 +116,29 @@ fn command_line_cases() {
             .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with(".tmp")))
             .collect();
         assert!(leftovers.is_empty(), "{}: leftovers {leftovers:?}", case.name);
-        let text = format!(
+        let mut text = format!(
             "$ turnpass {}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
             placeholders(&args.join(" ")),
             case.code
         );
+        for then in &case.then {
+            let args: Vec<String> = then.args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect();
+            let output = Command::new(env!("CARGO_BIN_EXE_turnpass"))
+                .args(&args)
+                .current_dir(repo())
+                .env("NO_COLOR", "1")
+                .stdin(Stdio::null())
+                .output()
+                .unwrap();
+            let stdout = String::from_utf8_lossy(&output.stdout).replace(&tmp_text, "{tmp}");
+            let stderr = String::from_utf8_lossy(&output.stderr).replace(&tmp_text, "{tmp}");
+            let shown = args.join(" ").replace(&tmp_text, "{tmp}");
+            assert_eq!(output.status.code(), Some(then.code), "{}: exit code of `{shown}`\n{stderr}", case.name);
+            text.push_str(&format!(
+                "\n$ turnpass {shown}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
+                then.code
+            ));
+        }
         with_snapshots("cli", || insta::assert_snapshot!(case.name.clone(), text));
     }
 }
