@@ -15,7 +15,8 @@ use turnpass::error_model::Effect;
 use turnpass::error_model::effects::{ThermalX, ThermalZ};
 use turnpass::error_model::model_file::ModelSpec;
 
-use super::common::{AxisArg, CliError, Format, display_name, write_atomically, write_output};
+use super::common::{AxisArg, CliError, Format, display_name, read_data_text, write_atomically, write_output};
+use super::streams;
 
 #[derive(Args)]
 pub struct FitThermalArgs {
@@ -49,7 +50,7 @@ fn curve(f: &FirstOrderFit) -> String {
 
 pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     let name = display_name(&args.log);
-    let text = std::fs::read_to_string(&args.log).map_err(|source| CliError::Read { path: name.clone(), source })?;
+    let text = read_data_text(&args.log)?;
     let (t, y) = read_thermal_log(&text).map_err(|e| CliError::Usage(format!("{name}: {e}")))?;
     let fit = fit_log_split(&t, &y, args.split_min).map_err(|e| CliError::Usage(format!("{name}: {e}")))?;
     let out = match args.format {
@@ -107,6 +108,6 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     }
     written.push_str(&effect_table(&effect));
     write_atomically(path, written.as_bytes())?;
-    eprintln!("fit-thermal: wrote {} into {}", effect.name(), path.display());
+    streams::err_line(format_args!("fit-thermal: wrote {} into {}", effect.name(), path.display()));
     Ok(ExitCode::SUCCESS)
 }
