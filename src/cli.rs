@@ -1,10 +1,15 @@
 //! Command-line interface: arguments, files, settings lookup, output and exit codes.
 //!
 //! Exit codes: 0 ok, 1 the program has errors (or `fmt --check` found changes, or
-//! `compensate` refused, or `verify` found a violation), 2 usage or I/O error. Output files
+//! `compensate` refused, or `verify` found a violation), 2 usage or I/O error. A run that
+//! exits 1 writes no program, table or plot, to a file or to standard output. Output files
 //! are written to a temporary file beside the target and renamed, so a failed run never
 //! leaves a partial file. One module per command under `cli/`; `common.rs` holds what
-//! they share.
+//! they share; `streams.rs` is the one place that writes to standard output and error.
+
+// Every write to a standard stream goes through `streams`, which treats a closed pipe as
+// the end of the output; the print macros would panic on it instead.
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod batch;
 mod check;
@@ -17,6 +22,7 @@ mod model;
 mod numbers;
 mod plot;
 mod simulate;
+mod streams;
 mod thermal;
 mod verify;
 
@@ -48,13 +54,19 @@ directory or above it ([machine] table: dialect, gcode_system, decimal_input, un
 least_increment; [model], [[axis_table]] and [[effect]] tables: the error model).
 
 Exit codes: 0 ok, 1 the program has errors (or compensate refused it, or verify found a
-violation), 2 usage or I/O error.";
+violation), 2 usage or I/O error. With exit 1 no program, table or plot is written, to a
+file or to standard output: only the diagnostics (check's output) or the findings (verify's).
+A closed standard output (`| head`) ends the output quietly; the exit code is the run's.";
 
 #[derive(Parser)]
 #[command(name = "turnpass", version, about = "A compiler pass for Okuma OSP and Fanuc-compatible lathe programs", after_help = EXAMPLES)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// When to colour diagnostics: auto (on a terminal, unless NO_COLOR is set and not
+    /// empty), always or never.
+    #[arg(long, global = true, value_enum, value_name = "WHEN", default_value = "auto")]
+    color: streams::ColorChoice,
 }
 
 #[derive(Subcommand)]
@@ -89,7 +101,11 @@ enum Command {
 }
 
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(error) => return usage_error(&error),
+    };
+    streams::set_color(cli.color);
     let result = match cli.command {
         Command::Check(args) => check::check(args),
         Command::Fmt(args) => fmt::fmt(args),
@@ -106,13 +122,45 @@ pub fn main() -> ExitCode {
     };
     match result {
         Ok(code) => code,
-        Err(common::CliError::Diagnosed(text)) => {
-            eprint!("{text}");
-            ExitCode::from(2)
-        }
         Err(error) => {
-            eprintln!("error: {error}");
-            ExitCode::from(2)
+            streams::err(error.message());
+            ExitCode::from(error.exit_code())
         }
     }
+}
+
+/// Help, the version, or a command line clap refuses: printed through `streams` (help on
+/// standard output, an error on standard error), coloured as `--color` says when the
+/// command line got as far as giving it.
+fn usage_error(error: &clap::Error) -> ExitCode {
+    let choice = color_on_command_line().unwrap_or_default();
+    streams::set_color(choice);
+    let rendered = error.render();
+    if error.use_stderr() {
+        let text = if streams::stderr_color() { rendered.ansi().to_string() } else { rendered.to_string() };
+        streams::err(text);
+    } else {
+        let text = if streams::stdout_color() { rendered.ansi().to_string() } else { rendered.to_string() };
+        // Help on a closed pipe is no error; any other failure has nowhere to go but exit 2.
+        if streams::out(text).is_err() {
+            return ExitCode::from(2);
+        }
+    }
+    ExitCode::from(u8::try_from(error.exit_code()).unwrap_or(2))
+}
+
+/// The `--color` value of a command line that clap did not accept as a whole.
+fn color_on_command_line() -> Option<streams::ColorChoice> {
+    use clap::ValueEnum;
+    let mut args = std::env::args_os().skip(1).take_while(|arg| arg != "--");
+    let mut value = None;
+    while let Some(arg) = args.next() {
+        let arg = arg.to_string_lossy().into_owned();
+        if arg == "--color" {
+            value = args.next().map(|v| v.to_string_lossy().into_owned());
+        } else if let Some(v) = arg.strip_prefix("--color=") {
+            value = Some(v.to_string());
+        }
+    }
+    value.and_then(|v| streams::ColorChoice::from_str(&v, true).ok())
 }

@@ -15,6 +15,12 @@ use crate::source::Span;
 
 pub use model_file::ModelProblem;
 
+/// How many diagnostics of a program are shown where a long list costs more than it helps:
+/// a language-server publish (unless the editor says otherwise) and the commands other than
+/// `check`, which lists them all. The first ones, and how many more there are, are what a
+/// machinist can act on; a program read with the wrong settings can have one on every block.
+pub const SHOWN_DIAGNOSTICS: usize = 200;
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
     Note,
@@ -99,6 +105,18 @@ pub enum DiagnosticKind {
     },
     /// A NUL byte outside a comment.
     NulByte,
+    /// A file that is not a text program (`source::not_text`): one diagnostic, on its first
+    /// control byte, instead of a parse.
+    NotText {
+        byte: u8,
+        control_bytes: usize,
+        sampled: usize,
+        whole_file: bool,
+        utf16: bool,
+    },
+    /// A program with no block the control runs (empty, or only blank lines, comments, tape
+    /// marks and its name).
+    EmptyProgram,
     /// Scanning or transfer damage inside a number, as in `F. }0` from the thesis' appendix;
     /// `text` is the damaged word.
     DamagedNumber {

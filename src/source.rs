@@ -6,6 +6,10 @@
 
 use std::fmt;
 
+mod not_text;
+
+pub use not_text::{NotText, not_text};
+
 /// A half-open byte range `start..end` into a program's source bytes.
 ///
 /// Offsets are `u32` to keep AST nodes small; the parser refuses sources of 4 GiB or more.

@@ -8,14 +8,14 @@
 //! code is the worst of the files'.
 
 use std::collections::HashSet;
-use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::common::{CliError, write_atomically_parts};
-use super::compensate::{CompensateArgs, FileResult, compensate_file};
+use super::compensate::{CompensateArgs, FileResult, compensate_file, write_report};
+use super::streams;
 
 pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
     let Some(dir) = &args.out_dir else { return Err(CliError::Usage("--out-dir is missing".to_string())) };
@@ -39,7 +39,7 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
     let results = in_parallel(&args.files, &targets, |file, target| {
         let mut result = match compensate_file(file, args) {
             Ok(result) => result,
-            Err(error) => FileResult::failed(2, format!("error: {error}\n").into_bytes()),
+            Err(error) => FileResult::failed(error.exit_code(), error.message()),
         };
         if let Some(output) = result.output.take()
             && let Err(error) = write_atomically_parts(target, output.parts())
@@ -49,18 +49,15 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
         }
         result
     });
-    let mut stderr = std::io::stderr().lock();
     let mut reports = Vec::new();
     let mut worst = 0;
     for result in results {
-        let _ = stderr.write_all(&result.messages);
+        streams::err(&result.messages);
         worst = worst.max(result.code);
         reports.extend(result.report);
     }
-    drop(stderr);
     if args.report.is_some() {
-        let text = serde_json::to_string_pretty(&reports).unwrap_or_default() + "\n";
-        super::common::write_output(None, text.as_bytes())?;
+        write_report(args, &reports)?;
     }
     Ok(ExitCode::from(worst))
 }
@@ -75,7 +72,7 @@ fn in_parallel(
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let slots: Vec<Mutex<Option<FileResult>>> = files.iter().map(|_| Mutex::new(None)).collect();
-    let progress = std::io::stderr().is_terminal();
+    let progress = streams::stderr_is_terminal();
     std::thread::scope(|scope| {
         for _ in 0..workers {
             scope.spawn(|| {
@@ -97,7 +94,7 @@ fn in_parallel(
         }
     });
     if progress {
-        eprint!("\r\x1b[K");
+        streams::err("\r\x1b[K");
     }
     slots
         .into_iter()
@@ -113,5 +110,5 @@ fn in_parallel(
 fn draw_progress(done: usize, total: usize) {
     const WIDTH: usize = 30;
     let filled = WIDTH * done / total.max(1);
-    eprint!("\r[{}{}] {done}/{total} programs", "#".repeat(filled), " ".repeat(WIDTH - filled));
+    streams::err(format!("\r[{}{}] {done}/{total} programs", "#".repeat(filled), " ".repeat(WIDTH - filled)));
 }

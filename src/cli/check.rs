@@ -1,6 +1,5 @@
 //! `turnpass check`: the errors in programs.
 
-use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -13,6 +12,7 @@ use turnpass::syntax::{self, Statement};
 use super::common::{
     CliError, Format, ReadArgs, display_name, model_source, note_machine_defaults, plural, read_input, resolve,
 };
+use super::streams;
 
 #[derive(Args)]
 pub struct CheckArgs {
@@ -32,14 +32,32 @@ pub struct CheckArgs {
 pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
     let mut any_errors = false;
     let mut json = Vec::new();
-    let color = std::io::stdout().is_terminal();
-    let mut stdout = std::io::stdout().lock();
+    let color = streams::stdout_color();
     for path in &args.files {
         let resolved = resolve(&args.read, path)?;
         let bytes = read_input(path)?;
         note_machine_defaults(&resolved, None);
         let name = display_name(path);
-        let parsed = syntax::parse(&bytes, &resolved.options);
+        // A file that is not text gets one diagnostic, not a parse that echoes its bytes.
+        if let Some(not_text) = turnpass::source::not_text(&bytes) {
+            any_errors = true;
+            let shown = not_text.shown(&bytes);
+            let render = RenderSource::new(&name, &shown);
+            let diagnostics = [not_text.diagnostic()];
+            match args.format {
+                Format::Json => json.extend(to_json(&render, &diagnostics)),
+                Format::Human => {
+                    let mut text = render_terminal(&render, &diagnostics, color);
+                    text.extend_from_slice(format!("{name}: not a text program; not read\n").as_bytes());
+                    streams::out(text)?;
+                }
+            }
+            continue;
+        }
+        let mut parsed = syntax::parse(&bytes, &resolved.options);
+        if let Some(warning) = parsed.program.nothing_to_run() {
+            parsed.diagnostics.insert(0, warning);
+        }
         any_errors |= parsed.has_errors();
         let render = RenderSource::new(&name, &bytes);
         match args.format {
@@ -65,13 +83,13 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
                     )
                     .as_bytes(),
                 );
-                stdout.write_all(&text).map_err(|source| CliError::Write { path: "<stdout>".into(), source })?;
+                streams::out(text)?;
             }
         }
     }
     if args.format == Format::Json {
         let text = serde_json::to_string_pretty(&json).unwrap_or_else(|_| "[]".to_string());
-        writeln!(stdout, "{text}").map_err(|source| CliError::Write { path: "<stdout>".into(), source })?;
+        streams::out(text + "\n")?;
     }
     Ok(if any_errors { ExitCode::from(1) } else { ExitCode::SUCCESS })
 }

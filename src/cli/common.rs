@@ -1,14 +1,14 @@
 //! What every command shares: the reading options, settings and model lookup, lowering,
 //! diagnostics on standard error, and output written atomically or to standard output.
 
-use std::io::{IsTerminal, Read, Write};
+use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
-use turnpass::diagnostic::Diagnostic;
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
+use turnpass::diagnostic::{Diagnostic, SHOWN_DIAGNOSTICS};
 use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
@@ -16,6 +16,8 @@ use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
 use turnpass::syntax::{self, ParseOptions};
 use turnpass::toolpath::{ValidToolpath, Validated};
+
+use super::streams;
 
 #[derive(Args, Clone)]
 pub struct RunArgs {
@@ -76,6 +78,19 @@ impl AxisArg {
     }
 }
 
+/// An SVG file to write: a name whose extension says another format (`part.png`) is
+/// refused, since the file would hold SVG whatever its name says.
+pub fn svg_path(s: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(s);
+    match path.extension() {
+        Some(extension) if !extension.eq_ignore_ascii_case("svg") => Err(format!(
+            "`{s}` names a .{} file, and turnpass draws SVG only: give a name ending in .svg",
+            extension.to_string_lossy()
+        )),
+        _ => Ok(path),
+    }
+}
+
 fn parse_dialect(s: &str) -> Result<DialectChoice, String> {
     s.parse()
 }
@@ -84,7 +99,7 @@ fn parse_system(s: &str) -> Result<GCodeSystem, String> {
     s.parse()
 }
 
-/// An error that ends the run with exit code 2.
+/// An error that ends the run: exit code 2, except [`CliError::Rejected`] (1).
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
     #[error("cannot read {path}: {source}")]
@@ -100,6 +115,31 @@ pub enum CliError {
     /// The language server's connection failed (the client broke the protocol or went away).
     #[error("language server: {0}")]
     Protocol(String),
+    /// A data file that is not UTF-8 text, at its first byte that is not.
+    #[error("{path}:{line}:{column}: not UTF-8 text (byte 0x{byte:02X}); save the file as UTF-8 or ASCII")]
+    NotUtf8 { path: String, line: usize, column: usize, byte: u8 },
+    /// The program was refused before any work (it is not text): its diagnostics, rendered.
+    /// Exit code 1, as for any program with errors.
+    #[error("{}", String::from_utf8_lossy(.0))]
+    Rejected(Vec<u8>),
+}
+
+impl CliError {
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            CliError::Rejected(_) => 1,
+            _ => 2,
+        }
+    }
+
+    /// What standard error shows: `error: …` and a line break, or the rendered diagnostics.
+    pub fn message(&self) -> Vec<u8> {
+        match self {
+            CliError::Rejected(text) => text.clone(),
+            CliError::Diagnosed(text) => text.clone().into_bytes(),
+            other => format!("error: {other}\n").into_bytes(),
+        }
+    }
 }
 
 pub fn display_name(path: &Path) -> String {
@@ -113,6 +153,29 @@ pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
         return Ok(bytes);
     }
     std::fs::read(path).map_err(|source| CliError::Read { path: path.display().to_string(), source })
+}
+
+/// A program file's bytes, refused (exit 1, one diagnostic) when the file is not text
+/// (`turnpass::source::not_text`), so that a binary file is never parsed.
+pub fn read_program_bytes(path: &Path) -> Result<Vec<u8>, CliError> {
+    let bytes = read_input(path)?;
+    let Some(not_text) = turnpass::source::not_text(&bytes) else { return Ok(bytes) };
+    let name = display_name(path);
+    // Rendered from the bytes before the first control byte: none of the rest is echoed.
+    let mut text = rendered(&name, &not_text.shown(&bytes), &[not_text.diagnostic()]);
+    text.extend_from_slice(format!("{name}: not a text program; not read\n").as_bytes());
+    Err(CliError::Rejected(text))
+}
+
+/// A data file (CSV) as UTF-8 text; a byte that is not is reported at its line and column.
+pub fn read_data_text(path: &Path) -> Result<String, CliError> {
+    let bytes = read_input(path)?;
+    String::from_utf8(bytes).map_err(|error| {
+        let bytes = error.as_bytes();
+        let at = error.utf8_error().valid_up_to();
+        let (line, column) = turnpass::source::LineIndex::new(bytes).position(at as u32);
+        CliError::NotUtf8 { path: display_name(path), line, column, byte: bytes[at] }
+    })
 }
 
 /// The model file for `program`: `--model`, else the nearest `turnpass.toml` above it.
@@ -213,7 +276,7 @@ pub fn announce_settings(
 ) {
     note_machine_defaults(resolved, Some(run));
     if verbose {
-        let _ = writeln!(std::io::stderr(), "{command}: {name}: {}", model_source(read, resolved));
+        streams::err_line(format_args!("{command}: {name}: {}", model_source(read, resolved)));
     }
 }
 
@@ -247,7 +310,7 @@ pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>) {
     text.push_str(
         "  = set them with --model FILE, or a [machine] table in a turnpass.toml in the program's directory or above\n",
     );
-    let _ = std::io::stderr().write_all(text.as_bytes());
+    streams::err(text);
 }
 
 /// The error model of a model file: `[model]`, `[[axis_table]]` (files read relative to
@@ -299,12 +362,11 @@ pub fn required_error_model(resolved: &Resolved, command: &str) -> Result<ErrorM
             if model.is_empty() {
                 // A settings-only file (a `turnpass.toml` beside the programs) is found as
                 // readily as a measured model: say that this one moves nothing.
-                let _ = writeln!(
-                    std::io::stderr(),
+                streams::err_line(format_args!(
                     "note: {} has no error terms ([[axis_table]] or [[effect]]): {command} takes the machine as \
                      perfect; give --model FILE for a measured machine",
                     model_file_name(resolved).unwrap_or_else(|| path.display().to_string())
-                );
+                ));
             }
             Ok(model)
         }
@@ -318,7 +380,7 @@ pub fn required_error_model(resolved: &Resolved, command: &str) -> Result<ErrorM
 /// A program's bytes and the settings it is read with.
 pub fn read_program(path: &Path, read: &ReadArgs) -> Result<(Vec<u8>, Resolved), CliError> {
     let resolved = resolve(read, path)?;
-    let bytes = read_input(path)?;
+    let bytes = read_program_bytes(path)?;
     Ok((bytes, resolved))
 }
 
@@ -331,17 +393,37 @@ pub fn lower_options(run: &RunArgs, settings: &MachineSettings, compensation: bo
     LowerOptions { nose_radius_compensation: compensation, ..LowerOptions::new(block_delete) }
 }
 
-/// Diagnostics rendered for standard error.
+/// Diagnostics rendered for standard error: the first [`SHOWN_DIAGNOSTICS`] of them, then a
+/// line with how many more there are (a program read with the wrong settings can have one
+/// on every block, megabytes of them).
 pub fn rendered(name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) -> Vec<u8> {
     if diagnostics.is_empty() {
         return Vec::new();
     }
     let render = RenderSource::new(name, bytes);
-    render_terminal(&render, diagnostics, std::io::stderr().is_terminal())
+    let shown = &diagnostics[..diagnostics.len().min(SHOWN_DIAGNOSTICS)];
+    let mut text = render_terminal(&render, shown, streams::stderr_color());
+    let more = diagnostics.len() - shown.len();
+    if more > 0 {
+        let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+        let others = diagnostics.len() - errors;
+        text.extend_from_slice(
+            format!(
+                "{name}: {more} more diagnostic{} not shown ({errors} error{} and {others} warning{} or note{} in \
+                 all; `turnpass check` lists every syntax error)\n",
+                plural(more),
+                plural(errors),
+                plural(others),
+                plural(others)
+            )
+            .as_bytes(),
+        );
+    }
+    text
 }
 
 pub fn report(name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) {
-    let _ = std::io::stderr().write_all(&rendered(name, bytes, diagnostics));
+    streams::err(rendered(name, bytes, diagnostics));
 }
 
 pub fn plural(n: usize) -> &'static str {
@@ -411,6 +493,11 @@ fn ready_with<'b, T>(
     lower: impl FnOnce(&syntax::Parsed<'b>) -> (Lowering, T),
 ) -> Result<(Ready<'b>, T), Vec<u8>> {
     let parsed = syntax::parse(bytes, &resolved.options);
+    if let Some(warning) = parsed.program.nothing_to_run() {
+        let mut text = rendered(name, bytes, &[warning]);
+        text.extend_from_slice(format!("{command}: {name} holds no block to run; nothing is written\n").as_bytes());
+        return Err(text);
+    }
     if !semantic::lowers(&parsed.program) {
         let mut text = rendered(name, bytes, &parsed.diagnostics);
         text.extend_from_slice(
@@ -460,11 +547,10 @@ pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run:
 /// diagnostics, a line saying why nothing is printed, and the exit code of its syntax check.
 pub fn not_lowered(command: &str, name: &str, bytes: &[u8], parsed: &syntax::Parsed<'_>) -> ExitCode {
     report(name, bytes, &parsed.diagnostics);
-    let _ = writeln!(
-        std::io::stderr(),
+    streams::err_line(format_args!(
         "{command}: {name} is an OSP machining-centre program; turnpass simulates and expands lathe \
          programs only, so nothing is printed (its syntax was checked)"
-    );
+    ));
     if parsed.has_errors() { ExitCode::from(1) } else { ExitCode::SUCCESS }
 }
 
@@ -480,13 +566,7 @@ pub fn write_output_parts<'a>(
 ) -> Result<(), CliError> {
     match output {
         Some(path) if path != Path::new("-") => write_atomically_parts(path, parts),
-        _ => {
-            let mut stdout = std::io::stdout().lock();
-            for part in parts {
-                stdout.write_all(part).map_err(|source| CliError::Write { path: "<stdout>".into(), source })?;
-            }
-            Ok(())
-        }
+        _ => streams::out_parts(parts),
     }
 }
 

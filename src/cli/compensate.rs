@@ -3,9 +3,9 @@
 //!
 //! A program is written only when it compensates cleanly: a program with errors, or one
 //! the safety checks refuse, writes nothing and exits 1. The `--report json` goes to
-//! standard output, or to standard error when the program itself goes to standard output.
+//! standard output, which then holds the report alone, or into `--report-file`; when the
+//! program itself goes to standard output the report needs that file (one stream each).
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -25,6 +25,7 @@ use super::common::{
     required_error_model, write_output, write_output_parts,
 };
 use super::numbers::{self, within};
+use super::streams;
 
 #[derive(Args)]
 pub struct CompensateArgs {
@@ -42,9 +43,14 @@ pub struct CompensateArgs {
     #[command(flatten)]
     pub fit: FitArgs,
     /// Also write a report: per edited block the corrections, fitted arcs, predicted
-    /// residual and SSQ before and after.
+    /// residual and SSQ before and after; on standard output, which then holds the report
+    /// alone, or into --report-file.
     #[arg(long, value_enum, value_name = "FORMAT")]
     pub report: Option<ReportFormat>,
+    /// Write the report into FILE instead of standard output (needed when the program
+    /// itself goes to standard output).
+    #[arg(long, value_name = "FILE", requires = "report")]
+    pub report_file: Option<PathBuf>,
     #[command(flatten)]
     pub read: ReadArgs,
     #[command(flatten)]
@@ -196,6 +202,14 @@ impl FileResult {
 
 pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
     args.fit.check()?;
+    let program_to_stdout = args.out_dir.is_none() && args.output.as_deref().is_none_or(|o| o == Path::new("-"));
+    if args.report.is_some() && args.report_file.is_none() && program_to_stdout {
+        return Err(CliError::Usage(
+            "the compensated program goes to standard output, so the report needs a file of its own: give \
+             --report-file FILE (or -o FILE for the program)"
+                .to_string(),
+        ));
+    }
     if args.out_dir.is_some() {
         return batch::run(&args);
     }
@@ -203,20 +217,20 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
         return Err(CliError::Usage("several programs need --out-dir DIR to write them into".to_string()));
     };
     let result = compensate_file(path, &args)?;
-    let _ = std::io::stderr().write_all(&result.messages);
+    streams::err(&result.messages);
     if let Some(output) = &result.output {
         write_output_parts(args.output.as_deref(), output.parts())?;
     }
     if let Some(report) = &result.report {
-        let text = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
-        let to_stdout = args.output.as_deref().is_some_and(|o| o != Path::new("-"));
-        if to_stdout {
-            write_output(None, text.as_bytes())?;
-        } else {
-            let _ = std::io::stderr().write_all(text.as_bytes());
-        }
+        write_report(&args, report)?;
     }
     Ok(ExitCode::from(result.code))
+}
+
+/// The report as JSON, into `--report-file` or on standard output.
+pub fn write_report(args: &CompensateArgs, report: &impl serde::Serialize) -> Result<(), CliError> {
+    let text = serde_json::to_string_pretty(report).unwrap_or_default() + "\n";
+    write_output(args.report_file.as_deref(), text.as_bytes())
 }
 
 /// Compensate one program; nothing is written here.

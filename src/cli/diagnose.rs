@@ -16,9 +16,10 @@ use turnpass::error_model::model_file::{ModelError, with_table_files};
 
 use super::common::{
     AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, display_name, folder_of, model_problems, model_spec,
-    read_program, read_table, ready, required_error_model, write_atomically, write_output,
+    read_data_text, read_program, read_table, ready, required_error_model, write_atomically, write_output,
 };
 use super::numbers::{self, within};
+use super::streams;
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 pub enum KindArg {
@@ -67,7 +68,7 @@ pub struct DiagnoseArgs {
     pub format: Format,
     /// Draw the residual before and after (SVG): polar for a ball bar, along the surface
     /// for a CMM profile.
-    #[arg(long, value_name = "report.svg")]
+    #[arg(long, value_name = "report.svg", value_parser = super::common::svg_path)]
     pub plot: Option<PathBuf>,
     /// Minutes since the machine started when the program started (default: the model's
     /// `start_min`; a CMM file's `start_min` column gives each part's own).
@@ -177,7 +178,7 @@ fn prepare(
             Err(ExitCode::from(1))
         }
     };
-    eprint!("{}", String::from_utf8_lossy(&messages));
+    streams::err(messages);
     Ok(result)
 }
 
@@ -187,8 +188,7 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
         Err(code) => return Ok(code),
     };
     let data_name = display_name(&args.measured);
-    let text =
-        std::fs::read_to_string(&args.measured).map_err(|source| CliError::Read { path: data_name.clone(), source })?;
+    let text = read_data_text(&args.measured)?;
     let kind = args.kind.map(|k| k.kind(args.axis)).transpose()?;
     let measured = measured::read(&text, kind).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
     let options = Options { max_iterations: args.max_iterations };
@@ -206,21 +206,21 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
         let (spec, dir) = model_spec(path, &written)?;
         spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
         write_atomically(path, written.as_bytes())?;
-        eprintln!(
+        streams::err_line(format_args!(
             "diagnose: wrote {} ({} effect{} added)",
             path.display(),
             diagnosis.added.len(),
             super::common::plural(diagnosis.added.len())
-        );
+        ));
     }
     if let Some(path) = &args.plot {
         match turnpass::plot::residuals::residuals_svg(&display_name(&args.file), &diagnosis) {
             Ok(svg) => {
                 write_atomically(path, svg.as_bytes())?;
-                eprintln!("diagnose: wrote {}", path.display());
+                streams::err_line(format_args!("diagnose: wrote {}", path.display()));
             }
             Err(error) => {
-                eprintln!("diagnose: no plot: {error}");
+                streams::err_line(format_args!("diagnose: no plot: {error}"));
                 return Ok(ExitCode::from(1));
             }
         }
@@ -246,7 +246,7 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
         .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;
     write_output(args.output.as_deref(), to_csv(&measured).as_bytes())?;
     if let Some(path) = &args.output {
-        eprintln!("synth: wrote {} ({} points)", path.display(), measured.len());
+        streams::err_line(format_args!("synth: wrote {} ({} points)", path.display(), measured.len()));
     }
     Ok(ExitCode::SUCCESS)
 }

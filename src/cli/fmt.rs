@@ -1,22 +1,28 @@
 //! `turnpass fmt`: a program printed back, losslessly or in canonical form.
+//!
+//! A program with errors is not printed (exit 1, nothing written, to a file or to standard
+//! output), as for every command that writes a program: a formatter's output goes on to a
+//! control or an editor buffer, and a damaged program must not travel with it.
 
-use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
 
-use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::printer::{self, CanonicalOptions, Edits};
 use turnpass::syntax;
 
-use super::common::{CliError, ReadArgs, display_name, note_machine_defaults, read_input, resolve, write_output};
+use super::common::{
+    CliError, ReadArgs, display_name, note_machine_defaults, read_program_bytes, report, resolve, write_output,
+};
+use super::streams;
 
 #[derive(Args)]
 pub struct FmtArgs {
     /// Program file; `-` reads standard input.
     file: PathBuf,
-    /// Output file (default: standard output; `-` is standard output).
+    /// Output file (default: standard output; `-` is standard output). A program with
+    /// errors is written nowhere (exit 1).
     #[arg(short, long, value_name = "OUT")]
     output: Option<PathBuf>,
     /// Write nothing; exit 1 if the output would differ from the input.
@@ -31,10 +37,15 @@ pub struct FmtArgs {
 
 pub fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
     let resolved = resolve(&args.read, &args.file)?;
-    let bytes = read_input(&args.file)?;
+    let bytes = read_program_bytes(&args.file)?;
     note_machine_defaults(&resolved, None);
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);
+    report(&name, &bytes, &parsed.diagnostics);
+    if parsed.has_errors() {
+        streams::err_line(format_args!("fmt: {name} has errors; nothing is written"));
+        return Ok(ExitCode::from(1));
+    }
     let output = if args.canonical {
         let options =
             CanonicalOptions { decimal_input: resolved.decimal_input, increment_places: resolved.increment_places };
@@ -42,18 +53,13 @@ pub fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
     } else {
         printer::print(&parsed.program, &Edits::new())
     };
-    if !parsed.diagnostics.is_empty() {
-        let render = RenderSource::new(&name, &bytes);
-        let text = render_terminal(&render, &parsed.diagnostics, std::io::stderr().is_terminal());
-        let _ = std::io::stderr().write_all(&text);
-    }
     if args.check {
         if output != bytes {
-            eprintln!("{name}: would change");
+            streams::err_line(format_args!("{name}: would change"));
             return Ok(ExitCode::from(1));
         }
-        return Ok(if parsed.has_errors() { ExitCode::from(1) } else { ExitCode::SUCCESS });
+        return Ok(ExitCode::SUCCESS);
     }
     write_output(args.output.as_deref(), &output)?;
-    Ok(if parsed.has_errors() { ExitCode::from(1) } else { ExitCode::SUCCESS })
+    Ok(ExitCode::SUCCESS)
 }

@@ -2,26 +2,26 @@
 //! actual and compensated paths drawn with the error magnified, or with `--polar` the
 //! radial deviation of a full-circle (ball-bar) program.
 
-use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, display_name, model_source, read_program, ready, rendered, write_atomically,
+    CliError, ReadArgs, RunArgs, display_name, model_source, read_program, ready, rendered, svg_path, write_atomically,
 };
 use super::compensate::FitArgs;
+use super::streams;
 
 #[derive(Args)]
 pub struct PlotArgs {
     /// Program file; `-` reads standard input.
     pub file: PathBuf,
-    /// The SVG file to write.
-    #[arg(short, long, value_name = "OUT.svg")]
+    /// The SVG file to write (its name ends in `.svg`).
+    #[arg(short, long, value_name = "OUT.svg", value_parser = svg_path)]
     pub output: PathBuf,
-    /// Magnify the errors about the nominal path this many times.
-    #[arg(long, default_value_t = 10.0)]
+    /// Magnify the errors about the nominal path this many times (a number above 0).
+    #[arg(long, default_value_t = 10.0, value_parser = magnification)]
     pub magnify: f64,
     /// A ball-bar polar plot: radial deviation against angle, each direction.
     #[arg(long)]
@@ -49,14 +49,14 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     let program = match ready(&name, &bytes, &resolved, &args.run, "plot", &mut messages) {
         Ok(program) => program,
         Err(text) => {
-            let _ = std::io::stderr().write_all(&text);
+            streams::err(text);
             return Ok(ExitCode::from(1));
         }
     };
     let outcome = args.fit.compensate(&program, &model, true, false);
     // The plot shows what compensation would do even where `compensate` would refuse.
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
-    let _ = std::io::stderr().write_all(&messages);
+    streams::err(messages);
     let svg = if args.polar {
         turnpass::plot::polar_svg(&name, &program.valid(), &outcome.paths)
     } else {
@@ -65,12 +65,19 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     match svg {
         Ok(svg) => {
             write_atomically(&args.output, svg.as_bytes())?;
-            eprintln!("plot: {name}: wrote {}", args.output.display());
+            streams::err_line(format_args!("plot: {name}: wrote {}", args.output.display()));
             Ok(ExitCode::SUCCESS)
         }
         Err(error) => {
-            eprintln!("plot: {name}: {error}");
+            streams::err_line(format_args!("plot: {name}: {error}"));
             Ok(ExitCode::from(1))
         }
+    }
+}
+
+fn magnification(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("`{s}` is not a magnification: give a number above 0, such as 10")),
     }
 }

@@ -1,6 +1,5 @@
 //! `turnpass expand` and `turnpass simulate`: the cycles written out, and the toolpath.
 
-use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -13,8 +12,9 @@ use turnpass::syntax;
 
 use super::common::{
     CliError, Lowering, ReadArgs, RunArgs, announce_settings, display_name, lower_and_validate, lower_options,
-    model_file_name, not_lowered, read_program, report, write_output,
+    model_file_name, not_lowered, plural, read_program, report, write_output,
 };
+use super::streams;
 
 #[derive(Args)]
 pub struct ExpandArgs {
@@ -58,6 +58,11 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     let name = display_name(&args.file);
     announce_settings("expand", &name, (&args.read, &args.run), &resolved, args.verbose);
     let parsed = syntax::parse(&bytes, &resolved.options);
+    if let Some(warning) = parsed.program.nothing_to_run() {
+        report(&name, &bytes, &[warning]);
+        streams::err_line(format_args!("expand: {name} holds no block to run; nothing is written"));
+        return Ok(ExitCode::from(1));
+    }
     if !semantic::lowers(&parsed.program) {
         return Ok(not_lowered("expand", &name, &bytes, &parsed));
     }
@@ -67,9 +72,10 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     diagnostics.extend(lowered.diagnostics.iter().cloned());
     diagnostics.sort_by_key(|d| d.span.start);
     report(&name, &bytes, &diagnostics);
-    let errors = diagnostics.iter().any(|d| d.is_error());
-    if errors {
+    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+    if errors > 0 {
         // A program that does not lower cleanly is not expanded: no partial output.
+        streams::err_line(format_args!("expand: {name} has {errors} error{}; nothing is written", plural(errors)));
         return Ok(ExitCode::from(1));
     }
     let (edits, notes) = turnpass::expand::expansion_edits(&parsed.program, &lowered);
@@ -89,7 +95,19 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     }
     let Lowering { lowered, machine, diagnostics } = lower_and_validate(&parsed, &resolved, &args.run);
     report(&name, &bytes, &diagnostics);
-    let Ok(lowered) = lowered else { return Ok(ExitCode::from(1)) };
+    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+    // The blocks in error would be skipped: the toolpath and its times would be of a run
+    // the control does not make, so a program with errors gets no table and no summary.
+    let lowered = match lowered {
+        Ok(lowered) if errors == 0 => lowered,
+        _ => {
+            streams::err_line(format_args!(
+                "simulate: {name} has {errors} error{}; nothing is printed",
+                plural(errors)
+            ));
+            return Ok(ExitCode::from(1));
+        }
+    };
     let valid = lowered.valid();
     let rows = simulation::rows(&parsed.program, &valid);
     let summary = simulation::summary(&parsed.program, &lowered, &valid, &machine);
@@ -100,7 +118,7 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
                 source: std::io::Error::other(e.to_string()),
             })?;
             // The summary goes to standard error so that standard output stays one CSV table.
-            let _ = writeln!(std::io::stderr(), "{}", summary_text(&summary));
+            streams::err_line(summary_text(&summary));
             text.shrink_to_fit();
             text
         }
@@ -113,17 +131,18 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
             text
         }
     };
-    std::io::stdout()
-        .lock()
-        .write_all(&output)
-        .map_err(|source| CliError::Write { path: "<stdout>".into(), source })?;
-    Ok(if diagnostics.iter().any(|d| d.is_error()) { ExitCode::from(1) } else { ExitCode::SUCCESS })
+    streams::out(output)?;
+    Ok(ExitCode::SUCCESS)
 }
 
 fn summary_text(summary: &simulation::Summary) -> String {
     let mut out = format!(
-        "cycle time {:.1} s, cutting time {:.1} s, path {:.1} mm ({:.1} mm cutting), {} moves",
-        summary.cycle_time_s, summary.cutting_time_s, summary.path_length_mm, summary.cutting_length_mm, summary.moves
+        "cycle time {}, cutting time {}, path {:.1} mm ({:.1} mm cutting), {} moves",
+        duration_text(summary.cycle_time_s),
+        duration_text(summary.cutting_time_s),
+        summary.path_length_mm,
+        summary.cutting_length_mm,
+        summary.moves
     );
     if summary.rapid_rate_assumed {
         out.push_str(" (rapid rate not in the machine settings: 10 m/min assumed)");
@@ -146,4 +165,20 @@ fn summary_text(summary: &simulation::Summary) -> String {
         }
     }
     out
+}
+
+/// A time as a machinist reads it: seconds under a minute (`42.5 s`), else hours, minutes
+/// and seconds (`0:04:27.3`, `74:19:48.3`), to a tenth of a second.
+fn duration_text(seconds: f64) -> String {
+    let tenths = (seconds * 10.0).round();
+    if !(tenths.is_finite() && tenths >= 0.0) {
+        return format!("{seconds} s");
+    }
+    if tenths < 600.0 {
+        return format!("{:.1} s", tenths / 10.0);
+    }
+    let tenths = tenths as u64;
+    let (hours, rest) = (tenths / 36_000, tenths % 36_000);
+    let (minutes, rest) = (rest / 600, rest % 600);
+    format!("{hours}:{minutes:02}:{:02}.{}", rest / 10, rest % 10)
 }

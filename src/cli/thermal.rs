@@ -15,9 +15,11 @@ use turnpass::error_model::Effect;
 use turnpass::error_model::effects::{ThermalX, ThermalZ};
 
 use super::common::{
-    AxisArg, CliError, Format, display_name, model_problems, model_spec, read_table, write_atomically, write_output,
+    AxisArg, CliError, Format, display_name, model_problems, model_spec, read_data_text, read_table, write_atomically,
+    write_output,
 };
 use super::numbers::{self, within};
+use super::streams;
 
 #[derive(Args)]
 pub struct FitThermalArgs {
@@ -51,7 +53,7 @@ fn curve(f: &FirstOrderFit) -> String {
 
 pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     let name = display_name(&args.log);
-    let text = std::fs::read_to_string(&args.log).map_err(|source| CliError::Read { path: name.clone(), source })?;
+    let text = read_data_text(&args.log)?;
     let (t, y) = read_thermal_log(&text).map_err(|e| CliError::Usage(format!("{name}: {e}")))?;
     let fit = fit_log_split(&t, &y, args.split_min).map_err(|e| CliError::Usage(format!("{name}: {e}")))?;
     let out = match args.format {
@@ -111,6 +113,6 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     let (spec, dir) = model_spec(path, &written)?;
     spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
     write_atomically(path, written.as_bytes())?;
-    eprintln!("fit-thermal: wrote {} into {}", effect.name(), path.display());
+    streams::err_line(format_args!("fit-thermal: wrote {} into {}", effect.name(), path.display()));
     Ok(ExitCode::SUCCESS)
 }

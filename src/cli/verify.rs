@@ -1,7 +1,6 @@
 //! `turnpass verify ORIGINAL COMPENSATED`: the compensated program predicted on the model
 //! against the original's nominal part, and its non-motion words against the original's.
 
-use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -13,10 +12,11 @@ use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::LineIndex;
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, display_name, model_source, read_input, read_program, ready,
+    CliError, Format, ReadArgs, RunArgs, display_name, model_source, read_program, read_program_bytes, ready,
     required_error_model, write_output,
 };
 use super::numbers::{self, within};
+use super::streams;
 
 #[derive(Args)]
 pub struct VerifyArgs {
@@ -42,7 +42,7 @@ pub struct VerifyArgs {
 pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     // Both programs run on the machine the original's settings name.
     let (original_bytes, resolved) = read_program(&args.original, &args.read)?;
-    let compensated_bytes = read_input(&args.compensated)?;
+    let compensated_bytes = read_program_bytes(&args.compensated)?;
     let model = required_error_model(&resolved, "verify")?;
     let (original_name, compensated_name) = (display_name(&args.original), display_name(&args.compensated));
     let mut messages = Vec::new();
@@ -57,11 +57,11 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             for text in [o.err(), c.err()].into_iter().flatten() {
                 messages.extend(text);
             }
-            let _ = std::io::stderr().write_all(&messages);
+            streams::err(messages);
             return Ok(ExitCode::from(1));
         }
     };
-    let _ = std::io::stderr().write_all(&messages);
+    streams::err(messages);
     let tools = ToolTable::from_machine(&original.machine);
     let figures = deviation(&original.valid(), &compensated.valid(), &tools, &model, SAMPLE_STEP_MM);
     let words = check_words(&original.parsed.program, &compensated.parsed.program);

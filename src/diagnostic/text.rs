@@ -12,6 +12,8 @@ impl DiagnosticKind {
             NonAsciiByte { .. } => "non-ascii-byte",
             LowerCaseLetter { .. } => "lower-case-letter",
             NulByte => "nul-byte",
+            NotText { .. } => "not-text",
+            EmptyProgram => "empty-program",
             DamagedNumber { .. } => "damaged-number",
             MissingValue { .. } => "missing-value",
             MissingDigits { .. } => "missing-digits",
@@ -126,6 +128,11 @@ impl DiagnosticKind {
             NonAsciiByte { byte } => format!("byte 0x{byte:02X} is not ASCII and is outside a comment"),
             LowerCaseLetter { found } => format!("lower-case `{found}` outside a comment"),
             NulByte => "NUL byte outside a comment".to_string(),
+            NotText { control_bytes, sampled, whole_file, .. } => format!(
+                "not a text program: {control_bytes} of its {}{sampled} bytes are control bytes",
+                if *whole_file { "" } else { "first " }
+            ),
+            EmptyProgram => "the program holds no block to run".to_string(),
             DamagedNumber { text } => format!("the value in `{text}` is damaged"),
             MissingValue { address, .. } => format!("`{address}` has no value"),
             MissingDigits { address } => format!("the value of `{address}` has no digits"),
@@ -352,6 +359,8 @@ impl DiagnosticKind {
             InvalidCharacter { .. } | NonAsciiByte { .. } | NulByte | LowerCaseLetter { .. } => {
                 "not valid here".to_string()
             }
+            NotText { byte, .. } => format!("first control byte, 0x{byte:02X}"),
+            EmptyProgram => "nothing to run from here to the end".to_string(),
             DamagedNumber { .. } => "damaged value".to_string(),
             MissingValue { .. } => "no value".to_string(),
             MissingDigits { .. } => "no digits".to_string(),
@@ -457,6 +466,14 @@ impl DiagnosticKind {
             }
             LowerCaseLetter { found } => Some(format!("write `{}`", found.to_ascii_uppercase())),
             NulByte => Some("remove the NUL byte; it is often left by a tape punch or a bad transfer".to_string()),
+            NotText { utf16: true, .. } => {
+                Some("the file looks like UTF-16 text: save it as ASCII or UTF-8 and read it again".to_string())
+            }
+            NotText { utf16: false, .. } => Some(
+                "is this the program? an executable, an archive, a picture or a word processor's file is not read"
+                    .to_string(),
+            ),
+            EmptyProgram => Some("is this the right file? a program has at least one block with words".to_string()),
             DamagedNumber { .. } => Some(
                 "a digit was lost or misread in scanning (OCR) or transfer; characters such as `}` stand for damaged digits; retype the value from the drawing"
                     .to_string(),

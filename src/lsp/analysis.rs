@@ -67,12 +67,11 @@ impl Pass {
 }
 
 /// How many diagnostics the server publishes for a document unless the client says
-/// otherwise (`maxDiagnostics`). The protocol sends a document's whole list after every
-/// keystroke, and each one costs a few microseconds to convert and serialise: a program read
-/// with the wrong settings can have one on every block, and would then cost a keystroke
-/// tens of milliseconds. The first ones, and a note saying how many more there are, are
-/// what a machinist can act on; `turnpass check` lists them all.
-pub const DEFAULT_MAX_DIAGNOSTICS: usize = 200;
+/// otherwise (`maxDiagnostics`): the crate's one cap. The protocol sends a document's whole
+/// list after every keystroke, and each one costs a few microseconds to convert and
+/// serialise, so a program with one on every block would cost a keystroke tens of
+/// milliseconds; `turnpass check` lists them all.
+pub const DEFAULT_MAX_DIAGNOSTICS: usize = crate::diagnostic::SHOWN_DIAGNOSTICS;
 
 /// What the server publishes for a document: its parse diagnostics and the semantic pass's
 /// (moved across the edits since), merged in order as `parse` sorts (the parse's first on a

@@ -17,6 +17,7 @@
 
 use std::fmt;
 
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::{Address, Code, DialectConfig, Role, SchemaId};
 use crate::source::Span;
 
@@ -495,6 +496,23 @@ impl<'src> Program<'src> {
 
     pub fn blocks(&self) -> &[Block] {
         &self.blocks
+    }
+
+    /// A warning when no block holds anything the control runs (the file is empty, or holds
+    /// only blank lines, comments, tape marks, a header and the program's name): `check`
+    /// warns, and a command that writes a program from it refuses.
+    pub fn nothing_to_run(&self) -> Option<Diagnostic> {
+        let runs_nothing = self.blocks.iter().all(|block| {
+            matches!(
+                block.statement,
+                Statement::Empty
+                    | Statement::TapeMark
+                    | Statement::Header
+                    | Statement::ProgramName
+                    | Statement::Trailing
+            )
+        });
+        runs_nothing.then(|| Diagnostic::warning(DiagnosticKind::EmptyProgram, Span::new(0, 0)))
     }
 
     pub fn block(&self, index: usize) -> &Block {

@@ -1,7 +1,15 @@
 //! The command line, driven by the case lists in `tests/cases/commands/` (one file per topic;
 //! the cases of all of them run in file order, each with its own snapshot).
+//!
+//! Besides its arguments and standard input, a case may set environment variables (`env`,
+//! `env_remove`; `NO_COLOR=1` is set unless a case says otherwise), give the command a
+//! standard stream that is a closed pipe (`closed`: its reader gone before the first write,
+//! as under `| head`) or a terminal (`terminal`: a pseudo-terminal, whose output is
+//! captured), and name outputs that must parse as JSON (`json`: `stdout`, `stderr` or a
+//! file under `{tmp}`). In snapshots the escape character shows as `␛`.
 
 use std::collections::BTreeMap;
+use std::os::fd::{FromRawFd, OwnedFd};
 use std::process::{Command, Stdio};
 
 use serde::Deserialize;
@@ -25,6 +33,16 @@ struct Case {
     setup: BTreeMap<String, String>,
     #[serde(default)]
     expect_files: BTreeMap<String, bool>,
+    #[serde(default)]
+    env: BTreeMap<String, String>,
+    #[serde(default)]
+    env_remove: Vec<String>,
+    #[serde(default)]
+    closed: Vec<String>,
+    #[serde(default)]
+    terminal: Vec<String>,
+    #[serde(default)]
+    json: Vec<String>,
     /// What the case reads from outside the repository (`support::external`).
     #[serde(default)]
     requires: Vec<Requirement>,
@@ -42,9 +60,45 @@ enum Requirement {
 }
 
 #[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
 struct Then {
     args: Vec<String>,
     code: i32,
+}
+
+/// The write end of a pipe whose read end is already closed: every write finds no reader.
+fn closed_pipe() -> Stdio {
+    let mut fds = [0; 2];
+    // SAFETY: `pipe` fills both descriptors on success; each is owned exactly once below.
+    assert_eq!(unsafe { libc::pipe(fds.as_mut_ptr()) }, 0, "pipe");
+    let (read, write) = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+    drop(read);
+    Stdio::from(write)
+}
+
+/// A pseudo-terminal: its controller end (read what the command wrote) and the terminal end.
+fn pseudo_terminal() -> (std::fs::File, Stdio) {
+    let (mut controller, mut terminal) = (0, 0);
+    // SAFETY: `openpty` fills both descriptors on success; the name, settings and window size
+    // may be null. Each descriptor is owned exactly once below.
+    let status = unsafe {
+        libc::openpty(&mut controller, &mut terminal, std::ptr::null_mut(), std::ptr::null(), std::ptr::null())
+    };
+    assert_eq!(status, 0, "openpty");
+    let (controller, terminal) = unsafe { (OwnedFd::from_raw_fd(controller), OwnedFd::from_raw_fd(terminal)) };
+    (std::fs::File::from(controller), Stdio::from(terminal))
+}
+
+/// Everything written to a pseudo-terminal until its last writer closed it (Linux then
+/// reports an I/O error rather than the end of the file), with the terminal's CR LF as LF.
+fn read_terminal(mut controller: std::fs::File) -> Vec<u8> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    let mut buffer = [0; 4096];
+    while let Ok(n @ 1..) = controller.read(&mut buffer) {
+        bytes.extend_from_slice(&buffer[..n]);
+    }
+    String::from_utf8_lossy(&bytes).replace("\r\n", "\n").into_bytes()
 }
 
 #[test]
@@ -61,86 +115,150 @@ fn command_line_cases() {
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         cases.case
     });
+    // Every case runs, and the failing ones are listed at the end.
+    let mut failing = Vec::new();
     for case in cases {
         assert!(names.insert(case.name.clone()), "two command cases are named {}", case.name);
-        let uses_corpus = case.args.iter().any(|a| a.contains("{corpus}"));
-        assert_eq!(
-            uses_corpus,
-            case.requires.contains(&Requirement::Corpus),
-            "{}: a case names {{corpus}} in its arguments exactly when it requires the corpus",
-            case.name
-        );
-        let corpus = if uses_corpus {
-            match external::corpus_for(&format!("command case `{}`", case.name)) {
-                Some(dir) => dir.to_string_lossy().into_owned(),
-                None => continue,
-            }
-        } else {
-            String::new()
-        };
-        let tmp = tempfile::tempdir().unwrap();
-        let tmp_text = tmp.path().to_string_lossy().into_owned();
-        for (from, to) in &case.setup {
-            let target = tmp.path().join(to);
-            std::fs::create_dir_all(target.parent().unwrap()).unwrap();
-            std::fs::copy(repo().join(from), target).unwrap();
+        if std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run_case(&case))).is_err() {
+            failing.push(case.name);
         }
-        let args: Vec<String> =
-            case.args.iter().map(|a| a.replace("{tmp}", &tmp_text).replace("{corpus}", &corpus)).collect();
-        // The snapshot names the corpus by its placeholder, wherever it is.
-        let placeholders = |text: &str| {
-            let text = text.replace(&tmp_text, "{tmp}");
-            if corpus.is_empty() { text } else { text.replace(&corpus, "{corpus}") }
+    }
+    assert!(failing.is_empty(), "failing command cases: {failing:?}");
+}
+
+/// Run one case: its exit code, files, JSON outputs and snapshot.
+fn run_case(case: &Case) {
+    let uses_corpus = case.args.iter().any(|a| a.contains("{corpus}"));
+    assert_eq!(
+        uses_corpus,
+        case.requires.contains(&Requirement::Corpus),
+        "{}: a case names {{corpus}} in its arguments exactly when it requires the corpus",
+        case.name
+    );
+    let corpus = if uses_corpus {
+        match external::corpus_for(&format!("command case `{}`", case.name)) {
+            Some(dir) => dir.to_string_lossy().into_owned(),
+            None => return,
+        }
+    } else {
+        String::new()
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let tmp_text = tmp.path().to_string_lossy().into_owned();
+    for (from, to) in &case.setup {
+        let target = tmp.path().join(to);
+        std::fs::create_dir_all(target.parent().unwrap()).unwrap();
+        std::fs::copy(repo().join(from), target).unwrap();
+    }
+    let args: Vec<String> =
+        case.args.iter().map(|a| a.replace("{tmp}", &tmp_text).replace("{corpus}", &corpus)).collect();
+    // The snapshot names the temporary folder and the corpus by their placeholders, wherever
+    // they are.
+    let placeholders = |text: &str| {
+        let text = text.replace(&tmp_text, "{tmp}");
+        if corpus.is_empty() { text } else { text.replace(&corpus, "{corpus}") }
+    };
+    let mut command = Command::new(env!("CARGO_BIN_EXE_turnpass"));
+    command.args(&args).current_dir(repo()).env("NO_COLOR", "1");
+    command.envs(&case.env);
+    for name in &case.env_remove {
+        command.env_remove(name);
+    }
+    command.stdin(match &case.stdin {
+        Some(path) => Stdio::from(std::fs::File::open(repo().join(path)).unwrap()),
+        None => Stdio::null(),
+    });
+    let mut terminals = BTreeMap::new();
+    for (stream, set) in
+        [("stdout", Command::stdout as fn(&mut Command, Stdio) -> &mut Command), ("stderr", Command::stderr)]
+    {
+        let (is_closed, is_terminal) =
+            (case.closed.iter().any(|s| s == stream), case.terminal.iter().any(|s| s == stream));
+        if is_closed {
+            set(&mut command, closed_pipe());
+        } else if is_terminal {
+            let (controller, terminal) = pseudo_terminal();
+            set(&mut command, terminal);
+            terminals.insert(stream, controller);
+        } else {
+            set(&mut command, Stdio::piped());
+        }
+    }
+    let child = command.spawn().unwrap();
+    // The terminals' other ends are closed only when the command is dropped; they must be,
+    // for a read of the terminal to end when the child has exited.
+    drop(command);
+    let readers: BTreeMap<_, _> =
+        terminals.into_iter().map(|(stream, c)| (stream, std::thread::spawn(move || read_terminal(c)))).collect();
+    let mut output = child.wait_with_output().unwrap();
+    for (stream, reader) in readers {
+        let bytes = reader.join().unwrap();
+        if stream == "stdout" { output.stdout = bytes } else { output.stderr = bytes }
+    }
+    for target in &case.json {
+        let bytes = match target.as_str() {
+            "stdout" => output.stdout.clone(),
+            "stderr" => output.stderr.clone(),
+            file => std::fs::read(tmp.path().join(file)).unwrap_or_default(),
         };
-        let mut command = Command::new(env!("CARGO_BIN_EXE_turnpass"));
-        command.args(&args).current_dir(repo()).env("NO_COLOR", "1");
-        command.stdin(match &case.stdin {
-            Some(path) => Stdio::from(std::fs::File::open(repo().join(path)).unwrap()),
-            None => Stdio::null(),
-        });
-        let output = command.output().unwrap();
+        if let Err(error) = serde_json::from_slice::<serde_json::Value>(&bytes) {
+            panic!("{}: {target} is not JSON: {error}\n{}", case.name, String::from_utf8_lossy(&bytes));
+        }
+    }
+    let shown = |bytes: &[u8], stream: &str| {
+        let text = placeholders(&String::from_utf8_lossy(bytes)).replace('\x1b', "␛");
+        if case.closed.iter().any(|s| s == stream) { format!("(closed){text}") } else { text }
+    };
+    let stdout = shown(&output.stdout, "stdout");
+    let stderr = shown(&output.stderr, "stderr");
+    assert_eq!(output.status.code(), Some(case.code), "{}: exit code\nstdout:\n{stdout}\nstderr:\n{stderr}", case.name);
+    for (file, present) in &case.expect_files {
+        assert_eq!(tmp.path().join(file).exists(), *present, "{}: {file}", case.name);
+    }
+    // No temporary file may be left behind by a failed write.
+    let leftovers: Vec<_> = walk(tmp.path())
+        .into_iter()
+        .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with(".tmp")))
+        .collect();
+    assert!(leftovers.is_empty(), "{}: leftovers {leftovers:?}", case.name);
+    let mut setting = String::new();
+    for (name, value) in &case.env {
+        setting.push_str(&format!("{name}={value:?} "));
+    }
+    for name in &case.env_remove {
+        setting.push_str(&format!("(no {name}) "));
+    }
+    let mut redirects = String::new();
+    for stream in &case.closed {
+        redirects.push_str(&format!(" ({stream}: a closed pipe)"));
+    }
+    for stream in &case.terminal {
+        redirects.push_str(&format!(" ({stream}: a terminal)"));
+    }
+    let mut text = format!(
+        "$ {setting}turnpass {}{redirects}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
+        placeholders(&args.join(" ")),
+        case.code
+    );
+    for then in &case.then {
+        let args: Vec<String> = then.args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect();
+        let output = Command::new(env!("CARGO_BIN_EXE_turnpass"))
+            .args(&args)
+            .current_dir(repo())
+            .env("NO_COLOR", "1")
+            .stdin(Stdio::null())
+            .output()
+            .unwrap();
         let stdout = placeholders(&String::from_utf8_lossy(&output.stdout));
         let stderr = placeholders(&String::from_utf8_lossy(&output.stderr));
-        assert_eq!(
-            output.status.code(),
-            Some(case.code),
-            "{}: exit code\nstdout:\n{stdout}\nstderr:\n{stderr}",
-            case.name
-        );
-        for (file, present) in &case.expect_files {
-            assert_eq!(tmp.path().join(file).exists(), *present, "{}: {file}", case.name);
-        }
-        // No temporary file may be left behind by a failed write.
-        let leftovers: Vec<_> = walk(tmp.path())
-            .into_iter()
-            .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with(".tmp")))
-            .collect();
-        assert!(leftovers.is_empty(), "{}: leftovers {leftovers:?}", case.name);
-        let mut text = format!(
-            "$ turnpass {}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
-            placeholders(&args.join(" ")),
-            case.code
-        );
-        for then in &case.then {
-            let args: Vec<String> = then.args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect();
-            let output = Command::new(env!("CARGO_BIN_EXE_turnpass"))
-                .args(&args)
-                .current_dir(repo())
-                .env("NO_COLOR", "1")
-                .stdin(Stdio::null())
-                .output()
-                .unwrap();
-            let stdout = String::from_utf8_lossy(&output.stdout).replace(&tmp_text, "{tmp}");
-            let stderr = String::from_utf8_lossy(&output.stderr).replace(&tmp_text, "{tmp}");
-            let shown = args.join(" ").replace(&tmp_text, "{tmp}");
-            assert_eq!(output.status.code(), Some(then.code), "{}: exit code of `{shown}`\n{stderr}", case.name);
-            text.push_str(&format!(
-                "\n$ turnpass {shown}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
-                then.code
-            ));
-        }
-        with_snapshots("cli", || insta::assert_snapshot!(case.name.clone(), text));
+        let shown = placeholders(&args.join(" "));
+        assert_eq!(output.status.code(), Some(then.code), "{}: exit code of `{shown}`\n{stderr}", case.name);
+        text.push_str(&format!(
+            "\n$ turnpass {shown}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
+            then.code
+        ));
     }
+    with_snapshots("cli", || insta::assert_snapshot!(case.name.clone(), text));
 }
 
 fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
@@ -156,14 +274,24 @@ fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
     out
 }
 
-/// `fmt` with no edits prints every program back byte for byte.
+/// `fmt` with no edits prints every program back byte for byte; a program with errors is
+/// printed nowhere (exit 1, nothing on standard output).
 #[test]
 fn fmt_is_lossless_on_every_case_file() {
+    let mut printed = 0;
     for dir in ["tests/cases/parse", "tests/cases/thesis", "examples/programs"] {
         // The settings file beside the example programs is no program.
         for path in walk(&repo().join(dir)).into_iter().filter(|p| p.extension().is_none_or(|e| e != "toml")) {
             let output = Command::new(env!("CARGO_BIN_EXE_turnpass")).arg("fmt").arg(&path).output().unwrap();
-            assert_eq!(output.stdout, std::fs::read(&path).unwrap(), "{}", path.display());
+            match output.status.code() {
+                Some(0) => {
+                    assert_eq!(output.stdout, std::fs::read(&path).unwrap(), "{}", path.display());
+                    printed += 1;
+                }
+                Some(1) => assert!(output.stdout.is_empty(), "{}: a program with errors was printed", path.display()),
+                code => panic!("{}: exit code {code:?}", path.display()),
+            }
         }
     }
+    assert!(printed >= 10, "only {printed} programs were printed back");
 }

@@ -5,7 +5,8 @@
 //! rounded down and an end rounded up to whole characters).
 //!
 //! Every program under `tests/cases/` and `examples/programs/` that is UTF-8 (an editor
-//! sends text, so a Shift-JIS file reaches the server re-encoded) goes through both.
+//! sends text, so a Shift-JIS file reaches the server re-encoded) goes through both;
+//! check's warning on a program with no block to run is its own (see below).
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -53,7 +54,8 @@ fn check_json_and_the_server_agree() {
         .output()
         .unwrap();
     let json: Vec<Value> = serde_json::from_slice(&output.stdout).unwrap();
-    let mut client = Client::start(Value::Null);
+    // Every diagnostic, as check lists them all: the server's default shows the first 200.
+    let mut client = Client::start(json!({ "maxDiagnostics": 0 }));
     let (mut compared, mut semantic) = (0, 0);
     for path in &files {
         let text = std::fs::read_to_string(path).unwrap();
@@ -63,7 +65,9 @@ fn check_json_and_the_server_agree() {
         let published = client.diagnostics(&uri, 1);
         client.notify("textDocument/didClose", json!({ "textDocument": { "uri": uri } }));
         let name = path.display().to_string();
-        let expected: Vec<&Value> = json.iter().filter(|d| d["file"] == name).collect();
+        // `empty-program` is check's finding about the whole file, not a parse diagnostic: the
+        // server leaves an empty buffer quiet, as an editor's new file is.
+        let expected: Vec<&Value> = json.iter().filter(|d| d["file"] == name && d["code"] != "empty-program").collect();
         let syntax: Vec<&Value> = published.iter().filter(|d| d["data"]["pass"] == "syntax").collect();
         semantic += published.len() - syntax.len();
         assert_eq!(syntax.len(), expected.len(), "{name}: {published:#?}\n{expected:#?}");

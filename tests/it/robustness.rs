@@ -101,3 +101,34 @@ fn hostile_inputs() {
 
     with_snapshots("robustness", || insta::assert_snapshot!("hostile_inputs", report));
 }
+
+/// Every program the repository holds, and the third-party corpus when it is beside the
+/// repository, is text by the rule that keeps binary files from being parsed
+/// (`source::not_text`); the hostile files with a stray NUL among them stay programs whose
+/// NUL is a diagnostic of the parse.
+#[test]
+fn every_program_is_text() {
+    let mut dirs = vec![crate::support::repo().join("tests/cases"), crate::support::repo().join("examples")];
+    dirs.push(crate::support::repo().join("../shared/corpus"));
+    let mut read = 0;
+    for dir in dirs {
+        for path in files_under(&dir) {
+            if path.starts_with(crate::support::repo().join("tests/cases/cli")) {
+                continue; // the command-line cases hold files that are not text on purpose
+            }
+            let bytes = std::fs::read(&path).unwrap();
+            assert_eq!(turnpass::source::not_text(&bytes), None, "{}", path.display());
+            read += 1;
+        }
+    }
+    assert!(read > 100, "only {read} files were read");
+}
+
+fn files_under(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let path = entry.path();
+        if path.is_dir() { out.extend(files_under(&path)) } else { out.push(path) }
+    }
+    out
+}

@@ -1,0 +1,109 @@
+//! Standard output and standard error: every write of the command line goes through here,
+//! and so does the choice of colour.
+//!
+//! A reader that goes away (`turnpass simulate part.nc | head -1`) is not an error of the
+//! run: a write that finds the pipe closed marks the stream closed, later writes to it are
+//! dropped, and the run goes on to its own exit code, so that code says the same whether or
+//! not anyone read the output (as ripgrep does, the run ends quietly; unlike a C tool, it is
+//! not killed by SIGPIPE, which would leave a half-written temporary file behind). Any other
+//! failure to write standard output (a full disk under `> out.nc`) is an I/O error, exit 2.
+//! Standard error has nowhere to report its own failures, so they are dropped.
+
+use std::io::{IsTerminal, Write};
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use clap::ValueEnum;
+
+use super::common::CliError;
+
+/// `--color`: when diagnostics and messages are coloured.
+#[derive(Clone, Copy, Debug, Default, ValueEnum, PartialEq, Eq)]
+pub enum ColorChoice {
+    // On a terminal, unless `NO_COLOR` is set to a non-empty value (no-color.org). Plain
+    // comments: a doc comment on a variant would turn clap's help into its long form.
+    #[default]
+    Auto,
+    Always,
+    Never,
+}
+
+static COLOR: OnceLock<ColorChoice> = OnceLock::new();
+static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
+static STDERR_CLOSED: AtomicBool = AtomicBool::new(false);
+
+/// Set the colour choice of the run (once, from the command line).
+pub fn set_color(choice: ColorChoice) {
+    let _ = COLOR.set(choice);
+}
+
+/// Whether `choice` colours a stream that is (or is not) a terminal, with `NO_COLOR` as
+/// given: `--color` on the command line overrides the environment, as no-color.org asks.
+pub fn wants_color(choice: ColorChoice, terminal: bool, no_color: Option<&std::ffi::OsStr>) -> bool {
+    match choice {
+        ColorChoice::Always => true,
+        ColorChoice::Never => false,
+        ColorChoice::Auto => terminal && no_color.is_none_or(|value| value.is_empty()),
+    }
+}
+
+fn color(terminal: bool) -> bool {
+    let choice = COLOR.get().copied().unwrap_or_default();
+    wants_color(choice, terminal, std::env::var_os("NO_COLOR").as_deref())
+}
+
+/// Whether what is written to standard output is coloured.
+pub fn stdout_color() -> bool {
+    color(std::io::stdout().is_terminal())
+}
+
+/// Whether what is written to standard error is coloured.
+pub fn stderr_color() -> bool {
+    color(std::io::stderr().is_terminal())
+}
+
+/// Whether standard error is a terminal (for a progress bar, which only a person watches).
+pub fn stderr_is_terminal() -> bool {
+    std::io::stderr().is_terminal()
+}
+
+/// Write `bytes` to standard output and flush them: a closed pipe ends the output quietly,
+/// any other failure is an I/O error.
+pub fn out(bytes: impl AsRef<[u8]>) -> Result<(), CliError> {
+    out_parts([bytes.as_ref()])
+}
+
+/// [`out`] of a text given as pieces that follow each other.
+pub fn out_parts<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), CliError> {
+    if STDOUT_CLOSED.load(Ordering::Relaxed) {
+        return Ok(());
+    }
+    let mut stdout = std::io::stdout().lock();
+    let written = parts.into_iter().try_for_each(|part| stdout.write_all(part)).and_then(|()| stdout.flush());
+    match written {
+        Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => {
+            STDOUT_CLOSED.store(true, Ordering::Relaxed);
+            Ok(())
+        }
+        Err(source) => Err(CliError::Write { path: "<stdout>".into(), source }),
+        Ok(()) => Ok(()),
+    }
+}
+
+/// Write `bytes` to standard error; a failure to do so has nowhere to be reported.
+pub fn err(bytes: impl AsRef<[u8]>) {
+    if STDERR_CLOSED.load(Ordering::Relaxed) {
+        return;
+    }
+    let mut stderr = std::io::stderr().lock();
+    if let Err(error) = stderr.write_all(bytes.as_ref()).and_then(|()| stderr.flush())
+        && error.kind() == std::io::ErrorKind::BrokenPipe
+    {
+        STDERR_CLOSED.store(true, Ordering::Relaxed);
+    }
+}
+
+/// One line of text on standard error.
+pub fn err_line(text: impl std::fmt::Display) {
+    err(format!("{text}\n"));
+}

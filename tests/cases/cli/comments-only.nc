@@ -1,0 +1,5 @@
+%
+O1000 (NOTHING YET)
+
+(TO BE WRITTEN)
+%
