@@ -14,14 +14,12 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::common::{CliError, write_atomically_parts};
+use super::common::{CliError, check_output_dir, write_atomically_parts};
 use super::compensate::{CompensateArgs, FileResult, compensate_file};
 
 pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
     let Some(dir) = &args.out_dir else { return Err(CliError::Usage("--out-dir is missing".to_string())) };
-    if !dir.is_dir() {
-        return Err(CliError::Usage(format!("--out-dir {}: no such directory", dir.display())));
-    }
+    check_output_dir(dir)?;
     let mut names = HashSet::new();
     let mut targets = Vec::new();
     for file in &args.files {

@@ -21,7 +21,7 @@ use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready_beside, rendered,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, read_program, ready_beside, rendered,
     required_error_model, write_output, write_output_parts,
 };
 
@@ -183,6 +183,7 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
     let [path] = args.files.as_slice() else {
         return Err(CliError::Usage("several programs need --out-dir DIR to write them into".to_string()));
     };
+    check_output(args.output.as_deref())?;
     let result = compensate_file(path, &args)?;
     let _ = std::io::stderr().write_all(&result.messages);
     if let Some(output) = &result.output {

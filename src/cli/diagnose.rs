@@ -14,7 +14,7 @@ use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, display_name, read_program, ready,
+    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, read_program, ready,
     required_error_model, write_atomically, write_output,
 };
 
@@ -150,6 +150,8 @@ fn prepare(
 }
 
 pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
+    check_output(args.write_model.as_deref())?;
+    check_output(args.plot.as_deref())?;
     let (nominal, model, resolved) = match prepare(&args.file, &args.read, &args.run, "diagnose", args.start_min)? {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
@@ -195,6 +197,7 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
 }
 
 pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
+    check_output(args.output.as_deref())?;
     let (nominal, truth, _) = match prepare(&args.file, &args.read, &args.run, "synth", None)? {
         Ok(ready) => ready,
         Err(code) => return Ok(code),

@@ -10,7 +10,7 @@ use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::printer::{self, CanonicalOptions, Edits};
 use turnpass::syntax;
 
-use super::common::{CliError, ReadArgs, display_name, read_input, resolve, write_output};
+use super::common::{CliError, ReadArgs, check_output, display_name, read_input, resolve, write_output};
 
 #[derive(Args)]
 pub struct FmtArgs {
@@ -30,6 +30,7 @@ pub struct FmtArgs {
 }
 
 pub fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
+    check_output(args.output.as_deref().filter(|_| !args.check))?;
     let resolved = resolve(&args.read, &args.file)?;
     let bytes = read_input(&args.file)?;
     let name = display_name(&args.file);

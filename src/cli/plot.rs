@@ -8,7 +8,9 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use super::common::{CliError, ReadArgs, RunArgs, display_name, read_program, ready, rendered, write_atomically};
+use super::common::{
+    CliError, ReadArgs, RunArgs, check_output, display_name, read_program, ready, rendered, write_atomically,
+};
 use super::compensate::FitArgs;
 
 #[derive(Args)]
@@ -33,6 +35,7 @@ pub struct PlotArgs {
 }
 
 pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
+    check_output(Some(&args.output))?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let model = args.fit.error_model(&resolved, "plot")?;
     let name = display_name(&args.file);

@@ -12,8 +12,8 @@ use turnpass::simulation;
 use turnpass::syntax;
 
 use super::common::{
-    CliError, Lowering, ReadArgs, RunArgs, display_name, lower_and_validate, lower_options, not_lowered, read_program,
-    report, write_output,
+    CliError, Lowering, ReadArgs, RunArgs, check_output, display_name, lower_and_validate, lower_options, not_lowered,
+    read_program, report, write_output,
 };
 
 #[derive(Args)]
@@ -48,6 +48,7 @@ pub enum SimulateFormat {
 }
 
 pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
+    check_output(args.output.as_deref())?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);

@@ -24,6 +24,46 @@ struct Case {
     setup: BTreeMap<String, String>,
     #[serde(default)]
     expect_files: BTreeMap<String, bool>,
+    /// Commands run first, each of which must exit 0 (their output is not in the snapshot).
+    #[serde(default)]
+    before: Vec<Vec<String>>,
+    /// The umask every command runs under (octal, as `umask` takes it).
+    #[serde(default)]
+    umask: Option<String>,
+    /// Modes (octal) given to files in `{tmp}` after `setup`.
+    #[serde(default)]
+    setup_modes: BTreeMap<String, String>,
+    /// Symbolic links made in `{tmp}` after `setup`: `"link" = "what it names"`.
+    #[serde(default)]
+    setup_symlinks: BTreeMap<String, String>,
+    /// Files in `{tmp}` and the mode (octal permission bits) each must have afterwards.
+    #[serde(default)]
+    expect_modes: BTreeMap<String, String>,
+    /// Links in `{tmp}` that must still be symbolic links naming the same thing afterwards.
+    #[serde(default)]
+    expect_symlinks: BTreeMap<String, String>,
+    /// Files in `{tmp}` that must afterwards hold exactly the bytes of a repository file.
+    #[serde(default)]
+    expect_contents: BTreeMap<String, String>,
+}
+
+/// The binary with `args`, run from the repository root under `umask` when one is given.
+fn turnpass(args: &[String], umask: Option<&str>) -> Command {
+    let mut command = match umask {
+        Some(umask) => {
+            let mut shell = Command::new("sh");
+            shell.args(["-c", r#"umask "$0" && exec "$@""#, umask, env!("CARGO_BIN_EXE_turnpass")]);
+            shell
+        }
+        None => Command::new(env!("CARGO_BIN_EXE_turnpass")),
+    };
+    command.args(args).current_dir(repo()).env("NO_COLOR", "1");
+    command
+}
+
+fn mode_of(path: &std::path::Path) -> String {
+    use std::os::unix::fs::PermissionsExt;
+    format!("{:o}", std::fs::metadata(path).unwrap().permissions().mode() & 0o7777)
 }
 
 #[test]
@@ -49,16 +89,30 @@ fn command_line_cases() {
             std::fs::create_dir_all(target.parent().unwrap()).unwrap();
             std::fs::copy(repo().join(from), target).unwrap();
         }
-        let args: Vec<String> = case.args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect();
-        let mut command = Command::new(env!("CARGO_BIN_EXE_turnpass"));
-        command.args(&args).current_dir(repo()).env("NO_COLOR", "1");
+        for (file, mode) in &case.setup_modes {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = u32::from_str_radix(mode, 8).unwrap();
+            std::fs::set_permissions(tmp.path().join(file), std::fs::Permissions::from_mode(mode)).unwrap();
+        }
+        for (link, target) in &case.setup_symlinks {
+            std::os::unix::fs::symlink(target, tmp.path().join(link)).unwrap();
+        }
+        let in_tmp = |args: &[String]| -> Vec<String> { args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect() };
+        for before in &case.before {
+            let output = turnpass(&in_tmp(before), case.umask.as_deref()).stdin(Stdio::null()).output().unwrap();
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            assert!(output.status.success(), "{}: `{}` failed:\n{stderr}", case.name, before.join(" "));
+        }
+        let args = in_tmp(&case.args);
+        let mut command = turnpass(&args, case.umask.as_deref());
         command.stdin(match &case.stdin {
             Some(path) => Stdio::from(std::fs::File::open(repo().join(path)).unwrap()),
             None => Stdio::null(),
         });
         let output = command.output().unwrap();
-        let stdout = String::from_utf8_lossy(&output.stdout).replace(&tmp_text, "{tmp}");
-        let stderr = String::from_utf8_lossy(&output.stderr).replace(&tmp_text, "{tmp}");
+        let shown = |text: &[u8]| String::from_utf8_lossy(text).replace(&tmp_text, "{tmp}");
+        let stdout = shown(&output.stdout);
+        let stderr = shown(&output.stderr);
         assert_eq!(
             output.status.code(),
             Some(case.code),
@@ -67,6 +121,18 @@ fn command_line_cases() {
         );
         for (file, present) in &case.expect_files {
             assert_eq!(tmp.path().join(file).exists(), *present, "{}: {file}", case.name);
+        }
+        for (file, mode) in &case.expect_modes {
+            assert_eq!(&mode_of(&tmp.path().join(file)), mode, "{}: the mode of {file}", case.name);
+        }
+        for (link, target) in &case.expect_symlinks {
+            let found = std::fs::read_link(tmp.path().join(link));
+            assert_eq!(found.ok(), Some(target.into()), "{}: {link} is a link to {target}", case.name);
+        }
+        for (file, source) in &case.expect_contents {
+            let (found, wanted) =
+                (std::fs::read(tmp.path().join(file)).unwrap(), std::fs::read(repo().join(source)).unwrap());
+            assert!(found == wanted, "{}: {file} holds other bytes than {source}", case.name);
         }
         // No temporary file may be left behind by a failed write.
         let leftovers: Vec<_> = walk(tmp.path())
