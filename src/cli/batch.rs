@@ -15,7 +15,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::common::{CliError, check_output_dir, write_atomically_parts};
-use super::compensate::{CompensateArgs, FileResult, compensate_file};
+use super::compensate::{CompensateArgs, FileResult, compensate_file, refuse_overwriting_input};
 
 pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
     let Some(dir) = &args.out_dir else { return Err(CliError::Usage("--out-dir is missing".to_string())) };
@@ -33,6 +33,10 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
             )));
         }
         targets.push(dir.join(name));
+    }
+    // Before any work: an output that would replace an input (DIR is a program's own folder).
+    for target in &targets {
+        refuse_overwriting_input(&args.files, target, args.force)?;
     }
     let results = in_parallel(&args.files, &targets, |file, target| {
         let mut result = match compensate_file(file, args) {

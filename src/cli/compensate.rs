@@ -2,7 +2,8 @@
 //! file, or many into `--out-dir` in parallel (`batch.rs`).
 //!
 //! A program is written only when it compensates cleanly: a program with errors, or one
-//! the safety checks refuse, writes nothing and exits 1. The `--report json` goes to
+//! the safety checks refuse, writes nothing and exits 1. An output that would replace an
+//! input is refused before any work, unless `--force`. The `--report json` goes to
 //! standard output, or to standard error when the program itself goes to standard output.
 
 use std::io::Write;
@@ -38,6 +39,9 @@ pub struct CompensateArgs {
     /// compensated in parallel.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
+    /// Write over an input program (`-o` naming it, or `--out-dir` its own folder).
+    #[arg(long)]
+    pub force: bool,
     #[command(flatten)]
     pub fit: FitArgs,
     /// Also write a report: per edited block the corrections, fitted arcs, predicted
@@ -184,6 +188,9 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
         return Err(CliError::Usage("several programs need --out-dir DIR to write them into".to_string()));
     };
     check_output(args.output.as_deref())?;
+    if let Some(output) = args.output.as_deref() {
+        refuse_overwriting_input(&args.files, output, args.force)?;
+    }
     let result = compensate_file(path, &args)?;
     let _ = std::io::stderr().write_all(&result.messages);
     if let Some(output) = &result.output {
@@ -199,6 +206,27 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
         }
     }
     Ok(ExitCode::from(result.code))
+}
+
+/// Refuse, unless `force`, to write `output` when it is one of the `inputs` (the same file,
+/// through a link or by another path): the nominal program would be lost.
+pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) -> Result<(), CliError> {
+    if force || output == Path::new("-") {
+        return Ok(());
+    }
+    let input = inputs.iter().filter(|input| *input != Path::new("-")).find(|input| {
+        // An output that does not exist yet is no input.
+        same_file::is_same_file(input, output).unwrap_or(false)
+    });
+    match input {
+        Some(input) => Err(CliError::Usage(format!(
+            "compensate would write {} over the program {}, which it reads; write the compensated program \
+             elsewhere (-o or --out-dir), or give --force to replace it",
+            output.display(),
+            input.display()
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// Compensate one program; nothing is written here.
