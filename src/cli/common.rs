@@ -202,6 +202,31 @@ pub fn required_error_model(resolved: &Resolved, command: &str) -> Result<ErrorM
     }
 }
 
+/// The name a provenance comment gives the model of `resolved`: its `[machine] name`, else
+/// its file name.
+pub fn model_name(resolved: &Resolved) -> String {
+    let file = resolved.model.as_ref().and_then(|(path, _)| path.file_name()).map(|n| n.to_string_lossy().into_owned());
+    resolved.settings.name.clone().or(file).unwrap_or_default()
+}
+
+/// The first [`SHA256_DIGITS`](turnpass::compensation::provenance::SHA256_DIGITS) hex
+/// digits of the SHA-256 of the model of `resolved`: its file and every table file it reads.
+pub fn model_sha256(resolved: &Resolved) -> Result<String, CliError> {
+    use turnpass::compensation::provenance::{SHA256_DIGITS, model_sha256};
+    let Some((path, text)) = &resolved.model else { return Ok(String::new()) };
+    let (spec, dir) = model_spec(path, text)?;
+    let mut tables = Vec::new();
+    for file in spec.axis_table.iter().filter_map(|table| table.file.as_deref()) {
+        let table = dir.join(file);
+        tables.push(
+            std::fs::read(&table).map_err(|source| CliError::Read { path: table.display().to_string(), source })?,
+        );
+    }
+    let mut digest = model_sha256(text.as_bytes(), tables.iter().map(Vec::as_slice));
+    digest.truncate(SHA256_DIGITS);
+    Ok(digest)
+}
+
 /// A program's bytes and the settings it is read with.
 pub fn read_program(path: &Path, read: &ReadArgs) -> Result<(Vec<u8>, Resolved), CliError> {
     let resolved = resolve(read, path)?;

@@ -1,9 +1,11 @@
 //! `turnpass compensate`: one program as a filter (`-` in, standard output out) or to a
 //! file, or many into `--out-dir` in parallel (`batch.rs`).
 //!
-//! A program is written only when it compensates cleanly: a program with errors, or one
-//! the safety checks refuse, writes nothing and exits 1. An output that would replace an
-//! input is refused before any work, unless `--force`. The `--report json` goes to
+//! A program is written only when it compensates cleanly: a program with errors, one the
+//! safety checks refuse, or one that carries a provenance comment (compensated already;
+//! `--force` to compensate it anyway) writes nothing and exits 1. What is written carries a
+//! provenance comment of its own (`compensation::provenance`). An output that would replace
+//! an input is refused before any work, unless `--force`. The `--report json` goes to
 //! standard output, or to standard error when the program itself goes to standard output.
 
 use std::io::Write;
@@ -14,6 +16,7 @@ use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
+use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::rewrite::ProgramTables;
 use turnpass::compensation::{CompensateOptions, Outcome, compensate_with_tables};
 use turnpass::error_model::ErrorModel;
@@ -22,8 +25,8 @@ use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, read_program, ready_beside, rendered,
-    required_error_model, write_output, write_output_parts,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, read_program,
+    ready_beside, rendered, required_error_model, write_output, write_output_parts,
 };
 
 #[derive(Args)]
@@ -39,7 +42,8 @@ pub struct CompensateArgs {
     /// compensated in parallel.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
-    /// Write over an input program (`-o` naming it, or `--out-dir` its own folder).
+    /// Write over an input program (`-o` naming it, or `--out-dir` its own folder), and
+    /// compensate a program that carries a provenance comment (a compensated program).
     #[arg(long)]
     pub force: bool,
     #[command(flatten)]
@@ -86,19 +90,9 @@ pub struct FitArgs {
     pub start_min: Option<f64>,
 }
 
-/// The strategies by the names the command line gives them.
-const STRATEGIES: [(&str, Strategy); 6] = [
-    ("auto", Strategy::Auto),
-    ("circle", Strategy::Circle),
-    ("semicircle", Strategy::Semicircle),
-    ("quadrant", Strategy::Quadrant),
-    ("arcs", Strategy::Arcs),
-    ("densify", Strategy::Densify),
-];
-
 fn strategy_parser() -> impl TypedValueParser<Value = Strategy> {
-    PossibleValuesParser::new(STRATEGIES.map(|(name, _)| name))
-        .map(|name| STRATEGIES.iter().find(|(n, _)| *n == name).map_or(Strategy::Auto, |(_, s)| *s))
+    PossibleValuesParser::new(Strategy::ALL.map(Strategy::name))
+        .map(|name| Strategy::from_name(&name).unwrap_or_default())
 }
 
 fn positive(s: &str) -> Result<f64, String> {
@@ -236,12 +230,19 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let name = display_name(path);
     let mut messages = Vec::new();
     // The rewrite's tables of the program are made on the idle core while it is lowered.
-    let (program, tables) =
-        match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, ProgramTables::new) {
+    // A program that carries a provenance comment is found beside the lowering too.
+    let beside = |program: &turnpass::syntax::Program<'_>| (ProgramTables::new(program), provenance::refusal(program));
+    let (program, (tables, compensated_already)) =
+        match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, beside) {
             Ok(ready) => ready,
             Err(text) => return Ok(FileResult::failed(1, text)),
         };
-    let outcome = args.fit.compensate_with_tables(&program, &model, args.report.is_some(), tables);
+    if let Some(diagnostic) = compensated_already.filter(|_| !args.force) {
+        messages.extend(rendered(&name, &bytes, &[diagnostic]));
+        messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
+        return Ok(FileResult::failed(1, messages));
+    }
+    let mut outcome = args.fit.compensate_with_tables(&program, &model, args.report.is_some(), tables);
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
@@ -263,6 +264,16 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         .as_bytes(),
     );
     let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
+    let provenance = Provenance {
+        version: provenance::VERSION.to_string(),
+        model: model_name(&resolved),
+        model_sha256: model_sha256(&resolved)?,
+        tolerance_mm: args.fit.options(&program.machine).fit.tolerance_mm,
+        strategy: args.fit.strategy,
+        step_mm: args.fit.step,
+        start_min: model.start_min,
+    };
+    provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
     let printed = printer::print_parts(&program.parsed.program, &outcome.edits);
     Ok(FileResult { code: 0, messages, output: Some(printed), report })
 }

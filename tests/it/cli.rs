@@ -110,7 +110,14 @@ fn command_line_cases() {
             None => Stdio::null(),
         });
         let output = command.output().unwrap();
-        let shown = |text: &[u8]| String::from_utf8_lossy(text).replace(&tmp_text, "{tmp}");
+        // The tool's version is in every provenance comment; a release must not change them all.
+        let shown = |text: &[u8]| {
+            let text = String::from_utf8_lossy(text).replace(&tmp_text, "{tmp}");
+            let version = env!("CARGO_PKG_VERSION");
+            text.replace(&format!("TURNPASS {version} "), "TURNPASS {version} ")
+                .replace(&format!("turnpass {version} "), "turnpass {version} ")
+                .replace(&format!("\"version\": \"{version}\""), "\"version\": \"{version}\"")
+        };
         let stdout = shown(&output.stdout);
         let stderr = shown(&output.stderr);
         assert_eq!(
