@@ -14,6 +14,7 @@ mod diagnose;
 mod fmt;
 mod lsp;
 mod model;
+mod numbers;
 mod plot;
 mod simulate;
 mod thermal;
@@ -105,6 +106,10 @@ pub fn main() -> ExitCode {
     };
     match result {
         Ok(code) => code,
+        Err(common::CliError::Diagnosed(text)) => {
+            eprint!("{text}");
+            ExitCode::from(2)
+        }
         Err(error) => {
             eprintln!("error: {error}");
             ExitCode::from(2)

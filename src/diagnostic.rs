@@ -5,12 +5,15 @@
 //! kind and a renderer can show the words. Rendering (codespan-reporting, JSON, plain text
 //! for snapshots) lives in [`render`], the only module that imports codespan-reporting.
 
+pub mod model_file;
 pub mod render;
 mod text;
 
 use std::fmt;
 
 use crate::source::Span;
+
+pub use model_file::ModelProblem;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
@@ -234,6 +237,9 @@ pub enum DiagnosticKind {
     MachiningCentreProgram,
     /// The source is too large to address with 32-bit offsets.
     SourceTooLarge,
+    /// A machine model file or one of its axis tables that does not read, or holds a value
+    /// out of range (`model_file.rs` has the words).
+    ModelFile(Box<ModelProblem>),
     /// A block with more words than the AST holds per block.
     TooManyWords {
         max: usize,

@@ -12,6 +12,7 @@
 
 #![deny(clippy::disallowed_methods)]
 
+pub mod bounds;
 pub mod compensation;
 pub mod diagnose;
 pub mod diagnostic;
@@ -28,4 +29,5 @@ pub mod semantic;
 pub mod simulation;
 pub mod source;
 pub mod syntax;
+pub mod toml_spans;
 pub mod toolpath;

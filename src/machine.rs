@@ -2,13 +2,19 @@
 //!
 //! The G-code system and the decimal-point rule are properties of the machine, never
 //! guessed from a program, so they come from here (or from the command line).
-//! This module parses text; finding and reading the file is the binary's job.
+//! This module parses text; finding and reading the file is the binary's job. Every number
+//! is checked against the range beside its field when the table is read: a least increment
+//! of 0 or a NaN home would otherwise reach the compensation.
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Key, Range, Reason};
+use crate::diagnostic::Diagnostic;
 use crate::dialect::{DecimalInput, Dialect, GCodeSystem};
+use crate::error_model::effects::{cyclic_x, cyclic_z};
+use crate::toml_spans::{Document, Problems, Step};
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
     Mm,
@@ -27,21 +33,25 @@ pub struct MachineSettings {
     /// Units of a program that does not select them.
     pub units: Option<Units>,
     pub diameter_programming: Option<bool>,
-    /// Least input increment in the machine's units (0.001 mm, 0.0001 in).
+    /// Least input increment in the machine's units (0.001 mm, 0.0001 in): a power of ten
+    /// within `LEAST_INCREMENT`.
     pub least_increment: Option<f64>,
     /// The reference position `G28` returns to, in the machine's units with X as the
-    /// machine programs it (a diameter on diameter-programmed lathes).
+    /// machine programs it (a diameter on diameter-programmed lathes); within `POSITION`.
     pub home: Option<AxisPair>,
-    /// Travel limits of the tool reference point, same convention as `home`.
+    /// Travel limits of the tool reference point, same convention as `home`; within
+    /// `POSITION`, each minimum below its maximum.
     pub travel: Option<Travel>,
-    /// Rapid traverse rate of each axis, machine units per minute.
+    /// Rapid traverse rate of each axis, machine units per minute; within `RAPID_RATE`.
     pub rapid_rate: Option<AxisPair>,
-    /// The spindle's top speed, rpm; constant surface speed never exceeds it.
+    /// The spindle's top speed, rpm; constant surface speed never exceeds it. Within
+    /// `SPINDLE_RPM`.
     pub max_spindle_rpm: Option<f64>,
     /// The block-delete switch: `true` skips blocks that start with `/`.
     pub block_delete: Option<bool>,
     /// The lead of each axis' ball screw, mm (a property of the screw, so in millimetres
-    /// whatever the machine's units): the period of its cyclic error (`diagnose`).
+    /// whatever the machine's units): the period of its cyclic error (`diagnose`), within
+    /// the range of that effect's `pitch`.
     pub ball_screw_pitch_mm: Option<ScrewPitch>,
     /// The tool table.
     #[serde(default)]
@@ -81,40 +91,130 @@ pub struct ToolSettings {
     pub station: u32,
     /// Offset number; the station's number when absent (`T0404`).
     pub offset: Option<u32>,
-    /// Geometry offset, machine units, X as programmed.
+    /// Geometry offset, machine units, X as programmed; within `POSITION`.
     #[serde(default)]
     pub x: f64,
     #[serde(default)]
     pub z: f64,
-    /// Nose radius, machine units.
+    /// Nose radius, machine units; within `NOSE_RADIUS`.
     #[serde(default)]
     pub nose_radius: f64,
     /// Imaginary tip direction 0-9 (3 for an outside turning tool cutting toward the chuck).
     #[serde(default)]
     pub tip: u8,
-    /// Minor cutting edge angle, degrees, for the roughness estimate (eq. 9.1 of the thesis).
+    /// Minor cutting edge angle, degrees, for the roughness estimate (eq. 9.1 of the
+    /// thesis); within `MINOR_EDGE_ANGLE`.
     pub minor_edge_angle: Option<f64>,
 }
 
+/// Plausible least increments, in the machine's units: from a micrometre (or a millionth
+/// of an inch) to 0.01 (the coarsest input system, IS-A), and a power of ten.
+pub const LEAST_INCREMENT: Range = Range::closed(0.000_001, 0.01, "");
+/// Plausible positions (home, travel limits, tool offsets), machine units: within ±100,000
+/// (a hundred metres; lathes travel a few metres at most).
+pub const POSITION: Range = Range::magnitude(100_000.0, "");
+/// Plausible rapid rates, machine units per minute: more than nothing, at most 1,000,000.
+pub const RAPID_RATE: Range = Range::positive(1_000_000.0, "units/min");
+/// Plausible spindle limits: more than nothing, at most 200,000 rpm.
+pub const SPINDLE_RPM: Range = Range::positive(200_000.0, "rpm");
+/// Plausible nose radii, machine units: from 0 to 50 (round inserts reach 25 mm).
+pub const NOSE_RADIUS: Range = Range::closed(0.0, 50.0, "");
+/// Plausible minor cutting edge angles: from 0 to 90 degrees.
+pub const MINOR_EDGE_ANGLE: Range = Range::closed(0.0, 90.0, "degrees");
+
 /// A machine model file. Only `[machine]` is read here; the error-model tables that later
 /// passes add are left to them.
-#[derive(Debug, Clone, Default, Deserialize)]
+#[derive(Debug, Clone, Default)]
 pub struct ModelFile {
-    #[serde(default)]
     pub machine: MachineSettings,
 }
 
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct SettingsError(String);
-
 impl ModelFile {
-    pub fn from_toml(text: &str) -> Result<ModelFile, SettingsError> {
-        toml::from_str(text).map_err(|e| SettingsError(e.to_string()))
+    /// The `[machine]` table of a model file's text, read and checked. The file's other
+    /// tables are the error model's (`error_model::model_file`).
+    pub fn from_toml(text: &str) -> Result<ModelFile, Problems> {
+        let document = Document::parse(text).map_err(|d| Problems::new(text, vec![d]))?;
+        let machine = MachineSettings::read(&document).map_err(|d| Problems::new(text, d))?;
+        Ok(ModelFile { machine })
     }
 }
 
 impl MachineSettings {
+    /// The block-delete switch in force: off unless the settings turn it on.
+    pub fn block_delete_switch(&self) -> bool {
+        self.block_delete.unwrap_or(false)
+    }
+
+    /// The `[machine]` table of `document` (the defaults without one), read and checked.
+    pub fn read(document: &Document<'_>) -> Result<MachineSettings, Vec<Diagnostic>> {
+        let table = [Step::from("machine")];
+        let settings: MachineSettings = document.read(&table).map_err(|d| vec![d])?.unwrap_or_default();
+        let mut problems: Vec<Diagnostic> = settings.check().iter().map(|bad| document.invalid(&table, bad)).collect();
+        problems.sort_by_key(|d| d.span.start);
+        if problems.is_empty() { Ok(settings) } else { Err(problems) }
+    }
+
+    /// Every value of the table that lies outside its range or breaks a rule, with its path
+    /// in the table.
+    pub fn check(&self) -> Vec<Invalid> {
+        let mut problems = Vec::new();
+        let mut push = |result: Result<(), Invalid>, outer: &[Key]| {
+            if let Err(bad) = result {
+                problems.push(bad.within(outer));
+            }
+        };
+        if let Some(increment) = self.least_increment {
+            let result = LEAST_INCREMENT.check_key("least_increment", increment).and_then(|()| {
+                let power_of_ten = 10f64.powf(increment.log10().round());
+                if (power_of_ten - increment).abs() <= increment * 1e-9 {
+                    Ok(())
+                } else {
+                    let rule = Reason::Rule("a least increment is a power of ten (0.001, 0.0001)");
+                    Err(Invalid { path: vec![Key::Name("least_increment")], reason: rule })
+                }
+            });
+            push(result, &[]);
+        }
+        for (name, pair) in [("home", &self.home), ("rapid_rate", &self.rapid_rate)] {
+            let Some(pair) = pair else { continue };
+            let range = if name == "home" { POSITION } else { RAPID_RATE };
+            push(range.check_key("x", pair.x), &[Key::Name(name)]);
+            push(range.check_key("z", pair.z), &[Key::Name(name)]);
+        }
+        if let Some(travel) = &self.travel {
+            let within = [Key::Name("travel")];
+            for (key, value) in
+                [("x_min", travel.x_min), ("x_max", travel.x_max), ("z_min", travel.z_min), ("z_max", travel.z_max)]
+            {
+                push(POSITION.check_key(key, value), &within);
+            }
+            for (key, min, max) in [("x_max", travel.x_min, travel.x_max), ("z_max", travel.z_min, travel.z_max)] {
+                if min >= max {
+                    let rule = Reason::Rule("a travel's maximum must lie above its minimum");
+                    push(Err(Invalid { path: vec![Key::Name(key)], reason: rule }), &within);
+                }
+            }
+        }
+        push(SPINDLE_RPM.check_option("max_spindle_rpm", self.max_spindle_rpm), &[]);
+        if let Some(pitch) = &self.ball_screw_pitch_mm {
+            let within = [Key::Name("ball_screw_pitch_mm")];
+            push(cyclic_x::PITCH.check_option("x", pitch.x), &within);
+            push(cyclic_z::PITCH.check_option("z", pitch.z), &within);
+        }
+        for (index, tool) in self.tool.iter().enumerate() {
+            let within = [Key::Name("tool"), Key::Index(index)];
+            push(POSITION.check_key("x", tool.x), &within);
+            push(POSITION.check_key("z", tool.z), &within);
+            push(NOSE_RADIUS.check_key("nose_radius", tool.nose_radius), &within);
+            push(MINOR_EDGE_ANGLE.check_option("minor_edge_angle", tool.minor_edge_angle), &within);
+            if tool.tip > 9 {
+                let rule = Reason::Rule("an imaginary tip direction is 0 to 9");
+                push(Err(Invalid { path: vec![Key::Name("tip")], reason: rule }), &within);
+            }
+        }
+        problems
+    }
+
     /// Decimal places of the least increment: 3 for 0.001, 4 for 0.0001.
     pub fn increment_places(&self) -> u8 {
         let increment = self.least_increment.unwrap_or(match self.units {

@@ -122,6 +122,50 @@ impl Machine {
     }
 }
 
+/// What a program is read and run with under `settings`, each setting written as the
+/// `[machine]` key that sets it (`units = "mm", least_increment = 0.001, …`), for the note
+/// that says a program is read with the machine defaults because no model file gives
+/// settings. The values are read from [`Machine::from_settings`] and the settings' own
+/// defaults, so the note says what is in force and states no number of its own.
+pub fn settings_in_force(settings: &MachineSettings) -> String {
+    let machine = Machine::from_settings(settings);
+    let given = [
+        format!("units = {}", toml_string(&machine.units)),
+        format!("least_increment = {}", machine.increment),
+        format!("diameter_programming = {}", machine.diameter_programming),
+        format!("gcode_system = {}", toml_string(&settings.gcode_system.unwrap_or_default())),
+        format!("decimal_input = {}", toml_string(&machine.decimal_input)),
+        format!("block_delete = {}", settings.block_delete_switch()),
+        match settings.dialect {
+            Some(dialect) => format!("dialect = {}", toml_string(&dialect)),
+            None => "dialect decided from the text".to_string(),
+        },
+    ];
+    let mut parts = vec![given.join(", ")];
+    let missing: Vec<&str> = [
+        ("home", machine.home.is_none()),
+        ("travel", machine.limits.is_none()),
+        ("max_spindle_rpm", machine.max_rpm.is_infinite()),
+        ("tool table", machine.tools.is_empty()),
+    ]
+    .into_iter()
+    .filter_map(|(name, missing)| missing.then_some(name))
+    .collect();
+    if let Some((last, rest)) = missing.split_last() {
+        let list = if rest.is_empty() { last.to_string() } else { format!("{} or {last}", rest.join(", ")) };
+        parts.push(format!("no {list}"));
+    }
+    if machine.rapid_assumed {
+        parts.push(format!("rapid traverse assumed {} mm/min per axis", machine.rapid.x));
+    }
+    parts.join("; ")
+}
+
+/// A setting's value as TOML writes it (a string as JSON writes it).
+fn toml_string<T: serde::Serialize>(value: &T) -> String {
+    serde_json::to_string(value).unwrap_or_default()
+}
+
 /// Which moves a cycle call produced, for `expand`: the call block, the other blocks the
 /// cycle consumed (the first block of a two-block Fanuc cycle, a LAP contour that follows
 /// its call), and the range of moves.

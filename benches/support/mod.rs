@@ -19,6 +19,11 @@ pub fn generated(megabytes: &str) -> Vec<u8> {
     let path = data_dir().join(format!("big-{megabytes}.nc"));
     if !path.exists() {
         let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/gen_lathe.py");
+        assert!(
+            script.is_file(),
+            "the bench input generator is read in place from {}; it is missing",
+            script.display()
+        );
         let status = Command::new("python3").arg(&script).arg(&path).arg(megabytes).status().expect("python3 runs");
         assert!(status.success(), "gen_lathe.py failed");
     }

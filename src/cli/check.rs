@@ -10,7 +10,9 @@ use turnpass::diagnostic::render::{RenderSource, render_terminal, to_json};
 use turnpass::source::LineIndex;
 use turnpass::syntax::{self, Statement};
 
-use super::common::{CliError, Format, ReadArgs, display_name, plural, read_input, resolve};
+use super::common::{
+    CliError, Format, ReadArgs, display_name, model_source, note_machine_defaults, plural, read_input, resolve,
+};
 
 #[derive(Args)]
 pub struct CheckArgs {
@@ -21,7 +23,8 @@ pub struct CheckArgs {
     read: ReadArgs,
     #[arg(long, value_enum, default_value = "human")]
     format: Format,
-    /// Also say which dialect was chosen and why, and what the program holds.
+    /// Also say where the machine settings come from, which dialect was chosen and why, and
+    /// what the program holds.
     #[arg(long, short)]
     verbose: bool,
 }
@@ -34,6 +37,7 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
     for path in &args.files {
         let resolved = resolve(&args.read, path)?;
         let bytes = read_input(path)?;
+        note_machine_defaults(&resolved, None);
         let name = display_name(path);
         let parsed = syntax::parse(&bytes, &resolved.options);
         any_errors |= parsed.has_errors();
@@ -45,6 +49,7 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
                 if args.verbose {
                     let lines = LineIndex::new(&bytes);
                     text.extend_from_slice(format!("{name}:\n").as_bytes());
+                    text.extend_from_slice(format!("{}\n", model_source(&args.read, &resolved)).as_bytes());
                     text.extend_from_slice(parsed.detection.explain(&lines).as_bytes());
                     text.extend_from_slice(summary_of_statements(&parsed.program).as_bytes());
                 }

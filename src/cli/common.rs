@@ -11,7 +11,7 @@ use turnpass::diagnostic::Diagnostic;
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
-use turnpass::error_model::model_file::ModelSpec;
+use turnpass::error_model::model_file::{ModelError, ModelSpec};
 use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
 use turnpass::syntax::{self, ParseOptions};
@@ -91,10 +91,10 @@ pub enum CliError {
     Read { path: String, source: std::io::Error },
     #[error("cannot write {path}: {source}")]
     Write { path: String, source: std::io::Error },
-    #[error("invalid machine settings in {path}: {message}")]
-    Settings { path: String, message: String },
-    #[error("invalid machine model in {path}: {message}")]
-    Model { path: String, message: String },
+    /// A model file that does not read, or holds values out of range: its diagnostics,
+    /// rendered as a program's are, printed as they are.
+    #[error("{0}")]
+    Diagnosed(String),
     #[error("{0}")]
     Usage(String),
     /// The language server's connection failed (the client broke the protocol or went away).
@@ -150,7 +150,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
     let settings = match &model {
         Some((path, text)) => {
             ModelFile::from_toml(text)
-                .map_err(|e| CliError::Settings { path: path.display().to_string(), message: e.to_string() })?
+                .map_err(|problems| model_problems(path, text, ModelError::File(problems)))?
                 .machine
         }
         None => MachineSettings::default(),
@@ -162,39 +162,152 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         Some(DecimalInputArg::Increment) => DecimalInput::Increment,
         None => settings.decimal_input.unwrap_or_default(),
     };
+    let fixed_dialect = match dialect {
+        DialectChoice::Fixed(dialect) => Some(dialect),
+        DialectChoice::Auto => None,
+    };
     Ok(Resolved {
         options: ParseOptions { dialect, gcode_system, machine_kind: None },
         decimal_input,
         increment_places: settings.increment_places(),
-        settings: MachineSettings { decimal_input: Some(decimal_input), ..settings },
+        // The settings in force, the command line's included.
+        settings: MachineSettings {
+            dialect: fixed_dialect,
+            gcode_system: Some(gcode_system),
+            decimal_input: Some(decimal_input),
+            ..settings
+        },
         model,
     })
+}
+
+/// The model file of `resolved` as a user would name it: relative to the current
+/// directory when it lies below it (a found `turnpass.toml` is looked up from the
+/// program's canonical path).
+pub fn model_file_name(resolved: &Resolved) -> Option<String> {
+    let (path, _) = resolved.model.as_ref()?;
+    let cwd = std::env::current_dir().ok().and_then(|d| std::fs::canonicalize(d).ok());
+    let shown = cwd.as_deref().and_then(|cwd| path.strip_prefix(cwd).ok()).unwrap_or(path);
+    Some(shown.display().to_string())
+}
+
+/// Where `resolved`'s machine settings come from, for `--verbose`: the `--model` file, the
+/// `turnpass.toml` found above the program, or none (the machine defaults).
+pub fn model_source(read: &ReadArgs, resolved: &Resolved) -> String {
+    match model_file_name(resolved) {
+        Some(name) if read.model.is_some() => format!("model file {name} (--model)"),
+        Some(name) => format!("model file {name} (the nearest turnpass.toml above the program)"),
+        None => "no model file: machine defaults".to_string(),
+    }
+}
+
+/// What a command that runs a program says about its settings before anything else on
+/// standard error: the machine defaults note when no model file gives them, and with
+/// `verbose` where they come from.
+pub fn announce_settings(
+    command: &str,
+    name: &str,
+    (read, run): (&ReadArgs, &RunArgs),
+    resolved: &Resolved,
+    verbose: bool,
+) {
+    note_machine_defaults(resolved, Some(run));
+    if verbose {
+        let _ = writeln!(std::io::stderr(), "{command}: {name}: {}", model_source(read, resolved));
+    }
+}
+
+/// Say once per run, at the top of standard error, that no model file gives `resolved`'s
+/// settings, which machine defaults are in force (the options given on the command line
+/// included; `run` for a command that runs the program) and how to set them. Nothing when a
+/// model file gives them.
+pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>) {
+    static SAID: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    if resolved.model.is_some() || SAID.swap(true, std::sync::atomic::Ordering::Relaxed) {
+        return;
+    }
+    let mut settings = resolved.settings.clone();
+    if let Some(run) = run {
+        settings.block_delete = Some(lower_options(run, &settings, false).block_delete);
+    }
+    let mut text =
+        String::from("note: no model file (no --model, no turnpass.toml found): machine settings in force:\n");
+    let mut line = String::new();
+    for word in semantic::settings_in_force(&settings).split(' ') {
+        if !line.is_empty() && line.len() + 1 + word.len() > 96 {
+            text.push_str(&format!("  {line}\n"));
+            line.clear();
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    text.push_str(&format!("  {line}\n"));
+    text.push_str(
+        "  = set them with --model FILE, or a [machine] table in a turnpass.toml in the program's directory or above\n",
+    );
+    let _ = std::io::stderr().write_all(text.as_bytes());
 }
 
 /// The error model of a model file: `[model]`, `[[axis_table]]` (files read relative to
 /// the model file's directory) and `[[effect]]`.
 pub fn load_error_model(path: &Path, text: &str) -> Result<ErrorModel, CliError> {
     let (spec, dir) = model_spec(path, text)?;
-    spec.build(|file| read_table(&dir, file))
-        .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })
+    spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, text, e))
 }
 
 /// A model file's spec and the directory its tables are read from.
 pub fn model_spec(path: &Path, text: &str) -> Result<(ModelSpec, PathBuf), CliError> {
-    let spec = ModelSpec::from_toml(text)
-        .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })?;
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf();
-    Ok((spec, dir))
+    let spec = ModelSpec::read(text).map_err(|problems| model_problems(path, text, ModelError::File(problems)))?;
+    Ok((spec, folder_of(path).to_path_buf()))
 }
 
+/// The folder a file is in (`.` for a bare name).
+pub fn folder_of(path: &Path) -> &Path {
+    path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."))
+}
+
+/// A model's table file, read relative to the model file's folder `dir`; the error says
+/// the path it tried.
 pub fn read_table(dir: &Path, file: &str) -> Result<String, String> {
-    std::fs::read_to_string(dir.join(file)).map_err(|e| e.to_string())
+    let path = dir.join(file);
+    std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The problems of the model file at `path` (its text `text`) rendered as diagnostics on it,
+/// or on the table file they are in, as the error that ends the run.
+pub fn model_problems(path: &Path, text: &str, error: ModelError) -> CliError {
+    let name = path.display().to_string();
+    let mut out = match &error {
+        ModelError::File(problems) => rendered(&name, text.as_bytes(), &problems.diagnostics),
+        ModelError::Model(diagnostic) => rendered(&name, text.as_bytes(), std::slice::from_ref(diagnostic)),
+        ModelError::TableFile { file, text, diagnostic } => {
+            let table = folder_of(path).join(file).display().to_string();
+            rendered(&table, text.as_bytes(), std::slice::from_ref(diagnostic))
+        }
+    };
+    out.extend_from_slice(format!("error: invalid machine model {name}\n").as_bytes());
+    CliError::Diagnosed(String::from_utf8_lossy(&out).into_owned())
 }
 
 /// The error model `resolved` names; a command that needs one fails without it.
 pub fn required_error_model(resolved: &Resolved, command: &str) -> Result<ErrorModel, CliError> {
     match &resolved.model {
-        Some((path, text)) => load_error_model(path, text),
+        Some((path, text)) => {
+            let model = load_error_model(path, text)?;
+            if model.is_empty() {
+                // A settings-only file (a `turnpass.toml` beside the programs) is found as
+                // readily as a measured model: say that this one moves nothing.
+                let _ = writeln!(
+                    std::io::stderr(),
+                    "note: {} has no error terms ([[axis_table]] or [[effect]]): {command} takes the machine as \
+                     perfect; give --model FILE for a measured machine",
+                    model_file_name(resolved).unwrap_or_else(|| path.display().to_string())
+                );
+            }
+            Ok(model)
+        }
         None => Err(CliError::Usage(format!(
             "{command} needs a machine model: give --model FILE, or put a turnpass.toml in the program's \
              directory or above it"
@@ -216,7 +329,7 @@ pub fn model_sha256(resolved: &Resolved) -> Result<String, CliError> {
     let Some((path, text)) = &resolved.model else { return Ok(String::new()) };
     let (spec, dir) = model_spec(path, text)?;
     let mut tables = Vec::new();
-    for file in spec.axis_table.iter().filter_map(|table| table.file.as_deref()) {
+    for file in spec.axis_table.iter().filter_map(|table| table.file.as_ref().map(|file| file.get_ref().as_str())) {
         let table = dir.join(file);
         tables.push(
             std::fs::read(&table).map_err(|source| CliError::Read { path: table.display().to_string(), source })?,
@@ -238,7 +351,7 @@ pub fn lower_options(run: &RunArgs, settings: &MachineSettings, compensation: bo
     let block_delete = match run.block_delete {
         Some(Switch::On) => true,
         Some(Switch::Off) => false,
-        None => settings.block_delete.unwrap_or(false),
+        None => settings.block_delete_switch(),
     };
     LowerOptions { nose_radius_compensation: compensation, ..LowerOptions::new(block_delete) }
 }
@@ -453,11 +566,6 @@ pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &
     temp.flush().map_err(error)?;
     temp.persist(&target).map_err(|e| error(e.error))?;
     Ok(())
-}
-
-/// The folder `path` is in (`.` for a bare file name).
-fn folder_of(path: &Path) -> &Path {
-    path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."))
 }
 
 /// The file `path` names once every symbolic link in its last component is followed (the

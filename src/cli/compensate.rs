@@ -25,9 +25,10 @@ use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, read_program,
-    ready_beside, rendered, required_error_model, write_output, write_output_parts,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
+    read_program, ready_beside, rendered, required_error_model, write_output, write_output_parts,
 };
+use super::numbers::{self, within};
 
 #[derive(Args)]
 pub struct CompensateArgs {
@@ -56,6 +57,9 @@ pub struct CompensateArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// Also say, for each program, where the machine settings and the model come from.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -72,21 +76,27 @@ pub struct FitArgs {
     pub strategy: Strategy,
     /// Every commanded point lies this close to the written path, mm (default: half the
     /// least increment).
-    #[arg(long, value_name = "MM", value_parser = positive)]
+    #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::TOLERANCE_MM))]
     pub tolerance: Option<f64>,
-    /// With --strategy densify: one G01 every MM of path (default: as few as the
+    /// Only with --strategy densify: one G01 every MM of path (default: as few as the
     /// tolerance allows).
-    #[arg(long, value_name = "MM", value_parser = positive)]
+    #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::STEP_MM))]
     pub step: Option<f64>,
     /// Refuse the program when the model moves any point by more than MM.
-    #[arg(long, value_name = "MM", default_value_t = 0.1, value_parser = positive)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "MM",
+        default_value_t = 0.1,
+        value_parser = within(numbers::MAX_SHIFT_MM),
+    )]
     pub max_shift: f64,
     /// Expand every canned cycle, not only those whose motion changes.
     #[arg(long)]
     pub expand_cycles: bool,
     /// Minutes since the machine started when the program starts (thermal effects;
     /// default: the model's `start_min`).
-    #[arg(long, value_name = "MIN")]
+    #[arg(long, allow_negative_numbers = true, value_name = "MIN", value_parser = within(numbers::MINUTES))]
     pub start_min: Option<f64>,
 }
 
@@ -95,14 +105,22 @@ fn strategy_parser() -> impl TypedValueParser<Value = Strategy> {
         .map(|name| Strategy::from_name(&name).unwrap_or_default())
 }
 
-fn positive(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("`{s}` is not a positive number of millimetres")),
-    }
-}
-
 impl FitArgs {
+    /// Refuse options that do not go together: `--step` is the length of each line
+    /// `--strategy densify` writes, and the other strategies choose their own segments, so
+    /// with them it would only change how closely the path is sampled, which no option
+    /// promises.
+    pub fn check(&self) -> Result<(), CliError> {
+        if self.step.is_some() && self.strategy != Strategy::Densify {
+            let name = self.strategy.name();
+            return Err(CliError::Usage(format!(
+                "--step is the length of each G01 that --strategy densify writes, and --strategy {name} chooses \
+                 its own segments: give --strategy densify with --step, or leave --step out"
+            )));
+        }
+        Ok(())
+    }
+
     pub fn options(&self, machine: &Machine) -> CompensateOptions {
         let half_increment = machine.increment * machine.scale() / 2.0;
         CompensateOptions {
@@ -175,6 +193,7 @@ impl FileResult {
 }
 
 pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
+    args.fit.check()?;
     if args.out_dir.is_some() {
         return batch::run(&args);
     }
@@ -229,6 +248,9 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let model = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
+    if args.verbose {
+        messages.extend_from_slice(format!("compensate: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
+    }
     // The rewrite's tables of the program are made on the idle core while it is lowered.
     // A program that carries a provenance comment is found beside the lowering too.
     let beside = |program: &turnpass::syntax::Program<'_>| (ProgramTables::new(program), provenance::refusal(program));

@@ -12,11 +12,13 @@ use turnpass::diagnose::measured::{self, Kind};
 use turnpass::diagnose::synth::{SynthOptions, synth, to_csv};
 use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
+use turnpass::error_model::model_file::{ModelError, with_table_files};
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, read_program, ready,
-    required_error_model, write_atomically, write_output,
+    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, folder_of,
+    model_problems, model_spec, read_program, read_table, ready, required_error_model, write_atomically, write_output,
 };
+use super::numbers::{self, within};
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
 pub enum KindArg {
@@ -69,7 +71,7 @@ pub struct DiagnoseArgs {
     pub plot: Option<PathBuf>,
     /// Minutes since the machine started when the program started (default: the model's
     /// `start_min`; a CMM file's `start_min` column gives each part's own).
-    #[arg(long, value_name = "MIN")]
+    #[arg(long, allow_negative_numbers = true, value_name = "MIN", value_parser = within(numbers::MINUTES))]
     pub start_min: Option<f64>,
     /// Stop after this many effects.
     #[arg(long, default_value_t = 6)]
@@ -92,22 +94,52 @@ pub struct SynthArgs {
     pub axis: Option<AxisArg>,
     /// Interferometer table: the targets, mm along the slide (comma-separated; default
     /// every 5 mm from 0 to 100).
-    #[arg(long, value_name = "MM,MM,…", value_delimiter = ',')]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "MM,MM,…",
+        value_delimiter = ',',
+        value_parser = within(numbers::TARGET_MM),
+    )]
     pub targets: Vec<f64>,
     /// Standard deviation of the gauge's noise, mm.
-    #[arg(long, value_name = "MM", default_value_t = 0.0)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "MM",
+        default_value_t = 0.0,
+        value_parser = within(numbers::NOISE_MM),
+    )]
     pub noise: f64,
     /// Seed of the noise: the same seed gives the same file.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
     /// Ball bar: degrees of travel between rows.
-    #[arg(long, value_name = "DEG", default_value_t = 1.0)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "DEG",
+        default_value_t = 1.0,
+        value_parser = within(numbers::STEP_DEG),
+    )]
     pub step_deg: f64,
     /// CMM: mm along the surface between points.
-    #[arg(long, value_name = "MM", default_value_t = 0.5)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "MM",
+        default_value_t = 0.5,
+        value_parser = within(numbers::SPACING_MM),
+    )]
     pub spacing: f64,
     /// CMM: several parts, started at these minutes since machine start (comma-separated).
-    #[arg(long, value_name = "MIN,MIN,…", value_delimiter = ',')]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "MIN,MIN,…",
+        value_delimiter = ',',
+        value_parser = within(numbers::MINUTES),
+    )]
     pub parts: Vec<f64>,
     /// Output file (default: standard output).
     #[arg(short, long, value_name = "DATA.csv")]
@@ -170,9 +202,11 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     };
     write_output(None, out.as_bytes())?;
     if let Some(path) = &args.write_model {
-        warn_if_tables_move(&resolved, path);
-        let original = resolved.model.as_ref().map_or("", |(_, text)| text.as_str());
-        let written = model_text::with_found_effects(original, &diagnosis, &data_name);
+        let original = model_text_for(&resolved, path)?;
+        let written = model_text::with_found_effects(&original, &diagnosis, &data_name);
+        // The written model must load where it is written, tables and found effects alike.
+        let (spec, dir) = model_spec(path, &written)?;
+        spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
         write_atomically(path, written.as_bytes())?;
         eprintln!(
             "diagnose: wrote {} ({} effect{} added)",
@@ -202,9 +236,6 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
     };
-    if !(args.noise.is_finite() && args.noise >= 0.0) {
-        return Err(CliError::Usage(format!("--noise {} is not a standard deviation in mm", args.noise)));
-    }
     let defaults = SynthOptions::default();
     let options = SynthOptions {
         noise_mm: args.noise,
@@ -223,24 +254,37 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// The written model keeps the original's text, so its `[[axis_table]] file = …` names stay
-/// relative to the original's directory: say so when the new file is written elsewhere.
-fn warn_if_tables_move(resolved: &Resolved, output: &Path) {
-    let Some((model_path, text)) = &resolved.model else { return };
-    let Ok(spec) = turnpass::error_model::model_file::ModelSpec::from_toml(text) else { return };
-    let dir =
-        |p: &Path| std::fs::canonicalize(p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new(".")));
-    let moved = match (dir(model_path), dir(output)) {
-        (Ok(a), Ok(b)) => a != b,
-        _ => true,
+/// The working model's text for a model written to `output`: the `file` of each axis table
+/// rewritten relative to `output`'s folder when that is not the model's own, so the written
+/// model reads the same tables wherever it is written.
+fn model_text_for(resolved: &Resolved, output: &Path) -> Result<String, CliError> {
+    let Some((model_path, text)) = &resolved.model else { return Ok(String::new()) };
+    let canonical = |dir: &Path| {
+        std::fs::canonicalize(dir).map_err(|source| CliError::Write { path: output.display().to_string(), source })
     };
-    let files: Vec<&str> = spec.axis_table.iter().filter_map(|t| t.file.as_deref()).collect();
-    if moved && !files.is_empty() {
-        eprintln!(
-            "diagnose: warning: {} names its table files ({}) relative to its own directory; copy them beside {}",
-            model_path.display(),
-            files.join(", "),
-            output.display()
-        );
+    let (from, to) = (canonical(folder_of(model_path))?, canonical(folder_of(output))?);
+    if from == to {
+        return Ok(text.clone());
     }
+    with_table_files(text, |file| {
+        let file = Path::new(file);
+        if file.is_absolute() {
+            return None;
+        }
+        let table = std::fs::canonicalize(from.join(file)).unwrap_or_else(|_| from.join(file));
+        relative_path(&to, &table).to_str().map(str::to_string)
+    })
+    .map_err(|problems| model_problems(model_path, text, ModelError::File(problems)))
+}
+
+/// The path of `target` from the folder `from`, both absolute: up to their common folder,
+/// then down.
+fn relative_path(from: &Path, target: &Path) -> PathBuf {
+    let common = from.components().zip(target.components()).take_while(|(a, b)| a == b).count();
+    let mut path = PathBuf::new();
+    for _ in from.components().skip(common) {
+        path.push("..");
+    }
+    path.extend(target.components().skip(common));
+    path
 }

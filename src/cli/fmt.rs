@@ -10,7 +10,9 @@ use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::printer::{self, CanonicalOptions, Edits};
 use turnpass::syntax;
 
-use super::common::{CliError, ReadArgs, check_output, display_name, read_input, resolve, write_output};
+use super::common::{
+    CliError, ReadArgs, check_output, display_name, note_machine_defaults, read_input, resolve, write_output,
+};
 
 #[derive(Args)]
 pub struct FmtArgs {
@@ -33,6 +35,7 @@ pub fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref().filter(|_| !args.check))?;
     let resolved = resolve(&args.read, &args.file)?;
     let bytes = read_input(&args.file)?;
+    note_machine_defaults(&resolved, None);
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);
     let output = if args.canonical {

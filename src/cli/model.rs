@@ -8,7 +8,7 @@ use clap::{Args, Subcommand};
 
 use turnpass::error_model::report::report;
 
-use super::common::{CliError, Format, model_spec, read_table, write_output};
+use super::common::{CliError, Format, model_problems, model_spec, read_table, write_output};
 
 #[derive(Subcommand)]
 pub enum ModelCommand {
@@ -31,8 +31,7 @@ pub fn run(command: ModelCommand) -> Result<ExitCode, CliError> {
             let text = std::fs::read_to_string(path)
                 .map_err(|source| CliError::Read { path: path.display().to_string(), source })?;
             let (spec, dir) = model_spec(path, &text)?;
-            let report = report(&spec, |file| read_table(&dir, file))
-                .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })?;
+            let report = report(&spec, |file| read_table(&dir, file)).map_err(|e| model_problems(path, &text, e))?;
             let out = match args.format {
                 Format::Human => format!("machine model {}\n{report}", path.display()),
                 Format::Json => serde_json::to_string_pretty(&report).unwrap_or_default() + "\n",

@@ -9,7 +9,8 @@ use std::process::ExitCode;
 use clap::Args;
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, check_output, display_name, read_program, ready, rendered, write_atomically,
+    CliError, ReadArgs, RunArgs, check_output, display_name, model_source, read_program, ready, rendered,
+    write_atomically,
 };
 use super::compensate::FitArgs;
 
@@ -32,14 +33,21 @@ pub struct PlotArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// Also say where the machine settings and the model come from.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     check_output(Some(&args.output))?;
+    args.fit.check()?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let model = args.fit.error_model(&resolved, "plot")?;
     let name = display_name(&args.file);
     let mut messages = Vec::new();
+    if args.verbose {
+        messages.extend_from_slice(format!("plot: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
+    }
     let program = match ready(&name, &bytes, &resolved, &args.run, "plot", &mut messages) {
         Ok(program) => program,
         Err(text) => {

@@ -12,8 +12,8 @@ use turnpass::simulation;
 use turnpass::syntax;
 
 use super::common::{
-    CliError, Lowering, ReadArgs, RunArgs, check_output, display_name, lower_and_validate, lower_options, not_lowered,
-    read_program, report, write_output,
+    CliError, Lowering, ReadArgs, RunArgs, announce_settings, check_output, display_name, lower_and_validate,
+    lower_options, model_file_name, not_lowered, read_program, report, write_output,
 };
 
 #[derive(Args)]
@@ -27,6 +27,9 @@ pub struct ExpandArgs {
     read: ReadArgs,
     #[command(flatten)]
     run: RunArgs,
+    /// Also say where the machine settings come from.
+    #[arg(long, short)]
+    verbose: bool,
 }
 
 #[derive(Args)]
@@ -39,6 +42,9 @@ pub struct SimulateArgs {
     read: ReadArgs,
     #[command(flatten)]
     run: RunArgs,
+    /// Also say where the machine settings come from.
+    #[arg(long, short)]
+    verbose: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -51,6 +57,7 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref())?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
+    announce_settings("expand", &name, (&args.read, &args.run), &resolved, args.verbose);
     let parsed = syntax::parse(&bytes, &resolved.options);
     if !semantic::lowers(&parsed.program) {
         return Ok(not_lowered("expand", &name, &bytes, &parsed));
@@ -76,6 +83,7 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
 pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
+    announce_settings("simulate", &name, (&args.read, &args.run), &resolved, args.verbose);
     let parsed = syntax::parse(&bytes, &resolved.options);
     if !semantic::lowers(&parsed.program) {
         return Ok(not_lowered("simulate", &name, &bytes, &parsed));
@@ -98,7 +106,9 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
             text
         }
         SimulateFormat::Json => {
-            let value = serde_json::json!({ "moves": rows, "summary": summary });
+            // `model_file` is null when the machine defaults are in force.
+            let value =
+                serde_json::json!({ "model_file": model_file_name(&resolved), "moves": rows, "summary": summary });
             let mut text = serde_json::to_vec_pretty(&value).unwrap_or_default();
             text.push(b'\n');
             text

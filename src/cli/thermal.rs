@@ -13,9 +13,11 @@ use turnpass::diagnose::report::value_with_sigma;
 use turnpass::diagnose::thermal_fit::{FirstOrderFit, fit_log_split};
 use turnpass::error_model::Effect;
 use turnpass::error_model::effects::{ThermalX, ThermalZ};
-use turnpass::error_model::model_file::ModelSpec;
 
-use super::common::{AxisArg, CliError, Format, display_name, write_atomically, write_output};
+use super::common::{
+    AxisArg, CliError, Format, display_name, model_problems, model_spec, read_table, write_atomically, write_output,
+};
+use super::numbers::{self, within};
 
 #[derive(Args)]
 pub struct FitThermalArgs {
@@ -30,7 +32,7 @@ pub struct FitThermalArgs {
     pub axis: Option<AxisArg>,
     /// Minutes from the start of the log at which the heat source stopped and the
     /// cool-down began (default: where the smoothed log peaks).
-    #[arg(long, value_name = "MIN")]
+    #[arg(long, allow_negative_numbers = true, value_name = "MIN", value_parser = within(numbers::MINUTES))]
     pub split_min: Option<f64>,
     #[arg(long, value_enum, default_value = "human")]
     pub format: Format,
@@ -76,8 +78,7 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
         Err(source) => return Err(CliError::Read { path: path.display().to_string(), source }),
     };
-    let spec = ModelSpec::from_toml(&original)
-        .map_err(|e| CliError::Model { path: path.display().to_string(), message: e.to_string() })?;
+    let (spec, _) = model_spec(path, &original)?;
     if spec.effect.iter().any(|e| e.name() == effect.name()) {
         return Err(CliError::Usage(format!(
             "{} already has a {} effect: remove it, or write to another model file",
@@ -106,6 +107,9 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
         ));
     }
     written.push_str(&effect_table(&effect));
+    // The written model must load: the fitted curve is checked against its ranges.
+    let (spec, dir) = model_spec(path, &written)?;
+    spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
     write_atomically(path, written.as_bytes())?;
     eprintln!("fit-thermal: wrote {} into {}", effect.name(), path.display());
     Ok(ExitCode::SUCCESS)

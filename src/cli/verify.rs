@@ -15,9 +15,10 @@ use turnpass::source::LineIndex;
 use turnpass::syntax::Program;
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, display_name, model_sha256, read_input, read_program, ready,
+    CliError, Format, ReadArgs, RunArgs, display_name, model_sha256, model_source, read_input, read_program, ready,
     required_error_model, write_output,
 };
+use super::numbers::{self, within};
 
 #[derive(Args)]
 pub struct VerifyArgs {
@@ -27,7 +28,7 @@ pub struct VerifyArgs {
     pub compensated: PathBuf,
     /// Fail when the predicted deviation from the nominal part exceeds MM (default: twice
     /// the least increment).
-    #[arg(long, value_name = "MM")]
+    #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::MAX_DEVIATION_MM))]
     pub max_deviation: Option<f64>,
     /// Minutes since the machine started when the program starts (thermal effects; default:
     /// the compensated program's provenance comment, else the model's `start_min`).
@@ -43,6 +44,9 @@ pub struct VerifyArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// Also say where the machine settings and the model come from.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
@@ -53,6 +57,9 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     let model_sha256 = model_sha256(&resolved)?;
     let (original_name, compensated_name) = (display_name(&args.original), display_name(&args.compensated));
     let mut messages = Vec::new();
+    if args.verbose {
+        messages.extend_from_slice(format!("verify: {}\n", model_source(&args.read, &resolved)).as_bytes());
+    }
     let original = ready(&original_name, &original_bytes, &resolved, &args.run, "verify", &mut messages);
     let compensated = ready(&compensated_name, &compensated_bytes, &resolved, &args.run, "verify", &mut messages);
     let (original, compensated) = match (original, compensated) {

@@ -17,7 +17,7 @@
 
 use serde::Serialize;
 
-use crate::error_model::interferometer::{self, SlideTable, TableError};
+use crate::error_model::interferometer::{self, SlideTable};
 pub use crate::error_model::model_file::Axis;
 
 /// The direction a ball bar circle was run in.
@@ -177,10 +177,7 @@ pub fn read(text: &str, kind: Option<Kind>) -> Result<Measured, MeasuredError> {
 
 /// An ISO 230-2 table of one slide, read by the error model's own reader.
 fn read_slide_table(text: &str, axis: Axis) -> Result<Measured, MeasuredError> {
-    let table = interferometer::parse(text).map_err(|e| match e {
-        TableError::Row { line, message } => error(line, message),
-        other => error(1, other.to_string()),
-    })?;
+    let table = interferometer::parse(text).map_err(|e| error(e.line().unwrap_or(1), e.message()))?;
     if table.linear.is_none() && table.straightness.is_none() {
         return Err(error(1, "the table has neither linear_mm nor straightness columns to diagnose"));
     }

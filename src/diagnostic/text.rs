@@ -48,6 +48,7 @@ impl DiagnosticKind {
             DialectConflict { .. } => "dialect-conflict",
             MachiningCentreProgram => "machining-centre-program",
             SourceTooLarge => "source-too-large",
+            ModelFile(problem) => problem.code(),
             TooManyWords { .. } => "too-many-words",
             OrphanContinuation => "orphan-continuation",
             NonFiniteMove => "non-finite-move",
@@ -176,6 +177,7 @@ impl DiagnosticKind {
             }
             MachiningCentreProgram => "this is an OSP machining-centre program; only its syntax is checked".to_string(),
             SourceTooLarge => "the program is 4 GiB or larger".to_string(),
+            ModelFile(problem) => problem.message(),
             TooManyWords { max } => format!("the block has more than {max} words"),
             OrphanContinuation => "continuation line with no block before it".to_string(),
             NonFiniteMove => "a move of this block has no finite position, feed or time".to_string(),
@@ -195,11 +197,12 @@ impl DiagnosticKind {
             CompensationOnArc { cancel: true } => {
                 "nose-radius compensation ends on an arc; the move is made straight".to_string()
             }
-            HomeUnknown => "the machine settings give no home position".to_string(),
-            UnknownStartPosition => {
-                "the machine settings give no home position; the toolpath starts at the first programmed point"
-                    .to_string()
-            }
+            HomeUnknown => "the machine settings give no home position; after this block, and after every later \
+                            return to home, the toolpath resumes at the next programmed point"
+                .to_string(),
+            UnknownStartPosition => "the machine settings give no home position; the toolpath starts at the first \
+                                     programmed point, and after every return to home resumes at the next one"
+                .to_string(),
             LapContourNotClosed => "LAP contour with no `G80` after it".to_string(),
             LapContourMissing { name } => format!("no `G81`/`G82` contour block is named `{name}`"),
             LapContourEmpty => "the LAP contour has no move after its first block".to_string(),
@@ -393,6 +396,7 @@ impl DiagnosticKind {
             DialectConflict { chosen, .. } => format!("evidence for {chosen}"),
             MachiningCentreProgram => "machining-centre evidence".to_string(),
             SourceTooLarge => "too large".to_string(),
+            ModelFile(problem) => problem.label(),
             TooManyWords { .. } => "this block".to_string(),
             OrphanContinuation => "`$`".to_string(),
             NonFiniteMove | ArcEndOffCircle { .. } | TimeGoesBack | OutsideTravel { .. } => "this block".to_string(),
@@ -526,6 +530,7 @@ impl DiagnosticKind {
             }
             MachiningCentreProgram => None,
             SourceTooLarge => None,
+            ModelFile(problem) => problem.hint(),
             TooManyWords { .. } => Some("no control reads a block this long; split it".to_string()),
             OrphanContinuation => Some("a `$` line continues the block on the line before it".to_string()),
             NonFiniteMove | TimeGoesBack => None,

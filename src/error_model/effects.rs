@@ -46,14 +46,16 @@ pub use tool_offset_x::ToolOffsetX;
 pub use tool_offset_z::ToolOffsetZ;
 pub use tool_wear::ToolWear;
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
 
+use crate::bounds::Invalid;
 use crate::error_model::Sample;
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
 
-/// One parametric effect.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// One parametric effect. It is written with its name as `kind` beside its parameters
+/// (`Serialize`); a model file's `[[effect]]` is read by that name, `Effect::deserialize_kind`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Effect {
     ToolOffsetX(ToolOffsetX),
@@ -99,6 +101,65 @@ pub const NAMES: [&str; 18] = [
 ];
 
 impl Effect {
+    /// The effect named `kind` (a name of `NAMES`), its parameters read from `parameters`
+    /// (the table without its `kind`); `None` for a name no effect has. The model file reads
+    /// each `[[effect]]` table through this rather than through the enum's `kind` tag, which
+    /// would buffer the table and lose the place of an error in it.
+    pub fn deserialize_kind<'de, D: Deserializer<'de>>(kind: &str, parameters: D) -> Option<Result<Effect, D::Error>> {
+        fn read<'de, T: Deserialize<'de>, D: Deserializer<'de>>(
+            parameters: D,
+            effect: fn(T) -> Effect,
+        ) -> Option<Result<Effect, D::Error>> {
+            Some(T::deserialize(parameters).map(effect))
+        }
+        match kind {
+            "tool_offset_x" => read(parameters, Effect::ToolOffsetX),
+            "tool_offset_z" => read(parameters, Effect::ToolOffsetZ),
+            "scale_x" => read(parameters, Effect::ScaleX),
+            "scale_z" => read(parameters, Effect::ScaleZ),
+            "squareness" => read(parameters, Effect::Squareness),
+            "backlash_x" => read(parameters, Effect::BacklashX),
+            "backlash_z" => read(parameters, Effect::BacklashZ),
+            "cyclic_x" => read(parameters, Effect::CyclicX),
+            "cyclic_z" => read(parameters, Effect::CyclicZ),
+            "servo_mismatch" => read(parameters, Effect::ServoMismatch),
+            "thermal_x" => read(parameters, Effect::ThermalX),
+            "thermal_z" => read(parameters, Effect::ThermalZ),
+            "tool_wear" => read(parameters, Effect::ToolWear),
+            "reversal_spike_x" => read(parameters, Effect::ReversalSpikeX),
+            "reversal_spike_z" => read(parameters, Effect::ReversalSpikeZ),
+            "straightness_x" => read(parameters, Effect::StraightnessX),
+            "straightness_z" => read(parameters, Effect::StraightnessZ),
+            "nose_radius" => read(parameters, Effect::NoseRadius),
+            _ => None,
+        }
+    }
+
+    /// The parameters against the plausible ranges each effect's file gives; the path of a
+    /// refused value is relative to the effect's table.
+    pub fn check(&self) -> Result<(), Invalid> {
+        match self {
+            Effect::ToolOffsetX(e) => e.check(),
+            Effect::ToolOffsetZ(e) => e.check(),
+            Effect::ScaleX(e) => e.check(),
+            Effect::ScaleZ(e) => e.check(),
+            Effect::Squareness(e) => e.check(),
+            Effect::BacklashX(e) => e.check(),
+            Effect::BacklashZ(e) => e.check(),
+            Effect::CyclicX(e) => e.check(),
+            Effect::CyclicZ(e) => e.check(),
+            Effect::ServoMismatch(e) => e.check(),
+            Effect::ThermalX(e) => e.check(),
+            Effect::ThermalZ(e) => e.check(),
+            Effect::ToolWear(e) => e.check(),
+            Effect::ReversalSpikeX(e) => e.check(),
+            Effect::ReversalSpikeZ(e) => e.check(),
+            Effect::StraightnessX(e) => e.check(),
+            Effect::StraightnessZ(e) => e.check(),
+            Effect::NoseRadius(e) => e.check(),
+        }
+    }
+
     /// The play this effect puts in each axis' drive, mm.
     pub fn play(&self) -> Xz {
         match self {

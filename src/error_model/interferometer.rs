@@ -7,12 +7,16 @@
 //! an optional column: `linear_mm`, `straightness_mm` (or the two runs of the reversal
 //! technique, `straightness_m1_mm` and `straightness_m2_mm`, reduced by eq. 2.7 of the
 //! thesis: `s = (m2 − m1)/2`), and `angular_deg`. Deviations are measured − target, mm.
+//! Any other column is refused: a misspelt name (`linear_um`) would otherwise drop its data.
 //!
 //! The model uses the mean deviation of the direction the slide moves in (the mean
 //! bidirectional deviation ± half the reversal value), interpolated linearly between
 //! targets and held at the end values beyond them. `report` gives the ISO 230-2 figures.
 
 use std::collections::BTreeMap;
+
+use crate::source::{LineIndex, Span};
+use crate::toml_spans::nearest;
 
 /// One measured quantity of a slide along its targets.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -81,19 +85,132 @@ impl SlideTable {
     }
 }
 
-/// A table that does not read.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+/// The columns a table may have, in the order the module documentation gives them.
+pub const COLUMNS: [&str; 8] = [
+    "target_mm",
+    "direction",
+    "run",
+    "linear_mm",
+    "straightness_mm",
+    "straightness_m1_mm",
+    "straightness_m2_mm",
+    "angular_deg",
+];
+
+/// A table that does not read. Lines are 1-based lines of the text; spans are byte ranges
+/// of it.
+#[derive(Debug, Clone, PartialEq)]
 pub enum TableError {
-    #[error("line {line}: {message}")]
-    Row { line: usize, message: String },
-    #[error("the table has no `{0}` column")]
-    MissingColumn(&'static str),
-    #[error("the table has no error column (linear_mm, straightness_mm, straightness_m1_mm/_m2_mm, angular_deg)")]
-    NoErrors,
-    #[error("the table has no rows")]
+    Row {
+        line: usize,
+        message: String,
+    },
+    MissingColumn {
+        line: usize,
+        name: &'static str,
+    },
+    /// A header cell that names no column of `COLUMNS` (a misspelt name is refused, not
+    /// ignored); `suggestion` is the column it most likely means.
+    UnknownColumn {
+        line: usize,
+        span: Span,
+        name: String,
+        suggestion: Option<&'static str>,
+    },
+    DuplicateColumn {
+        line: usize,
+        span: Span,
+        name: String,
+    },
+    NoErrors {
+        line: usize,
+    },
     Empty,
-    #[error("{0}")]
-    Csv(String),
+    Csv {
+        line: usize,
+        message: String,
+    },
+}
+
+impl TableError {
+    /// The line the error is on (`None` for a table with no rows at all).
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            TableError::Row { line, .. }
+            | TableError::MissingColumn { line, .. }
+            | TableError::UnknownColumn { line, .. }
+            | TableError::DuplicateColumn { line, .. }
+            | TableError::NoErrors { line }
+            | TableError::Csv { line, .. } => Some(*line),
+            TableError::Empty => None,
+        }
+    }
+
+    /// What is wrong, without the line.
+    pub fn message(&self) -> String {
+        match self {
+            TableError::Row { message, .. } | TableError::Csv { message, .. } => message.clone(),
+            TableError::MissingColumn { name, .. } => format!("the table has no `{name}` column"),
+            TableError::UnknownColumn { name, .. } => {
+                format!("unknown column `{name}` (the columns are {})", COLUMNS.join(", "))
+            }
+            TableError::DuplicateColumn { name, .. } => format!("the column `{name}` appears twice"),
+            TableError::NoErrors { .. } => {
+                "the table has no error column (linear_mm, straightness_mm, straightness_m1_mm/_m2_mm, angular_deg)"
+                    .to_string()
+            }
+            TableError::Empty => "the table has no rows".to_string(),
+        }
+    }
+
+    /// The text the error is about in `text`, the table it was read from: the header cell of
+    /// a column, else the whole line (the end of the text for a table with no rows).
+    pub fn span(&self, text: &str) -> Span {
+        match self {
+            TableError::UnknownColumn { span, .. } | TableError::DuplicateColumn { span, .. } => *span,
+            _ => {
+                let end = u32::try_from(text.len()).unwrap_or(u32::MAX);
+                let lines = LineIndex::new(text.as_bytes());
+                match self.line() {
+                    Some(line) if line >= 1 && line <= lines.line_count() => {
+                        let start = lines.line_start(line - 1);
+                        let next = if line < lines.line_count() { lines.line_start(line) } else { end };
+                        let trimmed = text[start as usize..next as usize].trim_end().len() as u32;
+                        Span::new(start, start + trimmed)
+                    }
+                    _ => Span::new(end, end),
+                }
+            }
+        }
+    }
+}
+
+impl std::fmt::Display for TableError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.line() {
+            Some(line) => write!(f, "line {line}: {}", self.message()),
+            None => f.write_str(&self.message()),
+        }
+    }
+}
+
+impl std::error::Error for TableError {}
+
+/// The spans of the cells of the header line that starts at byte `start` of `text`, one per
+/// cell, each without its blanks and quotes.
+fn header_cells(text: &str, start: usize) -> Vec<Span> {
+    let line_end = text[start..].find(['\n', '\r']).map_or(text.len(), |n| start + n);
+    let mut cells = Vec::new();
+    let mut cell_start = start;
+    for piece in text[start..line_end].split(',') {
+        let leading = piece.len() - piece.trim_start().len();
+        let trimmed = piece.trim().trim_matches('"');
+        let quote = usize::from(piece.trim_start().starts_with('"'));
+        let from = cell_start + leading + quote;
+        cells.push(Span::new(from as u32, (from + trimmed.len()) as u32));
+        cell_start += piece.len() + 1;
+    }
+    cells
 }
 
 #[derive(Default)]
@@ -122,10 +239,37 @@ pub fn csv_record_line(text: &str, byte: u64) -> usize {
 /// Read a slide's CSV table.
 pub fn parse(text: &str) -> Result<SlideTable, TableError> {
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
-    let headers = reader.headers().map_err(|e| TableError::Csv(e.to_string()))?.clone();
+    let headers = reader.headers().map_err(|e| csv_error(text, &e))?.clone();
+    let header_start = headers.position().map_or(0, |p| p.byte() as usize);
+    let header_line = csv_record_line(text, header_start as u64);
+    let cells = {
+        let lines = LineIndex::new(text.as_bytes());
+        let start = if header_line >= 1 && header_line <= lines.line_count() {
+            lines.line_start(header_line - 1) as usize
+        } else {
+            0
+        };
+        let cells = header_cells(text, start);
+        if cells.len() == headers.len() { cells } else { vec![Span::new(start as u32, start as u32); headers.len()] }
+    };
+    for (i, name) in headers.iter().enumerate() {
+        if !COLUMNS.contains(&name) {
+            let suggestion = nearest(name, COLUMNS);
+            return Err(TableError::UnknownColumn {
+                line: header_line,
+                span: cells[i],
+                name: name.to_string(),
+                suggestion,
+            });
+        }
+        if headers.iter().take(i).any(|h| h == name) {
+            return Err(TableError::DuplicateColumn { line: header_line, span: cells[i], name: name.to_string() });
+        }
+    }
     let column = |name: &str| headers.iter().position(|h| h == name);
-    let target = column("target_mm").ok_or(TableError::MissingColumn("target_mm"))?;
-    let direction = column("direction").ok_or(TableError::MissingColumn("direction"))?;
+    let missing = |name: &'static str| TableError::MissingColumn { line: header_line, name };
+    let target = column("target_mm").ok_or_else(|| missing("target_mm"))?;
+    let direction = column("direction").ok_or_else(|| missing("direction"))?;
     let quantities: [(&str, Option<usize>); 5] = [
         ("linear_mm", column("linear_mm")),
         ("straightness_mm", column("straightness_mm")),
@@ -134,12 +278,12 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
         ("angular_deg", column("angular_deg")),
     ];
     if quantities.iter().all(|(_, c)| c.is_none()) {
-        return Err(TableError::NoErrors);
+        return Err(TableError::NoErrors { line: header_line });
     }
     // Per quantity, per target (keyed by its exact bits, in order), the runs each way.
     let mut data: Vec<BTreeMap<OrderedTarget, Runs>> = (0..5).map(|_| BTreeMap::new()).collect();
     for record in reader.records() {
-        let record = record.map_err(|e| TableError::Csv(e.to_string()))?;
+        let record = record.map_err(|e| csv_error(text, &e))?;
         let line = record.position().map_or(0, |p| csv_record_line(text, p.byte()));
         let number = |c: usize, name: &str| -> Result<f64, TableError> {
             let text = record.get(c).unwrap_or("");
@@ -183,6 +327,12 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
         return Err(TableError::Empty);
     }
     Ok(table)
+}
+
+/// A CSV reader's error, at the line it gives.
+fn csv_error(text: &str, e: &csv::Error) -> TableError {
+    let line = e.position().map_or(1, |p| csv_record_line(text, p.byte()));
+    TableError::Csv { line, message: e.to_string() }
 }
 
 /// A target position as a map key: targets are read from text, so equal targets have

@@ -15,47 +15,90 @@
 //! b = 0.004
 //! ```
 //!
+//! A file that does not read is a list of diagnostics on its text (`crate::toml_spans`),
+//! each at the table and key that hold the error: an unknown key or effect with the nearest
+//! valid name, a value of the wrong type, a number outside its plausible range (every
+//! number is checked when it is read). A table's own problems are diagnostics on the table
+//! file (a misspelt column at its header cell) or, for an inline table, on the model file.
+//!
 //! Reading a table's file is the caller's job (the library does no I/O): `build` takes a
-//! function from the file name to its text.
+//! function from the file name to its text, or to the reason it cannot be read (which
+//! should say the path it tried).
+
+use std::fmt;
 
 use serde::Deserialize;
+use toml::Spanned;
+use toml::de::DeValue;
 
 use super::ErrorModel;
-use super::effects::Effect;
+use super::effects::{self, Effect};
 use super::htm::AxisTables;
-use super::interferometer::{self, TableError};
+use super::interferometer::{self, SlideTable, TableError};
+use crate::bounds::{Invalid, Range};
+use crate::diagnostic::{Diagnostic, DiagnosticKind, ModelProblem};
+use crate::machine::MachineSettings;
+use crate::source::Span;
+use crate::toml_spans::{self, Document, Problems, Step};
 
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The tables a model file may have at its top level.
+pub const TABLES: [&str; 4] = ["machine", "model", "axis_table", "effect"];
+
+#[derive(Debug, Clone, Default)]
 pub struct ModelSpec {
-    /// The machine settings, read by `crate::machine`.
-    #[serde(default)]
-    pub machine: Option<toml::Table>,
-    #[serde(default)]
+    /// The machine settings (`crate::machine`), read and checked with the rest.
+    pub machine: MachineSettings,
     pub model: ModelSection,
-    #[serde(default)]
     pub axis_table: Vec<AxisTableSpec>,
-    #[serde(default)]
     pub effect: Vec<Effect>,
 }
 
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelSection {
+    /// Within `START_MIN`.
     #[serde(default)]
     pub start_min: f64,
+    /// Within `ABBE_Y_MM`.
     #[serde(default)]
     pub abbe_y_mm: f64,
+}
+
+/// Plausible start times, minutes since the machine started: from 0 (a program before the
+/// start has no warm-up to read) to 1,000,000 (about two years of running). The
+/// command line's `--start-min` and `--parts` take the same range.
+pub const START_MIN: Range = Range::closed(0.0, 1_000_000.0, "min");
+
+/// Plausible Abbe offsets of the tool point along Y: within ±1,000 mm.
+pub const ABBE_Y_MM: Range = Range::magnitude(1_000.0, "mm");
+
+impl ModelSection {
+    /// The values against their plausible ranges.
+    pub fn check(&self) -> Vec<Invalid> {
+        [START_MIN.check_key("start_min", self.start_min), ABBE_Y_MM.check_key("abbe_y_mm", self.abbe_y_mm)]
+            .into_iter()
+            .filter_map(Result::err)
+            .collect()
+    }
 }
 
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AxisTableSpec {
     pub axis: Axis,
+    /// The table's file, relative to the model file's folder; its span is the value's in
+    /// the model file.
     #[serde(default)]
-    pub file: Option<String>,
+    pub file: Option<Spanned<String>>,
     #[serde(default)]
-    pub csv: Option<String>,
+    pub csv: Option<Spanned<String>>,
+    /// The `[[axis_table]]` in the model file.
+    #[serde(skip)]
+    pub span: Span,
+    /// Where the text of `csv` starts in the model file, when the string is written
+    /// without escapes (so that a place in the table is a place in the file).
+    #[serde(skip)]
+    pub inline_start: Option<u32>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -65,41 +108,93 @@ pub enum Axis {
     Z,
 }
 
-#[derive(Debug, thiserror::Error)]
+impl Axis {
+    pub fn letter(self) -> char {
+        match self {
+            Axis::X => 'X',
+            Axis::Z => 'Z',
+        }
+    }
+}
+
+/// A model that does not build: problems in the model file's text, or in a table file it
+/// names.
+#[derive(Debug, Clone, PartialEq)]
 pub enum ModelError {
-    #[error("{0}")]
-    Toml(String),
-    #[error("axis table {index} ({axis:?}): give either `file` or `csv`")]
-    TableSource { index: usize, axis: Axis },
-    #[error("axis table {index} ({axis:?}), {source_name}: {error}")]
-    Table { index: usize, axis: Axis, source_name: String, error: TableError },
-    #[error("axis table {index} ({axis:?}): cannot read `{file}`: {message}")]
-    Read { index: usize, axis: Axis, file: String, message: String },
-    #[error("two tables for the {0:?} slide")]
-    DuplicateAxis(Axis),
+    /// The file does not read.
+    File(Problems),
+    /// A problem of the model's tables, on the model file's text.
+    Model(Box<Diagnostic>),
+    /// A table file that does not read: its name as the model writes it, its text and the
+    /// diagnostic on that text.
+    TableFile { file: String, text: String, diagnostic: Box<Diagnostic> },
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ModelError::File(problems) => write!(f, "{problems}"),
+            ModelError::Model(diagnostic) => f.write_str(&diagnostic.message()),
+            ModelError::TableFile { file, text, diagnostic } => {
+                write!(f, "{file}: {}", Problems::new(text, vec![(**diagnostic).clone()]))
+            }
+        }
+    }
+}
+
+impl std::error::Error for ModelError {}
+
+/// An axis table read from its source.
+pub struct ReadTable<'a> {
+    pub spec: &'a AxisTableSpec,
+    pub table: SlideTable,
+    /// Its file's name, or "inline csv".
+    pub source_name: String,
+    /// Its CSV text.
+    pub text: String,
 }
 
 impl ModelSpec {
+    /// A model file's text read and checked; the error holds every problem found.
+    pub fn read(text: &str) -> Result<ModelSpec, Problems> {
+        let document = Document::parse(text).map_err(|d| Problems::new(text, vec![d]))?;
+        let mut problems = Vec::new();
+        for (key, at) in document.top_keys() {
+            if !TABLES.contains(&key.as_str()) {
+                problems.push(document.unknown_key(&[], &key, at, &TABLES));
+            }
+        }
+        let machine = MachineSettings::read(&document).unwrap_or_else(|found| {
+            problems.extend(found);
+            MachineSettings::default()
+        });
+        let model_path = [Step::from("model")];
+        let model: ModelSection = read_or_note(&document, &model_path, &mut problems).unwrap_or_default();
+        problems.extend(model.check().iter().map(|bad| document.invalid(&model_path, bad)));
+        let mut axis_table: Vec<AxisTableSpec> =
+            read_or_note(&document, &[Step::from("axis_table")], &mut problems).unwrap_or_default();
+        for (index, table) in axis_table.iter_mut().enumerate() {
+            table.span = document.span_of(&[Step::from("axis_table"), Step::Index(index)]);
+            table.inline_start = table.csv.as_ref().and_then(|csv| unescaped_start(text, csv));
+        }
+        let effect = read_effects(&document, &mut problems);
+        if problems.is_empty() {
+            Ok(ModelSpec { machine, model, axis_table, effect })
+        } else {
+            problems.sort_by_key(|d| d.span.start);
+            Err(Problems::new(text, problems))
+        }
+    }
+
+    /// [`ModelSpec::read`] with the error as a [`ModelError`].
     pub fn from_toml(text: &str) -> Result<ModelSpec, ModelError> {
-        toml::from_str(text).map_err(|e| ModelError::Toml(e.to_string()))
+        ModelSpec::read(text).map_err(ModelError::File)
     }
 
     /// The error model, reading each table's `file` through `read`.
-    pub fn build(&self, mut read: impl FnMut(&str) -> Result<String, String>) -> Result<ErrorModel, ModelError> {
+    pub fn build(&self, read: impl FnMut(&str) -> Result<String, String>) -> Result<ErrorModel, ModelError> {
         let mut tables: Option<AxisTables> = None;
-        let mut seen = Vec::new();
-        for (index, spec) in self.axis_table.iter().enumerate() {
-            if seen.contains(&spec.axis) {
-                return Err(ModelError::DuplicateAxis(spec.axis));
-            }
-            seen.push(spec.axis);
-            let (text, source_name) = self.table_text(index, &mut read)?;
-            let table = interferometer::parse(&text).map_err(|error| ModelError::Table {
-                index,
-                axis: spec.axis,
-                source_name,
-                error,
-            })?;
+        for ReadTable { spec, table, .. } in self.read_tables(read)? {
             let all =
                 tables.get_or_insert_with(|| AxisTables { abbe_y_mm: self.model.abbe_y_mm, ..Default::default() });
             match spec.axis {
@@ -110,27 +205,161 @@ impl ModelSpec {
         Ok(ErrorModel { tables, effects: self.effect.clone(), start_min: self.model.start_min })
     }
 
-    /// The CSV text of axis table `index` and a name for it (its file, or "inline csv").
-    pub fn table_text(
+    /// Every axis table read from its source, in the file's order, each slide once.
+    pub fn read_tables(
         &self,
-        index: usize,
         mut read: impl FnMut(&str) -> Result<String, String>,
-    ) -> Result<(String, String), ModelError> {
-        let Some(spec) = self.axis_table.get(index) else {
-            return Err(ModelError::Toml(format!("no axis table {index}")));
+    ) -> Result<Vec<ReadTable<'_>>, ModelError> {
+        let model_error = |problem: ModelProblem, at: Span| {
+            ModelError::Model(Box::new(Diagnostic::error(DiagnosticKind::ModelFile(Box::new(problem)), at)))
         };
-        match (&spec.file, &spec.csv) {
-            (Some(file), None) => {
-                let text = read(file).map_err(|message| ModelError::Read {
-                    index,
-                    axis: spec.axis,
-                    file: file.clone(),
-                    message,
-                })?;
-                Ok((text, file.clone()))
+        let mut out: Vec<ReadTable<'_>> = Vec::new();
+        for spec in &self.axis_table {
+            let axis = spec.axis.letter();
+            if out.iter().any(|t| t.spec.axis == spec.axis) {
+                return Err(model_error(ModelProblem::DuplicateTable { axis }, spec.span));
             }
-            (None, Some(csv)) => Ok((csv.clone(), "inline csv".to_string())),
-            _ => Err(ModelError::TableSource { index, axis: spec.axis }),
+            let (table, source_name, text) = match (&spec.file, &spec.csv) {
+                (Some(file), None) => {
+                    let at = toml_spans::span(file.span());
+                    let text = read(file.get_ref())
+                        .map_err(|reason| model_error(ModelProblem::TableUnreadable { axis, reason }, at))?;
+                    let table = interferometer::parse(&text).map_err(|error| ModelError::TableFile {
+                        file: file.get_ref().clone(),
+                        diagnostic: Box::new(table_diagnostic(axis, &error, error.span(&text))),
+                        text: text.clone(),
+                    })?;
+                    (table, file.get_ref().clone(), text)
+                }
+                (None, Some(csv)) => {
+                    let table = interferometer::parse(csv.get_ref()).map_err(|error| {
+                        let at = match spec.inline_start {
+                            Some(start) => {
+                                let at = error.span(csv.get_ref());
+                                Span::new(start + at.start, start + at.end)
+                            }
+                            None => toml_spans::span(csv.span()),
+                        };
+                        ModelError::Model(Box::new(table_diagnostic(axis, &error, at)))
+                    })?;
+                    (table, "inline csv".to_string(), csv.get_ref().clone())
+                }
+                _ => return Err(model_error(ModelProblem::TableSource { axis }, spec.span)),
+            };
+            out.push(ReadTable { spec, table, source_name, text });
+        }
+        Ok(out)
+    }
+}
+
+/// A model inside another TOML document (a test case's inline model) is read as a model file
+/// of its own, written out again: the lines its problems name are those of that text.
+impl<'de> Deserialize<'de> for ModelSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<ModelSpec, D::Error> {
+        let table = toml::Table::deserialize(deserializer)?;
+        let text = toml::to_string(&table).map_err(serde::de::Error::custom)?;
+        ModelSpec::read(&text).map_err(serde::de::Error::custom)
+    }
+}
+
+/// `text`, a model file, with the `file` of each axis table replaced by what `rename` gives
+/// for it (`None` keeps it); every other byte stays as written.
+pub fn with_table_files(text: &str, mut rename: impl FnMut(&str) -> Option<String>) -> Result<String, Problems> {
+    let spec = ModelSpec::read(text)?;
+    let mut edits: Vec<(std::ops::Range<usize>, String)> = spec
+        .axis_table
+        .iter()
+        .filter_map(|table| table.file.as_ref())
+        .filter_map(|file| rename(file.get_ref()).map(|name| (file.span(), toml::Value::String(name).to_string())))
+        .collect();
+    edits.sort_by_key(|(range, _)| std::cmp::Reverse(range.start));
+    let mut out = text.to_string();
+    for (range, name) in edits {
+        out.replace_range(range, &name);
+    }
+    Ok(out)
+}
+
+/// The value at `path` read as a `T`, or its diagnostic noted in `problems`.
+fn read_or_note<T: serde::de::DeserializeOwned>(
+    document: &Document<'_>,
+    path: &[Step],
+    problems: &mut Vec<Diagnostic>,
+) -> Option<T> {
+    document.read(path).unwrap_or_else(|d| {
+        problems.push(d);
+        None
+    })
+}
+
+/// The `[[effect]]` tables, each read by its `kind` so that an error is placed at its own
+/// key, and checked against its parameters' ranges.
+fn read_effects(document: &Document<'_>, problems: &mut Vec<Diagnostic>) -> Vec<Effect> {
+    let Some(list) = document.get(&[Step::from("effect")]) else { return Vec::new() };
+    let DeValue::Array(tables) = list.get_ref() else {
+        problems.push(document.wrong_value(&[Step::from("effect")], "write each effect as an [[effect]] table"));
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for (index, table) in tables.iter().enumerate() {
+        let at = [Step::from("effect"), Step::Index(index)];
+        let DeValue::Table(entries) = table.get_ref() else {
+            problems.push(document.wrong_value(&at, "write each effect as an [[effect]] table"));
+            continue;
+        };
+        let kind_path = [Step::from("effect"), Step::Index(index), Step::from("kind")];
+        let Some(kind) = document.get(&kind_path) else {
+            problems.push(document.missing_key(&at, "kind"));
+            continue;
+        };
+        let Some(kind) = kind.get_ref().as_str() else {
+            problems.push(document.wrong_value(&kind_path, "the kind is the effect's name, a string"));
+            continue;
+        };
+        if !effects::NAMES.contains(&kind) {
+            problems.push(document.unknown_name(&kind_path, kind, &effects::NAMES));
+            continue;
+        }
+        let parameters = entries.iter().filter(|(key, _)| key.get_ref() != "kind").map(|(k, v)| (k.clone(), v.clone()));
+        let parameters = Spanned::new(table.span(), DeValue::Table(parameters.collect()));
+        let effect = document.read_with(parameters, |d| {
+            // Every name of `NAMES` is a kind `deserialize_kind` reads (tested in `effects`).
+            Effect::deserialize_kind(kind, d).unwrap_or_else(|| Err(serde::de::Error::custom("unknown kind")))
+        });
+        match effect {
+            Ok(effect) => match effect.check() {
+                Ok(()) => out.push(effect),
+                Err(bad) => problems.push(document.invalid(&at, &bad)),
+            },
+            Err(diagnostic) => problems.push(diagnostic),
         }
     }
+    out
+}
+
+/// The diagnostic of a table that does not read.
+fn table_diagnostic(axis: char, error: &TableError, at: Span) -> Diagnostic {
+    let problem = match error {
+        TableError::UnknownColumn { name, suggestion, .. } => {
+            let known = interferometer::COLUMNS.to_vec();
+            ModelProblem::UnknownColumn { axis, column: name.clone(), known, suggestion: *suggestion }
+        }
+        other => ModelProblem::TableInvalid { axis, message: other.message() },
+    };
+    Diagnostic::error(DiagnosticKind::ModelFile(Box::new(problem)), at)
+}
+
+/// Where the text of the string value `csv` starts in `text`, the model file, if the
+/// string is written as its value is (no escapes): after its opening quotes, and after the
+/// line break that follows the quotes of a multi-line string.
+fn unescaped_start(text: &str, csv: &Spanned<String>) -> Option<u32> {
+    let written = text.get(csv.span())?;
+    let quotes = ["\"\"\"", "'''", "\"", "'"].into_iter().find(|q| written.starts_with(q))?;
+    let mut start = quotes.len();
+    if quotes.len() == 3 {
+        start += ["\r\n", "\n"].into_iter().find(|b| written[start..].starts_with(b)).map_or(0, str::len);
+    }
+    let end = written.len().checked_sub(quotes.len())?;
+    let content = written.get(start..end)?;
+    (content == csv.get_ref()).then(|| (csv.span().start + start) as u32)
 }

@@ -14,7 +14,7 @@ use std::fmt;
 use serde::Serialize;
 
 use super::interferometer::{self, Iso230_2, Profile};
-use super::model_file::{Axis, ModelError, ModelSpec};
+use super::model_file::{ModelError, ModelSpec, ReadTable};
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ModelReport {
@@ -50,19 +50,9 @@ pub struct EffectReport {
 }
 
 /// The report of a model file, reading its tables through `read`.
-pub fn report(
-    spec: &ModelSpec,
-    mut read: impl FnMut(&str) -> Result<String, String>,
-) -> Result<ModelReport, ModelError> {
+pub fn report(spec: &ModelSpec, read: impl FnMut(&str) -> Result<String, String>) -> Result<ModelReport, ModelError> {
     let mut tables = Vec::new();
-    for (index, table) in spec.axis_table.iter().enumerate() {
-        let (text, source) = spec.table_text(index, &mut read)?;
-        let slide = interferometer::parse(&text).map_err(|error| ModelError::Table {
-            index,
-            axis: table.axis,
-            source_name: source.clone(),
-            error,
-        })?;
+    for ReadTable { spec: table, table: slide, source_name: source, text } in spec.read_tables(read)? {
         let mut rows = Vec::new();
         let mut push = |quantity, unit, profile: &Option<Profile>, scale: f64| {
             if let Some(p) = profile {
@@ -86,7 +76,7 @@ pub fn report(
         push("straightness", "mm", &slide.straightness, 1.0);
         push("angular", "µrad", &slide.angular, 1e6);
         tables.push(TableReport {
-            axis: if table.axis == Axis::X { 'X' } else { 'Z' },
+            axis: table.axis.letter(),
             source,
             rows,
             straightness_by_reversal: slide.straightness.is_some() && straightness_from_two_runs(&text),

@@ -298,3 +298,67 @@ proptest::proptest! {
         proptest::prop_assert_eq!(model.actual(&s), model.actual_timed(&s, &terms));
     }
 }
+
+/// The text a diagnostic of `text` points at.
+fn pointed<'t>(text: &'t str, diagnostic: &crate::diagnostic::Diagnostic) -> &'t str {
+    &text[diagnostic.span.start as usize..diagnostic.span.end as usize]
+}
+
+#[test]
+fn a_model_file_problem_is_placed_at_the_table_and_key_that_hold_it() {
+    let text = "[[effect]]\nkind = \"scale_x\"\nppm = 60.0\n\n[[effect]]\nkind = \"backlash_x\"\nb = 0.004\n\n\
+                [[effect]]\nkind = \"squareness\"\nuradd = 25.0\n\n[[effect]]\nkind = \"thermal_z\"\namp = \"x\"\n\
+                tau_min = 40.0\n";
+    let problems = model_file::ModelSpec::read(text).unwrap_err().diagnostics;
+    assert_eq!(problems.len(), 2);
+    assert_eq!(pointed(text, &problems[0]), "uradd");
+    assert_eq!(problems[0].message(), "[[effect]] 3 (squareness) has no key `uradd`");
+    assert_eq!(problems[0].hint().as_deref(), Some("did you mean `urad`? the keys are `urad`"));
+    assert_eq!(pointed(text, &problems[1]), "\"x\"");
+    assert!(problems[1].message().starts_with("`amp` in [[effect]] 4 (thermal_z): invalid type"));
+}
+
+#[test]
+fn every_number_of_a_model_file_is_checked_when_it_is_read() {
+    for (text, at, message) in [
+        ("[machine]\nleast_increment = 0\n", "0", "`least_increment` in [machine] is 0"),
+        ("[machine]\nleast_increment = nan\n", "nan", "`least_increment` in [machine] is NaN, not a finite number"),
+        ("[model]\nstart_min = nan\n", "nan", "`start_min` in [model] is NaN"),
+        ("[model]\nabbe_y_mm = 1e300\n", "1e300", "`abbe_y_mm` in [model] is 1e300"),
+        ("[[effect]]\nkind = \"backlash_x\"\nb = nan\n", "nan", "`b` in [[effect]] 1 (backlash_x) is NaN"),
+        ("[[effect]]\nkind = \"scale_z\"\nppm = inf\n", "inf", "`ppm` in [[effect]] 1 (scale_z) is inf"),
+        ("[[effect]]\nkind = \"thermal_x\"\namp = 0.01\ntau_min = nan\n", "nan", "`tau_min` in [[effect]] 1"),
+        ("[[effect]]\nkind = \"tool_offset_x\"\ndx = inf\n", "inf", "`dx` in [[effect]] 1"),
+        ("[[effect]]\nkind = \"straightness_z\"\ncoeffs = [1e-6, 1e300]\n", "1e300", "`coeffs[1]` in [[effect]] 1"),
+        ("[[effect]]\nkind = \"cyclic_z\"\namp = 0.004\npitch = 0\nphase = 0\n", "0", "`pitch` in [[effect]] 1"),
+        ("[machine]\ntravel = { x_min = 5, x_max = 1, z_min = 0, z_max = 1 }\n", "1", "`x_max` in [machine.travel]"),
+    ] {
+        let problems = model_file::ModelSpec::read(text).unwrap_err().diagnostics;
+        assert_eq!(problems.len(), 1, "{text}");
+        assert_eq!(pointed(text, &problems[0]), at, "{text}");
+        assert!(problems[0].message().starts_with(message), "{text}: {}", problems[0].message());
+    }
+}
+
+#[test]
+fn every_effect_of_the_catalogue_is_read_by_its_kind() {
+    for name in effects::NAMES {
+        let empty = toml::de::ValueDeserializer::parse("{}").unwrap();
+        let read = Effect::deserialize_kind(name, empty).expect(name);
+        // No effect has a parameter with a default: an empty table misses one.
+        assert!(read.unwrap_err().message().starts_with("missing field"), "{name}");
+    }
+    assert!(Effect::deserialize_kind("backlash_y", toml::de::ValueDeserializer::parse("{}").unwrap()).is_none());
+}
+
+#[test]
+fn table_files_are_renamed_in_place() {
+    let text = "# slides\n[[axis_table]]\naxis = \"x\"\nfile = \"x.csv\"   # beside the model\n\n\
+                [[axis_table]]\naxis = \"z\"\nfile = 'z.csv'\n";
+    let renamed = model_file::with_table_files(text, |file| Some(format!("../machines/{file}"))).unwrap();
+    assert_eq!(
+        renamed,
+        "# slides\n[[axis_table]]\naxis = \"x\"\nfile = \"../machines/x.csv\"   # beside the model\n\n\
+         [[axis_table]]\naxis = \"z\"\nfile = \"../machines/z.csv\"\n"
+    );
+}

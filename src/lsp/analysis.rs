@@ -36,7 +36,7 @@ pub struct SemanticJob {
 impl SemanticJob {
     pub fn new(snapshot: Snapshot, settings: &MachineSettings) -> SemanticJob {
         // As `simulate` runs it: nose-radius compensation on, the machine's block-delete switch.
-        let options = LowerOptions::new(settings.block_delete.unwrap_or(false));
+        let options = LowerOptions::new(settings.block_delete_switch());
         SemanticJob { snapshot, machine: Machine::from_settings(settings), options }
     }
 

@@ -24,9 +24,9 @@ use lsp_types::request::{self as req, Request as _};
 use lsp_types::{
     DidChangeTextDocumentParams, DidCloseTextDocumentParams, DidOpenTextDocumentParams, DidSaveTextDocumentParams,
     DocumentFormattingParams, DocumentSymbolParams, DocumentSymbolResponse, GotoDefinitionParams,
-    GotoDefinitionResponse, HoverParams, HoverProviderCapability, InitializeResult, Location, MessageType, OneOf,
-    PositionEncodingKind, PublishDiagnosticsParams, ServerCapabilities, ServerInfo, ShowMessageParams,
-    TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
+    GotoDefinitionResponse, HoverParams, HoverProviderCapability, InitializeResult, Location, LogMessageParams,
+    MessageType, OneOf, PositionEncodingKind, PublishDiagnosticsParams, ServerCapabilities, ServerInfo,
+    ShowMessageParams, TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
 };
 
 use crate::diagnostic::Diagnostic;
@@ -247,7 +247,18 @@ impl<H: Host> Server<H> {
 
     fn open(&mut self, params: DidOpenTextDocumentParams) -> Vec<Message> {
         let item = params.text_document;
-        let (settings, problems) = self.settings_for(&item.uri);
+        let (settings, problems, defaults) = self.settings_for(&item.uri);
+        // Reading with the machine defaults is logged, not published: a clean program must
+        // not look wrong in the editor because no settings file exists.
+        let defaults = defaults.then(|| {
+            let message = format!(
+                "{}: no turnpass.toml in its directory or above it, and no `model` or `machine` in \
+                 initializationOptions; machine settings in force: {}",
+                item.uri.as_str(),
+                crate::semantic::settings_in_force(&settings.machine)
+            );
+            log_message(MessageType::INFO, message)
+        });
         let document = Document::new(item.text.into_bytes(), settings.parse);
         self.openings += 1;
         let open = Open {
@@ -261,7 +272,7 @@ impl<H: Host> Server<H> {
             running: false,
         };
         self.documents.insert(item.uri, open);
-        problems.into_iter().map(|p| show_message(MessageType::WARNING, p)).collect()
+        defaults.into_iter().chain(problems.into_iter().map(|p| show_message(MessageType::WARNING, p))).collect()
     }
 
     fn change(&mut self, params: DidChangeTextDocumentParams) {
@@ -290,7 +301,7 @@ impl<H: Host> Server<H> {
         let uris: Vec<Uri> = self.documents.keys().cloned().collect();
         let mut messages = Vec::new();
         for uri in uris {
-            let (settings, problems) = self.settings_for(&uri);
+            let (settings, problems, _) = self.settings_for(&uri);
             messages.extend(problems.into_iter().map(|p| show_message(MessageType::WARNING, p)));
             if let Some(open) = self.documents.get_mut(&uri)
                 && open.settings != settings
@@ -305,7 +316,9 @@ impl<H: Host> Server<H> {
         messages
     }
 
-    fn settings_for(&self, uri: &Uri) -> (Settings, Vec<String>) {
+    /// The settings for the program at `uri`, the problems met reading them, and whether
+    /// they are the machine defaults (no model file, no `machine` table from the client).
+    fn settings_for(&self, uri: &Uri) -> (Settings, Vec<String>, bool) {
         let program = file_path(uri);
         let model = self.init.model.as_deref().map(Path::new);
         let mut problems = Vec::new();
@@ -321,7 +334,8 @@ impl<H: Host> Server<H> {
         let (settings, found) = self.init.settings(text);
         let source = file.as_ref().map_or("initializationOptions".to_string(), |(p, _)| p.display().to_string());
         problems.extend(found.into_iter().map(|p| format!("{source}: {p}")));
-        (settings, problems)
+        let defaults = file.is_none() && self.init.machine.is_none();
+        (settings, problems, defaults)
     }
 
     /// Publish what the edits since the last call changed, and the semantic passes to run.
@@ -381,6 +395,11 @@ fn publish(uri: Uri, diagnostics: Vec<lsp_types::Diagnostic>, version: Option<i3
 fn show_message(kind: MessageType, message: String) -> Message {
     let params = ShowMessageParams { typ: kind, message: format!("turnpass: {message}") };
     Message::Notification(Notification::new(notify::ShowMessage::METHOD.to_string(), params))
+}
+
+fn log_message(kind: MessageType, message: String) -> Message {
+    let params = LogMessageParams { typ: kind, message: format!("turnpass: {message}") };
+    Message::Notification(Notification::new(notify::LogMessage::METHOD.to_string(), params))
 }
 
 fn offset(document: &Document, position: lsp_types::Position) -> usize {

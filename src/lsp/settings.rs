@@ -77,7 +77,16 @@ impl InitOptions {
         let dialect = dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
         let gcode_system = gcode_system.or(settings.gcode_system).unwrap_or_default();
         let decimal_input = self.decimal_input.or(settings.decimal_input).unwrap_or_default();
-        let machine = MachineSettings { decimal_input: Some(decimal_input), ..settings };
+        // The settings in force, the client's options included.
+        let machine = MachineSettings {
+            dialect: match dialect {
+                DialectChoice::Fixed(dialect) => Some(dialect),
+                DialectChoice::Auto => None,
+            },
+            gcode_system: Some(gcode_system),
+            decimal_input: Some(decimal_input),
+            ..settings
+        };
         let canonical = CanonicalOptions { decimal_input, increment_places: machine.increment_places() };
         (Settings { parse: ParseOptions { dialect, gcode_system, machine_kind: None }, machine, canonical }, problems)
     }

@@ -262,7 +262,7 @@ impl Interpreter<'_, '_> {
                     self.rapid_to(via, span);
                 }
                 let Some(home) = self.machine.home else {
-                    self.warning(DiagnosticKind::HomeUnknown, span);
+                    self.home_unknown(span);
                     let unknown_x = axes.x_given || !axes.any;
                     let unknown_z = axes.z_given || !axes.any;
                     let at = self.emitter.at;
@@ -278,9 +278,16 @@ impl Interpreter<'_, '_> {
                 self.rapid_to(to, span);
             }
             Some(GFunction::MachineCoordinates) => {
-                // Machine coordinates count from the reference position.
+                // Machine coordinates count from the reference position: without it, the
+                // axes the block names go somewhere unknown, and the toolpath resumes at the
+                // next programmed point, as after `G28`.
                 let Some(home) = self.machine.home else {
-                    self.warning(DiagnosticKind::HomeUnknown, span);
+                    self.home_unknown(span);
+                    let at = self.emitter.at;
+                    let unknown = |address, now: f64| {
+                        if words.iter().any(|w| word_address(w) == Some(address)) { f64::NAN } else { now }
+                    };
+                    self.emitter.at = Xz::new(unknown(Address::X, at.x), unknown(Address::Z, at.z));
                     return;
                 };
                 let frame = self.modal.frame;

@@ -96,7 +96,8 @@ pub(super) struct Interpreter<'p, 'src> {
     loops: Vec<(usize, u32)>,
     executed: u64,
     first_program_name: Option<usize>,
-    warned_unknown_position: bool,
+    /// The missing home position has been noted (it is one fact, said once per run).
+    noted_home_unknown: bool,
     tape_opened: bool,
 }
 
@@ -142,7 +143,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             loops: Vec::new(),
             executed: 0,
             first_program_name: None,
-            warned_unknown_position: false,
+            noted_home_unknown: false,
             tape_opened: false,
         }
     }
@@ -164,11 +165,22 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         self.diagnostics.push(Diagnostic::warning(kind, span));
     }
 
-    /// Warn once that the tool's position is unknown (no home in the machine settings).
+    /// The tool's position is unknown (no home in the machine settings) on the block at
+    /// `span`: noted once per run, as is [`Interpreter::home_unknown`] — both say the
+    /// settings give no home position, and the note says what the toolpath does about it.
     pub fn unknown_position(&mut self, span: Span) {
-        if !self.warned_unknown_position {
-            self.warned_unknown_position = true;
-            self.diagnostics.push(Diagnostic::warning(DiagnosticKind::UnknownStartPosition, span));
+        self.note_home_unknown(DiagnosticKind::UnknownStartPosition, span);
+    }
+
+    /// A block that moves relative to the home position (`G28`, `G53`) on a machine whose
+    /// settings give none: noted once per run (see [`Interpreter::unknown_position`]).
+    pub fn home_unknown(&mut self, span: Span) {
+        self.note_home_unknown(DiagnosticKind::HomeUnknown, span);
+    }
+
+    fn note_home_unknown(&mut self, kind: DiagnosticKind, span: Span) {
+        if !std::mem::replace(&mut self.noted_home_unknown, true) {
+            self.diagnostics.push(Diagnostic::note(kind, span));
         }
     }
 

@@ -6,7 +6,7 @@ use std::process::{Command, Stdio};
 
 use serde::Deserialize;
 
-use crate::support::{repo, with_snapshots};
+use crate::support::{external, repo, with_snapshots};
 
 #[derive(Deserialize)]
 struct Cases {
@@ -14,6 +14,7 @@ struct Cases {
 }
 
 #[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
 struct Case {
     name: String,
     args: Vec<String>,
@@ -24,6 +25,13 @@ struct Case {
     setup: BTreeMap<String, String>,
     #[serde(default)]
     expect_files: BTreeMap<String, bool>,
+    /// What the case reads from outside the repository (`support::external`).
+    #[serde(default)]
+    requires: Vec<Requirement>,
+    /// Commands run after `args`, in order, each with its exit code; their output follows
+    /// the first command's in the snapshot (to read back what it wrote).
+    #[serde(default)]
+    then: Vec<Then>,
     /// Commands run first, each of which must exit 0 (their output is not in the snapshot).
     #[serde(default)]
     before: Vec<Vec<String>>,
@@ -45,6 +53,19 @@ struct Case {
     /// Files in `{tmp}` that must afterwards hold exactly the bytes of a repository file.
     #[serde(default)]
     expect_contents: BTreeMap<String, String>,
+}
+
+#[derive(Deserialize, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum Requirement {
+    /// The third-party corpus, `../shared/corpus/`.
+    Corpus,
+}
+
+#[derive(Deserialize)]
+struct Then {
+    args: Vec<String>,
+    code: i32,
 }
 
 /// The binary with `args`, run from the repository root under `umask` when one is given.
@@ -82,6 +103,21 @@ fn command_line_cases() {
     });
     for case in cases {
         assert!(names.insert(case.name.clone()), "two command cases are named {}", case.name);
+        let uses_corpus = case.args.iter().any(|a| a.contains("{corpus}"));
+        assert_eq!(
+            uses_corpus,
+            case.requires.contains(&Requirement::Corpus),
+            "{}: a case names {{corpus}} in its arguments exactly when it requires the corpus",
+            case.name
+        );
+        let corpus = if uses_corpus {
+            match external::corpus_for(&format!("command case `{}`", case.name)) {
+                Some(dir) => dir.to_string_lossy().into_owned(),
+                None => continue,
+            }
+        } else {
+            String::new()
+        };
         let tmp = tempfile::tempdir().unwrap();
         let tmp_text = tmp.path().to_string_lossy().into_owned();
         for (from, to) in &case.setup {
@@ -97,29 +133,34 @@ fn command_line_cases() {
         for (link, target) in &case.setup_symlinks {
             std::os::unix::fs::symlink(target, tmp.path().join(link)).unwrap();
         }
-        let in_tmp = |args: &[String]| -> Vec<String> { args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect() };
+        let in_tmp = |args: &[String]| -> Vec<String> {
+            args.iter().map(|a| a.replace("{tmp}", &tmp_text).replace("{corpus}", &corpus)).collect()
+        };
         for before in &case.before {
             let output = turnpass(&in_tmp(before), case.umask.as_deref()).stdin(Stdio::null()).output().unwrap();
             let stderr = String::from_utf8_lossy(&output.stderr);
             assert!(output.status.success(), "{}: `{}` failed:\n{stderr}", case.name, before.join(" "));
         }
         let args = in_tmp(&case.args);
+        // The snapshot names the corpus by its placeholder, wherever it is, and the tool's
+        // version by its own (it is in every provenance comment; a release must not change
+        // them all).
+        let placeholders = |text: &str| {
+            let text = text.replace(&tmp_text, "{tmp}");
+            let text = if corpus.is_empty() { text } else { text.replace(&corpus, "{corpus}") };
+            let version = env!("CARGO_PKG_VERSION");
+            text.replace(&format!("TURNPASS {version} "), "TURNPASS {version} ")
+                .replace(&format!("turnpass {version} "), "turnpass {version} ")
+                .replace(&format!("\"version\": \"{version}\""), "\"version\": \"{version}\"")
+        };
         let mut command = turnpass(&args, case.umask.as_deref());
         command.stdin(match &case.stdin {
             Some(path) => Stdio::from(std::fs::File::open(repo().join(path)).unwrap()),
             None => Stdio::null(),
         });
         let output = command.output().unwrap();
-        // The tool's version is in every provenance comment; a release must not change them all.
-        let shown = |text: &[u8]| {
-            let text = String::from_utf8_lossy(text).replace(&tmp_text, "{tmp}");
-            let version = env!("CARGO_PKG_VERSION");
-            text.replace(&format!("TURNPASS {version} "), "TURNPASS {version} ")
-                .replace(&format!("turnpass {version} "), "turnpass {version} ")
-                .replace(&format!("\"version\": \"{version}\""), "\"version\": \"{version}\"")
-        };
-        let stdout = shown(&output.stdout);
-        let stderr = shown(&output.stderr);
+        let stdout = placeholders(&String::from_utf8_lossy(&output.stdout));
+        let stderr = placeholders(&String::from_utf8_lossy(&output.stderr));
         assert_eq!(
             output.status.code(),
             Some(case.code),
@@ -147,11 +188,23 @@ fn command_line_cases() {
             .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with(".tmp")))
             .collect();
         assert!(leftovers.is_empty(), "{}: leftovers {leftovers:?}", case.name);
-        let text = format!(
+        let mut text = format!(
             "$ turnpass {}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
-            args.join(" ").replace(&tmp_text, "{tmp}"),
+            placeholders(&args.join(" ")),
             case.code
         );
+        for then in &case.then {
+            let args = in_tmp(&then.args);
+            let output = turnpass(&args, case.umask.as_deref()).stdin(Stdio::null()).output().unwrap();
+            let stdout = placeholders(&String::from_utf8_lossy(&output.stdout));
+            let stderr = placeholders(&String::from_utf8_lossy(&output.stderr));
+            let shown = placeholders(&args.join(" "));
+            assert_eq!(output.status.code(), Some(then.code), "{}: exit code of `{shown}`\n{stderr}", case.name);
+            text.push_str(&format!(
+                "\n$ turnpass {shown}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",
+                then.code
+            ));
+        }
         with_snapshots("cli", || insta::assert_snapshot!(case.name.clone(), text));
     }
 }
@@ -173,7 +226,8 @@ fn walk(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
 #[test]
 fn fmt_is_lossless_on_every_case_file() {
     for dir in ["tests/cases/parse", "tests/cases/thesis", "examples/programs"] {
-        for path in walk(&repo().join(dir)) {
+        // The settings file beside the example programs is no program.
+        for path in walk(&repo().join(dir)).into_iter().filter(|p| p.extension().is_none_or(|e| e != "toml")) {
             let output = Command::new(env!("CARGO_BIN_EXE_turnpass")).arg("fmt").arg(&path).output().unwrap();
             assert_eq!(output.stdout, std::fs::read(&path).unwrap(), "{}", path.display());
         }

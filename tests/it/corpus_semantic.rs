@@ -4,7 +4,8 @@
 //! valid toolpath, and its `expand` output re-parses with no error and, lowered again,
 //! moves through the same points. The snapshot is a compact summary per program
 //! (`snapshots/corpus/semantic/`): the diagnostics, the move count, the cycle time and path
-//! length, and the moves of each cycle call; not every move.
+//! length, and the moves of each cycle call; not every move. The thesis examples run
+//! always; the corpus programs when the corpus is there (`support::external`).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -16,9 +17,9 @@ use turnpass::semantic::{self, Lowered};
 use turnpass::source::LineIndex;
 use turnpass::syntax::{Program, parse};
 
-use crate::corpus::{Entry, Fault, corpus_dir, manifest};
+use crate::corpus::{Entry, Fault, manifest};
 use crate::simulate::{Checked, expand_and_compare, lower_and_validate, parse_options};
-use crate::support::{check_spans, render, repo, with_snapshots};
+use crate::support::{check_spans, external, render, repo, with_snapshots};
 
 /// The machine file's settings, with the entry's G-code system.
 fn settings_for(entry: &Entry) -> MachineSettings {
@@ -137,14 +138,15 @@ fn run(path: &Path, name: &str, entry: &Entry) -> String {
 #[test]
 fn every_corpus_program_and_thesis_example_lowers_with_only_its_real_faults() {
     let manifest = manifest();
-    let dir = corpus_dir();
-    let programs = manifest.file.iter().map(|e| (dir.join(&e.path), e.path.replace('/', "__"), e)).chain(
-        manifest.example.iter().map(|e| {
-            let path: PathBuf = repo().join(&e.path);
-            let name = format!("example__{}", path.file_name().unwrap().to_string_lossy());
-            (path, name, e)
-        }),
-    );
+    let corpus = match external::corpus_for("its corpus programs (the thesis examples run)") {
+        Some(dir) => manifest.file.iter().map(|e| (dir.join(&e.path), e.path.replace('/', "__"), e)).collect(),
+        None => Vec::new(),
+    };
+    let programs = corpus.into_iter().chain(manifest.example.iter().map(|e| {
+        let path: PathBuf = repo().join(&e.path);
+        let name = format!("example__{}", path.file_name().unwrap().to_string_lossy());
+        (path, name, e)
+    }));
     // Every program runs, and the failures are reported together.
     let mut failed = Vec::new();
     for (path, name, entry) in programs {

@@ -1,7 +1,8 @@
 //! Differential test against LinuxCNC's stand-alone interpreter `rs274` (Debian package
 //! `linuxcnc-uspace`), on the subset both understand: G00–G03, U/W incremental words,
-//! R and I/K arcs, inch and metric. It runs when `rs274` is on the PATH and says so when
-//! it is not (CI installs it; see README).
+//! R and I/K arcs, inch and metric. It runs when `rs274` is on the PATH; without it the
+//! test is skipped with a banner, and fails under CI, which installs it
+//! (`support::external`).
 //!
 //! Each case under `tests/cases/differential/` is a Fanuc-form program. It is translated
 //! word by word into LinuxCNC's form — `G18 G7` (XZ plane, diameter mode), `U` becomes
@@ -17,6 +18,7 @@
 //! with a rapid to X20 Z-48; there is no common meaning to compare.
 
 use std::fmt::Write as _;
+use std::path::Path;
 use std::process::Command;
 
 use turnpass::dialect::{Address, DialectChoice, GCodeSystem};
@@ -25,7 +27,7 @@ use turnpass::semantic::{self, LowerOptions, Machine};
 use turnpass::syntax::{CodeLetter, ParseOptions, Program, WordKind, parse};
 use turnpass::toolpath::Motion;
 
-use crate::support::{check_spans, repo};
+use crate::support::{check_spans, external, repo};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Point {
@@ -76,12 +78,12 @@ fn translate(program: &Program<'_>) -> String {
 }
 
 /// rs274's motion calls, in mm and radius.
-fn rs274_points(ngc: &str, name: &str) -> Vec<Point> {
+fn rs274_points(rs274: &Path, ngc: &str, name: &str) -> Vec<Point> {
     let dir = std::env::temp_dir().join(format!("turnpass-differential-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(format!("{name}.ngc"));
     std::fs::write(&path, ngc).unwrap();
-    let output = Command::new("rs274").arg("-g").arg(&path).output().unwrap();
+    let output = Command::new(rs274).arg("-g").arg(&path).output().unwrap();
     let text = String::from_utf8_lossy(&output.stdout).into_owned();
     assert!(!text.contains("rror"), "rs274 rejected {name}:\n{text}\n{ngc}");
     let mut scale = 1.0;
@@ -169,10 +171,7 @@ fn moving(points: Vec<Point>) -> Vec<Point> {
 
 #[test]
 fn agrees_with_linuxcnc_rs274() {
-    if Command::new("rs274").arg("-h").output().is_err() {
-        eprintln!("rs274 is not installed (Debian: linuxcnc-uspace); the differential test did not run");
-        return;
-    }
+    let Some(rs274) = external::program("rs274", "linuxcnc-uspace") else { return };
     let dir = repo().join("tests/cases/differential");
     let mut cases: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
     cases.sort();
@@ -188,7 +187,7 @@ fn agrees_with_linuxcnc_rs274() {
         let parsed = parse(&source, &options);
         check_spans(&parsed);
         assert_eq!(parsed.error_count(), 0, "{name}");
-        let theirs = moving(rs274_points(&translate(&parsed.program), &name));
+        let theirs = moving(rs274_points(&rs274, &translate(&parsed.program), &name));
         let ours = moving(turnpass_points(&parsed.program));
         assert!(ours.len() > 3, "{name}: too few moves to compare");
         assert_eq!(ours.len(), theirs.len(), "{name}: move counts differ\nours   {ours:?}\ntheirs {theirs:?}");

@@ -92,6 +92,14 @@ impl Client {
         }
     }
 
+    /// The `window/logMessage` notifications received so far, taken out of the queue.
+    pub fn log_messages(&mut self) -> Vec<Value> {
+        let (logs, others) =
+            std::mem::take(&mut self.notifications).into_iter().partition(|m| m["method"] == "window/logMessage");
+        self.notifications = others;
+        logs
+    }
+
     /// `shutdown`, then `exit`; the server's exit status.
     pub fn stop(mut self) -> ExitStatus {
         assert_eq!(self.request("shutdown", Value::Null), Value::Null);

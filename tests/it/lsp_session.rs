@@ -75,8 +75,16 @@ fn run(program: &Path, session: &Session) -> String {
         "textDocument/didOpen",
         json!({ "textDocument": { "uri": uri, "languageId": "gcode", "version": version, "text": text } }),
     );
-    let _ = writeln!(out, "open {}", program.file_name().unwrap().to_string_lossy());
+    let file_name = program.file_name().unwrap().to_string_lossy();
+    let _ = writeln!(out, "open {file_name}");
     diagnostics(&mut out, &text, &client.diagnostics(&uri, version));
+    // The log, sent before the diagnostics, with the document's URI (a path on this
+    // machine) written as its file name.
+    for log in client.log_messages() {
+        let message = log["params"]["message"].as_str().unwrap().replace(&uri, &file_name);
+        let kind = ["error", "warning", "info", "log"].get(log["params"]["type"].as_u64().unwrap() as usize - 1);
+        let _ = writeln!(out, "  log ({}): {message}", kind.unwrap());
+    }
     let document = json!({ "uri": uri });
     for step in &session.step {
         if let Some(changes) = &step.change {

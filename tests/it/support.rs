@@ -1,4 +1,5 @@
-//! The test harness: reading cases, the AST dump, diagnostics rendering, span invariants.
+//! The test harness: reading cases, the AST dump, diagnostics rendering, span invariants,
+//! and what a test needs from outside the repository (`external`).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -252,4 +253,98 @@ pub fn with_snapshots(dir: &str, body: impl FnOnce()) {
     settings.set_prepend_module_to_snapshot(false);
     settings.set_omit_expression(true);
     settings.bind(body);
+}
+
+/// What some tests need from outside the repository: the third-party corpus of real programs
+/// (`../shared/corpus/` beside the repository, or where `TURNPASS_CORPUS` points; read in
+/// place, never copied into the repository) and programs installed on the machine
+/// (LinuxCNC's `rs274`, Neovim). When one is missing, the test that needs it is skipped
+/// with a banner on standard error that says what did not run and why; under CI
+/// (`TURNPASS_CI` set, as `.ci/run` does) a missing one fails the test, so CI never passes
+/// without running them.
+pub mod external {
+    use std::io::Write as _;
+    use std::path::{Path, PathBuf};
+
+    /// Set by `.ci/run`: everything external must be present.
+    pub const CI_VARIABLE: &str = "TURNPASS_CI";
+    /// The corpus directory when it is not `../shared/corpus/` (relative to the repository).
+    pub const CORPUS_VARIABLE: &str = "TURNPASS_CORPUS";
+
+    /// The corpus directory, or `None` (after the banner) when it is missing.
+    pub fn corpus() -> Option<PathBuf> {
+        corpus_at(&current_test())
+    }
+
+    /// As [`corpus`], for the part of the test that `part` names (a command case, the
+    /// corpus half of a test).
+    pub fn corpus_for(part: &str) -> Option<PathBuf> {
+        corpus_at(&format!("{}, {part}", current_test()))
+    }
+
+    fn corpus_at(what: &str) -> Option<PathBuf> {
+        let (dir, from) = match std::env::var_os(CORPUS_VARIABLE).filter(|v| !v.is_empty()) {
+            Some(dir) => (super::repo().join(dir), CORPUS_VARIABLE),
+            None => (super::repo().join("../shared/corpus"), "the default, ../shared/corpus"),
+        };
+        if dir.is_dir() {
+            return Some(dir);
+        }
+        missing(
+            what,
+            &format!(
+                "the third-party corpus of real lathe programs is not at {} ({from}); it is read in \
+                 place, never copied into the repository (README, \"Tests\")",
+                dir.display()
+            ),
+        )
+    }
+
+    /// The full path of `name` found on the PATH, or `None` (after the banner) when it is not
+    /// there; `package` is the Debian package that provides it.
+    pub fn program(name: &str, package: &str) -> Option<PathBuf> {
+        let path = std::env::var_os("PATH").unwrap_or_default();
+        if let Some(found) = std::env::split_paths(&path).map(|dir| dir.join(name)).find(|p| is_executable(p)) {
+            return Some(found);
+        }
+        missing(
+            &current_test(),
+            &format!("`{name}` is not on the PATH (Debian: apt install {package}; .ci/run installs it)"),
+        )
+    }
+
+    fn is_executable(path: &Path) -> bool {
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt as _;
+            path.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
+        }
+        #[cfg(not(unix))]
+        {
+            path.is_file()
+        }
+    }
+
+    /// The test's name: libtest runs each test on a thread named after it.
+    fn current_test() -> String {
+        std::thread::current().name().unwrap_or("this test").to_string()
+    }
+
+    fn in_ci() -> bool {
+        std::env::var_os(CI_VARIABLE).is_some_and(|v| !v.is_empty() && v != "0")
+    }
+
+    /// Fails under CI; otherwise writes the banner and says to skip. The banner goes to the
+    /// process's standard error directly, past libtest's capture of `eprintln!`, so a plain
+    /// `cargo test` shows it although the test is then reported as passed.
+    fn missing<T>(what: &str, reason: &str) -> Option<T> {
+        assert!(!in_ci(), "{what}: {reason}; {CI_VARIABLE} is set, so this is a failure, not a skip");
+        let rule = "#".repeat(78);
+        let banner = format!(
+            "\n{rule}\n# SKIPPED: {what}\n#   Not run: {reason}.\n#   cargo reports the test as ok, but this was \
+             not tested; under .ci/run ({CI_VARIABLE}=1) it is a failure.\n{rule}\n"
+        );
+        let _ = std::io::stderr().lock().write_all(banner.as_bytes());
+        None
+    }
 }

@@ -3,6 +3,7 @@
 
 use turnpass::diagnostic::DiagnosticKind;
 use turnpass::dialect::Dialect;
+use turnpass::machine::ModelFile;
 use turnpass::printer::{Edits, print};
 use turnpass::source::LineIndex;
 use turnpass::syntax::{Statement, parse};
@@ -68,4 +69,15 @@ fn reconstructed_examples_differ_only_where_the_print_is_damaged() {
             }
         }
     }
+}
+
+/// The `turnpass.toml` beside the example programs holds the thesis lathe's `[machine]`
+/// table, so they read without `--model` as the inch programs they are.
+#[test]
+fn example_programs_read_on_the_thesis_lathe() {
+    let machine = |path: &str| {
+        let text = std::fs::read_to_string(repo().join(path)).unwrap();
+        ModelFile::from_toml(&text).unwrap_or_else(|e| panic!("{path}: {e}")).machine
+    };
+    assert_eq!(machine("examples/programs/turnpass.toml"), machine("examples/machines/okuma-howa-v40r.toml"));
 }

@@ -86,9 +86,10 @@ fn table_7_circle_fit_of_the_compensated_quarter_arc() {
 }
 
 /// Table 8 as a model: the Z slide's linear error and its X straightness, from the
-/// table's actual columns (actual − nominal at every 2.54 mm of a 25.4 mm move along Z).
+/// table's actual columns (actual − nominal at every 2.54 mm of a 25.4 mm move along Z;
+/// `tests/cases/thesis/table8_facing.csv`).
 fn table_8() -> (String, Vec<(f64, f64, f64, f64)>) {
-    let text = std::fs::read_to_string(repo().join("../shared/reference/tables/table8_facing.csv")).unwrap();
+    let text = std::fs::read_to_string(repo().join("tests/cases/thesis/table8_facing.csv")).unwrap();
     let rows: Vec<(f64, f64, f64, f64)> = text
         .lines()
         .filter(|l| !l.starts_with('#') && !l.starts_with("x_comp"))
@@ -119,6 +120,7 @@ fn table_8_densify_at_2_54_mm_gives_the_comp_columns() {
     let m = MovePoints { start, points: &by_move[cut], nominal: NominalShape::Line };
     let lines = fit::densify(&m, 0.0, Some(2.54));
     assert_eq!(lines.len(), 10);
+    assert_eq!(rows.len(), 11, "Table 8 has a row at every 2.54 mm of the 25.4 mm move");
     let mut written = vec![start];
     written.extend(lines.iter().map(Segment::end));
     // The table prints its columns to four decimals (one row, 17.776, to three): compare

@@ -4,11 +4,27 @@ use crate::diagnose::noise::Noise;
 /// A curve's gain, time constant (minutes) and offset.
 type Curve = (f64, f64, f64);
 
-/// The thesis' fits (eq. 5.3–5.6, `../shared/reference/tables/thermal_fits.csv`).
-const FITS: [(&str, Curve, Curve); 2] = [
-    ("spindle 1000 rpm", (9.913, 54.59, 67.64), (9.91, 81.97, 68.05)),
-    ("z slide 2.54 m/min", (6.12, 92.59, 64.53), (5.01, 95.24, 65.28)),
-];
+/// The thesis' fits (eq. 5.3–5.6), by element: its warm-up and its cool-down curve, in the
+/// table's order.
+fn thesis_fits() -> Vec<(&'static str, Curve, Curve)> {
+    let table = include_str!("../../../tests/cases/thesis/thermal_fits.csv");
+    let mut curves: Vec<(&str, &str, Curve)> = Vec::new();
+    for line in table.lines().filter(|l| !l.starts_with('#') && !l.starts_with("element,")) {
+        let fields: Vec<&str> = line.split(',').collect();
+        let number = |i: usize| fields[i].parse::<f64>().unwrap();
+        curves.push((fields[0], fields[1], (number(2), number(3), number(4))));
+    }
+    let fits: Vec<_> = curves
+        .chunks(2)
+        .map(|pair| {
+            let [(element, "warm", warm), (other, "cool", cool)] = pair else { panic!("warm then cool: {pair:?}") };
+            assert_eq!(element, other);
+            (*element, *warm, *cool)
+        })
+        .collect();
+    assert_eq!(fits.len(), 2, "the spindle and the Z slide");
+    fits
+}
 
 /// Four hours of warm-up then four of cool-down, one sample a second as the thesis
 /// recorded, with noise.
@@ -30,7 +46,7 @@ fn synthesise(warm: Curve, cool: Curve, sigma: f64, seed: u64) -> (Vec<f64>, Vec
 
 #[test]
 fn recovers_the_thesis_time_constants_within_five_percent_from_noisy_logs() {
-    for (name, warm, cool) in FITS {
+    for (name, warm, cool) in thesis_fits() {
         for seed in [1, 7, 42] {
             let (t, y) = synthesise(warm, cool, 0.15, seed);
             let fit = fit_log(&t, &y).unwrap();
@@ -47,10 +63,11 @@ fn recovers_the_thesis_time_constants_within_five_percent_from_noisy_logs() {
 
 #[test]
 fn an_exact_curve_is_fitted_exactly() {
+    let (_, (gain, tau, offset), _) = thesis_fits()[0];
     let t: Vec<f64> = (0..200).map(f64::from).collect();
-    let y: Vec<f64> = t.iter().map(|&m| 9.913 * (1.0 - (-m / 54.59f64).exp()) + 67.64).collect();
+    let y: Vec<f64> = t.iter().map(|&m| gain * (1.0 - (-m / tau).exp()) + offset).collect();
     let fit = fit_phase(Phase::Warm, &t, &y).unwrap();
-    assert!((fit.tau_min - 54.59).abs() < 1e-4 && (fit.gain - 9.913).abs() < 1e-5 && (fit.offset - 67.64).abs() < 1e-5);
+    assert!((fit.tau_min - tau).abs() < 1e-4 && (fit.gain - gain).abs() < 1e-5 && (fit.offset - offset).abs() < 1e-5);
 }
 
 #[test]
@@ -64,7 +81,7 @@ fn bad_logs_are_refused() {
 
 #[test]
 fn a_known_switch_off_time_splits_the_log_there() {
-    let (warm, cool) = ((9.913, 54.59, 67.64), (9.91, 81.97, 68.05));
+    let (_, warm, cool) = thesis_fits()[0];
     let (t, y) = synthesise(warm, cool, 0.15, 3);
     let fit = fit_log_split(&t, &y, Some(240.0)).unwrap();
     assert!((fit.split_min - 240.0).abs() < 0.02, "{}", fit.split_min);

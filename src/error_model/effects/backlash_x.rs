@@ -6,6 +6,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
 use crate::toolpath::Xz;
 
@@ -18,7 +19,16 @@ pub struct BacklashX {
     pub b: f64,
 }
 
+/// Plausible `b`: within ±1 mm. Drives have micrometres to tenths of a millimetre of
+/// play; a negative `b` is an over-compensating control.
+pub const B: Range = Range::magnitude(1.0, "mm");
+
 impl BacklashX {
+    /// The parameters against their plausible ranges (checked when a model file is read).
+    pub fn check(&self) -> Result<(), Invalid> {
+        B.check_key("b", self.b)
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(share(self.b, s.play.x, s.backlash.x, s.direction.x), 0.0)
     }

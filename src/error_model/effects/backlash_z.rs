@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
 use crate::toolpath::Xz;
 
@@ -16,7 +17,16 @@ pub struct BacklashZ {
     pub b: f64,
 }
 
+/// Plausible `b`: within ±1 mm. Drives have micrometres to tenths of a millimetre of
+/// play; a negative `b` is an over-compensating control.
+pub const B: Range = Range::magnitude(1.0, "mm");
+
 impl BacklashZ {
+    /// The parameters against their plausible ranges (checked when a model file is read).
+    pub fn check(&self) -> Result<(), Invalid> {
+        B.check_key("b", self.b)
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(0.0, share(self.b, s.play.z, s.backlash.z, s.direction.z))
     }

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
 use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
@@ -18,7 +19,23 @@ pub struct CyclicX {
     pub phase: f64,
 }
 
+/// Plausible `amp`: within ±1 mm (screws' cyclic errors are micrometres).
+pub const AMP: Range = Range::magnitude(1.0, "mm");
+/// Plausible `pitch`: from 0.1 to 1,000 mm, the leads of ball screws
+/// (and their fractions, for harmonics).
+pub const PITCH: Range = Range::closed(0.1, 1_000.0, "mm");
+/// Plausible `phase`: within ±100 rad (any angle is a phase; a larger number is a
+/// misread value, and its sine loses its precision).
+pub const PHASE: Range = Range::magnitude(100.0, "rad");
+
 impl CyclicX {
+    /// The parameters against their plausible ranges (checked when a model file is read).
+    pub fn check(&self) -> Result<(), Invalid> {
+        AMP.check_key("amp", self.amp)?;
+        PITCH.check_key("pitch", self.pitch)?;
+        PHASE.check_key("phase", self.phase)
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(self.amp * (std::f64::consts::TAU * s.at.x / self.pitch + self.phase).sin(), 0.0)
     }

@@ -5,6 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
 use crate::toolpath::Xz;
 
@@ -15,7 +16,16 @@ pub struct NoseRadius {
     pub dr: f64,
 }
 
+/// Plausible `dr`: within ±1 mm. Nose radii are 0.1 to 2.4 mm, and an error is a
+/// fraction of one.
+pub const DR: Range = Range::magnitude(1.0, "mm");
+
 impl NoseRadius {
+    /// The parameters against their plausible ranges (checked when a model file is read).
+    pub fn check(&self) -> Result<(), Invalid> {
+        DR.check_key("dr", self.dr)
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(-self.dr * (s.tip.x + s.normal.x), -self.dr * (s.tip.z + s.normal.z))
     }

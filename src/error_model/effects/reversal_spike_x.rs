@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
 use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
@@ -19,7 +20,19 @@ pub struct ReversalSpikeX {
     pub decay_mm: f64,
 }
 
+/// Plausible `h`: within ±1 mm (friction spikes are micrometres).
+pub const H: Range = Range::magnitude(1.0, "mm");
+/// Plausible `decay_mm`: from 0.001 to 1,000 mm of travel; the sampling step follows
+/// `h/decay²`, so the decay must be more than nothing.
+pub const DECAY_MM: Range = Range::closed(0.001, 1_000.0, "mm");
+
 impl ReversalSpikeX {
+    /// The parameters against their plausible ranges (checked when a model file is read).
+    pub fn check(&self) -> Result<(), Invalid> {
+        H.check_key("h", self.h)?;
+        DECAY_MM.check_key("decay_mm", self.decay_mm)
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(spike(self.h, self.decay_mm, s.direction.x, s.since_reversal.x), 0.0)
     }

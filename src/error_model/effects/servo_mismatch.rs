@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
 use crate::toolpath::Xz;
 
@@ -14,7 +15,16 @@ pub struct ServoMismatch {
     pub dt_ms: f64,
 }
 
+/// Plausible `dt_ms`: within ±1,000 ms. Loop lags are milliseconds; a second is no
+/// servo loop a lathe cuts with.
+pub const DT_MS: Range = Range::magnitude(1_000.0, "ms");
+
 impl ServoMismatch {
+    /// The parameters against their plausible ranges (checked when a model file is read).
+    pub fn check(&self) -> Result<(), Invalid> {
+        DT_MS.check_key("dt_ms", self.dt_ms)
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(-s.velocity.x / 60_000.0 * self.dt_ms, 0.0)
     }

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Key, Range, Reason};
 use crate::error_model::Sample;
 use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
@@ -17,7 +18,33 @@ pub struct StraightnessZ {
     pub coeffs: Vec<f64>,
 }
 
+/// Plausible coefficients: at most six (a bow up to the seventh power of the position),
+/// each within `coefficient_range`.
+pub const TERMS: usize = 6;
+
+/// The plausible range of `coeffs[k]`: a term that bends the path by at most 1 mm at
+/// 100 mm from the origin, `|coeffs[k]| · 100^(k+2) ≤ 1` (slides bow by micrometres over
+/// their travel).
+pub fn coefficient_range(k: usize) -> Range {
+    Range::magnitude(100f64.powi(-(k as i32 + 2)), "")
+}
+
 impl StraightnessZ {
+    /// The coefficients against their plausible ranges (checked when a model file is read):
+    /// at most `TERMS` of them, each within `coefficient_range`.
+    pub fn check(&self) -> Result<(), Invalid> {
+        if self.coeffs.len() > TERMS {
+            return Err(Invalid { path: vec![Key::Name("coeffs")], reason: Reason::Rule("at most six coefficients") });
+        }
+        for (k, &c) in self.coeffs.iter().enumerate() {
+            coefficient_range(k).check(c).map_err(|e| Invalid {
+                path: vec![Key::Name("coeffs"), Key::Index(k)],
+                reason: Reason::OutOfRange(e),
+            })?;
+        }
+        Ok(())
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(0.0, bow(&self.coeffs, s.at.x))
     }

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
 use crate::error_model::spacing::{Spacing, step_for_curvature};
 use crate::toolpath::Xz;
@@ -18,7 +19,20 @@ pub struct ThermalX {
     pub tau_min: f64,
 }
 
+/// Plausible `amp`: within ±1 mm (spindles and slides grow by micrometres to tens of
+/// micrometres).
+pub const AMP: Range = Range::magnitude(1.0, "mm");
+/// Plausible `tau_min`: from 0.1 to 100,000 minutes. Machine warm-ups take tens of
+/// minutes to hours; the sampling step follows `amp/τ²`, so τ must be more than nothing.
+pub const TAU_MIN: Range = Range::closed(0.1, 100_000.0, "min");
+
 impl ThermalX {
+    /// The parameters against their plausible ranges (checked when a model file is read).
+    pub fn check(&self) -> Result<(), Invalid> {
+        AMP.check_key("amp", self.amp)?;
+        TAU_MIN.check_key("tau_min", self.tau_min)
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         self.at_time(s.t_min)
     }

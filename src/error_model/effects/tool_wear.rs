@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
 use crate::toolpath::Xz;
 
@@ -14,7 +15,16 @@ pub struct ToolWear {
     pub um_per_m: f64,
 }
 
+/// Plausible `um_per_m`: within ±1,000 µm per metre of cut. An insert that loses a
+/// millimetre per metre is gone after a few parts.
+pub const UM_PER_M: Range = Range::magnitude(1_000.0, "µm/m");
+
 impl ToolWear {
+    /// The parameters against their plausible ranges (checked when a model file is read).
+    pub fn check(&self) -> Result<(), Invalid> {
+        UM_PER_M.check_key("um_per_m", self.um_per_m)
+    }
+
     pub fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(self.um_per_m * 1e-3 * s.cut_length_m, 0.0)
     }

@@ -58,11 +58,30 @@ fn straightness_from_two_reversed_runs_is_half_their_difference() {
 
 #[test]
 fn bad_tables_are_refused_with_the_line() {
-    assert!(matches!(parse("target_mm,linear_mm\n0,1\n"), Err(TableError::MissingColumn("direction"))));
-    assert!(matches!(parse("target_mm,direction\n0,up\n"), Err(TableError::NoErrors)));
+    assert!(matches!(parse("target_mm,linear_mm\n0,1\n"), Err(TableError::MissingColumn { name: "direction", .. })));
+    assert!(matches!(parse("target_mm,direction\n0,up\n"), Err(TableError::NoErrors { .. })));
     assert!(matches!(parse("target_mm,direction,linear_mm\n0,sideways,1\n"), Err(TableError::Row { line: 2, .. })));
     assert!(matches!(parse("target_mm,direction,linear_mm\n0,up,abc\n"), Err(TableError::Row { line: 2, .. })));
     assert!(matches!(parse("target_mm,direction,angular_deg\n"), Err(TableError::Empty)));
+}
+
+#[test]
+fn unknown_and_repeated_columns_are_refused_at_their_header_cell() {
+    let text = "# X slide\ntarget_mm, direction,linear_um\n0,up,0.001\n";
+    let Err(error) = parse(text) else { panic!("a misspelt column was accepted") };
+    let TableError::UnknownColumn { line, span, ref name, suggestion } = error else { panic!("{error:?}") };
+    assert_eq!((line, name.as_str(), suggestion), (2, "linear_um", Some("linear_mm")));
+    assert_eq!(&text[span.start as usize..span.end as usize], "linear_um");
+    assert_eq!(error.span(text), span);
+    let text = "target_mm,direction,\"linear_mm\",linear_mm\n0,up,0.001,0.002\n";
+    let Err(error) = parse(text) else { panic!("a repeated column was accepted") };
+    let TableError::DuplicateColumn { span, .. } = error else { panic!("{error:?}") };
+    assert_eq!(span, Span::new(32, 41));
+    assert_eq!(&text[32..41], "linear_mm");
+    // A row's error covers its line.
+    let text = "target_mm,direction,linear_mm\n0,up,abc\n";
+    let error = parse(text).unwrap_err();
+    assert_eq!(error.span(text), Span::new(30, 38));
 }
 
 #[test]
