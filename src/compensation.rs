@@ -17,6 +17,7 @@ pub mod grid;
 pub mod inverse;
 pub mod plan;
 pub mod program;
+pub mod provenance;
 pub mod quantised;
 pub mod report;
 pub mod rewrite;

@@ -357,6 +357,11 @@ pub enum DiagnosticKind {
     /// `compensate`: a cycle whose motion changes has no plain-block form in this dialect,
     /// so it stays as programmed and its moves are not compensated.
     CycleNotCompensated,
+    /// `compensate`: the program carries a provenance comment, so it is a compensated
+    /// program already; `model` is the model it names, when the comment reads.
+    AlreadyCompensated {
+        model: Option<String>,
+    },
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
     /// A cycle whose profile has no moves.

@@ -239,6 +239,10 @@ pub(crate) fn write_word(
             out.push_str(text);
             out.push_byte(b')');
         }
+        NewWord::LineComment(text) => {
+            out.push_byte(b';');
+            out.push_str(text);
+        }
         NewWord::TapeMark => out.push_byte(b'%'),
     }
 }

@@ -13,15 +13,13 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::common::{CliError, write_atomically_parts};
-use super::compensate::{CompensateArgs, FileResult, compensate_file, write_report};
+use super::common::{CliError, check_output_dir, write_atomically_parts};
+use super::compensate::{CompensateArgs, FileResult, compensate_file, refuse_overwriting_input, write_report};
 use super::streams;
 
 pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
     let Some(dir) = &args.out_dir else { return Err(CliError::Usage("--out-dir is missing".to_string())) };
-    if !dir.is_dir() {
-        return Err(CliError::Usage(format!("--out-dir {}: no such directory", dir.display())));
-    }
+    check_output_dir(dir)?;
     let mut names = HashSet::new();
     let mut targets = Vec::new();
     for file in &args.files {
@@ -35,6 +33,10 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
             )));
         }
         targets.push(dir.join(name));
+    }
+    // Before any work: an output that would replace an input (DIR is a program's own folder).
+    for target in &targets {
+        refuse_overwriting_input(&args.files, target, args.force)?;
     }
     let results = in_parallel(&args.files, &targets, |file, target| {
         let mut result = match compensate_file(file, args) {

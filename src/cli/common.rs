@@ -377,6 +377,31 @@ pub fn required_error_model(resolved: &Resolved, command: &str) -> Result<ErrorM
     }
 }
 
+/// The name a provenance comment gives the model of `resolved`: its `[machine] name`, else
+/// its file name.
+pub fn model_name(resolved: &Resolved) -> String {
+    let file = resolved.model.as_ref().and_then(|(path, _)| path.file_name()).map(|n| n.to_string_lossy().into_owned());
+    resolved.settings.name.clone().or(file).unwrap_or_default()
+}
+
+/// The first [`SHA256_DIGITS`](turnpass::compensation::provenance::SHA256_DIGITS) hex
+/// digits of the SHA-256 of the model of `resolved`: its file and every table file it reads.
+pub fn model_sha256(resolved: &Resolved) -> Result<String, CliError> {
+    use turnpass::compensation::provenance::{SHA256_DIGITS, model_sha256};
+    let Some((path, text)) = &resolved.model else { return Ok(String::new()) };
+    let (spec, dir) = model_spec(path, text)?;
+    let mut tables = Vec::new();
+    for file in spec.axis_table.iter().filter_map(|table| table.file.as_ref().map(|file| file.get_ref().as_str())) {
+        let table = dir.join(file);
+        tables.push(
+            std::fs::read(&table).map_err(|source| CliError::Read { path: table.display().to_string(), source })?,
+        );
+    }
+    let mut digest = model_sha256(text.as_bytes(), tables.iter().map(Vec::as_slice));
+    digest.truncate(SHA256_DIGITS);
+    Ok(digest)
+}
+
 /// A program's bytes and the settings it is read with.
 pub fn read_program(path: &Path, read: &ReadArgs) -> Result<(Vec<u8>, Resolved), CliError> {
     let resolved = resolve(read, path)?;
@@ -570,8 +595,37 @@ pub fn write_output_parts<'a>(
     }
 }
 
-/// Write `bytes` to `path` through a temporary file in the same directory and a rename, so
-/// readers see the old file or the whole new one, never a part.
+/// Check, before any work, that `output` can be written: the folder it goes into exists and
+/// it is not a folder itself, so a long run never ends in "cannot write". `None` and `-` are
+/// standard output. Every command that writes a file asks this first.
+pub fn check_output(output: Option<&Path>) -> Result<(), CliError> {
+    let Some(path) = output.filter(|p| *p != Path::new("-")) else { return Ok(()) };
+    let error = |message: String| CliError::Write {
+        path: path.display().to_string(),
+        source: std::io::Error::new(std::io::ErrorKind::NotFound, message),
+    };
+    let target = link_target(path).map_err(|source| CliError::Write { path: path.display().to_string(), source })?;
+    let dir = folder_of(&target);
+    if !dir.is_dir() {
+        return Err(error(format!("the directory {} does not exist", dir.display())));
+    }
+    if target.is_dir() {
+        return Err(error("it is a directory; give a file name".to_string()));
+    }
+    Ok(())
+}
+
+/// Check, before any work, that `dir` (an `--out-dir`) is a folder that exists.
+pub fn check_output_dir(dir: &Path) -> Result<(), CliError> {
+    if dir.is_dir() { Ok(()) } else { Err(CliError::Usage(format!("--out-dir {}: no such directory", dir.display()))) }
+}
+
+/// Write `bytes` to `path` through a temporary file beside the file written and a rename,
+/// so readers see the old file or the whole new one, never a part.
+///
+/// A new file gets the mode the umask leaves of `rw-rw-rw-`, as any tool's output does (a
+/// DNC service running as another user must be able to read it); a file written over keeps
+/// its mode; a symbolic link is written through to the file it names and stays a link.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     write_atomically_parts(path, [bytes])
 }
@@ -579,16 +633,63 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
 /// [`write_atomically`] of a text given as pieces that follow each other.
 pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), CliError> {
     let error = |source| CliError::Write { path: path.display().to_string(), source };
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let target = link_target(path).map_err(error)?;
+    let dir = folder_of(&target);
     if !dir.is_dir() {
         let message = format!("the directory {} does not exist", dir.display());
         return Err(error(std::io::Error::new(std::io::ErrorKind::NotFound, message)));
     }
-    let mut temp = tempfile::NamedTempFile::new_in(dir).map_err(error)?;
+    let mut temp = temporary_beside(dir, std::fs::metadata(&target).ok()).map_err(error)?;
     for part in parts {
         temp.write_all(part).map_err(error)?;
     }
     temp.flush().map_err(error)?;
-    temp.persist(path).map_err(|e| error(e.error))?;
+    temp.persist(&target).map_err(|e| error(e.error))?;
     Ok(())
+}
+
+/// The file `path` names once every symbolic link in its last component is followed (the
+/// file need not exist: a link may name a file about to be made). Links in the folders above
+/// need no following, because a rename inside a linked folder lands in the real one.
+fn link_target(path: &Path) -> std::io::Result<PathBuf> {
+    // As many links as Linux follows before it gives ELOOP.
+    const MAX_LINKS: usize = 40;
+    let mut path = path.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        match std::fs::symlink_metadata(&path) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let to = std::fs::read_link(&path)?;
+                // A relative link is relative to its own folder; `join` keeps an absolute one.
+                path = match path.parent() {
+                    Some(dir) => dir.join(to),
+                    None => to,
+                };
+            }
+            _ => return Ok(path),
+        }
+    }
+    Err(std::io::Error::other("too many levels of symbolic links"))
+}
+
+/// A temporary file in `dir` that has the mode the file it replaces has (`existing`), or, for
+/// a new file, the mode the umask gives: it is created with `rw-rw-rw-`, which the system
+/// reduces by the umask, so the umask is never read or changed (the batch writes from
+/// several threads at once).
+#[cfg(unix)]
+fn temporary_beside(dir: &Path, existing: Option<std::fs::Metadata>) -> std::io::Result<tempfile::NamedTempFile> {
+    use std::os::unix::fs::PermissionsExt;
+    let temp = tempfile::Builder::new().permissions(std::fs::Permissions::from_mode(0o666)).tempfile_in(dir)?;
+    if let Some(existing) = existing {
+        temp.as_file().set_permissions(existing.permissions())?;
+    }
+    Ok(temp)
+}
+
+#[cfg(not(unix))]
+fn temporary_beside(dir: &Path, existing: Option<std::fs::Metadata>) -> std::io::Result<tempfile::NamedTempFile> {
+    let temp = tempfile::NamedTempFile::new_in(dir)?;
+    if let Some(existing) = existing {
+        temp.as_file().set_permissions(existing.permissions())?;
+    }
+    Ok(temp)
 }

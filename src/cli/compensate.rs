@@ -1,8 +1,11 @@
 //! `turnpass compensate`: one program as a filter (`-` in, standard output out) or to a
 //! file, or many into `--out-dir` in parallel (`batch.rs`).
 //!
-//! A program is written only when it compensates cleanly: a program with errors, or one
-//! the safety checks refuse, writes nothing and exits 1. The `--report json` goes to
+//! A program is written only when it compensates cleanly: a program with errors, one the
+//! safety checks refuse, or one that carries a provenance comment (compensated already;
+//! `--force` to compensate it anyway) writes nothing and exits 1. What is written carries a
+//! provenance comment of its own (`compensation::provenance`). An output that would replace
+//! an input is refused before any work, unless `--force`. The `--report json` goes to
 //! standard output, which then holds the report alone, or into `--report-file`; when the
 //! program itself goes to standard output the report needs that file (one stream each).
 
@@ -13,6 +16,7 @@ use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
+use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::rewrite::ProgramTables;
 use turnpass::compensation::{CompensateOptions, Outcome, compensate_with_tables};
 use turnpass::error_model::ErrorModel;
@@ -21,8 +25,8 @@ use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, display_name, model_source, read_program, ready_beside, rendered,
-    required_error_model, write_output, write_output_parts,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
+    read_program, ready_beside, rendered, required_error_model, write_output, write_output_parts,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -40,6 +44,10 @@ pub struct CompensateArgs {
     /// compensated in parallel.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
+    /// Write over an input program (`-o` naming it, or `--out-dir` its own folder), and
+    /// compensate a program that carries a provenance comment (a compensated program).
+    #[arg(long)]
+    pub force: bool,
     #[command(flatten)]
     pub fit: FitArgs,
     /// Also write a report: per edited block the corrections, fitted arcs, predicted
@@ -98,19 +106,9 @@ pub struct FitArgs {
     pub start_min: Option<f64>,
 }
 
-/// The strategies by the names the command line gives them.
-const STRATEGIES: [(&str, Strategy); 6] = [
-    ("auto", Strategy::Auto),
-    ("circle", Strategy::Circle),
-    ("semicircle", Strategy::Semicircle),
-    ("quadrant", Strategy::Quadrant),
-    ("arcs", Strategy::Arcs),
-    ("densify", Strategy::Densify),
-];
-
 fn strategy_parser() -> impl TypedValueParser<Value = Strategy> {
-    PossibleValuesParser::new(STRATEGIES.map(|(name, _)| name))
-        .map(|name| STRATEGIES.iter().find(|(n, _)| *n == name).map_or(Strategy::Auto, |(_, s)| *s))
+    PossibleValuesParser::new(Strategy::ALL.map(Strategy::name))
+        .map(|name| Strategy::from_name(&name).unwrap_or_default())
 }
 
 impl FitArgs {
@@ -120,7 +118,7 @@ impl FitArgs {
     /// promises.
     pub fn check(&self) -> Result<(), CliError> {
         if self.step.is_some() && self.strategy != Strategy::Densify {
-            let name = STRATEGIES.iter().find(|(_, s)| *s == self.strategy).map_or("auto", |(n, _)| *n);
+            let name = self.strategy.name();
             return Err(CliError::Usage(format!(
                 "--step is the length of each G01 that --strategy densify writes, and --strategy {name} chooses \
                  its own segments: give --strategy densify with --step, or leave --step out"
@@ -216,6 +214,10 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
     let [path] = args.files.as_slice() else {
         return Err(CliError::Usage("several programs need --out-dir DIR to write them into".to_string()));
     };
+    check_output(args.output.as_deref())?;
+    if let Some(output) = args.output.as_deref() {
+        refuse_overwriting_input(&args.files, output, args.force)?;
+    }
     let result = compensate_file(path, &args)?;
     streams::err(&result.messages);
     if let Some(output) = &result.output {
@@ -233,6 +235,27 @@ pub fn write_report(args: &CompensateArgs, report: &impl serde::Serialize) -> Re
     write_output(args.report_file.as_deref(), text.as_bytes())
 }
 
+/// Refuse, unless `force`, to write `output` when it is one of the `inputs` (the same file,
+/// through a link or by another path): the nominal program would be lost.
+pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) -> Result<(), CliError> {
+    if force || output == Path::new("-") {
+        return Ok(());
+    }
+    let input = inputs.iter().filter(|input| *input != Path::new("-")).find(|input| {
+        // An output that does not exist yet is no input.
+        same_file::is_same_file(input, output).unwrap_or(false)
+    });
+    match input {
+        Some(input) => Err(CliError::Usage(format!(
+            "compensate would write {} over the program {}, which it reads; write the compensated program \
+             elsewhere (-o or --out-dir), or give --force to replace it",
+            output.display(),
+            input.display()
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// Compensate one program; nothing is written here.
 pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult, CliError> {
     let (bytes, resolved) = read_program(path, &args.read)?;
@@ -243,12 +266,19 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         messages.extend_from_slice(format!("compensate: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
     // The rewrite's tables of the program are made on the idle core while it is lowered.
-    let (program, tables) =
-        match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, ProgramTables::new) {
+    // A program that carries a provenance comment is found beside the lowering too.
+    let beside = |program: &turnpass::syntax::Program<'_>| (ProgramTables::new(program), provenance::refusal(program));
+    let (program, (tables, compensated_already)) =
+        match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, beside) {
             Ok(ready) => ready,
             Err(text) => return Ok(FileResult::failed(1, text)),
         };
-    let outcome = args.fit.compensate_with_tables(&program, &model, args.report.is_some(), tables);
+    if let Some(diagnostic) = compensated_already.filter(|_| !args.force) {
+        messages.extend(rendered(&name, &bytes, &[diagnostic]));
+        messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
+        return Ok(FileResult::failed(1, messages));
+    }
+    let mut outcome = args.fit.compensate_with_tables(&program, &model, args.report.is_some(), tables);
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
@@ -270,6 +300,16 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         .as_bytes(),
     );
     let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
+    let provenance = Provenance {
+        version: provenance::VERSION.to_string(),
+        model: model_name(&resolved),
+        model_sha256: model_sha256(&resolved)?,
+        tolerance_mm: args.fit.options(&program.machine).fit.tolerance_mm,
+        strategy: args.fit.strategy,
+        step_mm: args.fit.step,
+        start_min: model.start_min,
+    };
+    provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
     let printed = printer::print_parts(&program.parsed.program, &outcome.edits);
     Ok(FileResult { code: 0, messages, output: Some(printed), report })
 }

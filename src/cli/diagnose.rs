@@ -15,8 +15,9 @@ use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, with_table_files};
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, display_name, folder_of, model_problems, model_spec,
-    read_data_text, read_program, read_table, ready, required_error_model, write_atomically, write_output,
+    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, folder_of,
+    model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
+    write_atomically, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -183,6 +184,8 @@ fn prepare(
 }
 
 pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
+    check_output(args.write_model.as_deref())?;
+    check_output(args.plot.as_deref())?;
     let (nominal, model, resolved) = match prepare(&args.file, &args.read, &args.run, "diagnose", args.start_min)? {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
@@ -229,6 +232,7 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
 }
 
 pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
+    check_output(args.output.as_deref())?;
     let (nominal, truth, _) = match prepare(&args.file, &args.read, &args.run, "synth", None)? {
         Ok(ready) => ready,
         Err(code) => return Ok(code),

@@ -13,7 +13,8 @@ use turnpass::printer::{self, CanonicalOptions, Edits};
 use turnpass::syntax;
 
 use super::common::{
-    CliError, ReadArgs, display_name, note_machine_defaults, read_program_bytes, report, resolve, write_output,
+    CliError, ReadArgs, check_output, display_name, note_machine_defaults, read_program_bytes, report, resolve,
+    write_output,
 };
 use super::streams;
 
@@ -36,6 +37,7 @@ pub struct FmtArgs {
 }
 
 pub fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
+    check_output(args.output.as_deref().filter(|_| !args.check))?;
     let resolved = resolve(&args.read, &args.file)?;
     let bytes = read_program_bytes(&args.file)?;
     note_machine_defaults(&resolved, None);

@@ -8,7 +8,8 @@ use std::process::ExitCode;
 use clap::Args;
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, display_name, model_source, read_program, ready, rendered, svg_path, write_atomically,
+    CliError, ReadArgs, RunArgs, check_output, display_name, model_source, read_program, ready, rendered, svg_path,
+    write_atomically,
 };
 use super::compensate::FitArgs;
 use super::streams;
@@ -38,6 +39,7 @@ pub struct PlotArgs {
 }
 
 pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
+    check_output(Some(&args.output))?;
     args.fit.check()?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let model = args.fit.error_model(&resolved, "plot")?;

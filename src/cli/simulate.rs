@@ -11,8 +11,8 @@ use turnpass::simulation;
 use turnpass::syntax;
 
 use super::common::{
-    CliError, Lowering, ReadArgs, RunArgs, announce_settings, display_name, lower_and_validate, lower_options,
-    model_file_name, not_lowered, plural, read_program, report, write_output,
+    CliError, Lowering, ReadArgs, RunArgs, announce_settings, check_output, display_name, lower_and_validate,
+    lower_options, model_file_name, not_lowered, plural, read_program, report, write_output,
 };
 use super::streams;
 
@@ -54,6 +54,7 @@ pub enum SimulateFormat {
 }
 
 pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
+    check_output(args.output.as_deref())?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
     announce_settings("expand", &name, (&args.read, &args.run), &resolved, args.verbose);

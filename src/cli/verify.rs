@@ -7,13 +7,15 @@ use std::process::ExitCode;
 use clap::Args;
 
 use turnpass::compensation::program::SAMPLE_STEP_MM;
+use turnpass::compensation::provenance::{Provenance, marks};
 use turnpass::compensation::verify::{check_words, deviation};
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::LineIndex;
+use turnpass::syntax::Program;
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, display_name, model_source, read_program, read_program_bytes, ready,
-    required_error_model, write_output,
+    CliError, Format, ReadArgs, RunArgs, display_name, model_sha256, model_source, read_program, read_program_bytes,
+    ready, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -28,6 +30,14 @@ pub struct VerifyArgs {
     /// the least increment).
     #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::MAX_DEVIATION_MM))]
     pub max_deviation: Option<f64>,
+    /// Minutes since the machine started when the program starts (thermal effects; default:
+    /// the compensated program's provenance comment, else the model's `start_min`).
+    #[arg(long, value_name = "MIN")]
+    pub start_min: Option<f64>,
+    /// Verify on the model given even when it is not the one the compensated program's
+    /// provenance comment names (its SHA-256 differs); without this that is a violation.
+    #[arg(long)]
+    pub allow_other_model: bool,
     #[arg(long, value_enum, default_value = "human")]
     pub format: Format,
     #[command(flatten)]
@@ -43,7 +53,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     // Both programs run on the machine the original's settings name.
     let (original_bytes, resolved) = read_program(&args.original, &args.read)?;
     let compensated_bytes = read_program_bytes(&args.compensated)?;
-    let model = required_error_model(&resolved, "verify")?;
+    let mut model = required_error_model(&resolved, "verify")?;
+    let model_sha256 = model_sha256(&resolved)?;
     let (original_name, compensated_name) = (display_name(&args.original), display_name(&args.compensated));
     let mut messages = Vec::new();
     if args.verbose {
@@ -61,13 +72,57 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             return Ok(ExitCode::from(1));
         }
     };
+    let provenance = compensated_with(&original.parsed.program, &compensated.parsed.program);
+    let start = match (args.start_min, &provenance) {
+        (Some(minutes), _) => Start { minutes, from: "--start-min" },
+        (None, Some(Ok(made))) => Start { minutes: made.start_min, from: "the provenance comment" },
+        (None, _) => Start { minutes: model.start_min, from: "the model's start_min" },
+    };
+    model.start_min = start.minutes;
+    let mut violations = Vec::new();
+    let mut warn = |text: String| messages.extend_from_slice(format!("verify: warning: {text}\n").as_bytes());
+    if !marks(&original.parsed.program).is_empty() && provenance.is_none() {
+        warn(format!(
+            "{original_name} carries a provenance comment: it is a compensated program, not the nominal one \
+             (give the nominal program first, the compensated one second)"
+        ));
+    }
+    match &provenance {
+        Some(Ok(made)) => {
+            if let Some(minutes) = args.start_min.filter(|&m| m != made.start_min) {
+                warn(format!(
+                    "{compensated_name} was compensated for a start at {} min; verifying at {minutes} min (--start-min)",
+                    made.start_min
+                ));
+            }
+            if !made.same_model(&model_sha256) {
+                let model_file =
+                    resolved.model.as_ref().map_or_else(String::new, |(path, _)| path.display().to_string());
+                let text = format!(
+                    "{compensated_name} was compensated for the model `{}` (sha256 {}), but the model given, \
+                     {model_file}, is another (sha256 {model_sha256})",
+                    made.model,
+                    made.model_sha256.to_ascii_lowercase(),
+                );
+                if args.allow_other_model {
+                    warn(format!("{text}; verifying on the model given (--allow-other-model)"));
+                } else {
+                    violations.push(format!("{text}: give the model it was compensated for, or --allow-other-model"));
+                }
+            }
+        }
+        Some(Err(why)) => warn(format!(
+            "the provenance comment of {compensated_name} does not read ({why}): its start time and model are not \
+             checked"
+        )),
+        None => {}
+    }
     streams::err(messages);
     let tools = ToolTable::from_machine(&original.machine);
     let figures = deviation(&original.valid(), &compensated.valid(), &tools, &model, SAMPLE_STEP_MM);
     let words = check_words(&original.parsed.program, &compensated.parsed.program);
     let machine = &original.machine;
     let limit = args.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());
-    let mut violations = Vec::new();
     if let Some(missing) = &words.missing {
         let line = LineIndex::new(&original_bytes).position(missing.span.start).0;
         violations.push(format!(
@@ -87,6 +142,10 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
                 "original": original_name,
                 "compensated": compensated_name,
                 "deviation": figures,
+                "start_min": start.minutes,
+                "start_min_from": start.from,
+                "provenance": provenance.as_ref().and_then(|p| p.as_ref().ok()),
+                "model_sha256": model_sha256,
                 "max_deviation_mm": limit,
                 "words_checked": words.checked,
                 "violations": violations,
@@ -97,7 +156,20 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             let row = |label: &str, f: &turnpass::compensation::deviation::Figures| {
                 format!("  {label:<16} {:>10.5} {:>10.5} {:>10.5} {:>8}\n", f.max_mm, f.rms_mm, f.ssq_mm, f.points)
             };
-            let mut text = format!("predicted deviation from the nominal part of {original_name}, mm:\n");
+            let mut text = match &provenance {
+                Some(Ok(made)) => format!(
+                    "compensated by turnpass {} for the model `{}` (sha256 {}), tolerance {} mm, strategy {}\n",
+                    made.version,
+                    made.model,
+                    made.model_sha256.to_ascii_lowercase(),
+                    made.tolerance_mm,
+                    made.strategy.name()
+                ),
+                Some(Err(_)) => "compensated by turnpass (its provenance comment does not read)\n".to_string(),
+                None => format!("{compensated_name} carries no provenance comment\n"),
+            };
+            text.push_str(&format!("start time: {} min ({})\n", start.minutes, start.from));
+            text.push_str(&format!("predicted deviation from the nominal part of {original_name}, mm:\n"));
             text.push_str(&format!("  {:<16} {:>10} {:>10} {:>10} {:>8}\n", "", "max", "RMS", "SSQ", "points"));
             text.push_str(&row("as programmed", &figures.before));
             text.push_str(&row("compensated", &figures.after));
@@ -114,4 +186,29 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     };
     write_output(None, text.as_bytes())?;
     Ok(if violations.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(1) })
+}
+
+/// The minute the run starts at, and what said so.
+struct Start {
+    minutes: f64,
+    from: &'static str,
+}
+
+/// What `compensated` says it was compensated with: its first provenance comment that is
+/// not one of `original`'s (an original compensated with `--force` keeps its own, and the
+/// new one may read the same, so they are matched one for one).
+fn compensated_with(original: &Program<'_>, compensated: &Program<'_>) -> Option<Result<Provenance, String>> {
+    let mut theirs: Vec<&[u8]> = marks(original).iter().map(|mark| original.text(mark.span)).collect();
+    let ours = marks(compensated);
+    let new = ours.into_iter().find(|mark| {
+        let text = compensated.text(mark.span);
+        match theirs.iter().position(|t| *t == text) {
+            Some(at) => {
+                theirs.swap_remove(at);
+                false
+            }
+            None => true,
+        }
+    });
+    new.map(|mark| mark.provenance)
 }

@@ -71,6 +71,29 @@ pub enum Strategy {
     Densify,
 }
 
+impl Strategy {
+    /// Every strategy, in the order the command line lists them.
+    pub const ALL: [Strategy; 6] =
+        [Strategy::Auto, Strategy::Circle, Strategy::Semicircle, Strategy::Quadrant, Strategy::Arcs, Strategy::Densify];
+
+    /// The strategy's name, as `--strategy` and the provenance comment write it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Strategy::Auto => "auto",
+            Strategy::Circle => "circle",
+            Strategy::Semicircle => "semicircle",
+            Strategy::Quadrant => "quadrant",
+            Strategy::Arcs => "arcs",
+            Strategy::Densify => "densify",
+        }
+    }
+
+    /// The strategy named `name` (any case).
+    pub fn from_name(name: &str) -> Option<Strategy> {
+        Strategy::ALL.into_iter().find(|s| s.name().eq_ignore_ascii_case(name))
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FitOptions {
     pub strategy: Strategy,

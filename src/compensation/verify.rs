@@ -10,7 +10,8 @@
 //! along): the original's own prediction gives the error before compensation, the
 //! compensated program's the error after.
 //!
-//! **Words.** Every word that is not motion — M codes, T, comments, block-delete slashes,
+//! **Words.** Every word that is not motion — M codes, T, comments (save a provenance
+//! comment, `provenance.rs`, which either program may carry or not), block-delete slashes,
 //! program names and numbers — must appear in the compensated program in the same order
 //! (other words may come between them: restored motion codes, expanded cycles' blocks).
 //! Spindle speeds are compared as the sequence of speed changes, because an expanded cycle
@@ -103,6 +104,8 @@ fn kept_words(program: &Program<'_>) -> KeptWords {
         for word in program.words_of(block) {
             let kept = match word.kind {
                 WordKind::Code { letter: CodeLetter::M, code } => Some(Kept::M(code.major(), code.minor())),
+                // A provenance comment is `compensate`'s, not the program's.
+                WordKind::Comment(_) if super::provenance::is_mark(program.text(word.span)) => None,
                 WordKind::Comment(_) | WordKind::BlockDelete { .. } | WordKind::ProgramName | WordKind::Header => {
                     Some(Kept::Text(program.text(word.span).to_vec()))
                 }

@@ -77,6 +77,7 @@ impl DiagnosticKind {
             CompensatedOutsideTravel { .. } => "compensated-outside-travel",
             CannotRewriteBlock { .. } => "cannot-rewrite-block",
             CycleNotCompensated => "cycle-not-compensated",
+            AlreadyCompensated { .. } => "already-compensated",
             CycleNeedsDepth => "cycle-needs-depth",
             EmptyProfile => "empty-profile",
             ProfileReverses { .. } => "profile-reverses",
@@ -254,6 +255,13 @@ impl DiagnosticKind {
             CycleNotCompensated => "this cycle stays as programmed and is not compensated: its thread passes have \
                                     no plain-block form in this dialect"
                 .to_string(),
+            AlreadyCompensated { model: Some(model) } => format!(
+                "this program is compensated already (for the machine model `{model}`): compensating it again \
+                 takes the machine's errors out twice"
+            ),
+            AlreadyCompensated { model: None } => "this program is compensated already: compensating it again \
+                                                   takes the machine's errors out twice"
+                .to_string(),
             CycleNeedsDepth => "the roughing cycle has no depth of cut".to_string(),
             EmptyProfile => "the profile named by `P`/`Q` has no moves".to_string(),
             ProfileReverses { axis } => format!("the profile turns back in {axis}; the roughing cycle cannot cut it"),
@@ -423,6 +431,7 @@ impl DiagnosticKind {
             CompensatedOutsideTravel { .. } => "this block".to_string(),
             CannotRewriteBlock { .. } => "this block".to_string(),
             CycleNotCompensated => "not compensated".to_string(),
+            AlreadyCompensated { .. } => "written by `turnpass compensate`".to_string(),
             CycleNeedsDepth
             | EmptyProfile
             | ProfileReverses { .. }
@@ -597,6 +606,11 @@ impl DiagnosticKind {
                     .to_string(),
             ),
             CycleNotCompensated => Some("program the thread passes as single-pass cycle blocks".to_string()),
+            AlreadyCompensated { .. } => Some(
+                "compensate the nominal program (the one without this comment); give --force only if this \
+                 program is to be compensated as it is"
+                    .to_string(),
+            ),
             CycleNeedsDepth => Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".to_string()),
             EmptyProfile => None,
             ProfileReverses { .. } => Some("split the profile, or rough the undercut with another cycle (G73)".to_string()),

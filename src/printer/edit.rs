@@ -29,6 +29,9 @@ pub enum NewWord {
     Copy(WordId),
     /// A `( … )` comment; the text goes between the parentheses.
     Comment(String),
+    /// A `;` comment to the end of the line (Fanuc programs that write their comments so);
+    /// the text goes after the `;`.
+    LineComment(String),
     /// `%`, the tape mark that opens or closes a program.
     TapeMark,
 }

@@ -50,6 +50,27 @@ struct Case {
     /// the first command's in the snapshot (to read back what it wrote).
     #[serde(default)]
     then: Vec<Then>,
+    /// Commands run first, each of which must exit 0 (their output is not in the snapshot).
+    #[serde(default)]
+    before: Vec<Vec<String>>,
+    /// The umask every command runs under (octal, as `umask` takes it).
+    #[serde(default)]
+    umask: Option<String>,
+    /// Modes (octal) given to files in `{tmp}` after `setup`.
+    #[serde(default)]
+    setup_modes: BTreeMap<String, String>,
+    /// Symbolic links made in `{tmp}` after `setup`: `"link" = "what it names"`.
+    #[serde(default)]
+    setup_symlinks: BTreeMap<String, String>,
+    /// Files in `{tmp}` and the mode (octal permission bits) each must have afterwards.
+    #[serde(default)]
+    expect_modes: BTreeMap<String, String>,
+    /// Links in `{tmp}` that must still be symbolic links naming the same thing afterwards.
+    #[serde(default)]
+    expect_symlinks: BTreeMap<String, String>,
+    /// Files in `{tmp}` that must afterwards hold exactly the bytes of a repository file.
+    #[serde(default)]
+    expect_contents: BTreeMap<String, String>,
 }
 
 #[derive(Deserialize, PartialEq)]
@@ -64,6 +85,25 @@ enum Requirement {
 struct Then {
     args: Vec<String>,
     code: i32,
+}
+
+/// The binary with `args`, run from the repository root under `umask` when one is given.
+fn turnpass(args: &[String], umask: Option<&str>) -> Command {
+    let mut command = match umask {
+        Some(umask) => {
+            let mut shell = Command::new("sh");
+            shell.args(["-c", r#"umask "$0" && exec "$@""#, umask, env!("CARGO_BIN_EXE_turnpass")]);
+            shell
+        }
+        None => Command::new(env!("CARGO_BIN_EXE_turnpass")),
+    };
+    command.args(args).current_dir(repo()).env("NO_COLOR", "1");
+    command
+}
+
+fn mode_of(path: &std::path::Path) -> String {
+    use std::os::unix::fs::PermissionsExt;
+    format!("{:o}", std::fs::metadata(path).unwrap().permissions().mode() & 0o7777)
 }
 
 /// The write end of a pipe whose read end is already closed: every write finds no reader.
@@ -150,16 +190,35 @@ fn run_case(case: &Case) {
         std::fs::create_dir_all(target.parent().unwrap()).unwrap();
         std::fs::copy(repo().join(from), target).unwrap();
     }
-    let args: Vec<String> =
-        case.args.iter().map(|a| a.replace("{tmp}", &tmp_text).replace("{corpus}", &corpus)).collect();
+    for (file, mode) in &case.setup_modes {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = u32::from_str_radix(mode, 8).unwrap();
+        std::fs::set_permissions(tmp.path().join(file), std::fs::Permissions::from_mode(mode)).unwrap();
+    }
+    for (link, target) in &case.setup_symlinks {
+        std::os::unix::fs::symlink(target, tmp.path().join(link)).unwrap();
+    }
+    let in_tmp = |args: &[String]| -> Vec<String> {
+        args.iter().map(|a| a.replace("{tmp}", &tmp_text).replace("{corpus}", &corpus)).collect()
+    };
+    for before in &case.before {
+        let output = turnpass(&in_tmp(before), case.umask.as_deref()).stdin(Stdio::null()).output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(output.status.success(), "{}: `{}` failed:\n{stderr}", case.name, before.join(" "));
+    }
+    let args = in_tmp(&case.args);
     // The snapshot names the temporary folder and the corpus by their placeholders, wherever
-    // they are.
+    // they are, and the tool's version by its own (it is in every provenance comment; a
+    // release must not change them all).
     let placeholders = |text: &str| {
         let text = text.replace(&tmp_text, "{tmp}");
-        if corpus.is_empty() { text } else { text.replace(&corpus, "{corpus}") }
+        let text = if corpus.is_empty() { text } else { text.replace(&corpus, "{corpus}") };
+        let version = env!("CARGO_PKG_VERSION");
+        text.replace(&format!("TURNPASS {version} "), "TURNPASS {version} ")
+            .replace(&format!("turnpass {version} "), "turnpass {version} ")
+            .replace(&format!("\"version\": \"{version}\""), "\"version\": \"{version}\"")
     };
-    let mut command = Command::new(env!("CARGO_BIN_EXE_turnpass"));
-    command.args(&args).current_dir(repo()).env("NO_COLOR", "1");
+    let mut command = turnpass(&args, case.umask.as_deref());
     command.envs(&case.env);
     for name in &case.env_remove {
         command.env_remove(name);
@@ -215,6 +274,18 @@ fn run_case(case: &Case) {
     for (file, present) in &case.expect_files {
         assert_eq!(tmp.path().join(file).exists(), *present, "{}: {file}", case.name);
     }
+    for (file, mode) in &case.expect_modes {
+        assert_eq!(&mode_of(&tmp.path().join(file)), mode, "{}: the mode of {file}", case.name);
+    }
+    for (link, target) in &case.expect_symlinks {
+        let found = std::fs::read_link(tmp.path().join(link));
+        assert_eq!(found.ok(), Some(target.into()), "{}: {link} is a link to {target}", case.name);
+    }
+    for (file, source) in &case.expect_contents {
+        let (found, wanted) =
+            (std::fs::read(tmp.path().join(file)).unwrap(), std::fs::read(repo().join(source)).unwrap());
+        assert!(found == wanted, "{}: {file} holds other bytes than {source}", case.name);
+    }
     // No temporary file may be left behind by a failed write.
     let leftovers: Vec<_> = walk(tmp.path())
         .into_iter()
@@ -241,14 +312,8 @@ fn run_case(case: &Case) {
         case.code
     );
     for then in &case.then {
-        let args: Vec<String> = then.args.iter().map(|a| a.replace("{tmp}", &tmp_text)).collect();
-        let output = Command::new(env!("CARGO_BIN_EXE_turnpass"))
-            .args(&args)
-            .current_dir(repo())
-            .env("NO_COLOR", "1")
-            .stdin(Stdio::null())
-            .output()
-            .unwrap();
+        let args = in_tmp(&then.args);
+        let output = turnpass(&args, case.umask.as_deref()).stdin(Stdio::null()).output().unwrap();
         let stdout = placeholders(&String::from_utf8_lossy(&output.stdout));
         let stderr = placeholders(&String::from_utf8_lossy(&output.stderr));
         let shown = placeholders(&args.join(" "));

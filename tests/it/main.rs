@@ -26,6 +26,7 @@ mod moves;
 mod nose_radius;
 mod parse;
 mod print;
+mod provenance;
 mod robustness;
 mod roundtrip;
 mod simulate;

@@ -186,3 +186,27 @@ fn the_way_back_beside_a_pass_is_measured_against_itself_not_the_pass() {
     let (compensated, _) = lower_program(&there_and_back(0.006, true));
     assert_equal(&followed_and_brute_force(&original.toolpath, &compensated.toolpath));
 }
+
+/// A provenance comment is not one of the program's words: a compensated program may carry
+/// one the original does not (or the other way round, the original compensated with
+/// `--force`), and neither counts it.
+#[test]
+fn a_provenance_comment_is_not_a_word_to_keep() {
+    let options = crate::syntax::ParseOptions {
+        dialect: crate::dialect::DialectChoice::Auto,
+        gcode_system: crate::dialect::GCodeSystem::A,
+        machine_kind: None,
+    };
+    let mark = "(TURNPASS 0.1.0 COMPENSATED, MODEL LATHE, SHA256 0123456789AB, TOLERANCE 0.0005 MM, \
+                STRATEGY AUTO, START 30 MIN)";
+    let plain = "O1004 (FACE)\nG21 G99\nT0101 (TOOL)\nG00 X20. Z2. M08\nM30\n";
+    let marked = plain.replacen("(FACE)\n", &format!("(FACE)\n{mark}\n"), 1);
+    let (plain, marked) =
+        (crate::syntax::parse(plain.as_bytes(), &options), crate::syntax::parse(marked.as_bytes(), &options));
+    for (original, compensated) in [(&marked, &plain), (&plain, &marked)] {
+        let check = check_words(&original.program, &compensated.program);
+        assert_eq!(check.missing, None);
+        // O1004, (FACE), T0101, (TOOL), M08, M30.
+        assert_eq!(check.checked, 6);
+    }
+}
