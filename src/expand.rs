@@ -7,11 +7,11 @@
 //! the least increment; motion codes and F are written when they change; arcs use the
 //! program's own form (`R`/`L` radius or `I K` centre).
 
-use crate::compensation::grid::{ArcWords, Grid};
+use crate::back::grid::{ArcWords, Grid};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::{Address, Code, Dialect, GFunction};
 use crate::printer::{Edits, NewBlock, NewWord};
-use crate::semantic::{Frame, Lowered, ModalAfter};
+use crate::semantic::{Lowered, ModalAfter};
 use crate::syntax::{Block, CodeLetter, Number, Program, Statement, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
@@ -90,9 +90,7 @@ pub(crate) fn expansion_blocks(
     // (the cycle block's own S included, since the block is replaced).
     let speed_before = Some(expansion.before.s_word).filter(|s| *s > 0.0);
     let mut writer = BlockWriter {
-        frame,
-        shift,
-        places: increment_places(frame.increment),
+        grid: Grid::of(frame, shift),
         radius_arcs: style.radius_arcs,
         dialect: program.config().dialect,
         thread_code: thread_code.unwrap_or(Code::whole(32)),
@@ -136,16 +134,6 @@ pub(crate) fn delete_consumed(
             edits.delete(consumed);
         }
     }
-}
-
-pub(crate) fn increment_places(increment: f64) -> u8 {
-    let mut places = 0u8;
-    let mut scaled = increment;
-    while places < 9 && (scaled - scaled.round()).abs() > 1e-9 {
-        scaled *= 10.0;
-        places += 1;
-    }
-    places
 }
 
 /// What the blocks written for a cycle take from the whole program. Each reads every block,
@@ -243,10 +231,8 @@ impl ArcFormTally {
 }
 
 struct BlockWriter {
-    frame: Frame,
-    /// Toolpath frame minus program coordinates (`G50 X Z`), mm.
-    shift: Xz,
-    places: u8,
+    /// The grid of the cycle's coordinates.
+    grid: Grid,
     radius_arcs: bool,
     dialect: Dialect,
     /// `G32` (system A/B) or `G33` (system C): one thread pass.
@@ -261,20 +247,13 @@ struct BlockWriter {
 }
 
 impl BlockWriter {
-    fn number(&self, value: f64) -> Number {
-        let scale = 10f64.powi(self.places as i32);
-        let mantissa = (value * scale).round() as i64;
-        Number::new(mantissa, self.places, true)
-    }
-
-    /// The absolute `X` word of a radius in the toolpath frame.
-    fn x_word(&self, x_mm: f64) -> NewWord {
-        NewWord::Number(Address::X, self.number(self.frame.x_program(x_mm - self.shift.x)))
-    }
-
-    /// The absolute `Z` word of a position in the toolpath frame.
-    fn z_word(&self, z_mm: f64) -> NewWord {
-        NewWord::Number(Address::Z, self.number(self.frame.program(z_mm - self.shift.z)))
+    /// The absolute `X` and `Z` words of a point in the toolpath frame.
+    fn point_words(&self, p: Xz) -> [NewWord; 2] {
+        let on_grid = self.grid.point(p);
+        [
+            NewWord::Number(Address::X, self.grid.number(on_grid.x)),
+            NewWord::Number(Address::Z, self.grid.number(on_grid.z)),
+        ]
     }
 
     /// A block that puts back the modal motion code, F and S the original program has after
@@ -337,12 +316,11 @@ impl BlockWriter {
             self.motion = Some((m.motion, m.threading));
         }
         let end = m.contour;
-        words.push(self.x_word(end.x));
-        words.push(self.z_word(end.z));
+        words.extend(self.point_words(end));
         if m.is_arc() {
             // The words `compensate` predicts the control to run (`Grid::arc_words`): the
             // program's form where it holds the arc after rounding, else the centre form.
-            let grid = Grid { frame: self.frame, shift: self.shift, places: self.places };
+            let grid = self.grid;
             let (i, k) = (grid.length(m.centre.x - start.x), grid.length(m.centre.z - start.z));
             match grid.arc_words(start, end, m.centre, m.motion == Motion::Ccw, self.radius_arcs) {
                 ArcWords::Radius(radius) => {

@@ -25,7 +25,6 @@ mod deviation;
 mod grow;
 mod lm;
 pub mod pinned;
-pub mod quantize;
 mod split;
 
 use std::f64::consts::{PI, TAU};
@@ -39,7 +38,6 @@ pub use arcs::{Pieces, fit as fit_arcs};
 pub use deviation::{
     Between, chord_deviation, deviation_by_piece, distance_to_segment, max_deviation, segment_deviation,
 };
-pub use quantize::{ArcFailure, ArcForm, ArcProblem, Grid, Quantized, quantize};
 pub use split::{QUADRANT_CUTS, SEMICIRCLE_CUTS};
 
 /// One written segment, from the end of the previous one.

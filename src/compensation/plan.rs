@@ -28,9 +28,9 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
 use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, Segments, distance_to_chord};
-use super::grid::{ArcWords, Grid};
 use super::sampling::PathSample;
 use super::written;
+use crate::back::grid::{ArcWords, Grid};
 
 /// One move's plan.
 #[derive(Debug, Clone, PartialEq)]

@@ -35,9 +35,9 @@ use crate::semantic::{CoordinateMark, Lowered};
 use crate::source::Span;
 use crate::syntax::{Program, Statement};
 
-use super::grid::Grid;
 use super::plan::{KeptPlans, MovePlan};
 use super::written;
+use crate::back::grid::Grid;
 
 /// The edits, their problems, and what was edited.
 #[derive(Debug, Clone, Default)]

@@ -112,13 +112,12 @@ pub(super) fn expand(
             return Threads::NotExpandable;
         };
         let mut words = vec![NewWord::Code(CodeLetter::G, if face { face_code } else { longitudinal_code })];
-        words.push(writer.x_word(end.x));
-        words.push(writer.z_word(end.z));
+        words.extend(writer.point_words(end));
         let (taper_address, shift_address) = if face { (Address::K, Address::I) } else { (Address::I, Address::K) };
         let taper = pass.axes.depth(first) - pass.axes.depth(end);
         let shift = pass.axes.along(first) - pass.axes.along(at);
         for (address, value) in [(taper_address, taper), (shift_address, shift)] {
-            let number = writer.number(writer.frame.program(value));
+            let number = writer.grid.number(writer.grid.length(value));
             if number.mantissa != 0 {
                 words.push(NewWord::Number(address, number));
             }
@@ -131,7 +130,7 @@ pub(super) fn expand(
         match (pass.chamfer, chamfer_on, chamfer_off) {
             (Some(length), Some(on), _) => {
                 words.push(NewWord::Code(CodeLetter::M, Code::whole(on)));
-                words.push(NewWord::Number(Address::L, writer.number(writer.frame.program(length))));
+                words.push(NewWord::Number(Address::L, writer.grid.number(writer.grid.length(length))));
             }
             (Some(_), None, _) => return Threads::NotExpandable,
             (None, _, Some(off)) if chamfering_used => words.push(NewWord::Code(CodeLetter::M, Code::whole(off))),
@@ -151,7 +150,7 @@ pub(super) fn expand(
         }
         for (index, words) in passes.iter_mut().enumerate() {
             let phase = 360.0 * (index % starts) as f64 / starts as f64;
-            words.push(NewWord::Number(Address::C, writer.number(phase)));
+            words.push(NewWord::Number(Address::C, writer.grid.number(writer.grid.count(phase))));
         }
     }
     for (slot, words) in slots.into_iter().zip(passes) {

@@ -34,7 +34,6 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Limits, Toolpath, Xz};
 
 use super::super::deviation::{LocalPath, Tally};
-use super::super::grid::Grid;
 use super::super::inverse::{Inverse, InverseOptions, Predictor, time_terms};
 use super::super::plan::{KeptPlans, MovePlan, PlanInput, PlanOptions, plan_range};
 use super::super::report::RunFigures;
@@ -42,6 +41,7 @@ use super::super::rewrite::{MotionBlocks, MoveRun};
 use super::super::sampling::{PathSample, Sampling, sample_move};
 use super::super::{quantised, safety};
 use super::{CompensateOptions, Paths, SAMPLE_STEP_MM};
+use crate::back::grid::Grid;
 
 /// Moves per piece (more where a piece would end inside a motion block's run).
 const PIECE_MOVES: usize = 2048;

@@ -23,8 +23,8 @@ use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::{Motion, Move, Xz};
 
 use super::super::fit::Segment;
-use super::super::grid::{ArcWords, Grid, GridPoint};
 use super::super::plan::{MovePlan, nominal_segment};
+use crate::back::grid::{ArcWords, Grid, GridPoint};
 
 /// The motion a written block performs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
