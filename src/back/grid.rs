@@ -116,28 +116,16 @@ impl Grid {
     }
 }
 
-/// The decimal places of an increment in program units (3 for 0.001), told at once for the
-/// increments controls use (every move asks for its grid, and `counted_places` takes a loop
-/// of library roundings).
+/// The decimal places of an increment in program units (`machine::increment_places`), told
+/// at once for the increments controls use (every move asks for its grid, and the count
+/// takes a loop of library roundings).
 fn places(increment: f64) -> u8 {
     match increment {
         0.001 => 3,
         0.0001 => 4,
         0.01 => 2,
-        _ => counted_places(increment),
+        _ => crate::machine::increment_places(increment),
     }
-}
-
-/// The decimal places of an increment, counted: how many times it is scaled by ten before
-/// it is whole (at most nine).
-fn counted_places(increment: f64) -> u8 {
-    let mut places = 0u8;
-    let mut scaled = increment;
-    while places < 9 && (scaled - scaled.round()).abs() > 1e-9 {
-        scaled *= 10.0;
-        places += 1;
-    }
-    places
 }
 
 /// `x.round() as i64` (the nearest whole number, halves away from zero), without the library
@@ -737,7 +725,7 @@ mod tests {
     #[test]
     fn the_usual_increments_have_the_places_they_count() {
         for increment in [0.001, 0.0001, 0.01, 0.005, 0.5, 1.0] {
-            assert_eq!(places(increment), counted_places(increment), "{increment}");
+            assert_eq!(places(increment), crate::machine::increment_places(increment), "{increment}");
         }
     }
 
