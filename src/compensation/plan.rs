@@ -23,6 +23,7 @@ use std::ops::Range;
 
 use smallvec::{SmallVec, smallvec};
 
+use crate::back::grid::{ArcWords, Grid};
 use crate::geometry;
 use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
@@ -30,7 +31,6 @@ use crate::toolpath::{Motion, Move, Toolpath, Xz};
 use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, Segments, distance_to_chord};
 use super::sampling::PathSample;
 use super::written;
-use crate::back::grid::{ArcWords, Grid};
 
 /// One move's plan.
 #[derive(Debug, Clone, PartialEq)]

@@ -5,6 +5,7 @@
 
 use std::ops::Range;
 
+use crate::back::grid::{ArcWords, Grid};
 use crate::geometry;
 use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Move, Xz};
@@ -14,7 +15,6 @@ use super::plan::{MovePlan, PlanInput};
 use super::sampling::PathSample;
 use super::squares::root_less;
 use super::written;
-use crate::back::grid::{ArcWords, Grid};
 
 /// A move's segments rounded onto `grid`, from its rounded start, as the control runs the
 /// words `rewrite` writes for them: each end rounded from its exact value, each arc about

@@ -27,6 +27,7 @@
 use std::ops::Range;
 use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 
+use crate::back::grid::Grid;
 use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
 use crate::semantic::Lowered;
@@ -41,7 +42,6 @@ use super::super::rewrite::{MotionBlocks, MoveRun};
 use super::super::sampling::{PathSample, Sampling, sample_move};
 use super::super::{quantised, safety};
 use super::{CompensateOptions, Paths, SAMPLE_STEP_MM};
-use crate::back::grid::Grid;
 
 /// Moves per piece (more where a piece would end inside a motion block's run).
 const PIECE_MOVES: usize = 2048;
