@@ -16,8 +16,8 @@
 //! A line stays one line when its points allow it, whatever the strategy. Every strategy
 //! writes segments that start at the move's start, end exactly on its last point and keep
 //! every point within the tolerance ([`max_deviation`] is the measure); a strategy that
-//! cannot says so in [`Fitted::rejected`] and the move falls back to `densify`. `quantize.rs`
-//! then puts the segments on the machine's grid.
+//! cannot says so in [`Fitted::rejected`] and the move falls back to `densify`. The plan
+//! (`plan.rs`) then puts the segments on the machine's grid (`back/grid.rs`).
 
 mod arcs;
 pub mod circle;
