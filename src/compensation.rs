@@ -13,7 +13,6 @@
 
 pub mod deviation;
 pub mod fit;
-pub mod grid;
 pub mod inverse;
 pub mod plan;
 pub mod program;

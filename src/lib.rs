@@ -12,6 +12,7 @@
 
 #![deny(clippy::disallowed_methods)]
 
+pub mod back;
 pub mod bounds;
 pub mod compensation;
 pub mod diagnose;

@@ -221,14 +221,20 @@ impl MachineSettings {
             Some(Units::Inch) => 0.0001,
             _ => 0.001,
         });
-        let mut places = 0u8;
-        let mut scaled = increment;
-        while places < 9 && (scaled - scaled.round()).abs() > 1e-9 {
-            scaled *= 10.0;
-            places += 1;
-        }
-        places
+        increment_places(increment)
     }
+}
+
+/// The decimal places of a least increment in program units (3 for 0.001): how many times
+/// it is scaled by ten before it is whole (at most nine).
+pub fn increment_places(increment: f64) -> u8 {
+    let mut places = 0u8;
+    let mut scaled = increment;
+    while places < 9 && (scaled - scaled.round()).abs() > 1e-9 {
+        scaled *= 10.0;
+        places += 1;
+    }
+    places
 }
 
 #[cfg(test)]

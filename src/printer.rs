@@ -1,4 +1,6 @@
-//! The back end: a program back to text, changing only what was edited.
+//! The printer: a program back to text, changing only what was edited. The back end
+//! (`crate::back`) writes the blocks of moves; the printer puts every new block into the
+//! program's text.
 //!
 //! **Invariant: untouched blocks print byte-identical.** [`print`] copies every block that no
 //! edit replaced, with its own line terminator, straight from the source; only the blocks in

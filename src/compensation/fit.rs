@@ -16,8 +16,8 @@
 //! A line stays one line when its points allow it, whatever the strategy. Every strategy
 //! writes segments that start at the move's start, end exactly on its last point and keep
 //! every point within the tolerance ([`max_deviation`] is the measure); a strategy that
-//! cannot says so in [`Fitted::rejected`] and the move falls back to `densify`. `quantize.rs`
-//! then puts the segments on the machine's grid.
+//! cannot says so in [`Fitted::rejected`] and the move falls back to `densify`. The plan
+//! (`plan.rs`) then puts the segments on the machine's grid (`back/grid.rs`).
 
 mod arcs;
 pub mod circle;
@@ -25,7 +25,6 @@ mod deviation;
 mod grow;
 mod lm;
 pub mod pinned;
-pub mod quantize;
 mod split;
 
 use std::f64::consts::{PI, TAU};
@@ -39,7 +38,6 @@ pub use arcs::{Pieces, fit as fit_arcs};
 pub use deviation::{
     Between, chord_deviation, deviation_by_piece, distance_to_segment, max_deviation, segment_deviation,
 };
-pub use quantize::{ArcFailure, ArcForm, ArcProblem, Grid, Quantized, quantize};
 pub use split::{QUADRANT_CUTS, SEMICIRCLE_CUTS};
 
 /// One written segment, from the end of the previous one.

@@ -23,12 +23,12 @@ use std::ops::Range;
 
 use smallvec::{SmallVec, smallvec};
 
+use crate::back::grid::{ArcWords, Grid};
 use crate::geometry;
 use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
 use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, Segments, distance_to_chord};
-use super::grid::{ArcWords, Grid};
 use super::sampling::PathSample;
 use super::written;
 

@@ -5,12 +5,12 @@
 
 use std::ops::Range;
 
+use crate::back::grid::{ArcWords, Grid};
 use crate::geometry;
 use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Move, Xz};
 
 use super::fit::Segment;
-use super::grid::{ArcWords, Grid};
 use super::plan::{MovePlan, PlanInput};
 use super::sampling::PathSample;
 use super::squares::root_less;

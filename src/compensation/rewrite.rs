@@ -26,16 +26,16 @@ pub mod cycles;
 use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
+use crate::back::grid::Grid;
+use crate::back::motion::{Codes, MotionWriter};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::expand::{ArcFormTally, BlockArcWords};
-use crate::printer::style::StyleTally;
+use crate::printer::style::{BlockArcWords, StyleTally};
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
 use crate::source::Span;
 use crate::syntax::{Program, Statement};
 
-use super::grid::Grid;
 use super::plan::{KeptPlans, MovePlan};
 use super::written;
 
@@ -65,8 +65,8 @@ pub struct MoveForms {
     pub writable: Vec<bool>,
     /// The arcs written for the move prefer the radius form (`R`/`L`) to the centre form
     /// (`I K`): a motion block's own form (`block::writes_radius`), a cycle's the
-    /// program's (`expand` writes its blocks so). `grid::Grid::arc_words` still writes an
-    /// arc by its centre where its radius would not hold it.
+    /// program's (`back::cycle_blocks` writes its blocks so). `Grid::arc_words` still writes
+    /// an arc by its centre where its radius would not hold it.
     pub radius: Vec<bool>,
 }
 
@@ -103,7 +103,8 @@ pub fn finish(
 ) -> Rewrite {
     let mut out = Rewrite::default();
     let chosen = cycles::chosen(program, lowered, plans, expand_cycles, &mut out.diagnostics);
-    let expanded = cycles::write(program, lowered, plans, &chosen, &mut out.edits, &mut out.diagnostics);
+    let style = motion.writer.out.style();
+    let expanded = cycles::write(program, lowered, plans, &chosen, style, &mut out.edits, &mut out.diagnostics);
     // The first expansion of each call block (a call that runs several times has several).
     let mut first_expansion: HashMap<usize, usize> = HashMap::new();
     for (k, e) in lowered.expansions.iter().enumerate() {
@@ -197,15 +198,14 @@ pub struct MotionBlocks<'a, 'src> {
     lookup: BlockLookup,
     /// The block looked up last (`BlockLookup::index_near`).
     near: usize,
-    /// Per block, its arc words, read with the program's arc form (`ProgramTables::new`):
+    /// Per block, its arc words, read with the program's style (`ProgramTables::new`):
     /// an arc's form is then known without reading its block's words again, which are far
     /// apart in a long program's memory.
     arc_words: Vec<BlockArcWords>,
     radius_arcs: bool,
-    vocabulary: block::Vocabulary,
     /// The grid of the coordinates in force for the last run (they change rarely).
     grid: Option<(CoordinateMark, Grid)>,
-    writer: BlockWriter<'a, 'src>,
+    writer: MotionWriter<BlockWriter<'a, 'src>>,
     /// Each block replaced, with its first run's text, in path order.
     replacements: Vec<(usize, WrittenText)>,
     /// The same blocks, with their first run's moves.
@@ -230,9 +230,9 @@ enum FirstRun {
 }
 
 /// What the rewrite of the motion blocks needs of the program alone: the block lookup, the
-/// program's arc form and writing style, and the per-block tables. A long program's take
-/// about a tenth of a second to make, so `compensate` makes them on the idle core while the
-/// program is lowered (`cli::common::ready_beside`) and hands them to
+/// program's writing style (its arc form among it), and the per-block tables. A long
+/// program's take about a tenth of a second to make, so `compensate` makes them on the idle
+/// core while the program is lowered (`cli::common::ready_beside`) and hands them to
 /// `MotionBlocks::with_tables`.
 pub struct ProgramTables {
     /// The number of blocks of the program they were made for.
@@ -240,7 +240,6 @@ pub struct ProgramTables {
     lookup: BlockLookup,
     /// Per block, its arc words (`MotionBlocks::arc_words`).
     arc_words: Vec<BlockArcWords>,
-    radius_arcs: bool,
     style: ProgramStyle,
     replacements: Vec<(usize, WrittenText)>,
     edited: Vec<EditedBlock>,
@@ -250,22 +249,19 @@ pub struct ProgramTables {
 impl ProgramTables {
     pub fn new(program: &Program<'_>) -> ProgramTables {
         let blocks = program.blocks().len();
-        // The block lookup, the arc form and the style each need every block (and the last
-        // two every word): one pass reads a long program's blocks and words from memory once.
+        // The block lookup and the style each need every block (and the style every word): one
+        // pass reads a long program's blocks and words from memory once.
         let mut starts = Vec::with_capacity(blocks);
         let mut arc_words = Vec::with_capacity(blocks);
-        let mut arc_form = ArcFormTally::default();
         let mut style = StyleTally::new(program);
         for (index, block) in program.blocks().iter().enumerate() {
             starts.push(block.span.start);
-            arc_words.push(arc_form.add_block(program, block));
-            style.add_block(program, index, block);
+            arc_words.push(style.add_block(program, index, block));
         }
         ProgramTables {
             blocks,
             lookup: BlockLookup { starts },
             arc_words,
-            radius_arcs: arc_form.radius_arcs(),
             style: style.style(),
             // At most one of each per block: huge pages where the program is long (written
             // front to back, they only take the memory they fill).
@@ -295,7 +291,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         tables: ProgramTables,
     ) -> MotionBlocks<'a, 'src> {
         let tables = if tables.blocks == program.blocks().len() { tables } else { ProgramTables::new(program) };
-        let ProgramTables { lookup, arc_words, radius_arcs, style, replacements, edited, first_runs, .. } = tables;
+        let ProgramTables { lookup, arc_words, style, replacements, edited, first_runs, .. } = tables;
+        let radius_arcs = style.radius_arcs;
         MotionBlocks {
             program,
             lowered,
@@ -304,9 +301,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             near: 0,
             arc_words,
             radius_arcs,
-            vocabulary: block::Vocabulary::of(program),
             grid: None,
-            writer: BlockWriter::with_style(program, style),
+            writer: MotionWriter::new(Codes::of(program), BlockWriter::with_style(program, style)),
             replacements,
             edited,
             first_runs,
@@ -385,10 +381,9 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     Some((last, grid)) if last == mark => grid,
                     _ => self.grid.insert((mark, Grid::new(&mark))).1,
                 };
-                let vocabulary = self.vocabulary;
                 let context = block::BlockContext {
                     program,
-                    vocabulary,
+                    codes: self.writer.codes,
                     block,
                     mark,
                     grid,
@@ -425,16 +420,16 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             (FirstRun::AsWritten, None) => {}
             (FirstRun::AsWritten, Some(text)) => {
                 self.differing.insert(block);
-                self.writer.discard(text);
+                self.writer.out.discard(text);
             }
             (FirstRun::Replaced(k), text) => {
                 // A later run: its text is only compared with the first run's, and dropped.
-                let first_text = self.replacements.get(k).map(|&(_, t)| self.writer.text(t));
-                if first_text != text.map(|t| self.writer.text(t)) {
+                let first_text = self.replacements.get(k).map(|&(_, t)| self.writer.out.text(t));
+                if first_text != text.map(|t| self.writer.out.text(t)) {
                     self.differing.insert(block);
                 }
                 if let Some(text) = text {
-                    self.writer.discard(text);
+                    self.writer.out.discard(text);
                 }
             }
         }
@@ -470,6 +465,6 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         } else {
             out.edited.append(&mut self.edited);
         }
-        out.edits.replace_written(self.writer, self.replacements);
+        out.edits.replace_written(self.writer.out, self.replacements);
     }
 }

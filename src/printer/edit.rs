@@ -69,8 +69,8 @@ pub struct Edits {
 /// Replacements written as text (`replace_written`).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct Written {
-    /// The style they were written in, the program's: the printer writes its own new blocks in
-    /// it too rather than infer it again.
+    /// The style they were written in, the program's (`replace_written`, `write_in`): the
+    /// printer writes its own new blocks in it too rather than infer it again.
     pub style: Option<ProgramStyle>,
     pub text: Vec<u8>,
     /// Each replaced block and its replacement's text, in block order, one per block. A
@@ -152,6 +152,12 @@ impl Edits {
             }
             same
         });
+    }
+
+    /// Write the new blocks in `style`, the program's (`ProgramStyle::infer`), which the caller
+    /// has inferred already, rather than infer it again when printing.
+    pub(crate) fn write_in(&mut self, style: ProgramStyle) {
+        self.written.style = Some(style);
     }
 
     pub fn delete(&mut self, index: usize) {

@@ -1,9 +1,12 @@
 //! The writing style of a program, inferred from its own blocks, so that blocks an edit adds
 //! look like the blocks around them: packed or spaced words, `.075` or `0.075`, `G1` or
-//! `G01`, `X3.` or `X3.0`, fixed decimal places, CR LF or LF.
+//! `G01`, `X3.` or `X3.0`, fixed decimal places, CR LF or LF, arcs by radius or by centre,
+//! and whether the program switches thread chamfering. It is the one style every new block
+//! is written in, by the printer and by the back end (`crate::back`), counted in one pass
+//! over the program's words (`StyleTally`).
 
 use crate::dialect::{Address, AddressKind, Dialect, Tables};
-use crate::syntax::{Block, CodeLetter, Number, NumberFlags, Program, WordKind};
+use crate::syntax::{Block, CodeLetter, Number, NumberFlags, Program, Statement, WordKind};
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ProgramStyle {
@@ -20,6 +23,12 @@ pub struct ProgramStyle {
     /// (`60.000`), new lengths get that many.
     pub fixed_decimals: Option<u8>,
     pub line_ending: &'static str,
+    /// Arcs are written with a radius (`R`, OSP `L`) rather than `I K`: the program's motion
+    /// blocks write more radius words than centre words.
+    pub radius_arcs: bool,
+    /// Some block turns thread chamfering on (OSP `M23`): an unchamfered thread pass the back
+    /// end writes then turns it off (`back/thread_pass.rs`).
+    pub thread_chamfering: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -27,6 +36,19 @@ pub enum WholeNumbers {
     PointOnly,
     PointZero,
     NoPoint,
+}
+
+/// The arc words of one block, as `StyleTally::add_block` read them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BlockArcWords {
+    /// Not a motion block: its words were not read for arcs.
+    NotRead,
+    /// Neither a radius nor a centre word.
+    Neither,
+    /// A radius word (`R`, OSP `L`), with or without centre words.
+    Radius,
+    /// Centre words (`I`, `K`) and no radius word.
+    Centre,
 }
 
 /// The counts the style is decided by, gathered block by block: `ProgramStyle::infer` reads
@@ -37,6 +59,10 @@ pub struct StyleTally {
     /// The program's dialect and its tables, looked up once rather than per block.
     dialect: Dialect,
     tables: &'static Tables,
+    /// The address of an arc's radius in the dialect (`R`, OSP `L`).
+    radius_address: Address,
+    /// The M code that turns thread chamfering on, where the dialect has one.
+    chamfer_on: Option<u16>,
     packed: u32,
     spaced: u32,
     small_without_zero: u32,
@@ -52,14 +78,22 @@ pub struct StyleTally {
     crlf: u32,
     lf: u32,
     cr: u32,
+    /// Radius and centre words of motion blocks.
+    by_radius: u32,
+    by_centre: u32,
+    /// A block writes `chamfer_on`.
+    chamfering: bool,
 }
 
 impl StyleTally {
     /// No block counted yet, for `program`.
     pub fn new(program: &Program<'_>) -> StyleTally {
+        let (dialect, tables) = (program.config().dialect, program.config().tables());
         StyleTally {
-            dialect: program.config().dialect,
-            tables: program.config().tables(),
+            dialect,
+            tables,
+            radius_address: if dialect == Dialect::Osp { Address::L } else { Address::R },
+            chamfer_on: tables.m_functions.thread_chamfer_on.first().copied(),
             packed: 0,
             spaced: 0,
             small_without_zero: 0,
@@ -75,17 +109,24 @@ impl StyleTally {
             crlf: 0,
             lf: 0,
             cr: 0,
+            by_radius: 0,
+            by_centre: 0,
+            chamfering: false,
         }
     }
 
-    /// Count block `index` of the program (`block` is `program.block(index)`).
-    pub fn add_block(&mut self, program: &Program<'_>, index: usize, block: &Block) {
+    /// Count block `index` of the program (`block` is `program.block(index)`), and say which
+    /// arc words it has.
+    pub fn add_block(&mut self, program: &Program<'_>, index: usize, block: &Block) -> BlockArcWords {
         match program.terminator(index) {
             b"\r\n" => self.crlf += 1,
             b"\n" => self.lf += 1,
             b"\r" => self.cr += 1,
             _ => {}
         }
+        // Only a motion block's `R`/`L` and `I K` place an arc's centre.
+        let motion = block.statement == Statement::Motion;
+        let (by_radius, by_centre) = (self.by_radius, self.by_centre);
         // The end of the word before, when it is not a comment: two such words next to each
         // other are packed when nothing lies between them.
         let mut significant_end = None;
@@ -108,14 +149,39 @@ impl StyleTally {
                         self.one_digit_codes += 1;
                     }
                 }
+                WordKind::Code { letter: CodeLetter::M, code } => {
+                    self.chamfering |= self.chamfer_on == Some(code.major());
+                }
                 WordKind::Number { address, number } => {
                     let kind = self.tables.address(address).map(|s| s.kind);
                     if matches!(kind, Some(AddressKind::Length | AddressKind::Feed)) {
                         self.add_number(number, kind == Some(AddressKind::Length));
                     }
+                    if motion {
+                        self.add_arc_word(address);
+                    }
                 }
+                WordKind::Expr { address, .. } if motion => self.add_arc_word(address),
                 _ => {}
             }
+        }
+        if !motion {
+            BlockArcWords::NotRead
+        } else if self.by_radius > by_radius {
+            BlockArcWords::Radius
+        } else if self.by_centre > by_centre {
+            BlockArcWords::Centre
+        } else {
+            BlockArcWords::Neither
+        }
+    }
+
+    /// Count a motion block's word at `address` if it is a radius or a centre word.
+    fn add_arc_word(&mut self, address: Address) {
+        if address == self.radius_address {
+            self.by_radius += 1;
+        } else if address == Address::I || address == Address::K {
+            self.by_centre += 1;
         }
     }
 
@@ -183,6 +249,8 @@ impl StyleTally {
             whole_numbers,
             fixed_decimals,
             line_ending,
+            radius_arcs: self.by_radius > self.by_centre,
+            thread_chamfering: self.chamfering,
         }
     }
 }
@@ -206,6 +274,8 @@ impl ProgramStyle {
             whole_numbers: WholeNumbers::PointOnly,
             fixed_decimals: None,
             line_ending: "\n",
+            radius_arcs: false,
+            thread_chamfering: false,
         }
     }
 

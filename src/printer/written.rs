@@ -8,11 +8,11 @@
 //! The text is what the printer writes for the same words (`write_word`), so a block comes
 //! out the same whichever way it was given.
 
-use crate::dialect::Address;
-use crate::syntax::{Number, Program};
+use crate::dialect::{Address, Code};
+use crate::syntax::{CodeLetter, Number, Program};
 
 use super::style::ProgramStyle;
-use super::{NewBlock, NewWord, write_address_number, write_copy, write_sequence, write_word};
+use super::{NewBlock, NewWord, write_address_number, write_code, write_copy, write_sequence, write_word};
 
 /// Writes replacement blocks to text in a program's style.
 pub struct BlockWriter<'p, 'src> {
@@ -76,6 +76,12 @@ impl<'p, 'src> BlockWriter<'p, 'src> {
         write_word(&mut self.text, self.program, &self.style, word, &mut self.line_start);
     }
 
+    /// A code word of the current block (`NewWord::Code`), given as its parts, as `number`.
+    pub fn code(&mut self, letter: CodeLetter, code: Code) {
+        self.separate();
+        write_code(&mut self.text, letter, code.major(), code.minor(), self.style.two_digit_codes);
+    }
+
     /// A number word of the current block (`NewWord::Number`), given as its parts: the
     /// rewrite writes millions, and a word built first to be taken apart here cost more
     /// than writing it.
@@ -124,6 +130,11 @@ impl<'p, 'src> BlockWriter<'p, 'src> {
     /// The text of a replacement this writer wrote.
     pub fn text(&self, written: WrittenText) -> &[u8] {
         written.of(&self.text)
+    }
+
+    /// The style it writes in.
+    pub fn style(&self) -> &ProgramStyle {
+        &self.style
     }
 
     pub(crate) fn into_parts(self) -> (ProgramStyle, Vec<u8>) {

@@ -3,8 +3,8 @@
 //! A program writes lengths in its units (inch or mm), X as a diameter on a
 //! diameter-programmed lathe, and on a least-increment Fanuc control a length without a
 //! decimal point counts increments. The IR is millimetres with X as a radius. This is the
-//! only place those conversions happen on the way in; `expand` does the reverse on the way
-//! out.
+//! only place those conversions happen on the way in; the back end's grid (`back/grid.rs`)
+//! does the reverse on the way out.
 
 use crate::dialect::{AddressKind, DecimalInput, Dialect};
 use crate::syntax::Number;

@@ -45,7 +45,7 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
         radius: &radius,
         tools: &tools,
     };
-    let grid = crate::compensation::grid::Grid::new(&lowered.coordinates_at(0));
+    let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(0));
     let plans = plan_moves(&input, |_| grid, &PlanOptions { fit, play: model.play() });
     (lowered, plans)
 }

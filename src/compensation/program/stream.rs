@@ -27,6 +27,7 @@
 use std::ops::Range;
 use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 
+use crate::back::grid::Grid;
 use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
 use crate::semantic::Lowered;
@@ -34,7 +35,6 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Limits, Toolpath, Xz};
 
 use super::super::deviation::{LocalPath, Tally};
-use super::super::grid::Grid;
 use super::super::inverse::{Inverse, InverseOptions, Predictor, time_terms};
 use super::super::plan::{KeptPlans, MovePlan, PlanInput, PlanOptions, plan_range};
 use super::super::report::RunFigures;

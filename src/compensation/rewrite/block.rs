@@ -6,65 +6,38 @@
 //! `X`/`Z` absolute, `U`/`W` or `G91` `X`/`Z` incremental, `R`/`L` radius or `I K` centre,
 //! in the order they were written; a word whose value does not change is copied as it was.
 //! An axis the block did not name is added only when the axis now moves. Increments are
-//! differences of rounded absolutes (`grid.rs`), so they never drift.
+//! differences of rounded absolutes (`back/grid.rs`), so they never drift.
 //!
 //! A move that becomes several segments puts the block's other words on its first block;
 //! the others carry a motion code where it changes, and the coordinates. If the last one
 //! leaves a different motion code in force than the original block did, a block with that
 //! code alone restores it for the blocks that follow.
+//!
+//! This module decides which words the block gets; they are written through the back end's
+//! writer (`back::motion::MotionWriter`): its codes from the dialect tables, its
+//! coordinates as counts on the grid.
 
 use smallvec::SmallVec;
 
-use crate::dialect::{Address, AddressKind, Code, Dialect, GFunction, Tables};
-use crate::printer::{BlockWriter, NewWord, WrittenText};
+use crate::back::grid::{ArcWords, Grid, GridPoint};
+use crate::back::motion::{Codes, Kind, MotionWriter};
+use crate::dialect::{Address, AddressKind, Dialect};
+use crate::printer::{BlockWriter, WrittenText};
 use crate::semantic::CoordinateMark;
 use crate::semantic::nose_radius::ToolTable;
 use crate::syntax::{CodeLetter, Program, WordKind};
-use crate::toolpath::{Motion, Move, Xz};
+use crate::toolpath::{Move, Xz};
 
 use super::super::fit::Segment;
-use super::super::grid::{ArcWords, Grid, GridPoint};
 use super::super::plan::{MovePlan, nominal_segment};
 
-/// The motion a written block performs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Kind {
-    Rapid,
-    Feed,
-    Cw,
-    Ccw,
-    Thread,
-}
-
-impl Kind {
-    pub(super) fn of(m: &Move) -> Kind {
-        match m.motion {
-            _ if m.threading => Kind::Thread,
-            Motion::Rapid => Kind::Rapid,
-            Motion::Cw => Kind::Cw,
-            Motion::Ccw => Kind::Ccw,
-            _ => Kind::Feed,
-        }
-    }
-
-    /// The kind a segment is written as, in a block whose move was `original`.
-    fn of_segment(segment: &Segment, original: Kind) -> Kind {
-        match segment {
-            Segment::Line { .. } if matches!(original, Kind::Rapid | Kind::Thread) => original,
-            Segment::Line { .. } => Kind::Feed,
-            Segment::Arc { ccw: true, .. } => Kind::Ccw,
-            Segment::Arc { ccw: false, .. } => Kind::Cw,
-        }
-    }
-
-    fn function(self) -> GFunction {
-        match self {
-            Kind::Rapid => GFunction::Rapid,
-            Kind::Feed => GFunction::Linear,
-            Kind::Cw => GFunction::Cw,
-            Kind::Ccw => GFunction::Ccw,
-            Kind::Thread => GFunction::ThreadMove,
-        }
+/// The kind a segment is written as, in a block whose move was `original`.
+fn segment_kind(segment: &Segment, original: Kind) -> Kind {
+    match segment {
+        Segment::Line { .. } if matches!(original, Kind::Rapid | Kind::Thread) => original,
+        Segment::Line { .. } => Kind::Feed,
+        Segment::Arc { ccw: true, .. } => Kind::Ccw,
+        Segment::Arc { ccw: false, .. } => Kind::Cw,
     }
 }
 
@@ -94,25 +67,11 @@ struct Form {
     z_named: bool,
 }
 
-/// What writing a motion block needs of the program's dialect, looked up once for all its
-/// blocks (a long program rewrites millions).
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Vocabulary {
-    tables: &'static Tables,
-    dialect: Dialect,
-}
-
-impl Vocabulary {
-    pub(super) fn of(program: &Program<'_>) -> Vocabulary {
-        let config = program.config();
-        Vocabulary { tables: config.tables(), dialect: config.dialect }
-    }
-}
-
 /// The context one block is written in.
 pub(super) struct BlockContext<'a, 'src> {
     pub program: &'a Program<'src>,
-    pub vocabulary: Vocabulary,
+    /// The dialect's codes (`MotionWriter::codes`), looked up once for all blocks.
+    pub codes: Codes,
     pub block: usize,
     pub mark: CoordinateMark,
     pub grid: Grid,
@@ -147,7 +106,7 @@ impl BlockContext<'_, '_> {
     /// The block's coordinate words, found once for everything that reads them.
     fn coordinate_words(&self, is_arc: bool) -> CoordinateWords {
         let block = self.program.block(self.block);
-        let dialect = self.vocabulary.dialect;
+        let dialect = self.codes.dialect;
         let mut out = CoordinateWords::new();
         for (position, word) in self.program.words_of(block).iter().enumerate() {
             let (address, literal) = match word.kind {
@@ -163,9 +122,8 @@ impl BlockContext<'_, '_> {
     }
 
     fn form(&self, coordinates: &[CoordinateWord]) -> Form {
-        let dialect = self.vocabulary.dialect;
         let absolute = self.mark.absolute;
-        let radius_address = if dialect == Dialect::Osp { Address::L } else { Address::R };
+        let radius_address = self.codes.radius_address;
         let mut form = Form {
             x: (Address::X, absolute),
             z: (Address::Z, absolute),
@@ -251,7 +209,7 @@ impl BlockContext<'_, '_> {
         m: &Move,
         contour_start: Xz,
     ) -> OriginalWords {
-        let tables = self.vocabulary.tables;
+        let tables = self.codes.tables;
         // The programmed move's words, for a word written as an expression: computed only
         // for such a block.
         let nominal = std::cell::OnceCell::new();
@@ -275,29 +233,8 @@ impl BlockContext<'_, '_> {
         out
     }
 
-    fn code(&self, kind: Kind) -> NewWord {
-        let fallback = match kind {
-            Kind::Rapid => 0,
-            Kind::Feed => 1,
-            Kind::Cw => 2,
-            Kind::Ccw => 3,
-            Kind::Thread => 32,
-        };
-        NewWord::Code(CodeLetter::G, self.vocabulary.tables.code_for(kind.function()).unwrap_or(Code::whole(fallback)))
-    }
-
-    /// The motion a G code performs, if it is a motion code.
-    fn motion_of(&self, code: Code) -> Option<GFunction> {
-        self.vocabulary.tables.g(code).and_then(|g| g.function).filter(|function| {
-            matches!(
-                function,
-                GFunction::Rapid | GFunction::Linear | GFunction::Cw | GFunction::Ccw | GFunction::ThreadMove
-            )
-        })
-    }
-
     /// Write the coordinate word of `slot` with `value` (a count of increments) in `form`.
-    fn write_coordinate(&self, form: &Form, slot: Slot, value: i64, out: &mut BlockWriter<'_, '_>) {
+    fn write_coordinate(&self, form: &Form, slot: Slot, value: i64, out: &mut MotionWriter<BlockWriter<'_, '_>>) {
         let address = match slot {
             Slot::X => form.x.0,
             Slot::Z => form.z.0,
@@ -306,7 +243,7 @@ impl BlockContext<'_, '_> {
             Slot::K => Address::K,
             Slot::Angle => Address::A,
         };
-        out.number(address, self.grid.number(value));
+        out.coordinate(&self.grid, address, value);
     }
 
     /// Write the blocks that replace this block for one move and its plan to `out`, or
@@ -316,7 +253,7 @@ impl BlockContext<'_, '_> {
         m: &Move,
         contour_start: Xz,
         plan: &MovePlan,
-        out: &mut BlockWriter<'_, '_>,
+        out: &mut MotionWriter<BlockWriter<'_, '_>>,
     ) -> Option<WrittenText> {
         let start = self.grid.point(plan.start);
         if !plan.changed && start == self.grid.point(contour_start) {
@@ -343,7 +280,7 @@ impl BlockContext<'_, '_> {
             segments = rest;
         }
         let (first, rest) = segments.split_first()?;
-        let first_kind = Kind::of_segment(first, original_kind);
+        let first_kind = segment_kind(first, original_kind);
         let original = self.original_words(&form, &coordinates, m, contour_start);
         let (new, end) = self.words(&form, at, first, chosen.next().flatten());
         let same_words = original.len() == new.len()
@@ -351,23 +288,23 @@ impl BlockContext<'_, '_> {
         if lead_words.is_none() && rest.is_empty() && first_kind == original_kind && same_words {
             return None;
         }
-        let mark = out.begin();
+        let mark = out.out.begin();
         if let Some(lead_words) = lead_words {
-            out.word(&self.code(Kind::Rapid));
+            out.motion(Kind::Rapid);
             for (slot, value) in lead_words {
                 self.write_coordinate(&form, slot, value, out);
             }
-            out.next_block();
+            out.out.next_block();
         }
         let code_changes = first_kind != original_kind || in_force != original_kind;
         self.first_block(&form, &coordinates, &new, &original, code_changes.then_some(first_kind), out);
         let mut kind = first_kind;
         at = (first.end(), end);
         for segment in rest {
-            out.next_block();
-            let segment_kind = Kind::of_segment(segment, original_kind);
+            out.out.next_block();
+            let segment_kind = segment_kind(segment, original_kind);
             if segment_kind != kind {
-                out.word(&self.code(segment_kind));
+                out.motion(segment_kind);
                 kind = segment_kind;
             }
             let (words, end) = self.words(&form, at, segment, chosen.next().flatten());
@@ -377,10 +314,10 @@ impl BlockContext<'_, '_> {
             at = (segment.end(), end);
         }
         if kind != original_kind {
-            out.next_block();
-            out.word(&self.code(original_kind));
+            out.out.next_block();
+            out.motion(original_kind);
         }
-        Some(out.finish(mark))
+        Some(out.out.finish(mark))
     }
 
     /// Write the block's own words with the first segment's coordinates, and the motion
@@ -392,7 +329,7 @@ impl BlockContext<'_, '_> {
         new: &Words,
         original: &[(Slot, Option<i64>)],
         new_code: Option<Kind>,
-        out: &mut BlockWriter<'_, '_>,
+        out: &mut MotionWriter<BlockWriter<'_, '_>>,
     ) {
         let block = self.program.block(self.block);
         let words = self.program.words_of(block);
@@ -409,7 +346,7 @@ impl BlockContext<'_, '_> {
                 && !code_written
                 && first_coordinate == Some(k)
             {
-                out.word(&self.code(kind));
+                out.motion(kind);
                 code_written = true;
             }
             let coordinate = ahead.next_if(|c| c.position == k);
@@ -430,11 +367,14 @@ impl BlockContext<'_, '_> {
                     }
                 }
                 (WordKind::Code { letter: CodeLetter::G, code }, Some(kind), None)
-                    if self.motion_of(code).is_some() =>
+                    if self.codes.kind_of(code).is_some() =>
                 {
                     if !code_written {
-                        let same = self.motion_of(code) == Some(kind.function());
-                        out.word(&if same { NewWord::Copy(id) } else { self.code(kind) });
+                        if self.codes.kind_of(code) == Some(kind) {
+                            out.copy(id);
+                        } else {
+                            out.motion(kind);
+                        }
                         code_written = true;
                     }
                 }
@@ -453,7 +393,7 @@ impl BlockContext<'_, '_> {
             if let Some(kind) = new_code
                 && !code_written
             {
-                out.word(&self.code(kind));
+                out.motion(kind);
             }
             for &(slot, value) in new {
                 self.write_coordinate(form, slot, value, out);

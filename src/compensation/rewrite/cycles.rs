@@ -2,9 +2,10 @@
 //!
 //! A cycle call cannot carry a correction: the control computes its passes from the
 //! call's words. A cycle none of whose moves changes stays as it is; any other is replaced
-//! by explicit blocks, written by the `expand` block writer from the compensated segments,
-//! and the blocks it consumed (its profile, the first block of a two-block cycle) are
-//! deleted. Cycles that share consumed blocks are expanded together: a finishing cycle
+//! by explicit blocks, written by the back end from the compensated segments as `expand`
+//! writes a cycle (`back::cycle_blocks`), and the blocks it consumed (its profile, the
+//! first block of a two-block cycle) are deleted. Cycles that share consumed blocks are
+//! expanded together: a finishing cycle
 //! left as a call would need the profile the roughing cycle's expansion deletes, and a
 //! profile left in place after an expanded call would run as plain moves.
 //!
@@ -14,10 +15,11 @@
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 
+use crate::back::motion::Codes;
+use crate::back::{CycleBlocks, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::dialect::GFunction;
-use crate::expand::{self, ExpansionBlocks};
-use crate::printer::{Edits, NewBlock, NewWord};
+use crate::expand;
+use crate::printer::{Edits, NewBlock, NewWord, ProgramStyle};
 use crate::semantic::{Expansion, Lowered};
 use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
@@ -29,8 +31,7 @@ use super::super::plan::{KeptPlans, MovePlan};
 /// (OSP) a cycle's thread passes are written only as the cycle's own single-pass blocks,
 /// which compensated passes are not.
 pub fn expandable(program: &Program<'_>, lowered: &Lowered, expansion: &Expansion) -> bool {
-    let has_thread_move = program.config().tables().code_for(GFunction::ThreadMove).is_some();
-    has_thread_move
+    Codes::of(program).has_thread_move()
         || !lowered.toolpath.moves.get(expansion.moves.clone()).is_some_and(|moves| moves.iter().any(|m| m.threading))
 }
 
@@ -101,7 +102,7 @@ fn root(group: &mut [usize], mut k: usize) -> usize {
     k
 }
 
-/// The compensated moves of a cycle, as the expand writer takes them: one move per
+/// The compensated moves of a cycle, as the back end's cycle writer takes them: one move per
 /// segment, in the contour frame. A take-up of the play before a move that switches
 /// compensation is a rapid under the compensation in force before it.
 fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Compensation) -> Vec<Move> {
@@ -134,6 +135,7 @@ pub(super) fn write(
     lowered: &Lowered,
     plans: &KeptPlans,
     chosen: &[bool],
+    style: &ProgramStyle,
     edits: &mut Edits,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<usize> {
@@ -143,8 +145,6 @@ pub(super) fn write(
     let mut by_block: BTreeMap<usize, Vec<NewBlock>> = BTreeMap::new();
     let mut refused = HashSet::new();
     let mut written = Vec::new();
-    // Read from every block, so only once a cycle is written.
-    let mut style = None;
     for (expansion, _) in lowered.expansions.iter().zip(chosen).filter(|(_, chosen)| **chosen) {
         let range = expansion.moves.clone();
         let (Some(moves), Some(cycle_plans)) = (lowered.toolpath.moves.get(range.clone()), plans.get(range.clone()))
@@ -159,17 +159,9 @@ pub(super) fn write(
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(range.start).shift;
         let compensated = compensated_moves(moves, cycle_plans, compensation_before);
-        let blocks = match expand::expansion_blocks(
-            program,
-            expansion,
-            &compensated,
-            start,
-            compensation_before,
-            shift,
-            *style.get_or_insert_with(|| expand::ProgramStyle::of(program)),
-        ) {
-            ExpansionBlocks::Blocks(blocks) => with_call_words(program, expansion.block, blocks),
-            ExpansionBlocks::Keep | ExpansionBlocks::NotExpandable => {
+        let blocks = match cycle_blocks(program, expansion, &compensated, start, compensation_before, shift, style) {
+            CycleBlocks::Blocks(blocks) => with_call_words(program, expansion.block, blocks),
+            CycleBlocks::Keep | CycleBlocks::NotExpandable => {
                 let span = program.block(expansion.block).span;
                 diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
                 continue;

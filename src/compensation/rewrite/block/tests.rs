@@ -1,4 +1,5 @@
 use super::*;
+use crate::back::motion::{Codes, MotionWriter};
 use crate::compensation::test_support::lower_program;
 use crate::dialect::{DialectChoice, GCodeSystem};
 use crate::printer::{BlockWriter, Edits, print_string};
@@ -38,13 +39,13 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
     let block = program.blocks().iter().position(|b| b.span == m.source).unwrap();
     let mark = lowered.coordinates_at(index);
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
-    let vocabulary = Vocabulary::of(program);
+    let codes = Codes::of(program);
     let context =
-        BlockContext { program, vocabulary, block, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
-    let mut writer = BlockWriter::new(program);
+        BlockContext { program, codes, block, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
+    let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
-    edits.replace_written(writer, vec![(block, text)]);
+    edits.replace_written(writer.out, vec![(block, text)]);
     let text = print_string(program, &edits);
     let reparsed = parse(text.as_bytes(), &options);
     assert_eq!(reparsed.error_count(), 0, "{text}");
@@ -89,19 +90,20 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
     let plan = MovePlan { start, segments, changed: true, jumps: 0, lead_in: false, words: Default::default() };
     let mark = lowered.coordinates_at(2);
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
+    let codes = Codes::of(&parsed.program);
     let context = BlockContext {
         program: &parsed.program,
-        vocabulary: Vocabulary::of(&parsed.program),
+        codes,
         block: 4,
         mark,
         grid: Grid::new(&mark),
         radius_arcs: true,
         tools: &tools,
     };
-    let mut writer = BlockWriter::new(&parsed.program);
+    let mut writer = MotionWriter::new(codes, BlockWriter::new(&parsed.program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
-    edits.replace_written(writer, vec![(4, text)]);
+    edits.replace_written(writer.out, vec![(4, text)]);
     let text = print_string(&parsed.program, &edits);
     let lines: Vec<&str> = text.lines().skip(4).take(4).collect();
     assert_eq!(lines, ["G01 X44. Z-13.5", "X50. Z-15.", "G02", "G03 U10. W-5. I0 K-5."], "{text}");
@@ -162,8 +164,8 @@ fn the_arc_form_from_the_programs_tables_is_the_blocks_own() {
         }
     }
     // The words were read for the motion blocks, not for the others.
-    assert_eq!(motion.arc_words[4], crate::expand::BlockArcWords::Radius);
-    assert_eq!(motion.arc_words[5], crate::expand::BlockArcWords::Centre);
-    assert_eq!(motion.arc_words[6], crate::expand::BlockArcWords::Radius);
-    assert_eq!(motion.arc_words[8], crate::expand::BlockArcWords::NotRead);
+    assert_eq!(motion.arc_words[4], crate::printer::style::BlockArcWords::Radius);
+    assert_eq!(motion.arc_words[5], crate::printer::style::BlockArcWords::Centre);
+    assert_eq!(motion.arc_words[6], crate::printer::style::BlockArcWords::Radius);
+    assert_eq!(motion.arc_words[8], crate::printer::style::BlockArcWords::NotRead);
 }

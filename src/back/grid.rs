@@ -1,10 +1,12 @@
-//! The least-increment grid a program's coordinates live on.
+//! The least-increment grid a program's coordinates live on, and the words of an arc on it.
 //!
 //! A control accepts coordinates in whole least increments of its program units: 0.001 mm
 //! or 0.0001 in, of the diameter on a diameter-programmed lathe (so the radius grid is half
-//! the increment). Every point the compensation writes is rounded on this grid from its
-//! exact value, never from a rounded neighbour, so rounding errors do not add up along a
-//! path; incremental words are differences of rounded absolutes for the same reason.
+//! the increment). This is where a length of the IR (mm, X as a radius) goes back to the
+//! program's frame, the inverse of `semantic/frame.rs`: every coordinate the back end writes,
+//! for `expand` and for compensation alike, is counted here. A point is rounded on the grid
+//! from its exact value, never from a rounded neighbour, so rounding errors do not add up
+//! along a path; incremental words are differences of rounded absolutes for the same reason.
 //!
 //! Values are kept as integer counts of the increment (`i64` mantissas with the
 //! increment's decimal places), so comparisons and differences are exact.
@@ -36,8 +38,15 @@ pub struct GridPoint {
 }
 
 impl Grid {
+    /// The grid of the coordinates in force from `mark` on.
     pub fn new(mark: &CoordinateMark) -> Grid {
-        Grid { frame: mark.frame, shift: mark.shift, places: places(mark.frame.increment) }
+        Grid::of(mark.frame, mark.shift)
+    }
+
+    /// The grid of `frame`'s increment, with the program's coordinates shifted by `shift`
+    /// (`G50 X Z`).
+    pub fn of(frame: Frame, shift: Xz) -> Grid {
+        Grid { frame, shift, places: places(frame.increment) }
     }
 
     fn scale(&self) -> f64 {
@@ -107,15 +116,15 @@ impl Grid {
     }
 }
 
-/// `expand::increment_places`: the decimal places of an increment, told at once for the
-/// increments controls use (every move asks for its grid, and the count takes a loop of
-/// library roundings).
+/// The decimal places of an increment in program units (`machine::increment_places`), told
+/// at once for the increments controls use (every move asks for its grid, and the count
+/// takes a loop of library roundings).
 fn places(increment: f64) -> u8 {
     match increment {
         0.001 => 3,
         0.0001 => 4,
         0.01 => 2,
-        _ => crate::expand::increment_places(increment),
+        _ => crate::machine::increment_places(increment),
     }
 }
 
@@ -714,9 +723,9 @@ mod tests {
     }
 
     #[test]
-    fn the_usual_increments_have_the_places_expand_counts() {
+    fn the_usual_increments_have_the_places_they_count() {
         for increment in [0.001, 0.0001, 0.01, 0.005, 0.5, 1.0] {
-            assert_eq!(places(increment), crate::expand::increment_places(increment), "{increment}");
+            assert_eq!(places(increment), crate::machine::increment_places(increment), "{increment}");
         }
     }
 

@@ -25,32 +25,25 @@ use crate::semantic::cycles::thread_pass::{Axes, Pass};
 use crate::syntax::{CodeLetter, Command, Program, Statement, WordKind};
 use crate::toolpath::{Motion, Move, Xz};
 
-use super::{BlockWriter, ProgramStyle, feed_number};
-
-/// What to do with a cycle whose moves include thread moves.
-pub(super) enum Threads {
-    /// A single-pass cycle: leave the block as it is, nothing to say.
-    Keep,
-    /// The blocks that replace the call.
-    Blocks(Vec<NewBlock>),
-    /// Leave the block as it is, with a note.
-    NotExpandable,
-}
+use super::CycleBlocks;
+use super::cycle::CycleWriter;
+use super::motion::{WordSink, feed_number};
 
 /// Points closer than this are the same (mm): far below any least increment, far above
 /// the arithmetic's rounding.
 const SAME_MM: f64 = 1e-6;
 
-pub(super) fn expand(
+/// The blocks of a cycle whose `moves` (from `start`) include thread moves, on a control with
+/// no thread move.
+pub(super) fn write(
     program: &Program<'_>,
     expansion: &Expansion,
     moves: &[Move],
     start: Xz,
-    style: ProgramStyle,
-    writer: &mut BlockWriter,
-) -> Threads {
+    cycle: &mut CycleWriter,
+) -> CycleBlocks {
     let tables = program.config().tables();
-    let Some(command) = call_command(program, expansion.block) else { return Threads::NotExpandable };
+    let Some(command) = call_command(program, expansion.block) else { return CycleBlocks::NotExpandable };
     let function = match program.word(command.code_word).kind {
         WordKind::Code { code, .. } => tables.g(code).and_then(|g| g.function),
         _ => None,
@@ -65,20 +58,19 @@ pub(super) fn expand(
                 | GFunction::ThreadSingleLeadDecreasing
         )
     ) {
-        return Threads::Keep;
+        return CycleBlocks::Keep;
     }
-    let (Some(longitudinal_code), Some(face_code)) =
-        (tables.code_for(GFunction::ThreadSingle), tables.code_for(GFunction::ThreadSingleFace))
-    else {
-        return Threads::NotExpandable;
+    let codes = cycle.writer.codes;
+    let (Some(longitudinal_code), Some(face_code)) = (codes.thread_single, codes.thread_single_face) else {
+        return CycleBlocks::NotExpandable;
     };
     if command.param(Role::LeadChange).is_some() {
-        return Threads::NotExpandable;
+        return CycleBlocks::NotExpandable;
     }
     let starts = match command.param(Role::Starts).map(|id| program.word(id).kind) {
         None => 1,
         Some(WordKind::Number { number, .. }) => number.to_f64().round().max(1.0) as usize,
-        Some(_) => return Threads::NotExpandable,
+        Some(_) => return CycleBlocks::NotExpandable,
     };
     // With `F` and `J` both written, the lead is copied as the call writes it (`F/J` need not
     // have a short decimal form); otherwise it is written as the F the moves record.
@@ -87,9 +79,9 @@ pub(super) fn expand(
         _ => None,
     };
     let speed_word = command.param(Role::Speed).map(NewWord::Copy);
-    let chamfer_on = tables.m_functions.thread_chamfer_on.first().copied();
-    let chamfer_off = tables.m_functions.thread_chamfer_off.first().copied();
-    let chamfering_used = style.thread_chamfering;
+    let (chamfer_on, chamfer_off) = (codes.chamfer_on, codes.chamfer_off);
+    let chamfering_used = cycle.style.thread_chamfering;
+    let grid = cycle.grid;
 
     let mut blocks = Vec::new();
     // The words of each pass, and where its block goes among `blocks`.
@@ -101,43 +93,45 @@ pub(super) fn expand(
         let m = &moves[i];
         let begins_pass = m.motion == Motion::Rapid && moves.get(i + 1).is_some_and(|n| n.threading);
         if !m.threading && !begins_pass {
-            blocks.push(writer.block(at, m));
+            blocks.push(cycle.block(at, m));
             at = m.contour;
             i += 1;
             continue;
         }
-        let Some((count, pass)) = match_pass(at, &moves[i..]) else { return Threads::NotExpandable };
+        let Some((count, pass)) = match_pass(at, &moves[i..]) else { return CycleBlocks::NotExpandable };
         let face = pass.axes.face;
         let (Some(&first), Some(&end)) = (pass.points.first(), pass.points.last()) else {
-            return Threads::NotExpandable;
+            return CycleBlocks::NotExpandable;
         };
-        let mut words = vec![NewWord::Code(CodeLetter::G, if face { face_code } else { longitudinal_code })];
-        words.push(writer.x_word(end.x));
-        words.push(writer.z_word(end.z));
+        let writer = &mut cycle.writer;
+        writer.out.code(CodeLetter::G, if face { face_code } else { longitudinal_code });
+        writer.point(&grid, end);
         let (taper_address, shift_address) = if face { (Address::K, Address::I) } else { (Address::I, Address::K) };
         let taper = pass.axes.depth(first) - pass.axes.depth(end);
         let shift = pass.axes.along(first) - pass.axes.along(at);
         for (address, value) in [(taper_address, taper), (shift_address, shift)] {
-            let number = writer.number(writer.frame.program(value));
-            if number.mantissa != 0 {
-                words.push(NewWord::Number(address, number));
+            let count = grid.length(value);
+            if count != 0 {
+                writer.coordinate(&grid, address, count);
             }
         }
         match &lead_words {
-            Some(copies) => words.extend(copies.iter().cloned()),
-            None => words.push(NewWord::Number(Address::F, feed_number(moves.get(i + 1).map_or(0.0, |m| m.f_word)))),
+            Some(copies) => copies.iter().for_each(|word| writer.out.word(word)),
+            None => writer.out.number(Address::F, feed_number(moves.get(i + 1).map_or(0.0, |m| m.f_word))),
         }
-        words.extend(speed_word.iter().cloned());
+        if let Some(speed) = &speed_word {
+            writer.out.word(speed);
+        }
         match (pass.chamfer, chamfer_on, chamfer_off) {
             (Some(length), Some(on), _) => {
-                words.push(NewWord::Code(CodeLetter::M, Code::whole(on)));
-                words.push(NewWord::Number(Address::L, writer.number(writer.frame.program(length))));
+                writer.out.code(CodeLetter::M, Code::whole(on));
+                writer.length(&grid, Address::L, length);
             }
-            (Some(_), None, _) => return Threads::NotExpandable,
-            (None, _, Some(off)) if chamfering_used => words.push(NewWord::Code(CodeLetter::M, Code::whole(off))),
+            (Some(_), None, _) => return CycleBlocks::NotExpandable,
+            (None, _, Some(off)) if chamfering_used => writer.out.code(CodeLetter::M, Code::whole(off)),
             (None, _, _) => {}
         }
-        passes.push(words);
+        passes.push(writer.take_words());
         slots.push(blocks.len());
         blocks.push(NewBlock::default());
         at = moves.get(i + count - 1).map_or(at, |m| m.contour);
@@ -147,11 +141,11 @@ pub(super) fn expand(
     // k-th at the phase 360·k/starts.
     if starts > 1 {
         if passes.len() % starts != 0 || passes.chunks(starts).any(|group| group.iter().any(|p| *p != group[0])) {
-            return Threads::NotExpandable;
+            return CycleBlocks::NotExpandable;
         }
         for (index, words) in passes.iter_mut().enumerate() {
             let phase = 360.0 * (index % starts) as f64 / starts as f64;
-            words.push(NewWord::Number(Address::C, writer.number(phase)));
+            words.push(NewWord::Number(Address::C, grid.number(grid.count(phase))));
         }
     }
     for (slot, words) in slots.into_iter().zip(passes) {
@@ -159,7 +153,7 @@ pub(super) fn expand(
             block.words = words;
         }
     }
-    Threads::Blocks(blocks)
+    CycleBlocks::Blocks(blocks)
 }
 
 /// The command of the cycle call block.

@@ -1,0 +1,82 @@
+//! A cycle's moves written as the explicit blocks that make them.
+//!
+//! Coordinates go back through the cycle's frame (units, diameter X) onto its grid; motion
+//! codes, F and S are written where they change; arcs take the program's own form (`R`/`L`
+//! radius or `I K` centre) where it holds them after rounding. On a control with no thread
+//! move (OSP) a thread pass is written as a single-pass cycle block (`thread_pass.rs`).
+
+use crate::printer::{NewBlock, NewWord, ProgramStyle};
+use crate::semantic::Expansion;
+use crate::syntax::Program;
+use crate::toolpath::{Compensation, Move, Xz};
+
+use super::grid::Grid;
+use super::motion::{Codes, Modal, MotionWriter};
+use super::thread_pass;
+
+/// What a cycle call becomes.
+pub(crate) enum CycleBlocks {
+    /// A single-pass thread cycle: it is one pass already; leave it.
+    Keep,
+    /// The blocks that replace the call.
+    Blocks(Vec<NewBlock>),
+    /// Its thread moves have no plain-block form in this dialect; leave it.
+    NotExpandable,
+}
+
+/// The blocks that replace `expansion`'s call block when the cycle makes `moves` from
+/// `start` (programmed contour points: `Move.contour`, arcs about `Move.centre`), with
+/// `compensation_before` in force before it and the program's coordinates shifted by
+/// `shift` (`G50 X Z`), in the program's `style` (`ProgramStyle::infer`, read once per
+/// program: it reads every block). `expand` passes the cycle's own moves, the compensation
+/// pass its compensated ones.
+pub(crate) fn cycle_blocks(
+    program: &Program<'_>,
+    expansion: &Expansion,
+    moves: &[Move],
+    start: Xz,
+    compensation_before: Compensation,
+    shift: Xz,
+    style: &ProgramStyle,
+) -> CycleBlocks {
+    let codes = Codes::of(program);
+    // S in force before the cycle's block: the written blocks give S where it changes
+    // (the cycle block's own S included, since the block is replaced).
+    let modal = Modal::new(compensation_before, expansion.before.s_word);
+    let grid = Grid::of(expansion.frame, shift);
+    let mut cycle = CycleWriter { writer: MotionWriter::new(codes, Vec::new()), modal, grid, style };
+    if !codes.has_thread_move() && moves.iter().any(|m| m.threading) {
+        // No thread move in this dialect: passes become single-pass cycle blocks.
+        return thread_pass::write(program, expansion, moves, start, &mut cycle);
+    }
+    let mut start = start;
+    let mut blocks: Vec<NewBlock> = moves
+        .iter()
+        .map(|m| {
+            let block = cycle.block(start, m);
+            start = m.contour;
+            block
+        })
+        .collect();
+    if cycle.writer.restore(&mut cycle.modal, &expansion.after) {
+        blocks.push(NewBlock::new(cycle.writer.take_words()));
+    }
+    CycleBlocks::Blocks(blocks)
+}
+
+/// The writer of one cycle's blocks, and what they leave in force.
+pub(super) struct CycleWriter<'s> {
+    pub writer: MotionWriter<Vec<NewWord>>,
+    pub modal: Modal,
+    /// The grid of the cycle's coordinates.
+    pub grid: Grid,
+    pub style: &'s ProgramStyle,
+}
+
+impl CycleWriter<'_> {
+    /// The block of move `m` from `start`.
+    pub(super) fn block(&mut self, start: Xz, m: &Move) -> NewBlock {
+        self.writer.move_block(&mut self.modal, &self.grid, self.style.radius_arcs, start, m);
+        NewBlock::new(self.writer.take_words())
+    }
+}
