@@ -105,15 +105,18 @@ pub fn deviation_each(
                 Side::Compensated => follower.measure(s.nominal, p),
             }?;
             let along_mm = follower.along_mm();
-            each(side, Measured {
-                sample: *s,
-                sample_index,
-                predicted: p,
-                distance_mm: found.distance,
-                closest: found.point,
-                original_move: found.move_index,
-                along_mm,
-            });
+            each(
+                side,
+                Measured {
+                    sample: *s,
+                    sample_index,
+                    predicted: p,
+                    distance_mm: found.distance,
+                    closest: found.point,
+                    original_move: found.move_index,
+                    along_mm,
+                },
+            );
             Some(found.distance)
         }))
     };
