@@ -21,6 +21,7 @@ mod lsp;
 mod model;
 mod numbers;
 mod plot;
+mod report;
 mod simulate;
 mod streams;
 mod thermal;
@@ -85,6 +86,8 @@ enum Command {
     Verify(verify::VerifyArgs),
     /// Draw the nominal, actual and compensated paths (SVG), or a ball-bar polar plot.
     Plot(plot::PlotArgs),
+    /// One self-contained HTML page for a job: verify's figures and verdict, the plots, the edited blocks.
+    Report(report::ReportArgs),
     /// Find where a measurement and the model disagree, name the missing effect, add it.
     Diagnose(diagnose::DiagnoseArgs),
     /// Make a measurement (ball bar trace or CMM profile) from a truth model, with noise.
@@ -114,6 +117,7 @@ pub fn main() -> ExitCode {
         Command::Compensate(args) => compensate::compensate(args),
         Command::Verify(args) => verify::verify(args),
         Command::Plot(args) => plot::plot(args),
+        Command::Report(args) => report::report(args),
         Command::Diagnose(args) => diagnose::run(args),
         Command::Synth(args) => diagnose::run_synth(args),
         Command::FitThermal(args) => thermal::run(args),

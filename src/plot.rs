@@ -69,6 +69,9 @@ pub struct PathPoint {
     /// that point lies on.
     pub nominal: Xz,
     pub move_index: usize,
+    /// The motion of the point's own move (in the program it was predicted for), which
+    /// gives a ball bar trace its direction.
+    pub motion: Motion,
     /// The unit normal of the surface there, from the part toward the tool (zero where the
     /// tool's side is not known: no nose-radius compensation and no tip direction).
     pub normal: Xz,
@@ -110,9 +113,9 @@ impl PathPoint {
     }
 }
 
-/// The points of `compensate`'s paths (one per cutting sample, before and after), each
-/// measured from its own sample.
-pub fn points_of(paths: &Paths) -> [Vec<PathPoint>; 2] {
+/// The points of `compensate`'s paths of `toolpath` (one per cutting sample, before and
+/// after), each measured from its own sample.
+pub fn points_of(toolpath: &Toolpath, paths: &Paths) -> [Vec<PathPoint>; 2] {
     let mut out = [Vec::new(), Vec::new()];
     let mut along = 0.0;
     let mut previous: Option<usize> = None;
@@ -128,6 +131,7 @@ pub fn points_of(paths: &Paths) -> [Vec<PathPoint>; 2] {
             points.push(PathPoint {
                 nominal: s.nominal,
                 move_index: s.move_index,
+                motion: toolpath.moves.get(s.move_index).map_or(Motion::Feed, |m| m.motion),
                 normal: s.normal,
                 travel: s.velocity,
                 predicted,
@@ -254,11 +258,10 @@ pub fn polar_svg(
     // Per state, the angles (degrees), radial deviations (mm) and directions.
     let traces = |points: &[PathPoint]| {
         let mut trace = (Vec::new(), Vec::new(), Vec::new());
-        for p in points {
-            let Some(m) = on_circle(p.move_index) else { continue };
+        for p in points.iter().filter(|p| p.motion.is_arc() && on_circle(p.move_index).is_some()) {
             trace.0.push(geometry::angle(p.nominal, centre).to_degrees());
             trace.1.push(p.radial_deviation_mm(centre));
-            trace.2.push(if m.motion == Motion::Ccw { Direction::Ccw } else { Direction::Cw });
+            trace.2.push(if p.motion == Motion::Ccw { Direction::Ccw } else { Direction::Cw });
         }
         trace
     };

@@ -60,8 +60,8 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     // The plot shows what compensation would do even where `compensate` would refuse.
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     streams::err(messages);
-    let [before, after] = turnpass::plot::points_of(&outcome.paths);
     let toolpath = program.valid();
+    let [before, after] = turnpass::plot::points_of(&toolpath, &outcome.paths);
     let svg = if args.polar {
         turnpass::plot::polar_svg(&name, &toolpath, &before, &after).map(|svg| (svg, None))
     } else {
@@ -82,7 +82,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     }
 }
 
-fn magnification(s: &str) -> Result<f64, String> {
+pub(super) fn magnification(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err(format!("`{s}` is not a magnification: give a number above 0, such as 10")),

@@ -73,8 +73,6 @@ pub struct Measured {
     pub distance_mm: f64,
     pub closest: Xz,
     pub original_move: usize,
-    /// The cutting length along the original's path of the point's own point, mm.
-    pub along_mm: f64,
 }
 
 /// Both programs' deviations, every point measured also given to `each` (both programs'
@@ -104,7 +102,6 @@ pub fn deviation_each(
                 Side::Original => follower.measure_from(s.move_index, s.param, p),
                 Side::Compensated => follower.measure(s.nominal, p),
             }?;
-            let along_mm = follower.along_mm();
             each(
                 side,
                 Measured {
@@ -114,7 +111,6 @@ pub fn deviation_each(
                     distance_mm: found.distance,
                     closest: found.point,
                     original_move: found.move_index,
-                    along_mm,
                 },
             );
             Some(found.distance)

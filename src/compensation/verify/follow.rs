@@ -155,11 +155,6 @@ impl<'a> Follower<'a> {
         self.closest_in(self.window(WINDOW_MM, WINDOW_MM), p).map(|(_, k, closest)| Found::on(k, closest))
     }
 
-    /// The cutting length along the original's path, mm, of the last point matched.
-    pub fn along_mm(&self) -> f64 {
-        self.at
-    }
-
     /// The moves within `back` and `ahead` mm of cutting length of the previous match, and
     /// the `NEIGHBOURS` cutting moves either side of its move, whatever their length.
     fn window(&self, back: f64, ahead: f64) -> RangeInclusive<usize> {
