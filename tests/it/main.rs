@@ -25,6 +25,7 @@ mod lsp_session;
 mod moves;
 mod nose_radius;
 mod parse;
+mod plots;
 mod print;
 mod provenance;
 mod robustness;
