@@ -149,7 +149,8 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     let verdict = if violations.is_empty() {
         "verify: ok".to_string()
     } else {
-        let mut text = format!("verify found {} violation(s), on the page:", violations.len());
+        let plural = if violations.len() == 1 { "" } else { "s" };
+        let mut text = format!("verify: {} violation{plural} (on the page)", violations.len());
         for violation in &violations {
             text.push_str(&format!("\nreport: violation: {violation}"));
         }

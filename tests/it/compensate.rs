@@ -295,7 +295,8 @@ fn plots_draw_every_path_and_both_directions_of_a_ball_bar() {
         (
             "tests/cases/compensate/ballbar.nc",
             true,
-            &["clockwise (G02), as programmed", "clockwise (G02), compensated", "counter-clockwise (G03), compensated"][..],
+            &["clockwise (G02), as programmed", "clockwise (G02), compensated", "counter-clockwise (G03), compensated"]
+                [..],
         ),
     ] {
         let tmp = tempfile::tempdir().unwrap();

@@ -28,6 +28,7 @@ mod parse;
 mod plots;
 mod print;
 mod provenance;
+mod report_browser;
 mod robustness;
 mod roundtrip;
 mod simulate;

@@ -31,7 +31,8 @@ struct Case {
 }
 
 /// Okabe and Ito's colours and black: the only strokes a data line may have.
-const PALETTE: [&str; 9] = ["#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2", "#D55E00", "#CC79A7", "#808080"];
+const PALETTE: [&str; 9] =
+    ["#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2", "#D55E00", "#CC79A7", "#808080"];
 
 struct Text {
     x: f64,
@@ -121,7 +122,8 @@ fn extents(points: impl Iterator<Item = (f64, f64)>) -> (f64, f64, f64, f64) {
 }
 
 fn check_path(case: &Case, svg: &Svg) {
-    let numeric: Vec<(&Text, f64)> = svg.texts.iter().filter_map(|t| t.text.parse::<f64>().ok().map(|v| (t, v))).collect();
+    let numeric: Vec<(&Text, f64)> =
+        svg.texts.iter().filter_map(|t| t.text.parse::<f64>().ok().map(|v| (t, v))).collect();
     // The main drawing's Z labels are the upper row of centred numbers; its X labels the
     // right-anchored numbers above that row.
     let row = numeric.iter().filter(|(t, _)| t.anchor == "middle").map(|(t, _)| t.y).fold(f64::INFINITY, f64::min);
@@ -146,7 +148,12 @@ fn check_path(case: &Case, svg: &Svg) {
         .unwrap_or_else(|| panic!("{}: scale label `{}`", case.name, scale.text));
     assert!(svg.texts.iter().any(|t| t.text.contains(&format!("magnified ×{magnify} "))), "{}", case.name);
     if let Some(given) = case.args.iter().position(|a| a == "--magnify") {
-        assert_eq!(case.args[given + 1].parse::<f64>().unwrap(), magnify, "{}: the magnification given wins", case.name);
+        assert_eq!(
+            case.args[given + 1].parse::<f64>().unwrap(),
+            magnify,
+            "{}: the magnification given wins",
+            case.name
+        );
     }
     let bar = svg
         .lines
@@ -156,7 +163,11 @@ fn check_path(case: &Case, svg: &Svg) {
         .unwrap_or_else(|| panic!("{}: no scale bar beside `{}`", case.name, scale.text));
     let length = (bar.points[1].0 - bar.points[0].0).abs();
     let expected = um / 1000.0 * magnify * across;
-    assert!((length - expected).abs() <= 1.5 + 0.01 * expected, "{}: bar {length} px, {expected} px expected", case.name);
+    assert!(
+        (length - expected).abs() <= 1.5 + 0.01 * expected,
+        "{}: bar {length} px, {expected} px expected",
+        case.name
+    );
     for label in ["Z, nominal (mm)", "X, radius, nominal (mm)", "µm", "rapid"] {
         svg.text(label);
     }
@@ -178,7 +189,11 @@ fn check_path(case: &Case, svg: &Svg) {
         let centre = (left + radius, top + radius);
         for p in nominal.iter().filter(|p| (p.1 - centre.1).abs() > 0.1 * radius) {
             let r = ((p.0 - centre.0).powi(2) + (p.1 - centre.1).powi(2)).sqrt();
-            assert!(((r - radius) / radius).abs() < 0.02, "{}: the circle is not round: {r} px, {radius} px", case.name);
+            assert!(
+                ((r - radius) / radius).abs() < 0.02,
+                "{}: the circle is not round: {r} px, {radius} px",
+                case.name
+            );
         }
     }
 }
@@ -245,7 +260,12 @@ fn plots_of_the_examples_read_at_a_glance() {
         assert!(output.status.success(), "{}: {}", case.name, String::from_utf8_lossy(&output.stderr));
         let svg = read_svg(&std::fs::read_to_string(&out).unwrap());
         for line in svg.lines.iter().filter(|l| l.width == "2") {
-            assert!(PALETTE.contains(&line.stroke.as_str()), "{}: colour {} is not Okabe–Ito's", case.name, line.stroke);
+            assert!(
+                PALETTE.contains(&line.stroke.as_str()),
+                "{}: colour {} is not Okabe–Ito's",
+                case.name,
+                line.stroke
+            );
         }
         match case.kind.as_str() {
             "path" => check_path(case, &svg),
