@@ -148,14 +148,31 @@ pub(crate) fn draw(figure: &PathFigure<'_>) -> Result<Drawn, PlotError> {
     let plot_height = plot_height.max(MIN_HEIGHT).round();
     let main_height = plot_height as u32 + MARGIN_TOP + MARGIN_BOTTOM + X_LABELS;
     let header_height = TITLE + LINE * (1 + u32::from(figure.side_unknown)) + 6;
-    let height = header_height + LEGEND + main_height + STRIP;
+    let mut entries = vec![Entry { label: figure.nominal_label.to_string(), colour: NOMINAL, dashed: false, width: 1 }];
+    if !figure.rapids.is_empty() {
+        entries.push(Entry { label: "rapid".to_string(), colour: GREY, dashed: true, width: 1 });
+    }
+    entries.extend(figure.series.iter().map(|s| Entry {
+        label: s.label.to_string(),
+        colour: s.colour,
+        dashed: false,
+        width: 2,
+    }));
+    // The scale bar shares the legend's row when both fit, else it has a row of its own.
+    let legend_width: i32 = entries.iter().map(|e| 34 + text_width(&e.label, 14) + 22).sum();
+    let (bar_um, bar_pixels) = scale_bar_length(magnify * pixels_per_mm / 1000.0);
+    let bar_room = 10 + text_width(&scale_text(bar_um, magnify), 14) + bar_pixels;
+    let fits = i32::try_from(Y_LABELS + MARGIN_LEFT).unwrap_or(0) + legend_width + bar_room
+        <= i32::try_from(WIDTH - MARGIN_RIGHT).unwrap_or(0);
+    let legend_rows = if fits { 1 } else { 2 };
+    let height = header_height + LEGEND * legend_rows + main_height + STRIP;
 
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let (header, rest) = root.split_vertically(header_height);
-        let (legend, rest) = rest.split_vertically(LEGEND);
+        let (legend, rest) = rest.split_vertically(LEGEND * legend_rows);
         let (main, strip) = rest.split_vertically(main_height);
 
         let mut builder = ChartBuilder::on(&main);
@@ -204,8 +221,9 @@ pub(crate) fn draw(figure: &PathFigure<'_>) -> Result<Drawn, PlotError> {
 
         let mut lines = vec![format!(
             "deviation along the surface normal, magnified ×{} (+ away from the part); Z and X at the same scale, \
-             axes in nominal mm; rapids dashed, not magnified",
-            micrometres(magnify)
+             axes in nominal mm{}",
+            micrometres(magnify),
+            if figure.rapids.is_empty() { "" } else { "; rapids dashed, not magnified" }
         )];
         if figure.side_unknown {
             lines.push(
@@ -215,19 +233,9 @@ pub(crate) fn draw(figure: &PathFigure<'_>) -> Result<Drawn, PlotError> {
             );
         }
         header_text(&header, figure.title, &lines)?;
-        let mut entries = vec![
-            Entry { label: figure.nominal_label.to_string(), colour: NOMINAL, dashed: false, width: 1 },
-            Entry { label: "rapid".to_string(), colour: GREY, dashed: true, width: 1 },
-        ];
-        entries.extend(figure.series.iter().map(|s| Entry {
-            label: s.label.to_string(),
-            colour: s.colour,
-            dashed: false,
-            width: 2,
-        }));
         legend_row(&legend, &entries)?;
         let pixels_per_um = magnify * pixels_per_mm / 1000.0;
-        scale_bar(&legend, pixels_per_um, magnify)?;
+        scale_bar(&legend, pixels_per_um, magnify, legend_rows)?;
         strip_chart(&strip, figure, largest)?;
         root.present().map_err(drawing)?;
     }
@@ -333,19 +341,33 @@ pub(crate) fn sample_line(
     Ok(())
 }
 
-/// The micrometre scale bar, at the right of the legend row.
-fn scale_bar(area: &DrawingArea<SVGBackend<'_>, Shift>, pixels_per_um: f64, magnify: f64) -> Result<(), PlotError> {
+/// The scale bar's micrometres and its length in pixels.
+fn scale_bar_length(pixels_per_um: f64) -> (f64, i32) {
     let um = scale_bar_um(pixels_per_um, 50.0);
-    let length = (um * pixels_per_um).round() as i32;
+    (um, (um * pixels_per_um).round() as i32)
+}
+
+fn scale_text(um: f64, magnify: f64) -> String {
+    format!("scale: {} µm of deviation (×{})", micrometres(um), micrometres(magnify))
+}
+
+/// The micrometre scale bar, at the right of the legend's last row.
+fn scale_bar(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    pixels_per_um: f64,
+    magnify: f64,
+    row: u32,
+) -> Result<(), PlotError> {
+    let (um, length) = scale_bar_length(pixels_per_um);
     let right = i32::try_from(WIDTH - MARGIN_RIGHT).unwrap_or(0);
     let left = right - length;
-    let y = i32::try_from(LEGEND / 2).unwrap_or(0);
+    let y = i32::try_from(LEGEND * (row - 1) + LEGEND / 2).unwrap_or(0);
     let style = NOMINAL.stroke_width(2);
     area.draw(&PathElement::new(vec![(left, y), (right, y)], style)).map_err(drawing)?;
     for x in [left, right] {
         area.draw(&PathElement::new(vec![(x, y - 6), (x, y + 6)], style)).map_err(drawing)?;
     }
-    let text = format!("scale: {} µm of deviation (×{})", micrometres(um), micrometres(magnify));
+    let text = scale_text(um, magnify);
     area.draw(&Text::new(text, (left - 10, y), label_style(14, HPos::Right))).map_err(drawing)?;
     Ok(())
 }

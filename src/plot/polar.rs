@@ -39,7 +39,7 @@ pub(crate) struct PolarFigure<'a> {
 const HEADER: u32 = 62;
 /// The square the polar drawing fills, pixels.
 const SQUARE: u32 = 800;
-const PANEL: u32 = 420;
+const PANEL: u32 = 460;
 
 /// Draw the figure; the rings are `division` µm apart where that division is the round
 /// one that holds the largest deviation within two rings of the base circle.
@@ -55,11 +55,7 @@ pub(crate) fn draw(figure: &PolarFigure<'_>) -> Result<String, PlotError> {
         root.fill(&WHITE).map_err(drawing)?;
         let (header, rest) = root.split_vertically(HEADER);
         let (square, panel) = rest.split_horizontally(SQUARE);
-        header_text(
-            &header,
-            figure.title,
-            &[format!("{}, {} µm per ring; 0 µm is the nominal radius", figure.what, micrometres(division))],
-        )?;
+        header_text(&header, figure.title, &[format!("{}, {} µm per ring", figure.what, micrometres(division))])?;
         // A square plotting area and equal ranges: the circle is drawn round.
         let mut chart = ChartBuilder::on(&square)
             .margin(10)
@@ -169,12 +165,12 @@ fn side_panel(area: &DrawingArea<SVGBackend<'_>, Shift>, figure: &PolarFigure<'_
     y += 14;
     area.draw(&Text::new(figure.table_title.clone(), (x, y), label_style(16, HPos::Left))).map_err(drawing)?;
     y += 24;
-    let columns = [x, x + 140, x + 270];
+    // The first column from the left, the figures right-aligned at these.
+    let columns = [x, x + 250, x + 430];
     for row in &figure.table {
-        for (cell, &column) in row.iter().zip(&columns) {
-            let anchor = if column == x { HPos::Left } else { HPos::Right };
-            let at = if column == x { column } else { column + 100 };
-            area.draw(&Text::new(cell.clone(), (at, y), label_style(14, anchor))).map_err(drawing)?;
+        for (k, (cell, &column)) in row.iter().zip(&columns).enumerate() {
+            let anchor = if k == 0 { HPos::Left } else { HPos::Right };
+            area.draw(&Text::new(cell.clone(), (column, y), label_style(14, anchor))).map_err(drawing)?;
         }
         y += 20;
     }
