@@ -221,7 +221,7 @@ pub fn checked(
     let machine = &original.machine;
     let limit = checks.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());
     if let Some(missing) = &words.missing {
-        let line = LineIndex::new(&original_bytes).position(missing.span.start).0;
+        let line = LineIndex::new(original_bytes).position(missing.span.start).0;
         violations.push(format!(
             "{compensated_name} lost `{}` ({original_name} line {line}), or has it out of order",
             missing.text

@@ -400,7 +400,7 @@ fn clip(a: (f64, f64), b: (f64, f64), view: &View) -> Option<((f64, f64), (f64, 
             }
         }
     }
-    (t0 < t1).then(|| ((a.0 + t0 * dz, a.1 + t0 * dx), (a.0 + t1 * dz, a.1 + t1 * dx)))
+    (t0 < t1).then_some(((a.0 + t0 * dz, a.1 + t0 * dx), (a.0 + t1 * dz, a.1 + t1 * dx)))
 }
 
 #[cfg(test)]
