@@ -362,6 +362,18 @@ pub enum DiagnosticKind {
     AlreadyCompensated {
         model: Option<String>,
     },
+    /// `compensate`: the program it would write, read back and predicted on the model as
+    /// `verify` predicts it, deviates from the nominal part here by more than `verify`
+    /// allows.
+    CompensationFailsCheck {
+        deviation_mm: f64,
+        bound_mm: f64,
+    },
+    /// `compensate`: the program it would write does not read back cleanly (a defect of
+    /// turnpass, never of the program).
+    CompensationUnreadable {
+        problem: String,
+    },
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
     /// A cycle whose profile has no moves.

@@ -6,9 +6,8 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use turnpass::compensation::program::SAMPLE_STEP_MM;
 use turnpass::compensation::provenance::{Provenance, marks};
-use turnpass::compensation::verify::{check_words, deviation};
+use turnpass::compensation::verify::{self, check_words, deviation};
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::LineIndex;
 use turnpass::syntax::Program;
@@ -119,9 +118,11 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     }
     streams::err(messages);
     let tools = ToolTable::from_machine(&original.machine);
-    let figures = deviation(&original.valid(), &compensated.valid(), &tools, &model, SAMPLE_STEP_MM);
-    let words = check_words(&original.parsed.program, &compensated.parsed.program);
     let machine = &original.machine;
+    let (original_path, compensated_path) = (original.valid().toolpath(), compensated.valid().toolpath());
+    let sampling = verify::sampling(&model, machine.increment * machine.scale(), &[original_path, compensated_path]);
+    let figures = deviation(original_path, compensated_path, &tools, &model, &sampling);
+    let words = check_words(&original.parsed.program, &compensated.parsed.program);
     let limit = args.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());
     if let Some(missing) = &words.missing {
         let line = LineIndex::new(&original_bytes).position(missing.span.start).0;

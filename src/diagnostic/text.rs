@@ -78,6 +78,8 @@ impl DiagnosticKind {
             CannotRewriteBlock { .. } => "cannot-rewrite-block",
             CycleNotCompensated => "cycle-not-compensated",
             AlreadyCompensated { .. } => "already-compensated",
+            CompensationFailsCheck { .. } => "compensation-fails-check",
+            CompensationUnreadable { .. } => "compensation-unreadable",
             CycleNeedsDepth => "cycle-needs-depth",
             EmptyProfile => "empty-profile",
             ProfileReverses { .. } => "profile-reverses",
@@ -262,6 +264,14 @@ impl DiagnosticKind {
             AlreadyCompensated { model: None } => "this program is compensated already: compensating it again \
                                                    takes the machine's errors out twice"
                 .to_string(),
+            CompensationFailsCheck { deviation_mm, bound_mm } => format!(
+                "the compensated program, read back and predicted on the model as `turnpass verify` predicts it, \
+                 would cut this block {deviation_mm:.5} mm off the nominal part, more than the {bound_mm:.5} mm \
+                 verify allows; no compensated program is written"
+            ),
+            CompensationUnreadable { problem } => format!(
+                "the compensated program does not read back cleanly ({problem}); no compensated program is written"
+            ),
             CycleNeedsDepth => "the roughing cycle has no depth of cut".to_string(),
             EmptyProfile => "the profile named by `P`/`Q` has no moves".to_string(),
             ProfileReverses { axis } => format!("the profile turns back in {axis}; the roughing cycle cannot cut it"),
@@ -432,6 +442,8 @@ impl DiagnosticKind {
             CannotRewriteBlock { .. } => "this block".to_string(),
             CycleNotCompensated => "not compensated".to_string(),
             AlreadyCompensated { .. } => "written by `turnpass compensate`".to_string(),
+            CompensationFailsCheck { deviation_mm, .. } => format!("off by {:.2} µm", deviation_mm * 1000.0),
+            CompensationUnreadable { .. } => "from here".to_string(),
             CycleNeedsDepth
             | EmptyProfile
             | ProfileReverses { .. }
@@ -611,6 +623,15 @@ impl DiagnosticKind {
                  program is to be compensated as it is"
                     .to_string(),
             ),
+            CompensationFailsCheck { .. } => Some(
+                "turnpass cannot compensate this block on this model within the bound: try another --strategy or \
+                 --tolerance, check the model, or run the program uncompensated; please report it with the program \
+                 and the model"
+                    .to_string(),
+            ),
+            CompensationUnreadable { .. } => {
+                Some("this is a defect of turnpass: please report it with the program and the model".to_string())
+            }
             CycleNeedsDepth => Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".to_string()),
             EmptyProfile => None,
             ProfileReverses { .. } => Some("split the profile, or rough the undercut with another cycle (G73)".to_string()),

@@ -1,9 +1,12 @@
 //! The closed loop on simulation: the thesis' two programs (clean versions) compensated for
 //! a model with several effects (`examples/machines/thesis-several-effects.toml`), every
 //! strategy, then `verify`: the predicted RMS deviation from the nominal part before and
-//! after. `arcs` and `densify` must cut it by 90 % or bring it to the quantisation floor,
-//! increment/√12, where that is higher (these programs are in inch: 0.0001 in gives
-//! 0.733 µm, 15 % of their uncompensated deviation, so the floor is what they can reach).
+//! after. `arcs` and `densify` at a tolerance of 0.3 µm must cut it by 90 % or bring it near
+//! the quantisation floor, increment/√12, where that is higher (these programs are in inch:
+//! 0.0001 in gives 0.733 µm, 15 % of their uncompensated deviation, so the floor is what
+//! they can reach). Near: within a quarter above it, because a slide is not reversed across
+//! its play for less than half an increment, a correction no written program can hold
+//! (`InverseOptions::dead_band_mm`), and such stretches add to the rounding.
 //!
 //! `cargo test --release --test it closed_loop -- --nocapture` prints the table the README
 //! quotes.
@@ -60,7 +63,7 @@ fn compensation_brings_the_predicted_deviation_down_to_the_floor() {
                 let improvement = deviation["improvement_percent"].as_f64().unwrap();
                 assert!(after < before, "{program} {strategy}: {after} ≥ {before}");
                 if tolerance.is_some() && (strategy == "arcs" || strategy == "densify") {
-                    let target = (0.1 * before).max(FLOOR_MM);
+                    let target = (0.1 * before).max(1.25 * FLOOR_MM);
                     assert!(after <= target, "{program} {strategy}: RMS {after} above {target}");
                 }
                 let name = program.rsplit('/').next().unwrap();
@@ -163,7 +166,9 @@ fn terms_that_curve_along_a_move_are_followed_between_the_samples() {
     for strategy in STRATEGIES {
         let out = dir.join(format!("{strategy}.nc"));
         let out = out.to_str().unwrap();
-        let (code, _) = run(&["compensate", GENERATED, "--model", CURVED_MODEL, "--strategy", strategy, "-o", out]);
+        let args =
+            ["compensate", GENERATED, "--model", CURVED_MODEL, "--strategy", strategy, "--max-deviation", "0.0025"];
+        let (code, _) = run(&[&args[..], &["-o", out]].concat());
         assert_eq!(code, 0, "{strategy}");
         let args = ["verify", GENERATED, out, "--model", CURVED_MODEL, "--format", "json", "--max-deviation", "0.0025"];
         let (code, json) = run(&args);

@@ -34,3 +34,4 @@ mod stock_removal;
 mod support;
 mod thesis;
 mod thesis_compensation;
+mod trust;

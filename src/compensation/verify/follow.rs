@@ -123,6 +123,32 @@ impl<'a> Follower<'a> {
         self.closest_in(moves, p).map(|(distance, _, _)| distance)
     }
 
+    /// `distance`, with the side of the path the point lies on (`LocalPath::side`) as its
+    /// sign.
+    pub fn signed_distance(&mut self, nominal: Xz, p: Xz) -> Option<f64> {
+        let distance = self.distance(nominal, p)?;
+        Some(distance * self.side_of(p))
+    }
+
+    /// `distance_from`, with the side of the path as its sign.
+    pub fn signed_distance_from(&mut self, k: usize, param: f64, p: Xz) -> Option<f64> {
+        let distance = self.distance_from(k, param, p)?;
+        Some(distance * self.side_of(p))
+    }
+
+    /// The side of the path `p` lies on, measured at its closest move about the match.
+    fn side_of(&self, p: Xz) -> f64 {
+        match self.closest_in(self.window(WINDOW_MM, WINDOW_MM), p) {
+            Some((_, k, closest)) => self.path.side(k, &closest, p),
+            None => 1.0,
+        }
+    }
+
+    /// The original's move the last point was matched to (its own point's move).
+    pub fn matched_move(&self) -> usize {
+        self.move_index
+    }
+
     fn move_to(&mut self, k: usize, param: f64) {
         let start = if k == 0 { 0.0 } else { self.cut_ends.get(k - 1).copied().unwrap_or(0.0) };
         self.move_index = k;
