@@ -1,8 +1,8 @@
 //! The crate's one diagnostic type: a kind, a span and a severity.
 //!
 //! Every pass reports problems as [`Diagnostic`] values; none of them formats text for a
-//! terminal. Messages, labels and hints are derived from the kind, so a test can match on the
-//! kind and a renderer can show the words. Rendering (codespan-reporting, JSON, plain text
+//! terminal. The code, message, label and hint are derived from the kind, in one arm per
+//! kind (`text.rs`), so a test can match on the kind and a renderer can show the words. Rendering (codespan-reporting, JSON, plain text
 //! for snapshots) lives in [`render`], the only module that imports codespan-reporting.
 
 pub mod model_file;
@@ -14,6 +14,7 @@ use std::fmt;
 use crate::source::Span;
 
 pub use model_file::ModelProblem;
+pub use text::Words;
 
 /// How many diagnostics of a program are shown where a long list costs more than it helps:
 /// a language-server publish (unless the editor says otherwise) and the commands other than
@@ -68,6 +69,11 @@ impl Diagnostic {
 
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
+    }
+
+    /// Its code, message, label and hint (`DiagnosticKind::words`).
+    pub fn words(&self) -> Words {
+        self.kind.words()
     }
 
     pub fn code(&self) -> &'static str {
@@ -237,6 +243,13 @@ pub enum DiagnosticKind {
     DuplicateWord {
         address: String,
     },
+    /// An axis given both as a position and as a distance (`X` and `U`, `Z` and `W`) in one
+    /// Fanuc block.
+    AxisGivenTwice {
+        position: String,
+        distance: String,
+        axis: char,
+    },
     /// `;` in an OSP program, where it is not a comment.
     SemicolonInOsp,
     /// A UTF-8 byte-order mark at the start of the file.
@@ -368,7 +381,12 @@ pub enum DiagnosticKind {
     CompensationFailsCheck {
         deviation_mm: f64,
         bound_mm: f64,
+        /// The tolerance the program was compensated to, mm.
+        tolerance_mm: f64,
     },
+    /// `compensate`: the program it would write cuts with other feed or spindle words than
+    /// the original (a defect of turnpass, never of the program).
+    CompensationChangesFeed,
     /// `compensate`: the program it would write does not read back cleanly (a defect of
     /// turnpass, never of the program).
     CompensationUnreadable {

@@ -26,6 +26,7 @@ pub mod machine;
 mod memory;
 pub mod plot;
 pub mod printer;
+pub mod report;
 pub mod semantic;
 pub mod simulation;
 pub mod source;

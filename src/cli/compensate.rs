@@ -311,14 +311,19 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let original = program.valid().toolpath();
     let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
     let refusal = match verify::check_written(original, &written, &reading, &tools, &model) {
-        Ok(figures) => {
+        Ok((figures, feed_change)) => {
             let totals = &mut outcome.report.totals;
             (totals.before, totals.after) = (figures.before, figures.after);
             totals.improvement_percent = figures.improvement_percent;
-            figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
+            let too_far = figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
                 let span = original.moves.get(worst.original_move).map_or(Span::new(0, 0), |m| m.source);
-                let kind = DiagnosticKind::CompensationFailsCheck { deviation_mm: worst.deviation_mm, bound_mm: bound };
+                let tolerance_mm = args.fit.options(&program.machine).fit.tolerance_mm;
+                let deviation_mm = worst.deviation_mm;
+                let kind = DiagnosticKind::CompensationFailsCheck { deviation_mm, bound_mm: bound, tolerance_mm };
                 Diagnostic::error(kind, span)
+            });
+            too_far.or_else(|| {
+                feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
             })
         }
         Err(problems) => {

@@ -319,19 +319,19 @@ impl<'a> LocalPath<'a> {
     /// +1 to the left of the direction of travel (X up, Z to the right), −1 to the right, 0
     /// on it. Along a contour the side keeps its meaning from move to move, so a distance
     /// with its side changes sign only where the path crosses the contour.
-    pub fn side(&self, k: usize, closest: &Closest, p: Xz) -> f64 {
+    pub fn side(&self, k: usize, closest: Xz, p: Xz) -> f64 {
         let Some(m) = self.toolpath.moves.get(k) else { return 0.0 };
         let start = self.toolpath.start_of(k);
         let tangent = match m.motion {
             Motion::Cw | Motion::Ccw => {
-                let radial = Xz::new(closest.point.x - m.centre.x, closest.point.z - m.centre.z);
+                let radial = Xz::new(closest.x - m.centre.x, closest.z - m.centre.z);
                 // Counter-clockwise turns from +Z toward +X: the tangent is the radial turned
                 // a quarter that way.
                 if m.motion == Motion::Ccw { Xz::new(radial.z, -radial.x) } else { Xz::new(-radial.z, radial.x) }
             }
             _ => Xz::new(m.end.x - start.x, m.end.z - start.z),
         };
-        let off = Xz::new(p.x - closest.point.x, p.z - closest.point.z);
+        let off = Xz::new(p.x - closest.x, p.z - closest.z);
         let cross = tangent.z * off.x - tangent.x * off.z;
         if cross > 0.0 {
             1.0
@@ -376,7 +376,7 @@ impl<'a> LocalPath<'a> {
 
     /// The distance to move `k` when it cuts (infinity otherwise): `distance_to_move`, with
     /// an arc's constants taken from `arcs`.
-    fn distance_to(&self, p: Xz, k: usize) -> f64 {
+    pub fn distance_to(&self, p: Xz, k: usize) -> f64 {
         let Some(m) = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell) else {
             return f64::INFINITY;
         };

@@ -84,9 +84,9 @@ pub fn sampling(model: &ErrorModel, increment_mm: f64, toolpaths: &[&Toolpath]) 
 const CHUNK_MOVES: usize = 4096;
 
 /// Predict both programs through `model`, sampled as `sampling` allows, and measure them
-/// against `original`'s nominal path, along the path (`Tally::add_along`: each sample
-/// stands for the path from the sample before it, so the figures do not depend on how
-/// closely the path was sampled). The two are measured side by side.
+/// against `original`'s nominal path, along the path (each sample stands for the path from
+/// the sample before it, so the figures do not depend on how closely the path was sampled).
+/// The two are measured side by side.
 pub fn deviation(
     original: &Toolpath,
     compensated: &Toolpath,
@@ -96,23 +96,58 @@ pub fn deviation(
 ) -> Deviation {
     let path = LocalPath::new(original);
     let ((before, _), (after, worst)) = std::thread::scope(|scope| {
-        let before = scope.spawn(|| measure(original, &path, tools, model, sampling, Own::Sample));
-        let after = measure(compensated, &path, tools, model, sampling, Own::Followed);
+        let before = scope.spawn(|| measure(original, &path, tools, model, sampling, Side::Original, &mut |_, _| {}));
+        let after = measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut |_, _| {});
         // Measuring cannot fail on any input; a panic is a bug, and is passed on.
         (before.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), after)
     });
+    figures(before, after, worst)
+}
+
+/// Which program a measured point is of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    Original,
+    Compensated,
+}
+
+/// A predicted cutting point as `deviation` measured it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measured {
+    /// The sample of its own program's toolpath it was predicted for.
+    pub sample: PathSample,
+    /// The index of that sample among the points its program's measure went through.
+    pub sample_index: usize,
+    /// Where the model puts the tool.
+    pub predicted: Xz,
+    /// Its distance from the original's nominal path (what the figures are made of), the
+    /// closest point of that path and the original's move it lies on.
+    pub distance_mm: f64,
+    pub closest: Xz,
+    pub original_move: usize,
+}
+
+/// `deviation`, every point measured also given to `each` (the original's points first,
+/// then the compensated program's, each in path order): `deviation` and `report` measure
+/// with this one computation, so the page's figures are `verify`'s.
+pub fn deviation_each(
+    original: &Toolpath,
+    compensated: &Toolpath,
+    tools: &ToolTable,
+    model: &ErrorModel,
+    sampling: &Sampling,
+    mut each: impl FnMut(Side, Measured),
+) -> Deviation {
+    let path = LocalPath::new(original);
+    let (before, _) = measure(original, &path, tools, model, sampling, Side::Original, &mut each);
+    let (after, worst) = measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut each);
+    figures(before, after, worst)
+}
+
+fn figures(before: Tally, after: Tally, worst: Option<Worst>) -> Deviation {
     let (before, after) = (before.figures(), after.figures());
     let improvement_percent = (before.improvement_percent(&after) * 1e4).round() / 1e4;
     Deviation { before: before.rounded(), after: after.rounded(), improvement_percent, worst }
-}
-
-/// How a measured program's sample finds its own point on the original's path.
-#[derive(Clone, Copy, PartialEq)]
-enum Own {
-    /// The sample is of the original itself: its move and place along it.
-    Sample,
-    /// The sample is of another program: found by following the original along.
-    Followed,
 }
 
 /// Sample `toolpath` as `sampling` allows, predict it through `model` as written, and tally
@@ -133,12 +168,15 @@ fn measure(
     tools: &ToolTable,
     model: &ErrorModel,
     sampling: &Sampling,
-    own: Own,
+    side: Side,
+    each: &mut dyn FnMut(Side, Measured),
 ) -> (Tally, Option<Worst>) {
     let mut measuring = Measuring {
         toolpath,
         tools,
-        own,
+        side,
+        each,
+        measured: 0,
         play: model.play(),
         follower: Follower::new(path),
         predictor: Predictor::new(toolpath.start, model),
@@ -189,10 +227,13 @@ fn measure(
 }
 
 /// One program's measure as it goes (`measure`).
-struct Measuring<'a, 'p> {
+struct Measuring<'a, 'p, 'e> {
     toolpath: &'a Toolpath,
     tools: &'a ToolTable,
-    own: Own,
+    side: Side,
+    each: &'e mut dyn FnMut(Side, Measured),
+    /// How many points were measured, cutting or not (`Measured::sample_index`).
+    measured: usize,
     play: Xz,
     follower: Follower<'p>,
     predictor: Predictor<'a>,
@@ -204,7 +245,7 @@ struct Measuring<'a, 'p> {
     worst: Option<Worst>,
 }
 
-impl Measuring<'_, '_> {
+impl Measuring<'_, '_, '_> {
     /// Measure `s`, reached from the point at `from` of its move, with the knees of a
     /// take-up on the way where the move is `long` enough to cut past its play.
     fn sample(&mut self, s: &PathSample, from: f64, long: bool) {
@@ -231,17 +272,32 @@ impl Measuring<'_, '_> {
         self.predicted.clear();
         self.predictor.predict_nominal(std::slice::from_ref(s), &[], &mut self.predicted);
         let Some(&p) = self.predicted.first().filter(|_| s.cutting) else {
+            self.measured += 1;
             self.previous = None;
             return;
         };
-        let distance = match self.own {
-            Own::Sample => self.follower.signed_distance_from(s.move_index, s.param, p),
-            Own::Followed => self.follower.signed_distance(s.nominal, p),
+        let sample_index = self.measured;
+        self.measured += 1;
+        let found = match self.side {
+            Side::Original => self.follower.measure_from(s.move_index, s.param, p),
+            Side::Compensated => self.follower.measure(s.nominal, p),
         };
-        let Some(signed) = distance else {
+        let Some(found) = found else {
             self.previous = None;
             return;
         };
+        (self.each)(
+            self.side,
+            Measured {
+                sample: *s,
+                sample_index,
+                predicted: p,
+                distance_mm: found.distance,
+                closest: found.point,
+                original_move: found.move_index,
+            },
+        );
+        let signed = found.distance * self.follower.side(&found, p);
         let d = signed.abs();
         // The side keeps its meaning along one move only: round a corner the part's surface
         // may lie on the other side of the travel, so across one the distances are taken as
@@ -335,7 +391,8 @@ pub struct Reading<'a> {
 /// What `compensate` checks before it writes: `written`, the program it is about to write,
 /// read back as the control reads it (parsed, lowered and validated as the original was)
 /// and measured against `original`'s nominal path by `turnpass verify`'s own computation
-/// (`deviation`, `sampling`), so that the figures it reports are the ones verify finds.
+/// (`deviation`, `sampling`), so that the figures it reports are the ones verify finds, with
+/// verify's check of the feed and spindle words (`check_feeds`).
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
     original: &Toolpath,
@@ -343,7 +400,7 @@ pub fn check_written(
     reading: &Reading<'_>,
     tools: &ToolTable,
     model: &ErrorModel,
-) -> Result<Deviation, Vec<Diagnostic>> {
+) -> Result<(Deviation, Option<FeedChange>), Vec<Diagnostic>> {
     let parsed = crate::syntax::parse(written, reading.parse);
     let lowered = crate::semantic::lower(&parsed.program, reading.machine, reading.lower);
     let errors: Vec<Diagnostic> =
@@ -355,7 +412,7 @@ pub fn check_written(
     let toolpath = lowered.valid().toolpath();
     let machine = reading.machine;
     let sampling = sampling(model, machine.increment * machine.scale(), &[original, toolpath]);
-    Ok(deviation(original, toolpath, tools, model, &sampling))
+    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(original, toolpath)))
 }
 
 /// The deviation `verify` allows by default: two least increments, mm.
@@ -446,4 +503,49 @@ fn first_missing<T>(wanted: &[(T, Span)], found: &[(T, Span)], same: impl Fn(&T,
         }
     }
     None
+}
+
+/// A cut whose feed or spindle words the compensated program changed: the original's move
+/// (its block) and the words each program cuts with there (`None`: it has no such cut).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeedChange {
+    pub source: Span,
+    pub original: Option<CutWords>,
+    pub compensated: Option<CutWords>,
+}
+
+/// The feed and spindle words a cut runs with, as the program writes them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CutWords {
+    pub feed: f64,
+    pub per_revolution: bool,
+    pub speed: f64,
+    pub threading: bool,
+}
+
+/// Check that `compensated` cuts with the feed and spindle words `original` cuts with, in the
+/// order it runs them. Compensation moves end points, splits moves and writes take-ups, so
+/// moves are not matched one for one: the runs of equal words along the cutting moves, in
+/// execution order, must be the same runs. Rapids and dwells carry no feed and are skipped.
+pub fn check_feeds(original: &Toolpath, compensated: &Toolpath) -> Option<FeedChange> {
+    fn runs(toolpath: &Toolpath) -> Vec<(CutWords, Span)> {
+        let mut runs: Vec<(CutWords, Span)> = Vec::new();
+        for m in toolpath.moves.iter().filter(|m| m.cutting && m.motion != crate::toolpath::Motion::Dwell) {
+            let words =
+                CutWords { feed: m.f_word, per_revolution: m.per_revolution, speed: m.s_word, threading: m.threading };
+            if runs.last().is_none_or(|(last, _)| *last != words) {
+                runs.push((words, m.source));
+            }
+        }
+        runs
+    }
+    let (wanted, found) = (runs(original), runs(compensated));
+    let at = (0..wanted.len().max(found.len())).find(|&k| wanted.get(k).map(|r| r.0) != found.get(k).map(|r| r.0))?;
+    // Past the end of the shorter list, the words its last cut runs with go on.
+    let (original, compensated) = (wanted.get(at).or(wanted.last()), found.get(at).or(found.last()));
+    Some(FeedChange {
+        source: original.map_or(Span::SYNTHETIC, |r| r.1),
+        original: original.map(|r| r.0),
+        compensated: compensated.map(|r| r.0),
+    })
 }

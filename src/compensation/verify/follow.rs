@@ -50,6 +50,8 @@
 use std::cell::OnceCell;
 use std::ops::RangeInclusive;
 
+use smallvec::SmallVec;
+
 use crate::compensation::deviation::{Closest, LocalPath, PathIndex};
 use crate::toolpath::{Motion, Xz};
 
@@ -68,6 +70,21 @@ const MATCH_MM: f64 = 0.1;
 /// The most moves a window looks at either side of the previous match, whatever their
 /// length (a run of moves that do not cut counts for no length).
 const WINDOW_MOVES: usize = 4096;
+
+/// A predicted point's closest point on the original's path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Found {
+    pub distance: f64,
+    /// The closest point, and the original's move it lies on.
+    pub point: Xz,
+    pub move_index: usize,
+}
+
+impl Found {
+    fn on(move_index: usize, closest: Closest) -> Found {
+        Found { distance: closest.distance, point: closest.point, move_index }
+    }
+}
 
 /// The original's nominal path, followed through the compensated program's samples in order.
 pub struct Follower<'a> {
@@ -96,16 +113,23 @@ impl<'a> Follower<'a> {
     }
 
     /// The distance of `p`, predicted for the cutting sample at `nominal`, from the
-    /// original's nominal path (see the module documentation).
-    pub fn distance(&mut self, nominal: Xz, p: Xz) -> Option<f64> {
+    /// original's nominal path (see the module documentation), the closest point of that
+    /// path and its move.
+    pub fn measure(&mut self, nominal: Xz, p: Xz) -> Option<Found> {
         let window = self.window(0.0, WINDOW_MM);
         let ahead = self.move_index.max(*window.start())..=*window.end();
-        let candidates: Vec<_> =
-            ahead.clone().filter_map(|k| self.path.closest_on(k, nominal).map(|c| (c.distance, k, c))).collect();
-        let best = candidates.iter().map(|&(distance, _, _)| distance).fold(f64::INFINITY, f64::min);
+        // Distances first (no angles): the closest point is found for the match alone.
+        let candidates: SmallVec<[(f64, usize); 32]> = ahead
+            .clone()
+            .filter_map(|k| {
+                let distance = self.path.distance_to(nominal, k);
+                distance.is_finite().then_some((distance, k))
+            })
+            .collect();
+        let best = candidates.iter().map(|&(distance, _)| distance).fold(f64::INFINITY, f64::min);
         let limit = MATCH_MM.min(best + SLACK_MM);
-        let matched = candidates.into_iter().find(|&(distance, _, _)| distance <= limit);
-        let Some((_, k, closest)) = matched else {
+        let matched = candidates.into_iter().find(|&(distance, _)| distance <= limit);
+        let Some((k, closest)) = matched.and_then(|(_, k)| self.path.closest_on(k, nominal).map(|c| (k, c))) else {
             // Lost: match over the whole path, measure against the whole path.
             if let Some((distance, k)) = self.index().closest(nominal)
                 && distance <= MATCH_MM
@@ -113,35 +137,22 @@ impl<'a> Follower<'a> {
             {
                 self.move_to(k, closest.param);
             }
-            return self.index().distance(p);
+            let (distance, k) = self.index().closest(p)?;
+            let point = self.path.closest_on(k, p).map_or(p, |closest| closest.point);
+            return Some(Found { distance, point, move_index: k });
         };
         self.move_to(k, closest.param);
         // The window about the match, and the rest of the window searched, which holds the
         // point's own move wherever the match is an earlier move that comes as close.
         let around = self.window(WINDOW_MM, WINDOW_MM);
         let moves = *around.start().min(ahead.start())..=*around.end().max(ahead.end());
-        self.closest_in(moves, p).map(|(distance, _, _)| distance)
+        self.closest_in(moves, p).map(|(_, k, closest)| Found::on(k, closest))
     }
 
-    /// `distance`, with the side of the path the point lies on (`LocalPath::side`) as its
-    /// sign.
-    pub fn signed_distance(&mut self, nominal: Xz, p: Xz) -> Option<f64> {
-        let distance = self.distance(nominal, p)?;
-        Some(distance * self.side_of(p))
-    }
-
-    /// `distance_from`, with the side of the path as its sign.
-    pub fn signed_distance_from(&mut self, k: usize, param: f64, p: Xz) -> Option<f64> {
-        let distance = self.distance_from(k, param, p)?;
-        Some(distance * self.side_of(p))
-    }
-
-    /// The side of the path `p` lies on, measured at its closest move about the match.
-    fn side_of(&self, p: Xz) -> f64 {
-        match self.closest_in(self.window(WINDOW_MM, WINDOW_MM), p) {
-            Some((_, k, closest)) => self.path.side(k, &closest, p),
-            None => 1.0,
-        }
+    /// The side of the original's path `p` lies on, from what measuring it found
+    /// (`LocalPath::side`).
+    pub fn side(&self, found: &Found, p: Xz) -> f64 {
+        self.path.side(found.move_index, found.point, p)
     }
 
     /// The original's move the last point was matched to (its own point's move).
@@ -156,11 +167,11 @@ impl<'a> Follower<'a> {
     }
 
     /// The distance of `p`, predicted for the point at `param` of the original's move `k`,
-    /// from the original's nominal path: the closest cutting move within `WINDOW_MM` of that
+    /// from the original's nominal path, its closest point and move: the closest cutting move within `WINDOW_MM` of that
     /// point (and the `NEIGHBOURS` cutting moves either side).
-    pub fn distance_from(&mut self, k: usize, param: f64, p: Xz) -> Option<f64> {
+    pub fn measure_from(&mut self, k: usize, param: f64, p: Xz) -> Option<Found> {
         self.move_to(k, param);
-        self.closest_in(self.window(WINDOW_MM, WINDOW_MM), p).map(|(distance, _, _)| distance)
+        self.closest_in(self.window(WINDOW_MM, WINDOW_MM), p).map(|(_, k, closest)| Found::on(k, closest))
     }
 
     /// The moves within `back` and `ahead` mm of cutting length of the previous match, and
@@ -193,15 +204,16 @@ impl<'a> Follower<'a> {
     /// The closest cutting move of `moves` to `point`: its distance, its index and the
     /// closest point (the earliest move where several are equally close).
     fn closest_in(&self, moves: RangeInclusive<usize>, point: Xz) -> Option<(f64, usize, Closest)> {
-        let mut best: Option<(f64, usize, Closest)> = None;
+        // Distances first (no angles): the closest point is found for the closest move alone.
+        let mut best: Option<(f64, usize)> = None;
         for k in moves {
-            if let Some(closest) = self.path.closest_on(k, point)
-                && best.is_none_or(|(distance, _, _)| closest.distance < distance)
-            {
-                best = Some((closest.distance, k, closest));
+            let distance = self.path.distance_to(point, k);
+            if distance.is_finite() && best.is_none_or(|(closest, _)| distance < closest) {
+                best = Some((distance, k));
             }
         }
-        best
+        let (_, k) = best?;
+        self.path.closest_on(k, point).map(|closest| (closest.distance, k, closest))
     }
 
     fn index(&self) -> &PathIndex<'a> {
