@@ -94,10 +94,26 @@ pub fn deviation(
     model: &ErrorModel,
     sampling: &Sampling,
 ) -> Deviation {
+    deviation_watched(original, compensated, tools, model, sampling, &|_, _| {})
+}
+
+/// `deviation`, every point measured also shown to `watch` as the two threads measure it (in
+/// path order within each program, the two programs interleaved): how far the measure has
+/// come, for a progress bar.
+pub fn deviation_watched(
+    original: &Toolpath,
+    compensated: &Toolpath,
+    tools: &ToolTable,
+    model: &ErrorModel,
+    sampling: &Sampling,
+    watch: &(dyn Fn(Side, &Measured) + Sync),
+) -> Deviation {
     let path = LocalPath::new(original);
     let ((before, _), (after, worst)) = std::thread::scope(|scope| {
-        let before = scope.spawn(|| measure(original, &path, tools, model, sampling, Side::Original, &mut |_, _| {}));
-        let after = measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut |_, _| {});
+        let before = scope
+            .spawn(|| measure(original, &path, tools, model, sampling, Side::Original, &mut |side, m| watch(side, &m)));
+        let after =
+            measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m));
         // Measuring cannot fail on any input; a panic is a bug, and is passed on.
         (before.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), after)
     });
