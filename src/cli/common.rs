@@ -48,6 +48,20 @@ pub struct ReadArgs {
     /// [model], [[axis_table]] and [[effect]] tables the error model.
     #[arg(long, value_name = "FILE")]
     pub model: Option<PathBuf>,
+    /// The value of a common variable the machine keeps (`--var '#501=350'`, `--var V12=4`),
+    /// over the settings' `[machine] variables`; repeatable.
+    #[arg(long = "var", value_name = "NAME=VALUE", value_parser = parse_variable)]
+    pub variables: Vec<(String, f64)>,
+}
+
+/// `NAME=VALUE` of `--var`.
+fn parse_variable(text: &str) -> Result<(String, f64), String> {
+    let (name, value) = text.split_once('=').ok_or_else(|| format!("`{text}` is not NAME=VALUE"))?;
+    let value: f64 = value.trim().parse().map_err(|_| format!("`{value}` is not a number"))?;
+    if !value.is_finite() {
+        return Err(format!("`{value}` is not a finite number"));
+    }
+    Ok((name.trim().to_string(), value))
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -210,7 +224,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         }
         None => None,
     };
-    let settings = match &model {
+    let mut settings = match &model {
         Some((path, text)) => {
             ModelFile::from_toml(text)
                 .map_err(|problems| model_problems(path, text, ModelError::File(problems)))?
@@ -218,6 +232,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         }
         None => MachineSettings::default(),
     };
+    settings.variables.extend(read.variables.iter().cloned());
     let dialect = read.dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
     let gcode_system = read.gcode_system.or(settings.gcode_system).unwrap_or_default();
     let decimal_input = match read.decimal_input {

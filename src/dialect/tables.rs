@@ -504,6 +504,11 @@ struct RawDialect {
     address: BTreeMap<String, AddressSpec>,
     #[serde(default)]
     extended: BTreeMap<String, AddressSpec>,
+    /// Fanuc comma addresses, keyed by their letter (`C` is `,C`).
+    #[serde(default)]
+    comma: BTreeMap<String, AddressSpec>,
+    #[serde(default)]
+    machine_variables: MachineVariables,
     expression: ExpressionRules,
     keywords: BTreeMap<String, KeywordInfo>,
     g: Vec<RawG>,
@@ -512,6 +517,20 @@ struct RawDialect {
     foreign_g: BTreeMap<String, String>,
     m_functions: MFunctions,
     schema: BTreeMap<String, RawSchema>,
+}
+
+/// The common variables the control keeps in memory: a program may read them before it
+/// sets them, and their values come from the machine.
+#[derive(Debug, Clone, Default, Deserialize)]
+pub struct MachineVariables {
+    /// Inclusive ranges of variable numbers (`#500`–`#999`, OSP `V1`–`V200`).
+    pub numbers: Vec<[u32; 2]>,
+}
+
+impl MachineVariables {
+    pub fn holds(&self, number: u32) -> bool {
+        self.numbers.iter().any(|[low, high]| (*low..=*high).contains(&number))
+    }
 }
 
 /// The M codes the semantic pass acts on.
@@ -550,7 +569,11 @@ pub struct Tables {
     pub lexical: Lexical,
     pub expression: ExpressionRules,
     letters: [Option<AddressSpec>; 26],
+    /// The two-letter (OSP) and comma (Fanuc) addresses.
     extended: Vec<(Address, AddressSpec)>,
+    /// The dialect has comma words (`,C`, `,R`, `,A`), so a comma ends a value.
+    pub has_comma_words: bool,
+    pub machine_variables: MachineVariables,
     keywords: Vec<(String, KeywordInfo)>,
     g_index: Vec<u16>,
     g_infos: Vec<GInfo>,
@@ -680,11 +703,17 @@ fn compile(config: DialectConfig) -> Tables {
             letters[(letter - b'A') as usize] = Some(spec.clone());
         }
     }
-    let extended = raw
+    let mut extended: Vec<(Address, AddressSpec)> = raw
         .extended
         .iter()
         .filter_map(|(name, spec)| name.parse::<Address>().ok().map(|a| (a, spec.clone())))
         .collect();
+    let has_comma_words = !raw.comma.is_empty();
+    extended.extend(
+        raw.comma
+            .iter()
+            .filter_map(|(name, spec)| format!(",{name}").parse::<Address>().ok().map(|a| (a, spec.clone()))),
+    );
 
     let scope_applies = |machine: Option<MachineScope>| {
         matches!(
@@ -800,6 +829,8 @@ fn compile(config: DialectConfig) -> Tables {
         expression: raw.expression,
         letters,
         extended,
+        has_comma_words,
+        machine_variables: raw.machine_variables,
         keywords,
         g_index,
         g_infos,

@@ -98,6 +98,7 @@ impl Interpreter<'_, '_> {
             let clamp = command.and_then(|c| c.function) == Some(GFunction::CoordinateSetOrClamp);
             if clamp {
                 self.modal.clamp = speed.min(self.machine.max_rpm);
+                self.modal.clamp_programmed = true;
             } else if !cycle_feed {
                 self.modal.speed = speed;
             }

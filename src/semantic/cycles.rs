@@ -63,6 +63,10 @@ pub(super) struct CycleMemory {
     pub peck: peck_grooving::PeckMemory,
     /// `G76 P(m)(r)(a) Q(Δdmin) R(d)`.
     pub thread: multiple_threading::ThreadMemory,
+    /// The last cycle block that made no move (a two-block cycle's first block) and the
+    /// modal words before it: when the cycle block consumes it, `expand` deletes it, so the
+    /// written blocks start from the words before it (its F and S are the cycle's).
+    pub setup_block: Option<(usize, crate::semantic::ModalAfter)>,
 }
 
 /// A cycle call may run at most this many passes (or pecks): more is a runaway parameter
@@ -180,15 +184,21 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     interp.report_zero_feed(block.span);
     interp.emitter.context = Context { source: block.span, cycle: Span::SYNTHETIC };
     let consumed = std::mem::take(&mut interp.cycle_consumed);
+    let before = match interp.cycle_memory.setup_block {
+        Some((setup, before)) if setup < index && consumed.contains(&setup) => before,
+        _ => interp.modal_before_block,
+    };
     if interp.emitter.moves.len() > first_move || !consumed.is_empty() {
         interp.expansions.push(Expansion {
             block: index,
             frame: interp.modal.frame,
             consumed,
             moves: first_move..interp.emitter.moves.len(),
-            before: interp.modal_before_block,
+            before,
             after: crate::semantic::ModalAfter::of(&interp.modal),
         });
+    } else {
+        interp.cycle_memory.setup_block = Some((index, interp.modal_before_block));
     }
     flow
 }

@@ -77,7 +77,11 @@ pub(super) struct Interpreter<'p, 'src> {
     first_program_name: Option<usize>,
     /// The missing home position has been noted (it is one fact, said once per run).
     noted_home_unknown: bool,
+    /// What `plausibility.rs` has warned of already.
+    pub plausibility: super::plausibility::Warned,
     tape_opened: bool,
+    /// Whether the tape's `%` follows the leader lines (`check_leader`), once found.
+    leader_confirmed: Option<bool>,
 }
 
 impl<'p, 'src> Interpreter<'p, 'src> {
@@ -93,6 +97,8 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             spindle: SpindleMode::Rpm,
             speed: 0.0,
             clamp: machine.max_rpm,
+            clamp_programmed: false,
+            spindle_limit: machine.spindle_limit().0,
             motion: MotionMode::Rapid,
             compensation: Compensation::Off,
             tool: ToolState { station: 0, offset: 0, nose_radius: 0.0, tip: 0, minor_edge_angle: None },
@@ -107,7 +113,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             modal,
             // Most blocks make one move; cycles make many more, and the vector grows for them.
             emitter: Emitter::new(start, machine.rapid, program.blocks().len()),
-            variables: Variables::default(),
+            variables: Variables::from_machine(&machine.variables, dialect),
             labels: std::cell::OnceCell::new(),
             diagnostics: Vec::new(),
             expansions: Vec::new(),
@@ -123,7 +129,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             executed: 0,
             first_program_name: None,
             noted_home_unknown: false,
+            plausibility: super::plausibility::Warned::default(),
             tape_opened: false,
+            leader_confirmed: None,
         }
     }
 
@@ -196,7 +204,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 break;
             }
             self.executed += 1;
+            let first_move = self.emitter.moves.len();
             let flow = self.execute(pc);
+            self.check_moves(first_move, blocks[pc].span);
             if let Some(target) = self.skip_to.take() {
                 pc = target;
                 continue;
@@ -282,6 +292,22 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         }
     }
 
+    /// A line the parser took for a tape leader (`syntax.rs`) is one only if the tape's
+    /// `%` follows the leader: a control reading a file with no `%` there reads the line as
+    /// a block and rejects it. The lines up to the `%` are leaders or empty, so the first
+    /// other block decides, once.
+    fn check_leader(&mut self, index: usize) {
+        let tape_follows = *self.leader_confirmed.get_or_insert_with(|| {
+            self.program.blocks()[index..]
+                .iter()
+                .find(|b| !matches!(b.statement, Statement::Leader | Statement::Empty))
+                .is_some_and(|b| b.statement == Statement::TapeMark)
+        });
+        if !tape_follows {
+            self.error(DiagnosticKind::LeaderWithoutTape, self.program.block(index).span);
+        }
+    }
+
     fn first_move_start(&self) -> Xz {
         self.emitter.first_start.unwrap_or(self.emitter.at)
     }
@@ -299,6 +325,10 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 Flow::Next
             }
             Statement::Trailing => Flow::End,
+            Statement::Leader => {
+                self.check_leader(index);
+                Flow::Next
+            }
             Statement::TapeMark => {
                 // The first `%` opens the tape (comment lines may stand before it); a second
                 // one ends the program, and the parser already made the rest Trailing.

@@ -174,6 +174,7 @@ pub fn dump(program: &Program<'_>) -> String {
                 Statement::Settings => "Settings",
                 Statement::Invalid => "Invalid",
                 Statement::Trailing => "Trailing",
+                Statement::Leader => "Leader",
                 _ => unreachable!(),
             },
         };

@@ -112,7 +112,7 @@ impl<'s> BlockParser<'_, 's> {
         }
         if i < n {
             let c = bytes[i];
-            if c == b'O' || !is_word_boundary(c) {
+            if c == b'O' || !(is_word_boundary(c) || (c == b',' && self.tables.has_comma_words)) {
                 return None;
             }
         }
@@ -295,9 +295,8 @@ impl<'s> BlockParser<'_, 's> {
         match rest.first() {
             None => Ok(()),
             Some(&c) if is_word_boundary(c) => Ok(()),
-            Some(&c) if c.is_ascii_lowercase() => {
-                Err(self.error(rest, 1, DiagnosticKind::LowerCaseLetter { found: c as char }))
-            }
+            Some(b',') if self.tables.has_comma_words => Ok(()),
+            Some(&c) if c.is_ascii_lowercase() => Err(self.lower_case(rest)),
             Some(0) => Err(self.error(rest, 1, DiagnosticKind::NulByte)),
             Some(&c) if c >= 0x80 => Err(self.error(rest, 1, DiagnosticKind::NonAsciiByte { byte: c })),
             Some(b']') => Err(self.error(rest, 1, DiagnosticKind::UnmatchedBracket)),
