@@ -124,6 +124,11 @@ pub enum DiagnosticKind {
     /// A line before the tape's first `%` and any program text: a tape leader, which the
     /// control skips (`syntax.rs`).
     TapeLeader,
+    /// A check the semantic pass leaves out because what it checks is in a block that does
+    /// not parse (its parse error says why): `what` names it.
+    DependsOnDamagedBlock {
+        what: &'static str,
+    },
     /// A line the parser took for a tape leader with no `%` after the leader: the control
     /// reads it as a block (`semantic/interpreter.rs`).
     LeaderWithoutTape,

@@ -287,6 +287,29 @@ pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -
     interpreter::Interpreter::new(program, machine, options).run()
 }
 
+/// A program lowered and its toolpath validated: what `check`, `simulate` and the language
+/// server report of a program beyond its parse, all from this one function.
+pub struct Checked {
+    /// The lowered program, validated when its toolpath is valid.
+    pub lowered: Result<crate::toolpath::Validated<Lowered>, Lowered>,
+    /// The semantic pass's diagnostics and the toolpath's problems, in program order (the
+    /// parser's are not among them).
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Lower `program` and validate its toolpath against the machine's travel limits. A program
+/// the semantic pass does not lower ([`lowers`]) gets an empty toolpath and no diagnostic.
+pub fn check(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Checked {
+    let lowered = lower(program, machine, options);
+    let mut diagnostics = lowered.diagnostics.clone();
+    let lowered = crate::toolpath::Validated::new(lowered, machine.limits).map_err(|(lowered, problems)| {
+        diagnostics.extend(problems);
+        lowered
+    });
+    diagnostics.sort_by_key(|d| d.span.start);
+    Checked { lowered, diagnostics }
+}
+
 /// Whether the semantic pass lowers this program. It simulates lathes: an OSP
 /// machining-centre program (the front end notes it, `machining-centre-program`, and checks
 /// only its syntax) moves a milling spindle in three axes, and its G-codes mean other things

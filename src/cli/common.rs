@@ -450,7 +450,7 @@ pub fn rendered(name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) -> Vec<u8>
         text.extend_from_slice(
             format!(
                 "{name}: {more} more diagnostic{} not shown ({errors} error{} and {others} warning{} or note{} in \
-                 all; `turnpass check` lists every syntax error)\n",
+                 all; `turnpass check` lists every one)\n",
                 plural(more),
                 plural(errors),
                 plural(others),
@@ -572,15 +572,11 @@ pub struct Lowering {
 
 pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run: &RunArgs) -> Lowering {
     let machine = Machine::from_settings(&resolved.settings);
-    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
+    let checked = semantic::check(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
     let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    let lowered = Validated::new(lowered, machine.limits).map_err(|(lowered, problems)| {
-        diagnostics.extend(problems);
-        lowered
-    });
+    diagnostics.extend(checked.diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
-    Lowering { lowered, machine, diagnostics }
+    Lowering { lowered: checked.lowered, machine, diagnostics }
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse

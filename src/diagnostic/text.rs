@@ -64,6 +64,12 @@ impl DiagnosticKind {
                 label: "tape leader".into(),
                 hint: Some("a note belongs in a comment `( … )`; a control that reads this file with no `%` after the line rejects it".into()),
             },
+            DependsOnDamagedBlock { what } => Words {
+                code: "depends-on-damaged-block",
+                message: format!("not checked: {what} a block that does not parse").into(),
+                label: "not checked".into(),
+                hint: Some("fix the block's parse error; this is checked then".into()),
+            },
             LeaderWithoutTape => Words {
                 code: "not-a-block",
                 message: "this line does not read as a block, and no `%` follows it to make it a tape leader the control skips".into(),
@@ -549,13 +555,13 @@ impl DiagnosticKind {
             ProfileReverses { axis } => Words {
                 code: "profile-reverses",
                 message: format!("the profile turns back in {axis}; the roughing cycle cannot cut it").into(),
-                label: "this cycle".into(),
+                label: "the profile turns back here".into(),
                 hint: Some("split the profile, or rough the undercut with another cycle (G73)".into()),
             },
             ProfileNotMonotonic { axis } => Words {
                 code: "profile-not-monotonic",
                 message: format!("the profile is not monotonic in {axis}, which a Type I roughing cycle requires").into(),
-                label: "this cycle".into(),
+                label: "the profile turns back here".into(),
                 hint: Some("a Type II cycle allows pockets: name both X and Z (e.g. `W0`) in the profile's first block".into()),
             },
             StartOnWrongSide { x, z, axis, address, allowance, extreme } => {

@@ -28,7 +28,7 @@ pub mod thread_infeed;
 pub mod thread_pass;
 mod thread_single;
 
-use crate::diagnostic::DiagnosticKind;
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::{GFunction, Role};
 use crate::source::Span;
 use crate::syntax::{Command, CommandId, WordKind};
@@ -309,11 +309,24 @@ impl Interpreter<'_, '_> {
         match blocks.as_slice() {
             [one] => Some(*one),
             [] => {
-                self.error(DiagnosticKind::MissingSequence { number: key }, span);
+                match self.labels().damaged(&key) {
+                    Some(damaged) => {
+                        let damaged = self.program.block(damaged).span;
+                        let note = Diagnostic::note(DiagnosticKind::DependsOnDamagedBlock { what: "it names" }, span)
+                            .with_related(damaged, format!("N{key}, which does not parse"));
+                        self.diagnostics.push(note);
+                    }
+                    None => self.error(DiagnosticKind::MissingSequence { number: key }, span),
+                }
                 None
             }
             _ => {
-                self.error(DiagnosticKind::DuplicateSequence { number: key, count: blocks.len() }, span);
+                let mut error =
+                    Diagnostic::error(DiagnosticKind::DuplicateSequence { number: key.clone(), count: blocks.len() }, span);
+                for &block in &blocks {
+                    error = error.with_related(self.program.block(block).span, format!("a block numbered N{key}"));
+                }
+                self.diagnostics.push(error);
                 None
             }
         }

@@ -82,6 +82,8 @@ pub(super) struct Interpreter<'p, 'src> {
     tape_opened: bool,
     /// Whether the tape's `%` follows the leader lines (`check_leader`), once found.
     leader_confirmed: Option<bool>,
+    /// The position is unknown because of a block that does not parse (`damaged_block`).
+    position_damaged: bool,
 }
 
 impl<'p, 'src> Interpreter<'p, 'src> {
@@ -132,6 +134,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             plausibility: super::plausibility::Warned::default(),
             tape_opened: false,
             leader_confirmed: None,
+            position_damaged: false,
         }
     }
 
@@ -156,6 +159,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
     /// `span`: noted once per run, as is [`Interpreter::home_unknown`] — both say the
     /// settings give no home position, and the note says what the toolpath does about it.
     pub fn unknown_position(&mut self, span: Span) {
+        if self.position_damaged {
+            return;
+        }
         self.note_home_unknown(DiagnosticKind::UnknownStartPosition, span);
     }
 
@@ -207,6 +213,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             let first_move = self.emitter.moves.len();
             let flow = self.execute(pc);
             self.check_moves(first_move, blocks[pc].span);
+            if self.position_damaged && self.emitter.at.is_finite() {
+                self.position_damaged = false;
+            }
             if let Some(target) = self.skip_to.take() {
                 pc = target;
                 continue;
@@ -292,6 +301,37 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         }
     }
 
+    /// Whether sequence `key`, which names no block that parses, is the name of a block that
+    /// does not: then what refers to it at `span` is not checked, and a note says so (its
+    /// parse error is the finding). `what` says how the word refers to it.
+    pub(super) fn damaged_target(&mut self, key: &str, span: Span, what: &'static str) -> bool {
+        let Some(damaged) = self.labels().damaged(key) else { return false };
+        let damaged = self.program.block(damaged).span;
+        let note = Diagnostic::note(DiagnosticKind::DependsOnDamagedBlock { what }, span)
+            .with_related(damaged, format!("N{key}, which does not parse"));
+        self.diagnostics.push(note);
+        true
+    }
+
+    /// A block that does not parse and names an axis (`X`, `Z`, `U`, `W` with a value after
+    /// it) may have moved the tool anywhere: the position is not known until the next moves
+    /// name both axes, and what depends on it (the moves and checks from there) is left
+    /// out, without the note a missing home position gets. A block that names no axis (a
+    /// cycle call the schema rejects, a note outside a comment) leaves the tool where it is.
+    fn damaged_block(&mut self, index: usize) {
+        let text = self.program.text(self.program.block(index).span);
+        let names_an_axis = text.windows(2).any(|pair| {
+            matches!(pair[0].to_ascii_uppercase(), b'X' | b'Z' | b'U' | b'W')
+                && matches!(pair[1], b'0'..=b'9' | b'-' | b'+' | b'.' | b'=' | b'[' | b'#')
+        });
+        if !names_an_axis {
+            return;
+        }
+        self.finish_corner();
+        self.emitter.at = Xz::new(f64::NAN, f64::NAN);
+        self.position_damaged = true;
+    }
+
     /// A line the parser took for a tape leader (`syntax.rs`) is one only if the tape's
     /// `%` follows the leader: a control reading a file with no `%` there reads the line as
     /// a block and rejects it. The lines up to the `%` are leaders or empty, so the first
@@ -321,9 +361,11 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             return Flow::Next;
         }
         match block.statement {
-            Statement::Invalid | Statement::Empty | Statement::Header | Statement::Graphics | Statement::Pattern => {
+            Statement::Invalid => {
+                self.damaged_block(index);
                 Flow::Next
             }
+            Statement::Empty | Statement::Header | Statement::Graphics | Statement::Pattern => Flow::Next,
             Statement::Trailing => Flow::End,
             Statement::Leader => {
                 self.check_leader(index);
@@ -502,7 +544,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                     return match self.labels().jump(&key, index) {
                         Some(target) => Flow::Jump(target),
                         None => {
-                            self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            if !self.damaged_target(&key, word.span, "the jump goes to") {
+                                self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            }
                             Flow::End
                         }
                     };
@@ -513,7 +557,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                     return match self.labels().jump(&key, index) {
                         Some(target) => Flow::Jump(target),
                         None => {
-                            self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            if !self.damaged_target(&key, word.span, "the jump goes to") {
+                                self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            }
                             Flow::End
                         }
                     };

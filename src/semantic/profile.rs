@@ -101,7 +101,14 @@ impl Interpreter<'_, '_> {
                 | Statement::Spindle
                 | Statement::Empty => {}
                 Statement::LapMarker(_) | Statement::Dwell(_) => continue,
-                Statement::Invalid => continue,
+                Statement::Invalid => {
+                    // The shape is not known: the cycle that reads it is not checked.
+                    let what = "the profile holds";
+                    let note = Diagnostic::note(DiagnosticKind::DependsOnDamagedBlock { what }, saved_context.source)
+                        .with_related(block.span, "this block of the profile does not parse");
+                    failure = Some(note);
+                    break;
+                }
                 _ => {
                     failure = Some(Diagnostic::error(DiagnosticKind::NotAllowedInProfile, block.span));
                     break;
