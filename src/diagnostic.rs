@@ -366,7 +366,13 @@ pub enum DiagnosticKind {
     },
     /// `expand` leaves a cycle as it is: its moves have no plain-block form in this dialect
     /// (on OSP: thread moves that are not single-pass `G33` passes).
-    NotExpandable,
+    NotExpandable {
+        reason: &'static str,
+    },
+    /// Haas `G87`/`G88`: the operator takes the tool out of the hole by hand.
+    ManualRetract,
+    /// A drilling cycle's peck depth (`Q`, Haas `I`) of zero or less.
+    DrillPeckNotPositive,
     /// `compensate`: the correction of a point of this block is larger than `--max-shift`.
     CorrectionTooLarge {
         shift_mm: f64,

@@ -29,6 +29,8 @@ pub struct MachineSettings {
     pub name: Option<String>,
     pub dialect: Option<Dialect>,
     pub gcode_system: Option<GCodeSystem>,
+    /// The Fanuc-compatible control (`fanuc`, `haas`, `denford`; `crate::dialect::Control`).
+    pub control: Option<crate::dialect::Control>,
     pub decimal_input: Option<DecimalInput>,
     /// Units of a program that does not select them.
     pub units: Option<Units>,
@@ -207,11 +209,15 @@ impl MachineSettings {
         }
         for (name, value) in &self.variables {
             let named = name.strip_prefix('#').map_or_else(
-                || name.bytes().next().is_some_and(|b| b.is_ascii_uppercase()) && name.bytes().all(|b| b.is_ascii_uppercase() || b.is_ascii_digit()),
+                || {
+                    name.bytes().next().is_some_and(|b| b.is_ascii_uppercase())
+                        && name.bytes().all(|b| b.is_ascii_uppercase() || b.is_ascii_digit())
+                },
                 |digits| !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()),
             );
             if !named {
-                let rule = Reason::Rule("a variable is named as the program names it: `#501` (Fanuc), `V12` or a name (OSP)");
+                let rule =
+                    Reason::Rule("a variable is named as the program names it: `#501` (Fanuc), `V12` or a name (OSP)");
                 push(Err(Invalid { path: vec![Key::Name("variables")], reason: rule }), &[]);
             } else if !value.is_finite() {
                 let rule = Reason::Rule("a variable's value is a finite number");

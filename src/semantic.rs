@@ -196,6 +196,8 @@ pub struct Expansion {
     /// leave the latter behind so that the blocks after them run as before.
     pub before: ModalAfter,
     pub after: ModalAfter,
+    /// Why `expand` leaves the call as it is, if it does (a drilling cycle).
+    pub kept: Option<&'static str>,
 }
 
 /// The modal words a cycle leaves in force: the motion code (when it is a plain one; after

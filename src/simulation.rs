@@ -170,11 +170,7 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
     // (a `G20` program on a metric machine writes inches); a per-minute feed divided by the
     // spindle speed.
     let per_rev = |index: usize, m: &crate::toolpath::Move| {
-        if m.per_revolution {
-            m.f_word * lowered.coordinates_at(index).frame.scale()
-        } else {
-            m.feed / m.rpm.max(1e-9)
-        }
+        if m.per_revolution { m.f_word * lowered.coordinates_at(index).frame.scale() } else { m.feed / m.rpm.max(1e-9) }
     };
     let mut pass = |source: Span, range: Range<usize>| {
         let cutting: Vec<_> = toolpath.moves[range.clone()]

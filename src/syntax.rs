@@ -23,7 +23,7 @@ pub use ast::{
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::detect::{self, Detection, Leaning};
-use crate::dialect::{Dialect, DialectChoice, DialectConfig, GCodeSystem, MachineKind};
+use crate::dialect::{Control, Dialect, DialectChoice, DialectConfig, GCodeSystem, MachineKind};
 use crate::source::Span;
 
 use block::BlockParser;
@@ -37,6 +37,8 @@ pub struct ParseOptions {
     pub gcode_system: GCodeSystem,
     /// `None` decides from the text (OSP lathe or machining centre).
     pub machine_kind: Option<MachineKind>,
+    /// The Fanuc-compatible control (a machine setting, as the G-code system is).
+    pub control: Control,
 }
 
 /// A parsed program with everything the front end found wrong with it.
@@ -67,7 +69,8 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
         DialectChoice::Auto => None,
     };
     let detection = detect::decide(source, given, options.machine_kind);
-    let config = DialectConfig::new(detection.dialect, options.gcode_system, detection.machine_kind);
+    let config = DialectConfig::new(detection.dialect, options.gcode_system, detection.machine_kind)
+        .with_control(options.control);
     let mut diagnostics = detection_diagnostics(&detection);
 
     if source.len() >= u32::MAX as usize {

@@ -14,8 +14,8 @@ use turnpass::source::LineIndex;
 use turnpass::syntax::{self, Statement};
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, display_name, lower_and_validate, model_source, note_machine_defaults,
-    plural, read_input, resolve,
+    CliError, Format, ReadArgs, RunArgs, display_name, lower_and_validate, model_source, note_machine_defaults, plural,
+    read_input, resolve,
 };
 use super::streams;
 

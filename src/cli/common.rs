@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::diagnostic::{Diagnostic, SHOWN_DIAGNOSTICS};
-use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
+use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
 use turnpass::machine::{MachineSettings, ModelFile};
@@ -41,6 +41,10 @@ pub struct ReadArgs {
     /// Fanuc G-code system of the machine (A, B or C); a machine setting, never guessed.
     #[arg(long, value_parser = parse_system)]
     pub gcode_system: Option<GCodeSystem>,
+    /// The Fanuc-compatible control (fanuc, haas or denford): its own drilling cycles,
+    /// lower-case letters; a machine setting, never guessed.
+    #[arg(long, value_parser = parse_control)]
+    pub control: Option<Control>,
     /// How numbers without a decimal point read on this machine.
     #[arg(long, value_enum)]
     pub decimal_input: Option<DecimalInputArg>,
@@ -106,6 +110,10 @@ pub fn svg_path(s: &str) -> Result<PathBuf, String> {
 }
 
 fn parse_dialect(s: &str) -> Result<DialectChoice, String> {
+    s.parse()
+}
+
+fn parse_control(s: &str) -> Result<Control, String> {
     s.parse()
 }
 
@@ -235,6 +243,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
     settings.variables.extend(read.variables.iter().cloned());
     let dialect = read.dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
     let gcode_system = read.gcode_system.or(settings.gcode_system).unwrap_or_default();
+    let control = read.control.or(settings.control).unwrap_or_default();
     let decimal_input = match read.decimal_input {
         Some(DecimalInputArg::Calculator) => DecimalInput::Calculator,
         Some(DecimalInputArg::Increment) => DecimalInput::Increment,
@@ -245,13 +254,14 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         DialectChoice::Auto => None,
     };
     Ok(Resolved {
-        options: ParseOptions { dialect, gcode_system, machine_kind: None },
+        options: ParseOptions { dialect, gcode_system, machine_kind: None, control },
         decimal_input,
         increment_places: settings.increment_places(),
         // The settings in force, the command line's included.
         settings: MachineSettings {
             dialect: fixed_dialect,
             gcode_system: Some(gcode_system),
+            control: Some(control),
             decimal_input: Some(decimal_input),
             ..settings
         },

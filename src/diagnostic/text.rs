@@ -481,11 +481,23 @@ impl DiagnosticKind {
                 label: "here".into(),
                 hint: None,
             },
-            NotExpandable => Words {
+            NotExpandable { reason } => Words {
                 code: "not-expandable",
-                message: "this cycle is left as it is: its thread moves have no plain-block form in this dialect".into(),
+                message: format!("this cycle is left as it is: {reason}").into(),
                 label: "kept".into(),
                 hint: None,
+            },
+            ManualRetract => Words {
+                code: "manual-retract",
+                message: "the cycle stops at the bottom of the hole for the operator to take the tool out by hand; the toolpath takes it straight out at the rapid rate".into(),
+                label: "manual retract".into(),
+                hint: None,
+            },
+            DrillPeckNotPositive => Words {
+                code: "drill-peck-not-positive",
+                message: "the depth of each peck is zero: the drill would never reach the bottom".into(),
+                label: "peck depth".into(),
+                hint: Some("give the depth of each peck (`Q`; on Haas `Q`, or `I` with `J` and `K`), or leave it out to drill in one feed".into()),
             },
             CorrectionTooLarge { shift_mm, max_mm } => Words {
                 code: "correction-too-large",

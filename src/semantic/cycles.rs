@@ -10,6 +10,10 @@
 
 mod canonical;
 mod compound_thread;
+pub(super) mod drilling;
+mod face_boring;
+mod face_drilling;
+mod face_tapping;
 mod finishing;
 mod grooving;
 mod lap_contour;
@@ -21,6 +25,7 @@ mod lap_thread;
 mod multiple_threading;
 mod pattern_repeat;
 mod peck_grooving;
+mod side_drilling;
 mod single;
 mod stock_removal;
 mod tapping;
@@ -67,6 +72,8 @@ pub(super) struct CycleMemory {
     /// modal words before it: when the cycle block consumes it, `expand` deletes it, so the
     /// written blocks start from the words before it (its F and S are the cycle's).
     pub setup_block: Option<(usize, crate::semantic::ModalAfter)>,
+    /// The modal drilling cycle and the return level.
+    pub drilling: drilling::DrillingModes,
 }
 
 /// A cycle call may run at most this many passes (or pecks): more is a runaway parameter
@@ -134,6 +141,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         GFunction::LapRough => lap_rough::run(interp, index, &command),
         GFunction::LapCopy => lap_copy::run(interp, index, &command),
         GFunction::LapFinish => lap_finish::run(interp, index, &command),
+        GFunction::FaceDrilling | GFunction::FaceTapping | GFunction::FaceBoring | GFunction::SideDrilling => {
+            drilling::run(interp, index, &command, function)
+        }
         // The drilling cycles are not simulated; the other functions are those of no cycle,
         // which no `cycle` or `lap_call` code of `grammar/` names.
         GFunction::Drilling
@@ -147,6 +157,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         | GFunction::CoordinateSetOrClamp
         | GFunction::Cw
         | GFunction::DrillingCancel
+        | GFunction::DrillReturnInitial
+        | GFunction::DrillReturnRPoint
         | GFunction::Dwell
         | GFunction::FeedPerMinute
         | GFunction::FeedPerRev
@@ -188,6 +200,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         Some((setup, before)) if setup < index && consumed.contains(&setup) => before,
         _ => interp.modal_before_block,
     };
+    let kept = interp.expansion_kept.take();
     if interp.emitter.moves.len() > first_move || !consumed.is_empty() {
         interp.expansions.push(Expansion {
             block: index,
@@ -196,6 +209,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             moves: first_move..interp.emitter.moves.len(),
             before,
             after: crate::semantic::ModalAfter::of(&interp.modal),
+            kept,
         });
     } else {
         interp.cycle_memory.setup_block = Some((index, interp.modal_before_block));
@@ -321,8 +335,10 @@ impl Interpreter<'_, '_> {
                 None
             }
             _ => {
-                let mut error =
-                    Diagnostic::error(DiagnosticKind::DuplicateSequence { number: key.clone(), count: blocks.len() }, span);
+                let mut error = Diagnostic::error(
+                    DiagnosticKind::DuplicateSequence { number: key.clone(), count: blocks.len() },
+                    span,
+                );
                 for &block in &blocks {
                     error = error.with_related(self.program.block(block).span, format!("a block numbered N{key}"));
                 }

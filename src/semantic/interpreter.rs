@@ -84,6 +84,8 @@ pub(super) struct Interpreter<'p, 'src> {
     leader_confirmed: Option<bool>,
     /// The position is unknown because of a block that does not parse (`damaged_block`).
     position_damaged: bool,
+    /// Why `expand` should leave the cycle being run as it is (`Expansion::kept`).
+    pub expansion_kept: Option<&'static str>,
 }
 
 impl<'p, 'src> Interpreter<'p, 'src> {
@@ -135,6 +137,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             tape_opened: false,
             leader_confirmed: None,
             position_damaged: false,
+            expansion_kept: None,
         }
     }
 

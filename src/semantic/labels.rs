@@ -31,7 +31,9 @@ pub fn key(dialect: Dialect, text: &[u8], number: Option<u32>) -> String {
 /// The key of a program name (`O1234`, `:1234`, `OSUB`): its text after `O` or `:`, and on
 /// Fanuc its value.
 pub fn program_key(dialect: Dialect, text: &[u8]) -> String {
-    let name = text.strip_prefix(b"O").or_else(|| text.strip_prefix(b":")).unwrap_or(text);
+    // `o0001` on a control that reads lower case.
+    let name =
+        text.strip_prefix(b"O").or_else(|| text.strip_prefix(b"o")).or_else(|| text.strip_prefix(b":")).unwrap_or(text);
     let name = String::from_utf8_lossy(name).into_owned();
     match dialect {
         Dialect::Fanuc => name.parse::<u64>().map_or(name, |n| n.to_string()),

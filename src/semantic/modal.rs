@@ -17,6 +17,8 @@ pub enum MotionMode {
     TurningCycle,
     ThreadCycle,
     FacingCycle,
+    /// A drilling cycle (group 10) repeats at the hole positions of later blocks.
+    Drilling,
 }
 
 /// Spindle speed mode.

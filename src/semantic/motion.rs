@@ -150,12 +150,14 @@ impl Interpreter<'_, '_> {
         let span = block.span;
         let axes = self.axis_target(words);
         let moves_before = self.emitter.moves.len();
-        let angle_given = self.dialect == Dialect::Fanuc && words.iter().any(|w| word_address(w) == Some(Address::comma(b'A')));
+        let angle_given =
+            self.dialect == Dialect::Fanuc && words.iter().any(|w| word_address(w) == Some(Address::comma(b'A')));
         match self.modal.motion {
             MotionMode::TurningCycle | MotionMode::ThreadCycle | MotionMode::FacingCycle => {
                 // A single cycle repeats with the new end point.
                 return super::cycles::single_cycle_again(self, index, words);
             }
+            MotionMode::Drilling => return super::cycles::drilling::again(self, index, words),
             MotionMode::Rapid => {
                 if let Some(to) = axes.target {
                     self.rapid_to(to, span);
@@ -210,6 +212,7 @@ impl Interpreter<'_, '_> {
                 moves: last..last + 1,
                 before: self.modal_before_block,
                 after: super::ModalAfter::of(&self.modal),
+                kept: None,
             });
         }
         Flow::Next
@@ -341,7 +344,10 @@ impl Interpreter<'_, '_> {
         self.emitter.at = corner.from;
         if turn.abs() < 1e-9 || back > len1 + 1e-9 || back > len2 + 1e-9 {
             self.emitter.line(&corner.modal, corner.corner, true);
-            self.error(DiagnosticKind::CornerDoesNotFit { size_mm: corner.size, word: corner.word }, corner.context.source);
+            self.error(
+                DiagnosticKind::CornerDoesNotFit { size_mm: corner.size, word: corner.word },
+                corner.context.source,
+            );
         } else {
             let p1 = Xz::new(corner.corner.x - d1.x * back, corner.corner.z - d1.z * back);
             let p2 = Xz::new(corner.corner.x + d2.x * back, corner.corner.z + d2.z * back);
@@ -367,6 +373,7 @@ impl Interpreter<'_, '_> {
                 moves: first_move..self.emitter.moves.len(),
                 before,
                 after: super::ModalAfter::of(&corner.modal),
+                kept: None,
             });
         }
     }

@@ -58,8 +58,7 @@ impl Interpreter<'_, '_> {
                 continue;
             }
             let mm = m.f_word * scale;
-            let implausible =
-                if m.per_revolution { mm > FEED_PER_REV_MAX_MM } else { mm < FEED_PER_MIN_MIN_MM };
+            let implausible = if m.per_revolution { mm > FEED_PER_REV_MAX_MM } else { mm < FEED_PER_MIN_MIN_MM };
             if implausible && feed.is_none() {
                 feed = Some((m.f_word, m.per_revolution));
             }

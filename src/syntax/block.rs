@@ -18,7 +18,7 @@ use crate::source::Span;
 
 use super::ast::{CommentKind, Expr, Word, WordKind};
 use super::expr::ExprParser;
-use super::lexer::{Input, is_line_break, is_word_boundary, lex_name, lex_number, lex_paren_comment};
+use super::lexer::{Input, is_line_break, lex_name, lex_number, lex_paren_comment};
 
 pub(super) struct BlockParser<'a, 's> {
     pub source: &'s [u8],
@@ -122,6 +122,16 @@ impl<'a, 's> BlockParser<'a, 's> {
                     position = Position::Prefix;
                     next
                 }
+                b'n' if position != Position::Body && self.tables.lower_case => {
+                    let next = self.sequence(rest)?;
+                    position = Position::Prefix;
+                    next
+                }
+                b'o' if position != Position::Body && self.tables.lower_case => {
+                    let next = self.program_name(rest, &rest[1..])?;
+                    position = Position::Prefix;
+                    next
+                }
                 // `OG=2` at the start of an OSP block is a word, not a program name.
                 b'O' if position != Position::Body && !(self.is_osp() && starts_assignment(rest)) => {
                     let next = self.program_name(rest, &rest[1..])?;
@@ -134,6 +144,12 @@ impl<'a, 's> BlockParser<'a, 's> {
                     next
                 }
                 b'A'..=b'Z' => {
+                    position = Position::Body;
+                    let (next, verbatim) = self.letter(rest)?;
+                    verbatim_next = verbatim;
+                    next
+                }
+                b'a'..=b'z' if self.tables.lower_case => {
                     position = Position::Body;
                     let (next, verbatim) = self.letter(rest)?;
                     verbatim_next = verbatim;
@@ -197,7 +213,8 @@ impl<'a, 's> BlockParser<'a, 's> {
         let offset = self.offset(at) as usize;
         let before = offset.checked_sub(1).and_then(|i| self.source.get(i)).copied();
         let after = at.get(1).copied();
-        let in_number = before.is_some_and(|b| b.is_ascii_digit()) && after.is_some_and(|a| a.is_ascii_digit() || a == b'.')
+        let in_number = before.is_some_and(|b| b.is_ascii_digit())
+            && after.is_some_and(|a| a.is_ascii_digit() || a == b'.')
             || after.is_some_and(|a| a.is_ascii_digit()) && before == Some(b'.');
         let digit = match c {
             b'l' => Some('1'),
@@ -351,7 +368,7 @@ impl<'a, 's> BlockParser<'a, 's> {
         }
         let rest = &after_o[len..];
         if let Some(&c) = rest.first()
-            && !is_word_boundary(c)
+            && !self.boundary(c)
         {
             return Err(self.error(input, 1 + len + 1, DiagnosticKind::InvalidProgramName { max }));
         }

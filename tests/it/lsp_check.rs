@@ -78,7 +78,9 @@ fn check_json_and_the_server_agree() {
         };
         let mut all: Vec<&Value> = published.iter().collect();
         all.sort_by_key(|d| key(&d["data"]["offset"], d));
-        expected.sort_by_key(|d| key(&json!({ "start": d["range"]["start"]["offset"], "end": d["range"]["end"]["offset"] }), d));
+        expected.sort_by_key(|d| {
+            key(&json!({ "start": d["range"]["start"]["offset"], "end": d["range"]["end"]["offset"] }), d)
+        });
         assert_eq!(all.len(), expected.len(), "{name}: {published:#?}\n{expected:#?}");
         let line_starts: Vec<usize> =
             std::iter::once(0).chain(text.match_indices('\n').map(|(at, _)| at + 1)).collect();

@@ -35,7 +35,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
         let block = interp.program.block(index);
         let code = interp.program.word(command.code_word).kind;
         if let crate::syntax::WordKind::Code { code, .. } = code {
-            interp.warning(crate::diagnostic::DiagnosticKind::CycleSelectedAlone { code: code.display('G') }, block.span);
+            interp
+                .warning(crate::diagnostic::DiagnosticKind::CycleSelectedAlone { code: code.display('G') }, block.span);
         }
         interp.cycle_memory.single = None;
         interp.modal.motion = motion_mode(function);
@@ -96,6 +97,7 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         moves: first_move..interp.emitter.moves.len(),
         before: interp.modal_before_block,
         after: crate::semantic::ModalAfter::of(&interp.modal),
+        kept: None,
     });
     Flow::Next
 }

@@ -35,8 +35,8 @@
 //! (Haas profiles end `N20 G00 G40 Z0.1`), are not part of the shape the passes cut.
 
 use crate::diagnostic::DiagnosticKind;
-use crate::source::Span;
 use crate::dialect::{GFunction, Role};
+use crate::source::Span;
 use crate::syntax::Command;
 use crate::toolpath::Xz;
 
@@ -116,7 +116,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
             (Some(kind), _) => interp.error(kind, span),
             // A profile that turns back is marked where it turns, and points to its cycle.
             (None, Some(block)) => interp.diagnostics.push(
-                crate::diagnostic::Diagnostic::error(kind, block).with_related(span, "the cycle that roughs this profile"),
+                crate::diagnostic::Diagnostic::error(kind, block)
+                    .with_related(span, "the cycle that roughs this profile"),
             ),
             (None, None) => interp.error(kind, span),
         }

@@ -19,6 +19,7 @@ fn modal(feed_per_rev: bool, feed: f64, spindle: SpindleMode, speed: f64) -> Mod
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: None,
+        control: Default::default(),
     };
     let parsed = crate::syntax::parse(b"%\nG21\n%\n", &options);
     Modal {
