@@ -6,9 +6,10 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use turnpass::compensation::program::SAMPLE_STEP_MM;
 use turnpass::compensation::provenance::{Provenance, marks};
-use turnpass::compensation::verify::{Deviation, Measured, Side, WordCheck, check_words, deviation_each};
+use turnpass::compensation::verify::{
+    self, CutWords, Deviation, Measured, Side, WordCheck, check_feeds, check_words, deviation_each,
+};
 use turnpass::error_model::ErrorModel;
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::LineIndex;
@@ -130,7 +131,11 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             text.push_str(&row("as programmed", &figures.before));
             text.push_str(&row("compensated", &figures.after));
             text.push_str(&format!("  RMS improvement: {:.1} %\n", figures.improvement_percent));
-            text.push_str(&format!("non-motion words: {} checked\n", words.checked));
+            text.push_str(&format!(
+                "words: {} M, T, S, comment and block-delete words kept in order; feed and spindle words of every \
+                 cut checked\n",
+                words.checked
+            ));
             for violation in &violations {
                 text.push_str(&format!("violation: {violation}\n"));
             }
@@ -216,10 +221,20 @@ pub fn checked(
         None => {}
     }
     let tools = ToolTable::from_machine(&original.machine);
-    let figures = deviation_each(&original.valid(), &compensated.valid(), &tools, model, SAMPLE_STEP_MM, each);
-    let words = check_words(&original.parsed.program, &compensated.parsed.program);
     let machine = &original.machine;
-    let limit = checks.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());
+    let (original_path, compensated_path) = (original.valid().toolpath(), compensated.valid().toolpath());
+    let sampling = verify::sampling(model, machine.increment * machine.scale(), &[original_path, compensated_path]);
+    let figures = deviation_each(original_path, compensated_path, &tools, model, &sampling, each);
+    let words = check_words(&original.parsed.program, &compensated.parsed.program);
+    if let Some(change) = check_feeds(original_path, compensated_path) {
+        let line = LineIndex::new(original_bytes).position(change.source.start).0;
+        violations.push(format!(
+            "{compensated_name} cuts with {} where {original_name} cuts with {} (its line {line} on)",
+            cut_words(change.compensated),
+            cut_words(change.original)
+        ));
+    }
+    let limit = checks.max_deviation.unwrap_or_else(|| verify::default_bound_mm(machine));
     if let Some(missing) = &words.missing {
         let line = LineIndex::new(original_bytes).position(missing.span.start).0;
         violations.push(format!(
@@ -234,6 +249,23 @@ pub fn checked(
         ));
     }
     Ok(Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings })
+}
+
+/// A cut's feed and spindle words as a user reads them.
+fn cut_words(words: Option<CutWords>) -> String {
+    match words {
+        None => "no cut".into(),
+        Some(CutWords { feed, per_revolution, speed, threading }) => {
+            let per = if threading {
+                "lead"
+            } else if per_revolution {
+                "per revolution"
+            } else {
+                "per minute"
+            };
+            format!("F{feed} ({per}), S{speed}")
+        }
+    }
 }
 
 /// The minute the run starts at, and what said so.
