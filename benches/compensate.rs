@@ -165,6 +165,7 @@ fn end_to_end(c: &mut Criterion) {
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: Some(MachineKind::Lathe),
+        control: Default::default(),
     };
     let lower_options = LowerOptions { nose_radius_compensation: true, ..LowerOptions::new(false) };
     let options = CompensateOptions {

@@ -250,7 +250,12 @@ fn terms_that_curve_along_a_move_are_followed_between_the_samples() {
 /// rounding its centre and ends to the increment can make them (2·√2 increments; a control
 /// alarms at some hundredths of a millimetre). The counts of arcs by radius and by centre.
 fn check_arcs(program: &[u8], strategy: &str) -> (usize, usize) {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(program, &options);
     assert_eq!(parsed.error_count(), 0, "{strategy}");
     let text = std::fs::read_to_string(repo().join(GENERATED_MODEL)).unwrap();

@@ -114,6 +114,7 @@ impl Compensated {
             dialect: DialectChoice::Auto,
             gcode_system: settings.gcode_system.unwrap_or(GCodeSystem::A),
             machine_kind: None,
+            control: Default::default(),
         };
         let source = std::fs::read(repo().join(program)).unwrap();
         (Compensated { source, options, machine: Machine::from_settings(&settings) }, model)

@@ -7,6 +7,7 @@
 
 mod arc_times;
 mod canonical;
+mod check_agrees;
 mod cli;
 mod closed_loop;
 mod compensate;

@@ -197,6 +197,7 @@ fn a_provenance_comment_is_not_a_word_to_keep() {
         dialect: crate::dialect::DialectChoice::Auto,
         gcode_system: crate::dialect::GCodeSystem::A,
         machine_kind: None,
+        control: Default::default(),
     };
     let mark = "(TURNPASS 0.1.0 COMPENSATED, MODEL LATHE, SHA256 0123456789AB, TOLERANCE 0.0005 MM, \
                 STRATEGY AUTO, START 30 MIN)";
