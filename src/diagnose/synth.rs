@@ -98,6 +98,8 @@ pub fn synth(
                 down_sigma: vec![0.0; n],
                 up_measured: vec![true; n],
                 down_measured: vec![true; n],
+                up_runs: vec![1; n],
+                down_runs: vec![1; n],
             };
             let table = SlideTable { linear: Some(profile.clone()), straightness: Some(profile), angular: None };
             Measured::Table { axis, table: Box::new(table) }
