@@ -243,6 +243,13 @@ pub enum DiagnosticKind {
     DuplicateWord {
         address: String,
     },
+    /// An axis given both as a position and as a distance (`X` and `U`, `Z` and `W`) in one
+    /// Fanuc block.
+    AxisGivenTwice {
+        position: String,
+        distance: String,
+        axis: char,
+    },
     /// `;` in an OSP program, where it is not a comment.
     SemicolonInOsp,
     /// A UTF-8 byte-order mark at the start of the file.
@@ -367,6 +374,23 @@ pub enum DiagnosticKind {
     /// program already; `model` is the model it names, when the comment reads.
     AlreadyCompensated {
         model: Option<String>,
+    },
+    /// `compensate`: the program it would write, read back and predicted on the model as
+    /// `verify` predicts it, deviates from the nominal part here by more than `verify`
+    /// allows.
+    CompensationFailsCheck {
+        deviation_mm: f64,
+        bound_mm: f64,
+        /// The tolerance the program was compensated to, mm.
+        tolerance_mm: f64,
+    },
+    /// `compensate`: the program it would write cuts with other feed or spindle words than
+    /// the original (a defect of turnpass, never of the program).
+    CompensationChangesFeed,
+    /// `compensate`: the program it would write does not read back cleanly (a defect of
+    /// turnpass, never of the program).
+    CompensationUnreadable {
+        problem: String,
     },
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,

@@ -40,6 +40,11 @@ pub struct Printed {
 }
 
 impl Printed {
+    /// A text printed as one piece.
+    pub fn whole(bytes: Vec<u8>) -> Printed {
+        Printed { parts: vec![bytes] }
+    }
+
     /// The text, piece by piece, in order.
     pub fn parts(&self) -> impl Iterator<Item = &[u8]> {
         self.parts.iter().map(Vec::as_slice)

@@ -269,6 +269,18 @@ impl DiagnosticKind {
                 label: "second time".into(),
                 hint: Some("remove one of them".into()),
             },
+            AxisGivenTwice { position, distance, axis } => Words {
+                code: "axis-given-twice",
+                message: format!("`{position}` and `{distance}` both give the {axis} end point in this block").into(),
+                label: "second end point".into(),
+                hint: Some(
+                    format!(
+                        "keep one: `{position}` for the position, `{distance}` for the distance moved; controls \
+                         differ on which wins (a `W` or `U` at the start of a block may be a misread `N`)"
+                    )
+                    .into(),
+                ),
+            },
             SemicolonInOsp => Words {
                 code: "semicolon-in-osp",
                 message: "`;` is not a comment on Okuma OSP".into(),
@@ -509,6 +521,45 @@ impl DiagnosticKind {
                      program is to be compensated as it is"
                         .into(),
                 ),
+            },
+            CompensationFailsCheck { deviation_mm, bound_mm, tolerance_mm } => Words {
+                code: "compensation-fails-check",
+                message: format!(
+                    "the compensated program, read back and predicted on the model as `turnpass verify` predicts \
+                     it, would cut this block {deviation_mm:.5} mm off the nominal part, more than the {bound_mm:.5} \
+                     mm verify allows; no compensated program is written"
+                )
+                .into(),
+                label: format!("off by {:.2} µm", deviation_mm * 1000.0).into(),
+                hint: Some(if tolerance_mm > bound_mm {
+                    format!(
+                        "--tolerance {tolerance_mm} mm lets the written path stray further than verify allows: give a \
+                         tolerance below {bound_mm:.5} mm, or a larger --max-deviation if the part allows it"
+                    )
+                    .into()
+                } else {
+                    "turnpass cannot compensate this block on this model within the bound: try another --strategy \
+                     or --tolerance, check the model, or run the program uncompensated; please report it with the \
+                     program and the model"
+                        .into()
+                }),
+            },
+            CompensationChangesFeed => Words {
+                code: "compensation-changes-feed",
+                message: "the compensated program would cut this block with other feed or spindle words; no \
+                          compensated program is written"
+                    .into(),
+                label: "this cut".into(),
+                hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
+            },
+            CompensationUnreadable { problem } => Words {
+                code: "compensation-unreadable",
+                message: format!(
+                    "the compensated program does not read back cleanly ({problem}); no compensated program is written"
+                )
+                .into(),
+                label: "from here".into(),
+                hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
             },
             CycleNeedsDepth => Words {
                 code: "cycle-needs-depth",

@@ -36,3 +36,4 @@ mod stock_removal;
 mod support;
 mod thesis;
 mod thesis_compensation;
+mod trust;
