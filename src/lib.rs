@@ -24,6 +24,8 @@ pub mod geometry;
 pub mod lsp;
 pub mod machine;
 mod memory;
+pub mod parallel;
+pub mod pipeline;
 pub mod plot;
 pub mod printer;
 pub mod semantic;

@@ -26,7 +26,7 @@ pub use written::{BlockWriter, WrittenText};
 use crate::dialect::{Address, AddressKind, Dialect};
 use crate::syntax::{CodeLetter, Number, Program};
 
-use number::{Style as NumberStyle, write_number};
+use number::{Style as NumberStyle, write_number, write_whole};
 use style::WholeNumbers;
 
 /// A printed program, as one or more pieces of text that follow each other.
@@ -81,25 +81,21 @@ pub fn print_parts(program: &Program<'_>, edits: &Edits) -> Printed {
     // Two halves on two threads, split after a block that ends its line, so the second
     // half starts as the first would go on (on a fresh line).
     let middle = (blocks / 2..blocks).find(|&k| k > 0 && !program.terminator(k - 1).is_empty());
-    let Some(middle) = middle.filter(|_| blocks >= PARALLEL_BLOCKS) else {
+    let Some(middle) = middle.filter(|_| blocks >= crate::parallel::tuning().print_blocks) else {
         print_blocks(program, edits, &style, 0..blocks, &mut out);
         return Printed { parts: vec![out] };
     };
     let capacity = out.capacity() / 2;
-    let second = std::thread::scope(|scope| {
-        let second = scope.spawn(|| {
+    let ((), second) = crate::parallel::join(
+        || print_blocks(program, edits, &style, 0..middle, &mut out),
+        || {
             let mut second = crate::memory::huge_page_vec(capacity);
             print_blocks(program, edits, &style, middle..blocks, &mut second);
             second
-        });
-        print_blocks(program, edits, &style, 0..middle, &mut out);
-        second.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
-    });
+        },
+    );
     Printed { parts: vec![out, second] }
 }
-
-/// Programs of at least this many blocks are printed in two halves at once.
-const PARALLEL_BLOCKS: usize = 100_000;
 
 /// Print the blocks `range` with `edits` applied, appending to `out`.
 fn print_blocks(
@@ -276,23 +272,6 @@ pub(crate) fn write_code(out: &mut impl Text, letter: CodeLetter, major: u16, mi
         out.push_byte(b'.');
         write_whole(out, u64::from(minor));
     }
-}
-
-/// Write `value`'s decimal digits (a printed program has millions of codes and addresses:
-/// `format!` and `to_string` cost an allocation each).
-fn write_whole(out: &mut impl Text, value: u64) {
-    let mut buffer = [0u8; 20];
-    let mut rest = value;
-    let mut start = buffer.len();
-    while let Some(at) = start.checked_sub(1) {
-        start = at;
-        buffer[at] = b'0' + (rest % 10) as u8;
-        rest /= 10;
-        if rest == 0 {
-            break;
-        }
-    }
-    out.push_ascii(buffer.get(start..).unwrap_or_default());
 }
 
 pub(crate) fn write_address_number(

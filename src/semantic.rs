@@ -48,9 +48,6 @@ pub struct LowerOptions {
     /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
     /// under the program's own `G41`/`G42`).
     pub nose_radius_compensation: bool,
-    /// Time arcs on a second thread while the program runs (`emitter/arc_times.rs`) when
-    /// it has at least this many blocks; the times are the same either way.
-    pub arc_times_beside_from_blocks: usize,
 }
 
 impl LowerOptions {
@@ -60,8 +57,6 @@ impl LowerOptions {
             max_executed_blocks: 10_000_000,
             max_moves: 20_000_000,
             nose_radius_compensation: true,
-            // A thread pays for itself on a few thousand arcs.
-            arc_times_beside_from_blocks: 20_000,
         }
     }
 }
@@ -258,6 +253,17 @@ impl Lowered {
 /// does not lower (see [`lowers`]) gives an empty toolpath and no diagnostics: the front end
 /// has already said what it is.
 pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Lowered {
+    lower_tuned(program, machine, options, crate::parallel::tuning())
+}
+
+/// [`lower`] with `tuning` in place of the process's: the same result for any tuning
+/// (`tests/it/arc_times.rs` holds the arcs timed on a second thread to the plain run).
+pub fn lower_tuned(
+    program: &Program<'_>,
+    machine: &Machine,
+    options: &LowerOptions,
+    tuning: &crate::parallel::Tuning,
+) -> Lowered {
     if !lowers(program) {
         return Lowered {
             toolpath: Toolpath { start: machine.home.unwrap_or(Xz::new(f64::NAN, f64::NAN)), moves: Vec::new() },
@@ -268,7 +274,7 @@ pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -
             coordinates: Vec::new(),
         };
     }
-    interpreter::Interpreter::new(program, machine, options).run()
+    interpreter::Interpreter::new(program, machine, options, tuning).run()
 }
 
 /// Whether the semantic pass lowers this program. It simulates lathes: an OSP

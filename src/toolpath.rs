@@ -239,24 +239,22 @@ pub fn validate(toolpath: &Toolpath, limits: Option<Limits>) -> Result<ValidTool
     // move checked before it: a long toolpath is checked in two halves on two cores, the
     // second half from the time the first leaves behind.
     let moves = &toolpath.moves;
-    let problems = if moves.len() >= PARALLEL_VALIDATION_MOVES {
-        let middle = moves.len() / 2;
-        let (mut first, second) = std::thread::scope(|scope| {
-            let second = scope.spawn(|| check_moves(toolpath, middle..moves.len(), limits));
-            let first = check_moves(toolpath, 0..middle, limits);
-            // Checking cannot fail on any input; a panic is a bug, and is passed on.
-            (first, second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-        });
-        first.extend(second);
-        first
-    } else {
-        check_moves(toolpath, 0..moves.len(), limits)
-    };
+    let problems = check_moves_split(toolpath, limits, moves.len() >= crate::parallel::tuning().validate_moves);
     if problems.is_empty() { Ok(ValidToolpath(toolpath)) } else { Err(problems) }
 }
 
-/// Toolpaths of at least this many moves are validated on two threads.
-const PARALLEL_VALIDATION_MOVES: usize = 200_000;
+/// The problems of every move, in order; with `halves`, the two halves are checked at once.
+fn check_moves_split(toolpath: &Toolpath, limits: Option<Limits>, halves: bool) -> Vec<Diagnostic> {
+    let count = toolpath.moves.len();
+    let middle = if halves { count / 2 } else { count };
+    let (mut first, second) = crate::parallel::join_if(
+        halves,
+        || check_moves(toolpath, 0..middle, limits),
+        || check_moves(toolpath, middle..count, limits),
+    );
+    first.extend(second);
+    first
+}
 
 /// The problems of the moves in `range`, in order.
 fn check_moves(toolpath: &Toolpath, range: std::ops::Range<usize>, limits: Option<Limits>) -> Vec<Diagnostic> {

@@ -1,7 +1,7 @@
 //! `compensate --out-dir DIR`: many programs, one per worker thread at a time, each
 //! written atomically into DIR under its own file name when it compensates cleanly.
 //!
-//! Workers take the next file from a shared counter (plain `std::thread::scope`: the work
+//! Workers take the next file from a shared counter (`turnpass::parallel::workers`: the work
 //! is one independent job per file, nothing a pool crate would add). Messages are printed
 //! per file, in the order the files were given, after all are done, so they never
 //! interleave; a progress bar shows on standard error while it is a terminal. The exit
@@ -70,29 +70,25 @@ fn in_parallel(
     targets: &[PathBuf],
     job: impl Fn(&Path, &Path) -> FileResult + Sync,
 ) -> Vec<FileResult> {
-    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(files.len()).max(1);
+    let workers = turnpass::parallel::cores().min(files.len());
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let slots: Vec<Mutex<Option<FileResult>>> = files.iter().map(|_| Mutex::new(None)).collect();
     let progress = streams::stderr_is_terminal();
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| {
-                loop {
-                    let k = next.fetch_add(1, Ordering::Relaxed);
-                    let (Some(file), Some(target)) = (files.get(k), targets.get(k)) else { break };
-                    let result = job(file, target);
-                    if let Some(slot) = slots.get(k)
-                        && let Ok(mut slot) = slot.lock()
-                    {
-                        *slot = Some(result);
-                    }
-                    let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-                    if progress {
-                        draw_progress(finished, files.len());
-                    }
-                }
-            });
+    turnpass::parallel::workers(workers, || {
+        loop {
+            let k = next.fetch_add(1, Ordering::Relaxed);
+            let (Some(file), Some(target)) = (files.get(k), targets.get(k)) else { break };
+            let result = job(file, target);
+            if let Some(slot) = slots.get(k)
+                && let Ok(mut slot) = slot.lock()
+            {
+                *slot = Some(result);
+            }
+            let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+            if progress {
+                draw_progress(finished, files.len());
+            }
         }
     });
     if progress {

@@ -20,12 +20,13 @@ use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::rewrite::ProgramTables;
 use turnpass::compensation::{CompensateOptions, Outcome, compensate_with_tables};
 use turnpass::error_model::ErrorModel;
+use turnpass::pipeline::Ready;
 use turnpass::printer;
 use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
+    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
     read_program, ready_beside, rendered, required_error_model, write_output, write_output_parts,
 };
 use super::numbers::{self, within};
@@ -156,7 +157,7 @@ impl FitArgs {
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
         let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
         let machine = (&program.machine, model);
-        compensate_with_tables(&program.parsed.program, &program.lowered, &program.valid(), machine, &options, None)
+        compensate_with_tables(&program.parsed.program, &program.lowered, machine, &options, None)
     }
 
     /// [`FitArgs::compensate`] without the paths, with the rewrite's tables of the program
@@ -170,14 +171,7 @@ impl FitArgs {
     ) -> Outcome {
         let options = CompensateOptions { paths: false, block_reports, ..self.options(&program.machine) };
         let machine = (&program.machine, model);
-        compensate_with_tables(
-            &program.parsed.program,
-            &program.lowered,
-            &program.valid(),
-            machine,
-            &options,
-            Some(tables),
-        )
+        compensate_with_tables(&program.parsed.program, &program.lowered, machine, &options, Some(tables))
     }
 }
 

@@ -3,18 +3,19 @@
 
 use crate::dialect::{DialectChoice, GCodeSystem};
 use crate::machine::{AxisPair, MachineSettings};
-use crate::semantic::{LowerOptions, Lowered, Machine, lower};
-use crate::syntax::{ParseOptions, parse};
+use crate::pipeline::{Settings, analyse};
+use crate::semantic::{LowerOptions, Lowered, Machine};
+use crate::syntax::ParseOptions;
+use crate::toolpath::Validated;
 
 /// `program` (G-code system A) lowered with the home at X200 (diameter) Z50; it must read
-/// and lower without errors.
-pub fn lower_program(program: &str) -> (Lowered, Machine) {
+/// and lower without errors, and its toolpath must validate.
+pub fn lower_program(program: &str) -> (Validated<Lowered>, Machine) {
     let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(program.as_bytes(), &options);
-    assert_eq!(parsed.error_count(), 0);
     let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), ..MachineSettings::default() };
-    let machine = Machine::from_settings(&settings);
-    let lowered = lower(&parsed.program, &machine, &LowerOptions::new(false));
-    assert!(lowered.diagnostics.iter().all(|d| !d.is_error()));
-    (lowered, machine)
+    let analysed = analyse(program.as_bytes(), &Settings::new(options, &settings, LowerOptions::new(false)));
+    match analysed.ready() {
+        Ok(ready) => (ready.lowered, ready.machine),
+        Err(analysed) => panic!("the test program does not lower cleanly: {:?}", analysed.diagnostics),
+    }
 }

@@ -68,7 +68,7 @@ fn a_long_toolpath_checked_in_halves_gives_the_problems_of_one_pass() {
     // Long enough to be checked on two threads; the middle move is non-finite, so the second
     // half must take its previous time from the move before it, and the move after the
     // middle runs back in time from that one.
-    let count = PARALLEL_VALIDATION_MOVES + 1;
+    let count = 1001;
     let middle = count / 2;
     let mut moves: Vec<Move> = (0..count)
         .map(|k| {
@@ -83,7 +83,7 @@ fn a_long_toolpath_checked_in_halves_gives_the_problems_of_one_pass() {
     moves[middle + 1].t_end = middle as f64 - 0.25;
     moves[count - 1].t_end = 0.0;
     let path = Toolpath { start: Xz::default(), moves };
-    let problems = validate(&path, None).unwrap_err();
+    let problems = check_moves_split(&path, None, true);
     assert_eq!(problems, check_moves(&path, 0..count, None));
     let kinds: Vec<_> = problems.iter().map(|d| d.kind.clone()).collect();
     assert_eq!(kinds, [DiagnosticKind::NonFiniteMove, DiagnosticKind::TimeGoesBack, DiagnosticKind::TimeGoesBack]);

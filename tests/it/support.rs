@@ -58,6 +58,15 @@ fn pragma(source: &[u8]) -> Vec<(String, String)> {
         .collect()
 }
 
+/// `source` through the library's pipeline (`pipeline::analyse`: parse, lower, validate),
+/// its parse checked for the span invariants: how every test that runs a program past
+/// parsing enters.
+pub fn analyse<'s>(source: &'s [u8], settings: &turnpass::pipeline::Settings) -> turnpass::pipeline::Analysed<'s> {
+    let analysed = turnpass::pipeline::analyse(source, settings);
+    check_spans(&analysed.parsed);
+    analysed
+}
+
 pub fn render(name: &str, source: &[u8], diagnostics: &[Diagnostic]) -> String {
     render_plain(&RenderSource::new(name, source), diagnostics)
 }
