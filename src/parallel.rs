@@ -1,12 +1,17 @@
 //! Threads: the one module that starts them, joins them and passes a panic on, and the one
 //! place that says from what size a piece of work is worth a second core ([`Tuning`]).
 //!
-//! Every use splits work whose parts are independent, or runs stages of a stream side by
-//! side, and gives the result a single thread would give: each use has a property test
-//! that holds it to the plain run (named beside its field of [`Tuning`]). A panic on any
-//! thread is a bug, and is passed on to the caller as it was raised. The uses that only
-//! pay on a large program start their threads from a size in [`Tuning`]; the README's
-//! "Performance" section gives the benches that measure each.
+//! The uses: a long program is parsed in two runs of lines (`syntax`), its arcs are timed
+//! beside the interpreter (`semantic`), the work that needs only the parsed program runs
+//! while it is lowered (`pipeline::analyse_beside`), the compensation streams its pieces
+//! through four stages at once (`compensation/program/stream.rs`), `compensate --out-dir`
+//! runs one program per core, and the language server reads its client and runs its
+//! semantic passes on threads of their own. Each gives the result one thread gives: the
+//! split parse and the arc timer are held to the plain run by tests (named beside their
+//! fields of [`Tuning`]); the work beside lowering reads only the parsed program, and each
+//! stage of the stream runs its pieces in path order. A panic on any thread is a bug, and is
+//! passed on to the caller as it was raised. The README's "Performance" section gives the
+//! commands that measure each use.
 
 use std::sync::OnceLock;
 
@@ -21,49 +26,21 @@ pub struct Tuning {
     /// `semantic::lower`: a program of at least this many blocks has its arcs timed on a
     /// second thread while it runs (`semantic/emitter/arc_times/tests.rs`, `tests/it/arc_times.rs`).
     pub arc_times_blocks: usize,
-    /// `toolpath::validate`: a toolpath of at least this many moves is checked in two halves
-    /// (`toolpath/tests.rs`).
-    pub validate_moves: usize,
-    /// `printer::print_parts`: a program of at least this many blocks, with edits, is printed
-    /// in two halves (`printer/tests.rs`).
-    pub print_blocks: usize,
-    /// `compensation::report::build`: at least this many edited blocks are reported in two
-    /// halves (`compensation/report.rs`).
-    pub report_blocks: usize,
     /// `pipeline::analyse_beside`: the work that needs only the parsed program runs on a
     /// second thread while it is lowered, for a program of at least this many bytes.
     pub beside_lowering_bytes: usize,
-    /// `compensation::program`: the rewrite's tables are made beside the path's measures,
-    /// for a toolpath of at least this many moves.
-    pub rewrite_tables_moves: usize,
 }
 
 impl Tuning {
-    /// The thresholds the benches support (README, "Performance").
-    pub const DEFAULT: Tuning = Tuning {
-        parse_bytes: 1 << 20,
-        arc_times_blocks: 20_000,
-        validate_moves: 200_000,
-        print_blocks: 100_000,
-        report_blocks: 50_000,
-        beside_lowering_bytes: 0,
-        rewrite_tables_moves: 0,
-    };
+    /// The thresholds the measurements support (README, "Performance").
+    pub const DEFAULT: Tuning = Tuning { parse_bytes: 1 << 20, arc_times_blocks: 20_000, beside_lowering_bytes: 0 };
 
     /// Every use on one thread.
-    pub const SERIAL: Tuning = Tuning {
-        parse_bytes: usize::MAX,
-        arc_times_blocks: usize::MAX,
-        validate_moves: usize::MAX,
-        print_blocks: usize::MAX,
-        report_blocks: usize::MAX,
-        beside_lowering_bytes: usize::MAX,
-        rewrite_tables_moves: usize::MAX,
-    };
+    pub const SERIAL: Tuning =
+        Tuning { parse_bytes: usize::MAX, arc_times_blocks: usize::MAX, beside_lowering_bytes: usize::MAX };
 
     /// The names of the uses, as [`Tuning::with_serial`] takes them.
-    pub const USES: [&'static str; 7] =
-        ["parse", "arc_times", "validate", "print", "report", "beside_lowering", "rewrite_tables"];
+    pub const USES: [&'static str; 3] = ["parse", "arc_times", "beside_lowering"];
 
     /// This tuning with the use `name` (one of [`Tuning::USES`], or `all`) on one thread;
     /// `None` for an unknown name.
@@ -74,11 +51,7 @@ impl Tuning {
             "all" => return Some(serial),
             "parse" => tuning.parse_bytes = serial.parse_bytes,
             "arc_times" => tuning.arc_times_blocks = serial.arc_times_blocks,
-            "validate" => tuning.validate_moves = serial.validate_moves,
-            "print" => tuning.print_blocks = serial.print_blocks,
-            "report" => tuning.report_blocks = serial.report_blocks,
             "beside_lowering" => tuning.beside_lowering_bytes = serial.beside_lowering_bytes,
-            "rewrite_tables" => tuning.rewrite_tables_moves = serial.rewrite_tables_moves,
             _ => return None,
         }
         Some(tuning)

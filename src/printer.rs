@@ -29,40 +29,8 @@ use crate::syntax::{CodeLetter, Number, Program};
 use number::{Style as NumberStyle, write_number, write_whole};
 use style::WholeNumbers;
 
-/// A printed program, as one or more pieces of text that follow each other.
-///
-/// A long program is printed in two halves at once; a caller that writes the text to a
-/// file writes them one after the other rather than copying the second behind the first
-/// (at 50 MB that copy was as much as a fifth of the printing).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Printed {
-    parts: Vec<Vec<u8>>,
-}
-
-impl Printed {
-    /// The text, piece by piece, in order.
-    pub fn parts(&self) -> impl Iterator<Item = &[u8]> {
-        self.parts.iter().map(Vec::as_slice)
-    }
-
-    /// The text as one buffer.
-    pub fn into_bytes(self) -> Vec<u8> {
-        let mut parts = self.parts.into_iter();
-        let mut out = parts.next().unwrap_or_default();
-        for part in parts {
-            out.extend_from_slice(&part);
-        }
-        out
-    }
-}
-
 /// Print `program` with `edits` applied.
 pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
-    print_parts(program, edits).into_bytes()
-}
-
-/// [`print`], the text left in the pieces it was printed in.
-pub fn print_parts(program: &Program<'_>, edits: &Edits) -> Printed {
     let source = program.source();
     // The new blocks written ahead replace blocks of about their length or shorter.
     let expected = source.len() + source.len() / 16 + edits.written.text.len();
@@ -72,29 +40,13 @@ pub fn print_parts(program: &Program<'_>, edits: &Edits) -> Printed {
             let next = program.blocks().get(index + 1).map_or(source.len(), |b| b.span.start as usize);
             out.extend_from_slice(&source[block.span.start as usize..next]);
         }
-        return Printed { parts: vec![out] };
+        return out;
     }
     // Replacements written ahead (`Edits::replace_written`) were written in the program's
     // style, which they carry.
     let style = edits.written.style.clone().unwrap_or_else(|| ProgramStyle::infer(program));
-    let blocks = program.blocks().len();
-    // Two halves on two threads, split after a block that ends its line, so the second
-    // half starts as the first would go on (on a fresh line).
-    let middle = (blocks / 2..blocks).find(|&k| k > 0 && !program.terminator(k - 1).is_empty());
-    let Some(middle) = middle.filter(|_| blocks >= crate::parallel::tuning().print_blocks) else {
-        print_blocks(program, edits, &style, 0..blocks, &mut out);
-        return Printed { parts: vec![out] };
-    };
-    let capacity = out.capacity() / 2;
-    let ((), second) = crate::parallel::join(
-        || print_blocks(program, edits, &style, 0..middle, &mut out),
-        || {
-            let mut second = crate::memory::huge_page_vec(capacity);
-            print_blocks(program, edits, &style, middle..blocks, &mut second);
-            second
-        },
-    );
-    Printed { parts: vec![out, second] }
+    print_blocks(program, edits, &style, 0..program.blocks().len(), &mut out);
+    out
 }
 
 /// Print the blocks `range` with `edits` applied, appending to `out`.

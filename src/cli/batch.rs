@@ -13,7 +13,7 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::common::{CliError, check_output_dir, write_atomically_parts};
+use super::common::{CliError, check_output_dir, write_atomically};
 use super::compensate::{CompensateArgs, FileResult, compensate_file, refuse_overwriting_input, write_report};
 use super::streams;
 
@@ -44,7 +44,7 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
             Err(error) => FileResult::failed(error.exit_code(), error.message()),
         };
         if let Some(output) = result.output.take()
-            && let Err(error) = write_atomically_parts(target, output.parts())
+            && let Err(error) = write_atomically(target, &output)
         {
             result.code = 2;
             result.messages.extend_from_slice(format!("error: {error}\n").as_bytes());

@@ -564,17 +564,9 @@ pub fn not_lowered(command: &str, name: &str, bytes: &[u8], parsed: &syntax::Par
 
 /// Write to `output` atomically, or to standard output for none or `-`.
 pub fn write_output(output: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
-    write_output_parts(output, [bytes])
-}
-
-/// [`write_output`] of a text given as pieces that follow each other.
-pub fn write_output_parts<'a>(
-    output: Option<&Path>,
-    parts: impl IntoIterator<Item = &'a [u8]>,
-) -> Result<(), CliError> {
     match output {
-        Some(path) if path != Path::new("-") => write_atomically_parts(path, parts),
-        _ => streams::out_parts(parts),
+        Some(path) if path != Path::new("-") => write_atomically(path, bytes),
+        _ => streams::out(bytes),
     }
 }
 
@@ -610,11 +602,6 @@ pub fn check_output_dir(dir: &Path) -> Result<(), CliError> {
 /// DNC service running as another user must be able to read it); a file written over keeps
 /// its mode; a symbolic link is written through to the file it names and stays a link.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    write_atomically_parts(path, [bytes])
-}
-
-/// [`write_atomically`] of a text given as pieces that follow each other.
-pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), CliError> {
     let error = |source| CliError::Write { path: path.display().to_string(), source };
     let target = link_target(path).map_err(error)?;
     let dir = folder_of(&target);
@@ -623,9 +610,7 @@ pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &
         return Err(error(std::io::Error::new(std::io::ErrorKind::NotFound, message)));
     }
     let mut temp = temporary_beside(dir, std::fs::metadata(&target).ok()).map_err(error)?;
-    for part in parts {
-        temp.write_all(part).map_err(error)?;
-    }
+    temp.write_all(bytes).map_err(error)?;
     temp.flush().map_err(error)?;
     temp.persist(&target).map_err(|e| error(e.error))?;
     Ok(())

@@ -27,7 +27,7 @@ use turnpass::semantic::Machine;
 use super::batch;
 use super::common::{
     CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
-    read_program, ready_beside, rendered, required_error_model, write_output, write_output_parts,
+    read_program, ready_beside, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -182,7 +182,7 @@ pub struct FileResult {
     /// For standard error: diagnostics and a summary line.
     pub messages: Vec<u8>,
     /// The compensated program (only with code 0).
-    pub output: Option<printer::Printed>,
+    pub output: Option<Vec<u8>>,
     pub report: Option<serde_json::Value>,
 }
 
@@ -215,7 +215,7 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
     let result = compensate_file(path, &args)?;
     streams::err(&result.messages);
     if let Some(output) = &result.output {
-        write_output_parts(args.output.as_deref(), output.parts())?;
+        write_output(args.output.as_deref(), output)?;
     }
     if let Some(report) = &result.report {
         write_report(&args, report)?;
@@ -304,6 +304,6 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         start_min: model.start_min,
     };
     provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
-    let printed = printer::print_parts(&program.parsed.program, &outcome.edits);
+    let printed = printer::print(&program.parsed.program, &outcome.edits);
     Ok(FileResult { code: 0, messages, output: Some(printed), report })
 }

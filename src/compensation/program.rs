@@ -115,24 +115,13 @@ pub fn compensate_with_tables(
     let toolpath = lowered.valid().toolpath();
     let lowered: &Lowered = lowered;
     let tools = ToolTable::from_machine(machine);
-    // The per-move tables are independent of each other: the rewrite's (what can be written
-    // for each move, the runs of moves each edited block writes, and the rewrite itself,
-    // which reads the whole program) are made beside the rest.
-    let beside = toolpath.moves.len() >= crate::parallel::tuning().rewrite_tables_moves;
-    let ((path, sampling), (forms, runs, motion)) = crate::parallel::join_if(
-        beside,
-        || {
-            let path = LocalPath::new(toolpath);
-            let sampling = sampling(&options.fit, model, path.reach());
-            (path, sampling)
-        },
-        || {
-            let tables = tables.unwrap_or_else(|| rewrite::ProgramTables::new(program));
-            let motion = rewrite::MotionBlocks::with_tables(program, lowered, &tools, tables);
-            let (forms, runs) = motion.move_tables();
-            (forms, runs, motion)
-        },
-    );
+    let path = LocalPath::new(toolpath);
+    let sampling = sampling(&options.fit, model, path.reach());
+    // The rewrite's tables: what can be written for each move, the runs of moves each edited
+    // block writes, and the rewrite itself, which reads the whole program.
+    let tables = tables.unwrap_or_else(|| rewrite::ProgramTables::new(program));
+    let motion = rewrite::MotionBlocks::with_tables(program, lowered, &tools, tables);
+    let (forms, runs) = motion.move_tables();
     let context = stream::Context {
         toolpath,
         tools: &tools,

@@ -101,16 +101,7 @@ pub fn build(input: &ReportInput<'_>) -> Report {
     let blocks = if input.block_reports {
         // Indexed only here: a 50 MB program has two million lines.
         let lines = LineIndex::new(input.program.source());
-        // A long program's blocks are reported in two halves at once.
-        if edited.len() >= crate::parallel::tuning().report_blocks {
-            let (first, second) = edited.split_at(edited.len() / 2);
-            let (mut blocks, second) =
-                crate::parallel::join(|| block_reports(input, &lines, first), || block_reports(input, &lines, second));
-            blocks.extend(second);
-            blocks
-        } else {
-            block_reports(input, &lines, edited)
-        }
+        block_reports(input, &lines, edited)
     } else {
         Vec::new()
     };

@@ -12,7 +12,7 @@
 use std::ops::Range;
 
 use crate::error_model::Spacing;
-use crate::error_model::spacing::{self, ArcTerms, TABLE_STEP_MM};
+use crate::error_model::spacing::{ArcTerms, TABLE_STEP_MM};
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
@@ -78,7 +78,7 @@ impl Sampling {
         }
         let step = self.arc.radians(radius, feed, self.allowance).min(Self::MAX_ARC_RADIANS);
         // `as` saturates; a NaN (a degenerate arc) is no step.
-        if step > 0.0 { spacing::ceil(sweep / step) as usize } else { 0 }
+        if step > 0.0 { (sweep / step).ceil() as usize } else { 0 }
     }
 }
 
