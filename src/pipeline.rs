@@ -107,42 +107,33 @@ impl Ready<'_> {
 /// Parse `source`, lower it and validate its toolpath (see the module documentation).
 pub fn analyse<'src>(source: &'src [u8], settings: &Settings) -> Analysed<'src> {
     let parsed = syntax::parse(source, &settings.parse);
-    if !semantic::lowers(&parsed.program) {
-        return not_lowered(parsed, settings);
-    }
     let (lowering, diagnostics) = lower_and_validate(&parsed, settings);
     Analysed { parsed, machine: settings.machine.clone(), lowering, diagnostics }
 }
 
 /// [`analyse`], running `beside` on the parsed program on a second thread while it is
 /// lowered and validated (lowering runs on one core; work that needs only the parsed
-/// program can take the other). `beside` runs only when the program is lowered.
+/// program can take the other).
 pub fn analyse_beside<'src, T: Send>(
     source: &'src [u8],
     settings: &Settings,
     beside: impl FnOnce(&Program<'src>) -> T + Send,
-) -> (Analysed<'src>, Option<T>) {
+) -> (Analysed<'src>, T) {
     let parsed = syntax::parse(source, &settings.parse);
-    if !semantic::lowers(&parsed.program) {
-        return (not_lowered(parsed, settings), None);
-    }
-    let parallel = source.len() >= crate::parallel::tuning().beside_lowering_bytes;
+    let parallel = semantic::lowers(&parsed.program) && source.len() >= crate::parallel::tuning().beside_lowering_bytes;
     let ((lowering, diagnostics), made) =
         crate::parallel::join_if(parallel, || lower_and_validate(&parsed, settings), || beside(&parsed.program));
-    (Analysed { parsed, machine: settings.machine.clone(), lowering, diagnostics }, Some(made))
-}
-
-/// A program the semantic pass does not lower: its parse, and the parse's diagnostics.
-fn not_lowered<'src>(parsed: Parsed<'src>, settings: &Settings) -> Analysed<'src> {
-    let diagnostics = parsed.diagnostics.clone();
-    Analysed { parsed, machine: settings.machine.clone(), lowering: Lowering::NotLowered, diagnostics }
+    (Analysed { parsed, machine: settings.machine.clone(), lowering, diagnostics }, made)
 }
 
 /// Lower `parsed` and validate its toolpath; every diagnostic, the parse's included, in
-/// program order.
+/// program order. A program the semantic pass does not lower keeps the parse's.
 fn lower_and_validate(parsed: &Parsed<'_>, settings: &Settings) -> (Lowering, Vec<Diagnostic>) {
-    let lowered = semantic::lower(&parsed.program, &settings.machine, &settings.lower);
     let mut diagnostics = parsed.diagnostics.clone();
+    if !semantic::lowers(&parsed.program) {
+        return (Lowering::NotLowered, diagnostics);
+    }
+    let lowered = semantic::lower(&parsed.program, &settings.machine, &settings.lower);
     diagnostics.extend(lowered.diagnostics.iter().cloned());
     let lowering = match Validated::new(lowered, settings.machine.limits) {
         Ok(valid) => Lowering::Valid(valid),

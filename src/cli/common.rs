@@ -496,7 +496,7 @@ pub fn ready<'b>(
 }
 
 /// [`ready`], running `beside` on the parsed program while it is lowered
-/// (`pipeline::analyse_beside`); `beside` does not run when the program is not lowered.
+/// (`pipeline::analyse_beside`).
 pub fn ready_beside<'b, T: Send>(
     name: &str,
     bytes: &'b [u8],
@@ -506,14 +506,7 @@ pub fn ready_beside<'b, T: Send>(
     beside: impl FnOnce(&syntax::Program<'b>) -> T + Send,
 ) -> Result<(Ready<'b>, T), Vec<u8>> {
     let (analysed, made) = pipeline::analyse_beside(bytes, &pipeline_settings(resolved, run, true), beside);
-    let ready = ready_or_why(name, bytes, command, analysed, warnings)?;
-    // A ready program was lowered, so `beside` ran.
-    match made {
-        Some(made) => Ok((ready, made)),
-        None => {
-            Err(format!("{command}: {name}: internal error: the work beside the lowering did not run\n").into_bytes())
-        }
-    }
+    Ok((ready_or_why(name, bytes, command, analysed, warnings)?, made))
 }
 
 /// The ready program of `analysed`, or the rendered reason it is not.
