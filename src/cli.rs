@@ -21,6 +21,7 @@ mod lsp;
 mod model;
 mod numbers;
 mod plot;
+mod report;
 mod simulate;
 mod streams;
 mod thermal;
@@ -43,6 +44,7 @@ Examples:
   turnpass compensate *.nc --out-dir compensated/ --report json
   turnpass verify part.nc part-comp.nc --model machine.toml
   turnpass plot part.nc --model machine.toml -o part.svg
+  turnpass report part.nc part-comp.nc --model machine.toml -o report.html
   turnpass model report machine.toml
   turnpass diagnose part.nc --model machine.toml --measured cmm.csv --write-model machine-new.toml --plot gap.svg
   turnpass synth ballbar.nc --model truth.toml --kind ballbar --noise 0.0002 --seed 7 -o trace.csv
@@ -56,6 +58,7 @@ least_increment; [model], [[axis_table]] and [[effect]] tables: the error model)
 Exit codes: 0 ok, 1 the program has errors (or compensate refused it, or verify found a
 violation), 2 usage or I/O error. With exit 1 no program, table or plot is written, to a
 file or to standard output: only the diagnostics (check's output) or the findings (verify's).
+report writes its page whatever verify finds (exit 0, the verdict on the page).
 A closed standard output (`| head`) ends the output quietly; the exit code is the run's.";
 
 #[derive(Parser)]
@@ -85,6 +88,8 @@ enum Command {
     Verify(verify::VerifyArgs),
     /// Draw the nominal, actual and compensated paths (SVG), or a ball-bar polar plot.
     Plot(plot::PlotArgs),
+    /// One HTML page for a job: verify's figures and verdict, the plots, the edited blocks.
+    Report(report::ReportArgs),
     /// Find where a measurement and the model disagree, name the missing effect, add it.
     Diagnose(diagnose::DiagnoseArgs),
     /// Make a measurement (ball bar trace or CMM profile) from a truth model, with noise.
@@ -118,6 +123,7 @@ pub fn main() -> ExitCode {
         Command::Compensate(args) => compensate::compensate(args),
         Command::Verify(args) => verify::verify(args),
         Command::Plot(args) => plot::plot(args),
+        Command::Report(args) => report::report(args),
         Command::Diagnose(args) => diagnose::run(args),
         Command::Synth(args) => diagnose::run_synth(args),
         Command::FitThermal(args) => thermal::run(args),

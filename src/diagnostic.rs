@@ -1,8 +1,8 @@
 //! The crate's one diagnostic type: a kind, a span and a severity.
 //!
 //! Every pass reports problems as [`Diagnostic`] values; none of them formats text for a
-//! terminal. Messages, labels and hints are derived from the kind, so a test can match on the
-//! kind and a renderer can show the words. Rendering (codespan-reporting, JSON, plain text
+//! terminal. The code, message, label and hint are derived from the kind, in one arm per
+//! kind (`text.rs`), so a test can match on the kind and a renderer can show the words. Rendering (codespan-reporting, JSON, plain text
 //! for snapshots) lives in [`render`], the only module that imports codespan-reporting.
 
 pub mod model_file;
@@ -14,6 +14,7 @@ use std::fmt;
 use crate::source::Span;
 
 pub use model_file::ModelProblem;
+pub use text::Words;
 
 /// How many diagnostics of a program are shown where a long list costs more than it helps:
 /// a language-server publish (unless the editor says otherwise) and the commands other than
@@ -68,6 +69,11 @@ impl Diagnostic {
 
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
+    }
+
+    /// Its code, message, label and hint (`DiagnosticKind::words`).
+    pub fn words(&self) -> Words {
+        self.kind.words()
     }
 
     pub fn code(&self) -> &'static str {

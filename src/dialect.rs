@@ -14,8 +14,8 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 pub use tables::{
-    Address, AddressKind, Code, Form, GFunction, GInfo, GKind, KeywordInfo, KeywordKind, ModalGroup, Role, Schema,
-    SchemaId, Tables,
+    Address, AddressKind, Code, FeedAndSpeed, Form, GFunction, GInfo, GKind, KeywordInfo, KeywordKind, ModalGroup,
+    Role, Schema, SchemaId, Tables,
 };
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]

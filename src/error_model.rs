@@ -17,6 +17,7 @@
 //! second-order product the thesis' matrix has.
 
 pub mod effects;
+pub mod fitting;
 pub mod htm;
 pub mod interferometer;
 pub mod model_file;
@@ -126,7 +127,7 @@ impl ErrorModel {
     /// Whether a term of the model depends on the length the tool has cut (wear): the
     /// trackers follow it only then.
     pub fn wears(&self) -> bool {
-        self.effects.iter().any(|e| matches!(e, Effect::ToolWear(_)))
+        self.effects.iter().any(Effect::wears)
     }
 
     /// Whether the model has any term (an empty model moves nothing).

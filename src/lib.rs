@@ -37,6 +37,7 @@ pub mod parallel;
 pub mod pipeline;
 pub mod plot;
 pub mod printer;
+pub mod report;
 pub mod semantic;
 pub mod simulation;
 pub mod source;

@@ -21,9 +21,10 @@ pub struct PlotArgs {
     /// The SVG file to write (its name ends in `.svg`).
     #[arg(short, long, value_name = "OUT.svg", value_parser = svg_path)]
     pub output: PathBuf,
-    /// Magnify the errors about the nominal path this many times (a number above 0).
-    #[arg(long, default_value_t = 10.0, value_parser = magnification)]
-    pub magnify: f64,
+    /// Magnify the deviations along the surface normal this many times (a number above 0;
+    /// default: the round factor that draws the largest at a thirtieth of the part).
+    #[arg(long, value_parser = magnification)]
+    pub magnify: Option<f64>,
     /// A ball-bar polar plot: radial deviation against angle, each direction.
     #[arg(long)]
     pub polar: bool,
@@ -59,15 +60,19 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     // The plot shows what compensation would do even where `compensate` would refuse.
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     streams::err(messages);
+    let toolpath = program.valid();
+    let [before, after] = turnpass::plot::points_of(&toolpath, &outcome.paths);
     let svg = if args.polar {
-        turnpass::plot::polar_svg(&name, &program.valid(), &outcome.paths)
+        turnpass::plot::polar_svg(&name, &toolpath, &before, &after).map(|svg| (svg, None))
     } else {
-        turnpass::plot::path_svg(&name, &outcome.paths, args.magnify)
+        turnpass::plot::path_svg(&name, &toolpath, &before, &after, args.magnify)
+            .map(|drawn| (drawn.svg, Some(drawn.magnify)))
     };
     match svg {
-        Ok(svg) => {
+        Ok((svg, magnify)) => {
             write_atomically(&args.output, svg.as_bytes())?;
-            streams::err_line(format_args!("plot: {name}: wrote {}", args.output.display()));
+            let magnified = magnify.map_or_else(String::new, |k| format!(" (deviations magnified ×{k})"));
+            streams::err_line(format_args!("plot: {name}: wrote {}{magnified}", args.output.display()));
             Ok(ExitCode::SUCCESS)
         }
         Err(error) => {
@@ -77,7 +82,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     }
 }
 
-fn magnification(s: &str) -> Result<f64, String> {
+pub(super) fn magnification(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err(format!("`{s}` is not a magnification: give a number above 0, such as 10")),

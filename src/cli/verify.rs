@@ -8,14 +8,16 @@ use clap::Args;
 
 use turnpass::compensation::program::SAMPLE_STEP_MM;
 use turnpass::compensation::provenance::{Provenance, marks};
-use turnpass::compensation::verify::{check_words, deviation};
+use turnpass::compensation::verify::{Deviation, Measured, Side, WordCheck, check_words, deviation_each};
+use turnpass::error_model::ErrorModel;
+use turnpass::pipeline::Ready;
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::LineIndex;
 use turnpass::syntax::Program;
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, display_name, model_sha256, model_source, read_program, read_program_bytes,
-    ready, required_error_model, write_output,
+    CliError, Format, ReadArgs, Resolved, RunArgs, display_name, model_sha256, model_source, read_program,
+    read_program_bytes, ready, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -26,6 +28,22 @@ pub struct VerifyArgs {
     pub original: PathBuf,
     /// The compensated program.
     pub compensated: PathBuf,
+    #[command(flatten)]
+    pub checks: CheckArgs,
+    #[arg(long, value_enum, default_value = "human")]
+    pub format: Format,
+    #[command(flatten)]
+    pub read: ReadArgs,
+    #[command(flatten)]
+    pub run: RunArgs,
+    /// Also say where the machine settings and the model come from.
+    #[arg(long, short)]
+    pub verbose: bool,
+}
+
+/// What `verify` checks against, shared with `report`.
+#[derive(Args)]
+pub struct CheckArgs {
     /// Fail when the predicted deviation from the nominal part exceeds MM (default: twice
     /// the least increment).
     #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::MAX_DEVIATION_MM))]
@@ -38,15 +56,6 @@ pub struct VerifyArgs {
     /// provenance comment names (its SHA-256 differs); without this that is a violation.
     #[arg(long)]
     pub allow_other_model: bool,
-    #[arg(long, value_enum, default_value = "human")]
-    pub format: Format,
-    #[command(flatten)]
-    pub read: ReadArgs,
-    #[command(flatten)]
-    pub run: RunArgs,
-    /// Also say where the machine settings and the model come from.
-    #[arg(long, short)]
-    pub verbose: bool,
 }
 
 pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
@@ -54,7 +63,6 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     let (original_bytes, resolved) = read_program(&args.original, &args.read)?;
     let compensated_bytes = read_program_bytes(&args.compensated)?;
     let mut model = required_error_model(&resolved, "verify")?;
-    let model_sha256 = model_sha256(&resolved)?;
     let (original_name, compensated_name) = (display_name(&args.original), display_name(&args.compensated));
     let mut messages = Vec::new();
     if args.verbose {
@@ -72,70 +80,19 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             return Ok(ExitCode::from(1));
         }
     };
-    let provenance = compensated_with(&original.parsed.program, &compensated.parsed.program);
-    let start = match (args.start_min, &provenance) {
-        (Some(minutes), _) => Start { minutes, from: "--start-min" },
-        (None, Some(Ok(made))) => Start { minutes: made.start_min, from: "the provenance comment" },
-        (None, _) => Start { minutes: model.start_min, from: "the model's start_min" },
-    };
-    model.start_min = start.minutes;
-    let mut violations = Vec::new();
-    let mut warn = |text: String| messages.extend_from_slice(format!("verify: warning: {text}\n").as_bytes());
-    if !marks(&original.parsed.program).is_empty() && provenance.is_none() {
-        warn(format!(
-            "{original_name} carries a provenance comment: it is a compensated program, not the nominal one \
-             (give the nominal program first, the compensated one second)"
-        ));
-    }
-    match &provenance {
-        Some(Ok(made)) => {
-            if let Some(minutes) = args.start_min.filter(|&m| m != made.start_min) {
-                warn(format!(
-                    "{compensated_name} was compensated for a start at {} min; verifying at {minutes} min (--start-min)",
-                    made.start_min
-                ));
-            }
-            if !made.same_model(&model_sha256) {
-                let model_file =
-                    resolved.model.as_ref().map_or_else(String::new, |(path, _)| path.display().to_string());
-                let text = format!(
-                    "{compensated_name} was compensated for the model `{}` (sha256 {}), but the model given, \
-                     {model_file}, is another (sha256 {model_sha256})",
-                    made.model,
-                    made.model_sha256.to_ascii_lowercase(),
-                );
-                if args.allow_other_model {
-                    warn(format!("{text}; verifying on the model given (--allow-other-model)"));
-                } else {
-                    violations.push(format!("{text}: give the model it was compensated for, or --allow-other-model"));
-                }
-            }
-        }
-        Some(Err(why)) => warn(format!(
-            "the provenance comment of {compensated_name} does not read ({why}): its start time and model are not \
-             checked"
-        )),
-        None => {}
+    let checked = checked(
+        (&original, &compensated),
+        (&original_name, &compensated_name, &original_bytes),
+        &resolved,
+        &mut model,
+        &args.checks,
+        |_, _| {},
+    )?;
+    for warning in &checked.warnings {
+        messages.extend_from_slice(format!("verify: warning: {warning}\n").as_bytes());
     }
     streams::err(messages);
-    let tools = ToolTable::from_machine(&original.machine);
-    let figures = deviation(&original.valid(), &compensated.valid(), &tools, &model, SAMPLE_STEP_MM);
-    let words = check_words(&original.parsed.program, &compensated.parsed.program);
-    let machine = &original.machine;
-    let limit = args.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());
-    if let Some(missing) = &words.missing {
-        let line = LineIndex::new(&original_bytes).position(missing.span.start).0;
-        violations.push(format!(
-            "{compensated_name} lost `{}` ({original_name} line {line}), or has it out of order",
-            missing.text
-        ));
-    }
-    if figures.after.max_mm > limit {
-        violations.push(format!(
-            "the predicted deviation of {compensated_name} from the nominal part reaches {:.5} mm, more than {limit:.5} mm",
-            figures.after.max_mm
-        ));
-    }
+    let Checked { provenance, start, model_sha256, figures, words, limit, violations, .. } = checked;
     let text = match args.format {
         Format::Json => {
             let value = serde_json::json!({
@@ -188,10 +145,102 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     Ok(if violations.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(1) })
 }
 
+/// What `verify` found: the figures, the words, the provenance and the violations.
+pub struct Checked {
+    pub provenance: Option<Result<Provenance, String>>,
+    pub start: Start,
+    /// The SHA-256 of the model given, in full.
+    pub model_sha256: String,
+    pub figures: Deviation,
+    pub words: WordCheck,
+    /// The largest deviation allowed, mm.
+    pub limit: f64,
+    pub violations: Vec<String>,
+    pub warnings: Vec<String>,
+}
+
+/// `verify`'s checks of `compensated` against `original` on `model` (its start minute set
+/// as they decide), every measured point also given to `each`.
+pub fn checked(
+    (original, compensated): (&Ready<'_>, &Ready<'_>),
+    (original_name, compensated_name, original_bytes): (&str, &str, &[u8]),
+    resolved: &Resolved,
+    model: &mut ErrorModel,
+    checks: &CheckArgs,
+    each: impl FnMut(Side, Measured),
+) -> Result<Checked, CliError> {
+    let model_sha256 = model_sha256(resolved)?;
+    let provenance = compensated_with(&original.parsed.program, &compensated.parsed.program);
+    let start = match (checks.start_min, &provenance) {
+        (Some(minutes), _) => Start { minutes, from: "--start-min" },
+        (None, Some(Ok(made))) => Start { minutes: made.start_min, from: "the provenance comment" },
+        (None, _) => Start { minutes: model.start_min, from: "the model's start_min" },
+    };
+    model.start_min = start.minutes;
+    let mut violations = Vec::new();
+    let mut warnings = Vec::new();
+    let mut warn = |text: String| warnings.push(text);
+    if !marks(&original.parsed.program).is_empty() && provenance.is_none() {
+        warn(format!(
+            "{original_name} carries a provenance comment: it is a compensated program, not the nominal one \
+             (give the nominal program first, the compensated one second)"
+        ));
+    }
+    match &provenance {
+        Some(Ok(made)) => {
+            if let Some(minutes) = checks.start_min.filter(|&m| m != made.start_min) {
+                warn(format!(
+                    "{compensated_name} was compensated for a start at {} min; verifying at {minutes} min (--start-min)",
+                    made.start_min
+                ));
+            }
+            if !made.same_model(&model_sha256) {
+                let model_file =
+                    resolved.model.as_ref().map_or_else(String::new, |(path, _)| path.display().to_string());
+                let text = format!(
+                    "{compensated_name} was compensated for the model `{}` (sha256 {}), but the model given, \
+                     {model_file}, is another (sha256 {model_sha256})",
+                    made.model,
+                    made.model_sha256.to_ascii_lowercase(),
+                );
+                if checks.allow_other_model {
+                    warn(format!("{text}; verifying on the model given (--allow-other-model)"));
+                } else {
+                    violations.push(format!("{text}: give the model it was compensated for, or --allow-other-model"));
+                }
+            }
+        }
+        Some(Err(why)) => warn(format!(
+            "the provenance comment of {compensated_name} does not read ({why}): its start time and model are not \
+             checked"
+        )),
+        None => {}
+    }
+    let tools = ToolTable::from_machine(&original.machine);
+    let figures = deviation_each(&original.valid(), &compensated.valid(), &tools, model, SAMPLE_STEP_MM, each);
+    let words = check_words(&original.parsed.program, &compensated.parsed.program);
+    let machine = &original.machine;
+    let limit = checks.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());
+    if let Some(missing) = &words.missing {
+        let line = LineIndex::new(original_bytes).position(missing.span.start).0;
+        violations.push(format!(
+            "{compensated_name} lost `{}` ({original_name} line {line}), or has it out of order",
+            missing.text
+        ));
+    }
+    if figures.after.max_mm > limit {
+        violations.push(format!(
+            "the predicted deviation of {compensated_name} from the nominal part reaches {:.5} mm, more than {limit:.5} mm",
+            figures.after.max_mm
+        ));
+    }
+    Ok(Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings })
+}
+
 /// The minute the run starts at, and what said so.
-struct Start {
-    minutes: f64,
-    from: &'static str,
+pub struct Start {
+    pub minutes: f64,
+    pub from: &'static str,
 }
 
 /// What `compensated` says it was compensated with: its first provenance comment that is

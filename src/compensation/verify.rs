@@ -21,11 +21,11 @@ use crate::error_model::ErrorModel;
 use crate::semantic::nose_radius::ToolTable;
 use crate::source::Span;
 use crate::syntax::{CodeLetter, Program, WordKind};
-use crate::toolpath::Toolpath;
+use crate::toolpath::{Toolpath, Xz};
 
 use super::deviation::{Figures, LocalPath};
 use super::inverse::predict;
-use super::sampling::sample_toolpath;
+use super::sampling::{PathSample, sample_toolpath};
 
 mod follow;
 #[cfg(test)]
@@ -49,6 +49,43 @@ pub fn deviation(
     model: &ErrorModel,
     step_mm: f64,
 ) -> Deviation {
+    deviation_each(original, compensated, tools, model, step_mm, |_, _| {})
+}
+
+/// Which program a measured point is of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    Original,
+    Compensated,
+}
+
+/// A predicted cutting point as `deviation` measured it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measured {
+    /// The sample of its own program's toolpath it was predicted for.
+    pub sample: PathSample,
+    /// The index of that sample among its program's samples (cutting or not).
+    pub sample_index: usize,
+    /// Where the model puts the tool.
+    pub predicted: Xz,
+    /// Its distance from the original's nominal path (what the figures are made of), the
+    /// closest point of that path and the original's move it lies on.
+    pub distance_mm: f64,
+    pub closest: Xz,
+    pub original_move: usize,
+}
+
+/// Both programs' deviations, every point measured also given to `each` (both programs'
+/// points in their order, the original's first): `deviation` and `report` measure with
+/// this one function, so the page's figures are `verify`'s.
+pub fn deviation_each(
+    original: &Toolpath,
+    compensated: &Toolpath,
+    tools: &ToolTable,
+    model: &ErrorModel,
+    step_mm: f64,
+    mut each: impl FnMut(Side, Measured),
+) -> Deviation {
     let predicted = |toolpath: &Toolpath| {
         let samples = sample_toolpath(toolpath, tools, step_mm);
         let nominal: Vec<_> = samples.iter().map(|s| s.nominal).collect();
@@ -56,18 +93,31 @@ pub fn deviation(
         (samples, predicted)
     };
     let path = LocalPath::new(original);
-    let before = {
-        let (samples, points) = predicted(original);
+    let mut figures = |side: Side, toolpath: &Toolpath| {
+        let (samples, points) = predicted(toolpath);
         let mut follower = Follower::new(&path);
-        let cutting = samples.iter().zip(&points).filter(|(s, _)| s.cutting);
-        Figures::of(cutting.filter_map(|(s, &p)| follower.distance_from(s.move_index, s.param, p)))
+        let cutting = samples.iter().zip(&points).enumerate().filter(|(_, (s, _))| s.cutting);
+        Figures::of(cutting.filter_map(|(sample_index, (s, &p))| {
+            let found = match side {
+                Side::Original => follower.measure_from(s.move_index, s.param, p),
+                Side::Compensated => follower.measure(s.nominal, p),
+            }?;
+            each(
+                side,
+                Measured {
+                    sample: *s,
+                    sample_index,
+                    predicted: p,
+                    distance_mm: found.distance,
+                    closest: found.point,
+                    original_move: found.move_index,
+                },
+            );
+            Some(found.distance)
+        }))
     };
-    let after = {
-        let (samples, points) = predicted(compensated);
-        let mut follower = Follower::new(&path);
-        let cutting = samples.iter().zip(&points).filter(|(s, _)| s.cutting);
-        Figures::of(cutting.filter_map(|(s, &p)| follower.distance(s.nominal, p)))
-    };
+    let before = figures(Side::Original, original);
+    let after = figures(Side::Compensated, compensated);
     let improvement_percent = (before.improvement_percent(&after) * 1e4).round() / 1e4;
     Deviation { before: before.rounded(), after: after.rounded(), improvement_percent }
 }

@@ -40,9 +40,6 @@ pub fn effect_table(effect: &Effect) -> String {
     let _ = writeln!(out, "kind = \"{}\"", effect.name());
     if let Ok(Value::Object(map)) = serde_json::to_value(effect) {
         for (key, value) in map {
-            if key == "kind" {
-                continue;
-            }
             let _ = writeln!(out, "{key} = {}", toml_number(&value));
         }
     }

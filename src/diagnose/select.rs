@@ -16,7 +16,7 @@
 
 use nalgebra::DMatrix;
 
-use super::candidates::{Extents, SHAPES, Search, Shape, out_of_bounds};
+use super::candidates::{Extents, SHAPES, Search, Shape};
 use super::forward::{Forward, Simulation};
 use super::lsq::{self, Base, ColumnFit};
 use crate::error_model::{Effect, ErrorModel};
@@ -123,7 +123,7 @@ impl Context<'_> {
         match shape.search {
             Search::PitchX => self.pitch.x,
             Search::PitchZ => self.pitch.z,
-            _ => None,
+            Search::None | Search::Tau | Search::Decay => None,
         }
     }
 
@@ -172,7 +172,7 @@ impl Context<'_> {
             // linear in it: take the column again at the fitted value.
             for _ in 0..3 {
                 let value = fit.coefficients[0];
-                if value.abs() < 1e-5 || out_of_bounds(&shape.build(&[value], searched), &self.extents).is_some() {
+                if value.abs() < 1e-5 || shape.build(&[value], searched).out_of_bounds(&self.extents).is_some() {
                     break;
                 }
                 let response = self.forward.response(self.model, self.simulation, &shape.build(&[value], searched));
@@ -197,7 +197,7 @@ impl Context<'_> {
         candidate.delta_bic = self.n() as f64 * (fit.rss.max(f64::MIN_POSITIVE) / self.rss0).ln()
             + candidate.parameters as f64 * (self.n() as f64).ln();
         candidate.signature = fit.signature;
-        candidate.status = match out_of_bounds(&candidate.effect(), &self.extents) {
+        candidate.status = match candidate.effect().out_of_bounds(&self.extents) {
             Some(why) => Status::OutOfBounds(why),
             None => Status::Fitted,
         };
@@ -249,7 +249,7 @@ impl Context<'_> {
 /// Fit every kind of the catalogue not in `exclude`, best (lowest ΔBIC) first.
 pub fn rank(context: &Context<'_>, exclude: &[&str]) -> Vec<Candidate> {
     let mut out: Vec<Candidate> =
-        SHAPES.iter().filter(|s| !exclude.contains(&s.kind)).map(|s| context.fit(s)).collect();
+        SHAPES.iter().filter(|s| !exclude.contains(&s.name())).map(|s| context.fit(s)).collect();
     out.sort_by(|a, b| {
         let key = |c: &Candidate| if c.status == Status::Fitted { c.delta_bic } else { f64::INFINITY };
         key(a).total_cmp(&key(b)).then(b.delta_rss.total_cmp(&a.delta_rss))

@@ -220,7 +220,7 @@ pub fn diagnose(
         let ctx = context(&forward, &current, &simulation, extents, nominal, base, &full_residual);
 
         let mut exclude = known.clone();
-        exclude.extend(found.iter().map(|f| f.shape.kind));
+        exclude.extend(found.iter().map(|f| f.shape.name()));
         let ranked = select::rank(&ctx, &exclude);
         let contenders = select::contenders(&ranked);
         let ranking: Vec<Ranked> = ranked.iter().map(|c| ranked_line(c, ctx.rss0)).collect();
@@ -236,7 +236,7 @@ pub fn diagnose(
             break;
         }
         if contenders.len() > 1 {
-            let effects: Vec<&str> = contenders.iter().map(|c| c.shape.kind).collect();
+            let effects: Vec<&str> = contenders.iter().map(|c| c.shape.name()).collect();
             confounded.push(Confounded {
                 effects: effects.iter().map(|s| s.to_string()).collect(),
                 separate_by: separate_by(&effects, forward.kind),
@@ -358,7 +358,7 @@ fn status_text(candidate: &Candidate) -> String {
 
 fn ranked_line(candidate: &Candidate, rss0: f64) -> Ranked {
     Ranked {
-        effect: candidate.shape.kind,
+        effect: candidate.shape.name(),
         status: status_text(candidate),
         explained_percent: if rss0 > 0.0 { 100.0 * candidate.delta_rss / rss0 } else { 0.0 },
         delta_bic: candidate.delta_bic,
@@ -379,11 +379,6 @@ fn describe(candidate: &Candidate, covariance: Option<&nalgebra::DMatrix<f64>>) 
     let shape = candidate.shape;
     let linear = &candidate.linear;
     let searched_sigma = if candidate.searched_fixed { None } else { var(linear.len()) };
-    let searched_name = match shape.kind {
-        "thermal_x" | "thermal_z" => "tau_min",
-        "reversal_spike_x" | "reversal_spike_z" => "decay_mm",
-        _ => "pitch",
-    };
     let mut out = Vec::new();
     if shape.linear.len() == 2 {
         let (a, b) = (linear[0], linear[1]);
@@ -408,7 +403,9 @@ fn describe(candidate: &Candidate, covariance: Option<&nalgebra::DMatrix<f64>>) 
     for (i, name) in shape.linear.iter().enumerate() {
         out.push(Param { name: name.to_string(), value: linear[i], sigma: var(i) });
     }
-    if candidate.searched.is_finite() {
+    if let Some(searched_name) = shape.search.parameter()
+        && candidate.searched.is_finite()
+    {
         out.push(Param { name: searched_name.into(), value: candidate.searched, sigma: searched_sigma });
     }
     out

@@ -2,6 +2,9 @@
 //! with a table, a key or a value, said with the table and key that hold it (the label
 //! points at the text, `toml_spans` finds it).
 
+use std::borrow::Cow;
+
+use super::Words;
 use crate::bounds::{OutOfRange, show};
 
 /// What is wrong with a model file or one of its axis tables. `table` names the table that
@@ -41,94 +44,119 @@ fn list<S: AsRef<str>>(known: &[S]) -> String {
 }
 
 /// "did you mean `x`? " before the list of what there is.
-fn guess(suggestion: Option<&str>, what: &str, known: String) -> Option<String> {
+fn guess(suggestion: Option<&str>, what: &str, known: String) -> Option<Cow<'static, str>> {
     let list = if known.is_empty() { format!("there are no {what}") } else { format!("the {what} are {known}") };
     Some(match suggestion {
-        Some(s) => format!("did you mean `{s}`? {list}"),
-        None => list,
+        Some(s) => format!("did you mean `{s}`? {list}").into(),
+        None => list.into(),
     })
 }
 
 impl ModelProblem {
-    pub fn code(&self) -> &'static str {
+    /// The code, message, label and hint of this problem, one arm per kind.
+    pub fn words(&self) -> Words {
         match self {
-            ModelProblem::Syntax { .. } => "model-syntax",
-            ModelProblem::UnknownKey { .. } => "model-unknown-key",
-            ModelProblem::UnknownName { .. } => "model-unknown-name",
-            ModelProblem::MissingKey { .. } => "model-missing-key",
-            ModelProblem::WrongValue { .. } => "model-wrong-value",
-            ModelProblem::OutOfRange { .. } => "model-out-of-range",
-            ModelProblem::BrokenRule { .. } => "model-broken-rule",
-            ModelProblem::TableUnreadable { .. } => "model-table-unreadable",
-            ModelProblem::TableSource { .. } => "model-table-source",
-            ModelProblem::DuplicateTable { .. } => "model-duplicate-table",
-            ModelProblem::UnknownColumn { .. } => "table-unknown-column",
-            ModelProblem::TableInvalid { .. } => "table-invalid",
+            ModelProblem::Syntax { message } => Words {
+                code: "model-syntax",
+                message: format!("the model file is not valid TOML: {message}").into(),
+                label: "not TOML".into(),
+                hint: None,
+            },
+            ModelProblem::UnknownKey { key, table, known, suggestion } => Words {
+                code: "model-unknown-key",
+                message: format!("{table} has no key `{key}`").into(),
+                label: "unknown key".into(),
+                hint: guess(suggestion.as_deref(), "keys", list(known)),
+            },
+            ModelProblem::UnknownName { key, table, found, known, suggestion } => Words {
+                code: "model-unknown-name",
+                message: format!("`{key}` in {table} is `{found}`, which is none of the names it takes").into(),
+                label: "unknown name".into(),
+                hint: guess(suggestion.as_deref(), "names", list(known)),
+            },
+            ModelProblem::MissingKey { key, table } => Words {
+                code: "model-missing-key",
+                message: format!("{table} has no `{key}`, which it needs").into(),
+                label: format!("no `{key}` in this table").into(),
+                hint: Some(format!("add `{key} = …` to the table").into()),
+            },
+            ModelProblem::WrongValue { key, table, detail } => Words {
+                code: "model-wrong-value",
+                message: format!("`{key}` in {table}: {detail}").into(),
+                label: "this value".into(),
+                hint: None,
+            },
+            ModelProblem::OutOfRange { key, table, error } if error.value.is_finite() => Words {
+                code: "model-out-of-range",
+                message: format!("`{key}` in {table} is {}: it must be {}", show(error.value), error.range).into(),
+                label: "out of range".into(),
+                hint: None,
+            },
+            ModelProblem::OutOfRange { key, table, error } => Words {
+                code: "model-out-of-range",
+                message: format!(
+                    "`{key}` in {table} is {}, not a finite number: it must be {}",
+                    error.value, error.range
+                )
+                .into(),
+                label: "not a finite number".into(),
+                hint: None,
+            },
+            ModelProblem::BrokenRule { key, table, rule } => Words {
+                code: "model-broken-rule",
+                message: format!("`{key}` in {table}: {rule}").into(),
+                label: "this value".into(),
+                hint: None,
+            },
+            ModelProblem::TableUnreadable { axis, reason } => Words {
+                code: "model-table-unreadable",
+                message: format!("cannot read the {axis} slide's table: {reason}").into(),
+                label: "the table named here".into(),
+                hint: Some("a table's `file` is read relative to the model file's folder".into()),
+            },
+            ModelProblem::TableSource { axis } => Words {
+                code: "model-table-source",
+                message: format!(
+                    "the {axis} slide's [[axis_table]] needs either `file` or `csv` (one of them, not both)"
+                )
+                .into(),
+                label: "this table".into(),
+                hint: None,
+            },
+            ModelProblem::DuplicateTable { axis } => Words {
+                code: "model-duplicate-table",
+                message: format!("a second table for the {axis} slide").into(),
+                label: "second table".into(),
+                hint: Some("give each slide one [[axis_table]]".into()),
+            },
+            ModelProblem::UnknownColumn { axis, column, known, suggestion } => Words {
+                code: "table-unknown-column",
+                message: format!("unknown column `{column}` in the {axis} slide's table").into(),
+                label: "unknown column".into(),
+                hint: guess(*suggestion, "columns", list(known)),
+            },
+            ModelProblem::TableInvalid { axis, message } => Words {
+                code: "table-invalid",
+                message: format!("the {axis} slide's table: {message}").into(),
+                label: "here".into(),
+                hint: None,
+            },
         }
+    }
+
+    pub fn code(&self) -> &'static str {
+        self.words().code
     }
 
     pub fn message(&self) -> String {
-        match self {
-            ModelProblem::Syntax { message } => format!("the model file is not valid TOML: {message}"),
-            ModelProblem::UnknownKey { key, table, .. } => format!("{table} has no key `{key}`"),
-            ModelProblem::UnknownName { key, table, found, .. } => {
-                format!("`{key}` in {table} is `{found}`, which is none of the names it takes")
-            }
-            ModelProblem::MissingKey { key, table } => format!("{table} has no `{key}`, which it needs"),
-            ModelProblem::WrongValue { key, table, detail } => format!("`{key}` in {table}: {detail}"),
-            ModelProblem::OutOfRange { key, table, error } if error.value.is_finite() => {
-                format!("`{key}` in {table} is {}: it must be {}", show(error.value), error.range)
-            }
-            ModelProblem::OutOfRange { key, table, error } => {
-                format!("`{key}` in {table} is {}, not a finite number: it must be {}", error.value, error.range)
-            }
-            ModelProblem::BrokenRule { key, table, rule } => format!("`{key}` in {table}: {rule}"),
-            ModelProblem::TableUnreadable { axis, reason } => format!("cannot read the {axis} slide's table: {reason}"),
-            ModelProblem::TableSource { axis } => {
-                format!("the {axis} slide's [[axis_table]] needs either `file` or `csv` (one of them, not both)")
-            }
-            ModelProblem::DuplicateTable { axis } => format!("a second table for the {axis} slide"),
-            ModelProblem::UnknownColumn { axis, column, .. } => {
-                format!("unknown column `{column}` in the {axis} slide's table")
-            }
-            ModelProblem::TableInvalid { axis, message } => format!("the {axis} slide's table: {message}"),
-        }
+        self.words().message.into_owned()
     }
 
     pub fn label(&self) -> String {
-        match self {
-            ModelProblem::Syntax { .. } => "not TOML".to_string(),
-            ModelProblem::UnknownKey { .. } => "unknown key".to_string(),
-            ModelProblem::UnknownName { .. } => "unknown name".to_string(),
-            ModelProblem::MissingKey { key, .. } => format!("no `{key}` in this table"),
-            ModelProblem::WrongValue { .. } => "this value".to_string(),
-            ModelProblem::OutOfRange { error, .. } if !error.value.is_finite() => "not a finite number".to_string(),
-            ModelProblem::OutOfRange { .. } => "out of range".to_string(),
-            ModelProblem::BrokenRule { .. } => "this value".to_string(),
-            ModelProblem::TableUnreadable { .. } => "the table named here".to_string(),
-            ModelProblem::TableSource { .. } => "this table".to_string(),
-            ModelProblem::DuplicateTable { .. } => "second table".to_string(),
-            ModelProblem::UnknownColumn { .. } => "unknown column".to_string(),
-            ModelProblem::TableInvalid { .. } => "here".to_string(),
-        }
+        self.words().label.into_owned()
     }
 
     pub fn hint(&self) -> Option<String> {
-        match self {
-            ModelProblem::UnknownKey { known, suggestion, .. } => guess(suggestion.as_deref(), "keys", list(known)),
-            ModelProblem::UnknownName { known, suggestion, .. } => guess(suggestion.as_deref(), "names", list(known)),
-            ModelProblem::MissingKey { key, .. } => Some(format!("add `{key} = …` to the table")),
-            ModelProblem::TableUnreadable { .. } => {
-                Some("a table's `file` is read relative to the model file's folder".to_string())
-            }
-            ModelProblem::DuplicateTable { .. } => Some("give each slide one [[axis_table]]".to_string()),
-            ModelProblem::UnknownColumn { known, suggestion, .. } => guess(*suggestion, "columns", list(known)),
-            ModelProblem::Syntax { .. }
-            | ModelProblem::WrongValue { .. }
-            | ModelProblem::OutOfRange { .. }
-            | ModelProblem::BrokenRule { .. }
-            | ModelProblem::TableSource { .. }
-            | ModelProblem::TableInvalid { .. } => None,
-        }
+        self.words().hint.map(Cow::into_owned)
     }
 }

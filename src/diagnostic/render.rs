@@ -5,6 +5,8 @@
 //! replaces bytes that are not UTF-8 with U+FFFD and maps every span across the change, so a
 //! label on a Shift-JIS program still underlines the right characters.
 
+use std::borrow::Cow;
+
 use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label, Severity as CsSeverity};
 use codespan_reporting::files::{Files, SimpleFile};
 use codespan_reporting::term::{self, Config};
@@ -50,19 +52,16 @@ fn to_codespan(diagnostic: &Diagnostic, source: &RenderSource<'_>) -> CsDiagnost
         Severity::Warning => CsSeverity::Warning,
         Severity::Error => CsSeverity::Error,
     };
-    let mut labels = vec![Label::primary((), source.range(diagnostic.span)).with_message(diagnostic.label())];
+    let words = diagnostic.words();
+    let mut labels = vec![Label::primary((), source.range(diagnostic.span)).with_message(words.label)];
     for (span, message) in &diagnostic.related {
         labels.push(Label::secondary((), source.range(*span)).with_message(message.clone()));
     }
     let mut notes = Vec::new();
-    if let Some(hint) = diagnostic.hint() {
+    if let Some(hint) = words.hint {
         notes.push(format!("hint: {hint}"));
     }
-    CsDiagnostic::new(severity)
-        .with_code(diagnostic.code())
-        .with_message(diagnostic.message())
-        .with_labels(labels)
-        .with_notes(notes)
+    CsDiagnostic::new(severity).with_code(words.code).with_message(words.message).with_labels(labels).with_notes(notes)
 }
 
 /// Plain text, as the terminal shows it without colour; used for snapshots.
@@ -141,19 +140,22 @@ fn json_range(source: &RenderSource<'_>, span: Span) -> JsonRange {
 pub fn to_json(source: &RenderSource<'_>, diagnostics: &[Diagnostic]) -> Vec<JsonDiagnostic> {
     diagnostics
         .iter()
-        .map(|d| JsonDiagnostic {
-            file: source.name.to_string(),
-            range: json_range(source, d.span),
-            severity: d.severity.as_str(),
-            code: d.code(),
-            message: d.message(),
-            label: d.label(),
-            hint: d.hint(),
-            related: d
-                .related
-                .iter()
-                .map(|(span, message)| JsonRelated { range: json_range(source, *span), message: message.clone() })
-                .collect(),
+        .map(|d| {
+            let words = d.words();
+            JsonDiagnostic {
+                file: source.name.to_string(),
+                range: json_range(source, d.span),
+                severity: d.severity.as_str(),
+                code: words.code,
+                message: words.message.into_owned(),
+                label: words.label.into_owned(),
+                hint: words.hint.map(Cow::into_owned),
+                related: d
+                    .related
+                    .iter()
+                    .map(|(span, message)| JsonRelated { range: json_range(source, *span), message: message.clone() })
+                    .collect(),
+            }
         })
         .collect()
 }

@@ -253,6 +253,18 @@ pub enum GFunction {
     WorkOffset,
 }
 
+/// Whose the F and S words of a cycle block are (`feed_and_speed` of a cycle's `[[g]]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FeedAndSpeed {
+    /// The modal feed and speed: the cycle cuts at them and they stay in effect after it
+    /// (Fanuc `G70`–`G73`, the single cycles).
+    Modal,
+    /// The cycle's own (a thread lead, a grooving feed): the modal feed and speed stay as
+    /// they were.
+    Own,
+}
+
 #[derive(Debug, Clone)]
 pub struct GInfo {
     pub code: Code,
@@ -262,6 +274,9 @@ pub struct GInfo {
     pub meaning: String,
     pub note: Option<String>,
     pub function: Option<GFunction>,
+    /// Whose the block's F and S are; every `cycle` and `lap_call` code says (tested), no
+    /// other code does.
+    pub feed_and_speed: Option<FeedAndSpeed>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -471,6 +486,7 @@ struct RawG {
     /// A remark for readers and hovers, kept out of diagnostics.
     note: Option<String>,
     function: Option<GFunction>,
+    feed_and_speed: Option<FeedAndSpeed>,
     machine: Option<MachineScope>,
 }
 
@@ -728,6 +744,7 @@ fn compile(config: DialectConfig) -> Tables {
                     meaning: g.meaning.clone(),
                     note: g.note.clone(),
                     function: g.function,
+                    feed_and_speed: g.feed_and_speed,
                 });
                 g_index[code.0 as usize] = g_infos.len() as u16;
             }

@@ -7,293 +7,260 @@
 //! kind = "backlash_x"
 //! b = 0.004
 //! ```
-
-pub mod backlash_x;
-pub mod backlash_z;
-pub mod cyclic_x;
-pub mod cyclic_z;
-pub mod nose_radius;
-pub mod reversal_spike_x;
-pub mod reversal_spike_z;
-pub mod scale_x;
-pub mod scale_z;
-pub mod servo_mismatch;
-pub mod squareness;
-pub mod straightness_x;
-pub mod straightness_z;
-pub mod thermal_x;
-pub mod thermal_z;
-pub mod tool_offset_x;
-pub mod tool_offset_z;
-pub mod tool_wear;
-
-pub use backlash_x::BacklashX;
-pub use backlash_z::BacklashZ;
-pub use cyclic_x::CyclicX;
-pub use cyclic_z::CyclicZ;
-pub use nose_radius::NoseRadius;
-pub use reversal_spike_x::ReversalSpikeX;
-pub use reversal_spike_z::ReversalSpikeZ;
-pub use scale_x::ScaleX;
-pub use scale_z::ScaleZ;
-pub use servo_mismatch::ServoMismatch;
-pub use squareness::Squareness;
-pub use straightness_x::StraightnessX;
-pub use straightness_z::StraightnessZ;
-pub use thermal_x::ThermalX;
-pub use thermal_z::ThermalZ;
-pub use tool_offset_x::ToolOffsetX;
-pub use tool_offset_z::ToolOffsetZ;
-pub use tool_wear::ToolWear;
+//!
+//! An effect's file holds every fact of it, as its parameters' `ParametricEffect`: the
+//! ranges a model file may give, the displacement, the play, whether it is a function of
+//! time or of the cut length, how closely a move and an arc are sampled for it, and how
+//! `diagnose` fits it (shape, probe, the bounds of a fitted value). The list below the
+//! trait (`effects!`) names each effect once, by its file, which is its name in a model
+//! file: the `Effect` enum, `EffectKind`, `NAMES` and every dispatch of `Effect` come from
+//! it, each an exhaustive match, so a new effect is its file and a line of that list.
 
 use serde::{Deserialize, Deserializer, Serialize};
 
 use crate::bounds::Invalid;
 use crate::error_model::Sample;
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
 
-/// One parametric effect. It is written with its name as `kind` beside its parameters
-/// (`Serialize`); a model file's `[[effect]]` is read by that name, `Effect::deserialize_kind`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-pub enum Effect {
-    ToolOffsetX(ToolOffsetX),
-    ToolOffsetZ(ToolOffsetZ),
-    ScaleX(ScaleX),
-    ScaleZ(ScaleZ),
-    Squareness(Squareness),
-    BacklashX(BacklashX),
-    BacklashZ(BacklashZ),
-    CyclicX(CyclicX),
-    CyclicZ(CyclicZ),
-    ServoMismatch(ServoMismatch),
-    ThermalX(ThermalX),
-    ThermalZ(ThermalZ),
-    ToolWear(ToolWear),
-    ReversalSpikeX(ReversalSpikeX),
-    ReversalSpikeZ(ReversalSpikeZ),
-    StraightnessX(StraightnessX),
-    StraightnessZ(StraightnessZ),
-    NoseRadius(NoseRadius),
-}
+/// Every fact of one parametric effect, implemented by its parameters in its own file. No
+/// item has a default: a new effect states each one, and the compiler asks for any it
+/// lacks.
+pub trait ParametricEffect: Sized {
+    /// The parameters against the ranges a model file may give (checked when it is read;
+    /// the path of a refused value is relative to the effect's table). They refuse what no
+    /// machine has (a misread unit, a typing error), and are wider than `out_of_bounds`.
+    fn check(&self) -> Result<(), Invalid>;
 
-/// Every effect name, in catalogue order.
-pub const NAMES: [&str; 18] = [
-    "tool_offset_x",
-    "tool_offset_z",
-    "scale_x",
-    "scale_z",
-    "squareness",
-    "backlash_x",
-    "backlash_z",
-    "cyclic_x",
-    "cyclic_z",
-    "servo_mismatch",
-    "thermal_x",
-    "thermal_z",
-    "tool_wear",
-    "reversal_spike_x",
-    "reversal_spike_z",
-    "straightness_x",
-    "straightness_z",
-    "nose_radius",
-];
+    /// The displacement of the tool at `s`: actual − commanded, mm, X as a radius.
+    fn displacement(&self, s: &Sample) -> Xz;
 
-impl Effect {
-    /// The effect named `kind` (a name of `NAMES`), its parameters read from `parameters`
-    /// (the table without its `kind`); `None` for a name no effect has. The model file reads
-    /// each `[[effect]]` table through this rather than through the enum's `kind` tag, which
-    /// would buffer the table and lose the place of an error in it.
-    pub fn deserialize_kind<'de, D: Deserializer<'de>>(kind: &str, parameters: D) -> Option<Result<Effect, D::Error>> {
-        fn read<'de, T: Deserialize<'de>, D: Deserializer<'de>>(
-            parameters: D,
-            effect: fn(T) -> Effect,
-        ) -> Option<Result<Effect, D::Error>> {
-            Some(T::deserialize(parameters).map(effect))
-        }
-        match kind {
-            "tool_offset_x" => read(parameters, Effect::ToolOffsetX),
-            "tool_offset_z" => read(parameters, Effect::ToolOffsetZ),
-            "scale_x" => read(parameters, Effect::ScaleX),
-            "scale_z" => read(parameters, Effect::ScaleZ),
-            "squareness" => read(parameters, Effect::Squareness),
-            "backlash_x" => read(parameters, Effect::BacklashX),
-            "backlash_z" => read(parameters, Effect::BacklashZ),
-            "cyclic_x" => read(parameters, Effect::CyclicX),
-            "cyclic_z" => read(parameters, Effect::CyclicZ),
-            "servo_mismatch" => read(parameters, Effect::ServoMismatch),
-            "thermal_x" => read(parameters, Effect::ThermalX),
-            "thermal_z" => read(parameters, Effect::ThermalZ),
-            "tool_wear" => read(parameters, Effect::ToolWear),
-            "reversal_spike_x" => read(parameters, Effect::ReversalSpikeX),
-            "reversal_spike_z" => read(parameters, Effect::ReversalSpikeZ),
-            "straightness_x" => read(parameters, Effect::StraightnessX),
-            "straightness_z" => read(parameters, Effect::StraightnessZ),
-            "nose_radius" => read(parameters, Effect::NoseRadius),
-            _ => None,
-        }
-    }
+    /// The play this effect puts in each axis' drive, mm (the tracker's play operator,
+    /// `state.rs`).
+    fn play(&self) -> Xz;
 
-    /// The parameters against the plausible ranges each effect's file gives; the path of a
-    /// refused value is relative to the effect's table.
-    pub fn check(&self) -> Result<(), Invalid> {
-        match self {
-            Effect::ToolOffsetX(e) => e.check(),
-            Effect::ToolOffsetZ(e) => e.check(),
-            Effect::ScaleX(e) => e.check(),
-            Effect::ScaleZ(e) => e.check(),
-            Effect::Squareness(e) => e.check(),
-            Effect::BacklashX(e) => e.check(),
-            Effect::BacklashZ(e) => e.check(),
-            Effect::CyclicX(e) => e.check(),
-            Effect::CyclicZ(e) => e.check(),
-            Effect::ServoMismatch(e) => e.check(),
-            Effect::ThermalX(e) => e.check(),
-            Effect::ThermalZ(e) => e.check(),
-            Effect::ToolWear(e) => e.check(),
-            Effect::ReversalSpikeX(e) => e.check(),
-            Effect::ReversalSpikeZ(e) => e.check(),
-            Effect::StraightnessX(e) => e.check(),
-            Effect::StraightnessZ(e) => e.check(),
-            Effect::NoseRadius(e) => e.check(),
-        }
-    }
+    /// Whether the displacement is a function of time alone (a warm-up), which the model
+    /// evaluates once per sample time (`at_time`).
+    const OF_TIME: bool;
 
-    /// The play this effect puts in each axis' drive, mm.
-    pub fn play(&self) -> Xz {
-        match self {
-            Effect::BacklashX(e) if e.b > 0.0 => Xz::new(e.b, 0.0),
-            Effect::BacklashZ(e) if e.b > 0.0 => Xz::new(0.0, e.b),
-            _ => Xz::new(0.0, 0.0),
-        }
-    }
+    /// The displacement at `t_min` minutes since the machine started, as `displacement`
+    /// gives it at a sample of that time, for an effect of time alone (`OF_TIME`); `None`
+    /// for any other.
+    fn at_time(&self, t_min: f64) -> Option<Xz>;
 
-    // Inlined into the model's sum (`ErrorModel::displacement_timed`), which evaluates every
-    // effect several times per sample: a call clobbers every floating-point register the
-    // sum and its caller hold, which cost more than most effects' arithmetic.
-    #[inline(always)]
-    pub fn displacement(&self, s: &Sample) -> Xz {
-        match self {
-            Effect::ToolOffsetX(e) => e.displacement(s),
-            Effect::ToolOffsetZ(e) => e.displacement(s),
-            Effect::ScaleX(e) => e.displacement(s),
-            Effect::ScaleZ(e) => e.displacement(s),
-            Effect::Squareness(e) => e.displacement(s),
-            Effect::BacklashX(e) => e.displacement(s),
-            Effect::BacklashZ(e) => e.displacement(s),
-            Effect::CyclicX(e) => e.displacement(s),
-            Effect::CyclicZ(e) => e.displacement(s),
-            Effect::ServoMismatch(e) => e.displacement(s),
-            Effect::ThermalX(e) => e.displacement(s),
-            Effect::ThermalZ(e) => e.displacement(s),
-            Effect::ToolWear(e) => e.displacement(s),
-            Effect::ReversalSpikeX(e) => e.displacement(s),
-            Effect::ReversalSpikeZ(e) => e.displacement(s),
-            Effect::StraightnessX(e) => e.displacement(s),
-            Effect::StraightnessZ(e) => e.displacement(s),
-            Effect::NoseRadius(e) => e.displacement(s),
-        }
-    }
-
-    /// The displacement of a term that is a function of time alone (warm-up) at `t_min`,
-    /// as `displacement` gives it at a sample of that time; `None` for any other term.
-    pub fn at_time(&self, t_min: f64) -> Option<Xz> {
-        match self {
-            Effect::ThermalX(e) => Some(e.at_time(t_min)),
-            Effect::ThermalZ(e) => Some(e.at_time(t_min)),
-            _ => None,
-        }
-    }
-
-    /// Whether the term is a function of time alone (`at_time`).
-    pub fn is_of_time(&self) -> bool {
-        matches!(self, Effect::ThermalX(_) | Effect::ThermalZ(_))
-    }
+    /// Whether the displacement depends on the length the tool has cut: the trackers follow
+    /// it only for a model with such an effect.
+    const WEARS: bool;
 
     /// How closely a move must be sampled for the straight interpolation between samples
     /// to follow this effect within `allowance` mm (`spacing.rs`); `reach` is the farthest
     /// the program goes from the origin in each axis (mm, X as a radius).
-    pub fn spacing(&self, allowance: f64, reach: Xz) -> Spacing {
-        match self {
-            Effect::CyclicX(e) => e.spacing(allowance),
-            Effect::CyclicZ(e) => e.spacing(allowance),
-            Effect::ThermalX(e) => e.spacing(allowance),
-            Effect::ThermalZ(e) => e.spacing(allowance),
-            Effect::ReversalSpikeX(e) => e.spacing(allowance),
-            Effect::ReversalSpikeZ(e) => e.spacing(allowance),
-            Effect::StraightnessX(e) => e.spacing(allowance, reach.z),
-            Effect::StraightnessZ(e) => e.spacing(allowance, reach.x),
-            // Constant or affine in the position along a straight move: offsets, scale and
-            // squareness; backlash, which changes only where an axis reverses (at a line's
-            // ends, and at the samples `sampling.rs` puts at an arc's extremes); servo lag
-            // and the nose radius, constant at a line's constant velocity and normal; wear,
-            // linear in the length cut.
-            Effect::ToolOffsetX(_)
-            | Effect::ToolOffsetZ(_)
-            | Effect::ScaleX(_)
-            | Effect::ScaleZ(_)
-            | Effect::Squareness(_)
-            | Effect::BacklashX(_)
-            | Effect::BacklashZ(_)
-            | Effect::ServoMismatch(_)
-            | Effect::ToolWear(_)
-            | Effect::NoseRadius(_) => Spacing::ANY,
-        }
-    }
+    fn spacing(&self, allowance: f64, reach: Xz) -> Spacing;
 
-    /// What makes this effect's correction turn around an arc (`spacing::ArcTerms`); `reach`
-    /// as for `spacing`.
-    pub fn arc_terms(&self, reach: Xz) -> ArcTerms {
-        let gradient = |gradient: f64| ArcTerms { gradient: gradient.abs(), ..ArcTerms::default() };
-        match self {
-            Effect::ScaleX(e) => gradient(e.ppm * 1e-6),
-            Effect::ScaleZ(e) => gradient(e.ppm * 1e-6),
-            Effect::Squareness(e) => gradient(e.urad * 1e-6),
-            Effect::CyclicX(e) => gradient(e.amp * std::f64::consts::TAU / e.pitch),
-            Effect::CyclicZ(e) => gradient(e.amp * std::f64::consts::TAU / e.pitch),
-            Effect::StraightnessX(e) => gradient(bow_slope(&e.coeffs, reach.z)),
-            Effect::StraightnessZ(e) => gradient(bow_slope(&e.coeffs, reach.x)),
-            Effect::ServoMismatch(e) => ArcTerms { lag_min: e.dt_ms.abs() / 60_000.0, ..ArcTerms::default() },
-            Effect::NoseRadius(e) => ArcTerms { nose_mm: e.dr.abs(), ..ArcTerms::default() },
-            // Constant (offsets), a step where an axis reverses (backlash, sampled there), a
-            // function of time (warm-up), of the length cut (wear) or of the travel since a
-            // reversal (spikes, in `spacing`): nothing that turns with the arc.
-            Effect::ToolOffsetX(_)
-            | Effect::ToolOffsetZ(_)
-            | Effect::BacklashX(_)
-            | Effect::BacklashZ(_)
-            | Effect::ThermalX(_)
-            | Effect::ThermalZ(_)
-            | Effect::ToolWear(_)
-            | Effect::ReversalSpikeX(_)
-            | Effect::ReversalSpikeZ(_) => ArcTerms::default(),
-        }
-    }
+    /// What makes this effect's correction turn around an arc (`spacing::ArcTerms`);
+    /// `reach` as for `spacing`.
+    fn arc_terms(&self, reach: Xz) -> ArcTerms;
 
-    /// The effect's name as the model file writes it.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Effect::ToolOffsetX(_) => "tool_offset_x",
-            Effect::ToolOffsetZ(_) => "tool_offset_z",
-            Effect::ScaleX(_) => "scale_x",
-            Effect::ScaleZ(_) => "scale_z",
-            Effect::Squareness(_) => "squareness",
-            Effect::BacklashX(_) => "backlash_x",
-            Effect::BacklashZ(_) => "backlash_z",
-            Effect::CyclicX(_) => "cyclic_x",
-            Effect::CyclicZ(_) => "cyclic_z",
-            Effect::ServoMismatch(_) => "servo_mismatch",
-            Effect::ThermalX(_) => "thermal_x",
-            Effect::ThermalZ(_) => "thermal_z",
-            Effect::ToolWear(_) => "tool_wear",
-            Effect::ReversalSpikeX(_) => "reversal_spike_x",
-            Effect::ReversalSpikeZ(_) => "reversal_spike_z",
-            Effect::StraightnessX(_) => "straightness_x",
-            Effect::StraightnessZ(_) => "straightness_z",
-            Effect::NoseRadius(_) => "nose_radius",
+    /// How `diagnose` fits this effect (`fitting::Fit`).
+    const FIT: Fit;
+
+    /// The probe value of each linear parameter: about a micrometre (`fitting::MICRON`) of
+    /// displacement over the measurement's `extents`.
+    fn probe(extents: &Extents) -> f64;
+
+    /// The effect with linear parameters `linear` (in the order of `FIT.linear`, the rest
+    /// zero) and searched parameter `searched` (NaN for none).
+    fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self;
+
+    /// Why a fitted effect is not a physical one, if it is not: the bounds of what
+    /// `diagnose` reports as found, over the measurement's `extents`. They are tighter than
+    /// `check`'s: they bound what a machine in service shows, where `check` refuses only
+    /// what no machine has.
+    fn out_of_bounds(&self, extents: &Extents) -> Option<String>;
+}
+
+/// The `Effect` enum, `EffectKind`, `NAMES` and the dispatch of every fact, from the list of
+/// effects: each `file: Type`, the file (a module of this directory) being the effect's name.
+macro_rules! effects {
+    ($($name:ident: $Type:ident),+ $(,)?) => {
+        $(
+            pub mod $name;
+            pub use $name::$Type;
+        )+
+
+        /// One parametric effect with its parameters. It is written as its parameters
+        /// (`Serialize`; its name is `name`); a model file's `[[effect]]` is read by its
+        /// `kind`, `Effect::deserialize_kind`.
+        #[derive(Debug, Clone, PartialEq, Serialize)]
+        #[serde(untagged)]
+        pub enum Effect {
+            $($Type($Type)),+
         }
-    }
+
+        /// Which effect, without its parameters.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum EffectKind {
+            $($Type),+
+        }
+
+        /// Every effect name, in catalogue order.
+        pub const NAMES: [&str; EffectKind::ALL.len()] = [$(stringify!($name)),+];
+
+        impl EffectKind {
+            /// Every kind, in catalogue order.
+            pub const ALL: [EffectKind; [$(stringify!($name)),+].len()] = [$(EffectKind::$Type),+];
+
+            /// The effect's name as the model file writes it.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(EffectKind::$Type => stringify!($name)),+
+                }
+            }
+
+            /// How `diagnose` fits this kind.
+            pub const fn fit(self) -> Fit {
+                match self {
+                    $(EffectKind::$Type => <$Type as ParametricEffect>::FIT),+
+                }
+            }
+
+            /// The probe value of each of its linear parameters (`ParametricEffect::probe`).
+            pub fn probe(self, extents: &Extents) -> f64 {
+                match self {
+                    $(EffectKind::$Type => $Type::probe(extents)),+
+                }
+            }
+
+            /// The effect of this kind with the fitted values (`ParametricEffect::fitted`).
+            pub fn fitted(self, linear: [f64; MAX_LINEAR], searched: f64) -> Effect {
+                match self {
+                    $(EffectKind::$Type => Effect::$Type($Type::fitted(linear, searched))),+
+                }
+            }
+        }
+
+        // No fit has more linear parameters than `fitted` takes.
+        $(const _: () = assert!(<$Type as ParametricEffect>::FIT.linear.len() <= MAX_LINEAR);)+
+
+        impl Effect {
+            /// The effect named `kind` (a name of `NAMES`), its parameters read from
+            /// `parameters` (the table without its `kind`); `None` for a name no effect has.
+            /// The model file reads each `[[effect]]` table through this rather than through
+            /// a tag on the enum, which would buffer the table and lose the place of an
+            /// error in it.
+            pub fn deserialize_kind<'de, D: Deserializer<'de>>(
+                kind: &str,
+                parameters: D,
+            ) -> Option<Result<Effect, D::Error>> {
+                match kind {
+                    $(stringify!($name) => Some($Type::deserialize(parameters).map(Effect::$Type)),)+
+                    _ => None,
+                }
+            }
+
+            /// Which effect this is.
+            pub fn kind(&self) -> EffectKind {
+                match self {
+                    $(Effect::$Type(_) => EffectKind::$Type),+
+                }
+            }
+
+            /// The effect's name as the model file writes it.
+            pub fn name(&self) -> &'static str {
+                self.kind().name()
+            }
+
+            /// `ParametricEffect::check`.
+            pub fn check(&self) -> Result<(), Invalid> {
+                match self {
+                    $(Effect::$Type(e) => e.check()),+
+                }
+            }
+
+            /// `ParametricEffect::play`.
+            pub fn play(&self) -> Xz {
+                match self {
+                    $(Effect::$Type(e) => e.play()),+
+                }
+            }
+
+            // Inlined into the model's sum (`ErrorModel::displacement_timed`), which
+            // evaluates every effect several times per sample: a call clobbers every
+            // floating-point register the sum and its caller hold, which cost more than
+            // most effects' arithmetic.
+            /// `ParametricEffect::displacement`.
+            #[inline(always)]
+            pub fn displacement(&self, s: &Sample) -> Xz {
+                match self {
+                    $(Effect::$Type(e) => e.displacement(s)),+
+                }
+            }
+
+            /// `ParametricEffect::at_time`.
+            pub fn at_time(&self, t_min: f64) -> Option<Xz> {
+                match self {
+                    $(Effect::$Type(e) => e.at_time(t_min)),+
+                }
+            }
+
+            /// Whether the term is a function of time alone (`ParametricEffect::OF_TIME`).
+            pub fn is_of_time(&self) -> bool {
+                match self {
+                    $(Effect::$Type(_) => $Type::OF_TIME),+
+                }
+            }
+
+            /// Whether the term depends on the length cut (`ParametricEffect::WEARS`).
+            pub fn wears(&self) -> bool {
+                match self {
+                    $(Effect::$Type(_) => $Type::WEARS),+
+                }
+            }
+
+            /// `ParametricEffect::spacing`.
+            pub fn spacing(&self, allowance: f64, reach: Xz) -> Spacing {
+                match self {
+                    $(Effect::$Type(e) => e.spacing(allowance, reach)),+
+                }
+            }
+
+            /// `ParametricEffect::arc_terms`.
+            pub fn arc_terms(&self, reach: Xz) -> ArcTerms {
+                match self {
+                    $(Effect::$Type(e) => e.arc_terms(reach)),+
+                }
+            }
+
+            /// `ParametricEffect::out_of_bounds`.
+            pub fn out_of_bounds(&self, extents: &Extents) -> Option<String> {
+                match self {
+                    $(Effect::$Type(e) => e.out_of_bounds(extents)),+
+                }
+            }
+        }
+    };
+}
+
+effects! {
+    tool_offset_x: ToolOffsetX,
+    tool_offset_z: ToolOffsetZ,
+    scale_x: ScaleX,
+    scale_z: ScaleZ,
+    squareness: Squareness,
+    backlash_x: BacklashX,
+    backlash_z: BacklashZ,
+    cyclic_x: CyclicX,
+    cyclic_z: CyclicZ,
+    servo_mismatch: ServoMismatch,
+    thermal_x: ThermalX,
+    thermal_z: ThermalZ,
+    tool_wear: ToolWear,
+    reversal_spike_x: ReversalSpikeX,
+    reversal_spike_z: ReversalSpikeZ,
+    straightness_x: StraightnessX,
+    straightness_z: StraightnessZ,
+    nose_radius: NoseRadius,
 }
 
 /// First-order warm-up growth: `amp · (1 − e^(−t/τ))`, nothing before the machine starts.
@@ -332,6 +299,12 @@ pub(crate) fn spike(h: f64, decay_mm: f64, direction: i8, since_reversal: f64) -
         return 0.0;
     }
     h * f64::from(direction) * (-since_reversal / decay_mm).exp()
+}
+
+/// A cyclic error's amplitude and phase from its sine and cosine parts:
+/// `amp·sin(u + φ) = amp cos φ · sin u + amp sin φ · cos u`.
+pub(crate) fn amplitude_phase(sine: f64, cosine: f64) -> (f64, f64) {
+    (sine.hypot(cosine), cosine.atan2(sine))
 }
 
 /// `Σ coeffs[k] · p^(k+2)`, by Horner's rule.

@@ -98,7 +98,7 @@ fn straightness_from_two_runs(text: &str) -> bool {
 
 fn parameters(effect: &super::Effect) -> Vec<(String, String)> {
     let Ok(serde_json::Value::Object(fields)) = serde_json::to_value(effect) else { return Vec::new() };
-    fields.into_iter().filter(|(k, _)| k != "kind").map(|(k, v)| (k, v.to_string())).collect()
+    fields.into_iter().map(|(k, v)| (k, v.to_string())).collect()
 }
 
 impl fmt::Display for ModelReport {

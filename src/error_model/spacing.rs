@@ -76,6 +76,12 @@ pub struct ArcTerms {
 }
 
 impl ArcTerms {
+    /// The terms of a correction of the position whose gradient is at most `gradient` (its
+    /// sign does not matter): it turns with the radius vector.
+    pub fn gradient(gradient: f64) -> ArcTerms {
+        ArcTerms { gradient: gradient.abs(), ..ArcTerms::default() }
+    }
+
     /// Both sets of terms.
     pub fn plus(self, other: ArcTerms) -> ArcTerms {
         ArcTerms {

@@ -352,6 +352,24 @@ fn every_effect_of_the_catalogue_is_read_by_its_kind() {
 }
 
 #[test]
+fn every_effect_is_of_time_exactly_when_it_has_a_term_of_time() {
+    // `displacement_timed` pairs the terms of `at_time` with the effects `is_of_time` says
+    // have one: each effect's two statements must agree, and the term must be its
+    // displacement at that time.
+    let s = Sample { velocity: Xz::new(600.0, -300.0), t_min: 7.5, cut_length_m: 2.0, ..sample(20.0, -50.0) };
+    for kind in EffectKind::ALL {
+        let effect = kind.fitted([0.002, 0.001], 30.0);
+        assert_eq!(effect.at_time(s.t_min).is_some(), effect.is_of_time(), "{}", kind.name());
+        if let Some(term) = effect.at_time(s.t_min) {
+            assert_eq!(term, effect.displacement(&s), "{}", kind.name());
+        }
+        // An effect is written as its parameters alone: its name is `kind` in the file.
+        let Ok(serde_json::Value::Object(fields)) = serde_json::to_value(&effect) else { panic!("{}", kind.name()) };
+        assert!(!fields.is_empty() && !fields.contains_key("kind"), "{}", kind.name());
+    }
+}
+
+#[test]
 fn table_files_are_renamed_in_place() {
     let text = "# slides\n[[axis_table]]\naxis = \"x\"\nfile = \"x.csv\"   # beside the model\n\n\
                 [[axis_table]]\naxis = \"z\"\nfile = 'z.csv'\n";

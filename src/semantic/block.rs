@@ -6,7 +6,7 @@
 //! program.
 
 use crate::diagnostic::DiagnosticKind;
-use crate::dialect::{Address, GFunction, GInfo, GKind};
+use crate::dialect::{Address, FeedAndSpeed, GFunction, GInfo, GKind};
 use crate::source::Span;
 use crate::syntax::{CodeLetter, Statement, Word, WordKind};
 use crate::toolpath::{Compensation, Xz};
@@ -70,13 +70,12 @@ impl Interpreter<'_, '_> {
             }
             self.apply_modal(info);
         }
-        // F: the modal feed, except in the multiple repetitive cycles, whose F is their own
-        // (a thread lead, a grooving feed). The F and S of the Fanuc stock-removal and
-        // finishing cycles are ordinary modal words: the cycle cuts at them and they stay in
-        // effect after it, which is how `G70 P Q` with no F of its own finishes at the
-        // roughing cycle's F.
-        let cycle_feed =
-            matches!(command.and_then(|c| c.function), Some(f) if is_repetitive_cycle(f) && !sets_modal_feed(f));
+        // F: the modal feed, except in the cycles whose F and S are their own (a thread lead,
+        // a grooving feed), as `feed_and_speed` in `grammar/` says of each. The F and S of the
+        // Fanuc stock-removal and finishing cycles are ordinary modal words: the cycle cuts
+        // at them and they stay in effect after it, which is how `G70 P Q` with no F of its
+        // own finishes at the roughing cycle's F.
+        let cycle_feed = command.and_then(|c| c.feed_and_speed) == Some(FeedAndSpeed::Own);
         // OSP writes the dwell time as F (`G04 F5`): that F is no feed.
         let dwell_in_f = match block.statement {
             Statement::Dwell(id) => self.program.command(id).params.iter().any(|p| {
@@ -339,43 +338,6 @@ impl Interpreter<'_, '_> {
                 && self.g_infos(self.program.words_of(block)).any(|(_, g)| g.function == Some(GFunction::LapEnd))
         })
     }
-}
-
-/// The multiple repetitive cycles, whose F, S and T words belong to the cycle: those whose F
-/// and S also stay modal (`sets_modal_feed`), and the others.
-fn is_repetitive_cycle(function: GFunction) -> bool {
-    sets_modal_feed(function)
-        || matches!(
-            function,
-            GFunction::FacePeck
-                | GFunction::DiameterGrooving
-                | GFunction::MultipleThreading
-                | GFunction::LapRough
-                | GFunction::LapCopy
-                | GFunction::LapFinish
-                | GFunction::LapThread
-                | GFunction::CompoundThreadLongitudinal
-                | GFunction::CompoundThreadFace
-                | GFunction::OspGrooving
-                | GFunction::OspFaceCutting
-                | GFunction::Tapping
-                | GFunction::ThreadSingle
-                | GFunction::ThreadSingleAlias
-                | GFunction::ThreadSingleFace
-                | GFunction::ThreadSingleLeadIncreasing
-                | GFunction::ThreadSingleLeadDecreasing
-        )
-}
-
-/// The multiple repetitive cycles whose F and S are the modal feed and speed.
-fn sets_modal_feed(function: GFunction) -> bool {
-    matches!(
-        function,
-        GFunction::Finishing
-            | GFunction::StockRemovalTurning
-            | GFunction::StockRemovalFacing
-            | GFunction::PatternRepeat
-    )
 }
 
 /// The words of a block that `machine_block` looks for, found in one pass: the first F, S and

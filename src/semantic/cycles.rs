@@ -1,6 +1,8 @@
 //! Canned cycles: one file per cycle, named for what it does. This module dispatches on the
-//! G-code's function (from `grammar/`), reads typed parameters, and records which moves
-//! each call produced (for `expand`).
+//! G-code's function (from `grammar/`; one arm for every function, so a new one is placed
+//! here or the build fails), keeps what a cycle leaves for a later block (`CycleMemory`),
+//! reads typed parameters, and records which moves each call produced (for `expand`). Whose
+//! a cycle block's F and S are is `feed_and_speed` in `grammar/`, read by `block.rs`.
 //!
 //! Parameter units follow the controls: Fanuc `U`/`W` allowances are diameter/length
 //! values; `Δd` depths of cut are radius values; the `P`/`Q` words of `G74`/`G75`/`G76`
@@ -16,9 +18,9 @@ mod lap_finish;
 mod lap_frame;
 mod lap_rough;
 mod lap_thread;
-pub(super) mod multiple_threading;
-pub(super) mod pattern_repeat;
-pub(super) mod peck_grooving;
+mod multiple_threading;
+mod pattern_repeat;
+mod peck_grooving;
 mod single;
 mod stock_removal;
 mod tapping;
@@ -36,7 +38,32 @@ use super::Expansion;
 use super::emitter::Context;
 use super::interpreter::{Flow, Interpreter};
 
-pub(super) use single::{SingleCycleMemory, single_cycle_again};
+use single::SingleCycleMemory;
+pub(super) use single::single_cycle_again;
+
+/// What a cycle leaves for a later block: the first block of a two-block Fanuc cycle for
+/// its second, the last single cycle for its modal repetitions, and modes set by M codes.
+/// A cycle that needs such a memory keeps its type in its own file and a field here.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct CycleMemory {
+    /// `G71 U(Δd) R(e)`, `G72 W(Δd) R(e)`: depth of cut and retract, program units.
+    pub turning_depth: Option<f64>,
+    pub turning_retract: Option<f64>,
+    pub facing_depth: Option<f64>,
+    pub facing_retract: Option<f64>,
+    /// The block that last set a depth (the first block of a two-block cycle).
+    pub depth_block: Option<usize>,
+    /// The last Fanuc single cycle, for its modal repetitions.
+    pub single: Option<SingleCycleMemory>,
+    /// OSP thread-end chamfering (`M23` on, `M22` off, off at the start): a mode.
+    pub thread_chamfer: bool,
+    /// `G73 U(Δi) W(Δk) R(d)`.
+    pub pattern: pattern_repeat::PatternMemory,
+    /// `G74 R(e)`, `G75 R(e)`.
+    pub peck: peck_grooving::PeckMemory,
+    /// `G76 P(m)(r)(a) Q(Δdmin) R(d)`.
+    pub thread: multiple_threading::ThreadMemory,
+}
 
 /// A cycle call may run at most this many passes (or pecks): more is a runaway parameter
 /// (a depth of a thousandth over a long groove), reported instead of simulated.
@@ -103,7 +130,44 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         GFunction::LapRough => lap_rough::run(interp, index, &command),
         GFunction::LapCopy => lap_copy::run(interp, index, &command),
         GFunction::LapFinish => lap_finish::run(interp, index, &command),
-        _ => {
+        // The drilling cycles are not simulated; the other functions are those of no cycle,
+        // which no `cycle` or `lap_call` code of `grammar/` names.
+        GFunction::Drilling
+        | GFunction::Absolute
+        | GFunction::AtcHome
+        | GFunction::Ccw
+        | GFunction::ChamferCorner
+        | GFunction::CompensationLeft
+        | GFunction::CompensationOff
+        | GFunction::CompensationRight
+        | GFunction::CoordinateSetOrClamp
+        | GFunction::Cw
+        | GFunction::DrillingCancel
+        | GFunction::Dwell
+        | GFunction::FeedPerMinute
+        | GFunction::FeedPerRev
+        | GFunction::Inch
+        | GFunction::Incremental
+        | GFunction::LapBlank
+        | GFunction::LapCondition
+        | GFunction::LapContourLongitudinal
+        | GFunction::LapContourTransverse
+        | GFunction::LapEnd
+        | GFunction::Linear
+        | GFunction::LocalShift
+        | GFunction::MachineCoordinates
+        | GFunction::MacroCall
+        | GFunction::Metric
+        | GFunction::Rapid
+        | GFunction::ReferenceCheck
+        | GFunction::ReferenceReturn
+        | GFunction::RoundCorner
+        | GFunction::Rpm
+        | GFunction::SecondReferenceReturn
+        | GFunction::SurfaceSpeed
+        | GFunction::ThreadMove
+        | GFunction::VariableLeadThreadMove
+        | GFunction::WorkOffset => {
             interp.warning(
                 DiagnosticKind::CycleNotSimulated { code: info.map_or(String::new(), |g| g.code.display('G')) },
                 block.span,

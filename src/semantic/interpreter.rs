@@ -13,6 +13,7 @@ use crate::source::Span;
 use crate::syntax::{Program, Statement, WordKind};
 use crate::toolpath::{Compensation, Toolpath, Xz};
 
+use super::cycles::CycleMemory;
 use super::emitter::Emitter;
 use super::eval::{Evaluator, Variables};
 use super::labels::{self, Labels};
@@ -39,28 +40,6 @@ struct Call {
 
 /// Subprogram calls nest at most this deep.
 const MAX_CALL_DEPTH: usize = 32;
-
-/// What the first block of a two-block Fanuc cycle set, kept for its second block.
-#[derive(Debug, Clone, Copy, Default)]
-pub(super) struct CycleMemory {
-    /// `G71 U(Δd) R(e)`, `G72 W(Δd) R(e)`: depth of cut and retract, program units.
-    pub turning_depth: Option<f64>,
-    pub turning_retract: Option<f64>,
-    pub facing_depth: Option<f64>,
-    pub facing_retract: Option<f64>,
-    /// The block that last set a depth (the first block of a two-block cycle).
-    pub depth_block: Option<usize>,
-    /// The last Fanuc single cycle, for its modal repetitions.
-    pub single: Option<super::cycles::SingleCycleMemory>,
-    /// OSP thread-end chamfering (`M23` on, `M22` off, off at the start): a mode.
-    pub thread_chamfer: bool,
-    /// `G73 U(Δi) W(Δk) R(d)`.
-    pub pattern: super::cycles::pattern_repeat::PatternMemory,
-    /// `G74 R(e)`, `G75 R(e)`.
-    pub peck: super::cycles::peck_grooving::PeckMemory,
-    /// `G76 P(m)(r)(a) Q(Δdmin) R(d)`.
-    pub thread: super::cycles::multiple_threading::ThreadMemory,
-}
 
 pub(super) struct Interpreter<'p, 'src> {
     pub program: &'p Program<'src>,

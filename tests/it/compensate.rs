@@ -301,11 +301,12 @@ fn the_report_shows_each_edited_block_improving() {
 #[test]
 fn plots_draw_every_path_and_both_directions_of_a_ball_bar() {
     for (program, polar, labels) in [
-        ("tests/cases/compensate/turn.nc", false, &["nominal", "actual (as programmed)", "compensated"][..]),
+        ("tests/cases/compensate/turn.nc", false, &["nominal", "as programmed", "compensated"][..]),
         (
             "tests/cases/compensate/ballbar.nc",
             true,
-            &["clockwise, as programmed", "clockwise, compensated", "counter-clockwise, compensated"][..],
+            &["clockwise (G02), as programmed", "clockwise (G02), compensated", "counter-clockwise (G03), compensated"]
+                [..],
         ),
     ] {
         let tmp = tempfile::tempdir().unwrap();

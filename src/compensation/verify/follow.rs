@@ -69,6 +69,21 @@ const MATCH_MM: f64 = 0.1;
 /// length (a run of moves that do not cut counts for no length).
 const WINDOW_MOVES: usize = 4096;
 
+/// A predicted point's closest point on the original's path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Found {
+    pub distance: f64,
+    /// The closest point, and the original's move it lies on.
+    pub point: Xz,
+    pub move_index: usize,
+}
+
+impl Found {
+    fn on(move_index: usize, closest: Closest) -> Found {
+        Found { distance: closest.distance, point: closest.point, move_index }
+    }
+}
+
 /// The original's nominal path, followed through the compensated program's samples in order.
 pub struct Follower<'a> {
     path: &'a LocalPath<'a>,
@@ -96,8 +111,9 @@ impl<'a> Follower<'a> {
     }
 
     /// The distance of `p`, predicted for the cutting sample at `nominal`, from the
-    /// original's nominal path (see the module documentation).
-    pub fn distance(&mut self, nominal: Xz, p: Xz) -> Option<f64> {
+    /// original's nominal path (see the module documentation), the closest point of that
+    /// path and its move.
+    pub fn measure(&mut self, nominal: Xz, p: Xz) -> Option<Found> {
         let window = self.window(0.0, WINDOW_MM);
         let ahead = self.move_index.max(*window.start())..=*window.end();
         let candidates: Vec<_> =
@@ -113,14 +129,16 @@ impl<'a> Follower<'a> {
             {
                 self.move_to(k, closest.param);
             }
-            return self.index().distance(p);
+            let (distance, k) = self.index().closest(p)?;
+            let point = self.path.closest_on(k, p).map_or(p, |closest| closest.point);
+            return Some(Found { distance, point, move_index: k });
         };
         self.move_to(k, closest.param);
         // The window about the match, and the rest of the window searched, which holds the
         // point's own move wherever the match is an earlier move that comes as close.
         let around = self.window(WINDOW_MM, WINDOW_MM);
         let moves = *around.start().min(ahead.start())..=*around.end().max(ahead.end());
-        self.closest_in(moves, p).map(|(distance, _, _)| distance)
+        self.closest_in(moves, p).map(|(_, k, closest)| Found::on(k, closest))
     }
 
     fn move_to(&mut self, k: usize, param: f64) {
@@ -130,11 +148,11 @@ impl<'a> Follower<'a> {
     }
 
     /// The distance of `p`, predicted for the point at `param` of the original's move `k`,
-    /// from the original's nominal path: the closest cutting move within `WINDOW_MM` of that
+    /// from the original's nominal path, its closest point and move: the closest cutting move within `WINDOW_MM` of that
     /// point (and the `NEIGHBOURS` cutting moves either side).
-    pub fn distance_from(&mut self, k: usize, param: f64, p: Xz) -> Option<f64> {
+    pub fn measure_from(&mut self, k: usize, param: f64, p: Xz) -> Option<Found> {
         self.move_to(k, param);
-        self.closest_in(self.window(WINDOW_MM, WINDOW_MM), p).map(|(distance, _, _)| distance)
+        self.closest_in(self.window(WINDOW_MM, WINDOW_MM), p).map(|(_, k, closest)| Found::on(k, closest))
     }
 
     /// The moves within `back` and `ahead` mm of cutting length of the previous match, and

@@ -30,7 +30,7 @@ fn followed_and_brute_force(original: &Toolpath, compensated: &Toolpath) -> Vec<
     let pairs: Vec<_> = cutting
         .map(|(i, s)| {
             let p = predicted(i, s);
-            (follower.distance(s.nominal, p).expect("a distance"), brute_force(original, p))
+            (follower.measure(s.nominal, p).expect("a distance").distance, brute_force(original, p))
         })
         .collect();
     assert!(pairs.len() > 20, "{}", pairs.len());

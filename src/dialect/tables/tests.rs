@@ -15,6 +15,17 @@ fn tables_load_and_every_schema_name_resolves() {
     for (text, dialect) in [(FANUC_TOML, Dialect::Fanuc), (OSP_TOML, Dialect::Osp)] {
         let raw: RawDialect = toml::from_str(text).unwrap_or_else(|e| panic!("{dialect:?}: {e}"));
         for g in &raw.g {
+            // A cycle's F and S are either the modal ones or its own; no default, so that a
+            // new cycle says which.
+            let cycle = matches!(g.kind, GKind::Cycle | GKind::LapCall);
+            assert_eq!(
+                g.feed_and_speed.is_some(),
+                cycle,
+                "{dialect:?}: G entry {:?} ({}) {} `feed_and_speed`",
+                g.code,
+                g.meaning,
+                if cycle { "is a cycle and lacks" } else { "is no cycle and has" }
+            );
             if let Some(schema) = &g.schema {
                 assert!(
                     raw.schema.contains_key(schema),

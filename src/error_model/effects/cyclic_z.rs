@@ -5,8 +5,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
-use crate::error_model::spacing::{Spacing, step_for_curvature};
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
+
+use super::{ParametricEffect, amplitude_phase};
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -28,22 +31,52 @@ pub const PITCH: Range = Range::closed(0.1, 1_000.0, "mm");
 /// misread value, and its sine loses its precision).
 pub const PHASE: Range = Range::magnitude(100.0, "rad");
 
-impl CyclicZ {
-    /// The parameters against their plausible ranges (checked when a model file is read).
-    pub fn check(&self) -> Result<(), Invalid> {
+impl ParametricEffect for CyclicZ {
+    fn check(&self) -> Result<(), Invalid> {
         AMP.check_key("amp", self.amp)?;
         PITCH.check_key("pitch", self.pitch)?;
         PHASE.check_key("phase", self.phase)
     }
 
-    pub fn displacement(&self, s: &Sample) -> Xz {
+    fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(0.0, self.amp * (std::f64::consts::TAU * s.at.z / self.pitch + self.phase).sin())
     }
 
-    /// `amp·sin` curves by at most `amp·(2π/pitch)²` per mm² of travel along the screw,
-    /// and a move's travel along it is never longer than the move.
-    pub fn spacing(&self, allowance: f64) -> Spacing {
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
+    }
+
+    const OF_TIME: bool = false;
+
+    fn at_time(&self, _t_min: f64) -> Option<Xz> {
+        None
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, allowance: f64, _reach: Xz) -> Spacing {
+        // `amp·sin` curves by at most `amp·(2π/pitch)²` per mm² of travel along the screw,
+        // and a move's travel along it is never longer than the move.
         let wavenumber = std::f64::consts::TAU / self.pitch;
         Spacing::mm(step_for_curvature(self.amp * wavenumber * wavenumber, allowance))
+    }
+
+    fn arc_terms(&self, _reach: Xz) -> ArcTerms {
+        ArcTerms::gradient(self.amp * std::f64::consts::TAU / self.pitch)
+    }
+
+    const FIT: Fit = Fit::linear(&["sin", "cos"], Search::PitchZ);
+
+    fn probe(_extents: &Extents) -> f64 {
+        MICRON
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self {
+        let (amp, phase) = amplitude_phase(linear[0], linear[1]);
+        CyclicZ { amp, pitch: searched, phase }
+    }
+
+    fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
+        beyond(self.amp, 0.05, "amp (mm)").or_else(|| beyond(self.pitch, 100.0, "pitch (mm)"))
     }
 }

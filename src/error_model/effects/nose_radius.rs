@@ -7,7 +7,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
+
+use super::ParametricEffect;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -20,13 +24,48 @@ pub struct NoseRadius {
 /// fraction of one.
 pub const DR: Range = Range::magnitude(1.0, "mm");
 
-impl NoseRadius {
-    /// The parameters against their plausible ranges (checked when a model file is read).
-    pub fn check(&self) -> Result<(), Invalid> {
+impl ParametricEffect for NoseRadius {
+    fn check(&self) -> Result<(), Invalid> {
         DR.check_key("dr", self.dr)
     }
 
-    pub fn displacement(&self, s: &Sample) -> Xz {
+    fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(-self.dr * (s.tip.x + s.normal.x), -self.dr * (s.tip.z + s.normal.z))
+    }
+
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
+    }
+
+    const OF_TIME: bool = false;
+
+    fn at_time(&self, _t_min: f64) -> Option<Xz> {
+        None
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, _allowance: f64, _reach: Xz) -> Spacing {
+        // Constant at a line's constant normal.
+        Spacing::ANY
+    }
+
+    fn arc_terms(&self, _reach: Xz) -> ArcTerms {
+        // The error turns with the surface normal.
+        ArcTerms { nose_mm: self.dr.abs(), ..ArcTerms::default() }
+    }
+
+    const FIT: Fit = Fit::linear(&["dr"], Search::None);
+
+    fn probe(_extents: &Extents) -> f64 {
+        MICRON
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
+        NoseRadius { dr: linear[0] }
+    }
+
+    fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
+        beyond(self.dr, 0.4, "dr (mm)")
     }
 }

@@ -6,10 +6,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
-use crate::error_model::spacing::{Spacing, step_for_curvature};
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
-use super::spike;
+use super::{ParametricEffect, spike};
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -26,19 +27,50 @@ pub const H: Range = Range::magnitude(1.0, "mm");
 /// `h/decay²`, so the decay must be more than nothing.
 pub const DECAY_MM: Range = Range::closed(0.001, 1_000.0, "mm");
 
-impl ReversalSpikeX {
-    /// The parameters against their plausible ranges (checked when a model file is read).
-    pub fn check(&self) -> Result<(), Invalid> {
+impl ParametricEffect for ReversalSpikeX {
+    fn check(&self) -> Result<(), Invalid> {
         H.check_key("h", self.h)?;
         DECAY_MM.check_key("decay_mm", self.decay_mm)
     }
 
-    pub fn displacement(&self, s: &Sample) -> Xz {
+    fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(spike(self.h, self.decay_mm, s.direction.x, s.since_reversal.x), 0.0)
     }
 
-    /// The spike's decay bends most at the reversal: `h/decay²` per mm² of travel.
-    pub fn spacing(&self, allowance: f64) -> Spacing {
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
+    }
+
+    const OF_TIME: bool = false;
+
+    fn at_time(&self, _t_min: f64) -> Option<Xz> {
+        None
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, allowance: f64, _reach: Xz) -> Spacing {
+        // The spike's decay bends most at the reversal: `h/decay²` per mm² of travel.
         Spacing::mm(step_for_curvature(self.h / (self.decay_mm * self.decay_mm), allowance))
+    }
+
+    fn arc_terms(&self, _reach: Xz) -> ArcTerms {
+        // A function of the travel since a reversal, which `spacing` bounds: nothing turns
+        // with the arc.
+        ArcTerms::default()
+    }
+
+    const FIT: Fit = Fit::linear(&["h"], Search::Decay);
+
+    fn probe(_extents: &Extents) -> f64 {
+        MICRON
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self {
+        ReversalSpikeX { h: linear[0], decay_mm: searched }
+    }
+
+    fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
+        beyond(self.h, 0.05, "h (mm)")
     }
 }

@@ -5,7 +5,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
+
+use super::ParametricEffect;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -18,13 +22,47 @@ pub struct ScaleZ {
 /// thermal growth of the screw are tens to hundreds of ppm.
 pub const PPM: Range = Range::magnitude(10_000.0, "ppm");
 
-impl ScaleZ {
-    /// The parameters against their plausible ranges (checked when a model file is read).
-    pub fn check(&self) -> Result<(), Invalid> {
+impl ParametricEffect for ScaleZ {
+    fn check(&self) -> Result<(), Invalid> {
         PPM.check_key("ppm", self.ppm)
     }
 
-    pub fn displacement(&self, s: &Sample) -> Xz {
+    fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(0.0, s.at.z * self.ppm * 1e-6)
+    }
+
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
+    }
+
+    const OF_TIME: bool = false;
+
+    fn at_time(&self, _t_min: f64) -> Option<Xz> {
+        None
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, _allowance: f64, _reach: Xz) -> Spacing {
+        // Affine in the position along a straight move: one sample at each end follows it.
+        Spacing::ANY
+    }
+
+    fn arc_terms(&self, _reach: Xz) -> ArcTerms {
+        ArcTerms::gradient(self.ppm * 1e-6)
+    }
+
+    const FIT: Fit = Fit::linear(&["ppm"], Search::None);
+
+    fn probe(extents: &Extents) -> f64 {
+        MICRON / extents.z * 1e6
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
+        ScaleZ { ppm: linear[0] }
+    }
+
+    fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
+        beyond(self.ppm, 500.0, "ppm")
     }
 }

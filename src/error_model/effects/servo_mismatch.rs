@@ -6,7 +6,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
+
+use super::ParametricEffect;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -19,13 +23,48 @@ pub struct ServoMismatch {
 /// servo loop a lathe cuts with.
 pub const DT_MS: Range = Range::magnitude(1_000.0, "ms");
 
-impl ServoMismatch {
-    /// The parameters against their plausible ranges (checked when a model file is read).
-    pub fn check(&self) -> Result<(), Invalid> {
+impl ParametricEffect for ServoMismatch {
+    fn check(&self) -> Result<(), Invalid> {
         DT_MS.check_key("dt_ms", self.dt_ms)
     }
 
-    pub fn displacement(&self, s: &Sample) -> Xz {
+    fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(-s.velocity.x / 60_000.0 * self.dt_ms, 0.0)
+    }
+
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
+    }
+
+    const OF_TIME: bool = false;
+
+    fn at_time(&self, _t_min: f64) -> Option<Xz> {
+        None
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, _allowance: f64, _reach: Xz) -> Spacing {
+        // Constant at a line's constant velocity.
+        Spacing::ANY
+    }
+
+    fn arc_terms(&self, _reach: Xz) -> ArcTerms {
+        // The lag turns with the velocity.
+        ArcTerms { lag_min: self.dt_ms.abs() / 60_000.0, ..ArcTerms::default() }
+    }
+
+    const FIT: Fit = Fit::linear(&["dt_ms"], Search::None);
+
+    fn probe(extents: &Extents) -> f64 {
+        MICRON / extents.speed * 60_000.0
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
+        ServoMismatch { dt_ms: linear[0] }
+    }
+
+    fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
+        beyond(self.dt_ms, 50.0, "dt (ms)")
     }
 }

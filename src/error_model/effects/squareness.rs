@@ -6,7 +6,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
+
+use super::ParametricEffect;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -19,13 +23,47 @@ pub struct Squareness {
 /// microradians; more is a crash or a misread unit.
 pub const URAD: Range = Range::magnitude(10_000.0, "µrad");
 
-impl Squareness {
-    /// The parameters against their plausible ranges (checked when a model file is read).
-    pub fn check(&self) -> Result<(), Invalid> {
+impl ParametricEffect for Squareness {
+    fn check(&self) -> Result<(), Invalid> {
         URAD.check_key("urad", self.urad)
     }
 
-    pub fn displacement(&self, s: &Sample) -> Xz {
+    fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(s.at.z * self.urad * 1e-6, 0.0)
+    }
+
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
+    }
+
+    const OF_TIME: bool = false;
+
+    fn at_time(&self, _t_min: f64) -> Option<Xz> {
+        None
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, _allowance: f64, _reach: Xz) -> Spacing {
+        // Affine in the position along a straight move: one sample at each end follows it.
+        Spacing::ANY
+    }
+
+    fn arc_terms(&self, _reach: Xz) -> ArcTerms {
+        ArcTerms::gradient(self.urad * 1e-6)
+    }
+
+    const FIT: Fit = Fit::linear(&["urad"], Search::None);
+
+    fn probe(extents: &Extents) -> f64 {
+        MICRON / extents.z * 1e6
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
+        Squareness { urad: linear[0] }
+    }
+
+    fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
+        beyond(self.urad, 1000.0, "µrad")
     }
 }

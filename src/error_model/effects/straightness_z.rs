@@ -6,10 +6,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Key, Range, Reason};
 use crate::error_model::Sample;
-use crate::error_model::spacing::{Spacing, step_for_curvature};
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
-use super::{bow, bow_curvature};
+use super::{ParametricEffect, bow, bow_curvature, bow_slope};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -29,10 +30,8 @@ pub fn coefficient_range(k: usize) -> Range {
     Range::magnitude(100f64.powi(-(k as i32 + 2)), "")
 }
 
-impl StraightnessZ {
-    /// The coefficients against their plausible ranges (checked when a model file is read):
-    /// at most `TERMS` of them, each within `coefficient_range`.
-    pub fn check(&self) -> Result<(), Invalid> {
+impl ParametricEffect for StraightnessZ {
+    fn check(&self) -> Result<(), Invalid> {
         if self.coeffs.len() > TERMS {
             return Err(Invalid { path: vec![Key::Name("coeffs")], reason: Reason::Rule("at most six coefficients") });
         }
@@ -45,13 +44,44 @@ impl StraightnessZ {
         Ok(())
     }
 
-    pub fn displacement(&self, s: &Sample) -> Xz {
+    fn displacement(&self, s: &Sample) -> Xz {
         Xz::new(0.0, bow(&self.coeffs, s.at.x))
     }
 
-    /// The bow's second derivative, `Σ |coeffs[k]|·(k+2)(k+1)·|x|^k`, is largest at the
-    /// farthest X the program reaches (`reach_x`, mm, a radius).
-    pub fn spacing(&self, allowance: f64, reach_x: f64) -> Spacing {
-        Spacing::mm(step_for_curvature(bow_curvature(&self.coeffs, reach_x), allowance))
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
+    }
+
+    const OF_TIME: bool = false;
+
+    fn at_time(&self, _t_min: f64) -> Option<Xz> {
+        None
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, allowance: f64, reach: Xz) -> Spacing {
+        // The bow's second derivative, `Σ |coeffs[k]|·(k+2)(k+1)·|x|^k`, is largest at the
+        // farthest X the program reaches (`reach.x`, mm, a radius).
+        Spacing::mm(step_for_curvature(bow_curvature(&self.coeffs, reach.x), allowance))
+    }
+
+    fn arc_terms(&self, reach: Xz) -> ArcTerms {
+        ArcTerms::gradient(bow_slope(&self.coeffs, reach.x))
+    }
+
+    const FIT: Fit = Fit::linear(&["coeffs[0]"], Search::None);
+
+    fn probe(extents: &Extents) -> f64 {
+        MICRON / (extents.x * extents.x)
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
+        StraightnessZ { coeffs: vec![linear[0]] }
+    }
+
+    fn out_of_bounds(&self, extents: &Extents) -> Option<String> {
+        // A bow of at most 0.1 mm over the measured reach.
+        beyond(self.coeffs.first().copied().unwrap_or(0.0) * extents.x * extents.x, 0.1, "bow (mm)")
     }
 }

@@ -5,10 +5,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
-use crate::error_model::spacing::{Spacing, step_for_curvature};
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
-use super::warm_up;
+use super::{ParametricEffect, warm_up};
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -27,23 +28,55 @@ pub const AMP: Range = Range::magnitude(1.0, "mm");
 pub const TAU_MIN: Range = Range::closed(0.1, 100_000.0, "min");
 
 impl ThermalZ {
-    /// The parameters against their plausible ranges (checked when a model file is read).
-    pub fn check(&self) -> Result<(), Invalid> {
+    /// The growth at `t_min` minutes since the machine started.
+    pub fn growth(&self, t_min: f64) -> Xz {
+        Xz::new(0.0, warm_up(self.amp, self.tau_min, t_min))
+    }
+}
+
+impl ParametricEffect for ThermalZ {
+    fn check(&self) -> Result<(), Invalid> {
         AMP.check_key("amp", self.amp)?;
         TAU_MIN.check_key("tau_min", self.tau_min)
     }
 
-    pub fn displacement(&self, s: &Sample) -> Xz {
-        self.at_time(s.t_min)
+    fn displacement(&self, s: &Sample) -> Xz {
+        self.growth(s.t_min)
     }
 
-    /// The growth at `t_min` minutes since the machine started.
-    pub fn at_time(&self, t_min: f64) -> Xz {
-        Xz::new(0.0, warm_up(self.amp, self.tau_min, t_min))
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
     }
 
-    /// The warm-up curve bends most at the start: `amp/τ²` per minute², whatever the path.
-    pub fn spacing(&self, allowance: f64) -> Spacing {
+    const OF_TIME: bool = true;
+
+    fn at_time(&self, t_min: f64) -> Option<Xz> {
+        Some(self.growth(t_min))
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, allowance: f64, _reach: Xz) -> Spacing {
+        // The warm-up curve bends most at the start: `amp/τ²` per minute², whatever the path.
         Spacing::minutes(step_for_curvature(self.amp / (self.tau_min * self.tau_min), allowance))
+    }
+
+    fn arc_terms(&self, _reach: Xz) -> ArcTerms {
+        // A function of time: nothing turns with the arc.
+        ArcTerms::default()
+    }
+
+    const FIT: Fit = Fit::linear(&["amp"], Search::Tau);
+
+    fn probe(_extents: &Extents) -> f64 {
+        MICRON
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self {
+        ThermalZ { amp: linear[0], tau_min: searched }
+    }
+
+    fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
+        beyond(self.amp, 0.2, "amp (mm)").or_else(|| beyond(self.tau_min, 1000.0, "τ (min)"))
     }
 }

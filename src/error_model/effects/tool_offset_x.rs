@@ -5,7 +5,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
+
+use super::ParametricEffect;
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -18,13 +22,48 @@ pub struct ToolOffsetX {
 /// number or a crash, not an error a model compensates.
 pub const DX: Range = Range::magnitude(10.0, "mm");
 
-impl ToolOffsetX {
-    /// The parameters against their plausible ranges (checked when a model file is read).
-    pub fn check(&self) -> Result<(), Invalid> {
+impl ParametricEffect for ToolOffsetX {
+    fn check(&self) -> Result<(), Invalid> {
         DX.check_key("dx", self.dx)
     }
 
-    pub fn displacement(&self, _s: &Sample) -> Xz {
+    fn displacement(&self, _s: &Sample) -> Xz {
         Xz::new(self.dx, 0.0)
+    }
+
+    fn play(&self) -> Xz {
+        Xz::new(0.0, 0.0)
+    }
+
+    const OF_TIME: bool = false;
+
+    fn at_time(&self, _t_min: f64) -> Option<Xz> {
+        None
+    }
+
+    const WEARS: bool = false;
+
+    fn spacing(&self, _allowance: f64, _reach: Xz) -> Spacing {
+        // Constant: one sample at each end of a move follows it.
+        Spacing::ANY
+    }
+
+    fn arc_terms(&self, _reach: Xz) -> ArcTerms {
+        // Constant: nothing turns with the arc.
+        ArcTerms::default()
+    }
+
+    const FIT: Fit = Fit::linear(&["dx"], Search::None);
+
+    fn probe(_extents: &Extents) -> f64 {
+        MICRON
+    }
+
+    fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
+        ToolOffsetX { dx: linear[0] }
+    }
+
+    fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
+        beyond(self.dx, 0.5, "dx (mm)")
     }
 }
