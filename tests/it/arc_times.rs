@@ -12,6 +12,7 @@ use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
 use turnpass::syntax::parse;
 
 use crate::simulate::{parse_options, settings_for};
+use crate::support::check_spans;
 
 /// Everything lowering gives, floats by their exact text (`{:?}` prints the shortest text
 /// that reads back to the same bits).
@@ -22,6 +23,7 @@ fn lowered_text(lowered: &Lowered) -> String {
 /// The program lowered with its arcs timed beside and by the emitter: the two must agree.
 fn assert_same_both_ways(name: &str, source: &[u8], settings: &MachineSettings) {
     let parsed = parse(source, &parse_options(settings));
+    check_spans(&parsed);
     let machine = Machine::from_settings(settings);
     let lower = |from_blocks| {
         let tuning = Tuning { arc_times_blocks: from_blocks, ..Tuning::DEFAULT };

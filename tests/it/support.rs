@@ -67,6 +67,19 @@ pub fn analyse<'s>(source: &'s [u8], settings: &turnpass::pipeline::Settings) ->
     analysed
 }
 
+/// [`analyse`] for a program that must be ready for the passes after lowering (no error,
+/// its toolpath valid); the test fails with the program and its diagnostics otherwise.
+pub fn ready<'s>(source: &'s [u8], settings: &turnpass::pipeline::Settings) -> turnpass::pipeline::Ready<'s> {
+    match analyse(source, settings).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!(
+            "the program is not ready:\n{}\n{}",
+            String::from_utf8_lossy(source),
+            render("program", source, &analysed.diagnostics)
+        ),
+    }
+}
+
 pub fn render(name: &str, source: &[u8], diagnostics: &[Diagnostic]) -> String {
     render_plain(&RenderSource::new(name, source), diagnostics)
 }
