@@ -217,7 +217,7 @@ pub fn checked(
         None => {}
     }
     let tools = ToolTable::from_machine(&original.machine);
-    let figures = deviation_each(&original.valid(), &compensated.valid(), &tools, model, SAMPLE_STEP_MM, each);
+    let figures = deviation_each(original.valid(), compensated.valid(), &tools, model, SAMPLE_STEP_MM, each);
     let words = check_words(&original.parsed.program, &compensated.parsed.program);
     let machine = &original.machine;
     let limit = checks.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());

@@ -21,7 +21,7 @@ use crate::error_model::ErrorModel;
 use crate::semantic::nose_radius::ToolTable;
 use crate::source::Span;
 use crate::syntax::{CodeLetter, Program, WordKind};
-use crate::toolpath::{Toolpath, Xz};
+use crate::toolpath::{Toolpath, ValidToolpath, Xz};
 
 use super::deviation::{Figures, LocalPath};
 use super::inverse::predict;
@@ -43,8 +43,8 @@ pub struct Deviation {
 
 /// Predict both programs through `model` and measure them against `original`.
 pub fn deviation(
-    original: &Toolpath,
-    compensated: &Toolpath,
+    original: ValidToolpath<'_>,
+    compensated: ValidToolpath<'_>,
     tools: &ToolTable,
     model: &ErrorModel,
     step_mm: f64,
@@ -79,8 +79,8 @@ pub struct Measured {
 /// points in their order, the original's first): `deviation` and `report` measure with
 /// this one function, so the page's figures are `verify`'s.
 pub fn deviation_each(
-    original: &Toolpath,
-    compensated: &Toolpath,
+    original: ValidToolpath<'_>,
+    compensated: ValidToolpath<'_>,
     tools: &ToolTable,
     model: &ErrorModel,
     step_mm: f64,
@@ -92,6 +92,7 @@ pub fn deviation_each(
         let predicted = predict(&samples, &nominal, toolpath.start, model);
         (samples, predicted)
     };
+    let (original, compensated) = (original.toolpath(), compensated.toolpath());
     let path = LocalPath::new(original);
     let mut figures = |side: Side, toolpath: &Toolpath| {
         let (samples, points) = predicted(toolpath);

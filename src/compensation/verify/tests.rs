@@ -163,7 +163,7 @@ fn a_program_verified_against_itself_deviates_as_much_before_as_after() {
         effects: vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.004 }), Effect::BacklashZ(BacklashZ { b: 0.003 })],
         start_min: 0.0,
     };
-    let figures = deviation(&lowered.toolpath, &lowered.toolpath, &tools, &model, 0.254);
+    let figures = deviation(lowered.valid(), lowered.valid(), &tools, &model, 0.254);
     assert!(figures.before.max_mm > 0.001, "{figures:?}");
     assert_eq!(figures.before, figures.after);
 }
