@@ -29,18 +29,34 @@ pub struct Tuning {
     /// `pipeline::analyse_beside`: the work that needs only the parsed program runs on a
     /// second thread while it is lowered, for a program of at least this many bytes.
     pub beside_lowering_bytes: usize,
+    /// The language server: a document larger than this many bytes has its semantic pass
+    /// run on a thread of its own, so that keystrokes are answered while it runs; a smaller
+    /// one's runs on the server's loop and comes in the same publish as the parse's
+    /// (`lsp/server.rs`; the client's `semanticInlineLimit` overrides it). Where the pass
+    /// runs changes when its diagnostics are published, not what they are
+    /// (`tests/it/lsp_server.rs`).
+    pub lsp_inline_bytes: usize,
 }
 
 impl Tuning {
     /// The thresholds the measurements support (README, "Performance").
-    pub const DEFAULT: Tuning = Tuning { parse_bytes: 1 << 20, arc_times_blocks: 20_000, beside_lowering_bytes: 0 };
+    pub const DEFAULT: Tuning = Tuning {
+        parse_bytes: 1 << 20,
+        arc_times_blocks: 20_000,
+        beside_lowering_bytes: 0,
+        lsp_inline_bytes: 256 << 10,
+    };
 
     /// Every use on one thread.
-    pub const SERIAL: Tuning =
-        Tuning { parse_bytes: usize::MAX, arc_times_blocks: usize::MAX, beside_lowering_bytes: usize::MAX };
+    pub const SERIAL: Tuning = Tuning {
+        parse_bytes: usize::MAX,
+        arc_times_blocks: usize::MAX,
+        beside_lowering_bytes: usize::MAX,
+        lsp_inline_bytes: usize::MAX,
+    };
 
     /// The names of the uses, as [`Tuning::with_serial`] takes them.
-    pub const USES: [&'static str; 3] = ["parse", "arc_times", "beside_lowering"];
+    pub const USES: [&'static str; 4] = ["parse", "arc_times", "beside_lowering", "lsp_semantic"];
 
     /// This tuning with the use `name` (one of [`Tuning::USES`], or `all`) on one thread;
     /// `None` for an unknown name.
@@ -52,6 +68,7 @@ impl Tuning {
             "parse" => tuning.parse_bytes = serial.parse_bytes,
             "arc_times" => tuning.arc_times_blocks = serial.arc_times_blocks,
             "beside_lowering" => tuning.beside_lowering_bytes = serial.beside_lowering_bytes,
+            "lsp_semantic" => tuning.lsp_inline_bytes = serial.lsp_inline_bytes,
             _ => return None,
         }
         Some(tuning)
