@@ -76,39 +76,25 @@ pub(crate) fn write_whole(out: &mut impl Text, value: u64) {
 }
 
 /// The crate's one digit writer: `value`'s decimal digits right-aligned in a buffer padded
-/// with `0`, and where the first of them is (the buffer's end for zero). Two digits per
-/// division, on the stack: a printed program has millions of numbers and codes, and
-/// `format!` costs an allocation each.
+/// with `0`, and where the first of them is (the buffer's end for zero). On the stack: a
+/// printed program has millions of numbers and codes, and `format!` costs an allocation
+/// each.
 fn digits(value: u64) -> ([u8; MANTISSA_DIGITS], usize) {
     let mut digits = [b'0'; MANTISSA_DIGITS];
-    let mut start = MANTISSA_DIGITS;
-    let mut value = value;
-    while value > 0 {
-        let Some(next) = start.checked_sub(2) else { break };
-        let pair = (value % 100) as usize;
-        if let (Some(slot), Some(pair)) = (digits.get_mut(next..start), DIGIT_PAIRS.get(2 * pair..2 * pair + 2)) {
-            slot.copy_from_slice(pair);
-        }
-        value /= 100;
-        start = next;
+    if value == 0 {
+        return (digits, MANTISSA_DIGITS);
     }
-    // A pair whose first digit is the leading zero of an odd count of digits.
-    if digits.get(start) == Some(&b'0') {
-        start += 1;
+    let mut buffer = itoa::Buffer::new();
+    let text = buffer.format(value).as_bytes();
+    let start = MANTISSA_DIGITS - text.len();
+    if let Some(slot) = digits.get_mut(start..) {
+        slot.copy_from_slice(text);
     }
     (digits, start)
 }
 
 /// The most decimal digits a mantissa has (`u64::MAX` has 20).
 const MANTISSA_DIGITS: usize = 20;
-
-/// "00" to "99", for the digits of a number two at a time.
-const DIGIT_PAIRS: &[u8; 200] = b"\
-0001020304050607080910111213141516171819\
-2021222324252627282930313233343536373839\
-4041424344454647484950515253545556575859\
-6061626364656667686970717273747576777879\
-8081828384858687888990919293949596979899";
 
 /// A number's spelling as it is put together.
 struct Spelling {
