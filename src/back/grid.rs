@@ -50,10 +50,8 @@ impl Grid {
     }
 
     fn scale(&self) -> f64 {
-        // The powers of ten an increment has places for, each exact in f64 (as `powi` gives
-        // them, which is a library call).
-        const POWERS: [f64; 10] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9];
-        POWERS.get(usize::from(self.places)).copied().unwrap_or_else(|| 10f64.powi(i32::from(self.places)))
+        // Exact in f64 for the at most nine places an increment has.
+        10f64.powi(i32::from(self.places))
     }
 
     /// A value in program units to a count of increments.
@@ -117,8 +115,8 @@ impl Grid {
 }
 
 /// The decimal places of an increment in program units (`machine::increment_places`), told
-/// at once for the increments controls use (every move asks for its grid, and the count
-/// takes a loop of library roundings).
+/// at once for the increments controls use: every move asks for its grid, and the count
+/// takes a loop of library roundings, which shows in `compensate`'s instruction count.
 fn places(increment: f64) -> u8 {
     match increment {
         0.001 => 3,
