@@ -36,6 +36,11 @@ pub struct Tuning {
     /// runs changes when its diagnostics are published, not what they are
     /// (`tests/it/lsp_server.rs`).
     pub lsp_inline_bytes: usize,
+    /// `compensation::verify::deviation_watched` (`verify`, and `compensate`'s check of what
+    /// it writes): the original and the compensated program are measured side by side for
+    /// an original of at least this many moves. Each program's measure is its own, in path
+    /// order, whichever thread runs it.
+    pub measure_moves: usize,
 }
 
 impl Tuning {
@@ -45,6 +50,7 @@ impl Tuning {
         arc_times_blocks: 20_000,
         beside_lowering_bytes: 0,
         lsp_inline_bytes: 256 << 10,
+        measure_moves: 0,
     };
 
     /// Every use on one thread.
@@ -53,10 +59,11 @@ impl Tuning {
         arc_times_blocks: usize::MAX,
         beside_lowering_bytes: usize::MAX,
         lsp_inline_bytes: usize::MAX,
+        measure_moves: usize::MAX,
     };
 
     /// The names of the uses, as [`Tuning::with_serial`] takes them.
-    pub const USES: [&'static str; 4] = ["parse", "arc_times", "beside_lowering", "lsp_semantic"];
+    pub const USES: [&'static str; 5] = ["parse", "arc_times", "beside_lowering", "lsp_semantic", "measure"];
 
     /// This tuning with the use `name` (one of [`Tuning::USES`], or `all`) on one thread;
     /// `None` for an unknown name.
@@ -69,6 +76,7 @@ impl Tuning {
             "arc_times" => tuning.arc_times_blocks = serial.arc_times_blocks,
             "beside_lowering" => tuning.beside_lowering_bytes = serial.beside_lowering_bytes,
             "lsp_semantic" => tuning.lsp_inline_bytes = serial.lsp_inline_bytes,
+            "measure" => tuning.measure_moves = serial.measure_moves,
             _ => return None,
         }
         Some(tuning)

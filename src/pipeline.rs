@@ -126,32 +126,39 @@ pub fn analyse_beside<'src, T: Send>(
     (Analysed { parsed, machine: settings.machine.clone(), lowering, diagnostics }, made)
 }
 
-/// Lower `parsed` and validate its toolpath; every diagnostic, the parse's included, in
-/// program order. A program the semantic pass does not lower keeps the parse's.
+/// Lower `parsed` and validate its toolpath, whatever the parse found; every diagnostic,
+/// the parse's included, in program order.
 fn lower_and_validate(parsed: &Parsed<'_>, settings: &Settings) -> (Lowering, Vec<Diagnostic>) {
+    let (lowering, found) = lower_program(&parsed.program, &settings.machine, &settings.lower);
     let mut diagnostics = parsed.diagnostics.clone();
-    if !semantic::lowers(&parsed.program) {
-        return (Lowering::NotLowered, diagnostics);
+    diagnostics.extend(found);
+    diagnostics.sort_by_key(|d| d.span.start);
+    (lowering, diagnostics)
+}
+
+/// Lower `program` and validate its toolpath against the machine's travel limits: how far
+/// it got, and the lowering's diagnostics and the toolpath's problems (not the parse's).
+fn lower_program(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> (Lowering, Vec<Diagnostic>) {
+    if !semantic::lowers(program) {
+        return (Lowering::NotLowered, Vec::new());
     }
-    let lowered = semantic::lower(&parsed.program, &settings.machine, &settings.lower);
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    let lowering = match Validated::new(lowered, settings.machine.limits) {
+    let lowered = semantic::lower(program, machine, options);
+    let mut diagnostics = lowered.diagnostics.clone();
+    let lowering = match Validated::new(lowered, machine.limits) {
         Ok(valid) => Lowering::Valid(valid),
         Err((lowered, problems)) => {
             diagnostics.extend(problems);
             Lowering::Invalid(lowered)
         }
     };
-    diagnostics.sort_by_key(|d| d.span.start);
     (lowering, diagnostics)
 }
 
-/// The semantic pass's own diagnostics on `program` (none for a program it does not
-/// lower), for the language server, which shows what the program says as it is typed and
-/// runs no pass after lowering.
+/// What lowering and validation find in `program` beyond its parse, in program order (none
+/// for a program the semantic pass does not lower): the language server's semantic
+/// diagnostics, the same `analyse` gives `check` and `simulate`.
 pub fn semantic_diagnostics(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Vec<Diagnostic> {
-    if !semantic::lowers(program) {
-        return Vec::new();
-    }
-    semantic::lower(program, machine, options).diagnostics
+    let (_, mut diagnostics) = lower_program(program, machine, options);
+    diagnostics.sort_by_key(|d| d.span.start);
+    diagnostics
 }

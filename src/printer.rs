@@ -235,7 +235,7 @@ pub(crate) fn write_address_number(
 ) {
     let (letters, length) = address.bytes();
     out.push_ascii(letters.get(..length).unwrap_or_default());
-    if !address.is_letter() {
+    if !address.is_letter() && !address.is_comma() {
         out.push_byte(b'=');
     }
     let kind = program.config().tables().address(address).map(|s| s.kind);

@@ -24,6 +24,7 @@ pub mod labels;
 mod modal;
 mod motion;
 pub mod nose_radius;
+mod plausibility;
 pub mod profile;
 
 pub use frame::Frame;
@@ -77,10 +78,17 @@ pub struct Machine {
     pub rapid_assumed: bool,
     pub max_rpm: f64,
     pub tools: Vec<ToolSettings>,
+    /// Values of the common variables the machine keeps (`[machine] variables`, `--var`).
+    pub variables: Vec<(String, f64)>,
 }
 
 /// Rapid traverse used when the machine settings give none, mm/min per axis.
 pub const DEFAULT_RAPID_MM_MIN: f64 = 10_000.0;
+
+/// The spindle's top speed when the settings give none, rpm: what constant surface speed
+/// with no `G50 S` clamp reaches toward the centre (a common top speed of 200–250 mm chuck
+/// lathes; the toolpath's times near X0 depend on it, and a warning says so).
+pub const DEFAULT_MAX_SPINDLE_RPM: f64 = 4_000.0;
 
 impl Machine {
     /// The machine a program runs on, from its settings; documented defaults fill the gaps
@@ -108,7 +116,15 @@ impl Machine {
             rapid_assumed: rapid.is_none(),
             max_rpm: settings.max_spindle_rpm.unwrap_or(f64::INFINITY),
             tools: settings.tool.clone(),
+            variables: settings.variables.iter().map(|(name, value)| (name.clone(), *value)).collect(),
         }
+    }
+
+    /// The spindle's top speed, rpm, which constant surface speed never exceeds: the
+    /// settings' `max_spindle_rpm`, else [`DEFAULT_MAX_SPINDLE_RPM`]; and whether it is that
+    /// default.
+    pub fn spindle_limit(&self) -> (f64, bool) {
+        if self.max_rpm.is_finite() { (self.max_rpm, false) } else { (DEFAULT_MAX_SPINDLE_RPM, true) }
     }
 
     /// Millimetres per machine unit.
@@ -175,6 +191,8 @@ pub struct Expansion {
     /// leave the latter behind so that the blocks after them run as before.
     pub before: ModalAfter,
     pub after: ModalAfter,
+    /// Why `expand` leaves the call as it is, if it does (a drilling cycle).
+    pub kept: Option<&'static str>,
 }
 
 /// The modal words a cycle leaves in force: the motion code (when it is a plain one; after

@@ -10,7 +10,12 @@ use crate::toolpath::Validated;
 
 /// `program` (G-code system A) through the pipeline, with the home at X200 (diameter) Z50.
 pub fn analysed(program: &str) -> Analysed<'_> {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), ..MachineSettings::default() };
     analyse(program.as_bytes(), &Settings::new(options, &settings, LowerOptions::new(false)))
 }

@@ -52,7 +52,12 @@ pub fn settings() -> MachineSettings {
 }
 
 pub fn nominal(text: &str) -> Nominal {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let analysed = analyse(text.as_bytes(), &Settings::new(options, &settings(), LowerOptions::new(false)));
     match analysed.ready() {
         Ok(ready) => Nominal::new(ready.program(), &ready.lowered, &ready.machine),

@@ -181,6 +181,7 @@ fn agrees_with_linuxcnc_rs274() {
             dialect: DialectChoice::Fixed(turnpass::dialect::Dialect::Fanuc),
             gcode_system: GCodeSystem::A,
             machine_kind: None,
+            control: Default::default(),
         };
         let lower = LowerOptions { nose_radius_compensation: false, ..LowerOptions::new(false) };
         let ready = ready(&source, &Settings::new(options, &MachineSettings::default(), lower));

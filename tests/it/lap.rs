@@ -184,8 +184,12 @@ fn settings() -> Settings {
     )
     .unwrap()
     .machine;
-    let options =
-        ParseOptions { dialect: DialectChoice::Fixed(Dialect::Osp), gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Fixed(Dialect::Osp),
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     Settings::new(options, &settings, LowerOptions { nose_radius_compensation: false, ..LowerOptions::new(false) })
 }
 

@@ -101,7 +101,12 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
 #[test]
 fn writes_radius_reads_an_arc_blocks_own_form_and_gives_a_line_the_programs() {
     let source = "G00 X40. Z2.\nG01 X44. Z-10. R1. F0.2\nG02 X50. Z-15. R5.\nG03 X60. Z-20. I0 K-5.\nG01 Z-25. I1.\n";
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(source.as_bytes(), &options);
     let program = &parsed.program;
     for program_radius_arcs in [false, true] {
