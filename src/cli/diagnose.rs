@@ -134,6 +134,18 @@ pub struct SynthArgs {
         value_parser = within(numbers::SPACING_MM),
     )]
     pub spacing: f64,
+    /// How many readings are probe glitches (chosen by the seed), each off by --glitch-mm.
+    #[arg(long, default_value_t = 0)]
+    pub glitches: usize,
+    /// The size of a glitch, mm (either sign).
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "MM",
+        default_value_t = 0.025,
+        value_parser = within(numbers::GLITCH_MM),
+    )]
+    pub glitch_mm: f64,
     /// CMM: several parts, started at these minutes since machine start (comma-separated).
     #[arg(
         long,
@@ -204,17 +216,22 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     write_output(None, out.as_bytes())?;
     if let Some(path) = &args.write_model {
         let original = model_text_for(&resolved, path)?;
-        let written = model_text::with_found_effects(&original, &diagnosis, &data_name);
+        let written = model_text::with_found_effects(&original, &diagnosis, &data_name)
+            .map_err(|why| CliError::Usage(format!("{}: not written: {why}", path.display())))?;
         // The written model must load where it is written, tables and found effects alike.
         let (spec, dir) = model_spec(path, &written)?;
         spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
         write_atomically(path, written.as_bytes())?;
-        streams::err_line(format_args!(
-            "diagnose: wrote {} ({} effect{} added)",
-            path.display(),
-            diagnosis.added.len(),
-            super::common::plural(diagnosis.added.len())
-        ));
+        let plural = super::common::plural;
+        let mut what = vec![format!("{} effect{} added", diagnosis.added.len(), plural(diagnosis.added.len()))];
+        if !diagnosis.updated.is_empty() {
+            let count = diagnosis.updated.len();
+            what.push(format!("{count} stale value{} updated", plural(count)));
+        }
+        if let Some(table) = diagnosis.unexplained.as_ref().and_then(|u| u.table.as_ref()) {
+            what.push(format!("the residual as the {} slide's {} table", table.axis.letter(), table.quantity.column()));
+        }
+        streams::err_line(format_args!("diagnose: wrote {} ({})", path.display(), what.join(", ")));
     }
     if let Some(path) = &args.plot {
         match turnpass::plot::residuals::residuals_svg(&display_name(&args.file), &diagnosis) {
@@ -245,6 +262,8 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
         spacing_mm: args.spacing,
         parts: if args.parts.is_empty() { vec![None] } else { args.parts.iter().map(|&t| Some(t)).collect() },
         targets: if args.targets.is_empty() { defaults.targets } else { args.targets.clone() },
+        glitches: args.glitches,
+        glitch_mm: args.glitch_mm,
     };
     let measured = synth(&nominal, &truth, args.kind.kind(args.axis)?, &options)
         .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;
