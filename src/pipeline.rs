@@ -1,14 +1,16 @@
 //! The front of every pass that works on a lowered program: parse → lower → validate, in
 //! one place.
 //!
-//! [`analyse`] parses a program, lowers it on a machine and validates its toolpath; what it
-//! gives back says how far the program got ([`Lowering`]) with every diagnostic of the three
-//! steps in program order. The passes after lowering (`expand`, `simulation`,
-//! `compensation`, `diagnose`) take only the validated program (`Validated<Lowered>`, or a
-//! [`Ready`] program), so none runs on a toolpath that broke the IR's invariants. Work that
-//! needs only the parsed program can run on the other core while the program is lowered
-//! ([`analyse_beside`]). The command line, the tests and the benches enter here; the
-//! language server, which parses incrementally, lowers its assembled program through
+//! [`analyse`] parses a program, lowers it on a machine and validates its toolpath, whatever
+//! the parse found; what it gives back says how far the program got ([`Lowering`]) with
+//! every diagnostic of the three steps in program order. The passes after lowering
+//! (`expand`, `simulation`, `compensation` and `verify`, `diagnose`, the plots) take only
+//! the validated program (`Validated<Lowered>`, its `ValidToolpath`, or a [`Ready`]
+//! program), so none runs on a toolpath that broke the IR's invariants. Work that needs only
+//! the parsed program can run on the other core while the program is lowered
+//! ([`analyse_beside`]). The command line (`check`'s full check among it), `compensate`'s
+//! read-back of what it writes, the tests and the benches enter here; the language server,
+//! which parses incrementally, lowers and validates its assembled program through
 //! [`semantic_diagnostics`].
 
 use crate::diagnostic::Diagnostic;
