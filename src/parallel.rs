@@ -4,12 +4,14 @@
 //! The uses: a long program is parsed in two runs of lines (`syntax`), its arcs are timed
 //! beside the interpreter (`semantic`), the work that needs only the parsed program runs
 //! while it is lowered (`pipeline::analyse_beside`), the compensation streams its pieces
-//! through four stages at once (`compensation/program/stream.rs`), `compensate --out-dir`
-//! runs one program per core, and the language server reads its client and runs its
-//! semantic passes on threads of their own. Each gives the result one thread gives: the
-//! split parse and the arc timer are held to the plain run by tests (named beside their
-//! fields of [`Tuning`]); the work beside lowering reads only the parsed program, and each
-//! stage of the stream runs its pieces in path order. A panic on any thread is a bug, and is
+//! through four stages at once (`compensation/program/stream.rs`), `verify`'s measure (and
+//! `compensate`'s of what it writes) takes the two programs side by side
+//! (`compensation::verify::deviation_watched`), `compensate --out-dir` runs one program per
+//! core, and the language server reads its client and runs its semantic passes on threads
+//! of their own. Each gives the result one thread gives: the split parse and the arc timer
+//! are held to the plain run by tests (named beside their fields of [`Tuning`]); the work
+//! beside lowering reads only the parsed program, each stage of the stream runs its pieces
+//! in path order, and each program's measure is its own. A panic on any thread is a bug, and is
 //! passed on to the caller as it was raised. The README's "Performance" section gives the
 //! commands that measure each use.
 
