@@ -14,6 +14,7 @@ mod chunk;
 pub mod definition;
 pub mod document;
 pub mod format;
+mod frame;
 pub mod hover;
 pub mod position;
 pub mod roles;
