@@ -8,6 +8,7 @@
 //! settings files. `stdio.rs` is the I/O layer: the stdio connection, the message loop, the
 //! worker threads, and the host that reads `turnpass.toml`.
 
+pub mod actions;
 pub mod analysis;
 mod assemble;
 mod chunk;
@@ -16,7 +17,9 @@ pub mod document;
 pub mod format;
 mod frame;
 pub mod hover;
+pub mod names;
 pub mod position;
+pub mod rename;
 pub mod roles;
 pub mod server;
 pub mod settings;

@@ -72,12 +72,20 @@ impl Diagnostic {
                 let edit = (at(end, end + blanks), "=".to_string());
                 Some(Fix { title: format!("Write `{name}=`"), edits: vec![edit] })
             }
-            MissingSpaceAfterSequence { name } if start >= name.len() && &line[start - name.len()..start] == name.as_bytes() => {
-                Some(Fix { title: format!("Put a space after `{name}`"), edits: vec![(at(start, start), " ".to_string())] })
+            MissingSpaceAfterSequence { name }
+                if start >= name.len() && &line[start - name.len()..start] == name.as_bytes() =>
+            {
+                Some(Fix {
+                    title: format!("Put a space after `{name}`"),
+                    edits: vec![(at(start, start), " ".to_string())],
+                })
             }
             UnclosedComment if text == b"(" => {
                 let content = line.len() - line.iter().rev().take_while(|&&c| c == b' ' || c == b'\t').count();
-                Some(Fix { title: "Close the comment with `)`".to_string(), edits: vec![(at(content, content), ")".to_string())] })
+                Some(Fix {
+                    title: "Close the comment with `)`".to_string(),
+                    edits: vec![(at(content, content), ")".to_string())],
+                })
             }
             IntegerExpected { address, .. } => {
                 // `P1000.` or `P1000.0` → `P1000`; a fraction that is not zero needs judgement.
@@ -89,7 +97,8 @@ impl Diagnostic {
                 Some(Fix { title: format!("Write `{written}` (no decimal point)"), edits: vec![edit] })
             }
             SemicolonInOsp if text == b";" => {
-                let comment = &after[..after.len() - after.iter().rev().take_while(|&&c| c == b' ' || c == b'\t').count()];
+                let comment =
+                    &after[..after.len() - after.iter().rev().take_while(|&&c| c == b' ' || c == b'\t').count()];
                 if comment.iter().any(|&c| c == b'(' || c == b')') {
                     return None;
                 }

@@ -2,9 +2,8 @@
 //!
 //! The diagnostics are the ones `turnpass check` reports, with the same codes, messages and
 //! spans; the protocol wants ranges in lines and UTF-16 columns (`position.rs`). A label
-//! and a hint have no field of their own in the protocol: the hint is added to the related
-//! information at the diagnostic's own range (editors show it under the message), and both
-//! travel in `data` for tools, with the byte offsets of the span and the pass that found it
+//! and a hint have no field of their own in the protocol: the hint is the message's second
+//! line (`hint: …`), where every editor shows it, and both travel in `data` for tools, with the byte offsets of the span and the pass that found it
 //! (`syntax`: the diagnostics `check` reports; `semantic`).
 //!
 //! **Why the semantic pass waits for a clean parse.** An invalid block loses its words, so
@@ -130,7 +129,7 @@ fn omitted(document: &Document, first: &Diagnostic, count: usize) -> lsp_types::
 /// A diagnostic in the protocol's terms.
 pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pass) -> lsp_types::Diagnostic {
     let range = document.range(diagnostic.span);
-    let mut related: Vec<DiagnosticRelatedInformation> = diagnostic
+    let related: Vec<DiagnosticRelatedInformation> = diagnostic
         .related
         .iter()
         .map(|(span, message)| DiagnosticRelatedInformation {
@@ -139,12 +138,12 @@ pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pas
         })
         .collect();
     let hint = diagnostic.hint();
-    if let Some(hint) = &hint {
-        related.push(DiagnosticRelatedInformation {
-            location: Location { uri: uri.clone(), range },
-            message: format!("hint: {hint}"),
-        });
-    }
+    // The hint goes in the message: editors show the message everywhere (virtual text,
+    // the problems list, the echo area) and related information rarely.
+    let message = match &hint {
+        Some(hint) => format!("{}\nhint: {hint}", diagnostic.message()),
+        None => diagnostic.message(),
+    };
     lsp_types::Diagnostic {
         range,
         severity: Some(match diagnostic.severity {
@@ -155,7 +154,7 @@ pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pas
         code: Some(NumberOrString::String(diagnostic.code().to_string())),
         code_description: None,
         source: Some(SOURCE.to_string()),
-        message: diagnostic.message(),
+        message,
         related_information: if related.is_empty() { None } else { Some(related) },
         tags: None,
         data: Some(serde_json::json!({

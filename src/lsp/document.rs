@@ -389,6 +389,42 @@ impl Document {
         })
     }
 
+    /// The text of a span (usually a word: inside one chunk, no copy of the rest).
+    pub fn text_of(&self, span: Span) -> Vec<u8> {
+        let (start, end) = (span.start as usize, (span.end as usize).min(self.len));
+        if let Some(text) = &self.oversized {
+            return text.get(start..end).unwrap_or(&[]).to_vec();
+        }
+        let mut out = Vec::with_capacity(end.saturating_sub(start));
+        if self.chunks.is_empty() || start >= end {
+            return out;
+        }
+        let mut index = self.chunk_at(start as u32);
+        while index < self.chunks.len() && (self.starts[index] as usize) < end {
+            let base = self.starts[index] as usize;
+            let text = &self.chunks[index].text;
+            let from = start.saturating_sub(base).min(text.len());
+            let to = (end - base).min(text.len());
+            out.extend_from_slice(&text[from..to]);
+            index += 1;
+        }
+        out
+    }
+
+    /// The parse diagnostics whose spans touch bytes `range`, in order.
+    pub fn diagnostics_near(&self, range: Range<usize>) -> Vec<Diagnostic> {
+        if self.chunks.is_empty() {
+            return Vec::new();
+        }
+        let (first, last) = (self.chunk_at(range.start as u32), self.chunk_at(range.end as u32));
+        let mut found: Vec<Diagnostic> = (first..=last)
+            .flat_map(|i| self.chunks[i].part.diagnostics.iter().map(move |d| shift_diagnostic(d, self.starts[i])))
+            .filter(|d| d.span.start as usize <= range.end && range.start <= d.span.end as usize)
+            .collect();
+        found.sort_by_key(|d| (d.span.start, d.span.end));
+        found
+    }
+
     /// The diagnostics `syntax::parse` gives for the text, in the same order.
     pub fn diagnostics(&self) -> Vec<Diagnostic> {
         let chunks = self.chunks.iter().map(|c| &**c).zip(self.starts.iter().copied());

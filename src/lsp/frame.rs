@@ -154,4 +154,3 @@ fn decode(body: &[u8]) -> Frame {
         },
     }
 }
-

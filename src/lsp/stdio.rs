@@ -39,6 +39,38 @@ impl Host for Files {
         let text = std::fs::read_to_string(&path).map_err(|e| e.to_string());
         Some((path, text))
     }
+
+    fn programs_beside(&self, program: &Path) -> Vec<PathBuf> {
+        let Some(folder) = program.parent() else { return Vec::new() };
+        let Ok(entries) = std::fs::read_dir(folder) else { return Vec::new() };
+        let mut found: Vec<PathBuf> = entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p != program && is_program_file(p))
+            .take(MAX_PROGRAMS_BESIDE)
+            .collect();
+        found.sort();
+        found
+    }
+
+    fn read_program(&self, path: &Path) -> Option<Vec<u8>> {
+        let size = std::fs::metadata(path).ok()?.len();
+        if size > MAX_PROGRAM_BESIDE_BYTES {
+            return None;
+        }
+        std::fs::read(path).ok()
+    }
+}
+
+/// How many files of a folder a definition looks through for a subprogram, and the largest
+/// it reads: a definition must answer while the user waits.
+const MAX_PROGRAMS_BESIDE: usize = 500;
+const MAX_PROGRAM_BESIDE_BYTES: u64 = 4 << 20;
+
+/// A file with the extension of a lathe program (as `examples/editors/` attach the server
+/// to): `.min`, `.nc`, `.ssb`, `.sub`, in any case.
+fn is_program_file(path: &Path) -> bool {
+    let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    matches!(extension.as_deref(), Some("min" | "nc" | "ssb" | "sub")) && path.is_file()
 }
 
 /// What the loop waits for: a frame from the client, or a finished semantic pass.

@@ -24,7 +24,7 @@ for _, name in ipairs({ "part.min", "part.nc", "part.ssb", "part.sub" }) do
   local list = vim.diagnostic.get(buffer)
   table.sort(list, function(a, b) return a.lnum < b.lnum or (a.lnum == b.lnum and a.col < b.col) end)
   for _, d in ipairs(list) do
-    table.insert(out, string.format("  %d:%d-%d:%d severity %d: %s", d.lnum, d.col, d.end_lnum, d.end_col, d.severity, d.message))
+    table.insert(out, string.format("  %d:%d-%d:%d severity %d: %s", d.lnum, d.col, d.end_lnum, d.end_col, d.severity, (d.message:gsub("\n", " / "))))
   end
 end
 local params = { textDocument = { uri = vim.uri_from_bufnr(0) }, position = { line = 3, character = 1 } }

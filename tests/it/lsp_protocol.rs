@@ -141,7 +141,9 @@ fn run(case: &Case) -> String {
         session.next_id += 1;
         let params = json!({ "processId": null, "rootUri": null, "capabilities": {},
                              "initializationOptions": serde_json::to_value(&case.init).unwrap() });
-        session.write(&frame(&json!({ "jsonrpc": "2.0", "id": session.next_id, "method": "initialize", "params": params })));
+        session.write(&frame(
+            &json!({ "jsonrpc": "2.0", "id": session.next_id, "method": "initialize", "params": params }),
+        ));
         match session.incoming.recv_timeout(PATIENCE * 6) {
             Ok(Output::Message(m)) if m.get("result").is_some() => {}
             _ => panic!("no answer to initialize"),
@@ -192,7 +194,9 @@ impl Session {
             self.next_id += 1;
             let params = call.params.as_ref().map_or(Value::Null, |p| serde_json::to_value(p).unwrap());
             let _ = writeln!(self.out, "\nrequest {} {}", call.method, params);
-            self.write(&frame(&json!({ "jsonrpc": "2.0", "id": self.next_id, "method": call.method, "params": params })));
+            self.write(&frame(
+                &json!({ "jsonrpc": "2.0", "id": self.next_id, "method": call.method, "params": params }),
+            ));
         }
         if let Some(call) = &step.notify {
             let params = call.params.as_ref().map_or(Value::Null, |p| serde_json::to_value(p).unwrap());
@@ -255,7 +259,8 @@ impl Session {
         let deadline = std::time::Instant::now() + PATIENCE;
         loop {
             if let Some(status) = self.child.try_wait().unwrap() {
-                let _ = writeln!(self.out, "  exit {}", status.code().map_or("by a signal".to_string(), |c| c.to_string()));
+                let _ =
+                    writeln!(self.out, "  exit {}", status.code().map_or("by a signal".to_string(), |c| c.to_string()));
                 return;
             }
             if std::time::Instant::now() > deadline {
@@ -273,7 +278,12 @@ impl Session {
 /// as JSON, notifications by method.
 fn describe(message: &Value) -> String {
     if let Some(error) = message.get("error") {
-        return format!("  ← error {} (id {}): {}\n", error["code"], message["id"], error["message"].as_str().unwrap_or(""));
+        return format!(
+            "  ← error {} (id {}): {}\n",
+            error["code"],
+            message["id"],
+            error["message"].as_str().unwrap_or("")
+        );
     }
     if let Some(result) = message.get("result") {
         if let Some(server) = result.get("serverInfo") {
