@@ -83,3 +83,13 @@ pub(super) fn starts_contour(block: &BlockRef<'_>, tables: &Tables) -> bool {
             _ => false,
         })
 }
+
+/// Whether the block ends a LAP contour: `G80`.
+pub(super) fn ends_contour(block: &BlockRef<'_>, tables: &Tables) -> bool {
+    block.words().iter().any(|w| match w.kind {
+        WordKind::Code { letter: CodeLetter::G, code } => {
+            tables.g(code).and_then(|g| g.function) == Some(GFunction::LapEnd)
+        }
+        _ => false,
+    })
+}

@@ -389,6 +389,21 @@ impl Document {
         })
     }
 
+    /// The blocks of the chunks that hold bytes `range` (a few blocks on either side of it):
+    /// for answers about what the editor shows, whose work follows the range, not the text.
+    pub(crate) fn blocks_near(&self, range: Range<usize>) -> impl Iterator<Item = BlockRef<'_>> {
+        let (first, last) = if self.chunks.is_empty() {
+            (0, 0)
+        } else {
+            (self.chunk_at(range.start as u32), self.chunk_at(range.end as u32) + 1)
+        };
+        (first..last).flat_map(move |index| {
+            let chunk = &*self.chunks[index];
+            let base = self.starts[index];
+            (0..chunk.part.blocks.len()).map(move |block| BlockRef { chunk, base, index: block })
+        })
+    }
+
     /// The text of a span (usually a word: inside one chunk, no copy of the rest).
     pub fn text_of(&self, span: Span) -> Vec<u8> {
         let (start, end) = (span.start as usize, (span.end as usize).min(self.len));

@@ -23,12 +23,15 @@ use lsp_types::notification::{self as notify, Notification as _};
 use lsp_types::request::{self as req, Request as _};
 use lsp_types::{
     CodeAction, CodeActionKind, CodeActionOptions, CodeActionOrCommand, CodeActionParams, CodeActionProviderCapability,
-    DidChangeTextDocumentParams, DidCloseTextDocumentParams, DidOpenTextDocumentParams, DidSaveTextDocumentParams,
-    DocumentFormattingParams, DocumentSymbolParams, DocumentSymbolResponse, GotoDefinitionParams,
-    GotoDefinitionResponse, HoverParams, HoverProviderCapability, InitializeResult, Location, LogMessageParams,
-    MessageType, OneOf, PositionEncodingKind, PrepareRenameResponse, PublishDiagnosticsParams, ReferenceParams,
-    RenameOptions, RenameParams, ServerCapabilities, ServerInfo, ShowMessageParams, TextDocumentPositionParams,
-    TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
+    CompletionOptions, CompletionParams, CompletionResponse, DidChangeTextDocumentParams, DidCloseTextDocumentParams,
+    DidOpenTextDocumentParams, DidSaveTextDocumentParams, DocumentFormattingParams, DocumentSymbolParams,
+    DocumentSymbolResponse, FoldingRangeParams, FoldingRangeProviderCapability, GotoDefinitionParams,
+    GotoDefinitionResponse, HoverParams, HoverProviderCapability, InitializeResult, InlayHintParams, Location,
+    LogMessageParams, MessageType, OneOf, PositionEncodingKind, PrepareRenameResponse, PublishDiagnosticsParams,
+    ReferenceParams, RenameOptions, RenameParams, SemanticTokens, SemanticTokensFullOptions, SemanticTokensOptions,
+    SemanticTokensParams, SemanticTokensRangeParams, SemanticTokensRangeResult, SemanticTokensResult,
+    SemanticTokensServerCapabilities, ServerCapabilities, ServerInfo, ShowMessageParams, SignatureHelpOptions,
+    SignatureHelpParams, TextDocumentPositionParams, TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
 };
 
 use crate::diagnostic::Diagnostic;
@@ -36,7 +39,7 @@ use crate::diagnostic::Diagnostic;
 use super::analysis::{self, SemanticDiagnostics, SemanticJob};
 use super::document::{Document, LinePosition};
 use super::settings::{InitOptions, Settings};
-use super::{actions, definition, format, hover, rename, symbols};
+use super::{actions, completion, definition, folding, format, hover, inlay, rename, semantic_tokens, symbols};
 
 /// Programs up to this size get their semantic diagnostics in the same publish.
 pub const DEFAULT_SEMANTIC_INLINE_LIMIT: usize = 256 << 10;
@@ -270,6 +273,43 @@ impl<H: Host> Server<H> {
                     }
                 }
             }
+            req::Completion::METHOD => self.answer(request, |server, params: CompletionParams| {
+                let at = &params.text_document_position;
+                let open = server.documents.get(&at.text_document.uri)?;
+                let offset = offset(&open.document, at.position);
+                Some(CompletionResponse::Array(completion::completion(&open.document, offset, &open.settings.machine)))
+            }),
+            req::SignatureHelpRequest::METHOD => self.answer(request, |server, params: SignatureHelpParams| {
+                let at = &params.text_document_position_params;
+                let open = server.documents.get(&at.text_document.uri)?;
+                let offset = offset(&open.document, at.position);
+                completion::signature_help(&open.document, offset, &open.settings.machine)
+            }),
+            req::SemanticTokensFullRequest::METHOD => self.answer(request, |server, params: SemanticTokensParams| {
+                let open = server.documents.get(&params.text_document.uri)?;
+                let end = open.document.len().min(semantic_tokens::FULL_LIMIT);
+                let data = semantic_tokens::tokens(&open.document, 0..end);
+                Some(SemanticTokensResult::Tokens(SemanticTokens { result_id: None, data }))
+            }),
+            req::SemanticTokensRangeRequest::METHOD => {
+                self.answer(request, |server, params: SemanticTokensRangeParams| {
+                    let open = server.documents.get(&params.text_document.uri)?;
+                    let start = offset(&open.document, params.range.start);
+                    let end = offset(&open.document, params.range.end).max(start);
+                    let data = semantic_tokens::tokens(&open.document, start..end);
+                    Some(SemanticTokensRangeResult::Tokens(SemanticTokens { result_id: None, data }))
+                })
+            }
+            req::FoldingRangeRequest::METHOD => self.answer(request, |server, params: FoldingRangeParams| {
+                let open = server.documents.get(&params.text_document.uri)?;
+                Some(folding::folding_ranges(&open.document))
+            }),
+            req::InlayHintRequest::METHOD => self.answer(request, |server, params: InlayHintParams| {
+                let open = server.documents.get(&params.text_document.uri)?;
+                let start = offset(&open.document, params.range.start);
+                let end = offset(&open.document, params.range.end).max(start);
+                Some(inlay::inlay_hints(&open.document, start..end, &open.settings.machine))
+            }),
             req::CodeActionRequest::METHOD => self.answer(request, |server, params: CodeActionParams| {
                 let uri = &params.text_document.uri;
                 let open = server.documents.get(uri)?;
@@ -397,7 +437,18 @@ impl<H: Host> Server<H> {
                 }
                 _ => Vec::new(),
             },
-            notify::DidChangeConfiguration::METHOD => self.refresh_settings(),
+            notify::DidChangeConfiguration::METHOD => {
+                // Settings the client sends replace its initializationOptions; a file's
+                // settings are read again either way.
+                let mut messages = Vec::new();
+                match params.get("settings").and_then(InitOptions::from_settings) {
+                    Some(Ok(options)) => self.set_options(options),
+                    Some(Err(problem)) => messages.push(show_message(MessageType::WARNING, problem)),
+                    None => {}
+                }
+                messages.extend(self.refresh_settings());
+                messages
+            }
             _ => Vec::new(),
         }
     }
@@ -450,6 +501,20 @@ impl<H: Host> Server<H> {
                     open.semantic.clear();
                 }
             }
+        }
+    }
+
+    /// Take new client options (`workspace/didChangeConfiguration`).
+    fn set_options(&mut self, init: InitOptions) {
+        self.inline_limit = init.semantic_inline_limit.unwrap_or(DEFAULT_SEMANTIC_INLINE_LIMIT);
+        self.max_diagnostics = match init.max_diagnostics {
+            None => analysis::DEFAULT_MAX_DIAGNOSTICS,
+            Some(0) => usize::MAX,
+            Some(limit) => limit,
+        };
+        self.init = init;
+        for open in self.documents.values_mut() {
+            open.dirty = true;
         }
     }
 
@@ -573,6 +638,22 @@ fn initialize_result() -> InitializeResult {
             document_symbol_provider: Some(OneOf::Left(true)),
             document_formatting_provider: Some(OneOf::Left(true)),
             references_provider: Some(OneOf::Left(true)),
+            completion_provider: Some(CompletionOptions::default()),
+            signature_help_provider: Some(SignatureHelpOptions {
+                trigger_characters: Some(vec![" ".to_string()]),
+                retrigger_characters: None,
+                work_done_progress_options: Default::default(),
+            }),
+            semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+                SemanticTokensOptions {
+                    legend: semantic_tokens::legend(),
+                    range: Some(true),
+                    full: Some(SemanticTokensFullOptions::Bool(true)),
+                    work_done_progress_options: Default::default(),
+                },
+            )),
+            folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
+            inlay_hint_provider: Some(OneOf::Left(true)),
             rename_provider: Some(OneOf::Right(RenameOptions {
                 prepare_provider: Some(true),
                 work_done_progress_options: Default::default(),

@@ -110,9 +110,17 @@ fn protocol_sessions() {
             .collect();
         handles.into_iter().map(|h| h.join().unwrap()).collect()
     });
+    // Every case is compared, and the failures are named together.
+    let mut failed = Vec::new();
     for (name, transcript) in transcripts {
-        with_snapshots("lsp/protocol", || insta::assert_snapshot!(name, transcript));
+        let outcome = std::panic::catch_unwind(|| {
+            with_snapshots("lsp/protocol", || insta::assert_snapshot!(name.clone(), transcript));
+        });
+        if outcome.is_err() {
+            failed.push(name);
+        }
     }
+    assert!(failed.is_empty(), "protocol cases that failed: {failed:?}");
 }
 
 fn run(case: &Case) -> String {

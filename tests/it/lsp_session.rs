@@ -294,8 +294,16 @@ fn run(program: &Path, session: &Session) -> String {
                         }
                         let parameter = signature["activeParameter"].as_u64().or(result["activeParameter"].as_u64());
                         if let Some(p) = parameter.filter(|_| index as u64 == active) {
-                            let label = &signature["parameters"][p as usize]["label"];
-                            let _ = writeln!(out, "    active parameter: {label}");
+                            let label = match &signature["parameters"][p as usize]["label"] {
+                                Value::Array(offsets) => {
+                                    // UTF-16 offsets into the signature's label.
+                                    let units: Vec<u16> = signature["label"].as_str().unwrap().encode_utf16().collect();
+                                    let at = |i: usize| offsets[i].as_u64().unwrap() as usize;
+                                    String::from_utf16(&units[at(0)..at(1)]).unwrap()
+                                }
+                                label => label.as_str().unwrap().to_string(),
+                            };
+                            let _ = writeln!(out, "    active parameter: `{label}`");
                         }
                     }
                 }
