@@ -458,6 +458,40 @@ impl Document {
         (first, outside + in_chunks)
     }
 
+    /// At least `per_side` parse diagnostics on each side of byte `focus` where there are
+    /// that many (those of whole chunks, so a few more), in order: the candidates for a
+    /// publish that shows the diagnostics nearest an edit. Reads only the chunks it needs.
+    pub fn diagnostics_around(&self, focus: usize, per_side: usize) -> Vec<Diagnostic> {
+        let mut diagnostics = syntax::detection_diagnostics(&self.detection);
+        if self.oversized.is_some() {
+            diagnostics.push(Diagnostic::error(DiagnosticKind::SourceTooLarge, Span::new(0, 0)));
+        }
+        if self.chunks.is_empty() {
+            return diagnostics;
+        }
+        let at = self.chunk_at(focus as u32);
+        let count = |range: &mut dyn Iterator<Item = usize>| -> usize {
+            let mut seen = 0;
+            let mut last = None;
+            for index in range {
+                last = Some(index);
+                seen += self.summaries[index].diagnostics as usize;
+                if seen >= per_side {
+                    break;
+                }
+            }
+            last.unwrap_or(at)
+        };
+        let first = count(&mut (0..=at).rev());
+        let last = count(&mut (at..self.chunks.len()));
+        for index in first..=last {
+            let start = self.starts[index];
+            diagnostics.extend(self.chunks[index].part.diagnostics.iter().map(|d| shift_diagnostic(d, start)));
+        }
+        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        diagnostics
+    }
+
     /// Whether the parse found errors (the semantic pass waits until it finds none).
     pub fn has_errors(&self) -> bool {
         self.oversized.is_some() || self.summaries.iter().any(|s| s.errors > 0)

@@ -111,6 +111,11 @@ struct Open {
     dirty: bool,
     /// A semantic pass is running on another thread.
     running: bool,
+    /// Where the last edit was: a publish capped at `maxDiagnostics` shows the ones nearest
+    /// it (`None` until the first edit: the first ones).
+    focus: Option<usize>,
+    /// The version last published.
+    published: Option<i32>,
 }
 
 pub struct Server<H: Host> {
@@ -478,6 +483,8 @@ impl<H: Host> Server<H> {
             semantic_version: None,
             dirty: true,
             running: false,
+            focus: None,
+            published: None,
         };
         self.documents.insert(item.uri, open);
         defaults.into_iter().chain(problems.into_iter().map(|p| show_message(MessageType::WARNING, p))).collect()
@@ -495,10 +502,12 @@ impl<H: Host> Server<H> {
                     let inserted = change.text.len();
                     open.document.replace(start..end, change.text.as_bytes());
                     open.semantic.move_across_edit(start..end, inserted);
+                    open.focus = Some(start);
                 }
                 None => {
                     open.document.set_text(change.text.into_bytes());
                     open.semantic.clear();
+                    open.focus = None;
                 }
             }
         }
@@ -564,7 +573,7 @@ impl<H: Host> Server<H> {
     pub fn idle(&mut self) -> (Vec<Message>, Vec<Job>) {
         let mut messages = Vec::new();
         let mut jobs = Vec::new();
-        for (uri, open) in &mut self.documents {
+        for (uri, open) in self.documents.iter_mut() {
             if !open.dirty {
                 continue;
             }
@@ -599,14 +608,22 @@ impl<H: Host> Server<H> {
             open.dirty = true;
             return Vec::new();
         }
-        open.semantic = SemanticDiagnostics::new(result.diagnostics);
+        // The diagnostics moved across the edits are what this version already showed: a
+        // pass that finds the same (most keystrokes) is not published twice.
+        let unchanged = open.published == Some(result.version) && open.semantic.same_as(&result.diagnostics);
         open.semantic_version = Some(result.version);
+        if unchanged {
+            return Vec::new();
+        }
+        open.semantic = SemanticDiagnostics::new(result.diagnostics);
         vec![publish_open(&result.uri, open, self.max_diagnostics)]
     }
 }
 
-fn publish_open(uri: &Uri, open: &Open, limit: usize) -> Message {
-    publish(uri.clone(), analysis::publishable(&open.document, uri, &open.semantic, limit), Some(open.version))
+fn publish_open(uri: &Uri, open: &mut Open, limit: usize) -> Message {
+    open.published = Some(open.version);
+    let diagnostics = analysis::publishable(&open.document, uri, &open.semantic, limit, open.focus);
+    publish(uri.clone(), diagnostics, Some(open.version))
 }
 
 fn publish(uri: Uri, diagnostics: Vec<lsp_types::Diagnostic>, version: Option<i32>) -> Message {
