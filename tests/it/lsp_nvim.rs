@@ -3,7 +3,8 @@
 //! arrive, at the byte columns Neovim computes from the server's UTF-16 ranges; a hover
 //! answers; a quick fix chosen from `vim.lsp.buf.code_action()`'s menu edits the right
 //! bytes after a multi-byte character and its diagnostic goes; completion after `G7` gives
-//! the dialect's cycles as Neovim's omnifunc would list them. Runs when `nvim` is on the PATH (Debian: `apt install neovim`); without it the
+//! the dialect's cycles as Neovim's omnifunc would list them; the Vim syntax file the
+//! configuration puts on the runtime path colours a block's words. Runs when `nvim` is on the PATH (Debian: `apt install neovim`); without it the
 //! test is skipped with a banner, and fails under CI, which installs it
 //! (`support::external`).
 
@@ -38,6 +39,14 @@ for _, answer in pairs(answers) do
   end
 end
 table.insert(out, "hover on M02: " .. hovered)
+
+-- The Vim syntax file's groups (for clients without semantic tokens): each word of line 3.
+local groups = {}
+for _, column in ipairs({ 1, 5, 6, 10, 11, 13 }) do
+  local id = vim.fn.synID(3, column, 1)
+  table.insert(groups, vim.fn.getline(3):sub(column, column) .. "=" .. vim.fn.synIDattr(id, "name"))
+end
+table.insert(out, "syntax of `" .. vim.fn.getline(3) .. "`: " .. table.concat(groups, " "))
 
 -- A quick fix as the user applies it: the cursor on the `O` of `X4O` (byte column 9, after
 -- the two-byte `°`), `vim.lsp.buf.code_action()`, the first action chosen in the menu.
