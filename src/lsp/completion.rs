@@ -13,7 +13,7 @@ use lsp_types::{
     ParameterInformation, ParameterLabel, SignatureHelp, SignatureInformation, TextEdit,
 };
 
-use crate::dialect::tables::{GKind, Schema};
+use crate::dialect::tables::{GKind, Schema, SequenceStyle};
 use crate::dialect::{Address, Code, KeywordKind, Role, Tables};
 use crate::machine::MachineSettings;
 use crate::semantic::labels;
@@ -149,8 +149,11 @@ pub fn completion(document: &Document, offset: usize, settings: &MachineSettings
 
     // A jump's target: `GOTO ` on either dialect, `IF [...] ` on OSP.
     if keyword == Some(KeywordKind::Goto) || (previous.ends_with(']') && context.line.starts_with(b"IF")) {
+        // OSP jumps name the block with its `N` (`GOTO NAT00`), Fanuc's by number (`GOTO 10`).
+        let letter = if tables.lexical.sequence == SequenceStyle::Osp { "N" } else { "" };
         return sequences(document, |_| true)
             .into_iter()
+            .map(|(written, block)| (format!("{letter}{written}"), block))
             .filter(|(written, _)| written.starts_with(&token))
             .map(|(written, block)| item(written, CompletionItemKind::REFERENCE, block))
             .collect();
