@@ -276,17 +276,21 @@ impl SemanticDiagnostics {
     }
 
     /// At most `per_side` on each side of byte `focus`, in position order, at their spans
-    /// now.
+    /// now. One pass over the spans, no copy of them.
     pub fn around(&self, focus: usize, per_side: usize) -> impl Iterator<Item = Diagnostic> + '_ {
-        let alive: Vec<usize> = (0..self.spans.len()).filter(|&i| self.spans[i].is_some()).collect();
-        let split = alive.partition_point(|&i| self.spans[i].is_some_and(|s| (s.end as usize) < focus));
-        let from = split.saturating_sub(per_side);
-        let to = (split + per_side).min(alive.len());
-        alive
-            .into_iter()
-            .skip(from)
-            .take(to - from)
-            .filter_map(move |i| Some(Diagnostic { span: self.spans[i]?, ..self.reported[i].clone() }))
+        let split =
+            self.spans.iter().position(|s| s.is_some_and(|s| s.end as usize >= focus)).unwrap_or(self.spans.len());
+        let alive = |(_, span): &(usize, &Option<Span>)| span.is_some();
+        let from =
+            self.spans[..split].iter().enumerate().rev().filter(alive).take(per_side).last().map_or(split, |(i, _)| i);
+        let to = self.spans[split..]
+            .iter()
+            .enumerate()
+            .filter(alive)
+            .take(per_side)
+            .last()
+            .map_or(split, |(i, _)| split + i + 1);
+        (from..to).filter_map(move |i| Some(Diagnostic { span: self.spans[i]?, ..self.reported[i].clone() }))
     }
 
     /// Whether these are the diagnostics a pass reported (`reported`, in any order), at the
