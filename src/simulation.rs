@@ -21,7 +21,7 @@ use crate::machine::ToolSettings;
 use crate::semantic::{Lowered, Machine};
 use crate::source::{LineIndex, Span};
 use crate::syntax::Program;
-use crate::toolpath::{Compensation, Motion, ValidToolpath, Validated};
+use crate::toolpath::{Compensation, Motion, Toolpath};
 
 /// One row of `simulate --format csv|json`.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -64,8 +64,7 @@ pub struct Summary {
     pub finishing_passes: Vec<FinishingPass>,
 }
 
-/// One row per move of the validated toolpath.
-pub fn rows(program: &Program<'_>, toolpath: ValidToolpath<'_>) -> Vec<Row> {
+pub fn rows(program: &Program<'_>, toolpath: &Toolpath) -> Vec<Row> {
     let lines = LineIndex::new(program.source());
     let line_of = |span: Span| if span.is_synthetic() { 0 } else { lines.position(span.start).0 };
     toolpath
@@ -144,9 +143,7 @@ pub fn roughness(f: f64, r: f64, minor_edge_angle_deg: Option<f64>) -> (f64, &'s
     }
 }
 
-/// The times, lengths and finishing passes of a validated program.
-pub fn summary(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Machine) -> Summary {
-    let toolpath = lowered.valid().toolpath();
+pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, machine: &Machine) -> Summary {
     let lines = LineIndex::new(program.source());
     let mut cycle_time = 0.0;
     let mut cutting_time = 0.0;
@@ -201,7 +198,7 @@ pub fn summary(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Ma
             formula,
         });
     };
-    for (source, moves) in finishing_moves(program, lowered) {
+    for (source, moves) in finishing_moves(program, lowered, toolpath) {
         pass(source, moves);
     }
     passes.sort_by_key(|p| p.line);
@@ -222,8 +219,7 @@ pub fn summary(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Ma
 /// compensation outside cycles (less the move that switches compensation on, which
 /// approaches the surface and does not finish it). In program order of the passes' kinds,
 /// not sorted.
-pub fn finishing_moves(program: &Program<'_>, lowered: &Validated<Lowered>) -> Vec<(Span, Range<usize>)> {
-    let toolpath = lowered.valid().toolpath();
+pub fn finishing_moves(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath) -> Vec<(Span, Range<usize>)> {
     let mut out = Vec::new();
     for expansion in &lowered.expansions {
         let block = program.block(expansion.block);

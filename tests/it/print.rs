@@ -171,3 +171,47 @@ fn canonical_form() {
         });
     });
 }
+
+/// A program long enough to be printed in two halves on two threads comes out as one
+/// printed in order: CRLF lines, a last line with no terminator, deletions and insertions
+/// on both sides of the middle.
+#[test]
+fn a_long_program_prints_in_two_halves_as_in_one() {
+    let count = 120_001;
+    let source: Vec<String> = (0..count).map(|i| format!("G01 X{}. Z-1.", i % 500)).collect();
+    let text = source.join("\r\n");
+    let parsed = parse(text.as_bytes(), &options_for(text.as_bytes()));
+    assert_eq!(parsed.program.blocks().len(), count);
+    let comment = |c: &str| NewBlock::new(vec![NewWord::Comment(c.to_string())]);
+    let mut edits = Edits::new();
+    // Some blocks are replaced by text written ahead, the last one (which has no line end)
+    // among them, beside the other edits.
+    let mut writer = BlockWriter::new(&parsed.program);
+    let mut written = Vec::new();
+    let mut expected = Vec::new();
+    for (i, line) in source.iter().enumerate() {
+        let edited = i > 0 && i + 1 < count;
+        if edited && i % 11 == 0 {
+            edits.insert_before(i, comment("B"));
+            expected.push("(B)".to_string());
+        }
+        if edited && i % 7 == 0 {
+            edits.delete(i);
+        } else if i % 5 == 0 || i + 1 == count {
+            let start = writer.begin();
+            writer.word(&NewWord::Comment(format!("W{i}")));
+            writer.next_block();
+            writer.word(&NewWord::Comment("W".to_string()));
+            written.push((i, writer.finish(start)));
+            expected.push(format!("(W{i})\r\n(W)"));
+        } else {
+            expected.push(line.clone());
+        }
+        if edited && i % 13 == 0 {
+            edits.insert_after(i, comment("A"));
+            expected.push("(A)".to_string());
+        }
+    }
+    edits.replace_written(writer, written);
+    assert_eq!(String::from_utf8(print(&parsed.program, &edits)).unwrap(), expected.join("\r\n"));
+}
