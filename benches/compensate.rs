@@ -28,10 +28,12 @@ use turnpass::compensation::{CompensateOptions, compensate_program};
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem, MachineKind};
 use turnpass::error_model::model_file::ModelSpec;
 use turnpass::machine::ModelFile;
+use turnpass::pipeline::Settings;
 use turnpass::printer::print;
-use turnpass::semantic::{LowerOptions, Machine, lower};
-use turnpass::syntax::{ParseOptions, parse};
-use turnpass::toolpath::validate;
+use turnpass::semantic::LowerOptions;
+use turnpass::syntax::ParseOptions;
+
+mod support;
 
 const SCALING_MB: [&str; 4] = ["1", "2", "5", "10"];
 
@@ -160,7 +162,6 @@ fn end_to_end(c: &mut Criterion) {
     let text = std::fs::read_to_string(model_path()).unwrap();
     let settings = ModelFile::from_toml(&text).unwrap().machine;
     let model = ModelSpec::from_toml(&text).unwrap().build(|_| Err("no tables".into())).unwrap();
-    let machine = Machine::from_settings(&settings);
     let parse_options = ParseOptions {
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
@@ -168,6 +169,8 @@ fn end_to_end(c: &mut Criterion) {
         control: Default::default(),
     };
     let lower_options = LowerOptions { nose_radius_compensation: true, ..LowerOptions::new(false) };
+    let settings = Settings::new(parse_options, &settings, lower_options);
+    let machine = settings.machine.clone();
     let options = CompensateOptions {
         fit: FitOptions {
             strategy: Strategy::Auto,
@@ -184,11 +187,9 @@ fn end_to_end(c: &mut Criterion) {
     group.sample_size(10);
     group.bench_function("library_1mb", |b| {
         b.iter(|| {
-            let parsed = parse(black_box(&bytes), &parse_options);
-            let lowered = lower(&parsed.program, &machine, &lower_options);
-            let valid = validate(&lowered.toolpath, machine.limits).unwrap();
-            let outcome = compensate_program(&parsed.program, &lowered, &valid, &machine, &model, &options);
-            print(&parsed.program, &outcome.edits)
+            let program = support::ready(black_box(&bytes), &settings);
+            let outcome = compensate_program(program.program(), &program.lowered, &program.machine, &model, &options);
+            print(program.program(), &outcome.edits)
         })
     });
     group.finish();

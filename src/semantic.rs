@@ -49,9 +49,6 @@ pub struct LowerOptions {
     /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
     /// under the program's own `G41`/`G42`).
     pub nose_radius_compensation: bool,
-    /// Time arcs on a second thread while the program runs (`emitter/arc_times.rs`) when
-    /// it has at least this many blocks; the times are the same either way.
-    pub arc_times_beside_from_blocks: usize,
 }
 
 impl LowerOptions {
@@ -61,8 +58,6 @@ impl LowerOptions {
             max_executed_blocks: 10_000_000,
             max_moves: 20_000_000,
             nose_radius_compensation: true,
-            // A thread pays for itself on a few thousand arcs.
-            arc_times_beside_from_blocks: 20_000,
         }
     }
 }
@@ -276,6 +271,17 @@ impl Lowered {
 /// does not lower (see [`lowers`]) gives an empty toolpath and no diagnostics: the front end
 /// has already said what it is.
 pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Lowered {
+    lower_tuned(program, machine, options, crate::parallel::tuning())
+}
+
+/// [`lower`] with `tuning` in place of the process's: the same result for any tuning
+/// (`tests/it/arc_times.rs` holds the arcs timed on a second thread to the plain run).
+pub fn lower_tuned(
+    program: &Program<'_>,
+    machine: &Machine,
+    options: &LowerOptions,
+    tuning: &crate::parallel::Tuning,
+) -> Lowered {
     if !lowers(program) {
         return Lowered {
             toolpath: Toolpath { start: machine.home.unwrap_or(Xz::new(f64::NAN, f64::NAN)), moves: Vec::new() },
@@ -286,30 +292,7 @@ pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -
             coordinates: Vec::new(),
         };
     }
-    interpreter::Interpreter::new(program, machine, options).run()
-}
-
-/// A program lowered and its toolpath validated: what `check`, `simulate` and the language
-/// server report of a program beyond its parse, all from this one function.
-pub struct Checked {
-    /// The lowered program, validated when its toolpath is valid.
-    pub lowered: Result<crate::toolpath::Validated<Lowered>, Lowered>,
-    /// The semantic pass's diagnostics and the toolpath's problems, in program order (the
-    /// parser's are not among them).
-    pub diagnostics: Vec<Diagnostic>,
-}
-
-/// Lower `program` and validate its toolpath against the machine's travel limits. A program
-/// the semantic pass does not lower ([`lowers`]) gets an empty toolpath and no diagnostic.
-pub fn check(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Checked {
-    let lowered = lower(program, machine, options);
-    let mut diagnostics = lowered.diagnostics.clone();
-    let lowered = crate::toolpath::Validated::new(lowered, machine.limits).map_err(|(lowered, problems)| {
-        diagnostics.extend(problems);
-        lowered
-    });
-    diagnostics.sort_by_key(|d| d.span.start);
-    Checked { lowered, diagnostics }
+    interpreter::Interpreter::new(program, machine, options, tuning).run()
 }
 
 /// Whether the semantic pass lowers this program. It simulates lathes: an OSP

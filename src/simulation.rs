@@ -21,7 +21,7 @@ use crate::machine::ToolSettings;
 use crate::semantic::{Lowered, Machine};
 use crate::source::{LineIndex, Span};
 use crate::syntax::Program;
-use crate::toolpath::{Compensation, Motion, Toolpath};
+use crate::toolpath::{Compensation, Motion, ValidToolpath, Validated};
 
 /// One row of `simulate --format csv|json`.
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -64,7 +64,8 @@ pub struct Summary {
     pub finishing_passes: Vec<FinishingPass>,
 }
 
-pub fn rows(program: &Program<'_>, toolpath: &Toolpath) -> Vec<Row> {
+/// One row per move of the validated toolpath.
+pub fn rows(program: &Program<'_>, toolpath: ValidToolpath<'_>) -> Vec<Row> {
     let lines = LineIndex::new(program.source());
     let line_of = |span: Span| if span.is_synthetic() { 0 } else { lines.position(span.start).0 };
     toolpath
@@ -143,7 +144,9 @@ pub fn roughness(f: f64, r: f64, minor_edge_angle_deg: Option<f64>) -> (f64, &'s
     }
 }
 
-pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, machine: &Machine) -> Summary {
+/// The times, lengths and finishing passes of a validated program.
+pub fn summary(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Machine) -> Summary {
+    let toolpath = lowered.valid().toolpath();
     let lines = LineIndex::new(program.source());
     let mut cycle_time = 0.0;
     let mut cutting_time = 0.0;
@@ -198,7 +201,7 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
             formula,
         });
     };
-    for (source, moves) in finishing_moves(program, lowered, toolpath) {
+    for (source, moves) in finishing_moves(program, lowered) {
         pass(source, moves);
     }
     passes.sort_by_key(|p| p.line);
@@ -219,7 +222,8 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
 /// compensation outside cycles (less the move that switches compensation on, which
 /// approaches the surface and does not finish it). In program order of the passes' kinds,
 /// not sorted.
-pub fn finishing_moves(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath) -> Vec<(Span, Range<usize>)> {
+pub fn finishing_moves(program: &Program<'_>, lowered: &Validated<Lowered>) -> Vec<(Span, Range<usize>)> {
+    let toolpath = lowered.valid().toolpath();
     let mut out = Vec::new();
     for expansion in &lowered.expansions {
         let block = program.block(expansion.block);

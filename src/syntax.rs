@@ -86,14 +86,11 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
         };
         return Parsed { program, diagnostics, detection };
     }
-    let split = if source.len() >= PARALLEL_BYTES { split_point(source) } else { None };
+    let split = if source.len() >= crate::parallel::tuning().parse_bytes { split_point(source) } else { None };
     let program = parse_lines(source, config, split, &mut diagnostics);
     diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
     Parsed { program, diagnostics, detection }
 }
-
-/// Programs of at least this many bytes are parsed in two runs of lines at once.
-const PARALLEL_BYTES: usize = 1 << 20;
 
 /// Where a second run of lines may start near the middle of `source`: after a line feed,
 /// before a line that is not an OSP `$` continuation (nor a `$…%` header). Every such place
@@ -135,11 +132,10 @@ pub(crate) fn parse_lines<'src>(
         Some(split) => {
             // The second run assumes the tape is open where it starts, as it is in every
             // program with a `%` at its top; the first run says whether it was.
-            let (first, second) = std::thread::scope(|scope| {
-                let second = scope.spawn(|| Run::parse(source, split, config, Tape::Open, 1));
-                let first = Run::parse(&source[..split], 0, config, Tape::Before, block_capacity);
-                (first, second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            });
+            let (first, second) = crate::parallel::join(
+                || Run::parse(&source[..split], 0, config, Tape::Before, block_capacity),
+                || Run::parse(source, split, config, Tape::Open, 1),
+            );
             let mut program = first.program;
             program.source = source;
             diagnostics.extend(first.diagnostics);

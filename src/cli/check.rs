@@ -9,12 +9,12 @@ use std::process::ExitCode;
 use clap::Args;
 
 use turnpass::diagnostic::render::{RenderSource, render_terminal, to_json};
-use turnpass::semantic;
+use turnpass::pipeline;
 use turnpass::source::LineIndex;
 use turnpass::syntax::{self, Statement};
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, display_name, lower_and_validate, model_source, note_machine_defaults, plural,
+    CliError, Format, ReadArgs, RunArgs, display_name, model_source, note_machine_defaults, pipeline_settings, plural,
     read_input, resolve,
 };
 use super::streams;
@@ -65,11 +65,13 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
             }
             continue;
         }
-        let parsed = syntax::parse(&bytes, &resolved.options);
-        let mut diagnostics = if args.syntax_only || !semantic::lowers(&parsed.program) {
-            parsed.diagnostics.clone()
+        let (parsed, mut diagnostics) = if args.syntax_only {
+            let parsed = syntax::parse(&bytes, &resolved.options);
+            let diagnostics = parsed.diagnostics.clone();
+            (parsed, diagnostics)
         } else {
-            lower_and_validate(&parsed, &resolved, &args.run).diagnostics
+            let analysed = pipeline::analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
+            (analysed.parsed, analysed.diagnostics)
         };
         if let Some(warning) = parsed.program.nothing_to_run() {
             diagnostics.insert(0, warning);

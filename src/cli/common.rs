@@ -13,9 +13,10 @@ use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
 use turnpass::machine::{MachineSettings, ModelFile};
-use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
+use turnpass::parallel::Tuning;
+use turnpass::pipeline::{self, Analysed, Lowering, Ready};
+use turnpass::semantic::{self, LowerOptions};
 use turnpass::syntax::{self, ParseOptions};
-use turnpass::toolpath::{ValidToolpath, Validated};
 
 use super::streams;
 
@@ -434,6 +435,24 @@ pub fn read_program(path: &Path, read: &ReadArgs) -> Result<(Vec<u8>, Resolved),
     Ok((bytes, resolved))
 }
 
+/// `TURNPASS_SERIAL=USE,…` (names of `turnpass::parallel::Tuning::USES`, or `all`): run
+/// those uses of a second thread on one, to measure what each gives (README,
+/// "Performance"). The output is the same either way.
+pub fn tune_from_environment() -> Result<(), CliError> {
+    let Ok(names) = std::env::var("TURNPASS_SERIAL") else { return Ok(()) };
+    let mut tuning = Tuning::DEFAULT;
+    for name in names.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+        tuning = tuning.with_serial(name).ok_or_else(|| {
+            CliError::Usage(format!(
+                "TURNPASS_SERIAL: no use of threads is named `{name}`; the uses are {} (or all)",
+                Tuning::USES.join(", ")
+            ))
+        })?;
+    }
+    turnpass::parallel::set_tuning(tuning);
+    Ok(())
+}
+
 pub fn lower_options(run: &RunArgs, settings: &MachineSettings, compensation: bool) -> LowerOptions {
     let block_delete = match run.block_delete {
         Some(Switch::On) => true,
@@ -480,24 +499,15 @@ pub fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }
 
-/// A lowered program ready for the error model: parsed, lowered with nose-radius
-/// compensation, its toolpath validated.
-pub struct Ready<'b> {
-    pub parsed: syntax::Parsed<'b>,
-    pub lowered: Validated<Lowered>,
-    pub machine: Machine,
+/// What `resolved` and `run` give the pipeline; `compensation` turns nose-radius
+/// compensation on.
+pub fn pipeline_settings(resolved: &Resolved, run: &RunArgs, compensation: bool) -> pipeline::Settings {
+    pipeline::Settings::new(resolved.options, &resolved.settings, lower_options(run, &resolved.settings, compensation))
 }
 
-impl Ready<'_> {
-    /// The validated toolpath.
-    pub fn valid(&self) -> ValidToolpath<'_> {
-        self.lowered.valid()
-    }
-}
-
-/// Parse, lower and validate; `Err` holds the rendered diagnostics and a line saying why
-/// when the program is not ready (errors, or not a lathe program). Warnings of a ready
-/// program come back in `warnings`.
+/// Parse, lower with nose-radius compensation and validate; `Err` holds the rendered
+/// diagnostics and a line saying why when the program is not ready (errors, or not a lathe
+/// program). Warnings of a ready program come back in `warnings`.
 pub fn ready<'b>(
     name: &str,
     bytes: &'b [u8],
@@ -506,13 +516,12 @@ pub fn ready<'b>(
     command: &str,
     warnings: &mut Vec<u8>,
 ) -> Result<Ready<'b>, Vec<u8>> {
-    let lower = |parsed: &syntax::Parsed<'b>| (lower_and_validate(parsed, resolved, run), ());
-    ready_with(name, bytes, resolved, command, warnings, lower).map(|(ready, ())| ready)
+    let analysed = pipeline::analyse(bytes, &pipeline_settings(resolved, run, true));
+    ready_or_why(name, bytes, command, analysed, warnings)
 }
 
-/// [`ready`], running `beside` on the parsed program on a second thread while the program is
-/// lowered and validated: lowering runs on one core, and work that needs only the parsed
-/// program can take the other (`beside` does not run when the program is not lowered).
+/// [`ready`], running `beside` on the parsed program while it is lowered
+/// (`pipeline::analyse_beside`).
 pub fn ready_beside<'b, T: Send>(
     name: &str,
     bytes: &'b [u8],
@@ -521,72 +530,43 @@ pub fn ready_beside<'b, T: Send>(
     warnings: &mut Vec<u8>,
     beside: impl FnOnce(&syntax::Program<'b>) -> T + Send,
 ) -> Result<(Ready<'b>, T), Vec<u8>> {
-    let lower = |parsed: &syntax::Parsed<'b>| {
-        std::thread::scope(|scope| {
-            let made = scope.spawn(|| beside(&parsed.program));
-            let lowering = lower_and_validate(parsed, resolved, run);
-            // `beside` cannot fail on any input; a panic is a bug, and is passed on.
-            (lowering, made.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-        })
-    };
-    ready_with(name, bytes, resolved, command, warnings, lower)
+    let (analysed, made) = pipeline::analyse_beside(bytes, &pipeline_settings(resolved, run, true), beside);
+    Ok((ready_or_why(name, bytes, command, analysed, warnings)?, made))
 }
 
-/// Parse, then `lower` (lowering and validation, with whatever runs beside them), and tell
-/// whether the program is ready.
-fn ready_with<'b, T>(
+/// The ready program of `analysed`, or the rendered reason it is not.
+fn ready_or_why<'b>(
     name: &str,
-    bytes: &'b [u8],
-    resolved: &Resolved,
+    bytes: &[u8],
     command: &str,
+    analysed: Analysed<'b>,
     warnings: &mut Vec<u8>,
-    lower: impl FnOnce(&syntax::Parsed<'b>) -> (Lowering, T),
-) -> Result<(Ready<'b>, T), Vec<u8>> {
-    let parsed = syntax::parse(bytes, &resolved.options);
-    if let Some(warning) = parsed.program.nothing_to_run() {
+) -> Result<Ready<'b>, Vec<u8>> {
+    if let Some(warning) = analysed.parsed.program.nothing_to_run() {
         let mut text = rendered(name, bytes, &[warning]);
         text.extend_from_slice(format!("{command}: {name} holds no block to run; nothing is written\n").as_bytes());
         return Err(text);
     }
-    if !semantic::lowers(&parsed.program) {
-        let mut text = rendered(name, bytes, &parsed.diagnostics);
+    if matches!(analysed.lowering, Lowering::NotLowered) {
+        let mut text = rendered(name, bytes, &analysed.diagnostics);
         text.extend_from_slice(
             format!("{command}: {name} is an OSP machining-centre program; turnpass {command}s lathe programs only\n")
                 .as_bytes(),
         );
         return Err(text);
     }
-    let (Lowering { lowered, machine, diagnostics }, made) = lower(&parsed);
-    let text = rendered(name, bytes, &diagnostics);
-    match lowered {
-        Ok(lowered) if !diagnostics.iter().any(Diagnostic::is_error) => {
+    let text = rendered(name, bytes, &analysed.diagnostics);
+    match analysed.ready() {
+        Ok(ready) => {
             warnings.extend_from_slice(&text);
-            Ok((Ready { parsed, lowered, machine }, made))
+            Ok(ready)
         }
-        _ => {
+        Err(_) => {
             let mut text = text;
             text.extend_from_slice(format!("{command}: {name} has errors; nothing is written\n").as_bytes());
             Err(text)
         }
     }
-}
-
-/// A parsed program lowered with nose-radius compensation and validated.
-pub struct Lowering {
-    /// The lowered program, validated when its toolpath is valid.
-    pub lowered: Result<Validated<Lowered>, Lowered>,
-    pub machine: Machine,
-    /// Every diagnostic, the parser's included, in program order.
-    pub diagnostics: Vec<Diagnostic>,
-}
-
-pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run: &RunArgs) -> Lowering {
-    let machine = Machine::from_settings(&resolved.settings);
-    let checked = semantic::check(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
-    let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(checked.diagnostics);
-    diagnostics.sort_by_key(|d| d.span.start);
-    Lowering { lowered: checked.lowered, machine, diagnostics }
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse
@@ -602,17 +582,9 @@ pub fn not_lowered(command: &str, name: &str, bytes: &[u8], parsed: &syntax::Par
 
 /// Write to `output` atomically, or to standard output for none or `-`.
 pub fn write_output(output: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
-    write_output_parts(output, [bytes])
-}
-
-/// [`write_output`] of a text given as pieces that follow each other.
-pub fn write_output_parts<'a>(
-    output: Option<&Path>,
-    parts: impl IntoIterator<Item = &'a [u8]>,
-) -> Result<(), CliError> {
     match output {
-        Some(path) if path != Path::new("-") => write_atomically_parts(path, parts),
-        _ => streams::out_parts(parts),
+        Some(path) if path != Path::new("-") => write_atomically(path, bytes),
+        _ => streams::out(bytes),
     }
 }
 
@@ -648,11 +620,6 @@ pub fn check_output_dir(dir: &Path) -> Result<(), CliError> {
 /// DNC service running as another user must be able to read it); a file written over keeps
 /// its mode; a symbolic link is written through to the file it names and stays a link.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    write_atomically_parts(path, [bytes])
-}
-
-/// [`write_atomically`] of a text given as pieces that follow each other.
-pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), CliError> {
     let error = |source| CliError::Write { path: path.display().to_string(), source };
     let target = link_target(path).map_err(error)?;
     let dir = folder_of(&target);
@@ -661,9 +628,7 @@ pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &
         return Err(error(std::io::Error::new(std::io::ErrorKind::NotFound, message)));
     }
     let mut temp = temporary_beside(dir, std::fs::metadata(&target).ok()).map_err(error)?;
-    for part in parts {
-        temp.write_all(part).map_err(error)?;
-    }
+    temp.write_all(bytes).map_err(error)?;
     temp.flush().map_err(error)?;
     temp.persist(&target).map_err(|e| error(e.error))?;
     Ok(())

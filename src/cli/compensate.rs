@@ -18,10 +18,11 @@ use clap::{Args, ValueEnum};
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::rewrite::ProgramTables;
-use turnpass::compensation::verify::{self, Reading};
+use turnpass::compensation::verify;
 use turnpass::compensation::{CompensateOptions, Outcome, compensate_with_tables};
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
+use turnpass::pipeline::Ready;
 use turnpass::printer;
 use turnpass::semantic::Machine;
 use turnpass::semantic::nose_radius::ToolTable;
@@ -29,8 +30,8 @@ use turnpass::source::Span;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, lower_options, model_name, model_sha256,
-    model_source, read_program, ready_beside, rendered, required_error_model, write_output, write_output_parts,
+    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
+    pipeline_settings, read_program, ready_beside, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -164,7 +165,7 @@ impl FitArgs {
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
         let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
         let machine = (&program.machine, model);
-        compensate_with_tables(&program.parsed.program, &program.lowered, &program.valid(), machine, &options, None)
+        compensate_with_tables(&program.parsed.program, &program.lowered, machine, &options, None)
     }
 
     /// [`FitArgs::compensate`] without the paths, with the rewrite's tables of the program
@@ -178,14 +179,7 @@ impl FitArgs {
     ) -> Outcome {
         let options = CompensateOptions { paths: false, block_reports, ..self.options(&program.machine) };
         let machine = (&program.machine, model);
-        compensate_with_tables(
-            &program.parsed.program,
-            &program.lowered,
-            &program.valid(),
-            machine,
-            &options,
-            Some(tables),
-        )
+        compensate_with_tables(&program.parsed.program, &program.lowered, machine, &options, Some(tables))
     }
 }
 
@@ -196,7 +190,7 @@ pub struct FileResult {
     /// For standard error: diagnostics and a summary line.
     pub messages: Vec<u8>,
     /// The compensated program (only with code 0).
-    pub output: Option<printer::Printed>,
+    pub output: Option<Vec<u8>>,
     pub report: Option<serde_json::Value>,
 }
 
@@ -229,7 +223,7 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
     let result = compensate_file(path, &args)?;
     streams::err(&result.messages);
     if let Some(output) = &result.output {
-        write_output_parts(args.output.as_deref(), output.parts())?;
+        write_output(args.output.as_deref(), output)?;
     }
     if let Some(report) = &result.report {
         write_report(&args, report)?;
@@ -302,13 +296,12 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         start_min: model.start_min,
     };
     provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
-    let written = printer::print_parts(&program.parsed.program, &outcome.edits).into_bytes();
+    let written = printer::print(&program.parsed.program, &outcome.edits);
     // What is about to be written is read back and measured as `verify` measures it; its
     // figures are the ones reported, and a program that misses verify's bound is refused.
-    let lower = lower_options(&args.run, &resolved.settings, true);
-    let reading = Reading { parse: &resolved.options, machine: &program.machine, lower: &lower };
+    let reading = pipeline_settings(&resolved, &args.run, true);
     let tools = ToolTable::from_machine(&program.machine);
-    let original = program.valid().toolpath();
+    let original = program.valid();
     let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
     let refusal = match verify::check_written(original, &written, &reading, &tools, &model) {
         Ok((figures, feed_change)) => {
@@ -368,5 +361,5 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         );
     }
     let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
-    Ok(FileResult { code: 0, messages, output: Some(printer::Printed::whole(written)), report })
+    Ok(FileResult { code: 0, messages, output: Some(written), report })
 }

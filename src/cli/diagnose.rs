@@ -13,11 +13,11 @@ use turnpass::diagnose::synth::{SynthOptions, synth, to_csv};
 use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, with_table_files};
+use turnpass::pipeline::Ready;
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, folder_of,
-    model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
-    write_atomically, write_output,
+    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, display_name, folder_of, model_problems,
+    model_spec, read_data_text, read_program, read_table, ready, required_error_model, write_atomically, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -182,7 +182,7 @@ fn prepare(
     let mut messages = Vec::new();
     let result = match ready(&name, &bytes, &resolved, run, command, &mut messages) {
         Ok(Ready { parsed, lowered, machine }) => {
-            let mut nominal = Nominal::new(&parsed.program, &lowered, &lowered.valid(), &machine);
+            let mut nominal = Nominal::new(&parsed.program, &lowered, &machine);
             nominal.screw_pitch = resolved.settings.ball_screw_pitch_mm.unwrap_or_default();
             Ok((nominal, model, resolved))
         }

@@ -92,7 +92,7 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     }
     let [before, after] = points.map(|c| c.points);
     let title = format!("{original_name} → {compensated_name}");
-    let path = turnpass::plot::path_svg(&title, &toolpath, &before, &after, args.magnify);
+    let path = turnpass::plot::path_svg(&title, toolpath, &before, &after, args.magnify);
     let mut plots = vec![Plot {
         id: "plot-path",
         caption: match &path {
@@ -105,7 +105,7 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         },
         svg: path.map(|drawn| drawn.svg).map_err(|e| e.to_string()),
     }];
-    match turnpass::plot::polar_svg(&title, &toolpath, &before, &after) {
+    match turnpass::plot::polar_svg(&title, toolpath, &before, &after) {
         Ok(svg) => plots.push(Plot {
             id: "plot-polar",
             caption: "The full circle as a ball bar would trace it: radial deviation against the angle, each \

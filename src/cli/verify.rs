@@ -13,12 +13,13 @@ use turnpass::compensation::verify::{
     self, CutWords, Deviation, Measured, Side, WordCheck, check_feeds, check_words, deviation_each, deviation_watched,
 };
 use turnpass::error_model::ErrorModel;
+use turnpass::pipeline::Ready;
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::LineIndex;
 use turnpass::syntax::Program;
 
 use super::common::{
-    CliError, Format, ReadArgs, Ready, Resolved, RunArgs, display_name, model_sha256, model_source, read_program,
+    CliError, Format, ReadArgs, Resolved, RunArgs, display_name, model_sha256, model_source, read_program,
     read_program_bytes, ready, required_error_model, write_output,
 };
 use super::numbers::{self, within};
@@ -273,14 +274,14 @@ pub fn checked(
     }
     let tools = ToolTable::from_machine(&original.machine);
     let machine = &original.machine;
-    let (original_path, compensated_path) = (original.valid().toolpath(), compensated.valid().toolpath());
-    let sampling = verify::sampling(model, machine.increment * machine.scale(), &[original_path, compensated_path]);
+    let (original_path, compensated_path) = (original.valid(), compensated.valid());
+    let sampling = verify::sampling(model, machine.increment * machine.scale(), &[&original_path, &compensated_path]);
     let figures = match watch {
         Watch::Each(each) => deviation_each(original_path, compensated_path, &tools, model, &sampling, each),
         Watch::Progress(watch) => deviation_watched(original_path, compensated_path, &tools, model, &sampling, watch),
     };
     let words = check_words(&original.parsed.program, &compensated.parsed.program);
-    if let Some(change) = check_feeds(original_path, compensated_path) {
+    if let Some(change) = check_feeds(&original_path, &compensated_path) {
         let line = LineIndex::new(original_bytes).position(change.source.start).0;
         violations.push(format!(
             "{compensated_name} cuts with {} where {original_name} cuts with {} (its line {line} on)",

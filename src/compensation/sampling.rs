@@ -14,7 +14,7 @@
 use std::ops::Range;
 
 use crate::error_model::Spacing;
-use crate::error_model::spacing::{self, ArcTerms, TABLE_STEP_MM};
+use crate::error_model::spacing::{ArcTerms, TABLE_STEP_MM};
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
@@ -99,7 +99,7 @@ impl Sampling {
         }
         let step = self.arc.radians(radius, feed, self.allowance).min(self.max_arc_radians);
         // `as` saturates; a NaN (a degenerate arc) is no step.
-        if step > 0.0 { spacing::ceil(sweep / step) as usize } else { 0 }
+        if step > 0.0 { (sweep / step).ceil() as usize } else { 0 }
     }
 }
 

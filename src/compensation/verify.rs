@@ -21,13 +21,12 @@ use smallvec::SmallVec;
 
 use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
+use crate::pipeline::Settings;
+use crate::semantic::Machine;
 use crate::semantic::nose_radius::ToolTable;
-use crate::semantic::{LowerOptions, Machine};
 use crate::source::Span;
-use crate::syntax::ParseOptions;
 use crate::syntax::{CodeLetter, Program, WordKind};
-use crate::toolpath::Validated;
-use crate::toolpath::{Toolpath, Xz};
+use crate::toolpath::{Toolpath, ValidToolpath, Xz};
 
 use super::deviation::{Figures, LocalPath, Tally};
 use super::fit::{FitOptions, Strategy};
@@ -88,8 +87,8 @@ const CHUNK_MOVES: usize = 4096;
 /// the sample before it, so the figures do not depend on how closely the path was sampled).
 /// The two are measured side by side.
 pub fn deviation(
-    original: &Toolpath,
-    compensated: &Toolpath,
+    original: ValidToolpath<'_>,
+    compensated: ValidToolpath<'_>,
     tools: &ToolTable,
     model: &ErrorModel,
     sampling: &Sampling,
@@ -101,22 +100,21 @@ pub fn deviation(
 /// path order within each program, the two programs interleaved): how far the measure has
 /// come, for a progress bar.
 pub fn deviation_watched(
-    original: &Toolpath,
-    compensated: &Toolpath,
+    original: ValidToolpath<'_>,
+    compensated: ValidToolpath<'_>,
     tools: &ToolTable,
     model: &ErrorModel,
     sampling: &Sampling,
     watch: &(dyn Fn(Side, &Measured) + Sync),
 ) -> Deviation {
+    let (original, compensated) = (original.toolpath(), compensated.toolpath());
     let path = LocalPath::new(original);
-    let ((before, _), (after, worst)) = std::thread::scope(|scope| {
-        let before = scope
-            .spawn(|| measure(original, &path, tools, model, sampling, Side::Original, &mut |side, m| watch(side, &m)));
-        let after =
-            measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m));
-        // Measuring cannot fail on any input; a panic is a bug, and is passed on.
-        (before.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), after)
-    });
+    let side_by_side = original.moves.len() >= crate::parallel::tuning().measure_moves;
+    let ((after, worst), (before, _)) = crate::parallel::join_if(
+        side_by_side,
+        || measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m)),
+        || measure(original, &path, tools, model, sampling, Side::Original, &mut |side, m| watch(side, &m)),
+    );
     figures(before, after, worst)
 }
 
@@ -147,13 +145,14 @@ pub struct Measured {
 /// then the compensated program's, each in path order): `deviation` and `report` measure
 /// with this one computation, so the page's figures are `verify`'s.
 pub fn deviation_each(
-    original: &Toolpath,
-    compensated: &Toolpath,
+    original: ValidToolpath<'_>,
+    compensated: ValidToolpath<'_>,
     tools: &ToolTable,
     model: &ErrorModel,
     sampling: &Sampling,
     mut each: impl FnMut(Side, Measured),
 ) -> Deviation {
+    let (original, compensated) = (original.toolpath(), compensated.toolpath());
     let path = LocalPath::new(original);
     let (before, _) = measure(original, &path, tools, model, sampling, Side::Original, &mut each);
     let (after, worst) = measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut each);
@@ -395,40 +394,31 @@ fn knees(
     out
 }
 
-/// How a program is read: what `compensate` read the original with, and reads what it is
-/// about to write back with.
-#[derive(Debug, Clone, Copy)]
-pub struct Reading<'a> {
-    pub parse: &'a ParseOptions,
-    pub machine: &'a Machine,
-    pub lower: &'a LowerOptions,
-}
-
 /// What `compensate` checks before it writes: `written`, the program it is about to write,
-/// read back as the control reads it (parsed, lowered and validated as the original was)
+/// read back as the control reads it (through `pipeline::analyse`, with the settings the
+/// original was read with)
 /// and measured against `original`'s nominal path by `turnpass verify`'s own computation
 /// (`deviation`, `sampling`), so that the figures it reports are the ones verify finds, with
 /// verify's check of the feed and spindle words (`check_feeds`).
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
-    original: &Toolpath,
+    original: ValidToolpath<'_>,
     written: &[u8],
-    reading: &Reading<'_>,
+    reading: &Settings,
     tools: &ToolTable,
     model: &ErrorModel,
 ) -> Result<(Deviation, Option<FeedChange>), Vec<Diagnostic>> {
-    let parsed = crate::syntax::parse(written, reading.parse);
-    let lowered = crate::semantic::lower(&parsed.program, reading.machine, reading.lower);
-    let errors: Vec<Diagnostic> =
-        parsed.diagnostics.iter().chain(&lowered.diagnostics).filter(|d| d.is_error()).cloned().collect();
-    if !errors.is_empty() {
-        return Err(errors);
-    }
-    let lowered = Validated::new(lowered, reading.machine.limits).map_err(|(_, problems)| problems)?;
-    let toolpath = lowered.valid().toolpath();
-    let machine = reading.machine;
-    let sampling = sampling(model, machine.increment * machine.scale(), &[original, toolpath]);
-    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(original, toolpath)))
+    let read = match crate::pipeline::analyse(written, reading).ready() {
+        Ok(read) => read,
+        Err(analysed) => {
+            let errors: Vec<Diagnostic> = analysed.diagnostics.iter().filter(|d| d.is_error()).cloned().collect();
+            return Err(if errors.is_empty() { analysed.diagnostics } else { errors });
+        }
+    };
+    let toolpath = read.valid();
+    let machine = &reading.machine;
+    let sampling = sampling(model, machine.increment * machine.scale(), &[&original, &toolpath]);
+    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(&original, &toolpath)))
 }
 
 /// The deviation `verify` allows by default: two least increments, mm.

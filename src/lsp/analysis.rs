@@ -16,7 +16,7 @@ use lsp_types::{DiagnosticRelatedInformation, DiagnosticSeverity, Location, Numb
 
 use crate::diagnostic::{Diagnostic, Severity};
 use crate::machine::MachineSettings;
-use crate::semantic::{self, LowerOptions, Machine};
+use crate::semantic::{LowerOptions, Machine};
 use crate::source::Span;
 
 use super::document::{Document, Snapshot};
@@ -42,11 +42,7 @@ impl SemanticJob {
 
     /// The semantic pass's diagnostics (none for a program it does not lower).
     pub fn run(&self) -> Vec<Diagnostic> {
-        let program = self.snapshot.program();
-        if !semantic::lowers(&program) {
-            return Vec::new();
-        }
-        semantic::check(&program, &self.machine, &self.options).diagnostics
+        crate::pipeline::semantic_diagnostics(&self.snapshot.program(), &self.machine, &self.options)
     }
 }
 

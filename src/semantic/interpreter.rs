@@ -80,6 +80,8 @@ pub(super) struct Interpreter<'p, 'src> {
     /// What `plausibility.rs` has warned of already.
     pub plausibility: super::plausibility::Warned,
     tape_opened: bool,
+    /// Time arcs on a second thread from this many blocks on (`parallel::Tuning::arc_times_blocks`).
+    arc_times_beside_from_blocks: usize,
     /// Whether the tape's `%` follows the leader lines (`check_leader`), once found.
     leader_confirmed: Option<bool>,
     /// The position is unknown because of a block that does not parse (`damaged_block`).
@@ -89,7 +91,12 @@ pub(super) struct Interpreter<'p, 'src> {
 }
 
 impl<'p, 'src> Interpreter<'p, 'src> {
-    pub fn new(program: &'p Program<'src>, machine: &'p Machine, options: &'p LowerOptions) -> Self {
+    pub fn new(
+        program: &'p Program<'src>,
+        machine: &'p Machine,
+        options: &'p LowerOptions,
+        tuning: &crate::parallel::Tuning,
+    ) -> Self {
         let frame = super::initial_frame(program, machine);
         let dialect = program.config().dialect;
         let start = machine.home.unwrap_or(Xz::new(f64::NAN, f64::NAN));
@@ -135,6 +142,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             noted_home_unknown: false,
             plausibility: super::plausibility::Warned::default(),
             tape_opened: false,
+            arc_times_beside_from_blocks: tuning.arc_times_blocks,
             leader_confirmed: None,
             position_damaged: false,
             expansion_kept: None,
@@ -181,18 +189,18 @@ impl<'p, 'src> Interpreter<'p, 'src> {
     }
 
     pub fn run(mut self) -> Lowered {
-        if self.program.blocks().len() >= self.options.arc_times_beside_from_blocks {
+        if self.program.blocks().len() >= self.arc_times_beside_from_blocks {
             // Arcs are timed on a second thread as the blocks run (`emitter/arc_times.rs`).
-            std::thread::scope(|scope| {
-                let (sender, receiver) = std::sync::mpsc::channel();
-                let timing = scope.spawn(move || super::emitter::time_arcs(receiver));
-                self.emitter.time_arcs_beside(sender);
-                self.execute_blocks();
-                let handed = self.emitter.stop_timing_beside();
-                // Timing cannot fail on any input; a panic is a bug, and is passed on.
-                let timed = timing.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-                self.emitter.chain_times(&handed, &timed);
-            });
+            let (sender, receiver) = std::sync::mpsc::channel();
+            self.emitter.time_arcs_beside(sender);
+            let (handed, timed) = crate::parallel::join(
+                || {
+                    self.execute_blocks();
+                    self.emitter.stop_timing_beside()
+                },
+                move || super::emitter::time_arcs(receiver),
+            );
+            self.emitter.chain_times(&handed, &timed);
         } else {
             self.execute_blocks();
         }

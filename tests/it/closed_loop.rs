@@ -19,11 +19,12 @@
 use std::process::Command;
 
 use turnpass::dialect::{Address, DialectChoice, GCodeSystem};
-use turnpass::semantic::{LowerOptions, Machine, lower};
-use turnpass::syntax::{ParseOptions, WordKind, parse};
+use turnpass::pipeline::Settings;
+use turnpass::semantic::LowerOptions;
+use turnpass::syntax::{ParseOptions, WordKind};
 use turnpass::toolpath::{Motion, Xz};
 
-use crate::support::{repo, with_snapshots};
+use crate::support::{analyse, repo, with_snapshots};
 
 const MODEL: &str = "examples/machines/thesis-several-effects.toml";
 const PROGRAMS: [&str; 2] = ["examples/programs/thesis-o2005-arc.nc", "examples/programs/thesis-o2012-turn-face.nc"];
@@ -256,12 +257,13 @@ fn check_arcs(program: &[u8], strategy: &str) -> (usize, usize) {
         machine_kind: None,
         control: Default::default(),
     };
-    let parsed = parse(program, &options);
-    assert_eq!(parsed.error_count(), 0, "{strategy}");
     let text = std::fs::read_to_string(repo().join(GENERATED_MODEL)).unwrap();
     let settings = turnpass::machine::ModelFile::from_toml(&text).unwrap().machine;
-    let lowered = lower(&parsed.program, &Machine::from_settings(&settings), &LowerOptions::new(false));
-    assert!(lowered.diagnostics.iter().all(|d| !d.is_error()), "{strategy}: {:?}", lowered.diagnostics);
+    let ready = match analyse(program, &Settings::new(options, &settings, LowerOptions::new(false))).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!("{strategy}: {:?}", analysed.diagnostics),
+    };
+    let (parsed, lowered) = (&ready.parsed, &ready.lowered);
     let blocks = parsed.program.blocks();
     let (mut by_radius, mut by_centre) = (0, 0);
     for (k, m) in lowered.toolpath.moves.iter().enumerate() {

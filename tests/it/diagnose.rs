@@ -27,10 +27,9 @@ use turnpass::diagnose::{Diagnosis, Options, diagnose, model_text, report};
 use turnpass::error_model::model_file::ModelSpec;
 use turnpass::error_model::{Effect, ErrorModel};
 use turnpass::machine::{MachineSettings, ModelFile};
-use turnpass::syntax::parse;
 
-use crate::simulate::{lower_and_validate, parse_options};
-use crate::support::{repo, with_snapshots};
+use crate::simulate::pipeline_settings;
+use crate::support::{analyse, repo, with_snapshots};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -102,11 +101,11 @@ fn dir() -> PathBuf {
 /// The program's nominal path on the case's machine.
 pub fn nominal_for(program: &Path, settings: &MachineSettings) -> Nominal {
     let source = std::fs::read(program).unwrap();
-    let parsed = parse(&source, &parse_options(settings));
-    let checked = lower_and_validate(&parsed, settings);
-    assert!(!checked.diagnostics.iter().any(|d| d.is_error()), "{}", program.display());
-    assert!(checked.valid.is_ok(), "{}: the toolpath validates", program.display());
-    let mut nominal = Nominal::new(&parsed.program, &checked.lowered, &checked.lowered.toolpath, &checked.machine);
+    let ready = match analyse(&source, &pipeline_settings(settings, true)).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!("{}: {:?}", program.display(), analysed.diagnostics),
+    };
+    let mut nominal = Nominal::new(ready.program(), &ready.lowered, &ready.machine);
     nominal.screw_pitch = settings.ball_screw_pitch_mm.unwrap_or_default();
     nominal
 }

@@ -64,6 +64,28 @@ fn pragma(source: &[u8]) -> Vec<(String, String)> {
         .collect()
 }
 
+/// `source` through the library's pipeline (`pipeline::analyse`: parse, lower, validate),
+/// its parse checked for the span invariants: how every test that runs a program past
+/// parsing enters.
+pub fn analyse<'s>(source: &'s [u8], settings: &turnpass::pipeline::Settings) -> turnpass::pipeline::Analysed<'s> {
+    let analysed = turnpass::pipeline::analyse(source, settings);
+    check_spans(&analysed.parsed);
+    analysed
+}
+
+/// [`analyse`] for a program that must be ready for the passes after lowering (no error,
+/// its toolpath valid); the test fails with the program and its diagnostics otherwise.
+pub fn ready<'s>(source: &'s [u8], settings: &turnpass::pipeline::Settings) -> turnpass::pipeline::Ready<'s> {
+    match analyse(source, settings).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!(
+            "the program is not ready:\n{}\n{}",
+            String::from_utf8_lossy(source),
+            render("program", source, &analysed.diagnostics)
+        ),
+    }
+}
+
 pub fn render(name: &str, source: &[u8], diagnostics: &[Diagnostic]) -> String {
     render_plain(&RenderSource::new(name, source), diagnostics)
 }

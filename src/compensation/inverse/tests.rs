@@ -22,7 +22,7 @@ M30
 
 fn toolpath() -> (Toolpath, Machine) {
     let (lowered, machine) = lower_program(PROGRAM);
-    (lowered.toolpath, machine)
+    (lowered.into_inner().toolpath, machine)
 }
 
 fn model(effects: Vec<Effect>) -> ErrorModel {

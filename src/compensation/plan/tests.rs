@@ -49,7 +49,7 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
     };
     let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(0));
     let plans = plan_moves(&input, |_| grid, &PlanOptions { fit, play: model.play() });
-    (lowered, plans)
+    (lowered.into_inner(), plans)
 }
 
 #[test]

@@ -190,16 +190,14 @@ pub fn run<'a, 'src>(context: &Context<'src>, mut motion: MotionBlocks<'a, 'src>
     let (to_rewrite, rewriting) = sync_channel::<Piece>(QUEUE);
     // Rewritten pieces go back to be filled again.
     let (to_reuse, reusable) = sync_channel::<Piece>(QUEUE * 3 + 2);
-    std::thread::scope(|scope| {
+    crate::parallel::scope(|scope| {
         let solver = scope.spawn(move || solve(context, &to_plan, &reusable));
         let planner = scope.spawn(move || plan(context, &planning, &to_round));
         let rounder = scope.spawn(move || round(context, &rounding, &to_rewrite));
         let plans = rewrite(context, &mut motion, &rewriting, &to_reuse);
-        // No thread can fail on any input; a panic in one is a bug, and is passed on.
-        let (iterations, residual) = solver.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-        planner.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-        let Measured { diagnostics, figures, mut totals, paths, needs } =
-            rounder.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        let (iterations, residual) = solver.join();
+        planner.join();
+        let Measured { diagnostics, figures, mut totals, paths, needs } = rounder.join();
         totals.inverse_iterations = iterations;
         totals.inverse_residual_mm = residual;
         Streamed { plans, diagnostics, figures, totals, paths, needs, motion }

@@ -164,7 +164,7 @@ fn a_program_verified_against_itself_deviates_as_much_before_as_after() {
         effects: vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.004 }), Effect::BacklashZ(BacklashZ { b: 0.003 })],
         start_min: 0.0,
     };
-    let figures = deviation(&lowered.toolpath, &lowered.toolpath, &tools, &model, &Sampling::every_mm(0.254));
+    let figures = deviation(lowered.valid(), lowered.valid(), &tools, &model, &Sampling::every_mm(0.254));
     assert!(figures.before.max_mm > 0.001, "{figures:?}");
     assert_eq!(figures.before, figures.after);
 }
@@ -257,11 +257,11 @@ fn sampling_from_the_model_measures_as_dense_sampling_does() {
     ];
     let increment = machine.increment * machine.scale();
     let promise = increment / 2.0 / 10.0;
-    let toolpath = &lowered.toolpath;
+    let toolpath = lowered.valid();
     for (name, effects) in [("screw", screw), ("mixed", mixed)] {
         let model = ErrorModel { tables: None, effects, start_min: 0.0 };
         let figures = |sampling: &Sampling| deviation(toolpath, toolpath, &tools, &model, sampling).before;
-        let sparse = figures(&sampling(&model, increment, &[toolpath]));
+        let sparse = figures(&sampling(&model, increment, &[&toolpath]));
         let dense = figures(&Sampling::every_mm(0.005));
         assert!(dense.max_mm > 0.003, "{name}: {dense:?}");
         assert!((sparse.max_mm - dense.max_mm).abs() <= promise, "{name}: sparse {sparse:?}\ndense {dense:?}");
