@@ -35,9 +35,11 @@ pub fn on_circle(centre: Xz, radius: f64, angle: f64) -> Xz {
     Xz::new(centre.x + radius * angle.sin(), centre.z + radius * angle.cos())
 }
 
-/// An angle (a difference of two, as a rule) brought into [0, 2π).
+/// `x.rem_euclid(TAU)`: an angle (a difference of two, as a rule) brought into [0, 2π).
+/// Where |x| < 2π, as every difference of two angles is, the remainder of the division is
+/// `x` itself, which spares the library call the remainder is on this target.
 pub fn rem_turn(x: f64) -> f64 {
-    x.rem_euclid(TAU)
+    if x.abs() < TAU { if x < 0.0 { x + TAU } else { x } } else { x.rem_euclid(TAU) }
 }
 
 /// The swept angle from `start` to `end` about `centre`, positive, in `(0, 2π]`: an arc whose

@@ -2,18 +2,17 @@
 //! place that says from what size a piece of work is worth a second core ([`Tuning`]).
 //!
 //! The uses: a long program is parsed in two runs of lines (`syntax`), its arcs are timed
-//! beside the interpreter (`semantic`), the work that needs only the parsed program runs
-//! while it is lowered (`pipeline::analyse_beside`), the compensation streams its pieces
-//! through four stages at once (`compensation/program/stream.rs`), `verify`'s measure (and
+//! beside the interpreter (`semantic`), the compensation streams its pieces through four
+//! stages at once (`compensation/program/stream.rs`), `verify`'s measure (and
 //! `compensate`'s of what it writes) takes the two programs side by side
 //! (`compensation::verify::deviation_watched`), `compensate --out-dir` runs one program per
 //! core, and the language server reads its client and runs its semantic passes on threads
 //! of their own. Each gives the result one thread gives: the split parse and the arc timer
-//! are held to the plain run by tests (named beside their fields of [`Tuning`]); the work
-//! beside lowering reads only the parsed program, each stage of the stream runs its pieces
-//! in path order, and each program's measure is its own. A panic on any thread is a bug, and is
-//! passed on to the caller as it was raised. The README's "Performance" section gives the
-//! commands that measure each use.
+//! are held to the plain run by tests (named beside their fields of [`Tuning`]); each stage
+//! of the stream runs its pieces in path order, and each program's measure is its own. A
+//! panic on any thread is a bug, and is passed on to the caller as it was raised. The
+//! README's "Performance" section gives what each use takes off the main thread and the
+//! commands that measure it.
 
 use std::sync::OnceLock;
 
@@ -28,9 +27,6 @@ pub struct Tuning {
     /// `semantic::lower`: a program of at least this many blocks has its arcs timed on a
     /// second thread while it runs (`semantic/emitter/arc_times/tests.rs`, `tests/it/arc_times.rs`).
     pub arc_times_blocks: usize,
-    /// `pipeline::analyse_beside`: the work that needs only the parsed program runs on a
-    /// second thread while it is lowered, for a program of at least this many bytes.
-    pub beside_lowering_bytes: usize,
     /// The language server: a document larger than this many bytes has its semantic pass
     /// run on a thread of its own, so that keystrokes are answered while it runs; a smaller
     /// one's runs on the server's loop and comes in the same publish as the parse's
@@ -47,25 +43,19 @@ pub struct Tuning {
 
 impl Tuning {
     /// The thresholds the measurements support (README, "Performance").
-    pub const DEFAULT: Tuning = Tuning {
-        parse_bytes: 1 << 20,
-        arc_times_blocks: 20_000,
-        beside_lowering_bytes: 0,
-        lsp_inline_bytes: 256 << 10,
-        measure_moves: 0,
-    };
+    pub const DEFAULT: Tuning =
+        Tuning { parse_bytes: 1 << 20, arc_times_blocks: 20_000, lsp_inline_bytes: 256 << 10, measure_moves: 0 };
 
     /// Every use on one thread.
     pub const SERIAL: Tuning = Tuning {
         parse_bytes: usize::MAX,
         arc_times_blocks: usize::MAX,
-        beside_lowering_bytes: usize::MAX,
         lsp_inline_bytes: usize::MAX,
         measure_moves: usize::MAX,
     };
 
     /// The names of the uses, as [`Tuning::with_serial`] takes them.
-    pub const USES: [&'static str; 5] = ["parse", "arc_times", "beside_lowering", "lsp_semantic", "measure"];
+    pub const USES: [&'static str; 4] = ["parse", "arc_times", "lsp_semantic", "measure"];
 
     /// This tuning with the use `name` (one of [`Tuning::USES`], or `all`) on one thread;
     /// `None` for an unknown name.
@@ -76,7 +66,6 @@ impl Tuning {
             "all" => return Some(serial),
             "parse" => tuning.parse_bytes = serial.parse_bytes,
             "arc_times" => tuning.arc_times_blocks = serial.arc_times_blocks,
-            "beside_lowering" => tuning.beside_lowering_bytes = serial.beside_lowering_bytes,
             "lsp_semantic" => tuning.lsp_inline_bytes = serial.lsp_inline_bytes,
             "measure" => tuning.measure_moves = serial.measure_moves,
             _ => return None,

@@ -6,9 +6,7 @@
 //! every diagnostic of the three steps in program order. The passes after lowering
 //! (`expand`, `simulation`, `compensation` and `verify`, `diagnose`, the plots) take only
 //! the validated program (`Validated<Lowered>`, its `ValidToolpath`, or a [`Ready`]
-//! program), so none runs on a toolpath that broke the IR's invariants. Work that needs only
-//! the parsed program can run on the other core while the program is lowered
-//! ([`analyse_beside`]). The command line (`check`'s full check among it), `compensate`'s
+//! program), so none runs on a toolpath that broke the IR's invariants. The command line (`check`'s full check among it), `compensate`'s
 //! read-back of what it writes, the tests and the benches enter here; the language server,
 //! which parses incrementally, lowers and validates its assembled program through
 //! [`semantic_diagnostics`].
@@ -111,21 +109,6 @@ pub fn analyse<'src>(source: &'src [u8], settings: &Settings) -> Analysed<'src> 
     let parsed = syntax::parse(source, &settings.parse);
     let (lowering, diagnostics) = lower_and_validate(&parsed, settings);
     Analysed { parsed, machine: settings.machine.clone(), lowering, diagnostics }
-}
-
-/// [`analyse`], running `beside` on the parsed program on a second thread while it is
-/// lowered and validated (lowering runs on one core; work that needs only the parsed
-/// program can take the other).
-pub fn analyse_beside<'src, T: Send>(
-    source: &'src [u8],
-    settings: &Settings,
-    beside: impl FnOnce(&Program<'src>) -> T + Send,
-) -> (Analysed<'src>, T) {
-    let parsed = syntax::parse(source, &settings.parse);
-    let parallel = semantic::lowers(&parsed.program) && source.len() >= crate::parallel::tuning().beside_lowering_bytes;
-    let ((lowering, diagnostics), made) =
-        crate::parallel::join_if(parallel, || lower_and_validate(&parsed, settings), || beside(&parsed.program));
-    (Analysed { parsed, machine: settings.machine.clone(), lowering, diagnostics }, made)
 }
 
 /// Lower `parsed` and validate its toolpath, whatever the parse found; every diagnostic,

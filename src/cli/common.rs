@@ -520,20 +520,6 @@ pub fn ready<'b>(
     ready_or_why(name, bytes, command, analysed, warnings)
 }
 
-/// [`ready`], running `beside` on the parsed program while it is lowered
-/// (`pipeline::analyse_beside`).
-pub fn ready_beside<'b, T: Send>(
-    name: &str,
-    bytes: &'b [u8],
-    resolved: &Resolved,
-    (run, command): (&RunArgs, &str),
-    warnings: &mut Vec<u8>,
-    beside: impl FnOnce(&syntax::Program<'b>) -> T + Send,
-) -> Result<(Ready<'b>, T), Vec<u8>> {
-    let (analysed, made) = pipeline::analyse_beside(bytes, &pipeline_settings(resolved, run, true), beside);
-    Ok((ready_or_why(name, bytes, command, analysed, warnings)?, made))
-}
-
 /// The ready program of `analysed`, or the rendered reason it is not.
 fn ready_or_why<'b>(
     name: &str,

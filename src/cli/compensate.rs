@@ -17,9 +17,8 @@ use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
-use turnpass::compensation::rewrite::ProgramTables;
 use turnpass::compensation::verify;
-use turnpass::compensation::{CompensateOptions, Outcome, compensate_with_tables};
+use turnpass::compensation::{CompensateOptions, Outcome, compensate_program};
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
 use turnpass::pipeline::Ready;
@@ -31,7 +30,7 @@ use turnpass::source::Span;
 use super::batch;
 use super::common::{
     CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
-    pipeline_settings, read_program, ready_beside, rendered, required_error_model, write_output,
+    pipeline_settings, read_program, ready, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -164,22 +163,7 @@ impl FitArgs {
     /// `plot`), `block_reports` reports every edited block (for `--report json`).
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
         let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
-        let machine = (&program.machine, model);
-        compensate_with_tables(&program.parsed.program, &program.lowered, machine, &options, None)
-    }
-
-    /// [`FitArgs::compensate`] without the paths, with the rewrite's tables of the program
-    /// made already (beside its lowering, `ready_beside`).
-    pub fn compensate_with_tables(
-        &self,
-        program: &Ready<'_>,
-        model: &ErrorModel,
-        block_reports: bool,
-        tables: ProgramTables,
-    ) -> Outcome {
-        let options = CompensateOptions { paths: false, block_reports, ..self.options(&program.machine) };
-        let machine = (&program.machine, model);
-        compensate_with_tables(&program.parsed.program, &program.lowered, machine, &options, Some(tables))
+        compensate_program(&program.parsed.program, &program.lowered, &program.machine, model, &options)
     }
 }
 
@@ -267,20 +251,17 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     if args.verbose {
         messages.extend_from_slice(format!("compensate: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
-    // The rewrite's tables of the program are made on the idle core while it is lowered.
-    // A program that carries a provenance comment is found beside the lowering too.
-    let beside = |program: &turnpass::syntax::Program<'_>| (ProgramTables::new(program), provenance::refusal(program));
-    let (program, (tables, compensated_already)) =
-        match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, beside) {
-            Ok(ready) => ready,
-            Err(text) => return Ok(FileResult::failed(1, text)),
-        };
-    if let Some(diagnostic) = compensated_already.filter(|_| !args.force) {
+    let program = match ready(&name, &bytes, &resolved, &args.run, "compensate", &mut messages) {
+        Ok(ready) => ready,
+        Err(text) => return Ok(FileResult::failed(1, text)),
+    };
+    // A program that carries a provenance comment was compensated already.
+    if let Some(diagnostic) = provenance::refusal(&program.parsed.program).filter(|_| !args.force) {
         messages.extend(rendered(&name, &bytes, &[diagnostic]));
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
         return Ok(FileResult::failed(1, messages));
     }
-    let mut outcome = args.fit.compensate_with_tables(&program, &model, args.report.is_some(), tables);
+    let mut outcome = args.fit.compensate(&program, &model, false, args.report.is_some());
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());

@@ -106,18 +106,6 @@ pub fn compensate_program(
     model: &ErrorModel,
     options: &CompensateOptions,
 ) -> Outcome {
-    compensate_with_tables(program, lowered, (machine, model), options, None)
-}
-
-/// [`compensate_program`] given the rewrite's tables of `program`, when they were made
-/// beside its lowering (`rewrite::ProgramTables`).
-pub fn compensate_with_tables(
-    program: &Program<'_>,
-    lowered: &Validated<Lowered>,
-    (machine, model): (&Machine, &ErrorModel),
-    options: &CompensateOptions,
-    tables: Option<rewrite::ProgramTables>,
-) -> Outcome {
     let toolpath = lowered.valid().toolpath();
     let lowered: &Lowered = lowered;
     let tools = ToolTable::from_machine(machine);
@@ -125,8 +113,7 @@ pub fn compensate_with_tables(
     let sampling = sampling(&options.fit, model, path.reach());
     // The rewrite's tables: what can be written for each move, the runs of moves each edited
     // block writes, and the rewrite itself, which reads the whole program.
-    let tables = tables.unwrap_or_else(|| rewrite::ProgramTables::new(program));
-    let motion = rewrite::MotionBlocks::with_tables(program, lowered, &tools, tables);
+    let motion = rewrite::MotionBlocks::new(program, lowered, &tools);
     let (forms, runs) = motion.move_tables();
     let context = stream::Context {
         toolpath,

@@ -147,3 +147,11 @@ proptest::proptest! {
         }
     }
 }
+
+proptest::proptest! {
+    #[test]
+    fn rem_turn_is_rem_euclid_by_a_turn(x in -20.0f64..20.0, exactly in 0usize..5) {
+        let x = [x, TAU, -TAU, 0.0, -0.0][exactly.min(4)];
+        proptest::prop_assert_eq!(rem_turn(x).to_bits(), x.rem_euclid(TAU).to_bits());
+    }
+}
