@@ -31,7 +31,7 @@ mod polar;
 pub mod residuals;
 mod scale;
 
-use crate::compensation::program::Paths;
+use crate::compensation::Paths;
 use crate::diagnose::iso230_4;
 use crate::diagnose::measured::Direction;
 use crate::geometry;

@@ -12,21 +12,19 @@
 
 pub mod canonical;
 pub mod edit;
-pub mod number;
 pub mod style;
-pub mod text;
 pub mod written;
 
+pub use crate::syntax::Text;
 pub use canonical::{CanonicalOptions, print_canonical};
 pub use edit::{Edits, NewBlock, NewWord};
 pub use style::ProgramStyle;
-pub use text::Text;
 pub use written::{BlockWriter, WrittenText};
 
 use crate::dialect::{Address, AddressKind, Dialect};
 use crate::syntax::{CodeLetter, Number, Program};
 
-use number::{Style as NumberStyle, write_number, write_whole};
+use crate::syntax::spelling::{Style as NumberStyle, write_number, write_whole};
 use style::WholeNumbers;
 
 /// Print `program` with `edits` applied.

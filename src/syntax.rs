@@ -15,11 +15,14 @@ mod classify;
 mod expr;
 mod lexer;
 pub(crate) mod relocate;
+pub mod spelling;
+mod text;
 
 pub use ast::{
     BinaryOp, Block, CodeLetter, Command, CommandId, CommentKind, Expr, ExprId, ExprKind, Number, NumberFlags, Param,
     Program, Statement, UnaryOp, Variable, Word, WordId, WordKind,
 };
+pub use text::Text;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::detect::{self, Detection, Leaning};

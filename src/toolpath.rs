@@ -26,34 +26,7 @@
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::source::Span;
 
-/// A point in the toolpath frame: `x` is the radius, `z` the axial position, both in mm.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Xz {
-    pub x: f64,
-    pub z: f64,
-}
-
-impl Xz {
-    pub const fn new(x: f64, z: f64) -> Xz {
-        Xz { x, z }
-    }
-
-    pub fn is_finite(self) -> bool {
-        self.x.is_finite() && self.z.is_finite()
-    }
-
-    pub fn distance(self, other: Xz) -> f64 {
-        // Not `hypot`: lathe coordinates are far from overflow, and the plain square root
-        // is several times faster on the hot path of every move.
-        self.distance_squared(other).sqrt()
-    }
-
-    /// The square of `distance`, for comparisons that need no root (`compensation/squares.rs`).
-    pub fn distance_squared(self, other: Xz) -> f64 {
-        let (dx, dz) = (self.x - other.x, self.z - other.z);
-        dx * dx + dz * dz
-    }
-}
+pub use crate::geometry::Xz;
 
 /// What a move does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -17,8 +17,8 @@ use crate::syntax::{
     WordKind,
 };
 
-use super::number::{Style as NumberStyle, write_number};
 use super::write_code;
+use crate::syntax::spelling::{Style as NumberStyle, plain, write_number};
 
 /// Machine settings the normal form depends on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -260,7 +260,7 @@ fn write_canonical_number(
                 if kind == Some(AddressKind::Feed) {
                     // A feed without a point counts the feed's own increment, which depends on
                     // the feed mode; writing a point would change the value, so keep it.
-                    out.push_str(&super::number::plain(number));
+                    out.push_str(&plain(number));
                     return;
                 }
                 number.scale = number.scale.saturating_add(options.increment_places);
@@ -281,7 +281,7 @@ fn write_canonical_number(
             let style = NumberStyle { leading_zero: true, force_point: false, as_written: false, trim_zeros: true };
             write_number(out, number, style);
         }
-        _ => out.push_str(&super::number::plain(number)),
+        _ => out.push_str(&plain(number)),
     }
 }
 
@@ -298,7 +298,7 @@ pub(crate) fn write_expr(out: &mut String, program: &Program<'_>, id: ExprId) {
     let expr = program.expr(id);
     match expr.kind {
         // Literals keep their spelling: `TL8=0609` names tool 06, offset 09.
-        ExprKind::Number(number) if expr.span.is_synthetic() => out.push_str(&super::number::plain(number)),
+        ExprKind::Number(number) if expr.span.is_synthetic() => out.push_str(&plain(number)),
         ExprKind::Number(_) => out.push_str(&String::from_utf8_lossy(program.text(expr.span))),
         ExprKind::Variable(variable) => match variable {
             Variable::Common(n) => out.push_str(&format!("V{n}")),

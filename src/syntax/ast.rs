@@ -149,7 +149,7 @@ impl Number {
 
 impl fmt::Debug for Number {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", crate::printer::number::plain(*self))
+        write!(f, "{}", super::spelling::plain(*self))
     }
 }
 

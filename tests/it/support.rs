@@ -8,7 +8,7 @@ use turnpass::diagnostic::Diagnostic;
 use turnpass::diagnostic::render::{RenderSource, render_plain};
 use turnpass::dialect::{Address, DialectChoice, GCodeSystem, MachineKind};
 use turnpass::printer::canonical::write_expr_string;
-use turnpass::printer::number::plain;
+use turnpass::syntax::spelling::plain;
 use turnpass::syntax::{ParseOptions, Parsed, Program, Statement, Word, WordKind};
 
 pub fn repo() -> PathBuf {

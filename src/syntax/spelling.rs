@@ -1,4 +1,5 @@
-//! Writing exact decimals back as text.
+//! Writing exact decimals back as text, the inverse of the lexer's reading of a number: the
+//! printer spells every number through it, and a `Number` shows itself with it.
 
 use crate::syntax::{Number, NumberFlags};
 

@@ -1,5 +1,5 @@
-//! Where the printer writes: a `String` (the canonical form, `number::plain`), or the bytes
-//! of a printed program (new blocks, `written.rs`), which take the ASCII of codes,
+//! Where spelled text goes: a `String` (the canonical form, `spelling::plain`), or the bytes
+//! of a printed program (new blocks, `printer/written.rs`), which take the ASCII of codes,
 //! addresses, numbers and copied words as it is, where a `String` takes it one character
 //! at a time.
 
