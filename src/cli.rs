@@ -120,7 +120,8 @@ pub fn main() -> ExitCode {
         Command::Fmt(args) => fmt::fmt(args),
         Command::Expand(args) => simulate::expand(args),
         Command::Simulate(args) => simulate::simulate(args),
-        Command::Compensate(args) => compensate::compensate(args),
+        Command::Compensate(args) => compensate::check_arguments(&args)
+            .and_then(|()| if args.out_dir.is_some() { batch::run(&args) } else { compensate::compensate(args) }),
         Command::Verify(args) => verify::verify(args),
         Command::Plot(args) => plot::plot(args),
         Command::Report(args) => report::report(args),

@@ -27,7 +27,6 @@ use turnpass::semantic::Machine;
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::Span;
 
-use super::batch;
 use super::common::{
     CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
     pipeline_settings, read_program, ready, rendered, required_error_model, write_output,
@@ -184,7 +183,9 @@ impl FileResult {
     }
 }
 
-pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
+/// What holds for one program and for a batch alike: the fit's options, and a report that
+/// does not share standard output with the program.
+pub fn check_arguments(args: &CompensateArgs) -> Result<(), CliError> {
     args.fit.check()?;
     let program_to_stdout = args.out_dir.is_none() && args.output.as_deref().is_none_or(|o| o == Path::new("-"));
     if args.report.is_some() && args.report_file.is_none() && program_to_stdout {
@@ -194,9 +195,12 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
                 .to_string(),
         ));
     }
-    if args.out_dir.is_some() {
-        return batch::run(&args);
-    }
+    Ok(())
+}
+
+/// One program compensated into `-o` or standard output (several go to `batch.rs`, which
+/// builds on this file).
+pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
     let [path] = args.files.as_slice() else {
         return Err(CliError::Usage("several programs need --out-dir DIR to write them into".to_string()));
     };
