@@ -1,7 +1,7 @@
 //! Compensation: the commanded path that makes a measured machine cut the nominal part.
 //!
 //! The nominal toolpath (a `ValidToolpath`: the tool reference points the program asks
-//! for) is sampled along every move (`sampling.rs`). Each sample is moved by the iteration
+//! for) is sampled along every move (`error_model/sampling.rs`). Each sample is moved by the iteration
 //! of the thesis' eq. 2.14–2.16 (`inverse.rs`): command `U_c`, predict `U_a = U_c + Δ(U_c)`
 //! with the error model, correct `U_c += γ (U_d − U_a)`, until every sample's predicted
 //! position is within the tolerance of its nominal one. Direction-dependent terms are
@@ -21,14 +21,13 @@ pub mod quantised;
 pub mod report;
 pub mod rewrite;
 pub mod safety;
-pub mod sampling;
 mod squares;
 #[cfg(test)]
-mod test_support;
+pub(crate) mod test_support;
 pub mod verify;
 pub mod written;
 
+pub use crate::error_model::sampling::{PathSample, sample_toolpath};
 pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};
-pub use inverse::{Compensated, InverseOptions, compensate_samples, predict, states};
+pub use inverse::{Compensated, InverseOptions, compensate_samples, predict};
 pub use program::{CompensateOptions, Outcome, Paths, compensate_program};
-pub use sampling::{PathSample, sample_toolpath};

@@ -22,6 +22,7 @@ pub mod htm;
 pub mod interferometer;
 pub mod model_file;
 pub mod report;
+pub mod sampling;
 pub mod spacing;
 pub mod state;
 

@@ -33,7 +33,7 @@ use crate::geometry;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
 use super::fit::distance_to_chord;
-use super::sampling::PathSample;
+use crate::error_model::sampling::PathSample;
 
 /// Max, RMS and SSQ of a set of distances, mm.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]

@@ -29,11 +29,12 @@
 //! by a few nanometres (a squareness term drifting as the other axis moves) stays where it
 //! is, within the tolerance, instead of jumping across its play.
 
-use crate::error_model::{ErrorModel, Sample, SampleInputs, Step, Tracker, without_play};
+use crate::error_model::sampling::{inputs_of, t_min};
+use crate::error_model::{ErrorModel, SampleInputs, Step, Tracker, without_play};
 use crate::toolpath::Xz;
 
-use super::sampling::PathSample;
 use super::squares::root_at_most;
+use crate::error_model::sampling::PathSample;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct InverseOptions {
@@ -262,15 +263,6 @@ fn command_for(axis: Axis, guess: f64, gain: f64, dead_band: f64) -> f64 {
     }
 }
 
-fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
-    SampleInputs { t_min: t_min(s, model), velocity: s.velocity, normal: s.normal, tip: s.tip }
-}
-
-/// Minutes since the machine started at a sample.
-fn t_min(s: &PathSample, model: &ErrorModel) -> f64 {
-    model.start_min + s.t_s / 60.0
-}
-
 /// The model's terms of time (`ErrorModel::time_terms`) at each of `samples`, appended to
 /// `out`: each sample's are evaluated once here, for every command `Inverse::solve` tries
 /// at it and for each prediction of it (`Predictor`).
@@ -346,25 +338,6 @@ impl<'m> Predictor<'m> {
             actual
         }));
     }
-}
-
-/// The machine state at each sample when `commanded` is commanded in order: what
-/// `predict` evaluates the model on. The states depend on the model only through its play
-/// and start time, so a term without play added to the model moves each predicted point
-/// by exactly its displacement at these states (the discrepancy workflow relies on this).
-pub fn states(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Sample> {
-    let mut tracker = Tracker::new(start, model.play());
-    samples
-        .iter()
-        .zip(commanded)
-        .map(|(s, &c)| {
-            // One step for the state and the move to it: the play operator runs once.
-            let step = tracker.step(c);
-            let state = tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
-            tracker.take(&step, s.tool, s.cutting);
-            state
-        })
-        .collect()
 }
 
 #[cfg(test)]

@@ -31,8 +31,8 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
 use super::fit::{self, FitOptions, MovePoints, NominalShape, Segment, Segments, distance_to_chord};
-use super::sampling::PathSample;
 use super::written;
+use crate::error_model::sampling::PathSample;
 
 /// One move's plan.
 #[derive(Debug, Clone, PartialEq)]

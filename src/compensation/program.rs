@@ -11,7 +11,6 @@ mod stream;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::error_model::ErrorModel;
-use crate::error_model::spacing::TABLE_STEP_MM;
 use crate::printer::Edits;
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Lowered, Machine};
@@ -23,12 +22,9 @@ use super::fit::FitOptions;
 use super::plan::PlanOptions;
 use super::report::{Report, ReportInput};
 use super::rewrite;
-use super::sampling::{PathSample, Sampling};
+use crate::error_model::sampling::{PathSample, Sampling};
 
-/// Samples along cutting moves at most this far apart where an axis table or a measure
-/// independent of the model needs them, mm: the thesis interpolated its error tables
-/// every 0.254 mm (0.01 in).
-pub const SAMPLE_STEP_MM: f64 = TABLE_STEP_MM;
+pub use crate::error_model::sampling::SAMPLE_STEP_MM;
 
 /// The share of the tolerance the straight interpolation between samples may use.
 const INTERPOLATION_SHARE: f64 = 0.1;

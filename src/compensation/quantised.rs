@@ -12,9 +12,9 @@ use crate::toolpath::{Move, Xz};
 
 use super::fit::Segment;
 use super::plan::{MovePlan, PlanInput};
-use super::sampling::PathSample;
 use super::squares::root_less;
 use super::written;
+use crate::error_model::sampling::PathSample;
 
 /// A move's segments rounded onto `grid`, from its rounded start, as the control runs the
 /// words `rewrite` writes for them: each end rounded from its exact value, each arc about

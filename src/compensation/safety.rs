@@ -13,7 +13,7 @@ use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::source::Span;
 use crate::toolpath::{Limits, Toolpath, Xz};
 
-use super::sampling::PathSample;
+use crate::error_model::sampling::PathSample;
 
 /// Slack at a travel limit, mm: rounding at a limit is no violation (as `toolpath::validate`).
 const LIMIT_SLACK_MM: f64 = 0.001;

@@ -32,7 +32,7 @@ use super::deviation::{Figures, LocalPath, Tally};
 use super::fit::{FitOptions, Strategy};
 use super::inverse::Predictor;
 use super::program::SAMPLE_STEP_MM;
-use super::sampling::{PathSample, Sampling, sample_at, sample_moves};
+use crate::error_model::sampling::{PathSample, Sampling, sample_at, sample_moves};
 
 mod follow;
 #[cfg(test)]
@@ -62,7 +62,7 @@ pub struct Worst {
 }
 
 /// How closely `verify` samples a program on `model`: as `compensate` samples it
-/// (`compensation::sampling`: one sample per line where every term of the model is affine
+/// (`error_model::sampling`: one sample per line where every term of the model is affine
 /// along it, a step from the second derivative of a curved term, every 0.254 mm with axis
 /// tables, arcs at least every eighth of a turn and at their extremes), for the chord
 /// between samples to follow the model within a tenth of half the least increment

@@ -20,7 +20,7 @@ use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
 
-use super::sampling::PathSample;
+use crate::error_model::sampling::PathSample;
 
 /// The samples of each move: `ranges[i]` indexes the samples of move `i` (empty for a
 /// dwell). Samples come in move order from `sample_toolpath`.

@@ -31,9 +31,9 @@ pub(crate) use profile::surface_points;
 
 use std::ops::Range;
 
-use crate::compensation::program::SAMPLE_STEP_MM;
-use crate::compensation::sampling::{PathSample, sample_toolpath};
-use crate::compensation::states;
+use crate::error_model::sampling::SAMPLE_STEP_MM;
+use crate::error_model::sampling::states;
+use crate::error_model::sampling::{PathSample, sample_toolpath};
 use crate::error_model::{Effect, ErrorModel, Sample};
 use crate::geometry;
 use crate::machine::ScrewPitch;

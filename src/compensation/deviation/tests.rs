@@ -1,6 +1,6 @@
 use super::*;
-use crate::compensation::sampling::sample_toolpath;
 use crate::compensation::test_support::lower_program;
+use crate::error_model::sampling::sample_toolpath;
 use crate::semantic::nose_radius::ToolTable;
 
 /// The sample of `toolpath` on the move ending at `end` with the parameter `param`.

@@ -1,7 +1,7 @@
 use super::*;
-use crate::compensation::sampling::sample_toolpath;
 use crate::compensation::test_support::lower_program;
 use crate::error_model::effects::*;
+use crate::error_model::sampling::sample_toolpath;
 use crate::semantic::Machine;
 use crate::semantic::nose_radius::ToolTable;
 use crate::toolpath::Toolpath;

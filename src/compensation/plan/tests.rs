@@ -1,11 +1,11 @@
 use super::*;
 use crate::compensation::fit::{FitOptions, Strategy};
 use crate::compensation::inverse::{InverseOptions, compensate_samples};
-use crate::compensation::sampling::sample_toolpath;
 use crate::compensation::test_support::lower_program;
 use crate::compensation::written::sample_ranges;
 use crate::error_model::ErrorModel;
 use crate::error_model::effects::*;
+use crate::error_model::sampling::sample_toolpath;
 use crate::semantic::Lowered;
 use crate::semantic::nose_radius::ToolTable;
 

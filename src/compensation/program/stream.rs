@@ -39,9 +39,9 @@ use super::super::inverse::{Inverse, InverseOptions, Predictor, time_terms};
 use super::super::plan::{KeptPlans, MovePlan, PlanInput, PlanOptions, plan_range};
 use super::super::report::RunFigures;
 use super::super::rewrite::{MotionBlocks, MoveRun};
-use super::super::sampling::{PathSample, Sampling, sample_move};
 use super::super::{quantised, safety};
 use super::{CompensateOptions, Paths, SAMPLE_STEP_MM};
+use crate::error_model::sampling::{PathSample, Sampling, sample_move};
 
 /// Moves per piece (more where a piece would end inside a motion block's run).
 const PIECE_MOVES: usize = 2048;

@@ -1,7 +1,7 @@
 use super::*;
-use crate::compensation::sampling::{PathSample, Sampling, sample_moves};
 use crate::compensation::test_support::lower_program;
 use crate::error_model::Spacing;
+use crate::error_model::sampling::{PathSample, Sampling, sample_moves};
 use crate::error_model::spacing::ArcTerms;
 
 /// A sample's commanded point is found on the written path however many lines lie

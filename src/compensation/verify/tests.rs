@@ -1,9 +1,9 @@
 use super::*;
 use crate::compensation::deviation::distance_to_move;
-use crate::compensation::sampling::PathSample;
-use crate::compensation::sampling::sample_toolpath;
 use crate::compensation::test_support::lower_program;
 use crate::error_model::effects::*;
+use crate::error_model::sampling::PathSample;
+use crate::error_model::sampling::sample_toolpath;
 use crate::toolpath::{Motion, Xz};
 
 /// The closest cutting move of the whole of `toolpath` to `p`, by looking at every move.

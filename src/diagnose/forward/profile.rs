@@ -11,8 +11,8 @@
 //! centre is `q + r n` and the reference point `r · tip` from it.
 
 use super::{Forward, ForwardError, Nominal, Place, Point, Projection, SetupTerms, param_on, split_and_sample};
-use crate::compensation::sampling::surface_normal;
 use crate::diagnose::measured::{Kind, ProfilePoint};
+use crate::error_model::sampling::surface_normal;
 use crate::geometry;
 use crate::semantic::nose_radius::tip_vector;
 use crate::toolpath::{Compensation, Motion, Xz};

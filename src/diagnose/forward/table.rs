@@ -11,9 +11,9 @@
 //! which is why a squareness never shows in one straightness run.
 
 use super::{Forward, Point, Projection, SetupTerms};
-use crate::compensation::sampling::PathSample;
 use crate::diagnose::measured::{Axis, Kind};
 use crate::error_model::interferometer::{Profile, SlideTable};
+use crate::error_model::sampling::PathSample;
 use crate::toolpath::Xz;
 
 /// Travel beyond the end targets before the slide turns back, mm.

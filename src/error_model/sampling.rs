@@ -13,11 +13,16 @@
 
 use std::ops::Range;
 
-use crate::error_model::Spacing;
 use crate::error_model::spacing::{ArcTerms, TABLE_STEP_MM};
+use crate::error_model::{ErrorModel, Sample, SampleInputs, Spacing, Tracker};
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
+
+/// Samples along cutting moves at most this far apart where an axis table or a measure
+/// independent of the model needs them, mm: the thesis interpolated its error tables
+/// every 0.254 mm (0.01 in).
+pub const SAMPLE_STEP_MM: f64 = TABLE_STEP_MM;
 
 /// One point of the nominal path.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -341,6 +346,35 @@ pub(crate) fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
             }
         }
     }
+}
+
+/// The machine state at each sample when `commanded` is commanded in order: what
+/// `predict` evaluates the model on. The states depend on the model only through its play
+/// and start time, so a term without play added to the model moves each predicted point
+/// by exactly its displacement at these states (the discrepancy workflow relies on this).
+pub fn states(samples: &[PathSample], commanded: &[Xz], start: Xz, model: &ErrorModel) -> Vec<Sample> {
+    let mut tracker = Tracker::new(start, model.play());
+    samples
+        .iter()
+        .zip(commanded)
+        .map(|(s, &c)| {
+            // One step for the state and the move to it: the play operator runs once.
+            let step = tracker.step(c);
+            let state = tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
+            tracker.take(&step, s.tool, s.cutting);
+            state
+        })
+        .collect()
+}
+
+/// What the model reads of a sample besides the slides' state.
+pub(crate) fn inputs_of(s: &PathSample, model: &ErrorModel) -> SampleInputs {
+    SampleInputs { t_min: t_min(s, model), velocity: s.velocity, normal: s.normal, tip: s.tip }
+}
+
+/// Minutes since the machine started at a sample.
+pub(crate) fn t_min(s: &PathSample, model: &ErrorModel) -> f64 {
+    model.start_min + s.t_s / 60.0
 }
 
 #[cfg(test)]
