@@ -479,10 +479,17 @@ pub enum DiagnosticKind {
         number: String,
         count: usize,
     },
-    /// More executed blocks or moves than the bounds: a loop that does not end.
+    /// More executed blocks or moves than the bounds: a loop that does not end. Reported
+    /// at the jump back taken last, with how often it was taken, when there is one.
     RunawayProgram {
         blocks: u64,
         moves: usize,
+        passes: Option<u64>,
+    },
+    /// A jump back that finds the run as it was at its last take (the same variables,
+    /// modes and position): the loop it closes runs forever.
+    EndlessLoop {
+        passes: u64,
     },
     /// `WHILE … DOn` with no `ENDn`.
     UnmatchedLoop {

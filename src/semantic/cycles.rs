@@ -49,7 +49,7 @@ pub(super) use single::single_cycle_again;
 /// What a cycle leaves for a later block: the first block of a two-block Fanuc cycle for
 /// its second, the last single cycle for its modal repetitions, and modes set by M codes.
 /// A cycle that needs such a memory keeps its type in its own file and a field here.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(super) struct CycleMemory {
     /// `G71 U(Δd) R(e)`, `G72 W(Δd) R(e)`: depth of cut and retract, program units.
     pub turning_depth: Option<f64>,
