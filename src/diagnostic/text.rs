@@ -130,6 +130,18 @@ impl DiagnosticKind {
                 label: "letter O".into(),
                 hint: Some(format!("`O` typed for `0`? did you mean `{suggestion}`?").into()),
             },
+            LetterLForOne { suggestion } => Words {
+                code: "letter-l-for-one",
+                message: "letter `l` where a digit belongs".into(),
+                label: "letter l".into(),
+                hint: Some(format!("`l` typed for `1`? did you mean `{suggestion}`?").into()),
+            },
+            DecimalComma { suggestion } => Words {
+                code: "decimal-comma",
+                message: "a comma in a number; the control reads a decimal point".into(),
+                label: "comma".into(),
+                hint: Some(format!("a decimal comma? did you mean `{suggestion}`?").into()),
+            },
             ZeroForLetterO { suggestion } => Words {
                 code: "zero-for-letter-o",
                 message: "digit `0` where the letter `O` of a program name belongs".into(),

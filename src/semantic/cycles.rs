@@ -23,6 +23,8 @@ mod lap_frame;
 mod lap_rough;
 mod lap_thread;
 mod multiple_threading;
+// `G76 P` decoded as the cycle reads it, for the language server's inlay hints.
+pub use multiple_threading::{ThreadParameters, decode_parameters};
 mod pattern_repeat;
 mod peck_grooving;
 mod side_drilling;

@@ -376,6 +376,18 @@ impl<'a, 's> BlockParser<'a, 's> {
         Ok(rest)
     }
 
+    /// `X1l.` or `Xl0.`: the letter `l` at `l_at` of the word, read as the `1` it stands for.
+    pub(super) fn letter_l_for_one(&self, word_start: Input<'s>, l_at: usize) -> Diagnostic {
+        let suggestion = repaired(word_start, l_at, b'l', b'1');
+        self.error(&word_start[l_at..], 1, DiagnosticKind::LetterLForOne { suggestion })
+    }
+
+    /// `X20,5`: the comma at `comma_at` of the word, read as a decimal point.
+    pub(super) fn decimal_comma(&self, word_start: Input<'s>, comma_at: usize) -> Diagnostic {
+        let suggestion = repaired(word_start, comma_at, b',', b'.');
+        self.error(&word_start[comma_at..], 1, DiagnosticKind::DecimalComma { suggestion })
+    }
+
     fn letter_o_for_zero(&self, word_start: Input<'s>, o_at: usize) -> Diagnostic {
         let word_len = word_start
             .iter()
@@ -405,6 +417,21 @@ impl<'a, 's> BlockParser<'a, 's> {
         };
         self.error(input, len, DiagnosticKind::NumberWithoutAddress { suggestion })
     }
+}
+
+/// A word's text with every `bad` byte in its value (from its first bad byte at `at` to the
+/// end of its number) read as `good`: the address letters, then digits, signs, points and
+/// `bad` bytes.
+fn repaired(word_start: &[u8], at: usize, bad: u8, good: u8) -> String {
+    let end = word_start
+        .iter()
+        .enumerate()
+        .skip(at + 1)
+        .find(|&(_, &c)| !(c.is_ascii_digit() || c == b'.' || c == bad))
+        .map_or(word_start.len(), |(i, _)| i);
+    let text: Vec<u8> =
+        word_start[..end].iter().enumerate().map(|(i, &c)| if i >= at && c == bad { good } else { c }).collect();
+    String::from_utf8_lossy(&text).into_owned()
 }
 
 /// Whether the text starts with a name followed by `=` or `[` (`OG=2`, `VTOFX[1]=`).

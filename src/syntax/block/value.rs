@@ -194,6 +194,9 @@ impl<'s> BlockParser<'_, 's> {
             Some(b'O') if value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.') || value.len() == 1 => {
                 Err(self.letter_o_for_zero(word, word.len() - value.len()))
             }
+            Some(b'l') if value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.') => {
+                Err(self.letter_l_for_one(word, word.len() - value.len()))
+            }
             _ => {
                 let Ok((rest, raw)) = lex_number(value) else {
                     if value.first() == Some(&b'=') {
@@ -206,6 +209,10 @@ impl<'s> BlockParser<'_, 's> {
                 }
                 match rest.first() {
                     Some(b'O') => return Err(self.letter_o_for_zero(word, word.len() - rest.len())),
+                    Some(b'l') => return Err(self.letter_l_for_one(word, word.len() - rest.len())),
+                    Some(b',') if !raw.point && decimal_comma_follows(rest) => {
+                        return Err(self.decimal_comma(word, word.len() - rest.len()));
+                    }
                     // `V1=2` on Fanuc: an OSP variable.
                     Some(b'=') if !self.is_osp() => {
                         return Err(self.foreign_assignment(word, &word[..word.len() - rest.len()]));
@@ -381,4 +388,10 @@ impl<'s> BlockParser<'_, 's> {
         self.push(input, rest, WordKind::Label { number });
         Ok(rest)
     }
+}
+
+/// `,5` in `X20,5`: a comma, digits, and no second point or comma (`X20,5.` is damage).
+fn decimal_comma_follows(rest: &[u8]) -> bool {
+    let digits = rest.iter().skip(1).take_while(|c| c.is_ascii_digit()).count();
+    digits > 0 && !matches!(rest.get(1 + digits), Some(b'.' | b','))
 }
