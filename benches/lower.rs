@@ -104,6 +104,7 @@ fn semantic(c: &mut Criterion) {
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: Some(MachineKind::Lathe),
+        control: Default::default(),
     };
     let options = LowerOptions::new(false);
 

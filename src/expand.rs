@@ -44,9 +44,9 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
                 edits.replace(expansion.block, blocks);
                 delete_consumed(&mut edits, program, expansion, &calls);
             }
-            CycleBlocks::NotExpandable => {
+            CycleBlocks::NotExpandable(reason) => {
                 let span = program.block(expansion.block).span;
-                notes.push(Diagnostic::note(DiagnosticKind::NotExpandable, span));
+                notes.push(Diagnostic::note(DiagnosticKind::NotExpandable { reason }, span));
             }
         }
     }

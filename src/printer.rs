@@ -40,6 +40,11 @@ pub struct Printed {
 }
 
 impl Printed {
+    /// A text printed as one piece.
+    pub fn whole(bytes: Vec<u8>) -> Printed {
+        Printed { parts: vec![bytes] }
+    }
+
     /// The text, piece by piece, in order.
     pub fn parts(&self) -> impl Iterator<Item = &[u8]> {
         self.parts.iter().map(Vec::as_slice)
@@ -304,7 +309,7 @@ pub(crate) fn write_address_number(
 ) {
     let (letters, length) = address.bytes();
     out.push_ascii(letters.get(..length).unwrap_or_default());
-    if !address.is_letter() {
+    if !address.is_letter() && !address.is_comma() {
         out.push_byte(b'=');
     }
     let kind = program.config().tables().address(address).map(|s| s.kind);

@@ -24,6 +24,7 @@ pub mod labels;
 mod modal;
 mod motion;
 pub mod nose_radius;
+mod plausibility;
 pub mod profile;
 
 pub use frame::Frame;
@@ -82,10 +83,17 @@ pub struct Machine {
     pub rapid_assumed: bool,
     pub max_rpm: f64,
     pub tools: Vec<ToolSettings>,
+    /// Values of the common variables the machine keeps (`[machine] variables`, `--var`).
+    pub variables: Vec<(String, f64)>,
 }
 
 /// Rapid traverse used when the machine settings give none, mm/min per axis.
 pub const DEFAULT_RAPID_MM_MIN: f64 = 10_000.0;
+
+/// The spindle's top speed when the settings give none, rpm: what constant surface speed
+/// with no `G50 S` clamp reaches toward the centre (a common top speed of 200–250 mm chuck
+/// lathes; the toolpath's times near X0 depend on it, and a warning says so).
+pub const DEFAULT_MAX_SPINDLE_RPM: f64 = 4_000.0;
 
 impl Machine {
     /// The machine a program runs on, from its settings; documented defaults fill the gaps
@@ -113,7 +121,15 @@ impl Machine {
             rapid_assumed: rapid.is_none(),
             max_rpm: settings.max_spindle_rpm.unwrap_or(f64::INFINITY),
             tools: settings.tool.clone(),
+            variables: settings.variables.iter().map(|(name, value)| (name.clone(), *value)).collect(),
         }
+    }
+
+    /// The spindle's top speed, rpm, which constant surface speed never exceeds: the
+    /// settings' `max_spindle_rpm`, else [`DEFAULT_MAX_SPINDLE_RPM`]; and whether it is that
+    /// default.
+    pub fn spindle_limit(&self) -> (f64, bool) {
+        if self.max_rpm.is_finite() { (self.max_rpm, false) } else { (DEFAULT_MAX_SPINDLE_RPM, true) }
     }
 
     /// Millimetres per machine unit.
@@ -180,6 +196,8 @@ pub struct Expansion {
     /// leave the latter behind so that the blocks after them run as before.
     pub before: ModalAfter,
     pub after: ModalAfter,
+    /// Why `expand` leaves the call as it is, if it does (a drilling cycle).
+    pub kept: Option<&'static str>,
 }
 
 /// The modal words a cycle leaves in force: the motion code (when it is a plain one; after
@@ -269,6 +287,29 @@ pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -
         };
     }
     interpreter::Interpreter::new(program, machine, options).run()
+}
+
+/// A program lowered and its toolpath validated: what `check`, `simulate` and the language
+/// server report of a program beyond its parse, all from this one function.
+pub struct Checked {
+    /// The lowered program, validated when its toolpath is valid.
+    pub lowered: Result<crate::toolpath::Validated<Lowered>, Lowered>,
+    /// The semantic pass's diagnostics and the toolpath's problems, in program order (the
+    /// parser's are not among them).
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Lower `program` and validate its toolpath against the machine's travel limits. A program
+/// the semantic pass does not lower ([`lowers`]) gets an empty toolpath and no diagnostic.
+pub fn check(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Checked {
+    let lowered = lower(program, machine, options);
+    let mut diagnostics = lowered.diagnostics.clone();
+    let lowered = crate::toolpath::Validated::new(lowered, machine.limits).map_err(|(lowered, problems)| {
+        diagnostics.extend(problems);
+        lowered
+    });
+    diagnostics.sort_by_key(|d| d.span.start);
+    Checked { lowered, diagnostics }
 }
 
 /// Whether the semantic pass lowers this program. It simulates lathes: an OSP

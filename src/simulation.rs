@@ -166,14 +166,21 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
 
     // Finishing passes: the finishing cycles, then compensated runs outside cycles.
     let mut passes = Vec::new();
-    // The feed per revolution as programmed; a per-minute feed divided by the spindle speed.
-    let per_rev = |m: &crate::toolpath::Move| {
-        if m.per_revolution { m.f_word * lowered.frame.scale() } else { m.feed / m.rpm.max(1e-9) }
+    // The feed per revolution as programmed, in mm through the units in force at the move
+    // (a `G20` program on a metric machine writes inches); a per-minute feed divided by the
+    // spindle speed.
+    let per_rev = |index: usize, m: &crate::toolpath::Move| {
+        if m.per_revolution { m.f_word * lowered.coordinates_at(index).frame.scale() } else { m.feed / m.rpm.max(1e-9) }
     };
-    let mut pass = |source: Span, moves: &[crate::toolpath::Move]| {
-        let cutting: Vec<_> = moves.iter().filter(|m| m.cutting && m.motion != Motion::Rapid && m.rpm > 0.0).collect();
-        let Some(first) = cutting.first() else { return };
-        let feed_per_rev = cutting.iter().map(|m| per_rev(m)).fold(0.0, f64::max);
+    let mut pass = |source: Span, range: Range<usize>| {
+        let cutting: Vec<_> = toolpath.moves[range.clone()]
+            .iter()
+            .enumerate()
+            .map(|(i, m)| (range.start + i, m))
+            .filter(|(_, m)| m.cutting && m.motion != Motion::Rapid && m.rpm > 0.0)
+            .collect();
+        let Some((_, first)) = cutting.first() else { return };
+        let feed_per_rev = cutting.iter().map(|(i, m)| per_rev(*i, m)).fold(0.0, f64::max);
         let entry = tool_entry(machine, first.tool, first.offset);
         let nose = entry.map_or(0.0, |t| t.nose_radius * machine.scale());
         let (roughness_mm, formula) = if nose > 0.0 {
@@ -192,7 +199,7 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
         });
     };
     for (source, moves) in finishing_moves(program, lowered, toolpath) {
-        pass(source, &toolpath.moves[moves]);
+        pass(source, moves);
     }
     passes.sort_by_key(|p| p.line);
 

@@ -25,7 +25,7 @@ use turnpass::syntax::{ParseOptions, parse};
 
 /// Both parses detect the dialect and use G-code system A.
 const OPTIONS: ParseOptions =
-    ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None, control: Default::default() };
 
 /// The normal form for calculator-style decimal input at 0.001 mm.
 const CANONICAL: CanonicalOptions = CanonicalOptions { decimal_input: DecimalInput::Calculator, increment_places: 3 };

@@ -89,14 +89,15 @@ fn in_parallel(
                     }
                     let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
                     if progress {
-                        draw_progress(finished, files.len());
+                        let total = files.len();
+                        streams::progress(finished as f64 / total as f64, &format!("{finished}/{total} programs"));
                     }
                 }
             });
         }
     });
     if progress {
-        streams::err("\r\x1b[K");
+        streams::progress_clear();
     }
     slots
         .into_iter()
@@ -107,10 +108,4 @@ fn in_parallel(
             })
         })
         .collect()
-}
-
-fn draw_progress(done: usize, total: usize) {
-    const WIDTH: usize = 30;
-    let filled = WIDTH * done / total.max(1);
-    streams::err(format!("\r[{}{}] {done}/{total} programs", "#".repeat(filled), " ".repeat(WIDTH - filled)));
 }

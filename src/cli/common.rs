@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::diagnostic::{Diagnostic, SHOWN_DIAGNOSTICS};
-use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
+use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
 use turnpass::machine::{MachineSettings, ModelFile};
@@ -41,6 +41,10 @@ pub struct ReadArgs {
     /// Fanuc G-code system of the machine (A, B or C); a machine setting, never guessed.
     #[arg(long, value_parser = parse_system)]
     pub gcode_system: Option<GCodeSystem>,
+    /// The Fanuc-compatible control (fanuc, haas or denford): its own drilling cycles,
+    /// lower-case letters; a machine setting, never guessed.
+    #[arg(long, value_parser = parse_control)]
+    pub control: Option<Control>,
     /// How numbers without a decimal point read on this machine.
     #[arg(long, value_enum)]
     pub decimal_input: Option<DecimalInputArg>,
@@ -48,6 +52,20 @@ pub struct ReadArgs {
     /// [model], [[axis_table]] and [[effect]] tables the error model.
     #[arg(long, value_name = "FILE")]
     pub model: Option<PathBuf>,
+    /// The value of a common variable the machine keeps (`--var '#501=350'`, `--var V12=4`),
+    /// over the settings' `[machine] variables`; repeatable.
+    #[arg(long = "var", value_name = "NAME=VALUE", value_parser = parse_variable)]
+    pub variables: Vec<(String, f64)>,
+}
+
+/// `NAME=VALUE` of `--var`.
+fn parse_variable(text: &str) -> Result<(String, f64), String> {
+    let (name, value) = text.split_once('=').ok_or_else(|| format!("`{text}` is not NAME=VALUE"))?;
+    let value: f64 = value.trim().parse().map_err(|_| format!("`{value}` is not a number"))?;
+    if !value.is_finite() {
+        return Err(format!("`{value}` is not a finite number"));
+    }
+    Ok((name.trim().to_string(), value))
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -92,6 +110,10 @@ pub fn svg_path(s: &str) -> Result<PathBuf, String> {
 }
 
 fn parse_dialect(s: &str) -> Result<DialectChoice, String> {
+    s.parse()
+}
+
+fn parse_control(s: &str) -> Result<Control, String> {
     s.parse()
 }
 
@@ -210,7 +232,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         }
         None => None,
     };
-    let settings = match &model {
+    let mut settings = match &model {
         Some((path, text)) => {
             ModelFile::from_toml(text)
                 .map_err(|problems| model_problems(path, text, ModelError::File(problems)))?
@@ -218,8 +240,10 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         }
         None => MachineSettings::default(),
     };
+    settings.variables.extend(read.variables.iter().cloned());
     let dialect = read.dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
     let gcode_system = read.gcode_system.or(settings.gcode_system).unwrap_or_default();
+    let control = read.control.or(settings.control).unwrap_or_default();
     let decimal_input = match read.decimal_input {
         Some(DecimalInputArg::Calculator) => DecimalInput::Calculator,
         Some(DecimalInputArg::Increment) => DecimalInput::Increment,
@@ -230,13 +254,14 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         DialectChoice::Auto => None,
     };
     Ok(Resolved {
-        options: ParseOptions { dialect, gcode_system, machine_kind: None },
+        options: ParseOptions { dialect, gcode_system, machine_kind: None, control },
         decimal_input,
         increment_places: settings.increment_places(),
         // The settings in force, the command line's included.
         settings: MachineSettings {
             dialect: fixed_dialect,
             gcode_system: Some(gcode_system),
+            control: Some(control),
             decimal_input: Some(decimal_input),
             ..settings
         },
@@ -435,7 +460,7 @@ pub fn rendered(name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) -> Vec<u8>
         text.extend_from_slice(
             format!(
                 "{name}: {more} more diagnostic{} not shown ({errors} error{} and {others} warning{} or note{} in \
-                 all; `turnpass check` lists every syntax error)\n",
+                 all; `turnpass check` lists every one)\n",
                 plural(more),
                 plural(errors),
                 plural(others),
@@ -557,15 +582,11 @@ pub struct Lowering {
 
 pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run: &RunArgs) -> Lowering {
     let machine = Machine::from_settings(&resolved.settings);
-    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
+    let checked = semantic::check(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
     let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    let lowered = Validated::new(lowered, machine.limits).map_err(|(lowered, problems)| {
-        diagnostics.extend(problems);
-        lowered
-    });
+    diagnostics.extend(checked.diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
-    Lowering { lowered, machine, diagnostics }
+    Lowering { lowered: checked.lowered, machine, diagnostics }
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse

@@ -18,15 +18,19 @@ use clap::{Args, ValueEnum};
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::rewrite::ProgramTables;
+use turnpass::compensation::verify::{self, Reading};
 use turnpass::compensation::{CompensateOptions, Outcome, compensate_with_tables};
+use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
 use turnpass::printer;
 use turnpass::semantic::Machine;
+use turnpass::semantic::nose_radius::ToolTable;
+use turnpass::source::Span;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
-    read_program, ready_beside, rendered, required_error_model, write_output, write_output_parts,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, lower_options, model_name, model_sha256,
+    model_source, read_program, ready_beside, rendered, required_error_model, write_output, write_output_parts,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -50,6 +54,10 @@ pub struct CompensateArgs {
     pub force: bool,
     #[command(flatten)]
     pub fit: FitArgs,
+    /// Refuse to write a program whose predicted deviation from the nominal part, as
+    /// `verify` measures it, exceeds MM (default: verify's, twice the least increment).
+    #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::MAX_DEVIATION_MM))]
+    pub max_deviation: Option<f64>,
     /// Also write a report: per edited block the corrections, fitted arcs, predicted
     /// residual and SSQ before and after; on standard output, which then holds the report
     /// alone, or into --report-file.
@@ -284,22 +292,6 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
         return Ok(FileResult::failed(1, messages));
     }
-    let totals = &outcome.report.totals;
-    messages.extend_from_slice(
-        format!(
-            "compensate: {name}: {} block{} edited, {} cycle{} expanded; largest correction {:.4} mm; \
-             predicted RMS deviation {:.5} -> {:.5} mm\n",
-            totals.edited_blocks,
-            super::common::plural(totals.edited_blocks),
-            totals.expanded_cycles,
-            super::common::plural(totals.expanded_cycles),
-            totals.max_correction_mm,
-            totals.before.rms_mm,
-            totals.after.rms_mm,
-        )
-        .as_bytes(),
-    );
-    let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
     let provenance = Provenance {
         version: provenance::VERSION.to_string(),
         model: model_name(&resolved),
@@ -310,6 +302,71 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         start_min: model.start_min,
     };
     provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
-    let printed = printer::print_parts(&program.parsed.program, &outcome.edits);
-    Ok(FileResult { code: 0, messages, output: Some(printed), report })
+    let written = printer::print_parts(&program.parsed.program, &outcome.edits).into_bytes();
+    // What is about to be written is read back and measured as `verify` measures it; its
+    // figures are the ones reported, and a program that misses verify's bound is refused.
+    let lower = lower_options(&args.run, &resolved.settings, true);
+    let reading = Reading { parse: &resolved.options, machine: &program.machine, lower: &lower };
+    let tools = ToolTable::from_machine(&program.machine);
+    let original = program.valid().toolpath();
+    let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
+    let refusal = match verify::check_written(original, &written, &reading, &tools, &model) {
+        Ok((figures, feed_change)) => {
+            let totals = &mut outcome.report.totals;
+            (totals.before, totals.after) = (figures.before, figures.after);
+            totals.improvement_percent = figures.improvement_percent;
+            let too_far = figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
+                let span = original.moves.get(worst.original_move).map_or(Span::new(0, 0), |m| m.source);
+                let tolerance_mm = args.fit.options(&program.machine).fit.tolerance_mm;
+                let deviation_mm = worst.deviation_mm;
+                let kind = DiagnosticKind::CompensationFailsCheck { deviation_mm, bound_mm: bound, tolerance_mm };
+                Diagnostic::error(kind, span)
+            });
+            too_far.or_else(|| {
+                feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
+            })
+        }
+        Err(problems) => {
+            let problem = problems.first().map_or_else(String::new, Diagnostic::message);
+            Some(Diagnostic::error(DiagnosticKind::CompensationUnreadable { problem }, Span::new(0, 0)))
+        }
+    };
+    if let Some(diagnostic) = refusal {
+        messages.extend(rendered(&name, &bytes, &[diagnostic]));
+        messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
+        return Ok(FileResult::failed(1, messages));
+    }
+    let totals = &outcome.report.totals;
+    messages.extend_from_slice(
+        format!(
+            "compensate: {name}: {} block{} edited, {} cycle{} expanded; largest correction {:.4} mm; \
+             predicted deviation (as verify measures it) RMS {:.5} -> {:.5} mm, largest {:.5} -> {:.5} mm\n",
+            totals.edited_blocks,
+            super::common::plural(totals.edited_blocks),
+            totals.expanded_cycles,
+            super::common::plural(totals.expanded_cycles),
+            totals.max_correction_mm,
+            totals.before.rms_mm,
+            totals.after.rms_mm,
+            totals.before.max_mm,
+            totals.after.max_mm,
+        )
+        .as_bytes(),
+    );
+    let tolerance = args.fit.options(&program.machine).fit.tolerance_mm;
+    if totals.inverse_residual_mm > tolerance {
+        // The figures above are what the written program does; the tolerance asked for is
+        // what the inverse could not reach.
+        messages.extend_from_slice(
+            format!(
+                "compensate: {name}: note: the inverse stops {:.6} mm from the nominal path at its worst point, more \
+                 than --tolerance {tolerance} mm: a slide is not reversed for less than half the least increment, \
+                 and the inverse stops after {} steps\n",
+                totals.inverse_residual_mm, totals.inverse_iterations,
+            )
+            .as_bytes(),
+        );
+    }
+    let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
+    Ok(FileResult { code: 0, messages, output: Some(printer::Printed::whole(written)), report })
 }

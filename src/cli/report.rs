@@ -20,7 +20,7 @@ use super::common::{
     read_program_bytes, ready, required_error_model, write_atomically,
 };
 use super::streams;
-use super::verify::{CheckArgs, Checked, checked};
+use super::verify::{CheckArgs, Checked, Watch, checked};
 
 #[derive(Args)]
 pub struct ReportArgs {
@@ -82,10 +82,10 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         &resolved,
         &mut model,
         &args.checks,
-        |side, measured| {
+        Watch::Each(&mut |side, measured| {
             let k = usize::from(side == Side::Compensated);
             points[k].add(&measured, &toolpaths[k]);
-        },
+        }),
     )?;
     for warning in &checked.warnings {
         messages.extend_from_slice(format!("report: warning: {warning}\n").as_bytes());

@@ -88,7 +88,13 @@ pub fn sampling(fit: &FitOptions, model: &ErrorModel, reach: Xz) -> Sampling {
     if let Some(step) = fit.step_mm.filter(|s| s.is_finite() && *s > 0.0) {
         spacing.mm = step / (step / spacing.mm).ceil().max(1.0);
     }
-    Sampling { spacing, arc: model.arc_terms(reach), allowance }
+    Sampling {
+        spacing,
+        arc: model.arc_terms(reach),
+        allowance,
+        max_arc_radians: Sampling::MAX_ARC_RADIANS,
+        play: model.play(),
+    }
 }
 
 /// Compensate `program` (lowered with nose-radius compensation into `lowered`, whose

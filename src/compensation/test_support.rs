@@ -9,7 +9,12 @@ use crate::syntax::{ParseOptions, parse};
 /// `program` (G-code system A) lowered with the home at X200 (diameter) Z50; it must read
 /// and lower without errors.
 pub fn lower_program(program: &str) -> (Lowered, Machine) {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(program.as_bytes(), &options);
     assert_eq!(parsed.error_count(), 0);
     let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), ..MachineSettings::default() };

@@ -52,7 +52,12 @@ pub fn settings() -> MachineSettings {
 }
 
 pub fn nominal(text: &str) -> Nominal {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(text.as_bytes(), &options);
     assert_eq!(parsed.error_count(), 0);
     let machine = Machine::from_settings(&settings());

@@ -91,6 +91,13 @@ impl ArcTerms {
         }
     }
 
+    /// Whether a correction steps where the path turns a corner: terms of the commanded
+    /// velocity (a loop lag) or of the surface normal (a nose radius error) change at once
+    /// where the direction does.
+    pub fn steps_at_corners(&self) -> bool {
+        self.lag_min != 0.0 || self.nose_mm != 0.0
+    }
+
     /// The largest angle between samples of an arc of `radius_mm` at `feed` mm/min for the
     /// chord between them to follow these terms within `allowance` mm; unbounded for none.
     pub fn radians(&self, radius_mm: f64, feed: f64, allowance: f64) -> f64 {

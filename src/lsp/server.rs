@@ -578,10 +578,7 @@ impl<H: Host> Server<H> {
                 continue;
             }
             open.dirty = false;
-            if open.document.has_errors() {
-                open.semantic.clear();
-                open.semantic_version = None;
-            } else if open.semantic_version != Some(open.version) && !open.running {
+            if open.semantic_version != Some(open.version) && !open.running {
                 let inline = open.document.len() <= self.inline_limit;
                 let work = SemanticJob::new(open.document.snapshot(), &open.settings.machine);
                 jobs.push(Job { uri: uri.clone(), generation: open.generation, version: open.version, work, inline });
@@ -604,7 +601,7 @@ impl<H: Host> Server<H> {
             return Vec::new();
         }
         open.running = false;
-        if result.version != open.version || open.document.has_errors() {
+        if result.version != open.version {
             open.dirty = true;
             return Vec::new();
         }

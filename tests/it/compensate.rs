@@ -47,7 +47,7 @@ fn turnpass(args: &[&str], stdin: Option<&[u8]>) -> (i32, Vec<u8>, String) {
 
 /// The lines of `a` and `b` that differ, as a unified list (`-` removed, `+` added), from
 /// their longest common subsequence.
-fn changed_lines(a: &str, b: &str) -> String {
+pub fn changed_lines(a: &str, b: &str) -> String {
     let (a, b): (Vec<&str>, Vec<&str>) = (a.lines().collect(), b.lines().collect());
     let mut lcs = vec![vec![0usize; b.len() + 1]; a.len() + 1];
     for i in (0..a.len()).rev() {
@@ -114,6 +114,7 @@ impl Compensated {
             dialect: DialectChoice::Auto,
             gcode_system: settings.gcode_system.unwrap_or(GCodeSystem::A),
             machine_kind: None,
+            control: Default::default(),
         };
         let source = std::fs::read(repo().join(program)).unwrap();
         (Compensated { source, options, machine: Machine::from_settings(&settings) }, model)

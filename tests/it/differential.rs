@@ -183,6 +183,7 @@ fn agrees_with_linuxcnc_rs274() {
             dialect: DialectChoice::Fixed(turnpass::dialect::Dialect::Fanuc),
             gcode_system: GCodeSystem::A,
             machine_kind: None,
+            control: Default::default(),
         };
         let parsed = parse(&source, &options);
         check_spans(&parsed);

@@ -284,7 +284,7 @@ proptest! {
     fn lap_cycles_keep_to_the_contour(case in case()) {
         let text = case.program();
         let options =
-            ParseOptions { dialect: DialectChoice::Fixed(Dialect::Osp), gcode_system: GCodeSystem::A, machine_kind: None };
+            ParseOptions { dialect: DialectChoice::Fixed(Dialect::Osp), gcode_system: GCodeSystem::A, machine_kind: None, control: Default::default() };
         let parsed = parse(text.as_bytes(), &options);
         prop_assert_eq!(parsed.error_count(), 0, "{}", text);
         let machine = machine();

@@ -42,6 +42,7 @@ pub fn parse_options(settings: &MachineSettings) -> ParseOptions {
         dialect: settings.dialect.map_or(DialectChoice::Auto, DialectChoice::Fixed),
         gcode_system: settings.gcode_system.unwrap_or(GCodeSystem::A),
         machine_kind: None,
+        control: settings.control.unwrap_or_default(),
     }
 }
 

@@ -18,11 +18,17 @@ pub fn repo() -> PathBuf {
 /// Options from a first-line pragma comment, `(turnpass: dialect=osp gcode_system=B)`.
 /// Without one, the dialect is detected and the G-code system is A.
 pub fn options_for(source: &[u8]) -> ParseOptions {
-    let mut options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let mut options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     for (key, value) in pragma(source) {
         match (key.as_str(), value.as_str()) {
             ("dialect", value) => options.dialect = value.parse().unwrap(),
             ("gcode_system", value) => options.gcode_system = value.parse().unwrap(),
+            ("control", value) => options.control = value.parse().unwrap(),
             ("machine", "lathe") => options.machine_kind = Some(MachineKind::Lathe),
             ("machine", "mc") => options.machine_kind = Some(MachineKind::MachiningCentre),
             ("decimal_input" | "increment_places", _) => {}
@@ -174,6 +180,7 @@ pub fn dump(program: &Program<'_>) -> String {
                 Statement::Settings => "Settings",
                 Statement::Invalid => "Invalid",
                 Statement::Trailing => "Trailing",
+                Statement::Leader => "Leader",
                 _ => unreachable!(),
             },
         };

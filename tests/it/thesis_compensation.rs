@@ -34,7 +34,7 @@ fn compensate(program: &str, model_toml: &str, step: f64) -> (turnpass::toolpath
     assert!(lowered.diagnostics.iter().all(|d| !d.is_error()), "{:?}", lowered.diagnostics);
     let toolpath = Validated::new(lowered.toolpath, machine.limits).unwrap().into_inner();
     let samples = sample_toolpath(&toolpath, &ToolTable::from_machine(&machine), step);
-    let options = InverseOptions { tolerance_mm: 1e-6, ..InverseOptions::default() };
+    let options = InverseOptions { tolerance_mm: 1e-6, dead_band_mm: 1e-6, ..InverseOptions::default() };
     let result = compensate_samples(&samples, toolpath.start, &model, &options);
     assert!(result.max_residual_mm < 1e-8, "{}", result.max_residual_mm);
     let mut by_move = vec![Vec::new(); toolpath.moves.len()];

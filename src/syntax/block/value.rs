@@ -16,7 +16,8 @@ impl<'s> BlockParser<'_, 's> {
     /// A word that starts with a letter: an address with a value, a code, a keyword, an OSP
     /// extended address, name or assignment. Returns whether a verbatim argument follows.
     pub(super) fn letter(&mut self, input: Input<'s>) -> Result<(Input<'s>, bool), Diagnostic> {
-        let letter = input[0];
+        // A control that reads lower case takes `x10.` as `X10.` (the text keeps its case).
+        let letter = if self.tables.lower_case { input[0].to_ascii_uppercase() } else { input[0] };
         let next = input.get(1).copied();
         let osp = self.is_osp();
         if letter == b'N' {
@@ -112,7 +113,7 @@ impl<'s> BlockParser<'_, 's> {
         }
         if i < n {
             let c = bytes[i];
-            if c == b'O' || !is_word_boundary(c) {
+            if c == b'O' || !(self.boundary(c) || (c == b',' && self.tables.has_comma_words)) {
                 return None;
             }
         }
@@ -193,9 +194,6 @@ impl<'s> BlockParser<'_, 's> {
             Some(b'O') if value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.') || value.len() == 1 => {
                 Err(self.letter_o_for_zero(word, word.len() - value.len()))
             }
-            Some(b'l') if value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.') => {
-                Err(self.letter_l_for_one(word, word.len() - value.len()))
-            }
             _ => {
                 let Ok((rest, raw)) = lex_number(value) else {
                     if value.first() == Some(&b'=') {
@@ -208,7 +206,6 @@ impl<'s> BlockParser<'_, 's> {
                 }
                 match rest.first() {
                     Some(b'O') => return Err(self.letter_o_for_zero(word, word.len() - rest.len())),
-                    Some(b'l') => return Err(self.letter_l_for_one(word, word.len() - rest.len())),
                     Some(b',') if !raw.point && decimal_comma_follows(rest) => {
                         return Err(self.decimal_comma(word, word.len() - rest.len()));
                     }
@@ -296,15 +293,20 @@ impl<'s> BlockParser<'_, 's> {
         Ok(WordKind::Code { letter, code: Code((major * 10 + minor) as u16) })
     }
 
+    /// Whether `c` starts the next word or ends the block's words: a word boundary, or on a
+    /// control that reads lower case (`[control.*] lower_case`) a lower-case letter too.
+    pub(super) fn boundary(&self, c: u8) -> bool {
+        is_word_boundary(c) || (self.tables.lower_case && c.is_ascii_lowercase())
+    }
+
     /// After a value: the next word, a blank, a comment, or the end. Anything else is
     /// damage (`X1.0}2`) or a stray character.
     pub(super) fn expect_boundary(&self, rest: Input<'s>) -> Result<(), Diagnostic> {
         match rest.first() {
             None => Ok(()),
-            Some(&c) if is_word_boundary(c) => Ok(()),
-            Some(&c) if c.is_ascii_lowercase() => {
-                Err(self.error(rest, 1, DiagnosticKind::LowerCaseLetter { found: c as char }))
-            }
+            Some(&c) if self.boundary(c) => Ok(()),
+            Some(b',') if self.tables.has_comma_words => Ok(()),
+            Some(&c) if c.is_ascii_lowercase() => Err(self.lower_case(rest)),
             Some(0) => Err(self.error(rest, 1, DiagnosticKind::NulByte)),
             Some(&c) if c >= 0x80 => Err(self.error(rest, 1, DiagnosticKind::NonAsciiByte { byte: c })),
             Some(b']') => Err(self.error(rest, 1, DiagnosticKind::UnmatchedBracket)),
@@ -314,6 +316,11 @@ impl<'s> BlockParser<'_, 's> {
 
     /// An address with nothing usable after it. `X SDIA-3` on OSP is a missing `=`.
     pub(super) fn missing_value(&self, word: Input<'s>, value: Input<'s>, address: &str) -> Diagnostic {
+        // `Xl0.`: a misread digit where the value starts.
+        if matches!(value.first(), Some(b'l' | b'o')) && value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.')
+        {
+            return self.lower_case(value);
+        }
         let after_spaces = lex_spaces(value).map_or(value, |(r, _)| r);
         if let Some(&c) = after_spaces.first()
             && !is_word_boundary(c)
@@ -385,7 +392,7 @@ impl<'s> BlockParser<'_, 's> {
 }
 
 /// `,5` in `X20,5`: a comma, digits, and no second point or comma (`X20,5.` is damage).
-fn decimal_comma_follows(rest: &[u8]) -> bool {
+pub(super) fn decimal_comma_follows(rest: &[u8]) -> bool {
     let digits = rest.iter().skip(1).take_while(|c| c.is_ascii_digit()).count();
     digits > 0 && !matches!(rest.get(1 + digits), Some(b'.' | b','))
 }

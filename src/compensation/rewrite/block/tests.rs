@@ -24,7 +24,12 @@ M30
 /// circle; the printed program, the arc it lowers to, and the planned arc.
 fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolpath::Move, Segment) {
     let (lowered, machine) = lower_program(PROGRAM);
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(PROGRAM.as_bytes(), &options);
     let program = &parsed.program;
     let m = lowered.toolpath.moves[index];
@@ -81,7 +86,12 @@ fn an_incremental_arc_by_centre_keeps_u_w_i_k() {
 #[test]
 fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
     let (lowered, machine) = lower_program(PROGRAM);
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(PROGRAM.as_bytes(), &options);
     let m = lowered.toolpath.moves[2];
     let start = lowered.toolpath.start_of(2);
@@ -114,7 +124,12 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
 #[test]
 fn writes_radius_reads_an_arc_blocks_own_form_and_gives_a_line_the_programs() {
     let source = "G00 X40. Z2.\nG01 X44. Z-10. R1. F0.2\nG02 X50. Z-15. R5.\nG03 X60. Z-20. I0 K-5.\nG01 Z-25. I1.\n";
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(source.as_bytes(), &options);
     let program = &parsed.program;
     for program_radius_arcs in [false, true] {
@@ -149,7 +164,12 @@ fn the_arc_form_from_the_programs_tables_is_the_blocks_own() {
     let source = "G21 G99\nG97 S1000 M03\nG00 X40. Z2.\nG01 X44. Z-10. R1. F0.2\nG02 X50. Z-15. R5.\n\
                   G03 X60. Z-20. I0 K-5.\nG02 X70. Z-25. I5. K0 R5.\nG01 Z-30.\nG04 X1. R2.\nM30\n";
     let (_, machine) = lower_program(PROGRAM);
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(source.as_bytes(), &options);
     let program = &parsed.program;
     // An arc with both a radius and a centre, and a dwell with an `R`, lower with errors:
