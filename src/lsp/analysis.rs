@@ -229,7 +229,8 @@ pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pas
 }
 
 /// The semantic pass's diagnostics of an earlier version of a document, followed across the
-/// edits since: those after an edit move, those whose text it touched go.
+/// edits since: those after an edit move, those with an edit inside them stretch, those an
+/// edit crosses the edge of go.
 ///
 /// A program read with the wrong settings can have a diagnostic on every block, and every
 /// keystroke moves them all; their spans are therefore kept apart, eight bytes each, so that
@@ -304,13 +305,13 @@ impl SemanticDiagnostics {
         self.iter().zip(sorted).all(|(shown, found)| shown == *found)
     }
 
-    /// Follow an edit that replaced `removed` (old offsets) by `inserted` bytes. The order is
-    /// kept: every span after the edit moves by the same amount.
-    pub fn move_across_edit(&mut self, removed: std::ops::Range<usize>, inserted: usize) {
+    /// Follow an edit that replaced `removed` (old offsets) by `inserted`. The order is kept:
+    /// every span after the edit moves by the same amount.
+    pub fn move_across_edit(&mut self, removed: std::ops::Range<usize>, inserted: &[u8]) {
         let edit = Edit::new(removed, inserted);
         for span in &mut self.spans {
             if let Some(current) = *span {
-                *span = edit.apply(current);
+                *span = edit.stretch(current);
                 if span.is_none() {
                     self.alive -= 1;
                 }
@@ -337,12 +338,33 @@ struct Edit {
     start: i64,
     end: i64,
     delta: i64,
+    /// The inserted text holds no line break: typed at the end of a block, it is part of it.
+    same_line: bool,
 }
 
 impl Edit {
-    fn new(removed: std::ops::Range<usize>, inserted: usize) -> Edit {
+    fn new(removed: std::ops::Range<usize>, inserted: &[u8]) -> Edit {
         let (start, end) = (removed.start as i64, removed.end as i64);
-        Edit { start, end, delta: inserted as i64 - (end - start) }
+        let same_line = !inserted.iter().any(|&c| c == b'\n' || c == b'\r');
+        Edit { start, end, delta: inserted.len() as i64 - (end - start), same_line }
+    }
+
+    /// Where a diagnostic's span is in the new text: as [`Edit::apply`], and stretched or
+    /// shrunk with an edit inside it (a digit typed in a block the diagnostic covers): the
+    /// diagnostic stays shown until the pass has looked at the new text, so a keystroke
+    /// that changes nothing does not make it flicker away and back (two publishes).
+    fn stretch(self, span: Span) -> Option<Span> {
+        let (s, e) = (span.start as i64, span.end as i64);
+        let stretched = Some(Span::new(s as u32, (e + self.delta) as u32));
+        // Typed at its end: on the same line it grows (`X20.` becoming `X20.5` at the end of a
+        // block); a line break there starts something else.
+        if self.start == e && self.end == e && s < e {
+            return if self.same_line { stretched } else { Some(span) };
+        }
+        if e > self.start && s < self.end && s <= self.start && self.end <= e {
+            return stretched;
+        }
+        self.apply(span)
     }
 
     /// Where a span of the old text is in the new: the same before the edit, moved after
