@@ -295,14 +295,29 @@ impl SemanticDiagnostics {
     }
 
     /// Whether these are the diagnostics a pass reported (`reported`, in any order), at the
-    /// same places: a finished pass that changes nothing need not be published again.
+    /// same places and in the same words: a finished pass that changes nothing the editor
+    /// shows need not be published again. Diagnostics on one span compare as sets.
     pub fn same_as(&self, reported: &[Diagnostic]) -> bool {
         if reported.len() != self.alive {
             return false;
         }
-        let mut sorted: Vec<&Diagnostic> = reported.iter().collect();
-        sorted.sort_by_key(|d| (d.span.start, d.span.end));
-        self.iter().zip(sorted).all(|(shown, found)| shown == *found)
+        let key = |d: &Diagnostic| (d.span.start, d.span.end, d.code(), d.severity);
+        let mut shown: Vec<Diagnostic> = self.iter().collect();
+        let mut found: Vec<&Diagnostic> = reported.iter().collect();
+        shown.sort_by_key(|d| key(d));
+        found.sort_by_key(|d| key(d));
+        let mut from = 0;
+        while from < shown.len() {
+            let group = key(&shown[from]);
+            let to = from + shown[from..].iter().take_while(|d| key(d) == group).count();
+            let alike =
+                found[from..to].iter().all(|f| key(f) == group && shown[from..to].iter().any(|s| reads_alike(s, f)));
+            if !alike {
+                return false;
+            }
+            from = to;
+        }
+        true
     }
 
     /// Follow an edit that replaced `removed` (old offsets) by `inserted`. The order is kept:
@@ -330,6 +345,17 @@ impl SemanticDiagnostics {
             }
         }
     }
+}
+
+/// Whether two diagnostics show the same: equal, or at the same spans with the same words
+/// (a value that reads `X56.1530` instead of `X56.153` can differ in its last bit, not in
+/// the message).
+fn reads_alike(shown: &Diagnostic, found: &Diagnostic) -> bool {
+    shown == found
+        || (shown.span == found.span
+            && shown.severity == found.severity
+            && shown.related == found.related
+            && shown.words() == found.words())
 }
 
 /// An edit in byte offsets: `start..end` of the old text replaced by `inserted` bytes.
