@@ -164,10 +164,6 @@ pub enum DiagnosticKind {
     LetterOForZero {
         suggestion: String,
     },
-    /// The letter `l` where a digit belongs (`X1l.`, `Zl0.`): OCR or a typist's `1`.
-    LetterLForOne {
-        suggestion: String,
-    },
     /// A comma between the digits of a number (`X20,5`): a decimal comma for the point.
     DecimalComma {
         suggestion: String,

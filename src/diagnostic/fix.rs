@@ -34,8 +34,8 @@ impl Diagnostic {
             LetterOForZero { suggestion } if text == b"O" => {
                 replace(format!("Write `{suggestion}` (the digit 0 for the letter O)"), "0")
             }
-            LetterLForOne { suggestion } if text == b"l" => {
-                replace(format!("Write `{suggestion}` (the digit 1 for the letter l)"), "1")
+            LetterForDigit { found, digit } if text == found.to_string().as_bytes() => {
+                replace(format!("Write `{digit}` for the misread `{found}`"), &digit.to_string())
             }
             DecimalComma { suggestion } if text == b"," => {
                 replace(format!("Write `{suggestion}` (a decimal point for the comma)"), ".")

@@ -130,12 +130,6 @@ impl DiagnosticKind {
                 label: "letter O".into(),
                 hint: Some(format!("`O` typed for `0`? did you mean `{suggestion}`?").into()),
             },
-            LetterLForOne { suggestion } => Words {
-                code: "letter-l-for-one",
-                message: "letter `l` where a digit belongs".into(),
-                label: "letter l".into(),
-                hint: Some(format!("`l` typed for `1`? did you mean `{suggestion}`?").into()),
-            },
             DecimalComma { suggestion } => Words {
                 code: "decimal-comma",
                 message: "a comma in a number; the control reads a decimal point".into(),

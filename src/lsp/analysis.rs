@@ -3,8 +3,8 @@
 //! The diagnostics are the ones `turnpass check` reports, with the same codes, messages and
 //! spans; the protocol wants ranges in lines and UTF-16 columns (`position.rs`). A label
 //! and a hint have no field of their own in the protocol: the hint is the message's second
-//! line (`hint: …`), where every editor shows it, and both travel in `data` for tools, with the byte offsets of the span and the pass that found it
-//! (`syntax`: the diagnostics `check` reports; `semantic`).
+//! line (`hint: …`), where every editor shows it, and both travel in `data` for tools,
+//! with the byte offsets of the span and the pass that found it (`syntax` or `semantic`).
 //!
 //! **The semantic pass runs on a program with parse errors too**, as `check` runs it: the
 //! blocks that parsed are checked, and the interpreter leaves out only what depends on a
@@ -225,7 +225,8 @@ pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pas
 }
 
 /// The semantic pass's diagnostics of an earlier version of a document, followed across the
-/// edits since: those after an edit move, those whose text it touched go.
+/// edits since: those after an edit move, those with an edit inside them stretch, those an
+/// edit crosses the edge of go.
 ///
 /// A program read with the wrong settings can have a diagnostic on every block, and every
 /// keystroke moves them all; their spans are therefore kept apart, eight bytes each, so that
@@ -290,23 +291,38 @@ impl SemanticDiagnostics {
     }
 
     /// Whether these are the diagnostics a pass reported (`reported`, in any order), at the
-    /// same places: a finished pass that changes nothing need not be published again.
+    /// same places and in the same words: a finished pass that changes nothing the editor
+    /// shows need not be published again. Diagnostics on one span compare as sets.
     pub fn same_as(&self, reported: &[Diagnostic]) -> bool {
         if reported.len() != self.alive {
             return false;
         }
-        let mut sorted: Vec<&Diagnostic> = reported.iter().collect();
-        sorted.sort_by_key(|d| (d.span.start, d.span.end));
-        self.iter().zip(sorted).all(|(shown, found)| shown == *found)
+        let key = |d: &Diagnostic| (d.span.start, d.span.end, d.code(), d.severity);
+        let mut shown: Vec<Diagnostic> = self.iter().collect();
+        let mut found: Vec<&Diagnostic> = reported.iter().collect();
+        shown.sort_by_key(|d| key(d));
+        found.sort_by_key(|d| key(d));
+        let mut from = 0;
+        while from < shown.len() {
+            let group = key(&shown[from]);
+            let to = from + shown[from..].iter().take_while(|d| key(d) == group).count();
+            let alike =
+                found[from..to].iter().all(|f| key(f) == group && shown[from..to].iter().any(|s| reads_alike(s, f)));
+            if !alike {
+                return false;
+            }
+            from = to;
+        }
+        true
     }
 
-    /// Follow an edit that replaced `removed` (old offsets) by `inserted` bytes. The order is
-    /// kept: every span after the edit moves by the same amount.
-    pub fn move_across_edit(&mut self, removed: std::ops::Range<usize>, inserted: usize) {
+    /// Follow an edit that replaced `removed` (old offsets) by `inserted`. The order is kept:
+    /// every span after the edit moves by the same amount.
+    pub fn move_across_edit(&mut self, removed: std::ops::Range<usize>, inserted: &[u8]) {
         let edit = Edit::new(removed, inserted);
         for span in &mut self.spans {
             if let Some(current) = *span {
-                *span = edit.apply(current);
+                *span = edit.stretch(current);
                 if span.is_none() {
                     self.alive -= 1;
                 }
@@ -327,18 +343,50 @@ impl SemanticDiagnostics {
     }
 }
 
+/// Whether two diagnostics show the same: equal, or at the same spans with the same words
+/// (a value that reads `X56.1530` instead of `X56.153` can differ in its last bit, not in
+/// the message).
+fn reads_alike(shown: &Diagnostic, found: &Diagnostic) -> bool {
+    shown == found
+        || (shown.span == found.span
+            && shown.severity == found.severity
+            && shown.related == found.related
+            && shown.words() == found.words())
+}
+
 /// An edit in byte offsets: `start..end` of the old text replaced by `inserted` bytes.
 #[derive(Clone, Copy)]
 struct Edit {
     start: i64,
     end: i64,
     delta: i64,
+    /// The inserted text holds no line break: typed at the end of a block, it is part of it.
+    same_line: bool,
 }
 
 impl Edit {
-    fn new(removed: std::ops::Range<usize>, inserted: usize) -> Edit {
+    fn new(removed: std::ops::Range<usize>, inserted: &[u8]) -> Edit {
         let (start, end) = (removed.start as i64, removed.end as i64);
-        Edit { start, end, delta: inserted as i64 - (end - start) }
+        let same_line = !inserted.iter().any(|&c| c == b'\n' || c == b'\r');
+        Edit { start, end, delta: inserted.len() as i64 - (end - start), same_line }
+    }
+
+    /// Where a diagnostic's span is in the new text: as [`Edit::apply`], and stretched or
+    /// shrunk with an edit inside it (a digit typed in a block the diagnostic covers): the
+    /// diagnostic stays shown until the pass has looked at the new text, so a keystroke
+    /// that changes nothing does not make it flicker away and back (two publishes).
+    fn stretch(self, span: Span) -> Option<Span> {
+        let (s, e) = (span.start as i64, span.end as i64);
+        let stretched = Some(Span::new(s as u32, (e + self.delta) as u32));
+        // Typed at its end: on the same line it grows (`X20.` becoming `X20.5` at the end of a
+        // block); a line break there starts something else.
+        if self.start == e && self.end == e && s < e {
+            return if self.same_line { stretched } else { Some(span) };
+        }
+        if e > self.start && s < self.end && s <= self.start && self.end <= e {
+            return stretched;
+        }
+        self.apply(span)
     }
 
     /// Where a span of the old text is in the new: the same before the edit, moved after

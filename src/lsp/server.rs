@@ -496,9 +496,8 @@ impl<H: Host> Server<H> {
                 Some(range) => {
                     let start = offset(&open.document, range.start);
                     let end = offset(&open.document, range.end).max(start);
-                    let inserted = change.text.len();
                     open.document.replace(start..end, change.text.as_bytes());
-                    open.semantic.move_across_edit(start..end, inserted);
+                    open.semantic.move_across_edit(start..end, change.text.as_bytes());
                     open.focus = Some(start);
                 }
                 None => {

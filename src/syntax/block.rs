@@ -159,7 +159,12 @@ impl<'a, 's> BlockParser<'a, 's> {
                     position = Position::Body;
                     self.hash(rest)?
                 }
-                b',' if position == Position::Body && self.tables.has_comma_words => self.comma_word(rest)?,
+                b',' if position == Position::Body && self.tables.has_comma_words => {
+                    if let Some(error) = self.decimal_comma_after_word(rest) {
+                        return Err(error);
+                    }
+                    self.comma_word(rest)?
+                }
                 b'0'..=b'9' | b'-' | b'+' | b'.' => return Err(self.number_without_address(rest)),
                 b'$' if !self.is_osp() => {
                     return Err(self.error(
@@ -213,7 +218,8 @@ impl<'a, 's> BlockParser<'a, 's> {
         let offset = self.offset(at) as usize;
         let before = offset.checked_sub(1).and_then(|i| self.source.get(i)).copied();
         let after = at.get(1).copied();
-        let in_number = before.is_some_and(|b| b.is_ascii_digit())
+        // Between digits, after a point, or right after an address letter (`Xl0.`).
+        let in_number = before.is_some_and(|b| b.is_ascii_digit() || b.is_ascii_uppercase())
             && after.is_some_and(|a| a.is_ascii_digit() || a == b'.')
             || after.is_some_and(|a| a.is_ascii_digit()) && before == Some(b'.');
         let digit = match c {
@@ -376,10 +382,18 @@ impl<'a, 's> BlockParser<'a, 's> {
         Ok(rest)
     }
 
-    /// `X1l.` or `Xl0.`: the letter `l` at `l_at` of the word, read as the `1` it stands for.
-    pub(super) fn letter_l_for_one(&self, word_start: Input<'s>, l_at: usize) -> Diagnostic {
-        let suggestion = repaired(word_start, l_at, b'l', b'1');
-        self.error(&word_start[l_at..], 1, DiagnosticKind::LetterLForOne { suggestion })
+    /// `X20,5` where a comma starts a word (`,C1.`): the comma right after a number with no
+    /// point, before digits, is a decimal comma, not a comma word.
+    fn decimal_comma_after_word(&self, at: Input<'s>) -> Option<Diagnostic> {
+        let comma = self.offset(at);
+        let word = self.words.last().filter(|w| w.span.end == comma)?;
+        let WordKind::Number { number, .. } = word.kind else { return None };
+        if number.has_point() || !value::decimal_comma_follows(at) {
+            return None;
+        }
+        let start = word.span.start as usize;
+        let word_start = &self.source[start..];
+        Some(self.decimal_comma(word_start, comma as usize - start))
     }
 
     /// `X20,5`: the comma at `comma_at` of the word, read as a decimal point.

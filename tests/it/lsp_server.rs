@@ -287,10 +287,10 @@ fn a_keystroke_that_changes_no_diagnostic_is_published_once() {
         publishes += published(&server.finished(job.run())).len();
     }
     assert_eq!(publishes, 2, "the parse's diagnostics at once, the semantic pass's when it is done");
-    let keystroke = |server: &mut Server<NoFiles>, version: i32, line: u32, character: u32, text: &str| {
-        let at = json!({ "line": line, "character": character });
+    let keystroke = |server: &mut Server<NoFiles>, version: i32, line: u32, (from, to): (u32, u32), text: &str| {
+        let (start, end) = (json!({ "line": line, "character": from }), json!({ "line": line, "character": to }));
         let params = json!({ "textDocument": { "uri": uri, "version": version },
-                             "contentChanges": [{ "range": { "start": at, "end": at }, "text": text }] });
+                             "contentChanges": [{ "range": { "start": start, "end": end }, "text": text }] });
         server.handle(notification("textDocument/didChange", params));
         let (messages, jobs) = server.idle();
         let mut publishes = published(&messages);
@@ -300,12 +300,15 @@ fn a_keystroke_that_changes_no_diagnostic_is_published_once() {
         publishes
     };
     // A letter typed into the comment: nothing changes.
-    let publishes = keystroke(&mut server, 2, 0, 7, "B");
+    let publishes = keystroke(&mut server, 2, 0, (7, 7), "B");
     assert_eq!(publishes.len(), 1, "{publishes:?}");
     assert!(publishes[0].iter().any(|(pass, code, _)| pass == "semantic" && code == "missing-sequence"));
-    // N20 becomes N210: the profile's last block is another, and what the pass finds of it
-    // is published when it is done.
-    let publishes = keystroke(&mut server, 3, 5, 2, "1");
+    // A `0` typed after `X20.` of the block G71 reports: no value changes, one publish.
+    let publishes = keystroke(&mut server, 3, 4, (12, 12), "0");
+    assert_eq!(publishes.len(), 1, "{publishes:?}");
+    // Q21 becomes Q20: the profile's last block is found, and that is published when the
+    // pass has found it.
+    let publishes = keystroke(&mut server, 4, 3, (10, 11), "0");
     assert_eq!(publishes.len(), 2, "{publishes:?}");
-    assert_ne!(publishes[0], publishes[1]);
+    assert!(!publishes[1].iter().any(|(_, code, _)| code == "missing-sequence"), "{publishes:?}");
 }

@@ -194,9 +194,6 @@ impl<'s> BlockParser<'_, 's> {
             Some(b'O') if value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.') || value.len() == 1 => {
                 Err(self.letter_o_for_zero(word, word.len() - value.len()))
             }
-            Some(b'l') if value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.') => {
-                Err(self.letter_l_for_one(word, word.len() - value.len()))
-            }
             _ => {
                 let Ok((rest, raw)) = lex_number(value) else {
                     if value.first() == Some(&b'=') {
@@ -209,7 +206,6 @@ impl<'s> BlockParser<'_, 's> {
                 }
                 match rest.first() {
                     Some(b'O') => return Err(self.letter_o_for_zero(word, word.len() - rest.len())),
-                    Some(b'l') => return Err(self.letter_l_for_one(word, word.len() - rest.len())),
                     Some(b',') if !raw.point && decimal_comma_follows(rest) => {
                         return Err(self.decimal_comma(word, word.len() - rest.len()));
                     }
@@ -320,6 +316,11 @@ impl<'s> BlockParser<'_, 's> {
 
     /// An address with nothing usable after it. `X SDIA-3` on OSP is a missing `=`.
     pub(super) fn missing_value(&self, word: Input<'s>, value: Input<'s>, address: &str) -> Diagnostic {
+        // `Xl0.`: a misread digit where the value starts.
+        if matches!(value.first(), Some(b'l' | b'o')) && value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.')
+        {
+            return self.lower_case(value);
+        }
         let after_spaces = lex_spaces(value).map_or(value, |(r, _)| r);
         if let Some(&c) = after_spaces.first()
             && !is_word_boundary(c)
@@ -391,7 +392,7 @@ impl<'s> BlockParser<'_, 's> {
 }
 
 /// `,5` in `X20,5`: a comma, digits, and no second point or comma (`X20,5.` is damage).
-fn decimal_comma_follows(rest: &[u8]) -> bool {
+pub(super) fn decimal_comma_follows(rest: &[u8]) -> bool {
     let digits = rest.iter().skip(1).take_while(|c| c.is_ascii_digit()).count();
     digits > 0 && !matches!(rest.get(1 + digits), Some(b'.' | b','))
 }
