@@ -5,6 +5,7 @@
 //! kind (`text.rs`), so a test can match on the kind and a renderer can show the words. Rendering (codespan-reporting, JSON, plain text
 //! for snapshots) lives in [`render`], the only module that imports codespan-reporting.
 
+pub mod fix;
 pub mod model_file;
 pub mod render;
 mod text;
@@ -13,6 +14,7 @@ use std::fmt;
 
 use crate::source::Span;
 
+pub use fix::Fix;
 pub use model_file::ModelProblem;
 pub use text::Words;
 
@@ -160,6 +162,10 @@ pub enum DiagnosticKind {
     },
     /// The letter `O` where a digit belongs (`G1O`, `XO.5`).
     LetterOForZero {
+        suggestion: String,
+    },
+    /// A comma between the digits of a number (`X20,5`): a decimal comma for the point.
+    DecimalComma {
         suggestion: String,
     },
     /// The digit `0` where the letter `O` belongs (`CALL 01000`).
@@ -479,10 +485,17 @@ pub enum DiagnosticKind {
         number: String,
         count: usize,
     },
-    /// More executed blocks or moves than the bounds: a loop that does not end.
+    /// More executed blocks or moves than the bounds: a loop that does not end. Reported
+    /// at the jump back taken last, with how often it was taken, when there is one.
     RunawayProgram {
         blocks: u64,
         moves: usize,
+        passes: Option<u64>,
+    },
+    /// A jump back that finds the run as it was at its last take (the same variables,
+    /// modes and position): the loop it closes runs forever.
+    EndlessLoop {
+        passes: u64,
     },
     /// `WHILE … DOn` with no `ENDn`.
     UnmatchedLoop {

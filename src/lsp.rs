@@ -8,15 +8,23 @@
 //! settings files. `stdio.rs` is the I/O layer: the stdio connection, the message loop, the
 //! worker threads, and the host that reads `turnpass.toml`.
 
+pub mod actions;
 pub mod analysis;
 mod assemble;
 mod chunk;
+pub mod completion;
 pub mod definition;
 pub mod document;
+pub mod folding;
 pub mod format;
+mod frame;
 pub mod hover;
+pub mod inlay;
+pub mod names;
 pub mod position;
+pub mod rename;
 pub mod roles;
+pub mod semantic_tokens;
 pub mod server;
 pub mod settings;
 pub mod stdio;

@@ -130,6 +130,12 @@ impl DiagnosticKind {
                 label: "letter O".into(),
                 hint: Some(format!("`O` typed for `0`? did you mean `{suggestion}`?").into()),
             },
+            DecimalComma { suggestion } => Words {
+                code: "decimal-comma",
+                message: "a comma in a number; the control reads a decimal point".into(),
+                label: "comma".into(),
+                hint: Some(format!("a decimal comma? did you mean `{suggestion}`?").into()),
+            },
             ZeroForLetterO { suggestion } => Words {
                 code: "zero-for-letter-o",
                 message: "digit `0` where the letter `O` of a program name belongs".into(),
@@ -720,11 +726,24 @@ impl DiagnosticKind {
                 label: "names several blocks".into(),
                 hint: Some("P and Q must each name exactly one block; renumber the others".into()),
             },
-            RunawayProgram { blocks, moves } => Words {
+            RunawayProgram { blocks, moves, passes } => Words {
                 code: "runaway-program",
                 message: format!("the program ran {blocks} blocks ({moves} moves) without ending").into(),
-                label: "here".into(),
+                label: match passes {
+                    Some(passes) => format!("this jump ran {passes} times").into(),
+                    None => "here".into(),
+                },
                 hint: Some("check the loop's condition and the variables it changes".into()),
+            },
+            EndlessLoop { passes } => Words {
+                code: "endless-loop",
+                message: "this jump closes a loop that never ends".into(),
+                label: format!("taken {passes} times, each time with the same variables, modes and position").into(),
+                hint: Some(
+                    "a control repeats this loop forever; change a variable its condition reads inside the loop \
+                     (a counter: `V1=V1+1`, `#1=#1+1`), or end it another way"
+                        .into(),
+                ),
             },
             UnmatchedLoop { number } => Words {
                 code: "unmatched-loop",

@@ -730,6 +730,13 @@ impl Tables {
         self.m.get(&code).map(String::as_str)
     }
 
+    /// Every M code the tables give a meaning, in order (for completion).
+    pub fn m_codes(&self) -> Vec<(u16, &str)> {
+        let mut codes: Vec<(u16, &str)> = self.m.iter().map(|(code, meaning)| (*code, meaning.as_str())).collect();
+        codes.sort_unstable_by_key(|(code, _)| *code);
+        codes
+    }
+
     pub fn schema(&self, id: SchemaId) -> &Schema {
         &self.schemas[id.0 as usize]
     }

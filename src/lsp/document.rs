@@ -390,6 +390,57 @@ impl Document {
         })
     }
 
+    /// The blocks of the chunks that hold bytes `range` (a few blocks on either side of it):
+    /// for answers about what the editor shows, whose work follows the range, not the text.
+    pub(crate) fn blocks_near(&self, range: Range<usize>) -> impl Iterator<Item = BlockRef<'_>> {
+        let (first, last) = if self.chunks.is_empty() {
+            (0, 0)
+        } else {
+            (self.chunk_at(range.start as u32), self.chunk_at(range.end as u32) + 1)
+        };
+        (first..last).flat_map(move |index| {
+            let chunk = &*self.chunks[index];
+            let base = self.starts[index];
+            (0..chunk.part.blocks.len()).map(move |block| BlockRef { chunk, base, index: block })
+        })
+    }
+
+    /// The text of a span (usually a word: inside one chunk, no copy of the rest).
+    pub fn text_of(&self, span: Span) -> Vec<u8> {
+        let (start, end) = (span.start as usize, (span.end as usize).min(self.len));
+        if let Some(text) = &self.oversized {
+            return text.get(start..end).unwrap_or(&[]).to_vec();
+        }
+        let mut out = Vec::with_capacity(end.saturating_sub(start));
+        if self.chunks.is_empty() || start >= end {
+            return out;
+        }
+        let mut index = self.chunk_at(start as u32);
+        while index < self.chunks.len() && (self.starts[index] as usize) < end {
+            let base = self.starts[index] as usize;
+            let text = &self.chunks[index].text;
+            let from = start.saturating_sub(base).min(text.len());
+            let to = (end - base).min(text.len());
+            out.extend_from_slice(&text[from..to]);
+            index += 1;
+        }
+        out
+    }
+
+    /// The parse diagnostics whose spans touch bytes `range`, in order.
+    pub fn diagnostics_near(&self, range: Range<usize>) -> Vec<Diagnostic> {
+        if self.chunks.is_empty() {
+            return Vec::new();
+        }
+        let (first, last) = (self.chunk_at(range.start as u32), self.chunk_at(range.end as u32));
+        let mut found: Vec<Diagnostic> = (first..=last)
+            .flat_map(|i| self.chunks[i].part.diagnostics.iter().map(move |d| shift_diagnostic(d, self.starts[i])))
+            .filter(|d| d.span.start as usize <= range.end && range.start <= d.span.end as usize)
+            .collect();
+        found.sort_by_key(|d| (d.span.start, d.span.end));
+        found
+    }
+
     /// The diagnostics `syntax::parse` gives for the text, in the same order.
     pub fn diagnostics(&self) -> Vec<Diagnostic> {
         let chunks = self.chunks.iter().map(|c| &**c).zip(self.starts.iter().copied());
@@ -406,6 +457,40 @@ impl Document {
         let in_chunks: usize = self.summaries.iter().map(|s| s.diagnostics as usize).sum();
         let outside = syntax::detection_diagnostics(&self.detection).len() + usize::from(self.oversized.is_some());
         (first, outside + in_chunks)
+    }
+
+    /// At least `per_side` parse diagnostics on each side of byte `focus` where there are
+    /// that many (those of whole chunks, so a few more), in order: the candidates for a
+    /// publish that shows the diagnostics nearest an edit. Reads only the chunks it needs.
+    pub fn diagnostics_around(&self, focus: usize, per_side: usize) -> Vec<Diagnostic> {
+        let mut diagnostics = syntax::detection_diagnostics(&self.detection);
+        if self.oversized.is_some() {
+            diagnostics.push(Diagnostic::error(DiagnosticKind::SourceTooLarge, Span::new(0, 0)));
+        }
+        if self.chunks.is_empty() {
+            return diagnostics;
+        }
+        let at = self.chunk_at(focus as u32);
+        let count = |range: &mut dyn Iterator<Item = usize>| -> usize {
+            let mut seen = 0;
+            let mut last = None;
+            for index in range {
+                last = Some(index);
+                seen += self.summaries[index].diagnostics as usize;
+                if seen >= per_side {
+                    break;
+                }
+            }
+            last.unwrap_or(at)
+        };
+        let first = count(&mut (0..=at).rev());
+        let last = count(&mut (at..self.chunks.len()));
+        for index in first..=last {
+            let start = self.starts[index];
+            diagnostics.extend(self.chunks[index].part.diagnostics.iter().map(|d| shift_diagnostic(d, start)));
+        }
+        diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
+        diagnostics
     }
 
     /// Whether the parse found errors (the semantic pass waits until it finds none).

@@ -18,17 +18,42 @@ use crate::syntax::{CodeLetter, Command, Statement, Word, WordId, WordKind};
 use super::document::{BlockRef, Document};
 use super::roles::{self, Unit};
 
-/// The hover for the word at byte `offset`, if there is a word there.
-pub fn hover(document: &Document, offset: usize, settings: &MachineSettings) -> Option<Hover> {
+/// The hover for the word at byte `offset`, if there is a word there; in plain text when
+/// `plain` (a client that asks for it shows Markdown's `**` and table pipes as they are).
+pub fn hover(document: &Document, offset: usize, settings: &MachineSettings, plain: bool) -> Option<Hover> {
     let block = document.block_at(offset)?;
     let (id, word) = block.word_at(offset)?;
     let tables = document.config().tables();
     let text = String::from_utf8_lossy(block.text(word.span)).into_owned();
     let markdown = describe(&Context { block, tables, settings }, id, word, &text)?;
-    Some(Hover {
-        contents: HoverContents::Markup(MarkupContent { kind: MarkupKind::Markdown, value: markdown }),
-        range: Some(document.range(block.absolute(word.span))),
-    })
+    let contents = if plain {
+        MarkupContent { kind: MarkupKind::PlainText, value: plain_text(&markdown) }
+    } else {
+        MarkupContent { kind: MarkupKind::Markdown, value: markdown }
+    };
+    Some(Hover { contents: HoverContents::Markup(contents), range: Some(document.range(block.absolute(word.span))) })
+}
+
+/// The hover's Markdown as plain text: no emphasis or code marks; a table's rows as lines
+/// of their cells, `X10.: end_x, X of the end point (mm)`.
+pub fn plain_text(markdown: &str) -> String {
+    let mut out = Vec::new();
+    for line in markdown.lines() {
+        let line = line.replace("**", "").replace('`', "");
+        let Some(row) = line.strip_prefix('|') else {
+            out.push(line);
+            continue;
+        };
+        let cells: Vec<&str> = row.trim_end_matches('|').split('|').map(str::trim).collect();
+        if cells.iter().all(|c| c.chars().all(|ch| ch == '-')) || cells.first() == Some(&"word") {
+            continue;
+        }
+        match cells.as_slice() {
+            [word, role, meaning, unit] => out.push(format!("{word}: {role}, {meaning} ({unit})")),
+            _ => out.push(cells.join(", ")),
+        }
+    }
+    out.join("\n")
 }
 
 struct Context<'a> {

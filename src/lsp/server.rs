@@ -22,11 +22,16 @@ use lsp_server::{ErrorCode, Message, Notification, Request, Response};
 use lsp_types::notification::{self as notify, Notification as _};
 use lsp_types::request::{self as req, Request as _};
 use lsp_types::{
-    DidChangeTextDocumentParams, DidCloseTextDocumentParams, DidOpenTextDocumentParams, DidSaveTextDocumentParams,
-    DocumentFormattingParams, DocumentSymbolParams, DocumentSymbolResponse, GotoDefinitionParams,
-    GotoDefinitionResponse, HoverParams, HoverProviderCapability, InitializeResult, Location, LogMessageParams,
-    MessageType, OneOf, PositionEncodingKind, PublishDiagnosticsParams, ServerCapabilities, ServerInfo,
-    ShowMessageParams, TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
+    CodeAction, CodeActionKind, CodeActionOptions, CodeActionOrCommand, CodeActionParams, CodeActionProviderCapability,
+    CompletionOptions, CompletionParams, CompletionResponse, DidChangeTextDocumentParams, DidCloseTextDocumentParams,
+    DidOpenTextDocumentParams, DidSaveTextDocumentParams, DocumentFormattingParams, DocumentSymbolParams,
+    DocumentSymbolResponse, FoldingRangeParams, FoldingRangeProviderCapability, GotoDefinitionParams,
+    GotoDefinitionResponse, HoverParams, HoverProviderCapability, InitializeResult, InlayHintParams, Location,
+    LogMessageParams, MessageType, OneOf, PositionEncodingKind, PrepareRenameResponse, PublishDiagnosticsParams,
+    ReferenceParams, RenameOptions, RenameParams, SemanticTokens, SemanticTokensFullOptions, SemanticTokensOptions,
+    SemanticTokensParams, SemanticTokensRangeParams, SemanticTokensRangeResult, SemanticTokensResult,
+    SemanticTokensServerCapabilities, ServerCapabilities, ServerInfo, ShowMessageParams, SignatureHelpOptions,
+    SignatureHelpParams, TextDocumentPositionParams, TextDocumentSyncCapability, TextDocumentSyncKind, Uri,
 };
 
 use crate::diagnostic::Diagnostic;
@@ -34,7 +39,7 @@ use crate::diagnostic::Diagnostic;
 use super::analysis::{self, SemanticDiagnostics, SemanticJob};
 use super::document::{Document, LinePosition};
 use super::settings::{InitOptions, Settings};
-use super::{definition, format, hover, symbols};
+use super::{actions, completion, definition, folding, format, hover, inlay, rename, semantic_tokens, symbols};
 
 /// Where the server gets what lives outside the protocol: the settings files.
 pub trait Host {
@@ -43,6 +48,18 @@ pub trait Host {
     /// directory or above it. Returns its path and its text, or why it could not be read;
     /// `None` when there is no such file.
     fn model_file(&self, program: Option<&Path>, model: Option<&Path>) -> Option<(PathBuf, Result<String, String>)>;
+
+    /// The program files in the folder of the program at `program` (itself excepted), for
+    /// a definition of a program the file does not hold (`CALL OSUB`, `M98 P1000`).
+    fn programs_beside(&self, _program: &Path) -> Vec<PathBuf> {
+        Vec::new()
+    }
+
+    /// The text of a program file, `None` when it cannot be read (or is too large to be a
+    /// subprogram worth reading for a definition).
+    fn read_program(&self, _path: &Path) -> Option<Vec<u8>> {
+        None
+    }
 }
 
 /// A semantic pass to run for one version of a document.
@@ -91,6 +108,11 @@ struct Open {
     dirty: bool,
     /// A semantic pass is running on another thread.
     running: bool,
+    /// Where the last edit was: a publish capped at `maxDiagnostics` shows the ones nearest
+    /// it (`None` until the first edit: the first ones).
+    focus: Option<usize>,
+    /// The version last published.
+    published: Option<i32>,
 }
 
 pub struct Server<H: Host> {
@@ -103,6 +125,35 @@ pub struct Server<H: Host> {
     shut_down: bool,
     /// Documents opened so far.
     openings: u64,
+    /// What the client said it supports.
+    client: Client,
+}
+
+/// The client's capabilities the answers depend on.
+#[derive(Debug, Clone, Default)]
+struct Client {
+    /// Hover in plain text: the client prefers it (eglot), or does not list Markdown.
+    plain_hover: bool,
+    /// The client resolves a code action's edit when it applies it (`codeAction/resolve`).
+    resolves_actions: bool,
+}
+
+impl Client {
+    fn from_json(capabilities: Option<&serde_json::Value>) -> Client {
+        let Some(capabilities) = capabilities else { return Client::default() };
+        let document = &capabilities["textDocument"];
+        let formats: Vec<&str> = document["hover"]["contentFormat"]
+            .as_array()
+            .map(|list| list.iter().filter_map(|f| f.as_str()).collect())
+            .unwrap_or_default();
+        // The client's order is its preference; a client that names none takes Markdown.
+        let plain_hover = formats.first().is_some_and(|f| *f == "plaintext")
+            || (!formats.is_empty() && !formats.contains(&"markdown"));
+        let resolves_actions = document["codeAction"]["resolveSupport"]["properties"]
+            .as_array()
+            .is_some_and(|list| list.iter().any(|p| p == "edit"));
+        Client { plain_hover, resolves_actions }
+    }
 }
 
 impl<H: Host> Server<H> {
@@ -121,6 +172,7 @@ impl<H: Host> Server<H> {
             Some(0) => usize::MAX,
             Some(limit) => limit,
         };
+        let client = Client::from_json(params.get("capabilities"));
         let server = Server {
             host,
             init,
@@ -129,6 +181,7 @@ impl<H: Host> Server<H> {
             max_diagnostics,
             shut_down: false,
             openings: 0,
+            client,
         };
         (server, initialize_result(), messages)
     }
@@ -160,22 +213,137 @@ impl<H: Host> Server<H> {
                 let at = &params.text_document_position_params;
                 let open = server.documents.get(&at.text_document.uri)?;
                 let offset = offset(&open.document, at.position);
-                hover::hover(&open.document, offset, &open.settings.machine)
+                hover::hover(&open.document, offset, &open.settings.machine, server.client.plain_hover)
             }),
             req::GotoDefinition::METHOD => self.answer(request, |server, params: GotoDefinitionParams| {
                 let at = &params.text_document_position_params;
-                let open = server.documents.get(&at.text_document.uri)?;
-                let targets = definition::definition(&open.document, offset(&open.document, at.position));
                 let uri = &at.text_document.uri;
-                let mut locations: Vec<Location> = targets
-                    .into_iter()
-                    .map(|span| Location { uri: uri.clone(), range: open.document.range(span) })
-                    .collect();
+                let open = server.documents.get(uri)?;
+                let mut locations: Vec<Location> =
+                    match definition::definition(&open.document, offset(&open.document, at.position)) {
+                        definition::Definition::Here(targets) => targets
+                            .into_iter()
+                            .map(|span| Location { uri: uri.clone(), range: open.document.range(span) })
+                            .collect(),
+                        definition::Definition::Program(key) => {
+                            server.program_elsewhere(uri, &key).into_iter().collect()
+                        }
+                    };
                 match locations.len() {
                     0 => None,
                     1 => locations.pop().map(GotoDefinitionResponse::Scalar),
                     _ => Some(GotoDefinitionResponse::Array(locations)),
                 }
+            }),
+            req::References::METHOD => self.answer(request, |server, params: ReferenceParams| {
+                let at = &params.text_document_position;
+                let uri = &at.text_document.uri;
+                let open = server.documents.get(uri)?;
+                let offset = offset(&open.document, at.position);
+                let spans = rename::references(&open.document, offset, params.context.include_declaration);
+                Some(
+                    spans
+                        .into_iter()
+                        .map(|span| Location { uri: uri.clone(), range: open.document.range(span) })
+                        .collect::<Vec<_>>(),
+                )
+            }),
+            req::PrepareRenameRequest::METHOD => self.answer(request, |server, params: TextDocumentPositionParams| {
+                let open = server.documents.get(&params.text_document.uri)?;
+                let (span, placeholder) = rename::prepare(&open.document, offset(&open.document, params.position))?;
+                Some(PrepareRenameResponse::RangeWithPlaceholder { range: open.document.range(span), placeholder })
+            }),
+            req::Rename::METHOD => {
+                let params: Result<RenameParams, _> = serde_json::from_value(request.params.clone());
+                match params {
+                    Err(e) => Err((ErrorCode::InvalidParams, format!("{}: {e}", request.method))),
+                    Ok(params) => {
+                        let at = &params.text_document_position;
+                        let uri = &at.text_document.uri;
+                        match self.documents.get(uri) {
+                            None => Ok(serde_json::Value::Null),
+                            Some(open) => match rename::rename(
+                                &open.document,
+                                offset(&open.document, at.position),
+                                &params.new_name,
+                            ) {
+                                Ok(edits) => serde_json::to_value(actions::edit(&open.document, uri, edits))
+                                    .map_err(|e| (ErrorCode::InternalError, e.to_string())),
+                                Err(why) => Err((ErrorCode::InvalidParams, why)),
+                            },
+                        }
+                    }
+                }
+            }
+            req::Completion::METHOD => self.answer(request, |server, params: CompletionParams| {
+                let at = &params.text_document_position;
+                let open = server.documents.get(&at.text_document.uri)?;
+                let offset = offset(&open.document, at.position);
+                Some(CompletionResponse::Array(completion::completion(&open.document, offset, &open.settings.machine)))
+            }),
+            req::SignatureHelpRequest::METHOD => self.answer(request, |server, params: SignatureHelpParams| {
+                let at = &params.text_document_position_params;
+                let open = server.documents.get(&at.text_document.uri)?;
+                let offset = offset(&open.document, at.position);
+                completion::signature_help(&open.document, offset, &open.settings.machine)
+            }),
+            req::SemanticTokensFullRequest::METHOD => self.answer(request, |server, params: SemanticTokensParams| {
+                let open = server.documents.get(&params.text_document.uri)?;
+                let end = open.document.len().min(semantic_tokens::FULL_LIMIT);
+                let data = semantic_tokens::tokens(&open.document, 0..end);
+                Some(SemanticTokensResult::Tokens(SemanticTokens { result_id: None, data }))
+            }),
+            req::SemanticTokensRangeRequest::METHOD => {
+                self.answer(request, |server, params: SemanticTokensRangeParams| {
+                    let open = server.documents.get(&params.text_document.uri)?;
+                    let start = offset(&open.document, params.range.start);
+                    let end = offset(&open.document, params.range.end).max(start);
+                    let data = semantic_tokens::tokens(&open.document, start..end);
+                    Some(SemanticTokensRangeResult::Tokens(SemanticTokens { result_id: None, data }))
+                })
+            }
+            req::FoldingRangeRequest::METHOD => self.answer(request, |server, params: FoldingRangeParams| {
+                let open = server.documents.get(&params.text_document.uri)?;
+                Some(folding::folding_ranges(&open.document))
+            }),
+            req::InlayHintRequest::METHOD => self.answer(request, |server, params: InlayHintParams| {
+                let open = server.documents.get(&params.text_document.uri)?;
+                let start = offset(&open.document, params.range.start);
+                let end = offset(&open.document, params.range.end).max(start);
+                Some(inlay::inlay_hints(&open.document, start..end, &open.settings.machine))
+            }),
+            req::CodeActionRequest::METHOD => self.answer(request, |server, params: CodeActionParams| {
+                let uri = &params.text_document.uri;
+                let open = server.documents.get(uri)?;
+                let wants = |kind: &CodeActionKind| {
+                    params
+                        .context
+                        .only
+                        .as_ref()
+                        .is_none_or(|only| only.iter().any(|o| kind.as_str().starts_with(o.as_str())))
+                };
+                let start = offset(&open.document, params.range.start);
+                let end = offset(&open.document, params.range.end).max(start);
+                let mut found: Vec<CodeActionOrCommand> = Vec::new();
+                if wants(&CodeActionKind::QUICKFIX) {
+                    found.extend(
+                        actions::quick_fixes(&open.document, uri, start..end)
+                            .into_iter()
+                            .map(CodeActionOrCommand::CodeAction),
+                    );
+                }
+                if wants(&CodeActionKind::REFACTOR_REWRITE) {
+                    let resolved = !server.client.resolves_actions;
+                    found.extend(
+                        actions::renumbering(&open.document, uri, resolved).map(CodeActionOrCommand::CodeAction),
+                    );
+                }
+                Some(found)
+            }),
+            req::CodeActionResolveRequest::METHOD => self.answer(request, |server, action: CodeAction| {
+                let uri: Uri = serde_json::from_value(action.data.as_ref()?.get("renumber")?.clone()).ok()?;
+                let open = server.documents.get(&uri)?;
+                actions::renumbering(&open.document, &uri, true)
             }),
             req::DocumentSymbolRequest::METHOD => self.answer(request, |server, params: DocumentSymbolParams| {
                 let open = server.documents.get(&params.text_document.uri)?;
@@ -191,6 +359,40 @@ impl<H: Host> Server<H> {
             Ok(value) => Response::new_ok(id, value),
             Err((code, message)) => Response::new_err(id, code as i32, message),
         }
+    }
+
+    /// The block that names program `key` in a program file beside the document at `uri`
+    /// (an open document's text, else the file's): files named for the program first.
+    fn program_elsewhere(&self, uri: &Uri, key: &str) -> Option<Location> {
+        let path = file_path(uri)?;
+        let open = self.documents.get(uri)?;
+        let mut candidates = self.host.programs_beside(&path);
+        // `OSUB.SSB`, `O1000.nc`, `1000.nc` first: where a control's file of that program is.
+        let named = |p: &PathBuf| {
+            let stem = p.file_stem().map(|s| s.to_string_lossy().to_ascii_uppercase()).unwrap_or_default();
+            let stem = stem.strip_prefix('O').unwrap_or(&stem).to_string();
+            let key = key.to_ascii_uppercase();
+            stem == key || stem.trim_start_matches('0') == key.trim_start_matches('0')
+        };
+        candidates.sort_by_key(|p| !named(p));
+        for candidate in candidates {
+            let candidate_uri = file_uri(&candidate)?;
+            let text = match self.documents.get(&candidate_uri) {
+                Some(other) => other.document.text(),
+                None => match self.host.read_program(&candidate) {
+                    Some(text) => text,
+                    None => continue,
+                },
+            };
+            let document = Document::new(text, open.settings.parse);
+            if document.config().dialect != open.document.config().dialect {
+                continue;
+            }
+            if let Some(span) = definition::program(&document, key) {
+                return Some(Location { uri: candidate_uri, range: document.range(span) });
+            }
+        }
+        None
     }
 
     /// Decode a request's parameters, answer, and encode the answer (`null` for `None`).
@@ -237,7 +439,18 @@ impl<H: Host> Server<H> {
                 }
                 _ => Vec::new(),
             },
-            notify::DidChangeConfiguration::METHOD => self.refresh_settings(),
+            notify::DidChangeConfiguration::METHOD => {
+                // Settings the client sends replace its initializationOptions; a file's
+                // settings are read again either way.
+                let mut messages = Vec::new();
+                match params.get("settings").and_then(InitOptions::from_settings) {
+                    Some(Ok(options)) => self.set_options(options),
+                    Some(Err(problem)) => messages.push(show_message(MessageType::WARNING, problem)),
+                    None => {}
+                }
+                messages.extend(self.refresh_settings());
+                messages
+            }
             _ => Vec::new(),
         }
     }
@@ -267,6 +480,8 @@ impl<H: Host> Server<H> {
             semantic_version: None,
             dirty: true,
             running: false,
+            focus: None,
+            published: None,
         };
         self.documents.insert(item.uri, open);
         defaults.into_iter().chain(problems.into_iter().map(|p| show_message(MessageType::WARNING, p))).collect()
@@ -281,15 +496,30 @@ impl<H: Host> Server<H> {
                 Some(range) => {
                     let start = offset(&open.document, range.start);
                     let end = offset(&open.document, range.end).max(start);
-                    let inserted = change.text.len();
                     open.document.replace(start..end, change.text.as_bytes());
-                    open.semantic.move_across_edit(start..end, inserted);
+                    open.semantic.move_across_edit(start..end, change.text.as_bytes());
+                    open.focus = Some(start);
                 }
                 None => {
                     open.document.set_text(change.text.into_bytes());
                     open.semantic.clear();
+                    open.focus = None;
                 }
             }
+        }
+    }
+
+    /// Take new client options (`workspace/didChangeConfiguration`).
+    fn set_options(&mut self, init: InitOptions) {
+        self.inline_limit = init.semantic_inline_limit.unwrap_or(crate::parallel::tuning().lsp_inline_bytes);
+        self.max_diagnostics = match init.max_diagnostics {
+            None => analysis::DEFAULT_MAX_DIAGNOSTICS,
+            Some(0) => usize::MAX,
+            Some(limit) => limit,
+        };
+        self.init = init;
+        for open in self.documents.values_mut() {
+            open.dirty = true;
         }
     }
 
@@ -339,7 +569,7 @@ impl<H: Host> Server<H> {
     pub fn idle(&mut self) -> (Vec<Message>, Vec<Job>) {
         let mut messages = Vec::new();
         let mut jobs = Vec::new();
-        for (uri, open) in &mut self.documents {
+        for (uri, open) in self.documents.iter_mut() {
             if !open.dirty {
                 continue;
             }
@@ -371,14 +601,22 @@ impl<H: Host> Server<H> {
             open.dirty = true;
             return Vec::new();
         }
-        open.semantic = SemanticDiagnostics::new(result.diagnostics);
+        // The diagnostics moved across the edits are what this version already showed: a
+        // pass that finds the same (most keystrokes) is not published twice.
+        let unchanged = open.published == Some(result.version) && open.semantic.same_as(&result.diagnostics);
         open.semantic_version = Some(result.version);
+        if unchanged {
+            return Vec::new();
+        }
+        open.semantic = SemanticDiagnostics::new(result.diagnostics);
         vec![publish_open(&result.uri, open, self.max_diagnostics)]
     }
 }
 
-fn publish_open(uri: &Uri, open: &Open, limit: usize) -> Message {
-    publish(uri.clone(), analysis::publishable(&open.document, uri, &open.semantic, limit), Some(open.version))
+fn publish_open(uri: &Uri, open: &mut Open, limit: usize) -> Message {
+    open.published = Some(open.version);
+    let diagnostics = analysis::publishable(&open.document, uri, &open.semantic, limit, open.focus);
+    publish(uri.clone(), diagnostics, Some(open.version))
 }
 
 fn publish(uri: Uri, diagnostics: Vec<lsp_types::Diagnostic>, version: Option<i32>) -> Message {
@@ -409,6 +647,32 @@ fn initialize_result() -> InitializeResult {
             definition_provider: Some(OneOf::Left(true)),
             document_symbol_provider: Some(OneOf::Left(true)),
             document_formatting_provider: Some(OneOf::Left(true)),
+            references_provider: Some(OneOf::Left(true)),
+            completion_provider: Some(CompletionOptions::default()),
+            signature_help_provider: Some(SignatureHelpOptions {
+                trigger_characters: Some(vec![" ".to_string()]),
+                retrigger_characters: None,
+                work_done_progress_options: Default::default(),
+            }),
+            semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+                SemanticTokensOptions {
+                    legend: semantic_tokens::legend(),
+                    range: Some(true),
+                    full: Some(SemanticTokensFullOptions::Bool(true)),
+                    work_done_progress_options: Default::default(),
+                },
+            )),
+            folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
+            inlay_hint_provider: Some(OneOf::Left(true)),
+            rename_provider: Some(OneOf::Right(RenameOptions {
+                prepare_provider: Some(true),
+                work_done_progress_options: Default::default(),
+            })),
+            code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
+                code_action_kinds: Some(vec![CodeActionKind::QUICKFIX, CodeActionKind::REFACTOR_REWRITE]),
+                resolve_provider: Some(true),
+                work_done_progress_options: Default::default(),
+            })),
             ..ServerCapabilities::default()
         },
         server_info: Some(ServerInfo {
@@ -416,6 +680,20 @@ fn initialize_result() -> InitializeResult {
             version: Some(env!("CARGO_PKG_VERSION").to_string()),
         }),
     }
+}
+
+/// The `file:` URI of a path, percent-encoded.
+pub fn file_uri(path: &Path) -> Option<Uri> {
+    let text = path.to_str()?;
+    let mut encoded = String::from("file://");
+    for byte in text.bytes() {
+        if byte.is_ascii_alphanumeric() || b"/-._~".contains(&byte) {
+            encoded.push(byte as char);
+        } else {
+            encoded.push_str(&format!("%{byte:02X}"));
+        }
+    }
+    encoded.parse().ok()
 }
 
 /// The file a `file:` URI names, percent-decoded.

@@ -27,7 +27,8 @@ pub struct InitOptions {
     pub dialect: Option<String>,
     /// `A`, `B` or `C`.
     pub gcode_system: Option<String>,
-    pub decimal_input: Option<DecimalInput>,
+    /// `calculator` or `increment`.
+    pub decimal_input: Option<String>,
     /// A model file to read instead of looking for `turnpass.toml`.
     pub model: Option<String>,
     /// Machine settings for programs with no `turnpass.toml` above them.
@@ -49,11 +50,26 @@ pub struct Settings {
 }
 
 impl InitOptions {
-    /// Read the client's options; the message says what is wrong with them.
+    /// Read the client's options; the message says what is wrong with them. No options may
+    /// come as `null`, `{}` or `[]` (clients whose configuration language has no empty map
+    /// send an empty list).
     pub fn from_json(value: Option<serde_json::Value>) -> Result<InitOptions, String> {
         match value {
             None | Some(serde_json::Value::Null) => Ok(InitOptions::default()),
+            Some(serde_json::Value::Array(list)) if list.is_empty() => Ok(InitOptions::default()),
             Some(value) => serde_json::from_value(value).map_err(|e| format!("initializationOptions: {e}")),
+        }
+    }
+
+    /// The options in `workspace/didChangeConfiguration`'s settings: under `turnpass` (as
+    /// VS Code sends a section), or the settings themselves; `None` when they hold none.
+    pub fn from_settings(settings: &serde_json::Value) -> Option<Result<InitOptions, String>> {
+        let options = settings.get("turnpass").unwrap_or(settings);
+        match options {
+            serde_json::Value::Object(map) if !map.is_empty() => {
+                Some(serde_json::from_value(options.clone()).map_err(|e| format!("settings: {e}")))
+            }
+            _ => None,
         }
     }
 
@@ -70,14 +86,24 @@ impl InitOptions {
             }
         });
         let settings = from_file.or_else(|| self.machine.clone()).unwrap_or_default();
-        let dialect =
-            self.dialect.as_deref().and_then(|d| d.parse::<DialectChoice>().map_err(|e| problems.push(e)).ok());
-        let gcode_system =
-            self.gcode_system.as_deref().and_then(|s| s.parse::<GCodeSystem>().map_err(|e| problems.push(e)).ok());
+        // Values in either case: editors' settings are written by hand (`"OSP"`, `"b"`).
+        let dialect = self
+            .dialect
+            .as_deref()
+            .and_then(|d| d.to_ascii_lowercase().parse::<DialectChoice>().map_err(|e| problems.push(e)).ok());
+        let gcode_system = self
+            .gcode_system
+            .as_deref()
+            .and_then(|s| s.to_ascii_uppercase().parse::<GCodeSystem>().map_err(|e| problems.push(e)).ok());
+        let decimal = self.decimal_input.as_deref().and_then(|d| {
+            serde_json::from_value::<DecimalInput>(serde_json::Value::String(d.to_ascii_lowercase()))
+                .map_err(|_| problems.push(format!("unknown decimal input `{d}` (expected calculator or increment)")))
+                .ok()
+        });
         let dialect = dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
         let gcode_system = gcode_system.or(settings.gcode_system).unwrap_or_default();
         let control = settings.control.unwrap_or_default();
-        let decimal_input = self.decimal_input.or(settings.decimal_input).unwrap_or_default();
+        let decimal_input = decimal.or(settings.decimal_input).unwrap_or_default();
         // The settings in force, the client's options included.
         let machine = MachineSettings {
             dialect: match dialect {

@@ -6,11 +6,10 @@
 
 use lsp_types::{DocumentSymbol, SymbolKind};
 
-use crate::dialect::GFunction;
 use crate::source::Span;
-use crate::syntax::{CodeLetter, Statement, Word, WordKind};
+use crate::syntax::{Statement, Word, WordKind};
 
-use super::definition::starts_contour;
+use super::definition::{ends_contour, starts_contour};
 use super::document::{BlockRef, Document};
 
 /// The longest block text shown beside a symbol.
@@ -73,15 +72,6 @@ pub fn symbols(document: &Document) -> Vec<DocumentSymbol> {
     close(&mut contour, &mut program, &mut top);
     top.extend(program);
     top.into_iter().map(|open| finish(document, open)).collect()
-}
-
-fn ends_contour(block: &BlockRef<'_>, tables: &crate::dialect::Tables) -> bool {
-    block.words().iter().any(|w| match w.kind {
-        WordKind::Code { letter: CodeLetter::G, code } => {
-            tables.g(code).and_then(|g| g.function) == Some(GFunction::LapEnd)
-        }
-        _ => false,
-    })
 }
 
 /// A symbol for a block, named by the text of `name` (the whole block when it has none).

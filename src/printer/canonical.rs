@@ -156,6 +156,14 @@ fn write_block(
     options: &CanonicalOptions,
 ) {
     let keyword_statement = words.iter().any(|w| matches!(w.kind, WordKind::Keyword { .. }));
+    // The comment that names a program (`O2012(Turn/Face)N1`) stays right after its name.
+    let naming = words
+        .windows(2)
+        .find(|pair| {
+            matches!(pair[0].kind, WordKind::ProgramName)
+                && matches!(pair[1].kind, WordKind::Comment(CommentKind::Paren))
+        })
+        .map(|pair| pair[1].span);
     // Split at a mid-block skip: each part is ordered on its own.
     let split = words.iter().position(|w| matches!(w.kind, WordKind::OptionalSkip { .. })).unwrap_or(words.len());
     let mut first = true;
@@ -167,7 +175,7 @@ fn write_block(
                 _ => (rank_plain(w).0.min(3), 0),
             });
         } else {
-            ordered.sort_by_key(|w| rank(w, form));
+            ordered.sort_by_key(|w| if Some(w.span) == naming { (0, 2) } else { rank(w, form) });
         }
         // The skip itself leads its part.
         ordered.sort_by_key(|w| !matches!(w.kind, WordKind::OptionalSkip { .. }));

@@ -23,6 +23,8 @@ mod lap_frame;
 mod lap_rough;
 mod lap_thread;
 mod multiple_threading;
+// `G76 P` decoded as the cycle reads it, for the language server's inlay hints.
+pub use multiple_threading::{ThreadParameters, decode_parameters};
 mod pattern_repeat;
 mod peck_grooving;
 mod side_drilling;
@@ -49,7 +51,7 @@ pub(super) use single::single_cycle_again;
 /// What a cycle leaves for a later block: the first block of a two-block Fanuc cycle for
 /// its second, the last single cycle for its modal repetitions, and modes set by M codes.
 /// A cycle that needs such a memory keeps its type in its own file and a field here.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(super) struct CycleMemory {
     /// `G71 U(Δd) R(e)`, `G72 W(Δd) R(e)`: depth of cut and retract, program units.
     pub turning_depth: Option<f64>,

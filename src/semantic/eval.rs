@@ -51,6 +51,9 @@ impl VarKey {
 pub struct Variables {
     globals: HashMap<VarKey, f64>,
     frames: Vec<HashMap<VarKey, f64>>,
+    /// Counts the writes that changed a value: equal revisions mean equal values, which
+    /// is how the interpreter tells a loop that changes nothing (`interpreter.rs`).
+    revision: u64,
 }
 
 impl Variables {
@@ -73,13 +76,20 @@ impl Variables {
     }
 
     pub fn set(&mut self, key: VarKey, value: f64, dialect: Dialect) {
-        if Self::is_local(&key, dialect)
-            && let Some(frame) = self.frames.last_mut()
-        {
-            frame.insert(key, value);
-            return;
+        let store = match self.frames.last_mut() {
+            Some(frame) if Self::is_local(&key, dialect) => frame,
+            _ => &mut self.globals,
+        };
+        let old = store.insert(key, value);
+        if old.is_none_or(|old| old.to_bits() != value.to_bits()) {
+            self.revision += 1;
         }
-        self.globals.insert(key, value);
+    }
+
+    /// Changes whenever a value does (a frame pushed or popped aside: the call stack is
+    /// compared on its own).
+    pub fn revision(&self) -> u64 {
+        self.revision
     }
 
     /// The store with the values the machine settings give its common variables

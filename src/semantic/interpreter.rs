@@ -5,6 +5,12 @@
 //! `M99` pop them; Fanuc `WHILE … DOn` loops back from its `ENDn`; `M02`, `M30`, the closing
 //! `%`, `RTS` in the main program, or a second program name end the run. Every executed
 //! block counts toward `max_executed_blocks`.
+//!
+//! A jump back that finds the run exactly as it was when the same jump was last taken
+//! (`LoopState`: no variable changed, the same position, modes and calls) closes a loop
+//! that a control repeats forever: it is an error there, at the second pass, not after the
+//! bound's millions of blocks (a pass that reads a LAP contour and repeats its diagnostics
+//! is slow enough that the bound takes minutes to reach).
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::tables::KeywordKind;
@@ -29,7 +35,7 @@ pub(super) enum Flow {
 }
 
 /// A subprogram call in progress.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Call {
     /// Where to continue after the last repetition.
     return_to: usize,
@@ -40,6 +46,36 @@ struct Call {
 
 /// Subprogram calls nest at most this deep.
 const MAX_CALL_DEPTH: usize = 32;
+
+/// Everything the run's course from a jump on depends on. Conditions read only variables,
+/// and blocks act on the modes, the cycles' memory, the calls and loops in progress and the
+/// position: when all of them are as they were at the jump's last take, the blocks between
+/// the two takes run again the same way, forever, making the same moves (the moves made so
+/// far and the clock change nothing a block decides).
+#[derive(Debug, Clone, PartialEq)]
+struct LoopState {
+    variables: u64,
+    at: (u64, u64),
+    started: bool,
+    compensated: bool,
+    dwelled: bool,
+    pending_corner: Option<super::motion::PendingCorner>,
+    modal: Modal,
+    cycle_memory: CycleMemory,
+    calls: Vec<Call>,
+    loops: Vec<(usize, u32)>,
+    modal_call: Option<usize>,
+    first_program_name: Option<usize>,
+    tape_opened: bool,
+    position_damaged: bool,
+}
+
+/// A jump back that has been taken: how often, and the run as it was at its last take.
+#[derive(Debug)]
+struct LoopJump {
+    taken: u64,
+    state: LoopState,
+}
 
 pub(super) struct Interpreter<'p, 'src> {
     pub program: &'p Program<'src>,
@@ -73,6 +109,10 @@ pub(super) struct Interpreter<'p, 'src> {
     calls: Vec<Call>,
     /// Fanuc `WHILE` blocks being looped, with their loop number.
     loops: Vec<(usize, u32)>,
+    /// Each jump back taken so far, by its block.
+    loop_jumps: std::collections::HashMap<usize, LoopJump>,
+    /// The block of the jump back taken last: the runaway bound is reported there.
+    last_loop_jump: Option<usize>,
     executed: u64,
     first_program_name: Option<usize>,
     /// The missing home position has been noted (it is one fact, said once per run).
@@ -137,6 +177,8 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             coordinates: Vec::new(),
             calls: Vec::new(),
             loops: Vec::new(),
+            loop_jumps: std::collections::HashMap::new(),
+            last_loop_jump: None,
             executed: 0,
             first_program_name: None,
             noted_home_unknown: false,
@@ -213,11 +255,14 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         let mut pc = 0;
         while pc < blocks.len() {
             if self.executed >= self.options.max_executed_blocks || self.emitter.moves.len() >= self.options.max_moves {
-                let span = blocks[pc].span;
-                self.error(
-                    DiagnosticKind::RunawayProgram { blocks: self.executed, moves: self.emitter.moves.len() },
-                    span,
-                );
+                let jump = self.last_loop_jump.and_then(|at| Some((at, self.loop_jumps.get(&at)?.taken)));
+                let span = blocks[jump.map_or(pc, |(at, _)| at)].span;
+                let kind = DiagnosticKind::RunawayProgram {
+                    blocks: self.executed,
+                    moves: self.emitter.moves.len(),
+                    passes: jump.map(|(_, taken)| taken),
+                };
+                self.error(kind, span);
                 break;
             }
             self.executed += 1;
@@ -233,11 +278,70 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             }
             pc = match flow {
                 Flow::Next => pc + 1,
+                Flow::Jump(target) if target <= pc && self.is_loop_jump(pc) && self.loops_forever(pc, target) => break,
                 Flow::Jump(target) => target,
                 Flow::End => break,
             };
         }
         self.finish_corner();
+    }
+
+    /// The run as the course from here on depends on it (`LoopState`).
+    fn loop_state(&self) -> LoopState {
+        LoopState {
+            variables: self.variables.revision(),
+            at: (self.emitter.at.x.to_bits(), self.emitter.at.z.to_bits()),
+            started: self.emitter.first_start.is_some(),
+            compensated: self.emitter.compensated,
+            dwelled: self.emitter.dwelled,
+            pending_corner: self.pending_corner.clone(),
+            modal: self.modal.clone(),
+            cycle_memory: self.cycle_memory,
+            calls: self.calls.clone(),
+            loops: self.loops.clone(),
+            modal_call: self.modal_call,
+            first_program_name: self.first_program_name,
+            tape_opened: self.tape_opened,
+            position_damaged: self.position_damaged,
+        }
+    }
+
+    /// Whether block `index` is a jump that can close a loop: `GOTO`, `IF … GOTO`/`IF … N<label>`
+    /// or `ENDn`. A return (`RTS`, `M99`) or a repetition of a call goes back by the call's
+    /// own count, and is bounded by it.
+    fn is_loop_jump(&self, index: usize) -> bool {
+        let block = self.program.block(index);
+        block.statement == Statement::Control
+            && self.program.words_of(block).iter().any(|w| {
+                matches!(w.kind, WordKind::Keyword { index } if matches!(
+                    self.tables.keyword_info(index as usize).kind,
+                    KeywordKind::If | KeywordKind::Goto | KeywordKind::EndLoop
+                ))
+            })
+    }
+
+    /// Whether the jump back at block `from` to block `target` finds the run as it was at
+    /// the jump's last take: then it loops forever, and an error there says so.
+    fn loops_forever(&mut self, from: usize, target: usize) -> bool {
+        let state = self.loop_state();
+        self.last_loop_jump = Some(from);
+        let jump = match self.loop_jumps.entry(from) {
+            std::collections::hash_map::Entry::Vacant(vacant) => {
+                vacant.insert(LoopJump { taken: 1, state });
+                return false;
+            }
+            std::collections::hash_map::Entry::Occupied(occupied) => occupied.into_mut(),
+        };
+        jump.taken += 1;
+        if jump.state != state {
+            jump.state = state;
+            return false;
+        }
+        let (jump_span, target_span) = (self.program.block(from).span, self.program.block(target).span);
+        let error = Diagnostic::error(DiagnosticKind::EndlessLoop { passes: jump.taken }, jump_span)
+            .with_related(target_span, "the loop starts here; each pass runs as the one before");
+        self.diagnostics.push(error);
+        true
     }
 
     /// The lowered program, once the blocks have run.

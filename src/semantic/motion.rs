@@ -34,7 +34,7 @@ pub(super) struct AxisTarget {
 }
 
 /// An automatic corner waiting for the move after it.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub(super) struct PendingCorner {
     pub round: bool,
     pub size: f64,

@@ -159,7 +159,12 @@ impl<'a, 's> BlockParser<'a, 's> {
                     position = Position::Body;
                     self.hash(rest)?
                 }
-                b',' if position == Position::Body && self.tables.has_comma_words => self.comma_word(rest)?,
+                b',' if position == Position::Body && self.tables.has_comma_words => {
+                    if let Some(error) = self.decimal_comma_after_word(rest) {
+                        return Err(error);
+                    }
+                    self.comma_word(rest)?
+                }
                 b'0'..=b'9' | b'-' | b'+' | b'.' => return Err(self.number_without_address(rest)),
                 b'$' if !self.is_osp() => {
                     return Err(self.error(
@@ -213,7 +218,8 @@ impl<'a, 's> BlockParser<'a, 's> {
         let offset = self.offset(at) as usize;
         let before = offset.checked_sub(1).and_then(|i| self.source.get(i)).copied();
         let after = at.get(1).copied();
-        let in_number = before.is_some_and(|b| b.is_ascii_digit())
+        // Between digits, after a point, or right after an address letter (`Xl0.`).
+        let in_number = before.is_some_and(|b| b.is_ascii_digit() || b.is_ascii_uppercase())
             && after.is_some_and(|a| a.is_ascii_digit() || a == b'.')
             || after.is_some_and(|a| a.is_ascii_digit()) && before == Some(b'.');
         let digit = match c {
@@ -376,6 +382,26 @@ impl<'a, 's> BlockParser<'a, 's> {
         Ok(rest)
     }
 
+    /// `X20,5` where a comma starts a word (`,C1.`): the comma right after a number with no
+    /// point, before digits, is a decimal comma, not a comma word.
+    fn decimal_comma_after_word(&self, at: Input<'s>) -> Option<Diagnostic> {
+        let comma = self.offset(at);
+        let word = self.words.last().filter(|w| w.span.end == comma)?;
+        let WordKind::Number { number, .. } = word.kind else { return None };
+        if number.has_point() || !value::decimal_comma_follows(at) {
+            return None;
+        }
+        let start = word.span.start as usize;
+        let word_start = &self.source[start..];
+        Some(self.decimal_comma(word_start, comma as usize - start))
+    }
+
+    /// `X20,5`: the comma at `comma_at` of the word, read as a decimal point.
+    pub(super) fn decimal_comma(&self, word_start: Input<'s>, comma_at: usize) -> Diagnostic {
+        let suggestion = repaired(word_start, comma_at, b',', b'.');
+        self.error(&word_start[comma_at..], 1, DiagnosticKind::DecimalComma { suggestion })
+    }
+
     fn letter_o_for_zero(&self, word_start: Input<'s>, o_at: usize) -> Diagnostic {
         let word_len = word_start
             .iter()
@@ -405,6 +431,21 @@ impl<'a, 's> BlockParser<'a, 's> {
         };
         self.error(input, len, DiagnosticKind::NumberWithoutAddress { suggestion })
     }
+}
+
+/// A word's text with every `bad` byte in its value (from its first bad byte at `at` to the
+/// end of its number) read as `good`: the address letters, then digits, signs, points and
+/// `bad` bytes.
+fn repaired(word_start: &[u8], at: usize, bad: u8, good: u8) -> String {
+    let end = word_start
+        .iter()
+        .enumerate()
+        .skip(at + 1)
+        .find(|&(_, &c)| !(c.is_ascii_digit() || c == b'.' || c == bad))
+        .map_or(word_start.len(), |(i, _)| i);
+    let text: Vec<u8> =
+        word_start[..end].iter().enumerate().map(|(i, &c)| if i >= at && c == bad { good } else { c }).collect();
+    String::from_utf8_lossy(&text).into_owned()
 }
 
 /// Whether the text starts with a name followed by `=` or `[` (`OG=2`, `VTOFX[1]=`).

@@ -18,11 +18,18 @@ pub struct Client {
     next_id: i64,
     /// Notifications received while waiting for something else.
     pub notifications: Vec<Value>,
+    /// What the server answered to `initialize`.
+    pub capabilities: Value,
 }
 
 impl Client {
     /// Start the server and complete the `initialize` handshake.
     pub fn start(initialization_options: Value) -> Client {
+        Client::start_with(initialization_options, json!({}))
+    }
+
+    /// [`Client::start`] for a client that announces `capabilities`.
+    pub fn start_with(initialization_options: Value, capabilities: Value) -> Client {
         let mut child = Command::new(env!("CARGO_BIN_EXE_turnpass"))
             .arg("lsp")
             .stdin(Stdio::piped())
@@ -41,15 +48,17 @@ impl Client {
                 }
             }
         });
-        let mut client = Client { child, stdin, incoming, next_id: 0, notifications: Vec::new() };
+        let mut client =
+            Client { child, stdin, incoming, next_id: 0, notifications: Vec::new(), capabilities: Value::Null };
         let params = json!({
             "processId": null,
             "rootUri": null,
-            "capabilities": {},
+            "capabilities": capabilities,
             "initializationOptions": initialization_options,
         });
         let result = client.request("initialize", params);
         assert_eq!(result["capabilities"]["textDocumentSync"], json!(2), "incremental sync");
+        client.capabilities = result["capabilities"].clone();
         client.notify("initialized", json!({}));
         client
     }
@@ -60,14 +69,24 @@ impl Client {
 
     /// Send a request and wait for its response; returns its result.
     pub fn request(&mut self, method: &str, params: Value) -> Value {
+        match self.try_request(method, params) {
+            Ok(result) => result,
+            Err(error) => panic!("{method}: {error}"),
+        }
+    }
+
+    /// Send a request and wait for its response: its result, or its error.
+    pub fn try_request(&mut self, method: &str, params: Value) -> Result<Value, Value> {
         self.next_id += 1;
         let id = self.next_id;
         self.send(&json!({ "jsonrpc": "2.0", "id": id, "method": method, "params": params }));
         loop {
             let message = self.receive(&format!("the response to {method}"));
             if message.get("id") == Some(&json!(id)) {
-                assert!(message.get("error").is_none(), "{method}: {message}");
-                return message["result"].clone();
+                return match message.get("error") {
+                    Some(error) => Err(error.clone()),
+                    None => Ok(message["result"].clone()),
+                };
             }
             self.notifications.push(message);
         }

@@ -1,7 +1,10 @@
 //! Neovim, headless, with the documented configuration (`examples/editors/nvim/turnpass.lua`):
 //! the server attaches to `*.min`, `*.nc`, `*.ssb` and `*.sub` buffers and the diagnostics
 //! arrive, at the byte columns Neovim computes from the server's UTF-16 ranges; a hover
-//! answers. Runs when `nvim` is on the PATH (Debian: `apt install neovim`); without it the
+//! answers; a quick fix chosen from `vim.lsp.buf.code_action()`'s menu edits the right
+//! bytes after a multi-byte character and its diagnostic goes; completion after `G7` gives
+//! the dialect's cycles as Neovim's omnifunc would list them; the Vim syntax file the
+//! configuration puts on the runtime path colours a block's words. Runs when `nvim` is on the PATH (Debian: `apt install neovim`); without it the
 //! test is skipped with a banner, and fails under CI, which installs it
 //! (`support::external`).
 
@@ -24,7 +27,7 @@ for _, name in ipairs({ "part.min", "part.nc", "part.ssb", "part.sub" }) do
   local list = vim.diagnostic.get(buffer)
   table.sort(list, function(a, b) return a.lnum < b.lnum or (a.lnum == b.lnum and a.col < b.col) end)
   for _, d in ipairs(list) do
-    table.insert(out, string.format("  %d:%d-%d:%d severity %d: %s", d.lnum, d.col, d.end_lnum, d.end_col, d.severity, d.message))
+    table.insert(out, string.format("  %d:%d-%d:%d severity %d: %s", d.lnum, d.col, d.end_lnum, d.end_col, d.severity, (d.message:gsub("\n", " / "))))
   end
 end
 local params = { textDocument = { uri = vim.uri_from_bufnr(0) }, position = { line = 3, character = 1 } }
@@ -36,6 +39,52 @@ for _, answer in pairs(answers) do
   end
 end
 table.insert(out, "hover on M02: " .. hovered)
+
+-- The Vim syntax file's groups (for clients without semantic tokens): each word of line 3.
+local groups = {}
+for _, column in ipairs({ 1, 5, 6, 10, 11, 13 }) do
+  local id = vim.fn.synID(3, column, 1)
+  table.insert(groups, vim.fn.getline(3):sub(column, column) .. "=" .. vim.fn.synIDattr(id, "name"))
+end
+table.insert(out, "syntax of `" .. vim.fn.getline(3) .. "`: " .. table.concat(groups, " "))
+
+-- A quick fix as the user applies it: the cursor on the `O` of `X4O` (byte column 9, after
+-- the two-byte `°`), `vim.lsp.buf.code_action()`, the first action chosen in the menu.
+vim.ui.select = function(items, _, on_choice)
+  for _, item in ipairs(items) do
+    table.insert(out, "code action offered: " .. item[2].title)
+  end
+  on_choice(items[1], 1)
+end
+local buffer = vim.api.nvim_get_current_buf()
+vim.api.nvim_win_set_cursor(0, { 2, 9 })
+vim.lsp.buf.code_action()
+local fixed = vim.wait(60000, function()
+  return vim.api.nvim_buf_get_lines(buffer, 1, 2, false)[1] ~= "(30°) X4O Z-30"
+end, 50)
+table.insert(out, "after the quick fix (applied: " .. tostring(fixed) .. "): " .. vim.api.nvim_buf_get_lines(buffer, 1, 2, false)[1])
+local cleared = vim.wait(60000, function()
+  for _, d in ipairs(vim.diagnostic.get(buffer)) do
+    if d.lnum == 1 and d.severity == vim.diagnostic.severity.ERROR then return false end
+  end
+  return true
+end, 50)
+table.insert(out, "the error on that line is gone: " .. tostring(cleared))
+
+-- Completion as the omnifunc shows it: the server's items for `G7` in the new last line,
+-- turned into Vim's complete-items by Neovim's own conversion.
+vim.api.nvim_buf_set_lines(buffer, -1, -1, false, { "G7" })
+local last = vim.api.nvim_buf_line_count(buffer)
+vim.api.nvim_win_set_cursor(0, { last, 2 })
+local position = { textDocument = { uri = vim.uri_from_bufnr(buffer) }, position = { line = last - 1, character = 2 } }
+local completions = vim.lsp.buf_request_sync(buffer, "textDocument/completion", position, 60000) or {}
+for _, answer in pairs(completions) do
+  if answer.result then
+    for _, item in ipairs(vim.lsp.util.text_document_completion_list_to_complete_items(answer.result, "G7")) do
+      table.insert(out, "complete " .. item.word .. " (" .. item.kind .. "): " .. item.menu)
+    end
+  end
+end
 end
 local ok, problem = pcall(run)
 if not ok then

@@ -267,3 +267,48 @@ fn a_result_for_a_closed_document_is_not_published_after_it_is_reopened() {
     assert!(!published[0].is_empty(), "the fixed program still starts from an unknown position");
     assert!(published[0].iter().all(|(_, code, _)| code != "missing-sequence"), "{published:?}");
 }
+
+/// A keystroke in a large program (its semantic pass on a worker) that changes no
+/// diagnostic is published once: at once, with the earlier semantic diagnostics moved
+/// across it; the worker's result, the same diagnostics, is not published again (a second,
+/// identical publish made editors redraw twice per keystroke). A keystroke that does change
+/// them is published again when the worker has found it.
+#[test]
+fn a_keystroke_that_changes_no_diagnostic_is_published_once() {
+    let uri = "file:///work/big.nc";
+    let init = json!({ "capabilities": {}, "initializationOptions": { "semanticInlineLimit": 0, "dialect": "fanuc" } });
+    let (mut server, _, _) = Server::initialize(NoFiles, init);
+    let text = "(PART A)\nG00 X60. Z2.\nG71 U2. R0.5\nG71 P10 Q21 U0.4 W0.1 F0.25\nN10 G01 X20.\nN20 X60.\n";
+    let item = json!({ "uri": uri, "languageId": "gcode", "version": 1, "text": text });
+    server.handle(notification("textDocument/didOpen", json!({ "textDocument": item })));
+    let (messages, jobs) = server.idle();
+    let mut publishes = published(&messages).len();
+    for job in jobs {
+        publishes += published(&server.finished(job.run())).len();
+    }
+    assert_eq!(publishes, 2, "the parse's diagnostics at once, the semantic pass's when it is done");
+    let keystroke = |server: &mut Server<NoFiles>, version: i32, line: u32, (from, to): (u32, u32), text: &str| {
+        let (start, end) = (json!({ "line": line, "character": from }), json!({ "line": line, "character": to }));
+        let params = json!({ "textDocument": { "uri": uri, "version": version },
+                             "contentChanges": [{ "range": { "start": start, "end": end }, "text": text }] });
+        server.handle(notification("textDocument/didChange", params));
+        let (messages, jobs) = server.idle();
+        let mut publishes = published(&messages);
+        for job in jobs {
+            publishes.extend(published(&server.finished(job.run())));
+        }
+        publishes
+    };
+    // A letter typed into the comment: nothing changes.
+    let publishes = keystroke(&mut server, 2, 0, (7, 7), "B");
+    assert_eq!(publishes.len(), 1, "{publishes:?}");
+    assert!(publishes[0].iter().any(|(pass, code, _)| pass == "semantic" && code == "missing-sequence"));
+    // A `0` typed after `X20.` of the block G71 reports: no value changes, one publish.
+    let publishes = keystroke(&mut server, 3, 4, (12, 12), "0");
+    assert_eq!(publishes.len(), 1, "{publishes:?}");
+    // Q21 becomes Q20: the profile's last block is found, and that is published when the
+    // pass has found it.
+    let publishes = keystroke(&mut server, 4, 3, (10, 11), "0");
+    assert_eq!(publishes.len(), 2, "{publishes:?}");
+    assert!(!publishes[1].iter().any(|(_, code, _)| code == "missing-sequence"), "{publishes:?}");
+}

@@ -21,6 +21,7 @@ mod lsp_check;
 mod lsp_client;
 mod lsp_incremental;
 mod lsp_nvim;
+mod lsp_protocol;
 mod lsp_server;
 mod lsp_session;
 mod moves;

@@ -1,11 +1,18 @@
 -- turnpass language server for Neovim (0.7 and later).
 --
 -- Attaches `turnpass lsp` to Okuma and Fanuc lathe programs: *.min, *.nc, *.ssb, *.sub
--- (and their upper-case spellings). Diagnostics appear as you type; `K` (or
--- `:lua vim.lsp.buf.hover()`) says what the word under the cursor means in the program's
--- dialect, `gd` (`vim.lsp.buf.definition()`) jumps from `P20`, `G85 N0207`, `GOTO NAT00`,
--- `CALL OSUB` or `M98 P1000` to the block it names, `:lua vim.lsp.buf.formatting_sync()`
--- (0.7) or `vim.lsp.buf.format()` (0.8+) rewrites the program in `fmt --canonical` form.
+-- (and their upper-case spellings). Diagnostics appear as you type, with their hint;
+-- `K` (or `:lua vim.lsp.buf.hover()`) says what the word under the cursor means in the
+-- program's dialect, `gd` (`vim.lsp.buf.definition()`) jumps from `P20`, `G85 N0207`,
+-- `GOTO NAT00`, `CALL OSUB` or `M98 P1000` to the block it names (in a program file of the
+-- same folder too), `vim.lsp.buf.code_action()` offers the quick fix of a hint (`X4O` →
+-- `X40`) and, on Fanuc, renumbering, `vim.lsp.buf.rename()` and `vim.lsp.buf.references()`
+-- work on sequence names, `<C-x><C-o>` in insert mode completes G and M codes, cycle words
+-- and sequence names (the omnifunc is set), `vim.lsp.buf.signature_help()` shows a cycle's
+-- forms, and `:lua vim.lsp.buf.formatting_sync()` (0.7) or `vim.lsp.buf.format()` (0.8+)
+-- rewrites the program in `fmt --canonical` form. Colour comes from the syntax file in
+-- ../vim (added to the runtime path here); Neovim 0.9 and later also colour with the
+-- server's semantic tokens.
 --
 -- Use it from your init.lua:
 --
@@ -19,6 +26,11 @@
 local patterns = { "*.min", "*.nc", "*.ssb", "*.sub", "*.MIN", "*.NC", "*.SSB", "*.SUB" }
 
 local group = vim.api.nvim_create_augroup("turnpass", { clear = true })
+
+-- The Vim syntax file beside this one (../vim/syntax/turnpass.vim), for colour without
+-- semantic tokens.
+local here = debug.getinfo(1, "S").source:sub(2):match("(.*)/") or "."
+vim.opt.runtimepath:append(here .. "/../vim")
 
 vim.api.nvim_create_autocmd({ "BufRead", "BufNewFile" }, {
   group = group,
@@ -44,6 +56,7 @@ vim.api.nvim_create_autocmd("FileType", {
   group = group,
   pattern = "turnpass",
   callback = function(args)
+    vim.bo[args.buf].omnifunc = "v:lua.vim.lsp.omnifunc"
     local config = {
       name = "turnpass",
       cmd = vim.g.turnpass_cmd or { "turnpass", "lsp" },

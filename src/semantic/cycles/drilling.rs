@@ -111,7 +111,7 @@ impl Hole {
 }
 
 /// The modal drilling cycle, for the blocks that repeat it.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DrillingMemory {
     pub function: GFunction,
     pub facts: DrillingFacts,
@@ -123,7 +123,7 @@ pub struct DrillingMemory {
 }
 
 /// What the drilling blocks leave for later ones.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct DrillingModes {
     pub cycle: Option<DrillingMemory>,
     /// Fanuc systems B and C: `G99` returns to the R point, `G98` (the default) to the

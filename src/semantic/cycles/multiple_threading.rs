@@ -39,7 +39,7 @@ use super::MAX_CYCLE_PASSES;
 const EPSILON: f64 = 1e-9;
 
 /// What `G76 P(m)(r)(a) Q(Δdmin) R(d)` set (program units), kept for the cycle blocks.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ThreadMemory {
     pub parameters: Option<ThreadParameters>,
     pub min_depth: Option<f64>,

@@ -35,7 +35,7 @@ use super::Call;
 use super::MAX_CYCLE_PASSES;
 
 /// What `G73 U(Δi) W(Δk) R(d)` set, program units (Δi a radius), kept for the cycle block.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PatternMemory {
     pub relief_x: Option<f64>,
     pub relief_z: Option<f64>,

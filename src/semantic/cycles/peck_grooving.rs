@@ -40,7 +40,7 @@ use super::MAX_CYCLE_PASSES;
 const EPSILON: f64 = 1e-9;
 
 /// What `G74 R(e)`/`G75 R(e)` set (program units), kept for the cycle blocks.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PeckMemory {
     pub retract: Option<f64>,
     /// The first block, which the cycle block consumes.

@@ -206,6 +206,9 @@ impl<'s> BlockParser<'_, 's> {
                 }
                 match rest.first() {
                     Some(b'O') => return Err(self.letter_o_for_zero(word, word.len() - rest.len())),
+                    Some(b',') if !raw.point && decimal_comma_follows(rest) => {
+                        return Err(self.decimal_comma(word, word.len() - rest.len()));
+                    }
                     // `V1=2` on Fanuc: an OSP variable.
                     Some(b'=') if !self.is_osp() => {
                         return Err(self.foreign_assignment(word, &word[..word.len() - rest.len()]));
@@ -313,6 +316,11 @@ impl<'s> BlockParser<'_, 's> {
 
     /// An address with nothing usable after it. `X SDIA-3` on OSP is a missing `=`.
     pub(super) fn missing_value(&self, word: Input<'s>, value: Input<'s>, address: &str) -> Diagnostic {
+        // `Xl0.`: a misread digit where the value starts.
+        if matches!(value.first(), Some(b'l' | b'o')) && value.get(1).is_some_and(|c| c.is_ascii_digit() || *c == b'.')
+        {
+            return self.lower_case(value);
+        }
         let after_spaces = lex_spaces(value).map_or(value, |(r, _)| r);
         if let Some(&c) = after_spaces.first()
             && !is_word_boundary(c)
@@ -381,4 +389,10 @@ impl<'s> BlockParser<'_, 's> {
         self.push(input, rest, WordKind::Label { number });
         Ok(rest)
     }
+}
+
+/// `,5` in `X20,5`: a comma, digits, and no second point or comma (`X20,5.` is damage).
+pub(super) fn decimal_comma_follows(rest: &[u8]) -> bool {
+    let digits = rest.iter().skip(1).take_while(|c| c.is_ascii_digit()).count();
+    digits > 0 && !matches!(rest.get(1 + digits), Some(b'.' | b','))
 }
