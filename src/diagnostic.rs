@@ -370,6 +370,12 @@ pub enum DiagnosticKind {
     },
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
+    /// A roughing cycle's depth of cut below the least increment (program units): the
+    /// control reads it as zero.
+    DepthBelowIncrement {
+        depth: f64,
+        increment: f64,
+    },
     /// A cycle whose profile has no moves.
     EmptyProfile,
     /// A roughing profile that turns back along the cutting direction (both types reject it).

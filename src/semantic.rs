@@ -34,6 +34,10 @@ use crate::machine::{MachineSettings, ToolSettings, Units};
 use crate::syntax::Program;
 use crate::toolpath::{Limits, Toolpath, Xz};
 
+/// The moves a run may make for each block of its program, beyond
+/// [`LowerOptions::max_moves`]: a program of millions of blocks, each a move, is no runaway.
+pub const MOVES_PER_BLOCK: usize = 2;
+
 /// How to run the program.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LowerOptions {
@@ -42,8 +46,10 @@ pub struct LowerOptions {
     pub block_delete: bool,
     /// Stop with a diagnostic after this many executed blocks (a runaway loop).
     pub max_executed_blocks: u64,
-    /// … or after this many moves (a loop of cycles fills memory long before it has run
-    /// many blocks).
+    /// … or after this many moves, or [`MOVES_PER_BLOCK`] for every block of the program
+    /// when that is more (a loop of cycles fills memory long before it has run many
+    /// blocks). The moves are what a run holds: at 136 bytes a move, the bound keeps a
+    /// small program that runs away to about 300 MB, and a large one in proportion to its text.
     pub max_moves: usize,
     /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
     /// under the program's own `G41`/`G42`).
@@ -58,7 +64,7 @@ impl LowerOptions {
         LowerOptions {
             block_delete,
             max_executed_blocks: 10_000_000,
-            max_moves: 20_000_000,
+            max_moves: 2_000_000,
             nose_radius_compensation: true,
             // A thread pays for itself on a few thousand arcs.
             arc_times_beside_from_blocks: 20_000,

@@ -1,5 +1,6 @@
 //! `turnpass expand` and `turnpass simulate`: the cycles written out, and the toolpath.
 
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -112,27 +113,38 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     let valid = lowered.valid();
     let rows = simulation::rows(&parsed.program, &valid);
     let summary = simulation::summary(&parsed.program, &lowered, &valid, &machine);
-    let output = match args.format {
+    // The rows are written as they are made: memory follows the moves, not the text.
+    let mut out = streams::Out::new();
+    match args.format {
         SimulateFormat::Csv => {
-            let mut text = simulation::csv(&rows).map_err(|e| CliError::Write {
-                path: "<stdout>".into(),
-                source: std::io::Error::other(e.to_string()),
-            })?;
             // The summary goes to standard error so that standard output stays one CSV table.
             streams::err_line(summary_text(&summary));
-            text.shrink_to_fit();
-            text
+            simulation::write_csv(rows, &mut out).map_err(|error| match error.into_kind() {
+                csv::ErrorKind::Io(source) => streams::stdout_error(source),
+                other => streams::stdout_error(std::io::Error::other(format!("{other:?}"))),
+            })?;
         }
         SimulateFormat::Json => {
-            // `model_file` is null when the machine defaults are in force.
-            let value =
-                serde_json::json!({ "model_file": model_file_name(&resolved), "moves": rows, "summary": summary });
-            let mut text = serde_json::to_vec_pretty(&value).unwrap_or_default();
-            text.push(b'\n');
-            text
+            /// The document's keys in alphabetical order, as the rows' and the summary's.
+            #[derive(serde::Serialize)]
+            struct Document<'a> {
+                /// Null when the machine defaults are in force.
+                model_file: Option<String>,
+                moves: simulation::Rows<'a>,
+                summary: serde_json::Value,
+            }
+            let summary = serde_json::to_value(&summary).unwrap_or_default();
+            let document = Document { model_file: model_file_name(&resolved), moves: rows, summary };
+            serde_json::to_writer_pretty(&mut out, &document).map_err(|error| {
+                streams::stdout_error(error.io_error_kind().map_or_else(
+                    || std::io::Error::other(error.to_string()),
+                    |kind| std::io::Error::new(kind, error.to_string()),
+                ))
+            })?;
+            out.write_all(b"\n").map_err(streams::stdout_error)?;
         }
-    };
-    streams::out(output)?;
+    }
+    out.flush().map_err(streams::stdout_error)?;
     Ok(ExitCode::SUCCESS)
 }
 

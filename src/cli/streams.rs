@@ -75,6 +75,17 @@ pub fn out(bytes: impl AsRef<[u8]>) -> Result<(), CliError> {
 
 /// [`out`] of a text given as pieces that follow each other.
 pub fn out_parts<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), CliError> {
+    write_stdout(parts).map_err(stdout_error)
+}
+
+/// A failure to write standard output, as the run reports it.
+pub fn stdout_error(source: std::io::Error) -> CliError {
+    CliError::Write { path: "<stdout>".into(), source }
+}
+
+/// Write and flush the pieces to standard output: a closed pipe marks the stream closed
+/// (and later writes are dropped), any other failure is returned.
+fn write_stdout<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> std::io::Result<()> {
     if STDOUT_CLOSED.load(Ordering::Relaxed) {
         return Ok(());
     }
@@ -85,8 +96,39 @@ pub fn out_parts<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), Cl
             STDOUT_CLOSED.store(true, Ordering::Relaxed);
             Ok(())
         }
-        Err(source) => Err(CliError::Write { path: "<stdout>".into(), source }),
-        Ok(()) => Ok(()),
+        other => other,
+    }
+}
+
+/// Standard output as a writer, for an output written as it is made (a table of millions
+/// of rows is never held whole): buffered, with [`out`]'s rules. Flush it at the end; a
+/// failure to write is an I/O error of the run ([`stdout_error`]).
+pub struct Out {
+    buffer: Vec<u8>,
+}
+
+impl Out {
+    /// How much is gathered before it is written.
+    const CHUNK: usize = 1 << 16;
+
+    pub fn new() -> Out {
+        Out { buffer: Vec::with_capacity(Self::CHUNK) }
+    }
+}
+
+impl Write for Out {
+    fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+        self.buffer.extend_from_slice(bytes);
+        if self.buffer.len() >= Self::CHUNK {
+            self.flush()?;
+        }
+        Ok(bytes.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        write_stdout([self.buffer.as_slice()])?;
+        self.buffer.clear();
+        Ok(())
     }
 }
 

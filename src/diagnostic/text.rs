@@ -516,6 +516,16 @@ impl DiagnosticKind {
                 label: "this cycle".into(),
                 hint: Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".into()),
             },
+            DepthBelowIncrement { depth, increment } => Words {
+                code: "depth-below-increment",
+                message: format!(
+                    "the depth of cut {depth} is less than the least increment {increment}: the control reads it as 0 \
+                     and refuses the cycle"
+                )
+                .into(),
+                label: "depth of cut".into(),
+                hint: Some(format!("give a depth of at least {increment} (one increment)").into()),
+            },
             EmptyProfile => Words {
                 code: "empty-profile",
                 message: "the profile named by `P`/`Q` has no moves".into(),

@@ -106,7 +106,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             options,
             modal,
             // Most blocks make one move; cycles make many more, and the vector grows for them.
-            emitter: Emitter::new(start, machine.rapid, program.blocks().len()),
+            emitter: Emitter::new(
+                start,
+                machine.rapid,
+                program.blocks().len(),
+                options.max_moves.max(program.blocks().len().saturating_mul(super::MOVES_PER_BLOCK)),
+            ),
             variables: Variables::default(),
             labels: std::cell::OnceCell::new(),
             diagnostics: Vec::new(),
@@ -187,16 +192,17 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         let blocks = self.program.blocks();
         let mut pc = 0;
         while pc < blocks.len() {
-            if self.executed >= self.options.max_executed_blocks || self.emitter.moves.len() >= self.options.max_moves {
-                let span = blocks[pc].span;
-                self.error(
-                    DiagnosticKind::RunawayProgram { blocks: self.executed, moves: self.emitter.moves.len() },
-                    span,
-                );
+            if self.executed >= self.options.max_executed_blocks {
+                self.runaway(blocks[pc].span);
                 break;
             }
             self.executed += 1;
             let flow = self.execute(pc);
+            // The moves the run keeps are bounded, inside a block (a cycle's passes) too.
+            if self.emitter.is_full() {
+                self.runaway(blocks[pc].span);
+                break;
+            }
             if let Some(target) = self.skip_to.take() {
                 pc = target;
                 continue;
@@ -208,6 +214,11 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             };
         }
         self.finish_corner();
+    }
+
+    fn runaway(&mut self, span: Span) {
+        let moves = self.emitter.moves.len();
+        self.error(DiagnosticKind::RunawayProgram { blocks: self.executed, moves }, span);
     }
 
     /// The lowered program, once the blocks have run.
