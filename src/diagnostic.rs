@@ -264,6 +264,13 @@ pub enum DiagnosticKind {
     /// A machine model file or one of its axis tables that does not read, or holds a value
     /// out of range (`model_file.rs` has the words).
     ModelFile(Box<ModelProblem>),
+    /// A header or row of a measurement or log (CSV) that does not read: what is wrong, and
+    /// the label on the text it is about.
+    DataInvalid {
+        message: String,
+        label: &'static str,
+        hint: Option<String>,
+    },
     /// A block with more words than the AST holds per block.
     TooManyWords {
         max: usize,

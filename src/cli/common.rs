@@ -7,8 +7,9 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
+use turnpass::diagnose::measured::MeasuredError;
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
-use turnpass::diagnostic::{Diagnostic, SHOWN_DIAGNOSTICS};
+use turnpass::diagnostic::{Diagnostic, DiagnosticKind, SHOWN_DIAGNOSTICS};
 use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
@@ -122,12 +123,17 @@ pub enum CliError {
     /// Exit code 1, as for any program with errors.
     #[error("{}", String::from_utf8_lossy(.0))]
     Rejected(Vec<u8>),
+    /// A measurement or log whose content is wrong (it does not fit the program, a fit of
+    /// it fails): exit code 1, as for a program with errors.
+    #[error("{0}")]
+    Data(String),
 }
 
 impl CliError {
     pub fn exit_code(&self) -> u8 {
         match self {
-            CliError::Rejected(_) => 1,
+            // The data's own faults, as a program's errors are.
+            CliError::Rejected(_) | CliError::Data(_) | CliError::NotUtf8 { .. } => 1,
             _ => 2,
         }
     }
@@ -176,6 +182,16 @@ pub fn read_data_text(path: &Path) -> Result<String, CliError> {
         let (line, column) = turnpass::source::LineIndex::new(bytes).position(at as u32);
         CliError::NotUtf8 { path: display_name(path), line, column, byte: bytes[at] }
     })
+}
+
+/// A measurement or log that does not read: the problem at its file, line and column,
+/// rendered as a program's diagnostics are, and a line saying what `command` did not do
+/// (exit 1: it is the data's fault, as errors of a program are).
+pub fn data_invalid(name: &str, text: &str, error: MeasuredError, command: &str) -> CliError {
+    let kind = DiagnosticKind::DataInvalid { message: error.message, label: error.label, hint: error.hint };
+    let mut out = rendered(name, text.as_bytes(), &[Diagnostic::error(kind, error.span)]);
+    out.extend_from_slice(format!("{command}: {name} does not read; nothing is done\n").as_bytes());
+    CliError::Rejected(out)
 }
 
 /// The model file for `program`: `--model`, else the nearest `turnpass.toml` above it.

@@ -15,7 +15,7 @@ use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, with_table_files};
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, folder_of,
+    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, check_output, data_invalid, display_name, folder_of,
     model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
     write_atomically, write_output,
 };
@@ -193,10 +193,10 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     let data_name = display_name(&args.measured);
     let text = read_data_text(&args.measured)?;
     let kind = args.kind.map(|k| k.kind(args.axis)).transpose()?;
-    let measured = measured::read(&text, kind).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
+    let measured = measured::read(&text, kind).map_err(|e| data_invalid(&data_name, &text, e, "diagnose"))?;
     let options = Options { max_iterations: args.max_iterations };
     let diagnosis =
-        diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
+        diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Data(format!("{data_name}: {e}")))?;
     let out = match args.format {
         Format::Human => report::human(&diagnosis),
         Format::Json => serde_json::to_string_pretty(&report::json(&diagnosis)).unwrap_or_default() + "\n",

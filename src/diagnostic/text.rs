@@ -306,6 +306,12 @@ impl DiagnosticKind {
                 hint: None,
             },
             ModelFile(problem) => problem.words(),
+            DataInvalid { message, label, hint } => Words {
+                code: "data-invalid",
+                message: message.clone().into(),
+                label: (*label).into(),
+                hint: hint.clone().map(Into::into),
+            },
             TooManyWords { max } => Words {
                 code: "too-many-words",
                 message: format!("the block has more than {max} words").into(),
