@@ -126,6 +126,16 @@ impl Machine {
     pub fn scale(&self) -> f64 {
         if self.units == Units::Inch { frame::MM_PER_INCH } else { 1.0 }
     }
+
+    /// The finest distance a program on this machine can write, mm: its least increment in
+    /// millimetres, in whichever unit gives the finer (a control pairs 0.0001 in with
+    /// 0.001 mm, `Frame::set_inch`). A step finer than this puts points on the same
+    /// increments.
+    pub fn finest_increment_mm(&self) -> f64 {
+        let other_mm =
+            if self.units == Units::Inch { self.increment * 10.0 } else { self.increment / 10.0 * frame::MM_PER_INCH };
+        (self.increment * self.scale()).min(other_mm)
+    }
 }
 
 /// What a program is read and run with under `settings`, each setting written as the

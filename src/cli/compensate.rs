@@ -127,6 +127,20 @@ impl FitArgs {
         Ok(())
     }
 
+    /// Refuse a `--step` finer than what a program on `machine` can write: its lines' ends
+    /// would fall on the same increments, making lines of no length by the million, and the
+    /// work and memory would follow the option instead of the program.
+    pub fn check_step(&self, machine: &Machine) -> Result<(), CliError> {
+        let finest = machine.finest_increment_mm();
+        match self.step {
+            Some(step) if step < finest * (1.0 - 1e-9) => Err(CliError::Usage(format!(
+                "--step {step} mm is finer than the least increment a program can write on this machine \
+                 ({finest} mm): lines that short would end on the same increments; give --step {finest} or more"
+            ))),
+            _ => Ok(()),
+        }
+    }
+
     pub fn options(&self, machine: &Machine) -> CompensateOptions {
         let half_increment = machine.increment * machine.scale() / 2.0;
         CompensateOptions {
@@ -259,6 +273,7 @@ pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) 
 /// Compensate one program; nothing is written here.
 pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult, CliError> {
     let (bytes, resolved) = read_program(path, &args.read)?;
+    args.fit.check_step(&Machine::from_settings(&resolved.settings))?;
     let model = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();

@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 
 use turnpass::diagnose::forward::Nominal;
 use turnpass::diagnose::measured::{self, Kind};
-use turnpass::diagnose::synth::{SynthOptions, synth, to_csv};
+use turnpass::diagnose::synth::{SynthOptions, finest_step_deg, synth, to_csv};
 use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, with_table_files};
@@ -233,10 +233,37 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
 
 pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref())?;
-    let (nominal, truth, _) = match prepare(&args.file, &args.read, &args.run, "synth", None)? {
+    let (nominal, truth, resolved) = match prepare(&args.file, &args.read, &args.run, "synth", None)? {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
     };
+    // A step finer than the machine can move is refused: its rows would repeat positions,
+    // and their number would follow the option.
+    let finest = turnpass::semantic::Machine::from_settings(&resolved.settings).finest_increment_mm();
+    match args.kind {
+        KindArg::Ballbar => {
+            let least = finest_step_deg(&nominal, finest).unwrap_or(0.0);
+            if args.step_deg < least * (1.0 - 1e-9) {
+                // The least step rounded up to two significant digits.
+                let digits = (1.0 - least.log10().floor()).max(0.0) as usize;
+                let scale = 10f64.powi(digits as i32);
+                return Err(CliError::Usage(format!(
+                    "--step-deg {} moves the tool less than the least increment ({finest} mm) round the program's \
+                     smallest test circle: give --step-deg {:.digits$} or more",
+                    args.step_deg,
+                    (least * scale).ceil() / scale
+                )));
+            }
+        }
+        KindArg::Profile if args.spacing < finest * (1.0 - 1e-9) => {
+            return Err(CliError::Usage(format!(
+                "--spacing {} mm is finer than the least increment a program can write on this machine ({finest} \
+                 mm): give --spacing {finest} or more",
+                args.spacing
+            )));
+        }
+        _ => {}
+    }
     let defaults = SynthOptions::default();
     let options = SynthOptions {
         noise_mm: args.noise,

@@ -139,6 +139,15 @@ pub fn synth(
     })
 }
 
+/// The finest `step_deg` of a ball bar trace of `nominal` on a machine whose finest
+/// increment is `increment_mm`: a row moves the tool at least an increment round the
+/// program's smallest test circle (rows closer than that are rows of one position, and
+/// their number would follow the option, not the test). `None` for a program with no test
+/// circle.
+pub fn finest_step_deg(nominal: &Nominal, increment_mm: f64) -> Option<f64> {
+    super::forward::smallest_radius(nominal).map(|radius| (increment_mm / radius).to_degrees())
+}
+
 /// A measurement as the CSV `diagnose` reads.
 pub fn to_csv(measured: &Measured) -> String {
     let mut out = String::new();
