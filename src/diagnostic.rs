@@ -375,6 +375,9 @@ pub enum DiagnosticKind {
     AlreadyCompensated {
         model: Option<String>,
     },
+    /// The program runs off the end of its text, which ends in the middle of a block, with
+    /// no program end: the text was cut (`Lowered::cut_off`).
+    ProgramCut,
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
     /// A roughing cycle's depth of cut below the least increment (program units): the

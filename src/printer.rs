@@ -29,6 +29,24 @@ use crate::syntax::{CodeLetter, Number, Program};
 use number::{Style as NumberStyle, write_number};
 use style::WholeNumbers;
 
+/// The errors of `text`, a printing of `program` with edits, read back as `program` was
+/// read (its dialect, G-code system and machine kind). A pass that writes new blocks checks
+/// its output with this before it reports success: a coordinate it computed can need more
+/// digits than the control reads (a cycle's point past `Z99999999.`), and a program that
+/// does not read is no output. Only the edited blocks can hold an error: the others are the
+/// program's own, which read without one.
+pub fn unreadable(program: &Program<'_>, text: &[u8]) -> Vec<crate::diagnostic::Diagnostic> {
+    let config = program.config();
+    let options = crate::syntax::ParseOptions {
+        dialect: crate::dialect::DialectChoice::Fixed(config.dialect),
+        gcode_system: config.gcode_system,
+        machine_kind: Some(config.machine_kind),
+    };
+    let mut diagnostics = crate::syntax::parse(text, &options).diagnostics;
+    diagnostics.retain(crate::diagnostic::Diagnostic::is_error);
+    diagnostics
+}
+
 /// A printed program, as one or more pieces of text that follow each other.
 ///
 /// A long program is printed in two halves at once; a caller that writes the text to a

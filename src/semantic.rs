@@ -239,6 +239,13 @@ pub struct Lowered {
     /// later pass that writes a move back into its own block (`compensation::rewrite`)
     /// reads them; empty means the start frame, absolute, unshifted throughout.
     pub coordinates: Vec<CoordinateMark>,
+    /// The last block, when the program ran off the end of its text in the middle of a
+    /// block with no program end (M02, M30, M99, `RTS`, a closing `%`): the text was cut (a
+    /// pipe whose writer died, a copy that stopped). What it holds runs, but it is not the
+    /// program, and an output made from it would look whole. A run of a file refuses it
+    /// (`DiagnosticKind::ProgramCut`); an editor's buffer is often in this state as it is
+    /// typed, and is not.
+    pub cut_off: Option<crate::source::Span>,
 }
 
 /// The program coordinates in force from move `from_move` on (see `Lowered::coordinates`).
@@ -282,6 +289,7 @@ pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -
             frame: initial_frame(program, machine),
             executed_blocks: 0,
             coordinates: Vec::new(),
+            cut_off: None,
         };
     }
     interpreter::Interpreter::new(program, machine, options).run()

@@ -576,12 +576,19 @@ pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run:
     let lowered = semantic::lower(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
     let mut diagnostics = parsed.diagnostics.clone();
     diagnostics.extend(lowered.diagnostics.iter().cloned());
+    diagnostics.extend(cut_off(&lowered));
     let lowered = Validated::new(lowered, machine.limits).map_err(|(lowered, problems)| {
         diagnostics.extend(problems);
         lowered
     });
     diagnostics.sort_by_key(|d| d.span.start);
     Lowering { lowered, machine, diagnostics }
+}
+
+/// The error of a file whose text was cut in the middle of a block (`Lowered::cut_off`):
+/// a run of a file refuses it, so that nothing made from part of a program looks whole.
+pub fn cut_off(lowered: &Lowered) -> Option<Diagnostic> {
+    lowered.cut_off.map(|span| Diagnostic::error(DiagnosticKind::ProgramCut, span))
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse
@@ -655,6 +662,7 @@ pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &
         let message = format!("the directory {} does not exist", dir.display());
         return Err(error(std::io::Error::new(std::io::ErrorKind::NotFound, message)));
     }
+    remove_stale_temporaries(dir);
     let mut temp = temporary_beside(dir, std::fs::metadata(&target).ok()).map_err(error)?;
     for part in parts {
         temp.write_all(part).map_err(error)?;
@@ -687,14 +695,53 @@ fn link_target(path: &Path) -> std::io::Result<PathBuf> {
     Err(std::io::Error::other("too many levels of symbolic links"))
 }
 
-/// A temporary file in `dir` that has the mode the file it replaces has (`existing`), or, for
-/// a new file, the mode the umask gives: it is created with `rw-rw-rw-`, which the system
-/// reduces by the umask, so the umask is never read or changed (the batch writes from
-/// several threads at once).
+/// How a temporary output file is named: `.turnpass-PID-XXXXXX.partial`, the process that
+/// writes it and random letters. A run that is killed (SIGKILL, a power cut) leaves it behind;
+/// its name says what it is, and the next run that writes into the folder removes it.
+const TEMPORARY_PREFIX: &str = ".turnpass-";
+const TEMPORARY_SUFFIX: &str = ".partial";
+
+/// Remove the temporary files of runs that are no longer running from `dir`: those whose
+/// process is gone. A file of a run still writing (another turnpass, at the same time) is
+/// left alone. Failures are ignored: a leftover is untidy, not wrong.
+fn remove_stale_temporaries(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(pid) = name
+            .to_str()
+            .and_then(|n| n.strip_prefix(TEMPORARY_PREFIX))
+            .filter(|n| n.ends_with(TEMPORARY_SUFFIX))
+            .and_then(|n| n.split('-').next())
+            .and_then(|pid| pid.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        if pid != std::process::id() && !process_runs(pid) {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
+/// Whether process `pid` runs (on Linux, `/proc` has it; elsewhere a process is taken to
+/// run, and nothing is removed).
+fn process_runs(pid: u32) -> bool {
+    if cfg!(target_os = "linux") { Path::new("/proc").join(pid.to_string()).exists() } else { true }
+}
+
+/// A temporary file in `dir`, named as [`TEMPORARY_PREFIX`] says, that has the mode the file
+/// it replaces has (`existing`), or, for a new file, the mode the umask gives: it is created
+/// with `rw-rw-rw-`, which the system reduces by the umask, so the umask is never read or
+/// changed (the batch writes from several threads at once).
 #[cfg(unix)]
 fn temporary_beside(dir: &Path, existing: Option<std::fs::Metadata>) -> std::io::Result<tempfile::NamedTempFile> {
     use std::os::unix::fs::PermissionsExt;
-    let temp = tempfile::Builder::new().permissions(std::fs::Permissions::from_mode(0o666)).tempfile_in(dir)?;
+    let prefix = format!("{TEMPORARY_PREFIX}{}-", std::process::id());
+    let temp = tempfile::Builder::new()
+        .prefix(&prefix)
+        .suffix(TEMPORARY_SUFFIX)
+        .permissions(std::fs::Permissions::from_mode(0o666))
+        .tempfile_in(dir)?;
     if let Some(existing) = existing {
         temp.as_file().set_permissions(existing.permissions())?;
     }
@@ -703,7 +750,8 @@ fn temporary_beside(dir: &Path, existing: Option<std::fs::Metadata>) -> std::io:
 
 #[cfg(not(unix))]
 fn temporary_beside(dir: &Path, existing: Option<std::fs::Metadata>) -> std::io::Result<tempfile::NamedTempFile> {
-    let temp = tempfile::NamedTempFile::new_in(dir)?;
+    let prefix = format!("{TEMPORARY_PREFIX}{}-", std::process::id());
+    let temp = tempfile::Builder::new().prefix(&prefix).suffix(TEMPORARY_SUFFIX).tempfile_in(dir)?;
     if let Some(existing) = existing {
         temp.as_file().set_permissions(existing.permissions())?;
     }

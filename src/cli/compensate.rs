@@ -326,5 +326,15 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     };
     provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
     let printed = printer::print_parts(&program.parsed.program, &outcome.edits);
+    let text: Vec<u8> = printed.parts().flatten().copied().collect();
+    let unreadable = printer::unreadable(&program.parsed.program, &text);
+    if !unreadable.is_empty() {
+        messages.extend(rendered(&format!("{name} (compensated)"), &text, &unreadable));
+        messages.extend_from_slice(
+            format!("compensate: {name}: the compensated program would not read on the control; nothing is written\n")
+                .as_bytes(),
+        );
+        return Ok(FileResult::failed(1, messages));
+    }
     Ok(FileResult { code: 0, messages, output: Some(printed), report })
 }

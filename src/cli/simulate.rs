@@ -12,7 +12,7 @@ use turnpass::simulation;
 use turnpass::syntax;
 
 use super::common::{
-    CliError, Lowering, ReadArgs, RunArgs, announce_settings, check_output, display_name, lower_and_validate,
+    CliError, Lowering, ReadArgs, RunArgs, announce_settings, check_output, cut_off, display_name, lower_and_validate,
     lower_options, model_file_name, not_lowered, plural, read_program, report, write_output,
 };
 use super::streams;
@@ -72,6 +72,7 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     let lowered = semantic::lower(&parsed.program, &machine, &lower_options(&args.run, &resolved.settings, false));
     let mut diagnostics = parsed.diagnostics.clone();
     diagnostics.extend(lowered.diagnostics.iter().cloned());
+    diagnostics.extend(cut_off(&lowered));
     diagnostics.sort_by_key(|d| d.span.start);
     report(&name, &bytes, &diagnostics);
     let errors = diagnostics.iter().filter(|d| d.is_error()).count();
@@ -83,6 +84,14 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     let (edits, notes) = turnpass::expand::expansion_edits(&parsed.program, &lowered);
     report(&name, &bytes, &notes);
     let output = printer::print(&parsed.program, &edits);
+    let unreadable = printer::unreadable(&parsed.program, &output);
+    if !unreadable.is_empty() {
+        report(&format!("{name} (expanded)"), &output, &unreadable);
+        streams::err_line(format_args!(
+            "expand: {name}: the expanded program would not read on the control; nothing is written"
+        ));
+        return Ok(ExitCode::from(1));
+    }
     write_output(args.output.as_deref(), &output)?;
     Ok(ExitCode::SUCCESS)
 }

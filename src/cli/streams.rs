@@ -6,8 +6,9 @@
 //! dropped, and the run goes on to its own exit code, so that code says the same whether or
 //! not anyone read the output (as ripgrep does, the run ends quietly; unlike a C tool, it is
 //! not killed by SIGPIPE, which would leave a half-written temporary file behind). Any other
-//! failure to write standard output (a full disk under `> out.nc`) is an I/O error, exit 2.
-//! Standard error has nowhere to report its own failures, so they are dropped.
+//! failure to write standard output (a full disk under `> out.nc`, or no standard output at
+//! all, `>&-`) is an I/O error, exit 2. Standard error has nowhere to report its own
+//! failures, so they are dropped.
 
 use std::io::{IsTerminal, Write};
 use std::sync::OnceLock;
@@ -31,6 +32,26 @@ pub enum ColorChoice {
 static COLOR: OnceLock<ColorChoice> = OnceLock::new();
 static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
 static STDERR_CLOSED: AtomicBool = AtomicBool::new(false);
+/// Standard output was not open when the process started (`turnpass simulate part.nc >&-`).
+static STDOUT_UNOPENED: AtomicBool = AtomicBool::new(false);
+
+/// Whether standard output is open, asked before the Rust runtime starts: the runtime puts
+/// `/dev/null` on a standard stream that is not open, after which writing to it succeeds
+/// and the output is silently lost. An output that has nowhere to go is an error instead.
+/// (Standard error that is not open loses only messages, which have nowhere else to go.)
+#[cfg(target_os = "linux")]
+#[used]
+#[unsafe(link_section = ".init_array")]
+static NOTE_UNOPENED_STDOUT: extern "C" fn() = note_unopened_stdout;
+
+#[cfg(target_os = "linux")]
+extern "C" fn note_unopened_stdout() {
+    // SAFETY: F_GETFD reads the descriptor's flags and changes nothing; it fails with EBADF
+    // exactly when descriptor 1 is not open.
+    if unsafe { libc::fcntl(libc::STDOUT_FILENO, libc::F_GETFD) } == -1 {
+        STDOUT_UNOPENED.store(true, Ordering::Relaxed);
+    }
+}
 
 /// Set the colour choice of the run (once, from the command line).
 pub fn set_color(choice: ColorChoice) {
@@ -86,6 +107,12 @@ pub fn stdout_error(source: std::io::Error) -> CliError {
 /// Write and flush the pieces to standard output: a closed pipe marks the stream closed
 /// (and later writes are dropped), any other failure is returned.
 fn write_stdout<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> std::io::Result<()> {
+    if STDOUT_UNOPENED.load(Ordering::Relaxed) {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::NotConnected,
+            "standard output is not open (`>&-`): redirect it to a file, or to /dev/null to discard it",
+        ));
+    }
     if STDOUT_CLOSED.load(Ordering::Relaxed) {
         return Ok(());
     }

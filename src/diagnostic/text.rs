@@ -522,6 +522,14 @@ impl DiagnosticKind {
                 label: "this cycle".into(),
                 hint: Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".into()),
             },
+            ProgramCut => Words {
+                code: "program-cut",
+                message: "the text ends in the middle of a block, and the program has no end (M30, M02, M99): \
+                          it looks cut off"
+                    .into(),
+                label: "the text ends here".into(),
+                hint: Some("if the program is whole, end it with M30 (or M02) and a line break".into()),
+            },
             DepthBelowIncrement { depth, increment } => Words {
                 code: "depth-below-increment",
                 message: format!(

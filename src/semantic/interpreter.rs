@@ -78,6 +78,7 @@ pub(super) struct Interpreter<'p, 'src> {
     /// The missing home position has been noted (it is one fact, said once per run).
     noted_home_unknown: bool,
     tape_opened: bool,
+    cut_off: Option<Span>,
 }
 
 impl<'p, 'src> Interpreter<'p, 'src> {
@@ -129,6 +130,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             first_program_name: None,
             noted_home_unknown: false,
             tape_opened: false,
+            cut_off: None,
         }
     }
 
@@ -213,6 +215,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 Flow::End => break,
             };
         }
+        // Run off the end of the text with no program end, in the middle of a block: the
+        // text was cut (`Lowered::cut_off`).
+        let mid_block = !matches!(self.program.source().last(), None | Some(b'\n' | b'\r' | b'%'));
+        if pc >= blocks.len() && mid_block {
+            self.cut_off = blocks.last().map(|b| b.span);
+        }
         self.finish_corner();
     }
 
@@ -257,6 +265,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             frame: super::initial_frame(self.program, self.machine),
             executed_blocks: self.executed,
             coordinates: self.coordinates,
+            cut_off: self.cut_off,
         }
     }
 
