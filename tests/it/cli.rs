@@ -119,12 +119,17 @@ fn mode_of(path: &std::path::Path) -> String {
     format!("{:o}", std::fs::metadata(path).unwrap().permissions().mode() & 0o7777)
 }
 
-/// The write end of a pipe whose read end is already closed: every write finds no reader.
-fn closed_pipe() -> Stdio {
+/// A pipe: its read end and its write end.
+fn open_pipe() -> (OwnedFd, OwnedFd) {
     let mut fds = [0; 2];
     // SAFETY: `pipe` fills both descriptors on success; each is owned exactly once below.
     assert_eq!(unsafe { libc::pipe(fds.as_mut_ptr()) }, 0, "pipe");
-    let (read, write) = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+    unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) }
+}
+
+/// The write end of a pipe whose read end is already closed: every write finds no reader.
+fn closed_pipe() -> Stdio {
+    let (read, write) = open_pipe();
     drop(read);
     Stdio::from(write)
 }
@@ -244,8 +249,9 @@ fn run_case(case: &Case) {
     // `2>&1 | head -c N`: one pipe for both streams, read up to N bytes on a thread.
     let mut cut_reader = None;
     if let Some(limit) = case.cut_after {
-        let (reader, writer) = std::io::pipe().unwrap();
+        let (reader, writer) = open_pipe();
         command.stdout(writer.try_clone().unwrap()).stderr(writer);
+        let reader = std::fs::File::from(reader);
         cut_reader = Some(std::thread::spawn(move || {
             use std::io::Read;
             let mut read = Vec::new();
