@@ -1,0 +1,85 @@
+//! Fuzzes lowering and what is made of it: `simulate` (the rows, the summary) and `expand`.
+//!
+//! An input whose first byte is 0xFF is a structured program (`common/program.rs`: blocks
+//! and cycles, built with `arbitrary`, so that nearly every input parses and most of them
+//! run); any other input is a program's text, as the seeds are (the case files and the
+//! corpus, read in place). The machine's settings are chosen by the input. Each program is
+//! parsed, lowered with a small bound on the moves (so that a runaway input stays fast),
+//! validated, simulated and expanded. The target checks that nothing panics or hangs, and
+//! that the expanded program of one that lowers without errors parses and lowers without
+//! errors again and makes as many cutting moves.
+//!
+//! ```sh
+//! RUSTC_BOOTSTRAP=1 cargo fuzz run lower fuzz/corpus/lower tests/cases ../shared/corpus -- \
+//!     -max_total_time=1800 -max_len=16384 -dict=fuzz/gcode.dict -jobs=1
+//! ```
+
+#![no_main]
+
+#[path = "common/program.rs"]
+mod program;
+
+use libfuzzer_sys::fuzz_target;
+use turnpass::dialect::{DialectChoice, GCodeSystem};
+use turnpass::machine::ModelFile;
+use turnpass::semantic::{self, LowerOptions, Machine};
+use turnpass::syntax::{ParseOptions, parse};
+use turnpass::toolpath::Validated;
+
+fuzz_target!(|data: &[u8]| {
+    let Some((text, machine)) = program::program_text(data) else { return };
+    let settings = ModelFile::from_toml(machine).expect("the fuzz machines read").machine;
+    let options = ParseOptions {
+        dialect: settings.dialect.map_or(DialectChoice::Auto, DialectChoice::Fixed),
+        gcode_system: settings.gcode_system.unwrap_or(GCodeSystem::A),
+        machine_kind: None,
+    };
+    let parsed = parse(&text, &options);
+    if !semantic::lowers(&parsed.program) {
+        return;
+    }
+    let machine = Machine::from_settings(&settings);
+    let lower_options = LowerOptions { max_moves: 20_000, max_executed_blocks: 50_000, ..LowerOptions::new(false) };
+    let lowered = semantic::lower(&parsed.program, &machine, &lower_options);
+    let clean = !parsed.has_errors() && lowered.diagnostics.iter().all(|d| !d.is_error()) && lowered.cut_off.is_none();
+    // A toolpath that does not validate (a move off the travel, a number too large to be
+    // finite) is reported as such by every command: that is the validation's work.
+    let Ok(lowered) = Validated::new(lowered, machine.limits) else { return };
+    let valid = lowered.valid();
+    let rows = turnpass::simulation::rows(&parsed.program, &valid);
+    let mut csv = Vec::new();
+    turnpass::simulation::write_csv(rows, &mut csv).expect("CSV into memory");
+    let _ = serde_json::to_vec(&rows).expect("JSON into memory");
+    let _ = turnpass::simulation::summary(&parsed.program, &lowered, &valid, &machine);
+    if !clean {
+        return;
+    }
+    // `expand` lowers without nose-radius compensation: the blocks it writes stay under the
+    // program's own G41/G42, and the control applies it to both programs alike.
+    let lower_options = LowerOptions { nose_radius_compensation: false, ..lower_options };
+    let lowered = semantic::lower(&parsed.program, &machine, &lower_options);
+    let cutting = lowered.toolpath.moves.iter().filter(|m| m.cutting).count();
+    let (edits, _) = turnpass::expand::expansion_edits(&parsed.program, &lowered);
+    let expanded = turnpass::printer::print(&parsed.program, &edits);
+    // `expand` refuses an output that does not read (a coordinate past what the control
+    // takes): that is its check, not a finding.
+    if !turnpass::printer::unreadable(&parsed.program, &expanded).is_empty() {
+        return;
+    }
+    let shown = || format!("{}\n--- expanded:\n{}", String::from_utf8_lossy(&text), String::from_utf8_lossy(&expanded));
+    // Read back as the original was read: with `--dialect auto`, the evidence of the
+    // dialect may be in the blocks expansion replaced (`printer::unreadable` does the same).
+    let config = parsed.program.config();
+    let same = ParseOptions {
+        dialect: DialectChoice::Fixed(config.dialect),
+        gcode_system: config.gcode_system,
+        machine_kind: Some(config.machine_kind),
+    };
+    let again = parse(&expanded, &same);
+    assert!(!again.has_errors(), "the expanded program does not parse:\n{}", shown());
+    let relowered = semantic::lower(&again.program, &machine, &lower_options);
+    let errors: Vec<_> = relowered.diagnostics.iter().filter(|d| d.is_error()).collect();
+    assert!(errors.is_empty(), "the expanded program does not lower: {errors:?}\n{}", shown());
+    let cutting_again = relowered.toolpath.moves.iter().filter(|m| m.cutting).count();
+    assert_eq!(cutting, cutting_again, "the expanded program cuts otherwise:\n{}", shown());
+});
