@@ -36,15 +36,20 @@ use style::WholeNumbers;
 /// does not read is no output. Only the edited blocks can hold an error: the others are the
 /// program's own, which read without one.
 pub fn unreadable(program: &Program<'_>, text: &[u8]) -> Vec<crate::diagnostic::Diagnostic> {
+    let mut diagnostics = crate::syntax::parse(text, &read_back_options(program)).diagnostics;
+    diagnostics.retain(crate::diagnostic::Diagnostic::is_error);
+    diagnostics
+}
+
+/// How a printing of `program` is read back: as `program` was read. With `--dialect auto`,
+/// the evidence of the dialect may have been in the blocks an edit replaced.
+pub fn read_back_options(program: &Program<'_>) -> crate::syntax::ParseOptions {
     let config = program.config();
-    let options = crate::syntax::ParseOptions {
+    crate::syntax::ParseOptions {
         dialect: crate::dialect::DialectChoice::Fixed(config.dialect),
         gcode_system: config.gcode_system,
         machine_kind: Some(config.machine_kind),
-    };
-    let mut diagnostics = crate::syntax::parse(text, &options).diagnostics;
-    diagnostics.retain(crate::diagnostic::Diagnostic::is_error);
-    diagnostics
+    }
 }
 
 /// A printed program, as one or more pieces of text that follow each other.

@@ -42,6 +42,11 @@ fuzz_target!(|data: &[u8]| {
     let lower_options = LowerOptions { max_moves: 20_000, max_executed_blocks: 50_000, ..LowerOptions::new(false) };
     let lowered = semantic::lower(&parsed.program, &machine, &lower_options);
     let clean = !parsed.has_errors() && lowered.diagnostics.iter().all(|d| !d.is_error()) && lowered.cut_off.is_none();
+    // How deep an input gets, for the note on a corpus (`fuzz/README.md`): one line per input.
+    if std::env::var_os("TURNPASS_FUZZ_DEPTH").is_some() {
+        let structured = data.first() == Some(&0xFF);
+        eprintln!("depth structured={structured} parsed={} clean={clean}", !parsed.has_errors());
+    }
     // A toolpath that does not validate (a move off the travel, a number too large to be
     // finite) is reported as such by every command: that is the validation's work.
     let Ok(lowered) = Validated::new(lowered, machine.limits) else { return };

@@ -25,8 +25,9 @@ use turnpass::semantic::Machine;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
-    read_program, ready_beside, rendered, required_error_model, write_output, write_output_parts,
+    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, lower_and_validate, model_name,
+    model_sha256, model_source, read_program, ready_beside, rendered, required_error_model, write_output,
+    write_output_parts,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -300,19 +301,16 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         return Ok(FileResult::failed(1, messages));
     }
     let totals = &outcome.report.totals;
-    messages.extend_from_slice(
-        format!(
-            "compensate: {name}: {} block{} edited, {} cycle{} expanded; largest correction {:.4} mm; \
+    let summary = format!(
+        "compensate: {name}: {} block{} edited, {} cycle{} expanded; largest correction {:.4} mm; \
              predicted RMS deviation {:.5} -> {:.5} mm\n",
-            totals.edited_blocks,
-            super::common::plural(totals.edited_blocks),
-            totals.expanded_cycles,
-            super::common::plural(totals.expanded_cycles),
-            totals.max_correction_mm,
-            totals.before.rms_mm,
-            totals.after.rms_mm,
-        )
-        .as_bytes(),
+        totals.edited_blocks,
+        super::common::plural(totals.edited_blocks),
+        totals.expanded_cycles,
+        super::common::plural(totals.expanded_cycles),
+        totals.max_correction_mm,
+        totals.before.rms_mm,
+        totals.after.rms_mm,
     );
     let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
     let provenance = Provenance {
@@ -326,15 +324,21 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     };
     provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
     let printed = printer::print_parts(&program.parsed.program, &outcome.edits);
+    // What is written is checked as the control would run it: read back and lowered as the
+    // original was (a coordinate past what a block can hold, a correction that leaves the
+    // nose no room under G41/G42); a program that does not run cleanly is no output.
     let text: Vec<u8> = printed.parts().flatten().copied().collect();
-    let unreadable = printer::unreadable(&program.parsed.program, &text);
-    if !unreadable.is_empty() {
-        messages.extend(rendered(&format!("{name} (compensated)"), &text, &unreadable));
+    let reparsed = turnpass::syntax::parse(&text, &printer::read_back_options(&program.parsed.program));
+    let mut errors = lower_and_validate(&reparsed, &resolved, &args.run).diagnostics;
+    errors.retain(turnpass::diagnostic::Diagnostic::is_error);
+    if !errors.is_empty() {
+        messages.extend(rendered(&format!("{name} (compensated)"), &text, &errors));
         messages.extend_from_slice(
-            format!("compensate: {name}: the compensated program would not read on the control; nothing is written\n")
+            format!("compensate: {name}: the compensated program would not run cleanly; refused, nothing is written\n")
                 .as_bytes(),
         );
         return Ok(FileResult::failed(1, messages));
     }
+    messages.extend_from_slice(summary.as_bytes());
     Ok(FileResult { code: 0, messages, output: Some(printed), report })
 }
