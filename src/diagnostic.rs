@@ -375,6 +375,12 @@ pub enum DiagnosticKind {
     AlreadyCompensated {
         model: Option<String>,
     },
+    /// A move that needs more samples than compensation holds for one move
+    /// (`compensation::sampling::MAX_SAMPLES_PER_MOVE`) at the model's spacing.
+    MoveNeedsTooManySamples {
+        samples: usize,
+        max: usize,
+    },
     /// The program runs off the end of its text, which ends in the middle of a block, with
     /// no program end: the text was cut (`Lowered::cut_off`).
     ProgramCut,

@@ -132,6 +132,29 @@ pub fn compensate_with_tables(
         // Neither can fail on any input; a panic is a bug, and is passed on.
         (rewrite.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
     });
+    // A move that needs more samples than a piece may hold is refused before any is made.
+    let oversampled = oversampled_moves(toolpath, &sampling);
+    if !oversampled.is_empty() {
+        return Outcome {
+            edits: Edits::new(),
+            diagnostics: oversampled,
+            report: super::report::build(&ReportInput {
+                program,
+                runs: &[],
+                before: Default::default(),
+                after: Default::default(),
+                max_correction_mm: 0.0,
+                samples: 0,
+                plans: &Default::default(),
+                edited: &[],
+                inverse_iterations: 0,
+                inverse_residual_mm: 0.0,
+                block_reports: false,
+            }),
+            paths: Paths::default(),
+            edited: Vec::new(),
+        };
+    }
     let context = stream::Context {
         toolpath,
         tools: &tools,
@@ -179,6 +202,20 @@ fn unwritable_cycles(program: &Program<'_>, lowered: &Lowered, needs: &[bool], w
         if needs.get(expansion.moves.clone()).is_some_and(|moves| moves.iter().any(|&n| n)) {
             let span = program.block(expansion.block).span;
             out.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+        }
+    }
+    out
+}
+
+/// The moves that need more than `MAX_SAMPLES_PER_MOVE` samples, one error on each block that
+/// makes some.
+fn oversampled_moves(toolpath: &crate::toolpath::Toolpath, sampling: &Sampling) -> Vec<Diagnostic> {
+    let mut out: Vec<Diagnostic> = Vec::new();
+    for (index, m) in toolpath.moves.iter().enumerate() {
+        let samples = super::sampling::samples_needed(toolpath, index, sampling);
+        if samples > super::sampling::MAX_SAMPLES_PER_MOVE && out.last().is_none_or(|d| d.span != m.source) {
+            let kind = DiagnosticKind::MoveNeedsTooManySamples { samples, max: super::sampling::MAX_SAMPLES_PER_MOVE };
+            out.push(Diagnostic::error(kind, m.source));
         }
     }
     out

@@ -522,6 +522,18 @@ impl DiagnosticKind {
                 label: "this cycle".into(),
                 hint: Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".into()),
             },
+            MoveNeedsTooManySamples { samples, max } => Words {
+                code: "move-needs-too-many-samples",
+                message: format!(
+                    "compensating this move takes {samples} samples at the spacing the model needs; turnpass samples \
+                     a move at most {max} times"
+                )
+                .into(),
+                label: "this move".into(),
+                hint: Some("check the move's length and feed (a coordinate in the wrong unit or without its decimal \
+                            point), or split it into shorter moves"
+                    .into()),
+            },
             ProgramCut => Words {
                 code: "program-cut",
                 message: "the text ends in the middle of a block, and the program has no end (M30, M02, M99): \
