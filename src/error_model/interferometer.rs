@@ -252,8 +252,14 @@ impl<'t> RecordLines<'t> {
         if to > from {
             #[cfg(test)]
             tests::count_looked_at(to - from);
-            let bytes = &self.text.as_bytes()[from..to];
-            self.starts.extend(memchr::memchr_iter(b'\n', bytes).map(|i| from + i + 1).filter(|&s| s <= to));
+            let mut at = from;
+            while let Some((_, next)) = next_line_end(self.text.as_bytes(), at, to) {
+                if next > to {
+                    break;
+                }
+                self.starts.push(next);
+                at = next;
+            }
         }
     }
 
@@ -262,10 +268,9 @@ impl<'t> RecordLines<'t> {
         let mut at = (byte as usize).min(self.text.len());
         let mut line = self.line_at(at);
         loop {
-            let rest = &self.text[at..];
-            let (piece, next) = match rest.find('\n') {
-                Some(n) => (&rest[..n], Some(at + n + 1)),
-                None => (rest, None),
+            let (piece, next) = match next_line_end(self.text.as_bytes(), at, self.text.len()) {
+                Some((end, next)) => (&self.text[at..end], Some(next)),
+                None => (&self.text[at..], None),
             };
             #[cfg(test)]
             tests::count_looked_at(piece.len());
@@ -291,16 +296,25 @@ impl<'t> RecordLines<'t> {
     pub fn start_of(&mut self, line: usize) -> usize {
         while self.starts.len() < line {
             let from = self.starts.last().copied().unwrap_or(0);
-            let found = memchr::memchr(b'\n', &self.text.as_bytes()[from..]);
+            let found = next_line_end(self.text.as_bytes(), from, self.text.len());
             #[cfg(test)]
-            tests::count_looked_at(found.map_or(self.text.len() - from, |n| n + 1));
+            tests::count_looked_at(found.map_or(self.text.len() - from, |(_, next)| next - from));
             match found {
-                Some(n) => self.starts.push(from + n + 1),
+                Some((_, next)) => self.starts.push(next),
                 None => return self.text.len(),
             }
         }
         self.starts[line.max(1) - 1]
     }
+}
+
+/// The first line end in `text[from..to]`: where the line's text ends and where the next
+/// line starts. A line ends at LF, CR LF or a lone CR, as [`LineIndex`] counts lines and as
+/// the CSV reader ends records; a CR LF cut by `to` still counts as one end.
+fn next_line_end(text: &[u8], from: usize, to: usize) -> Option<(usize, usize)> {
+    let at = from + memchr::memchr2(b'\n', b'\r', &text[from..to])?;
+    let next = if text[at] == b'\r' && text.get(at + 1) == Some(&b'\n') { at + 2 } else { at + 1 };
+    Some((at, next))
 }
 
 /// Read a slide's CSV table.

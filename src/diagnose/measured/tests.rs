@@ -23,6 +23,17 @@ fn a_long_trace_is_read_in_one_pass() {
     assert!(looked_at <= 2 * text.len(), "{looked_at} bytes looked at for a text of {}", text.len());
 }
 
+/// A file whose lines end in a lone CR reads as one with LF ends: its records are lines
+/// (as the CSV reader and the program's line index count them), so a bad value is found
+/// at its own line and cell. Found by the readers fuzz target.
+#[test]
+fn a_bad_value_is_found_in_a_file_of_lone_cr_line_ends() {
+    let text = include_str!("../../../tests/cases/bounded/ballbar-cr-line-ends.csv");
+    let error = read(text, None).unwrap_err();
+    assert_eq!(&text[error.span.start as usize..error.span.end as usize], "0.00x9");
+    assert_eq!(error.line, 4);
+}
+
 /// A bad row is reported when it is read: the rows after it are not read first.
 #[test]
 fn a_bad_row_ends_the_reading() {
