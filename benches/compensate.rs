@@ -18,7 +18,7 @@
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
 
 use std::hint::black_box;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 use std::time::Instant;
 
@@ -28,10 +28,12 @@ use turnpass::compensation::{CompensateOptions, compensate_program};
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem, MachineKind};
 use turnpass::error_model::model_file::ModelSpec;
 use turnpass::machine::ModelFile;
+use turnpass::pipeline::Settings;
 use turnpass::printer::print;
-use turnpass::semantic::{LowerOptions, Machine, lower};
-use turnpass::syntax::{ParseOptions, parse};
-use turnpass::toolpath::validate;
+use turnpass::semantic::LowerOptions;
+use turnpass::syntax::ParseOptions;
+
+mod support;
 
 const SCALING_MB: [&str; 4] = ["1", "2", "5", "10"];
 
@@ -83,21 +85,13 @@ fn children_cpu() -> f64 {
     f64::NAN
 }
 
-/// One run of the binary on `input`: wall and CPU seconds.
-fn run_once(input: &Path, output: &Path) -> (f64, f64) {
+/// One run of `turnpass ARGS`: wall and CPU seconds.
+fn run_once(args: &[&std::ffi::OsStr]) -> (f64, f64) {
     let cpu = children_cpu();
     let start = Instant::now();
-    let result = Command::new(env!("CARGO_BIN_EXE_turnpass"))
-        .arg("compensate")
-        .arg(input)
-        .arg("--model")
-        .arg(model_path())
-        .arg("-o")
-        .arg(output)
-        .output()
-        .unwrap();
+    let result = Command::new(env!("CARGO_BIN_EXE_turnpass")).args(args).output().unwrap();
     let wall = start.elapsed().as_secs_f64();
-    assert!(result.status.success(), "compensate failed: {}", String::from_utf8_lossy(&result.stderr));
+    assert!(result.status.success(), "turnpass {args:?} failed: {}", String::from_utf8_lossy(&result.stderr));
     (wall, children_cpu() - cpu)
 }
 
@@ -126,26 +120,37 @@ fn end_to_end(c: &mut Criterion) {
         let default = if *size == big { "3" } else { "5" };
         env_or("TURNPASS_BENCH_ROUNDS", default).parse().unwrap()
     };
-    // Interleaved rounds: a busy moment of the machine spreads over every size.
-    let mut times: Vec<(Vec<f64>, Vec<f64>)> = vec![(Vec::new(), Vec::new()); inputs.len()];
+    // Interleaved rounds: a busy moment of the machine spreads over every size. Each round
+    // compensates, then verifies what it wrote, as the README recommends.
+    type Times = [(Vec<f64>, Vec<f64>); 2];
+    let mut times: Vec<Times> = vec![Default::default(); inputs.len()];
     let most = inputs.iter().map(|(size, _)| rounds(size)).max().unwrap_or(0);
+    let model = model_path();
     for round in 0..most {
-        for ((size, path), (walls, cpus)) in inputs.iter().zip(&mut times) {
+        for ((size, path), [compensate, verify]) in inputs.iter().zip(&mut times) {
             if round < rounds(size) {
-                let (wall, cpu) = run_once(path, &output);
-                walls.push(wall);
-                cpus.push(cpu);
+                let (input, out, model) = (path.as_os_str(), output.as_os_str(), model.as_os_str());
+                let (wall, cpu) =
+                    run_once(&["compensate".as_ref(), input, "--model".as_ref(), model, "-o".as_ref(), out]);
+                compensate.0.push(wall);
+                compensate.1.push(cpu);
+                let (wall, cpu) = run_once(&["verify".as_ref(), input, out, "--model".as_ref(), model]);
+                verify.0.push(wall);
+                verify.1.push(cpu);
             }
         }
     }
-    println!("\nturnpass-bench: compensate end to end, {} (median of the rounds)", model_path().display());
-    for ((size, path), (walls, cpus)) in inputs.iter().zip(times) {
+    println!("\nturnpass-bench: compensate, then verify of its output, {} (median of the rounds)", model.display());
+    for ((size, path), [(compensate_walls, compensate_cpus), (verify_walls, verify_cpus)]) in inputs.iter().zip(times) {
         let mb = std::fs::metadata(path).unwrap().len() as f64 / 1e6;
-        let (n, wall, cpu) = (walls.len(), median(walls), median(cpus));
+        let n = compensate_walls.len();
+        let (wall, cpu) = (median(compensate_walls), median(compensate_cpus));
+        let (verify_wall, verify_cpu) = (median(verify_walls), median(verify_cpus));
         println!(
-            "turnpass-bench: {size:>3} MB file ({mb:.1} MB): {wall:.2} s wall, {:.1} MB/s, {cpu:.2} s CPU, {:.3} s/MB ({n} runs)",
+            "turnpass-bench: {size:>3} MB file ({mb:.1} MB): compensate {wall:.2} s wall, {:.1} MB/s, {cpu:.2} s CPU; \
+             verify {verify_wall:.2} s wall ({:.2}x), {verify_cpu:.2} s CPU ({n} runs)",
             mb / wall,
-            wall / mb
+            verify_wall / wall
         );
     }
     println!();
@@ -157,13 +162,15 @@ fn end_to_end(c: &mut Criterion) {
     let text = std::fs::read_to_string(model_path()).unwrap();
     let settings = ModelFile::from_toml(&text).unwrap().machine;
     let model = ModelSpec::from_toml(&text).unwrap().build(|_| Err("no tables".into())).unwrap();
-    let machine = Machine::from_settings(&settings);
     let parse_options = ParseOptions {
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: Some(MachineKind::Lathe),
+        control: Default::default(),
     };
     let lower_options = LowerOptions { nose_radius_compensation: true, ..LowerOptions::new(false) };
+    let settings = Settings::new(parse_options, &settings, lower_options);
+    let machine = settings.machine.clone();
     let options = CompensateOptions {
         fit: FitOptions {
             strategy: Strategy::Auto,
@@ -180,11 +187,9 @@ fn end_to_end(c: &mut Criterion) {
     group.sample_size(10);
     group.bench_function("library_1mb", |b| {
         b.iter(|| {
-            let parsed = parse(black_box(&bytes), &parse_options);
-            let lowered = lower(&parsed.program, &machine, &lower_options);
-            let valid = validate(&lowered.toolpath, machine.limits).unwrap();
-            let outcome = compensate_program(&parsed.program, &lowered, &valid, &machine, &model, &options);
-            print(&parsed.program, &outcome.edits)
+            let program = support::ready(black_box(&bytes), &settings);
+            let outcome = compensate_program(program.program(), &program.lowered, &program.machine, &model, &options);
+            print(program.program(), &outcome.edits)
         })
     });
     group.finish();

@@ -13,7 +13,8 @@
 //!   is moves per second.
 //!
 //! Besides the criterion groups, the bench prints medians of interleaved runs, which is
-//! what the README quotes.
+//! what the README quotes: lowering with its arcs timed on a second thread (the default for
+//! a program this long) and in place, and the cycle expansion beside rs274.
 
 #![allow(clippy::disallowed_methods, clippy::unwrap_used, clippy::expect_used)]
 
@@ -26,10 +27,11 @@ use std::process::Command;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem, MachineKind};
 use turnpass::machine::MachineSettings;
-use turnpass::semantic::{LowerOptions, Machine, lower};
+use turnpass::parallel::Tuning;
+use turnpass::semantic::{LowerOptions, Machine, lower, lower_tuned};
 use turnpass::syntax::{ParseOptions, parse};
 
-use support::{data_dir, generated, median_seconds};
+use support::{data_dir, generated, median, median_seconds};
 
 const CYCLES: usize = 2000;
 
@@ -104,6 +106,7 @@ fn semantic(c: &mut Criterion) {
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: Some(MachineKind::Lathe),
+        control: Default::default(),
     };
     let options = LowerOptions::new(false);
 
@@ -119,7 +122,16 @@ fn semantic(c: &mut Criterion) {
     let lowered = lower(&parsed.program, &radius_machine, &options);
     assert!(!lowered.diagnostics.iter().any(|d| d.is_error()), "the generated program lowers cleanly");
     let blocks = parsed.program.blocks().len();
-    let lowering = median_seconds(|| drop(black_box(lower(&parsed.program, &radius_machine, &options))), 5);
+    // Arcs timed on a second thread (`parallel::Tuning::arc_times_blocks`, on for this
+    // program) against timed in place, in alternate runs.
+    let in_place = Tuning { arc_times_blocks: usize::MAX, ..Tuning::DEFAULT };
+    let (mut beside, mut itself) = (Vec::new(), Vec::new());
+    for _ in 0..7 {
+        beside.push(median_seconds(|| drop(black_box(lower(&parsed.program, &radius_machine, &options))), 1));
+        let tuned = || drop(black_box(lower_tuned(&parsed.program, &radius_machine, &options, &in_place)));
+        itself.push(median_seconds(tuned, 1));
+    }
+    let (lowering, in_place) = (median(&mut beside), median(&mut itself));
 
     // Expansion: 2,000 × G71 + G70.
     let cycles_text = fanuc_cycles();
@@ -141,6 +153,11 @@ fn semantic(c: &mut Criterion) {
         lowering * 1e3,
         blocks as f64 / lowering / 1e6,
         lowered.toolpath.moves.len()
+    );
+    println!(
+        "turnpass-bench: the same with arcs timed in place (one thread): {:.1} ms: {:.2} M blocks/s",
+        in_place * 1e3,
+        blocks as f64 / in_place / 1e6
     );
     println!(
         "turnpass-bench: {CYCLES} x G71+G70: turnpass {moves} moves in {:.1} ms: {:.2} M moves/s",

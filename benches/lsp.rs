@@ -63,7 +63,12 @@ impl Host for NoFiles {
 }
 
 fn options() -> ParseOptions {
-    ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None }
+    ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    }
 }
 
 fn notification(method: &str, params: serde_json::Value) -> Message {

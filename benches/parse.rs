@@ -27,6 +27,7 @@ fn options() -> ParseOptions {
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: Some(MachineKind::Lathe),
+        control: Default::default(),
     }
 }
 

@@ -15,6 +15,7 @@ fn main() {
         dialect,
         gcode_system: GCodeSystem::A,
         machine_kind: Some(turnpass::dialect::MachineKind::Lathe),
+        control: Default::default(),
     };
     let start = std::time::Instant::now();
     let parsed = parse(&bytes, &options);

@@ -113,6 +113,10 @@ pub fn main() -> ExitCode {
         Err(error) => return usage_error(&error),
     };
     streams::set_color(cli.color);
+    if let Err(error) = common::tune_from_environment() {
+        streams::err(error.message());
+        return ExitCode::from(error.exit_code());
+    }
     let result = match cli.command {
         Command::Check(args) => check::check(args),
         Command::Fmt(args) => fmt::fmt(args),

@@ -30,5 +30,5 @@ pub mod written;
 
 pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};
 pub use inverse::{Compensated, InverseOptions, compensate_samples, predict, states};
-pub use program::{CompensateOptions, Outcome, compensate_program, compensate_with_tables};
+pub use program::{CompensateOptions, Outcome, compensate_program};
 pub use sampling::{PathSample, sample_toolpath};

@@ -5,7 +5,8 @@
 //! ```txt
 //! measured.rs ─▶ forward.rs ─▶ workflow.rs ─┬─ select.rs (candidates.rs, lsq.rs, advice.rs)
 //! (CSV readers)  (simulate the  (iterate to  ├─ breakdown.rs, iso230_4.rs (where)
-//!                 measurement)   the noise)  └─ report.rs, model_text.rs (--write-model)
+//!                 measurement)   the noise)  ├─ unexplained.rs (what no effect explains)
+//!                                            └─ report.rs, model_text.rs (--write-model)
 //! ```
 //!
 //! `synth.rs` makes measurements from a truth model with the seeded noise of `noise.rs`;
@@ -25,6 +26,7 @@ pub mod report;
 pub mod select;
 pub mod synth;
 pub mod thermal_fit;
+pub mod unexplained;
 pub mod workflow;
 
 pub use forward::{Forward, ForwardError, Nominal};

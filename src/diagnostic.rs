@@ -111,6 +111,27 @@ pub enum DiagnosticKind {
     },
     /// A NUL byte outside a comment.
     NulByte,
+    /// Words (`roughing pass`, `[BILLET X40 Z100`) outside a comment: a note or a
+    /// simulator's directive, not a block.
+    TextOutsideComment {
+        text: String,
+    },
+    /// A letter inside a number that is a misread digit (`X4l.`: `l` for `1`).
+    LetterForDigit {
+        found: char,
+        digit: char,
+    },
+    /// A line before the tape's first `%` and any program text: a tape leader, which the
+    /// control skips (`syntax.rs`).
+    TapeLeader,
+    /// A check the semantic pass leaves out because what it checks is in a block that does
+    /// not parse (its parse error says why): `what` names it.
+    DependsOnDamagedBlock {
+        what: &'static str,
+    },
+    /// A line the parser took for a tape leader with no `%` after the leader: the control
+    /// reads it as a block (`semantic/interpreter.rs`).
+    LeaderWithoutTape,
     /// A file that is not a text program (`source::not_text`): one diagnostic, on its first
     /// control byte, instead of a parse.
     NotText {
@@ -243,6 +264,13 @@ pub enum DiagnosticKind {
     DuplicateWord {
         address: String,
     },
+    /// An axis given both as a position and as a distance (`X` and `U`, `Z` and `W`) in one
+    /// Fanuc block.
+    AxisGivenTwice {
+        position: String,
+        distance: String,
+        axis: char,
+    },
     /// `;` in an OSP program, where it is not a comment.
     SemicolonInOsp,
     /// A UTF-8 byte-order mark at the start of the file.
@@ -352,7 +380,13 @@ pub enum DiagnosticKind {
     },
     /// `expand` leaves a cycle as it is: its moves have no plain-block form in this dialect
     /// (on OSP: thread moves that are not single-pass `G33` passes).
-    NotExpandable,
+    NotExpandable {
+        reason: &'static str,
+    },
+    /// Haas `G87`/`G88`: the operator takes the tool out of the hole by hand.
+    ManualRetract,
+    /// A drilling cycle's peck depth (`Q`, Haas `I`) of zero or less.
+    DrillPeckNotPositive,
     /// `compensate`: the correction of a point of this block is larger than `--max-shift`.
     CorrectionTooLarge {
         shift_mm: f64,
@@ -384,6 +418,23 @@ pub enum DiagnosticKind {
     /// The program runs off the end of its text, which ends in the middle of a block, with
     /// no program end: the text was cut (`Lowered::cut_off`).
     ProgramCut,
+    /// `compensate`: the program it would write, read back and predicted on the model as
+    /// `verify` predicts it, deviates from the nominal part here by more than `verify`
+    /// allows.
+    CompensationFailsCheck {
+        deviation_mm: f64,
+        bound_mm: f64,
+        /// The tolerance the program was compensated to, mm.
+        tolerance_mm: f64,
+    },
+    /// `compensate`: the program it would write cuts with other feed or spindle words than
+    /// the original (a defect of turnpass, never of the program).
+    CompensationChangesFeed,
+    /// `compensate`: the program it would write does not read back cleanly (a defect of
+    /// turnpass, never of the program).
+    CompensationUnreadable {
+        problem: String,
+    },
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
     /// A roughing cycle's depth of cut below the least increment (program units): the
@@ -491,6 +542,8 @@ pub enum DiagnosticKind {
     /// An automatic corner larger than the lines it joins.
     CornerDoesNotFit {
         size_mm: f64,
+        /// The word that gives the size (`L`, `,C`, `,R`).
+        word: &'static str,
     },
     /// A block a finishing profile may not hold.
     NotAllowedInProfile,
@@ -544,6 +597,35 @@ pub enum DiagnosticKind {
     /// A variable read before it is set.
     UndefinedVariable {
         name: String,
+    },
+    /// A common variable the machine keeps (Fanuc `#500`–`#999`, OSP `V1`…) read before the
+    /// program sets it and with no value in the settings: its value comes from the machine.
+    MachineVariableUnknown {
+        name: String,
+    },
+    /// Constant surface speed with no `G50`/`G92` clamp: the spindle speed is limited only by
+    /// the machine's maximum (from the settings, or the documented default).
+    SurfaceSpeedUnclamped {
+        max_rpm: f64,
+        assumed: bool,
+    },
+    /// A thread cut under constant surface speed: the spindle speed changes with the
+    /// diameter, which the control's thread start does not follow on every pass.
+    ThreadUnderSurfaceSpeed,
+    /// A feed far outside what its mode makes plausible (`G98 F0.05`: 0.05 mm/min).
+    ImplausibleFeed {
+        feed: f64,
+        per_revolution: bool,
+        inch: bool,
+    },
+    /// Fanuc system A: `G90` (`G94`) with no `X`/`Z` only selects the single cycle.
+    CycleSelectedAlone {
+        code: String,
+    },
+    /// A drilling cycle along X (a side hole, live tool): its motion is not in the XZ
+    /// plane of a turned part, and the toolpath leaves it out.
+    CycleOutOfPlane {
+        code: String,
     },
     DivisionByZero,
     /// A function outside its domain (`SQRT[-1]`).

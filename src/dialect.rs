@@ -14,8 +14,8 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 pub use tables::{
-    Address, AddressKind, Code, FeedAndSpeed, Form, GFunction, GInfo, GKind, KeywordInfo, KeywordKind, ModalGroup,
-    Role, Schema, SchemaId, Tables,
+    Address, AddressKind, Code, DrillPeck, DrillRetract, DrillingFacts, FeedAndSpeed, Form, GFunction, GInfo, GKind,
+    KeywordInfo, KeywordKind, ModalGroup, Role, Schema, SchemaId, Tables,
 };
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -91,6 +91,41 @@ impl FromStr for GCodeSystem {
     }
 }
 
+/// The Fanuc-compatible control a Fanuc-form program runs on, where controls differ in
+/// what a program may say (`[control.*]` and the `control` lists of `grammar/fanuc.toml`):
+/// Haas lathes drill with `G81`-`G89` of their own; Haas and Denford read lower-case
+/// letters. A machine setting, never guessed from the text; OSP programs ignore it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Control {
+    #[default]
+    Fanuc,
+    Haas,
+    Denford,
+}
+
+impl Control {
+    pub const ALL: [Control; 3] = [Control::Fanuc, Control::Haas, Control::Denford];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Control::Fanuc => "fanuc",
+            Control::Haas => "haas",
+            Control::Denford => "denford",
+        }
+    }
+}
+
+impl FromStr for Control {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Control::ALL
+            .into_iter()
+            .find(|c| c.name() == s.to_ascii_lowercase())
+            .ok_or_else(|| format!("unknown control `{s}` (expected fanuc, haas or denford)"))
+    }
+}
+
 /// What an OSP program was written for. Machining-centre programs share the lexical rules
 /// but not the lathe cycles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -115,11 +150,19 @@ pub struct DialectConfig {
     pub dialect: Dialect,
     pub gcode_system: GCodeSystem,
     pub machine_kind: MachineKind,
+    /// The Fanuc-compatible control (always `Fanuc` for an OSP program).
+    pub control: Control,
 }
 
 impl DialectConfig {
     pub fn new(dialect: Dialect, gcode_system: GCodeSystem, machine_kind: MachineKind) -> DialectConfig {
-        DialectConfig { dialect, gcode_system, machine_kind }
+        DialectConfig { dialect, gcode_system, machine_kind, control: Control::Fanuc }
+    }
+
+    /// The configuration on `control` (a Fanuc-form program's; OSP ignores it).
+    pub fn with_control(self, control: Control) -> DialectConfig {
+        let control = if self.dialect == Dialect::Fanuc { control } else { Control::Fanuc };
+        DialectConfig { control, ..self }
     }
 
     pub fn tables(&self) -> &'static Tables {

@@ -12,13 +12,13 @@ use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::printer::{Edits, ProgramStyle};
 use crate::semantic::Lowered;
 use crate::syntax::{Program, Statement};
-use crate::toolpath::Compensation;
+use crate::toolpath::{Compensation, Validated};
 
 /// Edits that replace each cycle call with its moves (and delete the blocks it consumed).
 /// On a control with no thread move (OSP) a thread pass is written as a single-pass cycle
 /// block (`back/thread_pass.rs`); a cycle whose thread moves are not such passes stays as
 /// it is, with a note.
-pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<Diagnostic>) {
+pub fn expansion_edits(program: &Program<'_>, lowered: &Validated<Lowered>) -> (Edits, Vec<Diagnostic>) {
     let mut edits = Edits::new();
     let mut notes = Vec::new();
     let calls: std::collections::HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
@@ -44,9 +44,9 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Lowered) -> (Edits, Vec<
                 edits.replace(expansion.block, blocks);
                 delete_consumed(&mut edits, program, expansion, &calls);
             }
-            CycleBlocks::NotExpandable => {
+            CycleBlocks::NotExpandable(reason) => {
                 let span = program.block(expansion.block).span;
-                notes.push(Diagnostic::note(DiagnosticKind::NotExpandable, span));
+                notes.push(Diagnostic::note(DiagnosticKind::NotExpandable { reason }, span));
             }
         }
     }

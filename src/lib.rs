@@ -2,10 +2,19 @@
 //! dialects.
 //!
 //! ```txt
-//! bytes ─ syntax::parse ─▶ Program (typed AST, spans) ─ printer ─▶ bytes
-//!                              │
-//!                              └─ diagnostics ─ diagnostic::render (codespan, JSON, plain)
+//!            ┌──────────── pipeline::analyse ─────────────┐
+//! bytes ─▶ syntax ─▶ semantic ─▶ toolpath::validate ─▶ Validated<Lowered>
+//!            │  Program (typed AST, spans)                 │
+//!            │                                             ▼
+//!            │            expand · simulation · compensation (error_model) · diagnose
+//!            │                                             │ edits to the AST (back end)
+//!            │                                             ▼
+//!            ├──────────────────────────────────────────▶ printer ─▶ bytes
+//!            └─ diagnostics ─▶ diagnostic::render (codespan, JSON, plain)
 //! ```
+//!
+//! `pipeline` is the façade: it parses, lowers and validates, and the passes after it take
+//! only the validated program. `parallel` is the one module that starts threads.
 //!
 //! The library does no I/O: the binary (`main.rs`, `cli.rs`) reads and writes files, and
 //! `clippy.toml` bans file-system and environment calls here.
@@ -24,6 +33,8 @@ pub mod geometry;
 pub mod lsp;
 pub mod machine;
 mod memory;
+pub mod parallel;
+pub mod pipeline;
 pub mod plot;
 pub mod printer;
 pub mod report;

@@ -29,6 +29,8 @@ pub struct MachineSettings {
     pub name: Option<String>,
     pub dialect: Option<Dialect>,
     pub gcode_system: Option<GCodeSystem>,
+    /// The Fanuc-compatible control (`fanuc`, `haas`, `denford`; `crate::dialect::Control`).
+    pub control: Option<crate::dialect::Control>,
     pub decimal_input: Option<DecimalInput>,
     /// Units of a program that does not select them.
     pub units: Option<Units>,
@@ -56,6 +58,10 @@ pub struct MachineSettings {
     /// The tool table.
     #[serde(default)]
     pub tool: Vec<ToolSettings>,
+    /// Values of the common variables the machine keeps (`"#501" = 350.0` on Fanuc,
+    /// `"V12" = 4.0` on OSP), for programs that read them before setting them.
+    #[serde(default)]
+    pub variables: std::collections::BTreeMap<String, f64>,
 }
 
 /// An X and a Z value.
@@ -200,6 +206,23 @@ impl MachineSettings {
             let within = [Key::Name("ball_screw_pitch_mm")];
             push(cyclic_x::PITCH.check_option("x", pitch.x), &within);
             push(cyclic_z::PITCH.check_option("z", pitch.z), &within);
+        }
+        for (name, value) in &self.variables {
+            let named = name.strip_prefix('#').map_or_else(
+                || {
+                    name.bytes().next().is_some_and(|b| b.is_ascii_uppercase())
+                        && name.bytes().all(|b| b.is_ascii_uppercase() || b.is_ascii_digit())
+                },
+                |digits| !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()),
+            );
+            if !named {
+                let rule =
+                    Reason::Rule("a variable is named as the program names it: `#501` (Fanuc), `V12` or a name (OSP)");
+                push(Err(Invalid { path: vec![Key::Name("variables")], reason: rule }), &[]);
+            } else if !value.is_finite() {
+                let rule = Reason::Rule("a variable's value is a finite number");
+                push(Err(Invalid { path: vec![Key::Name("variables")], reason: rule }), &[]);
+            }
         }
         for (index, tool) in self.tool.iter().enumerate() {
             let within = [Key::Name("tool"), Key::Index(index)];

@@ -35,7 +35,7 @@ use crate::compensation::program::Paths;
 use crate::diagnose::iso230_4;
 use crate::diagnose::measured::Direction;
 use crate::geometry;
-use crate::toolpath::{Motion, Toolpath, Xz};
+use crate::toolpath::{Motion, Toolpath, ValidToolpath, Xz};
 
 pub use path::Drawn;
 use path::{NormalDeviation, PathFigure, Series};
@@ -115,7 +115,7 @@ impl PathPoint {
 
 /// The points of `compensate`'s paths of `toolpath` (one per cutting sample, before and
 /// after), each measured from its own sample.
-pub fn points_of(toolpath: &Toolpath, paths: &Paths) -> [Vec<PathPoint>; 2] {
+pub fn points_of(toolpath: ValidToolpath<'_>, paths: &Paths) -> [Vec<PathPoint>; 2] {
     let mut out = [Vec::new(), Vec::new()];
     let mut along = 0.0;
     let mut previous: Option<usize> = None;
@@ -148,12 +148,12 @@ pub fn points_of(toolpath: &Toolpath, paths: &Paths) -> [Vec<PathPoint>; 2] {
 /// makes the largest deviation plain.
 pub fn path_svg(
     title: &str,
-    toolpath: &Toolpath,
+    toolpath: ValidToolpath<'_>,
     before: &[PathPoint],
     after: &[PathPoint],
     magnify: Option<f64>,
 ) -> Result<Drawn, PlotError> {
-    let (nominal, rapids) = nominal_lines(toolpath);
+    let (nominal, rapids) = nominal_lines(&toolpath);
     let series = |label, colour, points: &[PathPoint]| Series { label, colour, runs: runs(points) };
     let side_unknown = before.iter().chain(after).any(|p| !p.side().1);
     path::draw(&PathFigure {
@@ -235,11 +235,11 @@ fn full_circle(toolpath: &Toolpath) -> Option<Xz> {
 /// `after` (compensated).
 pub fn polar_svg(
     title: &str,
-    toolpath: &Toolpath,
+    toolpath: ValidToolpath<'_>,
     before: &[PathPoint],
     after: &[PathPoint],
 ) -> Result<String, PlotError> {
-    let centre = full_circle(toolpath).ok_or(PlotError::NoFullCircle)?;
+    let centre = full_circle(&toolpath).ok_or(PlotError::NoFullCircle)?;
     let on_circle =
         |k: usize| toolpath.moves.get(k).filter(|m| m.is_arc() && m.cutting && m.centre.distance(centre) < 1e-6);
     // The test: radius, feeds and directions in the order the program goes round.

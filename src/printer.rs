@@ -26,7 +26,7 @@ pub use written::{BlockWriter, WrittenText};
 use crate::dialect::{Address, AddressKind, Dialect};
 use crate::syntax::{CodeLetter, Number, Program};
 
-use number::{Style as NumberStyle, write_number};
+use number::{Style as NumberStyle, write_number, write_whole};
 use style::WholeNumbers;
 
 /// The errors of `text`, a printing of `program` with edits, read back as `program` was
@@ -49,43 +49,12 @@ pub fn read_back_options(program: &Program<'_>) -> crate::syntax::ParseOptions {
         dialect: crate::dialect::DialectChoice::Fixed(config.dialect),
         gcode_system: config.gcode_system,
         machine_kind: Some(config.machine_kind),
-    }
-}
-
-/// A printed program, as one or more pieces of text that follow each other.
-///
-/// A long program is printed in two halves at once; a caller that writes the text to a
-/// file writes them one after the other rather than copying the second behind the first
-/// (at 50 MB that copy was as much as a fifth of the printing).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Printed {
-    parts: Vec<Vec<u8>>,
-}
-
-impl Printed {
-    /// The text, piece by piece, in order.
-    pub fn parts(&self) -> impl Iterator<Item = &[u8]> {
-        self.parts.iter().map(Vec::as_slice)
-    }
-
-    /// The text as one buffer.
-    pub fn into_bytes(self) -> Vec<u8> {
-        let mut parts = self.parts.into_iter();
-        let mut out = parts.next().unwrap_or_default();
-        for part in parts {
-            out.extend_from_slice(&part);
-        }
-        out
+        control: config.control,
     }
 }
 
 /// Print `program` with `edits` applied.
 pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
-    print_parts(program, edits).into_bytes()
-}
-
-/// [`print`], the text left in the pieces it was printed in.
-pub fn print_parts(program: &Program<'_>, edits: &Edits) -> Printed {
     let source = program.source();
     // The new blocks written ahead replace blocks of about their length or shorter.
     let expected = source.len() + source.len() / 16 + edits.written.text.len();
@@ -95,34 +64,14 @@ pub fn print_parts(program: &Program<'_>, edits: &Edits) -> Printed {
             let next = program.blocks().get(index + 1).map_or(source.len(), |b| b.span.start as usize);
             out.extend_from_slice(&source[block.span.start as usize..next]);
         }
-        return Printed { parts: vec![out] };
+        return out;
     }
     // Replacements written ahead (`Edits::replace_written`) were written in the program's
     // style, which they carry.
     let style = edits.written.style.clone().unwrap_or_else(|| ProgramStyle::infer(program));
-    let blocks = program.blocks().len();
-    // Two halves on two threads, split after a block that ends its line, so the second
-    // half starts as the first would go on (on a fresh line).
-    let middle = (blocks / 2..blocks).find(|&k| k > 0 && !program.terminator(k - 1).is_empty());
-    let Some(middle) = middle.filter(|_| blocks >= PARALLEL_BLOCKS) else {
-        print_blocks(program, edits, &style, 0..blocks, &mut out);
-        return Printed { parts: vec![out] };
-    };
-    let capacity = out.capacity() / 2;
-    let second = std::thread::scope(|scope| {
-        let second = scope.spawn(|| {
-            let mut second = crate::memory::huge_page_vec(capacity);
-            print_blocks(program, edits, &style, middle..blocks, &mut second);
-            second
-        });
-        print_blocks(program, edits, &style, 0..middle, &mut out);
-        second.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
-    });
-    Printed { parts: vec![out, second] }
+    print_blocks(program, edits, &style, 0..program.blocks().len(), &mut out);
+    out
 }
-
-/// Programs of at least this many blocks are printed in two halves at once.
-const PARALLEL_BLOCKS: usize = 100_000;
 
 /// Print the blocks `range` with `edits` applied, appending to `out`.
 fn print_blocks(
@@ -301,23 +250,6 @@ pub(crate) fn write_code(out: &mut impl Text, letter: CodeLetter, major: u16, mi
     }
 }
 
-/// Write `value`'s decimal digits (a printed program has millions of codes and addresses:
-/// `format!` and `to_string` cost an allocation each).
-fn write_whole(out: &mut impl Text, value: u64) {
-    let mut buffer = [0u8; 20];
-    let mut rest = value;
-    let mut start = buffer.len();
-    while let Some(at) = start.checked_sub(1) {
-        start = at;
-        buffer[at] = b'0' + (rest % 10) as u8;
-        rest /= 10;
-        if rest == 0 {
-            break;
-        }
-    }
-    out.push_ascii(buffer.get(start..).unwrap_or_default());
-}
-
 pub(crate) fn write_address_number(
     out: &mut impl Text,
     program: &Program<'_>,
@@ -327,7 +259,7 @@ pub(crate) fn write_address_number(
 ) {
     let (letters, length) = address.bytes();
     out.push_ascii(letters.get(..length).unwrap_or_default());
-    if !address.is_letter() {
+    if !address.is_letter() && !address.is_comma() {
         out.push_byte(b'=');
     }
     let kind = program.config().tables().address(address).map(|s| s.kind);

@@ -24,6 +24,7 @@ pub mod labels;
 mod modal;
 mod motion;
 pub mod nose_radius;
+mod plausibility;
 pub mod profile;
 
 pub use frame::Frame;
@@ -54,9 +55,6 @@ pub struct LowerOptions {
     /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
     /// under the program's own `G41`/`G42`).
     pub nose_radius_compensation: bool,
-    /// Time arcs on a second thread while the program runs (`emitter/arc_times.rs`) when
-    /// it has at least this many blocks; the times are the same either way.
-    pub arc_times_beside_from_blocks: usize,
 }
 
 impl LowerOptions {
@@ -66,8 +64,6 @@ impl LowerOptions {
             max_executed_blocks: 10_000_000,
             max_moves: 2_000_000,
             nose_radius_compensation: true,
-            // A thread pays for itself on a few thousand arcs.
-            arc_times_beside_from_blocks: 20_000,
         }
     }
 }
@@ -88,10 +84,17 @@ pub struct Machine {
     pub rapid_assumed: bool,
     pub max_rpm: f64,
     pub tools: Vec<ToolSettings>,
+    /// Values of the common variables the machine keeps (`[machine] variables`, `--var`).
+    pub variables: Vec<(String, f64)>,
 }
 
 /// Rapid traverse used when the machine settings give none, mm/min per axis.
 pub const DEFAULT_RAPID_MM_MIN: f64 = 10_000.0;
+
+/// The spindle's top speed when the settings give none, rpm: what constant surface speed
+/// with no `G50 S` clamp reaches toward the centre (a common top speed of 200–250 mm chuck
+/// lathes; the toolpath's times near X0 depend on it, and a warning says so).
+pub const DEFAULT_MAX_SPINDLE_RPM: f64 = 4_000.0;
 
 impl Machine {
     /// The machine a program runs on, from its settings; documented defaults fill the gaps
@@ -119,7 +122,15 @@ impl Machine {
             rapid_assumed: rapid.is_none(),
             max_rpm: settings.max_spindle_rpm.unwrap_or(f64::INFINITY),
             tools: settings.tool.clone(),
+            variables: settings.variables.iter().map(|(name, value)| (name.clone(), *value)).collect(),
         }
+    }
+
+    /// The spindle's top speed, rpm, which constant surface speed never exceeds: the
+    /// settings' `max_spindle_rpm`, else [`DEFAULT_MAX_SPINDLE_RPM`]; and whether it is that
+    /// default.
+    pub fn spindle_limit(&self) -> (f64, bool) {
+        if self.max_rpm.is_finite() { (self.max_rpm, false) } else { (DEFAULT_MAX_SPINDLE_RPM, true) }
     }
 
     /// Millimetres per machine unit.
@@ -196,6 +207,8 @@ pub struct Expansion {
     /// leave the latter behind so that the blocks after them run as before.
     pub before: ModalAfter,
     pub after: ModalAfter,
+    /// Why `expand` leaves the call as it is, if it does (a drilling cycle).
+    pub kept: Option<&'static str>,
 }
 
 /// The modal words a cycle leaves in force: the motion code (when it is a plain one; after
@@ -281,6 +294,17 @@ impl Lowered {
 /// does not lower (see [`lowers`]) gives an empty toolpath and no diagnostics: the front end
 /// has already said what it is.
 pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Lowered {
+    lower_tuned(program, machine, options, crate::parallel::tuning())
+}
+
+/// [`lower`] with `tuning` in place of the process's: the same result for any tuning
+/// (`tests/it/arc_times.rs` holds the arcs timed on a second thread to the plain run).
+pub fn lower_tuned(
+    program: &Program<'_>,
+    machine: &Machine,
+    options: &LowerOptions,
+    tuning: &crate::parallel::Tuning,
+) -> Lowered {
     if !lowers(program) {
         return Lowered {
             toolpath: Toolpath { start: machine.home.unwrap_or(Xz::new(f64::NAN, f64::NAN)), moves: Vec::new() },
@@ -292,7 +316,7 @@ pub fn lower(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -
             cut_off: None,
         };
     }
-    interpreter::Interpreter::new(program, machine, options).run()
+    interpreter::Interpreter::new(program, machine, options, tuning).run()
 }
 
 /// Whether the semantic pass lowers this program. It simulates lathes: an OSP

@@ -21,7 +21,7 @@ use crate::machine::ToolSettings;
 use crate::semantic::{Lowered, Machine};
 use crate::source::{LineIndex, Span};
 use crate::syntax::Program;
-use crate::toolpath::{Compensation, Motion, Toolpath};
+use crate::toolpath::{Compensation, Motion, ValidToolpath, Validated};
 
 /// One row of `simulate --format csv|json`. Its fields are in the order of the JSON keys
 /// (alphabetical); the CSV columns are in the order `simulate` documents.
@@ -70,10 +70,11 @@ pub struct Summary {
 #[derive(Clone, Copy)]
 pub struct Rows<'a> {
     program: &'a Program<'a>,
-    toolpath: &'a Toolpath,
+    toolpath: ValidToolpath<'a>,
 }
 
-pub fn rows<'a>(program: &'a Program<'_>, toolpath: &'a Toolpath) -> Rows<'a> {
+/// One row per move of the validated toolpath.
+pub fn rows<'a>(program: &'a Program<'_>, toolpath: ValidToolpath<'a>) -> Rows<'a> {
     Rows { program, toolpath }
 }
 
@@ -160,7 +161,9 @@ pub fn roughness(f: f64, r: f64, minor_edge_angle_deg: Option<f64>) -> (f64, &'s
     }
 }
 
-pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, machine: &Machine) -> Summary {
+/// The times, lengths and finishing passes of a validated program.
+pub fn summary(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Machine) -> Summary {
+    let toolpath = lowered.valid().toolpath();
     let lines = LineIndex::new(program.source());
     let mut cycle_time = 0.0;
     let mut cutting_time = 0.0;
@@ -183,14 +186,21 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
 
     // Finishing passes: the finishing cycles, then compensated runs outside cycles.
     let mut passes = Vec::new();
-    // The feed per revolution as programmed; a per-minute feed divided by the spindle speed.
-    let per_rev = |m: &crate::toolpath::Move| {
-        if m.per_revolution { m.f_word * lowered.frame.scale() } else { m.feed / m.rpm.max(1e-9) }
+    // The feed per revolution as programmed, in mm through the units in force at the move
+    // (a `G20` program on a metric machine writes inches); a per-minute feed divided by the
+    // spindle speed.
+    let per_rev = |index: usize, m: &crate::toolpath::Move| {
+        if m.per_revolution { m.f_word * lowered.coordinates_at(index).frame.scale() } else { m.feed / m.rpm.max(1e-9) }
     };
-    let mut pass = |source: Span, moves: &[crate::toolpath::Move]| {
-        let cutting: Vec<_> = moves.iter().filter(|m| m.cutting && m.motion != Motion::Rapid && m.rpm > 0.0).collect();
-        let Some(first) = cutting.first() else { return };
-        let feed_per_rev = cutting.iter().map(|m| per_rev(m)).fold(0.0, f64::max);
+    let mut pass = |source: Span, range: Range<usize>| {
+        let cutting: Vec<_> = toolpath.moves[range.clone()]
+            .iter()
+            .enumerate()
+            .map(|(i, m)| (range.start + i, m))
+            .filter(|(_, m)| m.cutting && m.motion != Motion::Rapid && m.rpm > 0.0)
+            .collect();
+        let Some((_, first)) = cutting.first() else { return };
+        let feed_per_rev = cutting.iter().map(|(i, m)| per_rev(*i, m)).fold(0.0, f64::max);
         let entry = tool_entry(machine, first.tool, first.offset);
         let nose = entry.map_or(0.0, |t| t.nose_radius * machine.scale());
         let (roughness_mm, formula) = if nose > 0.0 {
@@ -208,8 +218,8 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
             formula,
         });
     };
-    for (source, moves) in finishing_moves(program, lowered, toolpath) {
-        pass(source, &toolpath.moves[moves]);
+    for (source, moves) in finishing_moves(program, lowered) {
+        pass(source, moves);
     }
     passes.sort_by_key(|p| p.line);
 
@@ -229,7 +239,8 @@ pub fn summary(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, ma
 /// compensation outside cycles (less the move that switches compensation on, which
 /// approaches the surface and does not finish it). In program order of the passes' kinds,
 /// not sorted.
-pub fn finishing_moves(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath) -> Vec<(Span, Range<usize>)> {
+pub fn finishing_moves(program: &Program<'_>, lowered: &Validated<Lowered>) -> Vec<(Span, Range<usize>)> {
+    let toolpath = lowered.valid().toolpath();
     let mut out = Vec::new();
     for expansion in &lowered.expansions {
         let block = program.block(expansion.block);

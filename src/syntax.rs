@@ -23,7 +23,7 @@ pub use ast::{
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::detect::{self, Detection, Leaning};
-use crate::dialect::{Dialect, DialectChoice, DialectConfig, GCodeSystem, MachineKind};
+use crate::dialect::{Control, Dialect, DialectChoice, DialectConfig, GCodeSystem, MachineKind};
 use crate::source::Span;
 
 use block::BlockParser;
@@ -37,6 +37,8 @@ pub struct ParseOptions {
     pub gcode_system: GCodeSystem,
     /// `None` decides from the text (OSP lathe or machining centre).
     pub machine_kind: Option<MachineKind>,
+    /// The Fanuc-compatible control (a machine setting, as the G-code system is).
+    pub control: Control,
 }
 
 /// A parsed program with everything the front end found wrong with it.
@@ -67,7 +69,8 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
         DialectChoice::Auto => None,
     };
     let detection = detect::decide(source, given, options.machine_kind);
-    let config = DialectConfig::new(detection.dialect, options.gcode_system, detection.machine_kind);
+    let config = DialectConfig::new(detection.dialect, options.gcode_system, detection.machine_kind)
+        .with_control(options.control);
     let mut diagnostics = detection_diagnostics(&detection);
 
     if source.len() >= u32::MAX as usize {
@@ -83,14 +86,11 @@ pub fn parse<'src>(source: &'src [u8], options: &ParseOptions) -> Parsed<'src> {
         };
         return Parsed { program, diagnostics, detection };
     }
-    let split = if source.len() >= PARALLEL_BYTES { split_point(source) } else { None };
+    let split = if source.len() >= crate::parallel::tuning().parse_bytes { split_point(source) } else { None };
     let program = parse_lines(source, config, split, &mut diagnostics);
     diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
     Parsed { program, diagnostics, detection }
 }
-
-/// Programs of at least this many bytes are parsed in two runs of lines at once.
-const PARALLEL_BYTES: usize = 1 << 20;
 
 /// Where a second run of lines may start near the middle of `source`: after a line feed,
 /// before a line that is not an OSP `$` continuation (nor a `$…%` header). Every such place
@@ -132,11 +132,10 @@ pub(crate) fn parse_lines<'src>(
         Some(split) => {
             // The second run assumes the tape is open where it starts, as it is in every
             // program with a `%` at its top; the first run says whether it was.
-            let (first, second) = std::thread::scope(|scope| {
-                let second = scope.spawn(|| Run::parse(source, split, config, Tape::Open, 1));
-                let first = Run::parse(&source[..split], 0, config, Tape::Before, block_capacity);
-                (first, second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            });
+            let (first, second) = crate::parallel::join(
+                || Run::parse(&source[..split], 0, config, Tape::Before, block_capacity),
+                || Run::parse(source, split, config, Tape::Open, 1),
+            );
             let mut program = first.program;
             program.source = source;
             diagnostics.extend(first.diagnostics);
@@ -147,11 +146,9 @@ pub(crate) fn parse_lines<'src>(
                     // Before the tape the lines parse as inside it up to the first tape mark,
                     // which opens the tape rather than closing it; a second run that met one
                     // is parsed again from the right state.
-                    let second = if tape == Tape::Before && second.end.0 == Tape::Closed {
-                        Run::parse(source, split, config, tape, 1)
-                    } else {
-                        second
-                    };
+                    // Before any program text the second run's lines may be a leader.
+                    let reparse = tape == Tape::Before || (tape == Tape::Unmarked && second.end.0 == Tape::Closed);
+                    let second = if reparse { Run::parse(source, split, config, tape, 1) } else { second };
                     diagnostics.extend(second.diagnostics);
                     program.append(second.program);
                     (program, second.end)
@@ -229,15 +226,21 @@ impl<'src> Run<'src> {
     }
 }
 
-/// Where the tape stands at a line: before its opening `%` (or `$…%` header), inside it, or
-/// after its closing `%`, where controls stop reading.
+/// Where the tape stands at a line: before its opening `%` (or `$…%` header) with nothing
+/// but a leader so far, before it after program text, inside it, or after its closing `%`
+/// (or a DOS end-of-file Ctrl-Z), where controls stop reading.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) enum Tape {
     #[default]
     Before,
+    /// Program text began with no `%` before it: no leader can follow.
+    Unmarked,
     Open,
     Closed,
 }
+
+/// Ctrl-Z, the end-of-file mark of DOS text files.
+const END_OF_FILE: u8 = 0x1A;
 
 /// A run of whole lines parsed on its own, with spans, word, expression and command indexes
 /// relative to the run. The language server keeps a program as such runs so that an edit
@@ -394,10 +397,12 @@ impl<'src> Builder<'_, 'src> {
         let osp = self.program.config.dialect == Dialect::Osp;
         let mut lines = Lines::new(source, from);
         let mut tape_open = match tape {
-            Tape::Before => false,
+            Tape::Before | Tape::Unmarked => false,
             Tape::Open => true,
             Tape::Closed => return (Tape::Closed, None),
         };
+        // A tape leader is a Fanuc tape's; an OSP file's first line is its `$…%` header.
+        let mut leader_possible = tape == Tape::Before && !osp;
         while let Some((start, mut end, mut next)) = lines.next_line() {
             let mut line = &source[start..end];
             if self.has_byte_order_mark(start) {
@@ -420,6 +425,10 @@ impl<'src> Builder<'_, 'src> {
                     next = following.2;
                 }
             }
+            // Ctrl-Z (0x1A) ends a DOS text file: it and what follows are not program text.
+            if line.first() == Some(&END_OF_FILE) {
+                return (Tape::Closed, Some(start));
+            }
             // A tape mark is `%` as the first thing on its line (blanks allowed before it).
             let tape_mark = line.iter().find(|&&c| c != b' ' && c != b'\t') == Some(&b'%');
             self.block(start, end);
@@ -428,9 +437,51 @@ impl<'src> Builder<'_, 'src> {
                     return (Tape::Closed, Some(next));
                 }
                 tape_open = true;
+            } else if !tape_open && leader_possible {
+                leader_possible = self.leader_line(start, line);
             }
         }
-        (if tape_open { Tape::Open } else { Tape::Before }, None)
+        let tape = match (tape_open, leader_possible) {
+            (true, _) => Tape::Open,
+            (false, true) => Tape::Before,
+            (false, false) => Tape::Unmarked,
+        };
+        (tape, None)
+    }
+
+    /// Before the tape's first `%` and any program text: whether the block just parsed from
+    /// `line` leaves a leader still possible. A line whose first word does not read (`PART
+    /// 1234 REV B`, prose) is a tape leader, which a control skips: the block becomes a
+    /// `Leader` and its error a note. A line that reads (or reads in part) starts the
+    /// program text, and no leader follows it. Controls read a tape from its `%` on and
+    /// ignore the leader before it (Rockwell 8520 9/Series lathe manual §10.1 "Leader
+    /// Section"; Mitsubishi M700V programming manual §3.1, "label skip"); whether a `%`
+    /// follows the leader is a fact of the whole text, which the semantic pass checks
+    /// (`Interpreter::check_leader`), since a chunk of the language server sees only its
+    /// own lines.
+    fn leader_line(&mut self, start: usize, line: &[u8]) -> bool {
+        let blanks = line.iter().position(|&c| c != b' ' && c != b'\t').unwrap_or(line.len());
+        let first = start + blanks;
+        // A letter with a value after it (`o0001`, `X1O.`) is a damaged word, not a leader.
+        let looks_like_a_word = matches!(
+            &line[blanks..],
+            [letter, value, ..] if letter.is_ascii_alphabetic() && matches!(value, b'0'..=b'9' | b'-' | b'+' | b'.' | b'=' | b'[' | b'#')
+        );
+        let Some(block) = self.program.blocks.last_mut() else { return true };
+        match block.statement {
+            ast::Statement::Empty => true,
+            ast::Statement::Invalid
+                if !looks_like_a_word
+                    && self.diagnostics.last().is_some_and(|d| d.is_error() && d.span.start as usize == first) =>
+            {
+                block.statement = ast::Statement::Leader;
+                let span = block.span;
+                self.diagnostics.pop();
+                self.diagnostics.push(Diagnostic::note(DiagnosticKind::TapeLeader, span));
+                true
+            }
+            _ => false,
+        }
     }
 
     fn has_byte_order_mark(&self, start: usize) -> bool {

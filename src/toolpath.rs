@@ -235,38 +235,17 @@ pub const ARC_TOLERANCE: f64 = 0.001;
 /// Check the IR's invariants. Returns the proof that the toolpath is valid, or the problems
 /// found (each on the source block of the offending move).
 pub fn validate(toolpath: &Toolpath, limits: Option<Limits>) -> Result<ValidToolpath<'_>, Vec<Diagnostic>> {
-    // Each move is checked on its own but for the time, which must not run back from the
-    // move checked before it: a long toolpath is checked in two halves on two cores, the
-    // second half from the time the first leaves behind.
-    let moves = &toolpath.moves;
-    let problems = if moves.len() >= PARALLEL_VALIDATION_MOVES {
-        let middle = moves.len() / 2;
-        let (mut first, second) = std::thread::scope(|scope| {
-            let second = scope.spawn(|| check_moves(toolpath, middle..moves.len(), limits));
-            let first = check_moves(toolpath, 0..middle, limits);
-            // Checking cannot fail on any input; a panic is a bug, and is passed on.
-            (first, second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-        });
-        first.extend(second);
-        first
-    } else {
-        check_moves(toolpath, 0..moves.len(), limits)
-    };
+    let problems = check_moves(toolpath, limits);
     if problems.is_empty() { Ok(ValidToolpath(toolpath)) } else { Err(problems) }
 }
 
-/// Toolpaths of at least this many moves are validated on two threads.
-const PARALLEL_VALIDATION_MOVES: usize = 200_000;
-
-/// The problems of the moves in `range`, in order.
-fn check_moves(toolpath: &Toolpath, range: std::ops::Range<usize>, limits: Option<Limits>) -> Vec<Diagnostic> {
+/// The problems of the moves, in order.
+fn check_moves(toolpath: &Toolpath, limits: Option<Limits>) -> Vec<Diagnostic> {
     let mut problems = Vec::new();
-    let moves = toolpath.moves.get(range.clone()).unwrap_or_default();
-    // The time of the last move before the range whose time was checked: a move with
-    // non-finite values is reported as such and does not count.
-    let before = toolpath.moves.get(..range.start).unwrap_or_default();
-    let mut previous_time = before.iter().rev().find(|m| !non_finite(m)).map_or(0.0, |m| m.t_end);
-    for (index, m) in (range.start..).zip(moves) {
+    // The time of the last move whose time was checked: a move with non-finite values is
+    // reported as such and does not count.
+    let mut previous_time = 0.0;
+    for (index, m) in toolpath.moves.iter().enumerate() {
         let start = toolpath.start_of(index);
         let span = m.source;
         if non_finite(m) {

@@ -30,6 +30,15 @@ pub fn generated(megabytes: &str) -> Vec<u8> {
     std::fs::read(&path).unwrap()
 }
 
+/// `bytes` through the library's pipeline (`pipeline::analyse`: parse, lower, validate), ready
+/// for the passes after lowering: how every bench that runs a program past lowering enters.
+pub fn ready<'b>(bytes: &'b [u8], settings: &turnpass::pipeline::Settings) -> turnpass::pipeline::Ready<'b> {
+    match turnpass::pipeline::analyse(bytes, settings).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!("the bench program has errors: {:?}", analysed.diagnostics.first()),
+    }
+}
+
 /// The median of `times`.
 pub fn median(times: &mut [f64]) -> f64 {
     times.sort_by(|a, b| a.total_cmp(b));

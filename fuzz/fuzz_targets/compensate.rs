@@ -33,9 +33,11 @@ use turnpass::compensation::verify;
 use turnpass::compensation::{CompensateOptions, compensate_program};
 use turnpass::dialect::{DialectChoice, GCodeSystem};
 use turnpass::error_model::model_file::ModelSpec;
-use turnpass::semantic::{self, LowerOptions, Machine};
+use turnpass::pipeline;
+use turnpass::printer;
+use turnpass::semantic::LowerOptions;
+use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::syntax::{ParseOptions, parse};
-use turnpass::toolpath::Validated;
 
 /// The model of a program given as text: several effects, on the first fuzz machine.
 const FIXED_EFFECTS: &str = "[[effect]]\nkind = \"backlash_x\"\nb = 0.004\n[[effect]]\nkind = \"scale_z\"\nppm = 30.0\n\
@@ -61,18 +63,16 @@ fuzz_target!(|data: &[u8]| {
         dialect: settings.dialect.map_or(DialectChoice::Auto, DialectChoice::Fixed),
         gcode_system: settings.gcode_system.unwrap_or(GCodeSystem::A),
         machine_kind: None,
+        control: settings.control.unwrap_or_default(),
     };
-    let parsed = parse(&text, &options);
-    if parsed.has_errors() || !semantic::lowers(&parsed.program) {
-        return;
-    }
-    let machine = Machine::from_settings(settings);
     let lower_options = LowerOptions { max_moves: 5_000, max_executed_blocks: 20_000, ..LowerOptions::new(false) };
-    let lowered = semantic::lower(&parsed.program, &machine, &lower_options);
-    if lowered.diagnostics.iter().any(|d| d.is_error()) || lowered.cut_off.is_some() {
+    let reading = pipeline::Settings::new(options, settings, lower_options);
+    // A program with an error, or whose text was cut, is refused before compensation.
+    let Ok(ready) = pipeline::analyse(&text, &reading).ready() else { return };
+    if ready.lowered.cut_off.is_some() {
         return;
     }
-    let Ok(lowered) = Validated::new(lowered, machine.limits) else { return };
+    let machine = &ready.machine;
     let compensate_options = CompensateOptions {
         fit: FitOptions { strategy, tolerance_mm: machine.increment * machine.scale() / 2.0, step_mm: None },
         max_shift_mm: 0.1,
@@ -80,53 +80,32 @@ fuzz_target!(|data: &[u8]| {
         paths: false,
         block_reports: true,
     };
-    let outcome = compensate_program(&parsed.program, &lowered, &lowered.valid(), &machine, &model, &compensate_options);
+    let outcome = compensate_program(ready.program(), &ready.lowered, machine, &model, &compensate_options);
     if outcome.refused() {
         return;
     }
-    let printed = turnpass::printer::print(&parsed.program, &outcome.edits);
-    // `compensate` refuses an output that does not read: that is its check, not a finding.
-    if !turnpass::printer::unreadable(&parsed.program, &printed).is_empty() {
+    let printed = printer::print(ready.program(), &outcome.edits);
+    // `verify` samples both paths at the model's spacing and holds the samples at once: a
+    // move of hundreds of metres takes millions of them. That is an open finding for verify,
+    // which this target steps round (the compensated moves lie within `max_shift_mm` of these).
+    let longest = ready.valid().moves.iter().enumerate().fold(0.0f64, |most, (i, m)| {
+        let chord = ready.valid().start_of(i).distance(m.end);
+        let around = if m.is_arc() { std::f64::consts::TAU * m.end.distance(m.centre) } else { 0.0 };
+        most.max(chord.max(around))
+    });
+    if longest > 254_000.0 {
         return;
     }
-    let shown = || {
-        format!(
-            "{}\n--- model:\n{model_text}\n--- compensated:\n{}",
-            String::from_utf8_lossy(&text),
-            String::from_utf8_lossy(&printed)
-        )
-    };
-    // Read back as the original was read (`printer::unreadable` does the same).
-    let config = parsed.program.config();
-    let same = ParseOptions {
-        dialect: DialectChoice::Fixed(config.dialect),
-        gcode_system: config.gcode_system,
-        machine_kind: Some(config.machine_kind),
-    };
-    let again = parse(&printed, &same);
-    assert!(!again.has_errors(), "the compensated program does not parse:\n{}", shown());
-    // `compensate` lowers what it wrote and refuses a program that does not run cleanly
-    // (the nose left no room under G41/G42 by a backlash take-up, a point off the travel):
-    // that is its check, as reading back is.
-    let relowered = semantic::lower(&again.program, &machine, &lower_options);
-    if relowered.diagnostics.iter().any(|d| d.is_error()) {
+    // What `compensate` checks before it writes: read back as the original was read (with
+    // `--dialect auto`, the evidence may be in the blocks an edit replaced), lowered,
+    // validated and measured as `verify` measures it. A program that does not run cleanly
+    // (the nose left no room under G41/G42 by a backlash take-up, a point off the travel)
+    // is refused there: that is its check, not a finding.
+    let read_back = pipeline::Settings { parse: printer::read_back_options(ready.program()), ..reading };
+    let tools = ToolTable::from_machine(machine);
+    if verify::check_written(ready.valid(), &printed, &read_back, &tools, &model).is_err() {
         return;
     }
-    let Ok(relowered) = Validated::new(relowered, machine.limits) else { return };
-    // `verify` samples both paths every 0.254 mm and holds the samples at once: a move of
-    // more than 254 m takes more than a million of them, and gigabytes for a few km. That is
-    // an open finding for verify (fuzz/README.md), which this target steps round.
-    let longest = |path: &turnpass::toolpath::Toolpath| {
-        path.moves.iter().enumerate().fold(0.0f64, |most, (i, m)| {
-            let chord = path.start_of(i).distance(m.end);
-            let around = if m.is_arc() { std::f64::consts::TAU * m.end.distance(m.centre) } else { 0.0 };
-            most.max(chord.max(around))
-        })
-    };
-    if longest(&lowered.toolpath).max(longest(&relowered.toolpath)) > 254_000.0 {
-        return;
-    }
-    let tools = semantic::nose_radius::ToolTable::from_machine(&machine);
-    let _ = verify::deviation(&lowered.toolpath, &relowered.toolpath, &tools, &model, 0.254);
-    let _ = verify::check_words(&parsed.program, &again.program);
+    let again = parse(&printed, &read_back.parse);
+    let _ = verify::check_words(ready.program(), &again.program);
 });

@@ -31,7 +31,7 @@ fuzz_target!(|data: &[u8]| {
         _ => DialectChoice::Fixed(Dialect::Fanuc),
     };
     let gcode_system = [GCodeSystem::A, GCodeSystem::B, GCodeSystem::C][*selector as usize / 3 % 3];
-    let options = ParseOptions { dialect, gcode_system, machine_kind: None };
+    let options = ParseOptions { dialect, gcode_system, machine_kind: None, control: Default::default() };
     let mut pieces = rest.split(|&b| b == 0xFF);
     let mut text = pieces.next().unwrap_or_default().to_vec();
     let chunk_bytes = 1 + *size as usize % 64;

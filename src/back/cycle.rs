@@ -20,9 +20,12 @@ pub(crate) enum CycleBlocks {
     Keep,
     /// The blocks that replace the call.
     Blocks(Vec<NewBlock>),
-    /// Its thread moves have no plain-block form in this dialect; leave it.
-    NotExpandable,
+    /// It has no plain-block form (why); leave it.
+    NotExpandable(&'static str),
 }
+
+/// Why a cycle whose thread moves are no single pass stays as it is.
+pub(crate) const THREAD_MOVES: &str = "its thread moves have no plain-block form in this dialect";
 
 /// The blocks that replace `expansion`'s call block when the cycle makes `moves` from
 /// `start` (programmed contour points: `Move.contour`, arcs about `Move.centre`), with
@@ -39,6 +42,9 @@ pub(crate) fn cycle_blocks(
     shift: Xz,
     style: &ProgramStyle,
 ) -> CycleBlocks {
+    if let Some(reason) = expansion.kept {
+        return CycleBlocks::NotExpandable(reason);
+    }
     let codes = Codes::of(program);
     // S in force before the cycle's block: the written blocks give S where it changes
     // (the cycle block's own S included, since the block is replaced).

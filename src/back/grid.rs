@@ -50,10 +50,8 @@ impl Grid {
     }
 
     fn scale(&self) -> f64 {
-        // The powers of ten an increment has places for, each exact in f64 (as `powi` gives
-        // them, which is a library call).
-        const POWERS: [f64; 10] = [1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9];
-        POWERS.get(usize::from(self.places)).copied().unwrap_or_else(|| 10f64.powi(i32::from(self.places)))
+        // Exact in f64 for the at most nine places an increment has.
+        10f64.powi(i32::from(self.places))
     }
 
     /// A value in program units to a count of increments.
@@ -117,8 +115,8 @@ impl Grid {
 }
 
 /// The decimal places of an increment in program units (`machine::increment_places`), told
-/// at once for the increments controls use (every move asks for its grid, and the count
-/// takes a loop of library roundings).
+/// at once for the increments controls use: every move asks for its grid, and the count
+/// takes a loop of library roundings, which shows in `compensate`'s instruction count.
 fn places(increment: f64) -> u8 {
     match increment {
         0.001 => 3,
@@ -129,12 +127,12 @@ fn places(increment: f64) -> u8 {
 }
 
 /// `x.round() as i64` (the nearest whole number, halves away from zero), without the library
-/// call `round` is on this target: every grid point takes two. Below 2⁵² in size, the
-/// truncation toward zero and the fraction it leaves are both exact in f64, and the fraction
-/// decides; from 2⁵² on every f64 is whole already, and those, the infinities and NaN take
-/// `round` itself. The fraction is added as two flags rather than chosen by branches: its
-/// side is as good as random from point to point, and a mispredicted branch per count cost
-/// more than the count.
+/// call `round` is on this target: every grid point takes two, and the call also keeps the
+/// measures that count on the grid from being inlined. Below 2⁵² in size, the truncation
+/// toward zero and the fraction it leaves are both exact in f64, and the fraction decides;
+/// from 2⁵² on every f64 is whole already, and those, the infinities and NaN take `round`
+/// itself. The fraction is added as two flags rather than chosen by branches: its side is as
+/// good as random from point to point.
 fn nearest_whole(x: f64) -> i64 {
     const WHOLE_FROM: f64 = 4_503_599_627_370_496.0;
     if x.abs() < WHOLE_FROM {

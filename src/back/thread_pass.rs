@@ -26,7 +26,7 @@ use crate::syntax::{CodeLetter, Command, Program, Statement, WordKind};
 use crate::toolpath::{Motion, Move, Xz};
 
 use super::CycleBlocks;
-use super::cycle::CycleWriter;
+use super::cycle::{CycleWriter, THREAD_MOVES};
 use super::motion::{WordSink, feed_number};
 
 /// Points closer than this are the same (mm): far below any least increment, far above
@@ -43,7 +43,7 @@ pub(super) fn write(
     cycle: &mut CycleWriter,
 ) -> CycleBlocks {
     let tables = program.config().tables();
-    let Some(command) = call_command(program, expansion.block) else { return CycleBlocks::NotExpandable };
+    let Some(command) = call_command(program, expansion.block) else { return CycleBlocks::NotExpandable(THREAD_MOVES) };
     let function = match program.word(command.code_word).kind {
         WordKind::Code { code, .. } => tables.g(code).and_then(|g| g.function),
         _ => None,
@@ -62,15 +62,15 @@ pub(super) fn write(
     }
     let codes = cycle.writer.codes;
     let (Some(longitudinal_code), Some(face_code)) = (codes.thread_single, codes.thread_single_face) else {
-        return CycleBlocks::NotExpandable;
+        return CycleBlocks::NotExpandable(THREAD_MOVES);
     };
     if command.param(Role::LeadChange).is_some() {
-        return CycleBlocks::NotExpandable;
+        return CycleBlocks::NotExpandable(THREAD_MOVES);
     }
     let starts = match command.param(Role::Starts).map(|id| program.word(id).kind) {
         None => 1,
         Some(WordKind::Number { number, .. }) => number.to_f64().round().max(1.0) as usize,
-        Some(_) => return CycleBlocks::NotExpandable,
+        Some(_) => return CycleBlocks::NotExpandable(THREAD_MOVES),
     };
     // With `F` and `J` both written, the lead is copied as the call writes it (`F/J` need not
     // have a short decimal form); otherwise it is written as the F the moves record.
@@ -98,10 +98,10 @@ pub(super) fn write(
             i += 1;
             continue;
         }
-        let Some((count, pass)) = match_pass(at, &moves[i..]) else { return CycleBlocks::NotExpandable };
+        let Some((count, pass)) = match_pass(at, &moves[i..]) else { return CycleBlocks::NotExpandable(THREAD_MOVES) };
         let face = pass.axes.face;
         let (Some(&first), Some(&end)) = (pass.points.first(), pass.points.last()) else {
-            return CycleBlocks::NotExpandable;
+            return CycleBlocks::NotExpandable(THREAD_MOVES);
         };
         let writer = &mut cycle.writer;
         writer.out.code(CodeLetter::G, if face { face_code } else { longitudinal_code });
@@ -127,7 +127,7 @@ pub(super) fn write(
                 writer.out.code(CodeLetter::M, Code::whole(on));
                 writer.length(&grid, Address::L, length);
             }
-            (Some(_), None, _) => return CycleBlocks::NotExpandable,
+            (Some(_), None, _) => return CycleBlocks::NotExpandable(THREAD_MOVES),
             (None, _, Some(off)) if chamfering_used => writer.out.code(CodeLetter::M, Code::whole(off)),
             (None, _, _) => {}
         }
@@ -141,7 +141,7 @@ pub(super) fn write(
     // k-th at the phase 360·k/starts.
     if starts > 1 {
         if passes.len() % starts != 0 || passes.chunks(starts).any(|group| group.iter().any(|p| *p != group[0])) {
-            return CycleBlocks::NotExpandable;
+            return CycleBlocks::NotExpandable(THREAD_MOVES);
         }
         for (index, words) in passes.iter_mut().enumerate() {
             let phase = 360.0 * (index % starts) as f64 / starts as f64;

@@ -1,7 +1,7 @@
 //! `compensate --out-dir DIR`: many programs, one per worker thread at a time, each
 //! written atomically into DIR under its own file name when it compensates cleanly.
 //!
-//! Workers take the next file from a shared counter (plain `std::thread::scope`: the work
+//! Workers take the next file from a shared counter (`turnpass::parallel::workers`: the work
 //! is one independent job per file, nothing a pool crate would add). Messages are printed
 //! per file, in the order the files were given, after all are done, so they never
 //! interleave; a progress bar shows on standard error while it is a terminal. The exit
@@ -13,7 +13,7 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::common::{CliError, check_output_dir, write_atomically_parts};
+use super::common::{CliError, check_output_dir, write_atomically};
 use super::compensate::{CompensateArgs, FileResult, compensate_file, refuse_overwriting_input, write_report};
 use super::streams;
 
@@ -44,7 +44,7 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
             Err(error) => FileResult::failed(error.exit_code(), error.message()),
         };
         if let Some(output) = result.output.take()
-            && let Err(error) = write_atomically_parts(target, output.parts())
+            && let Err(error) = write_atomically(target, &output)
         {
             result.code = 2;
             result.messages.extend_from_slice(format!("error: {error}\n").as_bytes());
@@ -70,33 +70,30 @@ fn in_parallel(
     targets: &[PathBuf],
     job: impl Fn(&Path, &Path) -> FileResult + Sync,
 ) -> Vec<FileResult> {
-    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).min(files.len()).max(1);
+    let workers = turnpass::parallel::cores().min(files.len());
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let slots: Vec<Mutex<Option<FileResult>>> = files.iter().map(|_| Mutex::new(None)).collect();
     let progress = streams::stderr_is_terminal();
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| {
-                loop {
-                    let k = next.fetch_add(1, Ordering::Relaxed);
-                    let (Some(file), Some(target)) = (files.get(k), targets.get(k)) else { break };
-                    let result = job(file, target);
-                    if let Some(slot) = slots.get(k)
-                        && let Ok(mut slot) = slot.lock()
-                    {
-                        *slot = Some(result);
-                    }
-                    let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-                    if progress {
-                        draw_progress(finished, files.len());
-                    }
-                }
-            });
+    turnpass::parallel::workers(workers, || {
+        loop {
+            let k = next.fetch_add(1, Ordering::Relaxed);
+            let (Some(file), Some(target)) = (files.get(k), targets.get(k)) else { break };
+            let result = job(file, target);
+            if let Some(slot) = slots.get(k)
+                && let Ok(mut slot) = slot.lock()
+            {
+                *slot = Some(result);
+            }
+            let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+            if progress {
+                let total = files.len();
+                streams::progress(finished as f64 / total as f64, &format!("{finished}/{total} programs"));
+            }
         }
     });
     if progress {
-        streams::err("\r\x1b[K");
+        streams::progress_clear();
     }
     slots
         .into_iter()
@@ -107,10 +104,4 @@ fn in_parallel(
             })
         })
         .collect()
-}
-
-fn draw_progress(done: usize, total: usize) {
-    const WIDTH: usize = 30;
-    let filled = WIDTH * done / total.max(1);
-    streams::err(format!("\r[{}{}] {done}/{total} programs", "#".repeat(filled), " ".repeat(WIDTH - filled)));
 }

@@ -1,4 +1,7 @@
-//! `turnpass check`: the errors in programs.
+//! `turnpass check`: the errors in programs, as a compiler's check finds them: the parse,
+//! then the semantic pass and the toolpath's validation that `simulate` runs, so that a
+//! program `check` passes is one `simulate`, `expand` and the language server accept
+//! (`--syntax-only` stops after the parse).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -10,7 +13,8 @@ use turnpass::source::LineIndex;
 use turnpass::syntax::{self, Statement};
 
 use super::common::{
-    CliError, Format, ReadArgs, display_name, model_source, note_machine_defaults, plural, read_input, resolve,
+    CliError, Format, ReadArgs, RunArgs, analyse, display_name, model_source, note_machine_defaults, pipeline_settings,
+    plural, read_input, resolve,
 };
 use super::streams;
 
@@ -21,6 +25,12 @@ pub struct CheckArgs {
     files: Vec<PathBuf>,
     #[command(flatten)]
     read: ReadArgs,
+    #[command(flatten)]
+    run: RunArgs,
+    /// Check the syntax only: the parse, without the semantic pass (P/Q targets, arcs,
+    /// profiles, feeds) and the toolpath's checks.
+    #[arg(long)]
+    syntax_only: bool,
     #[arg(long, value_enum, default_value = "human")]
     format: Format,
     /// Also say where the machine settings come from, which dialect was chosen and why, and
@@ -36,7 +46,7 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
     for path in &args.files {
         let resolved = resolve(&args.read, path)?;
         let bytes = read_input(path)?;
-        note_machine_defaults(&resolved, None);
+        note_machine_defaults(&resolved, (!args.syntax_only).then_some(&args.run));
         let name = display_name(path);
         // A file that is not text gets one diagnostic, not a parse that echoes its bytes.
         if let Some(not_text) = turnpass::source::not_text(&bytes) {
@@ -54,16 +64,24 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
             }
             continue;
         }
-        let mut parsed = syntax::parse(&bytes, &resolved.options);
+        let (parsed, mut diagnostics) = if args.syntax_only {
+            let parsed = syntax::parse(&bytes, &resolved.options);
+            let diagnostics = parsed.diagnostics.clone();
+            (parsed, diagnostics)
+        } else {
+            let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
+            (analysed.parsed, analysed.diagnostics)
+        };
         if let Some(warning) = parsed.program.nothing_to_run() {
-            parsed.diagnostics.insert(0, warning);
+            diagnostics.insert(0, warning);
         }
-        any_errors |= parsed.has_errors();
+        let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+        any_errors |= errors > 0;
         let render = RenderSource::new(&name, &bytes);
         match args.format {
-            Format::Json => json.extend(to_json(&render, &parsed.diagnostics)),
+            Format::Json => json.extend(to_json(&render, &diagnostics)),
             Format::Human => {
-                let mut text = render_terminal(&render, &parsed.diagnostics, color);
+                let mut text = render_terminal(&render, &diagnostics, color);
                 if args.verbose {
                     let lines = LineIndex::new(&bytes);
                     text.extend_from_slice(format!("{name}:\n").as_bytes());
@@ -71,8 +89,7 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
                     text.extend_from_slice(parsed.detection.explain(&lines).as_bytes());
                     text.extend_from_slice(summary_of_statements(&parsed.program).as_bytes());
                 }
-                let errors = parsed.error_count();
-                let warnings = parsed.diagnostics.len() - errors;
+                let warnings = diagnostics.len() - errors;
                 text.extend_from_slice(
                     format!(
                         "{name}: {} blocks, {errors} error{}, {warnings} warning{} or note{}\n",

@@ -10,13 +10,14 @@ use clap::{Args, ValueEnum};
 use turnpass::diagnose::measured::MeasuredError;
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind, SHOWN_DIAGNOSTICS};
-use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
+use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
 use turnpass::machine::{MachineSettings, ModelFile};
-use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
+use turnpass::parallel::Tuning;
+use turnpass::pipeline::{self, Analysed, Lowering, Ready};
+use turnpass::semantic::{self, LowerOptions};
 use turnpass::syntax::{self, ParseOptions};
-use turnpass::toolpath::{ValidToolpath, Validated};
 
 use super::streams;
 
@@ -42,6 +43,10 @@ pub struct ReadArgs {
     /// Fanuc G-code system of the machine (A, B or C); a machine setting, never guessed.
     #[arg(long, value_parser = parse_system)]
     pub gcode_system: Option<GCodeSystem>,
+    /// The Fanuc-compatible control (fanuc, haas or denford): its own drilling cycles,
+    /// lower-case letters; a machine setting, never guessed.
+    #[arg(long, value_parser = parse_control)]
+    pub control: Option<Control>,
     /// How numbers without a decimal point read on this machine.
     #[arg(long, value_enum)]
     pub decimal_input: Option<DecimalInputArg>,
@@ -49,6 +54,20 @@ pub struct ReadArgs {
     /// [model], [[axis_table]] and [[effect]] tables the error model.
     #[arg(long, value_name = "FILE")]
     pub model: Option<PathBuf>,
+    /// The value of a common variable the machine keeps (`--var '#501=350'`, `--var V12=4`),
+    /// over the settings' `[machine] variables`; repeatable.
+    #[arg(long = "var", value_name = "NAME=VALUE", value_parser = parse_variable)]
+    pub variables: Vec<(String, f64)>,
+}
+
+/// `NAME=VALUE` of `--var`.
+fn parse_variable(text: &str) -> Result<(String, f64), String> {
+    let (name, value) = text.split_once('=').ok_or_else(|| format!("`{text}` is not NAME=VALUE"))?;
+    let value: f64 = value.trim().parse().map_err(|_| format!("`{value}` is not a number"))?;
+    if !value.is_finite() {
+        return Err(format!("`{value}` is not a finite number"));
+    }
+    Ok((name.trim().to_string(), value))
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -93,6 +112,10 @@ pub fn svg_path(s: &str) -> Result<PathBuf, String> {
 }
 
 fn parse_dialect(s: &str) -> Result<DialectChoice, String> {
+    s.parse()
+}
+
+fn parse_control(s: &str) -> Result<Control, String> {
     s.parse()
 }
 
@@ -226,7 +249,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         }
         None => None,
     };
-    let settings = match &model {
+    let mut settings = match &model {
         Some((path, text)) => {
             ModelFile::from_toml(text)
                 .map_err(|problems| model_problems(path, text, ModelError::File(problems)))?
@@ -234,8 +257,10 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         }
         None => MachineSettings::default(),
     };
+    settings.variables.extend(read.variables.iter().cloned());
     let dialect = read.dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
     let gcode_system = read.gcode_system.or(settings.gcode_system).unwrap_or_default();
+    let control = read.control.or(settings.control).unwrap_or_default();
     let decimal_input = match read.decimal_input {
         Some(DecimalInputArg::Calculator) => DecimalInput::Calculator,
         Some(DecimalInputArg::Increment) => DecimalInput::Increment,
@@ -246,13 +271,14 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         DialectChoice::Auto => None,
     };
     Ok(Resolved {
-        options: ParseOptions { dialect, gcode_system, machine_kind: None },
+        options: ParseOptions { dialect, gcode_system, machine_kind: None, control },
         decimal_input,
         increment_places: settings.increment_places(),
         // The settings in force, the command line's included.
         settings: MachineSettings {
             dialect: fixed_dialect,
             gcode_system: Some(gcode_system),
+            control: Some(control),
             decimal_input: Some(decimal_input),
             ..settings
         },
@@ -425,6 +451,24 @@ pub fn read_program(path: &Path, read: &ReadArgs) -> Result<(Vec<u8>, Resolved),
     Ok((bytes, resolved))
 }
 
+/// `TURNPASS_SERIAL=USE,…` (names of `turnpass::parallel::Tuning::USES`, or `all`): run
+/// those uses of a second thread on one, to measure what each gives (README,
+/// "Performance"). The output is the same either way.
+pub fn tune_from_environment() -> Result<(), CliError> {
+    let Ok(names) = std::env::var("TURNPASS_SERIAL") else { return Ok(()) };
+    let mut tuning = Tuning::DEFAULT;
+    for name in names.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+        tuning = tuning.with_serial(name).ok_or_else(|| {
+            CliError::Usage(format!(
+                "TURNPASS_SERIAL: no use of threads is named `{name}`; the uses are {} (or all)",
+                Tuning::USES.join(", ")
+            ))
+        })?;
+    }
+    turnpass::parallel::set_tuning(tuning);
+    Ok(())
+}
+
 pub fn lower_options(run: &RunArgs, settings: &MachineSettings, compensation: bool) -> LowerOptions {
     let block_delete = match run.block_delete {
         Some(Switch::On) => true,
@@ -451,7 +495,7 @@ pub fn rendered(name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) -> Vec<u8>
         text.extend_from_slice(
             format!(
                 "{name}: {more} more diagnostic{} not shown ({errors} error{} and {others} warning{} or note{} in \
-                 all; `turnpass check` lists every syntax error)\n",
+                 all; `turnpass check` lists every one)\n",
                 plural(more),
                 plural(errors),
                 plural(others),
@@ -471,24 +515,15 @@ pub fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }
 
-/// A lowered program ready for the error model: parsed, lowered with nose-radius
-/// compensation, its toolpath validated.
-pub struct Ready<'b> {
-    pub parsed: syntax::Parsed<'b>,
-    pub lowered: Validated<Lowered>,
-    pub machine: Machine,
+/// What `resolved` and `run` give the pipeline; `compensation` turns nose-radius
+/// compensation on.
+pub fn pipeline_settings(resolved: &Resolved, run: &RunArgs, compensation: bool) -> pipeline::Settings {
+    pipeline::Settings::new(resolved.options, &resolved.settings, lower_options(run, &resolved.settings, compensation))
 }
 
-impl Ready<'_> {
-    /// The validated toolpath.
-    pub fn valid(&self) -> ValidToolpath<'_> {
-        self.lowered.valid()
-    }
-}
-
-/// Parse, lower and validate; `Err` holds the rendered diagnostics and a line saying why
-/// when the program is not ready (errors, or not a lathe program). Warnings of a ready
-/// program come back in `warnings`.
+/// Parse, lower with nose-radius compensation and validate; `Err` holds the rendered
+/// diagnostics and a line saying why when the program is not ready (errors, or not a lathe
+/// program). Warnings of a ready program come back in `warnings`.
 pub fn ready<'b>(
     name: &str,
     bytes: &'b [u8],
@@ -497,64 +532,38 @@ pub fn ready<'b>(
     command: &str,
     warnings: &mut Vec<u8>,
 ) -> Result<Ready<'b>, Vec<u8>> {
-    let lower = |parsed: &syntax::Parsed<'b>| (lower_and_validate(parsed, resolved, run), ());
-    ready_with(name, bytes, resolved, command, warnings, lower).map(|(ready, ())| ready)
+    let analysed = analyse(bytes, &pipeline_settings(resolved, run, true));
+    ready_or_why(name, bytes, command, analysed, warnings)
 }
 
-/// [`ready`], running `beside` on the parsed program on a second thread while the program is
-/// lowered and validated: lowering runs on one core, and work that needs only the parsed
-/// program can take the other (`beside` does not run when the program is not lowered).
-pub fn ready_beside<'b, T: Send>(
+/// The ready program of `analysed`, or the rendered reason it is not.
+fn ready_or_why<'b>(
     name: &str,
-    bytes: &'b [u8],
-    resolved: &Resolved,
-    (run, command): (&RunArgs, &str),
-    warnings: &mut Vec<u8>,
-    beside: impl FnOnce(&syntax::Program<'b>) -> T + Send,
-) -> Result<(Ready<'b>, T), Vec<u8>> {
-    let lower = |parsed: &syntax::Parsed<'b>| {
-        std::thread::scope(|scope| {
-            let made = scope.spawn(|| beside(&parsed.program));
-            let lowering = lower_and_validate(parsed, resolved, run);
-            // `beside` cannot fail on any input; a panic is a bug, and is passed on.
-            (lowering, made.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-        })
-    };
-    ready_with(name, bytes, resolved, command, warnings, lower)
-}
-
-/// Parse, then `lower` (lowering and validation, with whatever runs beside them), and tell
-/// whether the program is ready.
-fn ready_with<'b, T>(
-    name: &str,
-    bytes: &'b [u8],
-    resolved: &Resolved,
+    bytes: &[u8],
     command: &str,
+    analysed: Analysed<'b>,
     warnings: &mut Vec<u8>,
-    lower: impl FnOnce(&syntax::Parsed<'b>) -> (Lowering, T),
-) -> Result<(Ready<'b>, T), Vec<u8>> {
-    let parsed = syntax::parse(bytes, &resolved.options);
-    if let Some(warning) = parsed.program.nothing_to_run() {
+) -> Result<Ready<'b>, Vec<u8>> {
+    if let Some(warning) = analysed.parsed.program.nothing_to_run() {
         let mut text = rendered(name, bytes, &[warning]);
         text.extend_from_slice(format!("{command}: {name} holds no block to run; nothing is written\n").as_bytes());
         return Err(text);
     }
-    if !semantic::lowers(&parsed.program) {
-        let mut text = rendered(name, bytes, &parsed.diagnostics);
+    if matches!(analysed.lowering, Lowering::NotLowered) {
+        let mut text = rendered(name, bytes, &analysed.diagnostics);
         text.extend_from_slice(
             format!("{command}: {name} is an OSP machining-centre program; turnpass {command}s lathe programs only\n")
                 .as_bytes(),
         );
         return Err(text);
     }
-    let (Lowering { lowered, machine, diagnostics }, made) = lower(&parsed);
-    let text = rendered(name, bytes, &diagnostics);
-    match lowered {
-        Ok(lowered) if !diagnostics.iter().any(Diagnostic::is_error) => {
+    let text = rendered(name, bytes, &analysed.diagnostics);
+    match analysed.ready() {
+        Ok(ready) => {
             warnings.extend_from_slice(&text);
-            Ok((Ready { parsed, lowered, machine }, made))
+            Ok(ready)
         }
-        _ => {
+        Err(_) => {
             let mut text = text;
             text.extend_from_slice(format!("{command}: {name} has errors; nothing is written\n").as_bytes());
             Err(text)
@@ -562,33 +571,18 @@ fn ready_with<'b, T>(
     }
 }
 
-/// A parsed program lowered with nose-radius compensation and validated.
-pub struct Lowering {
-    /// The lowered program, validated when its toolpath is valid.
-    pub lowered: Result<Validated<Lowered>, Lowered>,
-    pub machine: Machine,
-    /// Every diagnostic, the parser's included, in program order.
-    pub diagnostics: Vec<Diagnostic>,
-}
-
-pub fn lower_and_validate(parsed: &syntax::Parsed<'_>, resolved: &Resolved, run: &RunArgs) -> Lowering {
-    let machine = Machine::from_settings(&resolved.settings);
-    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(run, &resolved.settings, true));
-    let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    diagnostics.extend(cut_off(&lowered));
-    let lowered = Validated::new(lowered, machine.limits).map_err(|(lowered, problems)| {
-        diagnostics.extend(problems);
-        lowered
-    });
-    diagnostics.sort_by_key(|d| d.span.start);
-    Lowering { lowered, machine, diagnostics }
-}
-
-/// The error of a file whose text was cut in the middle of a block (`Lowered::cut_off`):
-/// a run of a file refuses it, so that nothing made from part of a program looks whole.
-pub fn cut_off(lowered: &Lowered) -> Option<Diagnostic> {
-    lowered.cut_off.map(|span| Diagnostic::error(DiagnosticKind::ProgramCut, span))
+/// `pipeline::analyse` for a file: a text cut in the middle of a block
+/// (`Lowered::cut_off`) is an error, so that nothing made from part of a program looks
+/// whole, and `check` says so as every command that runs it does. (An editor's buffer,
+/// often in this state as it is typed, is not refused: the language server does not
+/// come here.)
+pub fn analyse<'b>(bytes: &'b [u8], settings: &pipeline::Settings) -> Analysed<'b> {
+    let mut analysed = pipeline::analyse(bytes, settings);
+    if let Some(span) = analysed.lowered().and_then(|lowered| lowered.cut_off) {
+        analysed.diagnostics.push(Diagnostic::error(DiagnosticKind::ProgramCut, span));
+        analysed.diagnostics.sort_by_key(|d| d.span.start);
+    }
+    analysed
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse
@@ -604,17 +598,9 @@ pub fn not_lowered(command: &str, name: &str, bytes: &[u8], parsed: &syntax::Par
 
 /// Write to `output` atomically, or to standard output for none or `-`.
 pub fn write_output(output: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
-    write_output_parts(output, [bytes])
-}
-
-/// [`write_output`] of a text given as pieces that follow each other.
-pub fn write_output_parts<'a>(
-    output: Option<&Path>,
-    parts: impl IntoIterator<Item = &'a [u8]>,
-) -> Result<(), CliError> {
     match output {
-        Some(path) if path != Path::new("-") => write_atomically_parts(path, parts),
-        _ => streams::out_parts(parts),
+        Some(path) if path != Path::new("-") => write_atomically(path, bytes),
+        _ => streams::out(bytes),
     }
 }
 
@@ -650,11 +636,6 @@ pub fn check_output_dir(dir: &Path) -> Result<(), CliError> {
 /// DNC service running as another user must be able to read it); a file written over keeps
 /// its mode; a symbolic link is written through to the file it names and stays a link.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    write_atomically_parts(path, [bytes])
-}
-
-/// [`write_atomically`] of a text given as pieces that follow each other.
-pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), CliError> {
     let error = |source| CliError::Write { path: path.display().to_string(), source };
     let target = link_target(path).map_err(error)?;
     let dir = folder_of(&target);
@@ -664,9 +645,7 @@ pub fn write_atomically_parts<'a>(path: &Path, parts: impl IntoIterator<Item = &
     }
     remove_stale_temporaries(dir);
     let mut temp = temporary_beside(dir, std::fs::metadata(&target).ok()).map_err(error)?;
-    for part in parts {
-        temp.write_all(part).map_err(error)?;
-    }
+    temp.write_all(bytes).map_err(error)?;
     temp.flush().map_err(error)?;
     temp.persist(&target).map_err(|e| error(e.error))?;
     Ok(())

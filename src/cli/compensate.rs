@@ -17,17 +17,20 @@ use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
-use turnpass::compensation::rewrite::ProgramTables;
-use turnpass::compensation::{CompensateOptions, Outcome, compensate_with_tables};
+use turnpass::compensation::verify;
+use turnpass::compensation::{CompensateOptions, Outcome, compensate_program};
+use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
+use turnpass::pipeline::Ready;
 use turnpass::printer;
 use turnpass::semantic::Machine;
+use turnpass::semantic::nose_radius::ToolTable;
+use turnpass::source::Span;
 
 use super::batch;
 use super::common::{
-    CliError, ReadArgs, Ready, Resolved, RunArgs, check_output, display_name, lower_and_validate, model_name,
-    model_sha256, model_source, read_program, ready_beside, rendered, required_error_model, write_output,
-    write_output_parts,
+    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
+    pipeline_settings, read_program, ready, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -51,6 +54,10 @@ pub struct CompensateArgs {
     pub force: bool,
     #[command(flatten)]
     pub fit: FitArgs,
+    /// Refuse to write a program whose predicted deviation from the nominal part, as
+    /// `verify` measures it, exceeds MM (default: verify's, twice the least increment).
+    #[arg(long, allow_negative_numbers = true, value_name = "MM", value_parser = within(numbers::MAX_DEVIATION_MM))]
+    pub max_deviation: Option<f64>,
     /// Also write a report: per edited block the corrections, fitted arcs, predicted
     /// residual and SSQ before and after; on standard output, which then holds the report
     /// alone, or into --report-file.
@@ -170,29 +177,7 @@ impl FitArgs {
     /// `plot`), `block_reports` reports every edited block (for `--report json`).
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
         let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
-        let machine = (&program.machine, model);
-        compensate_with_tables(&program.parsed.program, &program.lowered, &program.valid(), machine, &options, None)
-    }
-
-    /// [`FitArgs::compensate`] without the paths, with the rewrite's tables of the program
-    /// made already (beside its lowering, `ready_beside`).
-    pub fn compensate_with_tables(
-        &self,
-        program: &Ready<'_>,
-        model: &ErrorModel,
-        block_reports: bool,
-        tables: ProgramTables,
-    ) -> Outcome {
-        let options = CompensateOptions { paths: false, block_reports, ..self.options(&program.machine) };
-        let machine = (&program.machine, model);
-        compensate_with_tables(
-            &program.parsed.program,
-            &program.lowered,
-            &program.valid(),
-            machine,
-            &options,
-            Some(tables),
-        )
+        compensate_program(&program.parsed.program, &program.lowered, &program.machine, model, &options)
     }
 }
 
@@ -203,7 +188,7 @@ pub struct FileResult {
     /// For standard error: diagnostics and a summary line.
     pub messages: Vec<u8>,
     /// The compensated program (only with code 0).
-    pub output: Option<printer::Printed>,
+    pub output: Option<Vec<u8>>,
     pub report: Option<serde_json::Value>,
 }
 
@@ -236,7 +221,7 @@ pub fn compensate(args: CompensateArgs) -> Result<ExitCode, CliError> {
     let result = compensate_file(path, &args)?;
     streams::err(&result.messages);
     if let Some(output) = &result.output {
-        write_output_parts(args.output.as_deref(), output.parts())?;
+        write_output(args.output.as_deref(), output)?;
     }
     if let Some(report) = &result.report {
         write_report(&args, report)?;
@@ -281,38 +266,22 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     if args.verbose {
         messages.extend_from_slice(format!("compensate: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
-    // The rewrite's tables of the program are made on the idle core while it is lowered.
-    // A program that carries a provenance comment is found beside the lowering too.
-    let beside = |program: &turnpass::syntax::Program<'_>| (ProgramTables::new(program), provenance::refusal(program));
-    let (program, (tables, compensated_already)) =
-        match ready_beside(&name, &bytes, &resolved, (&args.run, "compensate"), &mut messages, beside) {
-            Ok(ready) => ready,
-            Err(text) => return Ok(FileResult::failed(1, text)),
-        };
-    if let Some(diagnostic) = compensated_already.filter(|_| !args.force) {
+    let program = match ready(&name, &bytes, &resolved, &args.run, "compensate", &mut messages) {
+        Ok(ready) => ready,
+        Err(text) => return Ok(FileResult::failed(1, text)),
+    };
+    // A program that carries a provenance comment was compensated already.
+    if let Some(diagnostic) = provenance::refusal(&program.parsed.program).filter(|_| !args.force) {
         messages.extend(rendered(&name, &bytes, &[diagnostic]));
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
         return Ok(FileResult::failed(1, messages));
     }
-    let mut outcome = args.fit.compensate_with_tables(&program, &model, args.report.is_some(), tables);
+    let mut outcome = args.fit.compensate(&program, &model, false, args.report.is_some());
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
         return Ok(FileResult::failed(1, messages));
     }
-    let totals = &outcome.report.totals;
-    let summary = format!(
-        "compensate: {name}: {} block{} edited, {} cycle{} expanded; largest correction {:.4} mm; \
-             predicted RMS deviation {:.5} -> {:.5} mm\n",
-        totals.edited_blocks,
-        super::common::plural(totals.edited_blocks),
-        totals.expanded_cycles,
-        super::common::plural(totals.expanded_cycles),
-        totals.max_correction_mm,
-        totals.before.rms_mm,
-        totals.after.rms_mm,
-    );
-    let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
     let provenance = Provenance {
         version: provenance::VERSION.to_string(),
         model: model_name(&resolved),
@@ -323,22 +292,75 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         start_min: model.start_min,
     };
     provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
-    let printed = printer::print_parts(&program.parsed.program, &outcome.edits);
-    // What is written is checked as the control would run it: read back and lowered as the
-    // original was (a coordinate past what a block can hold, a correction that leaves the
-    // nose no room under G41/G42); a program that does not run cleanly is no output.
-    let text: Vec<u8> = printed.parts().flatten().copied().collect();
-    let reparsed = turnpass::syntax::parse(&text, &printer::read_back_options(&program.parsed.program));
-    let mut errors = lower_and_validate(&reparsed, &resolved, &args.run).diagnostics;
-    errors.retain(turnpass::diagnostic::Diagnostic::is_error);
-    if !errors.is_empty() {
-        messages.extend(rendered(&format!("{name} (compensated)"), &text, &errors));
-        messages.extend_from_slice(
-            format!("compensate: {name}: the compensated program would not run cleanly; refused, nothing is written\n")
-                .as_bytes(),
-        );
+    let written = printer::print(&program.parsed.program, &outcome.edits);
+    // What is about to be written is read back and measured as `verify` measures it; its
+    // figures are the ones reported, and a program that misses verify's bound is refused.
+    // Read back as the original was read: with `--dialect auto`, the evidence of the
+    // dialect may have been in the blocks an edit replaced.
+    let mut reading = pipeline_settings(&resolved, &args.run, true);
+    reading.parse = printer::read_back_options(&program.parsed.program);
+    let tools = ToolTable::from_machine(&program.machine);
+    let original = program.valid();
+    let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
+    let refusal = match verify::check_written(original, &written, &reading, &tools, &model) {
+        Ok((figures, feed_change)) => {
+            let totals = &mut outcome.report.totals;
+            (totals.before, totals.after) = (figures.before, figures.after);
+            totals.improvement_percent = figures.improvement_percent;
+            let too_far = figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
+                let span = original.moves.get(worst.original_move).map_or(Span::new(0, 0), |m| m.source);
+                let tolerance_mm = args.fit.options(&program.machine).fit.tolerance_mm;
+                let deviation_mm = worst.deviation_mm;
+                let kind = DiagnosticKind::CompensationFailsCheck { deviation_mm, bound_mm: bound, tolerance_mm };
+                Diagnostic::error(kind, span)
+            });
+            too_far.or_else(|| {
+                feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
+            })
+        }
+        Err(problems) => {
+            // Where in the text about to be written it does not read.
+            messages.extend(rendered(&format!("{name} (compensated)"), &written, &problems));
+            let problem = problems.first().map_or_else(String::new, Diagnostic::message);
+            Some(Diagnostic::error(DiagnosticKind::CompensationUnreadable { problem }, Span::new(0, 0)))
+        }
+    };
+    if let Some(diagnostic) = refusal {
+        messages.extend(rendered(&name, &bytes, &[diagnostic]));
+        messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
         return Ok(FileResult::failed(1, messages));
     }
-    messages.extend_from_slice(summary.as_bytes());
-    Ok(FileResult { code: 0, messages, output: Some(printed), report })
+    let totals = &outcome.report.totals;
+    messages.extend_from_slice(
+        format!(
+            "compensate: {name}: {} block{} edited, {} cycle{} expanded; largest correction {:.4} mm; \
+             predicted deviation (as verify measures it) RMS {:.5} -> {:.5} mm, largest {:.5} -> {:.5} mm\n",
+            totals.edited_blocks,
+            super::common::plural(totals.edited_blocks),
+            totals.expanded_cycles,
+            super::common::plural(totals.expanded_cycles),
+            totals.max_correction_mm,
+            totals.before.rms_mm,
+            totals.after.rms_mm,
+            totals.before.max_mm,
+            totals.after.max_mm,
+        )
+        .as_bytes(),
+    );
+    let tolerance = args.fit.options(&program.machine).fit.tolerance_mm;
+    if totals.inverse_residual_mm > tolerance {
+        // The figures above are what the written program does; the tolerance asked for is
+        // what the inverse could not reach.
+        messages.extend_from_slice(
+            format!(
+                "compensate: {name}: note: the inverse stops {:.6} mm from the nominal path at its worst point, more \
+                 than --tolerance {tolerance} mm: a slide is not reversed for less than half the least increment, \
+                 and the inverse stops after {} steps\n",
+                totals.inverse_residual_mm, totals.inverse_iterations,
+            )
+            .as_bytes(),
+        );
+    }
+    let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
+    Ok(FileResult { code: 0, messages, output: Some(written), report })
 }

@@ -13,9 +13,10 @@ use turnpass::diagnose::synth::{SynthOptions, finest_step_deg, synth, to_csv};
 use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, with_table_files};
+use turnpass::pipeline::Ready;
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Ready, Resolved, RunArgs, check_output, data_invalid, display_name, folder_of,
+    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, data_invalid, display_name, folder_of,
     model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
     write_atomically, write_output,
 };
@@ -134,6 +135,18 @@ pub struct SynthArgs {
         value_parser = within(numbers::SPACING_MM),
     )]
     pub spacing: f64,
+    /// How many readings are probe glitches (chosen by the seed), each off by --glitch-mm.
+    #[arg(long, default_value_t = 0)]
+    pub glitches: usize,
+    /// The size of a glitch, mm (either sign).
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "MM",
+        default_value_t = 0.025,
+        value_parser = within(numbers::GLITCH_MM),
+    )]
+    pub glitch_mm: f64,
     /// CMM: several parts, started at these minutes since machine start (comma-separated).
     #[arg(
         long,
@@ -170,7 +183,7 @@ fn prepare(
     let mut messages = Vec::new();
     let result = match ready(&name, &bytes, &resolved, run, command, &mut messages) {
         Ok(Ready { parsed, lowered, machine }) => {
-            let mut nominal = Nominal::new(&parsed.program, &lowered, &lowered.valid(), &machine);
+            let mut nominal = Nominal::new(&parsed.program, &lowered, &machine);
             nominal.screw_pitch = resolved.settings.ball_screw_pitch_mm.unwrap_or_default();
             Ok((nominal, model, resolved))
         }
@@ -204,17 +217,22 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     write_output(None, out.as_bytes())?;
     if let Some(path) = &args.write_model {
         let original = model_text_for(&resolved, path)?;
-        let written = model_text::with_found_effects(&original, &diagnosis, &data_name);
+        let written = model_text::with_found_effects(&original, &diagnosis, &data_name)
+            .map_err(|why| CliError::Usage(format!("{}: not written: {why}", path.display())))?;
         // The written model must load where it is written, tables and found effects alike.
         let (spec, dir) = model_spec(path, &written)?;
         spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
         write_atomically(path, written.as_bytes())?;
-        streams::err_line(format_args!(
-            "diagnose: wrote {} ({} effect{} added)",
-            path.display(),
-            diagnosis.added.len(),
-            super::common::plural(diagnosis.added.len())
-        ));
+        let plural = super::common::plural;
+        let mut what = vec![format!("{} effect{} added", diagnosis.added.len(), plural(diagnosis.added.len()))];
+        if !diagnosis.updated.is_empty() {
+            let count = diagnosis.updated.len();
+            what.push(format!("{count} stale value{} updated", plural(count)));
+        }
+        if let Some(table) = diagnosis.unexplained.as_ref().and_then(|u| u.table.as_ref()) {
+            what.push(format!("the residual as the {} slide's {} table", table.axis.letter(), table.quantity.column()));
+        }
+        streams::err_line(format_args!("diagnose: wrote {} ({})", path.display(), what.join(", ")));
     }
     if let Some(path) = &args.plot {
         match turnpass::plot::residuals::residuals_svg(&display_name(&args.file), &diagnosis) {
@@ -272,6 +290,8 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
         spacing_mm: args.spacing,
         parts: if args.parts.is_empty() { vec![None] } else { args.parts.iter().map(|&t| Some(t)).collect() },
         targets: if args.targets.is_empty() { defaults.targets } else { args.targets.clone() },
+        glitches: args.glitches,
+        glitch_mm: args.glitch_mm,
     };
     let measured = synth(&nominal, &truth, args.kind.kind(args.axis)?, &options)
         .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;

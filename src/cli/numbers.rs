@@ -24,6 +24,9 @@ pub const MAX_DEVIATION_MM: Range = Range::positive(10.0, "mm");
 /// `synth --noise`, a gauge's standard deviation: from 0 to 1 mm.
 pub const NOISE_MM: Range = Range::closed(0.0, 1.0, "mm");
 
+/// `synth --glitch-mm`, the size of a probe's glitch: within ±1 mm.
+pub const GLITCH_MM: Range = Range::magnitude(1.0, "mm");
+
 /// `synth --spacing`, between CMM points: from 0.001 to 1,000 mm.
 pub const SPACING_MM: Range = Range::closed(0.001, 1_000.0, "mm");
 

@@ -62,11 +62,11 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     streams::err(messages);
     let toolpath = program.valid();
-    let [before, after] = turnpass::plot::points_of(&toolpath, &outcome.paths);
+    let [before, after] = turnpass::plot::points_of(toolpath, &outcome.paths);
     let svg = if args.polar {
-        turnpass::plot::polar_svg(&name, &toolpath, &before, &after).map(|svg| (svg, None))
+        turnpass::plot::polar_svg(&name, toolpath, &before, &after).map(|svg| (svg, None))
     } else {
-        turnpass::plot::path_svg(&name, &toolpath, &before, &after, args.magnify)
+        turnpass::plot::path_svg(&name, toolpath, &before, &after, args.magnify)
             .map(|drawn| (drawn.svg, Some(drawn.magnify)))
     };
     match svg {

@@ -20,7 +20,7 @@ use super::common::{
     read_program_bytes, ready, required_error_model, write_atomically,
 };
 use super::streams;
-use super::verify::{CheckArgs, Checked, checked};
+use super::verify::{CheckArgs, Checked, Watch, checked};
 
 #[derive(Args)]
 pub struct ReportArgs {
@@ -82,17 +82,17 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         &resolved,
         &mut model,
         &args.checks,
-        |side, measured| {
+        Watch::Each(&mut |side, measured| {
             let k = usize::from(side == Side::Compensated);
             points[k].add(&measured, &toolpaths[k]);
-        },
+        }),
     )?;
     for warning in &checked.warnings {
         messages.extend_from_slice(format!("report: warning: {warning}\n").as_bytes());
     }
     let [before, after] = points.map(|c| c.points);
     let title = format!("{original_name} → {compensated_name}");
-    let path = turnpass::plot::path_svg(&title, &toolpath, &before, &after, args.magnify);
+    let path = turnpass::plot::path_svg(&title, toolpath, &before, &after, args.magnify);
     let mut plots = vec![Plot {
         id: "plot-path",
         caption: match &path {
@@ -105,7 +105,7 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         },
         svg: path.map(|drawn| drawn.svg).map_err(|e| e.to_string()),
     }];
-    match turnpass::plot::polar_svg(&title, &toolpath, &before, &after) {
+    match turnpass::plot::polar_svg(&title, toolpath, &before, &after) {
         Ok(svg) => plots.push(Plot {
             id: "plot-polar",
             caption: "The full circle as a ball bar would trace it: radial deviation against the angle, each \

@@ -6,14 +6,13 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
+use turnpass::pipeline::Lowering;
 use turnpass::printer;
-use turnpass::semantic::{self, Machine};
 use turnpass::simulation;
-use turnpass::syntax;
 
 use super::common::{
-    CliError, Lowering, ReadArgs, RunArgs, announce_settings, check_output, cut_off, display_name, lower_and_validate,
-    lower_options, model_file_name, not_lowered, plural, read_program, report, write_output,
+    CliError, ReadArgs, RunArgs, analyse, announce_settings, check_output, display_name, model_file_name, not_lowered,
+    pipeline_settings, plural, read_program, report, write_output,
 };
 use super::streams;
 
@@ -59,32 +58,29 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
     announce_settings("expand", &name, (&args.read, &args.run), &resolved, args.verbose);
-    let parsed = syntax::parse(&bytes, &resolved.options);
-    if let Some(warning) = parsed.program.nothing_to_run() {
+    // Without nose-radius compensation: the blocks `expand` prints stay under the program's
+    // own `G41`/`G42`.
+    let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, false));
+    if let Some(warning) = analysed.parsed.program.nothing_to_run() {
         report(&name, &bytes, &[warning]);
         streams::err_line(format_args!("expand: {name} holds no block to run; nothing is written"));
         return Ok(ExitCode::from(1));
     }
-    if !semantic::lowers(&parsed.program) {
-        return Ok(not_lowered("expand", &name, &bytes, &parsed));
+    if matches!(analysed.lowering, Lowering::NotLowered) {
+        return Ok(not_lowered("expand", &name, &bytes, &analysed.parsed));
     }
-    let machine = Machine::from_settings(&resolved.settings);
-    let lowered = semantic::lower(&parsed.program, &machine, &lower_options(&args.run, &resolved.settings, false));
-    let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    diagnostics.extend(cut_off(&lowered));
-    diagnostics.sort_by_key(|d| d.span.start);
-    report(&name, &bytes, &diagnostics);
-    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
-    if errors > 0 {
-        // A program that does not lower cleanly is not expanded: no partial output.
+    report(&name, &bytes, &analysed.diagnostics);
+    let errors = analysed.error_count();
+    // A program that does not lower cleanly, or whose toolpath is not valid, is not
+    // expanded: no partial output.
+    let Ok(ready) = analysed.ready() else {
         streams::err_line(format_args!("expand: {name} has {errors} error{}; nothing is written", plural(errors)));
         return Ok(ExitCode::from(1));
-    }
-    let (edits, notes) = turnpass::expand::expansion_edits(&parsed.program, &lowered);
+    };
+    let (edits, notes) = turnpass::expand::expansion_edits(ready.program(), &ready.lowered);
     report(&name, &bytes, &notes);
-    let output = printer::print(&parsed.program, &edits);
-    let unreadable = printer::unreadable(&parsed.program, &output);
+    let output = printer::print(ready.program(), &edits);
+    let unreadable = printer::unreadable(ready.program(), &output);
     if !unreadable.is_empty() {
         report(&format!("{name} (expanded)"), &output, &unreadable);
         streams::err_line(format_args!(
@@ -100,28 +96,20 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
     announce_settings("simulate", &name, (&args.read, &args.run), &resolved, args.verbose);
-    let parsed = syntax::parse(&bytes, &resolved.options);
-    if !semantic::lowers(&parsed.program) {
-        return Ok(not_lowered("simulate", &name, &bytes, &parsed));
+    let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
+    if matches!(analysed.lowering, Lowering::NotLowered) {
+        return Ok(not_lowered("simulate", &name, &bytes, &analysed.parsed));
     }
-    let Lowering { lowered, machine, diagnostics } = lower_and_validate(&parsed, &resolved, &args.run);
-    report(&name, &bytes, &diagnostics);
-    let errors = diagnostics.iter().filter(|d| d.is_error()).count();
+    report(&name, &bytes, &analysed.diagnostics);
+    let errors = analysed.error_count();
     // The blocks in error would be skipped: the toolpath and its times would be of a run
     // the control does not make, so a program with errors gets no table and no summary.
-    let lowered = match lowered {
-        Ok(lowered) if errors == 0 => lowered,
-        _ => {
-            streams::err_line(format_args!(
-                "simulate: {name} has {errors} error{}; nothing is printed",
-                plural(errors)
-            ));
-            return Ok(ExitCode::from(1));
-        }
+    let Ok(ready) = analysed.ready() else {
+        streams::err_line(format_args!("simulate: {name} has {errors} error{}; nothing is printed", plural(errors)));
+        return Ok(ExitCode::from(1));
     };
-    let valid = lowered.valid();
-    let rows = simulation::rows(&parsed.program, &valid);
-    let summary = simulation::summary(&parsed.program, &lowered, &valid, &machine);
+    let rows = simulation::rows(ready.program(), ready.valid());
+    let summary = simulation::summary(ready.program(), &ready.lowered, &ready.machine);
     // The rows are written as they are made: memory follows the moves, not the text.
     let mut out = streams::Out::new();
     match args.format {

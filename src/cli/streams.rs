@@ -88,6 +88,19 @@ pub fn stderr_is_terminal() -> bool {
     std::io::stderr().is_terminal()
 }
 
+/// Draw a progress bar `filled` (0 to 1) full with `label` beside it on standard error, over
+/// the one drawn before.
+pub fn progress(filled: f64, label: &str) {
+    const WIDTH: usize = 30;
+    let bars = ((WIDTH as f64 * filled.clamp(0.0, 1.0)) as usize).min(WIDTH);
+    err(format!("\r[{}{}] {label}", "#".repeat(bars), " ".repeat(WIDTH - bars)));
+}
+
+/// Clear the progress bar's line.
+pub fn progress_clear() {
+    err("\r\x1b[K");
+}
+
 /// Write `bytes` to standard output and flush them: a closed pipe ends the output quietly,
 /// any other failure is an I/O error.
 pub fn out(bytes: impl AsRef<[u8]>) -> Result<(), CliError> {

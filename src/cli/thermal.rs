@@ -10,7 +10,7 @@ use clap::Args;
 use turnpass::diagnose::measured::read_thermal_log;
 use turnpass::diagnose::model_text::effect_table;
 use turnpass::diagnose::report::value_with_sigma;
-use turnpass::diagnose::thermal_fit::{FirstOrderFit, fit_log_split};
+use turnpass::diagnose::thermal_fit::{FirstOrderFit, Split, fit_log_split};
 use turnpass::error_model::Effect;
 use turnpass::error_model::effects::{ThermalX, ThermalZ};
 
@@ -33,7 +33,8 @@ pub struct FitThermalArgs {
     #[arg(long, value_enum)]
     pub axis: Option<AxisArg>,
     /// Minutes from the start of the log at which the heat source stopped and the
-    /// cool-down began (default: where the smoothed log peaks).
+    /// cool-down began (default: where the fit of both curves is best, or nowhere when the
+    /// log has no cool-down).
     #[arg(long, allow_negative_numbers = true, value_name = "MIN", value_parser = within(numbers::MINUTES))]
     pub split_min: Option<f64>,
     #[arg(long, value_enum, default_value = "human")]
@@ -59,11 +60,19 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     let out = match args.format {
         Format::Json => serde_json::to_string_pretty(&fit).unwrap_or_default() + "\n",
         Format::Human => {
-            let mut out = format!("fit-thermal: {name}: warm-up until {:.1} min\n", fit.split_min);
+            let split = match fit.split {
+                Split::Given => format!("warm-up until {:.1} min (given)", fit.split_min),
+                Split::Fitted => format!("warm-up until {:.1} min (fitted)", fit.split_min),
+                Split::None => format!("warm-up over the whole log ({:.1} min)", fit.split_min),
+            };
+            let mut out = format!("fit-thermal: {name}: {split}\n");
             out.push_str(&format!("  warm-up   (gain·(1 − e^(−t/τ)) + offset): {}\n", curve(&fit.warm)));
-            match &fit.cool {
-                Some(cool) => out.push_str(&format!("  cool-down (gain·e^(−t/τ) + offset):       {}\n", curve(cool))),
-                None => out.push_str("  no cool-down in the log\n"),
+            match (&fit.cool, &fit.no_cool_down) {
+                (Some(cool), _) => {
+                    out.push_str(&format!("  cool-down (gain·e^(−t/τ) + offset):       {}\n", curve(cool)))
+                }
+                (None, Some(why)) => out.push_str(&format!("  no cool-down in the log: {why}\n")),
+                (None, None) => out.push_str("  no cool-down in the log\n"),
             }
             out
         }
@@ -102,7 +111,7 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
         value_with_sigma(fit.warm.tau_min, Some(fit.warm.tau_sigma)),
         value_with_sigma(fit.warm.offset, Some(fit.warm.offset_sigma)),
     ));
-    if let Some(cool) = fit.cool {
+    if let Some(cool) = &fit.cool {
         written.push_str(&format!(
             "# The cool-down (τ {} min) is not in the model: its thermal effects are warm-up curves.\n",
             value_with_sigma(cool.tau_min, Some(cool.tau_sigma))

@@ -6,16 +6,20 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use turnpass::compensation::program::SAMPLE_STEP_MM;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use turnpass::compensation::provenance::{Provenance, marks};
-use turnpass::compensation::verify::{Deviation, Measured, Side, WordCheck, check_words, deviation_each};
+
+use turnpass::compensation::verify::{
+    self, CutWords, Deviation, Measured, Side, WordCheck, check_feeds, check_words, deviation_each, deviation_watched,
+};
 use turnpass::error_model::ErrorModel;
+use turnpass::pipeline::Ready;
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::LineIndex;
 use turnpass::syntax::Program;
 
 use super::common::{
-    CliError, Format, ReadArgs, Ready, Resolved, RunArgs, display_name, model_sha256, model_source, read_program,
+    CliError, Format, ReadArgs, Resolved, RunArgs, display_name, model_sha256, model_source, read_program,
     read_program_bytes, ready, required_error_model, write_output,
 };
 use super::numbers::{self, within};
@@ -79,14 +83,16 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             return Ok(ExitCode::from(1));
         }
     };
+    let progress = Progress::new(streams::stderr_is_terminal(), [&original, &compensated]);
     let checked = checked(
         (&original, &compensated),
         (&original_name, &compensated_name, &original_bytes),
         &resolved,
         &mut model,
         &args.checks,
-        |_, _| {},
+        Watch::Progress(&|side, measured| progress.measured(side, measured)),
     )?;
+    progress.finish();
     for warning in &checked.warnings {
         messages.extend_from_slice(format!("verify: warning: {warning}\n").as_bytes());
     }
@@ -130,7 +136,11 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             text.push_str(&row("as programmed", &figures.before));
             text.push_str(&row("compensated", &figures.after));
             text.push_str(&format!("  RMS improvement: {:.1} %\n", figures.improvement_percent));
-            text.push_str(&format!("non-motion words: {} checked\n", words.checked));
+            text.push_str(&format!(
+                "words: {} M, T, S, comment and block-delete words kept in order; feed and spindle words of every \
+                 cut checked\n",
+                words.checked
+            ));
             for violation in &violations {
                 text.push_str(&format!("violation: {violation}\n"));
             }
@@ -158,15 +168,62 @@ pub struct Checked {
     pub warnings: Vec<String>,
 }
 
+/// How `checked` hands out the points it measures.
+pub enum Watch<'a> {
+    /// Every point, each program in path order (the report's plots): one thread.
+    Each(&'a mut dyn FnMut(Side, Measured)),
+    /// How far the measure has come: both programs at once, on two threads.
+    Progress(&'a (dyn Fn(Side, &Measured) + Sync)),
+}
+
+/// A progress bar of the measure on standard error while it is a terminal: the share of each
+/// program's moves measured, redrawn when the whole percentage changes.
+struct Progress {
+    shown: bool,
+    moves: [usize; 2],
+    reached: [AtomicUsize; 2],
+    percent: AtomicUsize,
+}
+
+impl Progress {
+    fn new(shown: bool, programs: [&Ready<'_>; 2]) -> Progress {
+        Progress {
+            shown,
+            moves: programs.map(|p| p.valid().toolpath().moves.len().max(1)),
+            reached: [AtomicUsize::new(0), AtomicUsize::new(0)],
+            percent: AtomicUsize::new(0),
+        }
+    }
+
+    fn measured(&self, side: Side, measured: &Measured) {
+        if !self.shown {
+            return;
+        }
+        let k = usize::from(side == Side::Compensated);
+        self.reached[k].fetch_max(measured.sample.move_index + 1, Ordering::Relaxed);
+        let share = |k: usize| self.reached[k].load(Ordering::Relaxed) as f64 / self.moves[k] as f64;
+        let percent = ((share(0) + share(1)) * 50.0).floor() as usize;
+        if self.percent.fetch_max(percent, Ordering::Relaxed) < percent {
+            streams::progress(percent as f64 / 100.0, &format!("{percent} % of the paths measured"));
+        }
+    }
+
+    fn finish(&self) {
+        if self.shown {
+            streams::progress_clear();
+        }
+    }
+}
+
 /// `verify`'s checks of `compensated` against `original` on `model` (its start minute set
-/// as they decide), every measured point also given to `each`.
+/// as they decide), every measured point also handed out as `watch` says.
 pub fn checked(
     (original, compensated): (&Ready<'_>, &Ready<'_>),
     (original_name, compensated_name, original_bytes): (&str, &str, &[u8]),
     resolved: &Resolved,
     model: &mut ErrorModel,
     checks: &CheckArgs,
-    each: impl FnMut(Side, Measured),
+    watch: Watch<'_>,
 ) -> Result<Checked, CliError> {
     let model_sha256 = model_sha256(resolved)?;
     let provenance = compensated_with(&original.parsed.program, &compensated.parsed.program);
@@ -216,10 +273,23 @@ pub fn checked(
         None => {}
     }
     let tools = ToolTable::from_machine(&original.machine);
-    let figures = deviation_each(&original.valid(), &compensated.valid(), &tools, model, SAMPLE_STEP_MM, each);
-    let words = check_words(&original.parsed.program, &compensated.parsed.program);
     let machine = &original.machine;
-    let limit = checks.max_deviation.unwrap_or(2.0 * machine.increment * machine.scale());
+    let (original_path, compensated_path) = (original.valid(), compensated.valid());
+    let sampling = verify::sampling(model, machine.increment * machine.scale(), &[&original_path, &compensated_path]);
+    let figures = match watch {
+        Watch::Each(each) => deviation_each(original_path, compensated_path, &tools, model, &sampling, each),
+        Watch::Progress(watch) => deviation_watched(original_path, compensated_path, &tools, model, &sampling, watch),
+    };
+    let words = check_words(&original.parsed.program, &compensated.parsed.program);
+    if let Some(change) = check_feeds(&original_path, &compensated_path) {
+        let line = LineIndex::new(original_bytes).position(change.source.start).0;
+        violations.push(format!(
+            "{compensated_name} cuts with {} where {original_name} cuts with {} (its line {line} on)",
+            cut_words(change.compensated),
+            cut_words(change.original)
+        ));
+    }
+    let limit = checks.max_deviation.unwrap_or_else(|| verify::default_bound_mm(machine));
     if let Some(missing) = &words.missing {
         let line = LineIndex::new(original_bytes).position(missing.span.start).0;
         violations.push(format!(
@@ -234,6 +304,23 @@ pub fn checked(
         ));
     }
     Ok(Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings })
+}
+
+/// A cut's feed and spindle words as a user reads them.
+fn cut_words(words: Option<CutWords>) -> String {
+    match words {
+        None => "no cut".into(),
+        Some(CutWords { feed, per_revolution, speed, threading }) => {
+            let per = if threading {
+                "lead"
+            } else if per_revolution {
+                "per revolution"
+            } else {
+                "per minute"
+            };
+            format!("F{feed} ({per}), S{speed}")
+        }
+    }
 }
 
 /// The minute the run starts at, and what said so.

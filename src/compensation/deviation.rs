@@ -99,6 +99,20 @@ impl Tally {
         self.n += 1;
     }
 
+    /// A distance with its side (`LocalPath::side`) at the end of `weight` points of path
+    /// whose other end is at `previous`, the path between followed as a straight
+    /// interpolation of the two: the square is integrated exactly along it, so a stretch
+    /// where the path crosses the contour counts for what it deviates, not for the larger
+    /// of its ends (the trapezoid rule of `add_along` would).
+    pub fn add_signed_along(&mut self, signed: f64, previous: Option<f64>, weight: f64) {
+        let weight = if weight.is_finite() && weight > 0.0 { weight } else { 0.0 };
+        let start = if weight > 0.0 { previous.unwrap_or(signed) } else { signed };
+        self.max = self.max.max(signed.abs()).max(start.abs());
+        self.sum2 += weight * (start * start + start * signed + signed * signed) / 3.0;
+        self.weight += weight;
+        self.n += 1;
+    }
+
     /// Both tallies, `other`'s distances counted after `self`'s (the sum of squares is then
     /// added as one term, so the figures may differ from one tally of all the distances in
     /// the last place).
@@ -116,7 +130,9 @@ impl Tally {
             max_mm: self.max,
             rms_mm: if self.weight > 0.0 { (self.sum2 / self.weight).sqrt() } else { 0.0 },
             ssq_mm: self.sum2.sqrt(),
-            points: self.n,
+            // The length measured in the thesis' steps, which the sum of squares is over:
+            // the same however closely the path was sampled.
+            points: self.weight.round() as usize,
         }
     }
 }
@@ -299,6 +315,33 @@ impl<'a> LocalPath<'a> {
     /// The closest point of move `k` to `p` when the move cuts: its distance (as
     /// `distance_to` measures it), its parameter along the move (0 at the start, 1 at the
     /// end; by length along an arc) and the point.
+    /// Which side of move `k` the point `p` lies on, from its closest point `closest` on it:
+    /// +1 to the left of the direction of travel (X up, Z to the right), −1 to the right, 0
+    /// on it. Along a contour the side keeps its meaning from move to move, so a distance
+    /// with its side changes sign only where the path crosses the contour.
+    pub fn side(&self, k: usize, closest: Xz, p: Xz) -> f64 {
+        let Some(m) = self.toolpath.moves.get(k) else { return 0.0 };
+        let start = self.toolpath.start_of(k);
+        let tangent = match m.motion {
+            Motion::Cw | Motion::Ccw => {
+                let radial = Xz::new(closest.x - m.centre.x, closest.z - m.centre.z);
+                // Counter-clockwise turns from +Z toward +X: the tangent is the radial turned
+                // a quarter that way.
+                if m.motion == Motion::Ccw { Xz::new(radial.z, -radial.x) } else { Xz::new(-radial.z, radial.x) }
+            }
+            _ => Xz::new(m.end.x - start.x, m.end.z - start.z),
+        };
+        let off = Xz::new(p.x - closest.x, p.z - closest.z);
+        let cross = tangent.z * off.x - tangent.x * off.z;
+        if cross > 0.0 {
+            1.0
+        } else if cross < 0.0 {
+            -1.0
+        } else {
+            0.0
+        }
+    }
+
     pub fn closest_on(&self, k: usize, p: Xz) -> Option<Closest> {
         let m = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell)?;
         let start = self.toolpath.start_of(k);
@@ -333,7 +376,7 @@ impl<'a> LocalPath<'a> {
 
     /// The distance to move `k` when it cuts (infinity otherwise): `distance_to_move`, with
     /// an arc's constants taken from `arcs`.
-    fn distance_to(&self, p: Xz, k: usize) -> f64 {
+    pub fn distance_to(&self, p: Xz, k: usize) -> f64 {
         let Some(m) = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell) else {
             return f64::INFINITY;
         };

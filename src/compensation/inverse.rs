@@ -24,7 +24,8 @@
 //! the backlash at a reversal: by a jump of the play in the new direction.
 //!
 //! A reversal costs a jump of the whole play, so it is made only for a move against the
-//! slide's last direction of more than the tolerance: a slide that would have to come back
+//! slide's last direction of more than the tolerance (and never less than half the least
+//! increment, which no written program can hold to: `InverseOptions::dead_band_mm`): a slide that would have to come back
 //! by a few nanometres (a squareness term drifting as the other axis moves) stays where it
 //! is, within the tolerance, instead of jumping across its play.
 
@@ -39,6 +40,11 @@ pub struct InverseOptions {
     /// Stop when every predicted point is this close to its nominal one, mm (each sample
     /// is solved to a thousandth of it; the tolerance proper is for the re-expression).
     pub tolerance_mm: f64,
+    /// A slide is reversed (its whole play taken up) only for a move against its last
+    /// direction of more than this, mm: the larger of the tolerance and half the least
+    /// increment, since a correction smaller than half an increment rounds away when it is
+    /// written, and a reversal costs a take-up move of the whole play.
+    pub dead_band_mm: f64,
     /// The gain γ of the correction.
     pub gain: f64,
     pub max_iterations: u32,
@@ -46,7 +52,7 @@ pub struct InverseOptions {
 
 impl Default for InverseOptions {
     fn default() -> InverseOptions {
-        InverseOptions { tolerance_mm: 0.0005, gain: 1.0, max_iterations: 20 }
+        InverseOptions { tolerance_mm: 0.0005, dead_band_mm: 0.0005, gain: 1.0, max_iterations: 20 }
     }
 }
 
@@ -55,6 +61,9 @@ impl Default for InverseOptions {
 pub struct Compensated {
     /// The point to command for each sample, mm, X as a radius.
     pub commanded: Vec<Xz>,
+    /// Per sample, the backlash taken up on the way to it (`Tracker::take_up`): the
+    /// command's travel inside the play where an axis reverses, zero elsewhere.
+    pub take_ups: Vec<Xz>,
     /// Where the model predicts the tool goes for it, after the last pass.
     pub predicted: Vec<Xz>,
     /// Where the tool goes when the nominal path is commanded (the uncompensated error).
@@ -76,12 +85,14 @@ pub fn compensate_samples(
     let uncompensated = predict(samples, &nominal, start, model);
     let mut inverse = Inverse::new(start, model, options);
     let mut commanded = Vec::with_capacity(samples.len());
+    let mut take_ups = Vec::with_capacity(samples.len());
     let mut predicted = Vec::with_capacity(samples.len());
     let mut terms = Vec::new();
     time_terms(samples, model, &mut terms);
-    inverse.solve(samples, &terms, &mut commanded, Some(&mut predicted));
+    inverse.solve(samples, &terms, (&mut commanded, &mut take_ups), Some(&mut predicted));
     Compensated {
         commanded,
+        take_ups,
         predicted,
         uncompensated,
         iterations: inverse.iterations,
@@ -127,15 +138,16 @@ impl<'m> Inverse<'m> {
         }
     }
 
-    /// Solve the next `samples`, appending the point to command for each to `commanded`
-    /// and where the model predicts it goes to `predicted` (when it is asked for);
+    /// Solve the next `samples`, appending the point to command for each to `commanded`,
+    /// the backlash taken up on the way to it to `take_ups` (`Tracker::take_up`), and where
+    /// the model predicts it goes to `predicted` (when it is asked for);
     /// `time_terms` holds the model's terms of time at the samples (`time_terms`; empty to
     /// evaluate them at each command tried).
     pub fn solve(
         &mut self,
         samples: &[PathSample],
         time_terms: &[Xz],
-        commanded: &mut Vec<Xz>,
+        (commanded, take_ups): (&mut Vec<Xz>, &mut Vec<Xz>),
         mut predicted: Option<&mut Vec<Xz>>,
     ) {
         let model = self.model;
@@ -146,6 +158,7 @@ impl<'m> Inverse<'m> {
             let (step, a, steps) = solve(&self.tracker, s, guess, &inputs, terms, model, &self.options);
             let c = step.to();
             self.correction = Xz::new(c.x - s.nominal.x, c.z - s.nominal.z);
+            take_ups.push(self.tracker.take_up(&step));
             self.tracker.take(&step, s.tool, s.cutting);
             self.iterations = self.iterations.max(steps);
             self.max_residual_squared = self.max_residual_squared.max(s.nominal.distance_squared(a));
@@ -176,7 +189,7 @@ fn solve(
     let slide = tracker.slide();
     let before = tracker.position();
     let direction = tracker.direction();
-    let dead_band = options.tolerance_mm;
+    let dead_band = options.dead_band_mm;
     let mut c = guess;
     let mut steps = 0;
     loop {
@@ -314,6 +327,12 @@ impl<'m> Predictor<'m> {
             self.tracker.take(&step, s.tool, s.cutting);
             actual
         }));
+    }
+
+    /// The backlash the tracker would take up on the way to `to` (`Tracker::take_up`), and
+    /// where each slide is now.
+    pub fn take_up(&self, to: Xz) -> (Xz, Xz) {
+        (self.tracker.take_up(&self.tracker.step(to)), self.tracker.slide())
     }
 
     /// `predict` of the samples' nominal points (the program as written).

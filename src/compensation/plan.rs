@@ -10,8 +10,10 @@
 //! commanding a jump of the play in the new direction (`inverse.rs`). Smeared into the
 //! move after the reversal, that jump would tilt its first segment across the part; it is
 //! written instead as its own short move at the reversal point, and the move goes on from
-//! there. A jump is a change of an axis' correction between two consecutive samples of
-//! more than half the axis' play.
+//! there. A jump is what the inverse records where it reversed an axis: the command's
+//! travel inside the play before the slide moves (`Tracker::take_up`). A correction that
+//! drifts along a move without reversing its slide (squareness along a long turn) is no
+//! jump, however far apart its samples: it is written into the move itself.
 //!
 //! Rapids are sampled only at their end and written as one move to the corrected end;
 //! thread moves stay one move (a thread cannot be cut in pieces), to their corrected end;
@@ -79,6 +81,8 @@ pub struct PlanInput<'a> {
     pub toolpath: &'a Toolpath,
     pub samples: &'a [PathSample],
     pub commanded: &'a [Xz],
+    /// The backlash taken up on the way to each sample (`Compensated::take_ups`).
+    pub take_ups: &'a [Xz],
     /// `written::sample_ranges`.
     pub ranges: &'a [Range<usize>],
     /// Whether each move can be written back (its block is a motion block, or it belongs
@@ -134,7 +138,7 @@ pub fn plan_range(
             let switches = index > 0
                 && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
                     != Some(m.compensation);
-            let piece = Piece { m, at, points: &points, range, grid, jumps };
+            let piece = Piece { m, at, points: &points, grid, jumps };
             if m.motion == Motion::Rapid || m.threading {
                 one_move(&piece, input.tools)
             } else if switches {
@@ -238,21 +242,31 @@ fn nominal_plan(m: &Move, start: Xz, tools: &ToolTable) -> MovePlan {
     }
 }
 
-/// One move to plan: where its written form starts, the points to write for its samples
-/// (`range`), the backlash jumps among them (`written_points`), and the grid they are
-/// rounded on.
+/// One move to plan: where its written form starts, the points to write for its samples,
+/// the jumps among them (`written_points`), and the grid they are rounded on.
 struct Piece<'a> {
     m: &'a Move,
     at: Xz,
     points: &'a [Xz],
-    range: Range<usize>,
     grid: Grid,
     jumps: Jumps,
 }
 
-/// A move written as one move to its corrected end (when that moved on the grid).
+/// A move written as one move to its corrected end (when that moved on the grid); a rapid
+/// sampled through an overshoot before a thread (`sampling::thread_approach`) as a move to
+/// each of its points.
 fn one_move(piece: &Piece<'_>, tools: &ToolTable) -> MovePlan {
     let Piece { m, at, points, grid, .. } = piece;
+    if m.motion == Motion::Rapid && points.len() > 1 {
+        return MovePlan {
+            start: *at,
+            segments: points.iter().map(|&end| Segment::Line { end }).collect(),
+            changed: true,
+            jumps: 0,
+            lead_in: false,
+            words: SmallVec::new(),
+        };
+    }
     match points.last() {
         Some(&last) if grid.point(last) != grid.point(m.contour) => MovePlan {
             start: *at,
@@ -269,8 +283,8 @@ fn one_move(piece: &Piece<'_>, tools: &ToolTable) -> MovePlan {
 /// A move that switches compensation: one move, after the play its start reverses taken
 /// up by a positioning move of its own (`lead_in`).
 fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>) -> MovePlan {
-    let Piece { m, at, points, ref range, ref jumps, .. } = *piece;
-    let Some(&(_, jump)) = jumps.first().filter(|(j, _)| *j == range.start) else {
+    let Piece { m, at, points, ref jumps, .. } = *piece;
+    let Some(&(_, jump)) = jumps.first().filter(|(at, _)| *at == 0) else {
         return one_move(piece, input.tools);
     };
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
@@ -286,7 +300,7 @@ fn switching_move(input: &PlanInput<'_>, piece: &Piece<'_>) -> MovePlan {
 }
 
 fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> MovePlan {
-    let Piece { m, at, points, ref range, grid, ref jumps } = *piece;
+    let Piece { m, at, points, grid, ref jumps, .. } = *piece;
     let Some(&last) = points.last() else { return nominal_plan(m, at, input.tools) };
     let tolerance = options.fit.tolerance_mm;
     let centre = written::contour_centre(m, input.tools);
@@ -306,8 +320,7 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
     let mut segments = Segments::new();
     let mut from = at;
     let mut piece = 0;
-    for &(j, jump) in jumps {
-        let local = j - range.start;
+    for &(local, jump) in jumps {
         if local > piece {
             let part = MovePoints { start: from, points: &points[piece..local], nominal };
             segments.extend_from_slice(&choose_segments(&part, &options.fit));
@@ -336,13 +349,15 @@ fn nominal_holds(m: &Move, centre: Xz, at: Xz, points: &[Xz], tolerance: f64) ->
     }
 }
 
-/// The backlash jumps of a move: the samples at which an axis' correction jumps by more
-/// than half its play, with the jump (only the jumping axes).
+/// The jumps of a move: the written path's steps at a point, each with the index of the
+/// written point it leads to (`points`), and the step. A jump is the play the inverse took
+/// up on the way to a sample (`Compensated::take_ups`), or, at a move's start sample (where
+/// the model's correction steps at a corner: `ArcTerms::steps_at_corners`), the whole
+/// change of the correction from the sample before, at the same point.
 type Jumps = SmallVec<[(usize, Xz); 2]>;
 
 /// Append to `points` the point to write for each sample of `range` (of move `m`), and
-/// return the move's backlash jumps (`Jumps`; none without play): both read each sample's
-/// correction, which is taken once for both.
+/// return the move's jumps (`Jumps`); a move's start sample is a jump, not a point.
 fn written_points(
     input: &PlanInput<'_>,
     m: &Move,
@@ -351,29 +366,30 @@ fn written_points(
     play: Xz,
     points: &mut Vec<Xz>,
 ) -> Jumps {
-    let offset = |j: usize| written::offset(&input.samples[j], input.commanded[j]);
+    let first = points.len();
     let mut jumps = Jumps::new();
     let with_play = play.x > 0.0 || play.z > 0.0;
-    let mut before =
-        if with_play { range.start.checked_sub(1).map_or(Xz::new(0.0, 0.0), offset) } else { Xz::default() };
     for j in range {
         let sample = &input.samples[j];
-        let now = offset(j);
+        let now = written::offset(sample, input.commanded[j]);
+        if sample.param == 0.0 {
+            if let Some(before) = j.checked_sub(1).map(|k| written::offset(&input.samples[k], input.commanded[k])) {
+                let step = Xz::new(now.x - before.x, now.z - before.z);
+                if step.x != 0.0 || step.z != 0.0 {
+                    jumps.push((points.len() - first, step));
+                }
+            }
+            continue;
+        }
+        if with_play {
+            let jump = input.take_ups.get(j).copied().unwrap_or_default();
+            if jump.x != 0.0 || jump.z != 0.0 {
+                jumps.push((points.len() - first, jump));
+            }
+        }
         // `written::written_from`, with the correction taken here.
         let contour = written::contour_at(m, contour_start, sample, input.tools);
         points.push(Xz::new(contour.x + now.x, contour.z + now.z));
-        if !with_play {
-            continue;
-        }
-        let d = Xz::new(now.x - before.x, now.z - before.z);
-        before = now;
-        let jump = Xz::new(
-            if play.x > 0.0 && d.x.abs() > play.x / 2.0 { d.x } else { 0.0 },
-            if play.z > 0.0 && d.z.abs() > play.z / 2.0 { d.z } else { 0.0 },
-        );
-        if jump.x != 0.0 || jump.z != 0.0 {
-            jumps.push((j, jump));
-        }
     }
     jumps
 }

@@ -16,7 +16,7 @@ use crate::printer::Edits;
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Lowered, Machine};
 use crate::syntax::Program;
-use crate::toolpath::{ValidToolpath, Xz};
+use crate::toolpath::{Validated, Xz};
 
 use super::deviation::LocalPath;
 use super::fit::FitOptions;
@@ -88,50 +88,29 @@ pub fn sampling(fit: &FitOptions, model: &ErrorModel, reach: Xz) -> Sampling {
     if let Some(step) = fit.step_mm.filter(|s| s.is_finite() && *s > 0.0) {
         spacing.mm = step / (step / spacing.mm).ceil().max(1.0);
     }
-    Sampling { spacing, arc: model.arc_terms(reach), allowance }
+    Sampling {
+        spacing,
+        arc: model.arc_terms(reach),
+        allowance,
+        max_arc_radians: Sampling::MAX_ARC_RADIANS,
+        play: model.play(),
+    }
 }
 
-/// Compensate `program` (lowered with nose-radius compensation into `lowered`, whose
-/// toolpath validated as `valid`) on `machine` with `model`.
+/// Compensate `program` (lowered with nose-radius compensation into `lowered`, its
+/// toolpath validated) on `machine` with `model`.
 pub fn compensate_program(
     program: &Program<'_>,
-    lowered: &Lowered,
-    valid: &ValidToolpath,
+    lowered: &Validated<Lowered>,
     machine: &Machine,
     model: &ErrorModel,
     options: &CompensateOptions,
 ) -> Outcome {
-    compensate_with_tables(program, lowered, valid, (machine, model), options, None)
-}
-
-/// [`compensate_program`] given the rewrite's tables of `program`, when they were made
-/// beside its lowering (`rewrite::ProgramTables`).
-pub fn compensate_with_tables(
-    program: &Program<'_>,
-    lowered: &Lowered,
-    valid: &ValidToolpath,
-    (machine, model): (&Machine, &ErrorModel),
-    options: &CompensateOptions,
-    tables: Option<rewrite::ProgramTables>,
-) -> Outcome {
-    let toolpath = valid.toolpath();
+    let toolpath = lowered.valid().toolpath();
+    let lowered: &Lowered = lowered;
     let tools = ToolTable::from_machine(machine);
-    // The per-move tables are independent of each other: the rewrite's (what can be written
-    // for each move, the runs of moves each edited block writes, and the rewrite itself,
-    // which reads the whole program) are made beside the rest.
-    let ((forms, runs, motion), (path, sampling)) = std::thread::scope(|scope| {
-        let rewrite = scope.spawn(|| {
-            let tables = tables.unwrap_or_else(|| rewrite::ProgramTables::new(program));
-            let motion = rewrite::MotionBlocks::with_tables(program, lowered, &tools, tables);
-            let (forms, runs) = motion.move_tables();
-            (forms, runs, motion)
-        });
-        let path = LocalPath::new(toolpath);
-        let sampling = sampling(&options.fit, model, path.reach());
-        let rest = (path, sampling);
-        // Neither can fail on any input; a panic is a bug, and is passed on.
-        (rewrite.join().unwrap_or_else(|e| std::panic::resume_unwind(e)), rest)
-    });
+    let path = LocalPath::new(toolpath);
+    let sampling = sampling(&options.fit, model, path.reach());
     // A move that needs more samples than a piece may hold is refused before any is made.
     let oversampled = oversampled_moves(toolpath, &sampling);
     if !oversampled.is_empty() {
@@ -155,6 +134,10 @@ pub fn compensate_with_tables(
             edited: Vec::new(),
         };
     }
+    // The rewrite's tables: what can be written for each move, the runs of moves each edited
+    // block writes, and the rewrite itself, which reads the whole program.
+    let motion = rewrite::MotionBlocks::new(program, lowered, &tools);
+    let (forms, runs) = motion.move_tables();
     let context = stream::Context {
         toolpath,
         tools: &tools,

@@ -180,7 +180,8 @@ fn short(value: f64, places: usize) -> String {
 
 /// A model name as a comment may hold it: letters, digits, blanks and `- . _ /`; anything
 /// else (a parenthesis or `;` would end the comment, a comma would end the field) becomes a
-/// blank; runs of blanks become one; whole words up to [`NAME_MAX`] characters.
+/// blank; runs of blanks become one; whole words up to [`NAME_MAX`] characters, and `...`
+/// where words were left out.
 fn printable_name(name: &str) -> String {
     let kept: String = name
         .chars()
@@ -190,10 +191,11 @@ fn printable_name(name: &str) -> String {
     let mut name = String::new();
     for word in kept.split_whitespace() {
         let blank = usize::from(!name.is_empty());
-        if name.len() + blank + word.len() > NAME_MAX {
+        if name.len() + blank + word.len() > NAME_MAX - 3 {
             if name.is_empty() {
-                name = word.chars().take(NAME_MAX).collect();
+                name = word.chars().take(NAME_MAX - 3).collect();
             }
+            name.push_str("...");
             break;
         }
         if blank == 1 {

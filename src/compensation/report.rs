@@ -101,18 +101,7 @@ pub fn build(input: &ReportInput<'_>) -> Report {
     let blocks = if input.block_reports {
         // Indexed only here: a 50 MB program has two million lines.
         let lines = LineIndex::new(input.program.source());
-        // A long program's blocks are reported in two halves at once.
-        if edited.len() >= PARALLEL_BLOCKS {
-            let (first, second) = edited.split_at(edited.len() / 2);
-            std::thread::scope(|scope| {
-                let second = scope.spawn(|| block_reports(input, &lines, second));
-                let mut blocks = block_reports(input, &lines, first);
-                blocks.extend(second.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
-                blocks
-            })
-        } else {
-            block_reports(input, &lines, edited)
-        }
+        block_reports(input, &lines, edited)
     } else {
         Vec::new()
     };
@@ -133,9 +122,6 @@ pub fn build(input: &ReportInput<'_>) -> Report {
         },
     }
 }
-
-/// Programs with at least this many edited blocks have them reported on two threads.
-const PARALLEL_BLOCKS: usize = 50_000;
 
 /// The reports of `edited`, in order.
 fn block_reports(input: &ReportInput<'_>, lines: &LineIndex, edited: &[EditedBlock]) -> Vec<BlockReport> {

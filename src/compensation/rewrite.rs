@@ -230,13 +230,9 @@ enum FirstRun {
 }
 
 /// What the rewrite of the motion blocks needs of the program alone: the block lookup, the
-/// program's writing style (its arc form among it), and the per-block tables. A long
-/// program's take about a tenth of a second to make, so `compensate` makes them on the idle
-/// core while the program is lowered (`cli::common::ready_beside`) and hands them to
-/// `MotionBlocks::with_tables`.
-pub struct ProgramTables {
-    /// The number of blocks of the program they were made for.
-    blocks: usize,
+/// program's writing style (its arc form among it), and the per-block tables, made in one
+/// pass over the program.
+struct ProgramTables {
     lookup: BlockLookup,
     /// Per block, its arc words (`MotionBlocks::arc_words`).
     arc_words: Vec<BlockArcWords>,
@@ -247,7 +243,7 @@ pub struct ProgramTables {
 }
 
 impl ProgramTables {
-    pub fn new(program: &Program<'_>) -> ProgramTables {
+    fn new(program: &Program<'_>) -> ProgramTables {
         let blocks = program.blocks().len();
         // The block lookup and the style each need every block (and the style every word): one
         // pass reads a long program's blocks and words from memory once.
@@ -259,7 +255,6 @@ impl ProgramTables {
             arc_words.push(style.add_block(program, index, block));
         }
         ProgramTables {
-            blocks,
             lookup: BlockLookup { starts },
             arc_words,
             style: style.style(),
@@ -278,20 +273,7 @@ impl ProgramTables {
 
 impl<'a, 'src> MotionBlocks<'a, 'src> {
     pub fn new(program: &'a Program<'src>, lowered: &'a Lowered, tools: &'a ToolTable) -> MotionBlocks<'a, 'src> {
-        MotionBlocks::with_tables(program, lowered, tools, ProgramTables::new(program))
-    }
-
-    /// `new` with the program's tables made already (`ProgramTables::new(program)`, which
-    /// the caller made for this program); tables made for a program with another number of
-    /// blocks are made again.
-    pub fn with_tables(
-        program: &'a Program<'src>,
-        lowered: &'a Lowered,
-        tools: &'a ToolTable,
-        tables: ProgramTables,
-    ) -> MotionBlocks<'a, 'src> {
-        let tables = if tables.blocks == program.blocks().len() { tables } else { ProgramTables::new(program) };
-        let ProgramTables { lookup, arc_words, style, replacements, edited, first_runs, .. } = tables;
+        let ProgramTables { lookup, arc_words, style, replacements, edited, first_runs } = ProgramTables::new(program);
         let radius_arcs = style.radius_arcs;
         MotionBlocks {
             program,

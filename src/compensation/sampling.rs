@@ -2,7 +2,9 @@
 //! effect needs (time, velocity, tool, whether it cuts, the surface normal, the tip).
 //!
 //! Cutting moves (feeds and arcs) are split evenly into as few steps as a `Sampling`
-//! allows: `compensate` asks its model how closely (`error_model/spacing.rs`: one sample
+//! allows, and also sampled at their start where the model's correction steps at a corner
+//! (`ArcTerms::steps_at_corners`: the step is then the difference between the end of one
+//! move and the start of the next, at the same point): `compensate` asks its model how closely (`error_model/spacing.rs`: one sample
 //! per line when every term is affine along it), `verify`, `diagnose` and `plot` sample
 //! every 0.254 mm whatever the model. A rapid is sampled only at
 //! its end, where the next cut starts (what the tool does between is not on the part);
@@ -12,7 +14,7 @@
 use std::ops::Range;
 
 use crate::error_model::Spacing;
-use crate::error_model::spacing::{self, ArcTerms, TABLE_STEP_MM};
+use crate::error_model::spacing::{ArcTerms, TABLE_STEP_MM};
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
@@ -53,6 +55,12 @@ pub struct Sampling {
     /// How far the chord between samples may stray from the correction, mm (zero, with no
     /// arc terms: no angle step at all, as `every_mm` samples).
     pub allowance: f64,
+    /// The largest angle between an arc's samples, radians (`MAX_ARC_RADIANS` for
+    /// compensation, `MEASURE_ARC_RADIANS` where a deviation is measured).
+    pub max_arc_radians: f64,
+    /// The play of each slide where the approach to a thread is sampled through an
+    /// overshoot (`thread_approach`; compensation only), mm; zero for none.
+    pub play: Xz,
 }
 
 impl Sampling {
@@ -63,11 +71,24 @@ impl Sampling {
     /// to each sample across all the lines between two samples (`quantised::Walk`).
     pub const MAX_ARC_RADIANS: f64 = std::f64::consts::PI / 8.0;
 
+    /// The largest angle between an arc's samples where a deviation from the arc is
+    /// measured (`verify`): the distance from an arc is the part of the displacement along
+    /// its normal, which turns with the arc, so between samples it strays from the straight
+    /// interpolation by up to the displacement times (1 − cos of half the step), under a
+    /// thousandth of it at a 64th of a turn (12 nm of a 10 µm error).
+    pub const MEASURE_ARC_RADIANS: f64 = std::f64::consts::PI / 32.0;
+
     /// Every `step` mm along cutting moves, whatever the model: how `verify`, `diagnose`
     /// and `plot` measure a path, and how the thesis sampled.
     pub fn every_mm(step: f64) -> Sampling {
         let step = if step.is_finite() && step > 0.0 { step } else { TABLE_STEP_MM };
-        Sampling { spacing: Spacing::mm(step), arc: ArcTerms::default(), allowance: 0.0 }
+        Sampling {
+            spacing: Spacing::mm(step),
+            arc: ArcTerms::default(),
+            allowance: 0.0,
+            max_arc_radians: Self::MAX_ARC_RADIANS,
+            play: Xz::new(0.0, 0.0),
+        }
     }
 
     /// How many equal steps an arc of `radius` sweeping `sweep` radians at `feed` needs by
@@ -76,9 +97,9 @@ impl Sampling {
         if self.allowance <= 0.0 && self.arc == ArcTerms::default() {
             return 0;
         }
-        let step = self.arc.radians(radius, feed, self.allowance).min(Self::MAX_ARC_RADIANS);
+        let step = self.arc.radians(radius, feed, self.allowance).min(self.max_arc_radians);
         // `as` saturates; a NaN (a degenerate arc) is no step.
-        if step > 0.0 { spacing::ceil(sweep / step) as usize } else { 0 }
+        if step > 0.0 { (sweep / step).ceil() as usize } else { 0 }
     }
 }
 
@@ -146,16 +167,25 @@ pub fn sample_move(
     let tip = tip_vector(tip);
     match m.motion {
         Motion::Dwell => {}
-        Motion::Rapid => out.push(PathSample {
-            covers_mm: start.distance(m.end),
-            ..sample(index, m, 1.0, m.end, Xz::new(0.0, 0.0), false, tip)
-        }),
+        Motion::Rapid => {
+            if let Some(approach) = thread_approach(toolpath, index, sampling.play) {
+                let past = Xz::new(m.end.x - approach.x * sampling.play.x, m.end.z - approach.z * sampling.play.z);
+                out.push(sample(index, m, 1.0, past, Xz::new(0.0, 0.0), false, tip));
+            }
+            out.push(PathSample {
+                covers_mm: start.distance(m.end),
+                ..sample(index, m, 1.0, m.end, Xz::new(0.0, 0.0), false, tip)
+            });
+        }
         Motion::Feed => {
             let length = start.distance(m.end);
             let n = sampling.spacing.steps(length, minutes(m));
             let direction = unit(Xz::new(m.end.x - start.x, m.end.z - start.z));
             let velocity = Xz::new(direction.x * m.feed, direction.z * m.feed);
             let normal = if m.cutting { surface_normal(direction, m, tip) } else { Xz::new(0.0, 0.0) };
+            if m.cutting && sampling.arc.steps_at_corners() {
+                out.push(PathSample { velocity, ..sample(index, m, 0.0, start, normal, true, tip) });
+            }
             for i in 1..=n {
                 let t = i as f64 / n as f64;
                 let p = Xz::new(start.x + (m.end.x - start.x) * t, start.z + (m.end.z - start.z) * t);
@@ -171,6 +201,12 @@ pub fn sample_move(
                 (a0, geometry::sweep_from(a0, start, m.end, m.centre, ccw))
             });
             let sign = if ccw { 1.0 } else { -1.0 };
+            if m.cutting && sampling.arc.steps_at_corners() {
+                let tangent = Xz::new(sign * a0.cos(), -sign * a0.sin());
+                let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
+                let normal = surface_normal(tangent, m, tip);
+                out.push(PathSample { velocity, ..sample(index, m, 0.0, start, normal, true, tip) });
+            }
             let by_angle = sampling.arc_steps(radius, sweep, m.feed);
             let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2);
             let mut previous = 0.0;
@@ -187,6 +223,74 @@ pub fn sample_move(
             }
         }
     }
+}
+
+/// The directions (−1, 0 or +1 per axis) the slides first move in along the thread that
+/// rapid `index` of `toolpath` leads to, on the axes with `play`; none when no thread
+/// follows, or no slide with play moves in it.
+///
+/// A thread cannot be cut in pieces, so the play of a slide that reverses inside it (the
+/// pull-out of a straight thread, against the infeed) cannot be taken up by a move of its
+/// own there, and the slide would stand still while the thread's chamfer is cut. So the
+/// rapid that approaches the thread is sampled, and written, through a point one play short
+/// of its end on each such axis: the slides then come to the start of the thread moving
+/// the way they will move in it, their play taken up in the air.
+fn thread_approach(toolpath: &Toolpath, index: usize, play: Xz) -> Option<Xz> {
+    if play.x <= 0.0 && play.z <= 0.0 {
+        return None;
+    }
+    let mut approach = Xz::new(0.0, 0.0);
+    let mut k = index + 1;
+    while let Some(m) = toolpath.moves.get(k).filter(|m| m.threading && m.compensation == Compensation::Off) {
+        let start = toolpath.start_of(k);
+        let sign = |d: f64| {
+            if d > 1e-9 {
+                1.0
+            } else if d < -1e-9 {
+                -1.0
+            } else {
+                0.0
+            }
+        };
+        if approach.x == 0.0 && play.x > 0.0 {
+            approach.x = sign(m.end.x - start.x);
+        }
+        if approach.z == 0.0 && play.z > 0.0 {
+            approach.z = sign(m.end.z - start.z);
+        }
+        k += 1;
+    }
+    (approach.x != 0.0 || approach.z != 0.0).then_some(approach)
+}
+
+/// The sample of move `index` of `toolpath` at `t` (0 at its start, 1 at its end), standing
+/// for no length of path (`covers_mm` is the caller's): where a measure needs a point
+/// between the samples `sample_move` makes (the knee of a backlash take-up). None for a
+/// dwell, a rapid or a move that does not exist.
+pub fn sample_at(toolpath: &Toolpath, index: usize, tools: &ToolTable, t: f64) -> Option<PathSample> {
+    let m = toolpath.moves.get(index)?;
+    let start = toolpath.start_of(index);
+    let tip = tip_vector(tools.lookup(m.tool, m.offset).1);
+    let t = t.clamp(0.0, 1.0);
+    let (p, tangent) = match m.motion {
+        Motion::Dwell | Motion::Rapid => return None,
+        Motion::Feed => (
+            Xz::new(start.x + (m.end.x - start.x) * t, start.z + (m.end.z - start.z) * t),
+            unit(Xz::new(m.end.x - start.x, m.end.z - start.z)),
+        ),
+        Motion::Cw | Motion::Ccw => {
+            let ccw = m.motion == Motion::Ccw;
+            let a0 = geometry::angle(start, m.centre);
+            let sweep = geometry::sweep_from(a0, start, m.end, m.centre, ccw);
+            let sign = if ccw { 1.0 } else { -1.0 };
+            let angle = a0 + sign * sweep * t;
+            let p = geometry::on_circle(m.centre, start.distance(m.centre), angle);
+            (p, Xz::new(sign * angle.cos(), -sign * angle.sin()))
+        }
+    };
+    let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
+    let normal = if m.cutting { surface_normal(tangent, m, tip) } else { Xz::new(0.0, 0.0) };
+    Some(PathSample { velocity, ..sample(index, m, t, p, normal, m.cutting, tip) })
 }
 
 /// The fractions of an arc's sweep to sample at: `n` equal steps, and the points where an

@@ -3,18 +3,33 @@
 
 use crate::dialect::{DialectChoice, GCodeSystem};
 use crate::machine::{AxisPair, MachineSettings};
-use crate::semantic::{LowerOptions, Lowered, Machine, lower};
-use crate::syntax::{ParseOptions, parse};
+use crate::pipeline::{Analysed, Ready, Settings, analyse};
+use crate::semantic::{LowerOptions, Lowered, Machine};
+use crate::syntax::ParseOptions;
+use crate::toolpath::Validated;
 
-/// `program` (G-code system A) lowered with the home at X200 (diameter) Z50; it must read
-/// and lower without errors.
-pub fn lower_program(program: &str) -> (Lowered, Machine) {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(program.as_bytes(), &options);
-    assert_eq!(parsed.error_count(), 0);
+/// `program` (G-code system A) through the pipeline, with the home at X200 (diameter) Z50.
+pub fn analysed(program: &str) -> Analysed<'_> {
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), ..MachineSettings::default() };
-    let machine = Machine::from_settings(&settings);
-    let lowered = lower(&parsed.program, &machine, &LowerOptions::new(false));
-    assert!(lowered.diagnostics.iter().all(|d| !d.is_error()));
-    (lowered, machine)
+    analyse(program.as_bytes(), &Settings::new(options, &settings, LowerOptions::new(false)))
+}
+
+/// [`analysed`] for a program that must read and lower without errors, its toolpath valid.
+pub fn ready(program: &str) -> Ready<'_> {
+    match analysed(program).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!("the test program does not lower cleanly: {:?}", analysed.diagnostics),
+    }
+}
+
+/// The lowered program and the machine of [`ready`].
+pub fn lower_program(program: &str) -> (Validated<Lowered>, Machine) {
+    let ready = ready(program);
+    (ready.lowered, ready.machine)
 }

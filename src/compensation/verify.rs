@@ -17,15 +17,22 @@
 //! Spindle speeds are compared as the sequence of speed changes, because an expanded cycle
 //! writes `S` only where the speed changes.
 
+use smallvec::SmallVec;
+
+use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
+use crate::pipeline::Settings;
+use crate::semantic::Machine;
 use crate::semantic::nose_radius::ToolTable;
 use crate::source::Span;
 use crate::syntax::{CodeLetter, Program, WordKind};
-use crate::toolpath::{Toolpath, Xz};
+use crate::toolpath::{Toolpath, ValidToolpath, Xz};
 
-use super::deviation::{Figures, LocalPath};
-use super::inverse::predict;
-use super::sampling::{PathSample, sample_toolpath};
+use super::deviation::{Figures, LocalPath, Tally};
+use super::fit::{FitOptions, Strategy};
+use super::inverse::Predictor;
+use super::program::SAMPLE_STEP_MM;
+use super::sampling::{PathSample, Sampling, sample_at, sample_moves};
 
 mod follow;
 #[cfg(test)]
@@ -39,17 +46,76 @@ pub struct Deviation {
     pub before: Figures,
     pub after: Figures,
     pub improvement_percent: f64,
+    /// Where the compensated program deviates most (none when nothing of it cuts).
+    #[serde(skip)]
+    pub worst: Option<Worst>,
 }
 
-/// Predict both programs through `model` and measure them against `original`.
+/// The largest deviation of a program's predicted path, and where it is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Worst {
+    pub deviation_mm: f64,
+    /// The move of the original's path the point was measured against (its own point).
+    pub original_move: usize,
+    /// The move of the measured program the point lies on.
+    pub measured_move: usize,
+}
+
+/// How closely `verify` samples a program on `model`: as `compensate` samples it
+/// (`compensation::sampling`: one sample per line where every term of the model is affine
+/// along it, a step from the second derivative of a curved term, every 0.254 mm with axis
+/// tables, arcs at least every eighth of a turn and at their extremes), for the chord
+/// between samples to follow the model within a tenth of half the least increment
+/// (`increment_mm`), whatever tolerance the program was compensated to, over the farthest
+/// any of `toolpaths` goes from the origin (`LocalPath::reach`).
+pub fn sampling(model: &ErrorModel, increment_mm: f64, toolpaths: &[&Toolpath]) -> Sampling {
+    let reach = toolpaths
+        .iter()
+        .map(|t| LocalPath::new(t).reach())
+        .fold(Xz::new(0.0, 0.0), |a, b| Xz::new(a.x.max(b.x), a.z.max(b.z)));
+    let fit = FitOptions { strategy: Strategy::Auto, tolerance_mm: increment_mm / 2.0, step_mm: None };
+    // The written program takes up its play where it does; verify follows it as written.
+    let play = Xz::new(0.0, 0.0);
+    Sampling { max_arc_radians: Sampling::MEASURE_ARC_RADIANS, play, ..super::program::sampling(&fit, model, reach) }
+}
+
+/// Moves sampled and measured at a time: memory follows them, not the program.
+const CHUNK_MOVES: usize = 4096;
+
+/// Predict both programs through `model`, sampled as `sampling` allows, and measure them
+/// against `original`'s nominal path, along the path (each sample stands for the path from
+/// the sample before it, so the figures do not depend on how closely the path was sampled).
+/// The two are measured side by side.
 pub fn deviation(
-    original: &Toolpath,
-    compensated: &Toolpath,
+    original: ValidToolpath<'_>,
+    compensated: ValidToolpath<'_>,
     tools: &ToolTable,
     model: &ErrorModel,
-    step_mm: f64,
+    sampling: &Sampling,
 ) -> Deviation {
-    deviation_each(original, compensated, tools, model, step_mm, |_, _| {})
+    deviation_watched(original, compensated, tools, model, sampling, &|_, _| {})
+}
+
+/// `deviation`, every point measured also shown to `watch` as the two threads measure it (in
+/// path order within each program, the two programs interleaved): how far the measure has
+/// come, for a progress bar.
+pub fn deviation_watched(
+    original: ValidToolpath<'_>,
+    compensated: ValidToolpath<'_>,
+    tools: &ToolTable,
+    model: &ErrorModel,
+    sampling: &Sampling,
+    watch: &(dyn Fn(Side, &Measured) + Sync),
+) -> Deviation {
+    let (original, compensated) = (original.toolpath(), compensated.toolpath());
+    let path = LocalPath::new(original);
+    let side_by_side = original.moves.len() >= crate::parallel::tuning().measure_moves;
+    let ((after, worst), (before, _)) = crate::parallel::join_if(
+        side_by_side,
+        || measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m)),
+        || measure(original, &path, tools, model, sampling, Side::Original, &mut |side, m| watch(side, &m)),
+    );
+    figures(before, after, worst)
 }
 
 /// Which program a measured point is of.
@@ -64,7 +130,7 @@ pub enum Side {
 pub struct Measured {
     /// The sample of its own program's toolpath it was predicted for.
     pub sample: PathSample,
-    /// The index of that sample among its program's samples (cutting or not).
+    /// The index of that sample among the points its program's measure went through.
     pub sample_index: usize,
     /// Where the model puts the tool.
     pub predicted: Xz,
@@ -75,51 +141,289 @@ pub struct Measured {
     pub original_move: usize,
 }
 
-/// Both programs' deviations, every point measured also given to `each` (both programs'
-/// points in their order, the original's first): `deviation` and `report` measure with
-/// this one function, so the page's figures are `verify`'s.
+/// `deviation`, every point measured also given to `each` (the original's points first,
+/// then the compensated program's, each in path order): `deviation` and `report` measure
+/// with this one computation, so the page's figures are `verify`'s.
 pub fn deviation_each(
-    original: &Toolpath,
-    compensated: &Toolpath,
+    original: ValidToolpath<'_>,
+    compensated: ValidToolpath<'_>,
     tools: &ToolTable,
     model: &ErrorModel,
-    step_mm: f64,
+    sampling: &Sampling,
     mut each: impl FnMut(Side, Measured),
 ) -> Deviation {
-    let predicted = |toolpath: &Toolpath| {
-        let samples = sample_toolpath(toolpath, tools, step_mm);
-        let nominal: Vec<_> = samples.iter().map(|s| s.nominal).collect();
-        let predicted = predict(&samples, &nominal, toolpath.start, model);
-        (samples, predicted)
-    };
+    let (original, compensated) = (original.toolpath(), compensated.toolpath());
     let path = LocalPath::new(original);
-    let mut figures = |side: Side, toolpath: &Toolpath| {
-        let (samples, points) = predicted(toolpath);
-        let mut follower = Follower::new(&path);
-        let cutting = samples.iter().zip(&points).enumerate().filter(|(_, (s, _))| s.cutting);
-        Figures::of(cutting.filter_map(|(sample_index, (s, &p))| {
-            let found = match side {
-                Side::Original => follower.measure_from(s.move_index, s.param, p),
-                Side::Compensated => follower.measure(s.nominal, p),
-            }?;
-            each(
-                side,
-                Measured {
-                    sample: *s,
-                    sample_index,
-                    predicted: p,
-                    distance_mm: found.distance,
-                    closest: found.point,
-                    original_move: found.move_index,
-                },
-            );
-            Some(found.distance)
-        }))
-    };
-    let before = figures(Side::Original, original);
-    let after = figures(Side::Compensated, compensated);
+    let (before, _) = measure(original, &path, tools, model, sampling, Side::Original, &mut each);
+    let (after, worst) = measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut each);
+    figures(before, after, worst)
+}
+
+fn figures(before: Tally, after: Tally, worst: Option<Worst>) -> Deviation {
+    let (before, after) = (before.figures(), after.figures());
     let improvement_percent = (before.improvement_percent(&after) * 1e4).round() / 1e4;
-    Deviation { before: before.rounded(), after: after.rounded(), improvement_percent }
+    Deviation { before: before.rounded(), after: after.rounded(), improvement_percent, worst }
+}
+
+/// Sample `toolpath` as `sampling` allows, predict it through `model` as written, and tally
+/// the distance of each predicted cutting point from `path`, with its side, integrated along
+/// the path between samples (`Tally::add_signed_along`).
+///
+/// Between two samples the model is followed within the sampling's allowance, but two
+/// things bend the deviation faster than any model's term. Where a slide reverses it stands
+/// still while the command crosses its play and moves on from the knee where the command
+/// reaches the far side: each such knee on a cutting move is measured too (`knees`), with
+/// the standing slide's velocity. And round a corner the distance from the path moves from
+/// the one element to the next within a few micrometres of the corner, so a cutting move
+/// longer than two of the thesis' steps is also measured one step after its start and one
+/// before its end: the distance along the rest of it is then its own element's.
+fn measure(
+    toolpath: &Toolpath,
+    path: &LocalPath<'_>,
+    tools: &ToolTable,
+    model: &ErrorModel,
+    sampling: &Sampling,
+    side: Side,
+    each: &mut dyn FnMut(Side, Measured),
+) -> (Tally, Option<Worst>) {
+    let mut measuring = Measuring {
+        toolpath,
+        tools,
+        side,
+        each,
+        measured: 0,
+        play: model.play(),
+        follower: Follower::new(path),
+        predictor: Predictor::new(toolpath.start, model),
+        predicted: Vec::new(),
+        tally: Tally::default(),
+        previous: None,
+        worst: None,
+    };
+    let mut samples = Vec::new();
+    let count = toolpath.moves.len();
+    for first in (0..count).step_by(CHUNK_MOVES) {
+        samples.clear();
+        sample_moves(toolpath, first..(first + CHUNK_MOVES).min(count), tools, sampling, &mut samples);
+        let mut param_before = 0.0;
+        let mut move_before = usize::MAX;
+        for s in &samples {
+            let from = if s.move_index == move_before { param_before } else { 0.0 };
+            (param_before, move_before) = (s.param, s.move_index);
+            let long = longer_than_a_jog(toolpath, s.move_index, measuring.play);
+            if s.param == 0.0 && !long {
+                continue;
+            }
+            // A stretch longer than two of the thesis' steps is also measured one step in
+            // from each end where it is an end of its move (`measure`).
+            let step = SAMPLE_STEP_MM / s.covers_mm * (s.param - from);
+            let mut points: SmallVec<[(f64, f64); 2]> = SmallVec::new();
+            if s.cutting && s.param > from && s.covers_mm > 2.0 * SAMPLE_STEP_MM {
+                if from == 0.0 {
+                    points.push((from + step, SAMPLE_STEP_MM));
+                }
+                if s.param >= 1.0 {
+                    let covered = points.iter().map(|p| p.1).sum::<f64>();
+                    points.push((s.param - step, s.covers_mm - SAMPLE_STEP_MM - covered));
+                }
+            }
+            let mut at = from;
+            let mut covered = 0.0;
+            for (param, covers_mm) in points {
+                if let Some(inner) = sample_at(toolpath, s.move_index, tools, param) {
+                    measuring.sample(&PathSample { covers_mm, ..inner }, at, long);
+                    (at, covered) = (param, covered + covers_mm);
+                }
+            }
+            measuring.sample(&PathSample { covers_mm: s.covers_mm - covered, ..*s }, at, long);
+        }
+    }
+    (measuring.tally, measuring.worst)
+}
+
+/// One program's measure as it goes (`measure`).
+struct Measuring<'a, 'p, 'e> {
+    toolpath: &'a Toolpath,
+    tools: &'a ToolTable,
+    side: Side,
+    each: &'e mut dyn FnMut(Side, Measured),
+    /// How many points were measured, cutting or not (`Measured::sample_index`).
+    measured: usize,
+    play: Xz,
+    follower: Follower<'p>,
+    predictor: Predictor<'a>,
+    predicted: Vec<Xz>,
+    tally: Tally,
+    /// The distance, with its side, measured at the sample before, and that sample's move
+    /// (none after a sample that does not cut).
+    previous: Option<(f64, usize)>,
+    worst: Option<Worst>,
+}
+
+impl Measuring<'_, '_, '_> {
+    /// Measure `s`, reached from the point at `from` of its move, with the knees of a
+    /// take-up on the way where the move is `long` enough to cut past its play.
+    fn sample(&mut self, s: &PathSample, from: f64, long: bool) {
+        let play = self.play;
+        if (play.x > 0.0 || play.z > 0.0) && s.cutting && long {
+            let (take_up, slide) = self.predictor.take_up(s.nominal);
+            if take_up.x != 0.0 || take_up.z != 0.0 {
+                let mut rest = *s;
+                for mut knee in knees(self.toolpath, self.tools, s, from, take_up, slide, play) {
+                    let share = (knee.param - from) / (s.param - from).max(f64::MIN_POSITIVE);
+                    knee.covers_mm = s.covers_mm * share.clamp(0.0, 1.0) - (s.covers_mm - rest.covers_mm);
+                    rest.covers_mm -= knee.covers_mm;
+                    self.one(&knee);
+                }
+                self.one(&rest);
+                return;
+            }
+        }
+        self.one(s);
+    }
+
+    /// Predict and tally one sample.
+    fn one(&mut self, s: &PathSample) {
+        self.predicted.clear();
+        self.predictor.predict_nominal(std::slice::from_ref(s), &[], &mut self.predicted);
+        let Some(&p) = self.predicted.first().filter(|_| s.cutting) else {
+            self.measured += 1;
+            self.previous = None;
+            return;
+        };
+        let sample_index = self.measured;
+        self.measured += 1;
+        let found = match self.side {
+            Side::Original => self.follower.measure_from(s.move_index, s.param, p),
+            Side::Compensated => self.follower.measure(s.nominal, p),
+        };
+        let Some(found) = found else {
+            self.previous = None;
+            return;
+        };
+        (self.each)(
+            self.side,
+            Measured {
+                sample: *s,
+                sample_index,
+                predicted: p,
+                distance_mm: found.distance,
+                closest: found.point,
+                original_move: found.move_index,
+            },
+        );
+        let signed = found.distance * self.follower.side(&found, p);
+        let d = signed.abs();
+        // The side keeps its meaning along one move only: round a corner the part's surface
+        // may lie on the other side of the travel, so across one the distances are taken as
+        // they are, without a side.
+        let previous = match self.previous {
+            Some((before, k)) if k == s.move_index => Some(before),
+            Some((before, _)) => Some(before.abs().copysign(signed)),
+            None => None,
+        };
+        self.tally.add_signed_along(signed, previous, s.covers_mm / SAMPLE_STEP_MM);
+        if self.worst.is_none_or(|w| d > w.deviation_mm) {
+            let original_move = self.follower.matched_move();
+            self.worst = Some(Worst { deviation_mm: d, original_move, measured_move: s.move_index });
+        }
+        self.previous = Some((signed, s.move_index));
+    }
+}
+
+/// Moves at most this long (mm) are measured at their end only, unless a play is longer:
+/// `compensate` writes such moves at reversals and corners, where the tool stands still but
+/// for the slides' last micrometres, and the model's terms of velocity (a loop lag in steady
+/// motion) do not describe a move of a few micrometres at a knee or at its start.
+const JOG_MM: f64 = 0.01;
+
+/// Whether move `index` is longer than a jog (`JOG_MM`, or four times the larger play): long
+/// enough for the tool to cut along the part while a reversing slide stands in its play.
+fn longer_than_a_jog(toolpath: &Toolpath, index: usize, play: Xz) -> bool {
+    let jog = JOG_MM.max(4.0 * play.x.max(play.z));
+    toolpath.moves.get(index).is_some_and(|m| toolpath.start_of(index).distance(m.end) > jog)
+}
+
+/// The knees of a take-up on the way to the cutting sample `s` from the point at `from`
+/// of its move: for each axis that reverses there (`take_up`, from the slides at `slide`),
+/// the sample where the command reaches the far side of the play, in path order.
+fn knees(
+    toolpath: &Toolpath,
+    tools: &ToolTable,
+    s: &PathSample,
+    from: f64,
+    take_up: Xz,
+    slide: Xz,
+    play: Xz,
+) -> SmallVec<[PathSample; 2]> {
+    let mut out: SmallVec<[PathSample; 2]> = SmallVec::new();
+    let axes = [(take_up.x, slide.x, play.x, 0), (take_up.z, slide.z, play.z, 1)];
+    for (take_up, slide, play, axis) in axes {
+        if take_up == 0.0 {
+            continue;
+        }
+        let edge = slide + take_up.signum() * play / 2.0;
+        let past = |t: f64| {
+            sample_at(toolpath, s.move_index, tools, t).map(|k| {
+                let at = if axis == 0 { k.nominal.x } else { k.nominal.z };
+                (at - edge) * take_up.signum() >= 0.0
+            })
+        };
+        // Between two samples an axis moves one way (an arc's extremes are samples), so the
+        // command crosses the edge once: found by halving.
+        let (mut low, mut high) = (from, s.param);
+        if past(low) != Some(false) || past(high) != Some(true) {
+            continue;
+        }
+        for _ in 0..48 {
+            let middle = (low + high) / 2.0;
+            if past(middle) == Some(true) { high = middle } else { low = middle }
+        }
+        if let Some(mut knee) = sample_at(toolpath, s.move_index, tools, high) {
+            // The reversing slide has stood still up to the knee: it moves with no velocity
+            // of its own there (a loop lag follows the slide, not the command inside the play).
+            if axis == 0 {
+                knee.velocity.x = 0.0
+            } else {
+                knee.velocity.z = 0.0
+            }
+            out.push(knee);
+        }
+    }
+    out.sort_by(|a, b| a.param.total_cmp(&b.param));
+    out
+}
+
+/// What `compensate` checks before it writes: `written`, the program it is about to write,
+/// read back as the control reads it (through `pipeline::analyse`, with the settings the
+/// original was read with)
+/// and measured against `original`'s nominal path by `turnpass verify`'s own computation
+/// (`deviation`, `sampling`), so that the figures it reports are the ones verify finds, with
+/// verify's check of the feed and spindle words (`check_feeds`).
+/// `Err` holds what did not read back: a defect of turnpass, never of the program.
+pub fn check_written(
+    original: ValidToolpath<'_>,
+    written: &[u8],
+    reading: &Settings,
+    tools: &ToolTable,
+    model: &ErrorModel,
+) -> Result<(Deviation, Option<FeedChange>), Vec<Diagnostic>> {
+    let read = match crate::pipeline::analyse(written, reading).ready() {
+        Ok(read) => read,
+        Err(analysed) => {
+            let errors: Vec<Diagnostic> = analysed.diagnostics.iter().filter(|d| d.is_error()).cloned().collect();
+            return Err(if errors.is_empty() { analysed.diagnostics } else { errors });
+        }
+    };
+    let toolpath = read.valid();
+    let machine = &reading.machine;
+    let sampling = sampling(model, machine.increment * machine.scale(), &[&original, &toolpath]);
+    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(&original, &toolpath)))
+}
+
+/// The deviation `verify` allows by default: two least increments, mm.
+pub fn default_bound_mm(machine: &Machine) -> f64 {
+    2.0 * machine.increment * machine.scale()
 }
 
 /// A word of the original that the compensated program lost (or moved out of order).
@@ -205,4 +509,49 @@ fn first_missing<T>(wanted: &[(T, Span)], found: &[(T, Span)], same: impl Fn(&T,
         }
     }
     None
+}
+
+/// A cut whose feed or spindle words the compensated program changed: the original's move
+/// (its block) and the words each program cuts with there (`None`: it has no such cut).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeedChange {
+    pub source: Span,
+    pub original: Option<CutWords>,
+    pub compensated: Option<CutWords>,
+}
+
+/// The feed and spindle words a cut runs with, as the program writes them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CutWords {
+    pub feed: f64,
+    pub per_revolution: bool,
+    pub speed: f64,
+    pub threading: bool,
+}
+
+/// Check that `compensated` cuts with the feed and spindle words `original` cuts with, in the
+/// order it runs them. Compensation moves end points, splits moves and writes take-ups, so
+/// moves are not matched one for one: the runs of equal words along the cutting moves, in
+/// execution order, must be the same runs. Rapids and dwells carry no feed and are skipped.
+pub fn check_feeds(original: &Toolpath, compensated: &Toolpath) -> Option<FeedChange> {
+    fn runs(toolpath: &Toolpath) -> Vec<(CutWords, Span)> {
+        let mut runs: Vec<(CutWords, Span)> = Vec::new();
+        for m in toolpath.moves.iter().filter(|m| m.cutting && m.motion != crate::toolpath::Motion::Dwell) {
+            let words =
+                CutWords { feed: m.f_word, per_revolution: m.per_revolution, speed: m.s_word, threading: m.threading };
+            if runs.last().is_none_or(|(last, _)| *last != words) {
+                runs.push((words, m.source));
+            }
+        }
+        runs
+    }
+    let (wanted, found) = (runs(original), runs(compensated));
+    let at = (0..wanted.len().max(found.len())).find(|&k| wanted.get(k).map(|r| r.0) != found.get(k).map(|r| r.0))?;
+    // Past the end of the shorter list, the words its last cut runs with go on.
+    let (original, compensated) = (wanted.get(at).or(wanted.last()), found.get(at).or(found.last()));
+    Some(FeedChange {
+        source: original.map_or(Span::SYNTHETIC, |r| r.1),
+        original: original.map(|r| r.0),
+        compensated: compensated.map(|r| r.0),
+    })
 }

@@ -34,12 +34,14 @@ pub struct Breakdown {
 }
 
 /// Group `residual` (one value per point of `forward`), the points' machine state taken
-/// from `states` (the working model's simulation).
-pub fn breakdown(forward: &Forward, states: &[Sample], residual: &[f64]) -> Breakdown {
+/// from `states` (the working model's simulation); the points `kept` marks false (the
+/// outliers) count nowhere.
+pub fn breakdown(forward: &Forward, states: &[Sample], residual: &[f64], kept: &[bool]) -> Breakdown {
     let n = forward.points.len().min(states.len()).min(residual.len());
+    let counts = |i: usize| kept.get(i).copied().unwrap_or(true);
     let label_by = |label: &dyn Fn(usize) -> Vec<String>| -> Vec<Group> {
         let mut groups: Vec<(String, Vec<f64>)> = Vec::new();
-        for (i, &r) in residual.iter().enumerate().take(n) {
+        for (i, &r) in residual.iter().enumerate().take(n).filter(|(i, _)| counts(*i)) {
             for l in label(i) {
                 match groups.iter_mut().find(|(g, _)| *g == l) {
                     Some((_, values)) => values.push(r),
@@ -127,7 +129,7 @@ pub fn breakdown(forward: &Forward, states: &[Sample], residual: &[f64]) -> Brea
         states[..n].iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| (lo.min(s.t_min), hi.max(s.t_min)));
     let span = (t1 - t0).max(1e-9);
     let mut bins: Vec<Vec<f64>> = vec![Vec::new(); TIME_BINS];
-    for i in 0..n {
+    for i in (0..n).filter(|&i| counts(i)) {
         let k = (((states[i].t_min - t0) / span * TIME_BINS as f64).floor() as usize).min(TIME_BINS - 1);
         bins[k].push(residual[i]);
     }

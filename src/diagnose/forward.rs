@@ -41,7 +41,7 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Lowered, Machine};
 use crate::source::LineIndex;
 use crate::syntax::Program;
-use crate::toolpath::{Motion, Move, Toolpath, Xz};
+use crate::toolpath::{Motion, Move, Toolpath, Validated, Xz};
 
 use super::measured::{Direction, Kind, Measured};
 
@@ -60,15 +60,16 @@ pub struct Nominal {
 }
 
 impl Nominal {
-    pub fn new(program: &Program<'_>, lowered: &Lowered, toolpath: &Toolpath, machine: &Machine) -> Nominal {
+    /// The nominal program of a validated lowering.
+    pub fn new(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Machine) -> Nominal {
+        let toolpath = lowered.valid().toolpath();
         let lines = LineIndex::new(program.source());
         let move_lines = toolpath
             .moves
             .iter()
             .map(|m| if m.source.is_synthetic() { 0 } else { lines.position(m.source.start).0 })
             .collect();
-        let finishing =
-            crate::simulation::finishing_moves(program, lowered, toolpath).into_iter().map(|(_, r)| r).collect();
+        let finishing = crate::simulation::finishing_moves(program, lowered).into_iter().map(|(_, r)| r).collect();
         Nominal {
             toolpath: toolpath.clone(),
             tools: ToolTable::from_machine(machine),

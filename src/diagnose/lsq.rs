@@ -77,6 +77,12 @@ impl Base {
         }
     }
 
+    /// `Qᵀa` for a column given by its nonzero entries `(row, value)`: its coordinates in
+    /// the basis, so that a sparse column's projection costs its entries, not its length.
+    pub fn coordinates_sparse(&self, entries: &[(usize, f64)]) -> Vec<f64> {
+        self.q.iter().map(|q| entries.iter().map(|&(i, a)| q[i] * a).sum()).collect()
+    }
+
     pub fn residual_of(&self, v: &[f64]) -> Vec<f64> {
         let mut out = v.to_vec();
         self.project_out(&mut out);

@@ -9,12 +9,17 @@ use super::advice::shown_by;
 use super::breakdown::{Breakdown, Group, breakdown};
 use super::forward::Forward;
 use super::iso230_4::{Figures, figures};
+use super::measured::Axis;
 use super::measured::{Direction, Kind};
-use super::workflow::{Diagnosis, Param, Ranked, Stop, shrink};
+use super::unexplained::{Quantity, Unexplained};
+use super::workflow::{Diagnosis, OUTLIER_SIGMAS, Param, Ranked, Stop, shrink};
 
-/// The JSON report: `{"iterations":[{"effect","params","rms_before_mm","rms_after_mm"}],
+/// The JSON report: `{"iterations":[{"effect","stale","params","rms_before_mm",
+/// "rms_after_mm","p_value","delta_bic","refitted","dropped"}], "updated":[{"effect",
+/// "params"}], "outliers":[{"line","residual_mm","sigmas"}], "unexplained", "stop",
 /// "rms_before_mm","rms_after_mm","noise_floor_mm","confounded"}`; each parameter is
-/// `{"value", "sigma"}` (`sigma` null for a value from the machine settings).
+/// `{"value", "sigma"}` (`sigma` null for a value from the machine settings or kept from
+/// the model), with `"previous"` for a stale value's; a p-value below 1e-300 is 0.
 pub fn json(d: &Diagnosis) -> Value {
     let iterations: Vec<Value> = d
         .iterations
@@ -22,14 +27,30 @@ pub fn json(d: &Diagnosis) -> Value {
         .map(|it| {
             json!({
                 "effect": it.effect.name(),
+                "stale": it.stale.is_some(),
                 "params": params_json(&it.params),
                 "rms_before_mm": it.rms_before_mm,
                 "rms_after_mm": it.rms_after_mm,
+                "p_value": it.p_value,
+                "delta_bic": it.delta_bic,
+                "refitted": it.refitted,
+                "dropped": it.dropped,
             })
         })
         .collect();
+    let updated: Vec<Value> =
+        d.updated.iter().map(|u| json!({ "effect": u.new.name(), "params": params_json(&u.params) })).collect();
+    let outliers: Vec<Value> = d
+        .outliers
+        .iter()
+        .map(|o| json!({ "line": o.line, "residual_mm": o.residual_mm, "sigmas": finite(o.sigmas) }))
+        .collect();
     json!({
         "iterations": iterations,
+        "updated": updated,
+        "outliers": outliers,
+        "unexplained": d.unexplained,
+        "stop": d.stop,
         "rms_before_mm": d.rms_before_mm(),
         "rms_after_mm": d.rms_after_mm(),
         "noise_floor_mm": d.noise_floor_mm,
@@ -37,12 +58,25 @@ pub fn json(d: &Diagnosis) -> Value {
     })
 }
 
+fn finite(value: f64) -> Value {
+    if value.is_finite() { json!(value) } else { Value::Null }
+}
+
 fn params_json(params: &[Param]) -> Value {
     let mut map = Map::new();
     for p in params {
-        map.insert(p.name.clone(), json!({ "value": p.value, "sigma": p.sigma }));
+        let mut entry = json!({ "value": p.value, "sigma": p.sigma });
+        if let Some(previous) = p.previous {
+            entry["previous"] = json!(previous);
+        }
+        map.insert(p.name.clone(), entry);
     }
     Value::Object(map)
+}
+
+/// A p-value as the report prints it: below what a double holds reliably, as a bound.
+pub fn p_text(p: f64) -> String {
+    if p < 1e-300 { "p < 1e-300".to_string() } else { format!("p = {p:.1e}") }
 }
 
 fn um(mm: f64) -> f64 {
@@ -73,8 +107,24 @@ fn significant(value: f64, digits: i32) -> String {
     format!("{value:.decimals$}")
 }
 
+/// A value as a model file writes it: the shortest text that reads back as the value
+/// rounded to six significant digits (`0.004`, not `0.0040000`).
+pub fn as_written(value: f64) -> String {
+    let rounded: f64 = format!("{value:.5e}").parse().unwrap_or(value);
+    format!("{rounded}")
+}
+
 fn params_text(params: &[Param]) -> String {
-    params.iter().map(|p| format!("{} = {}", p.name, value_with_sigma(p.value, p.sigma))).collect::<Vec<_>>().join(", ")
+    params
+        .iter()
+        .map(|p| match p.previous {
+            // A stale value's parameter kept from the model is not news.
+            Some(previous) if p.sigma.is_none() => format!("{} {} (kept)", p.name, as_written(previous)),
+            Some(previous) => format!("{} {} → {}", p.name, as_written(previous), value_with_sigma(p.value, p.sigma)),
+            None => format!("{} = {}", p.name, value_with_sigma(p.value, p.sigma)),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The report for a machinist.
@@ -102,7 +152,7 @@ pub fn human(d: &Diagnosis) -> String {
     );
     let _ = writeln!(out);
 
-    let before = breakdown(f, &d.simulated_before.states, &d.residual_before);
+    let before = breakdown(f, &d.simulated_before.states, &d.residual_before, &d.kept);
     let _ = writeln!(out, "Where the working model and the measurement disagree (residual before, µm):");
     write_breakdown(&mut out, &before, f.kind);
 
@@ -111,18 +161,41 @@ pub fn human(d: &Diagnosis) -> String {
         write_iso(&mut out, d);
     }
 
+    if !d.outliers.is_empty() {
+        let _ = writeln!(out);
+        let _ = writeln!(
+            out,
+            "Outliers: {} point{} departing from the median of their neighbours along the path by more than \
+             {OUTLIER_SIGMAS} σ of the noise, excluded from every fit and figure:",
+            d.outliers.len(),
+            if d.outliers.len() == 1 { "" } else { "s" }
+        );
+        for o in &d.outliers {
+            let _ = writeln!(out, "  line {:<6} residual {:>8.2} µm ({:.0} σ)", o.line, um(o.residual_mm), o.sigmas);
+        }
+    }
+
     let _ = writeln!(out);
     if d.iterations.is_empty() {
         let _ = writeln!(out, "No effect added.");
     } else {
-        let _ = writeln!(out, "Iterations (µm):");
-        let _ = writeln!(out, "  #  effect            RMS before → after   peak before → after   shrink   parameters");
+        let _ = writeln!(
+            out,
+            "Iterations (RMS and peak of the residual in µm; parameters as the model file writes them, lengths in mm):"
+        );
+        let name = |it: &super::workflow::Iteration| match it.stale {
+            Some(_) => format!("{} (stale)", it.effect.name()),
+            None => it.effect.name().to_string(),
+        };
+        let width = d.iterations.iter().map(|it| name(it).chars().count()).max().unwrap_or(0).max(17);
+        let _ =
+            writeln!(out, "  #  {:<width$} RMS before → after   peak before → after   shrink   parameters", "effect");
         for (k, it) in d.iterations.iter().enumerate() {
             let _ = writeln!(
                 out,
-                "  {:<2} {:<17} {:>6.2} → {:<6.2}        {:>6.2} → {:<6.2}        {:>5.1} %  {}",
+                "  {:<2} {:<width$} {:>6.2} → {:<6.2}        {:>6.2} → {:<6.2}        {:>5.1} %  {}",
                 k + 1,
-                it.effect.name(),
+                name(it),
                 um(it.rms_before_mm),
                 um(it.rms_after_mm),
                 um(it.peak_before_mm),
@@ -132,17 +205,31 @@ pub fn human(d: &Diagnosis) -> String {
             );
             let _ = writeln!(
                 out,
-                "     F = {:.1}, p = {:.1e}, ΔBIC = {:.1}; ranking: {}",
+                "     F = {:.1}, {}, ΔBIC = {:.1}; ranking: {}",
                 it.f,
-                it.p_value,
+                p_text(it.p_value),
                 it.delta_bic,
                 ranking_text(&it.ranking, 4)
             );
+            for r in &it.refitted {
+                let _ = writeln!(
+                    out,
+                    "     refitted beside it: {} {} {} → {}",
+                    r.effect,
+                    r.param,
+                    significant(r.before, 5),
+                    significant(r.after, 5)
+                );
+            }
+            for dropped in &it.dropped {
+                let what = if dropped.stale { "reverted to the model's value" } else { "dropped" };
+                let _ = writeln!(out, "     {} {what}: no longer significant ({})", dropped.effect, dropped.reason);
+            }
         }
     }
     let stop = match d.stop {
         Stop::NoiseFloor => "the residual is at the noise floor",
-        Stop::NothingSignificant => "no candidate is significant",
+        Stop::NothingSignificant => "no candidate is significant and determined",
         Stop::Confounded => "the best candidates cannot be told apart",
         Stop::IterationLimit => "the iteration limit",
     };
@@ -161,16 +248,40 @@ pub fn human(d: &Diagnosis) -> String {
     let absorbed: Vec<String> = d
         .last_ranking
         .iter()
-        .filter(|r| r.status.starts_with("aliased"))
+        .filter(|r| !r.stale && r.status.starts_with("aliased"))
         .map(|r| format!("{} ({})", r.effect, shown_by(r.effect, f.kind)))
         .collect();
     if !absorbed.is_empty() {
         let _ = writeln!(out, "Absorbed by the set-up terms here: {}.", absorbed.join("; "));
     }
     let silent: Vec<&str> =
-        d.last_ranking.iter().filter(|r| r.status.starts_with("no signature")).map(|r| r.effect).collect();
+        d.last_ranking.iter().filter(|r| !r.stale && r.status.starts_with("no signature")).map(|r| r.effect).collect();
     if !silent.is_empty() {
         let _ = writeln!(out, "No signature in this measurement: {}.", silent.join(", "));
+    }
+    let unchecked: Vec<&str> = d
+        .last_ranking
+        .iter()
+        .filter(|r| r.stale && (r.status.starts_with("aliased") || r.status.starts_with("no signature")))
+        .map(|r| r.effect)
+        .collect();
+    if !unchecked.is_empty() {
+        let _ = writeln!(
+            out,
+            "The working model's own effects this measurement cannot check (set-up terms absorb them, or it does \
+             not see them): {}.",
+            unchecked.join(", ")
+        );
+    }
+    if !d.updated.is_empty() {
+        let _ = writeln!(out);
+        let _ = writeln!(out, "Stale values of the working model (the model's value → the data's):");
+        for u in &d.updated {
+            let _ = writeln!(out, "  {} {}", u.new.name(), params_text(&u.params));
+        }
+    }
+    if let Some(u) = &d.unexplained {
+        write_unexplained(&mut out, u);
     }
     let _ = writeln!(out);
     let _ = writeln!(
@@ -185,12 +296,63 @@ pub fn human(d: &Diagnosis) -> String {
     out
 }
 
+fn write_unexplained(out: &mut String, u: &Unexplained) {
+    let _ = writeln!(out);
+    let _ = writeln!(
+        out,
+        "Unexplained: a residual of {:.2} µm RMS remains, {:.1} × the noise floor, and no effect of the catalogue \
+         explains it.",
+        um(u.rms_mm),
+        u.rms_mm / u.noise_floor_mm.max(f64::MIN_POSITIVE)
+    );
+    if !u.places.is_empty() {
+        let places: Vec<String> =
+            u.places.iter().map(|g| format!("{} ({:.2} µm RMS)", g.label, um(g.rms_mm))).collect();
+        let _ = writeln!(out, "  It is largest at: {}.", places.join("; "));
+    }
+    match (&u.table, &u.no_table) {
+        (Some(t), _) => {
+            let (first, last) = (t.targets.first().copied().unwrap_or(0.0), t.targets.last().copied().unwrap_or(0.0));
+            let what = match t.quantity {
+                Quantity::Straightness => {
+                    let across = if t.axis == Axis::Z { "X" } else { "Z" };
+                    format!("straightness ({across} displaced as {} travels)", t.axis.letter())
+                }
+                Quantity::Positioning => format!("positioning error (along {})", t.axis.letter()),
+            };
+            let _ = writeln!(
+                out,
+                "  As a measured table it is the {} slide's {what}: {} targets {} mm apart from {first:.1} to {last:.1} \
+                 mm, explaining {:.1} % ({}, ΔBIC = {:.1}); with it the model leaves {:.2} µm RMS.",
+                t.axis.letter(),
+                t.targets.len(),
+                t.spacing_mm,
+                t.explained_percent,
+                p_text(t.p_value),
+                t.delta_bic,
+                um(t.rms_after_mm)
+            );
+            let _ = writeln!(
+                out,
+                "  --write-model writes it as an [[axis_table]] (axis = \"{}\", {}), valid over the span measured: \
+                 beyond it the table holds its end values.",
+                t.axis_name(),
+                t.quantity.column()
+            );
+        }
+        (None, Some(why)) => {
+            let _ = writeln!(out, "  No measured table holds it: {why}.");
+        }
+        (None, None) => {}
+    }
+}
+
 fn ranking_text(ranking: &[Ranked], count: usize) -> String {
     let shown: Vec<String> = ranking
         .iter()
         .filter(|r| !r.status.starts_with("no signature") && !r.status.starts_with("aliased"))
         .take(count)
-        .map(|r| format!("{} {:.1} ({:.1} %, {})", r.effect, r.delta_bic, r.explained_percent, r.status))
+        .map(|r| format!("{} {:.1} ({:.1} %, {})", r.label(), r.delta_bic, r.explained_percent, r.status))
         .collect();
     shown.join(", ")
 }

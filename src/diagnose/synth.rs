@@ -7,6 +7,8 @@
 //! interferometer table has both directions at each target. The readings
 //! are the forward model's (`forward.rs`) on the truth model, with no set-up error, plus
 //! normal noise of `noise_mm` from a seeded generator: the same seed gives the same file.
+//! `glitches` readings, chosen by a generator of their own from the same seed (so the
+//! other readings keep their noise), are off by `glitch_mm` either way: a probe's glitches.
 
 use std::fmt::Write as _;
 
@@ -30,6 +32,9 @@ pub struct SynthOptions {
     pub parts: Vec<Option<f64>>,
     /// Interferometer table: the targets, mm along the slide.
     pub targets: Vec<f64>,
+    /// How many readings are glitches, and by how much (either sign), mm.
+    pub glitches: usize,
+    pub glitch_mm: f64,
 }
 
 impl Default for SynthOptions {
@@ -41,6 +46,8 @@ impl Default for SynthOptions {
             spacing_mm: 0.5,
             parts: vec![None],
             targets: (0..=20).map(|k| f64::from(k) * 5.0).collect(),
+            glitches: 0,
+            glitch_mm: 0.025,
         }
     }
 }
@@ -98,6 +105,8 @@ pub fn synth(
                 down_sigma: vec![0.0; n],
                 up_measured: vec![true; n],
                 down_measured: vec![true; n],
+                up_runs: vec![1; n],
+                down_runs: vec![1; n],
             };
             let table = SlideTable { linear: Some(profile.clone()), straightness: Some(profile), angular: None };
             Measured::Table { axis, table: Box::new(table) }
@@ -107,6 +116,9 @@ pub fn synth(
     let simulated = forward.simulate(truth);
     let mut noise = Noise::new(options.seed);
     let mut readings: Vec<f64> = simulated.readings.iter().map(|r| r + noise.normal(options.noise_mm)).collect();
+    for (i, sign) in glitches(readings.len(), options.glitches, options.seed) {
+        readings[i] += sign * options.glitch_mm;
+    }
     readings.iter_mut().for_each(|r| *r = (*r * 1e7).round() / 1e7);
     Ok(match template {
         Measured::BallBar(rows) => Measured::BallBar(
@@ -146,6 +158,22 @@ pub fn synth(
 /// circle.
 pub fn finest_step_deg(nominal: &Nominal, increment_mm: f64) -> Option<f64> {
     super::forward::smallest_radius(nominal).map(|radius| (increment_mm / radius).to_degrees())
+}
+
+/// `count` distinct readings of `n` (in order) and the sign of each one's glitch, from a
+/// generator of their own for `seed`.
+pub fn glitches(n: usize, count: usize, seed: u64) -> Vec<(usize, f64)> {
+    let mut pick = Noise::new(seed ^ 0x6C69_7463_6867);
+    let mut out: Vec<(usize, f64)> = Vec::new();
+    while out.len() < count.min(n) {
+        let i = ((pick.uniform() * n as f64) as usize).min(n - 1);
+        let sign = if pick.uniform() < 0.5 { -1.0 } else { 1.0 };
+        if !out.iter().any(|(j, _)| *j == i) {
+            out.push((i, sign));
+        }
+    }
+    out.sort_by_key(|(i, _)| *i);
+    out
 }
 
 /// A measurement as the CSV `diagnose` reads.

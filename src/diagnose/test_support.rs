@@ -3,9 +3,9 @@
 use crate::diagnose::forward::Nominal;
 use crate::dialect::{DialectChoice, GCodeSystem};
 use crate::machine::{AxisPair, MachineSettings, ToolSettings};
-use crate::semantic::{LowerOptions, Machine, lower};
-use crate::syntax::{ParseOptions, parse};
-use crate::toolpath::validate;
+use crate::pipeline::{Settings, analyse};
+use crate::semantic::LowerOptions;
+use crate::syntax::ParseOptions;
 
 /// A ball bar test on a lathe: a 50 mm circle about x 50 z −50, run G03 then G02 at
 /// 1000 mm/min, starting and ending at the top of the circle (angle 0, +Z).
@@ -52,12 +52,15 @@ pub fn settings() -> MachineSettings {
 }
 
 pub fn nominal(text: &str) -> Nominal {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(text.as_bytes(), &options);
-    assert_eq!(parsed.error_count(), 0);
-    let machine = Machine::from_settings(&settings());
-    let lowered = lower(&parsed.program, &machine, &LowerOptions::new(false));
-    assert!(lowered.diagnostics.iter().all(|d| !d.is_error()), "{:?}", lowered.diagnostics);
-    let valid = validate(&lowered.toolpath, machine.limits).unwrap();
-    Nominal::new(&parsed.program, &lowered, &valid, &machine)
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
+    let analysed = analyse(text.as_bytes(), &Settings::new(options, &settings(), LowerOptions::new(false)));
+    match analysed.ready() {
+        Ok(ready) => Nominal::new(ready.program(), &ready.lowered, &ready.machine),
+        Err(analysed) => panic!("the test program does not lower cleanly: {:?}", analysed.diagnostics),
+    }
 }

@@ -46,6 +46,36 @@ impl DiagnosticKind {
                 label: "not valid here".into(),
                 hint: Some(format!("write `{}`", found.to_ascii_uppercase()).into()),
             },
+            TextOutsideComment { text } => Words {
+                code: "text-outside-comment",
+                message: format!("`{text}` reads as words, not as a block").into(),
+                label: "not a block".into(),
+                hint: Some(format!("a note belongs in a comment, `({text})`; the control rejects the line as it stands").into()),
+            },
+            LetterForDigit { found, digit } => Words {
+                code: "letter-for-digit",
+                message: format!("letter `{found}` inside a number").into(),
+                label: format!("letter {found}").into(),
+                hint: Some(format!("a misread `{digit}`? write `{digit}`").into()),
+            },
+            TapeLeader => Words {
+                code: "tape-leader",
+                message: "text before the program: a tape leader, which the control skips when the tape's `%` follows it".into(),
+                label: "tape leader".into(),
+                hint: Some("a note belongs in a comment `( … )`; a control that reads this file with no `%` after the line rejects it".into()),
+            },
+            DependsOnDamagedBlock { what } => Words {
+                code: "depends-on-damaged-block",
+                message: format!("not checked: {what} a block that does not parse").into(),
+                label: "not checked".into(),
+                hint: Some("fix the block's parse error; this is checked then".into()),
+            },
+            LeaderWithoutTape => Words {
+                code: "not-a-block",
+                message: "this line does not read as a block, and no `%` follows it to make it a tape leader the control skips".into(),
+                label: "not a block".into(),
+                hint: Some("put the text in a comment `( … )`, or a `%` line after it if it is a tape leader".into()),
+            },
             NulByte => Words {
                 code: "nul-byte",
                 message: "NUL byte outside a comment".into(),
@@ -269,6 +299,18 @@ impl DiagnosticKind {
                 label: "second time".into(),
                 hint: Some("remove one of them".into()),
             },
+            AxisGivenTwice { position, distance, axis } => Words {
+                code: "axis-given-twice",
+                message: format!("`{position}` and `{distance}` both give the {axis} end point in this block").into(),
+                label: "second end point".into(),
+                hint: Some(
+                    format!(
+                        "keep one: `{position}` for the position, `{distance}` for the distance moved; controls \
+                         differ on which wins (a `W` or `U` at the start of a block may be a misread `N`)"
+                    )
+                    .into(),
+                ),
+            },
             SemicolonInOsp => Words {
                 code: "semicolon-in-osp",
                 message: "`;` is not a comment on Okuma OSP".into(),
@@ -457,11 +499,23 @@ impl DiagnosticKind {
                 label: "here".into(),
                 hint: None,
             },
-            NotExpandable => Words {
+            NotExpandable { reason } => Words {
                 code: "not-expandable",
-                message: "this cycle is left as it is: its thread moves have no plain-block form in this dialect".into(),
+                message: format!("this cycle is left as it is: {reason}").into(),
                 label: "kept".into(),
                 hint: None,
+            },
+            ManualRetract => Words {
+                code: "manual-retract",
+                message: "the cycle stops at the bottom of the hole for the operator to take the tool out by hand; the toolpath takes it straight out at the rapid rate".into(),
+                label: "manual retract".into(),
+                hint: None,
+            },
+            DrillPeckNotPositive => Words {
+                code: "drill-peck-not-positive",
+                message: "the depth of each peck is zero: the drill would never reach the bottom".into(),
+                label: "peck depth".into(),
+                hint: Some("give the depth of each peck (`Q`; on Haas `Q`, or `I` with `J` and `K`), or leave it out to drill in one feed".into()),
             },
             CorrectionTooLarge { shift_mm, max_mm } => Words {
                 code: "correction-too-large",
@@ -516,6 +570,45 @@ impl DiagnosticKind {
                         .into(),
                 ),
             },
+            CompensationFailsCheck { deviation_mm, bound_mm, tolerance_mm } => Words {
+                code: "compensation-fails-check",
+                message: format!(
+                    "the compensated program, read back and predicted on the model as `turnpass verify` predicts \
+                     it, would cut this block {deviation_mm:.5} mm off the nominal part, more than the {bound_mm:.5} \
+                     mm verify allows; no compensated program is written"
+                )
+                .into(),
+                label: format!("off by {:.2} µm", deviation_mm * 1000.0).into(),
+                hint: Some(if tolerance_mm > bound_mm {
+                    format!(
+                        "--tolerance {tolerance_mm} mm lets the written path stray further than verify allows: give a \
+                         tolerance below {bound_mm:.5} mm, or a larger --max-deviation if the part allows it"
+                    )
+                    .into()
+                } else {
+                    "turnpass cannot compensate this block on this model within the bound: try another --strategy \
+                     or --tolerance, check the model, or run the program uncompensated; please report it with the \
+                     program and the model"
+                        .into()
+                }),
+            },
+            CompensationChangesFeed => Words {
+                code: "compensation-changes-feed",
+                message: "the compensated program would cut this block with other feed or spindle words; no \
+                          compensated program is written"
+                    .into(),
+                label: "this cut".into(),
+                hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
+            },
+            CompensationUnreadable { problem } => Words {
+                code: "compensation-unreadable",
+                message: format!(
+                    "the compensated program does not read back cleanly ({problem}); no compensated program is written"
+                )
+                .into(),
+                label: "from here".into(),
+                hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
+            },
             CycleNeedsDepth => Words {
                 code: "cycle-needs-depth",
                 message: "the roughing cycle has no depth of cut".into(),
@@ -561,13 +654,13 @@ impl DiagnosticKind {
             ProfileReverses { axis } => Words {
                 code: "profile-reverses",
                 message: format!("the profile turns back in {axis}; the roughing cycle cannot cut it").into(),
-                label: "this cycle".into(),
+                label: "the profile turns back here".into(),
                 hint: Some("split the profile, or rough the undercut with another cycle (G73)".into()),
             },
             ProfileNotMonotonic { axis } => Words {
                 code: "profile-not-monotonic",
                 message: format!("the profile is not monotonic in {axis}, which a Type I roughing cycle requires").into(),
-                label: "this cycle".into(),
+                label: "the profile turns back here".into(),
                 hint: Some("a Type II cycle allows pockets: name both X and Z (e.g. `W0`) in the profile's first block".into()),
             },
             StartOnWrongSide { x, z, axis, address, allowance, extreme } => {
@@ -727,11 +820,11 @@ impl DiagnosticKind {
                 label: "corner".into(),
                 hint: None,
             },
-            CornerDoesNotFit { size_mm } => Words {
+            CornerDoesNotFit { size_mm, word } => Words {
                 code: "corner-does-not-fit",
                 message: format!("a {size_mm:.3} mm corner does not fit between these lines").into(),
                 label: "corner".into(),
-                hint: Some("make `L` smaller than both lines".into()),
+                hint: Some(format!("make `{word}` smaller than both lines").into()),
             },
             NotAllowedInProfile => Words {
                 code: "not-allowed-in-profile",
@@ -821,6 +914,58 @@ impl DiagnosticKind {
                 message: format!("{name} is used before it is set").into(),
                 label: "variable".into(),
                 hint: Some("set it earlier in the program or pass it in the call".into()),
+            },
+            MachineVariableUnknown { name } => Words {
+                code: "machine-variable-unknown",
+                message: format!("{name} is a common variable the machine keeps; the program reads it before setting it, so its value comes from the machine").into(),
+                label: "value from the machine".into(),
+                hint: Some(format!("it is read as vacant (0 in arithmetic); give its value in the model file, `[machine] variables = {{ \"{name}\" = 350.0 }}`, or on the command line, `--var '{name}=350'`").into()),
+            },
+            SurfaceSpeedUnclamped { max_rpm, assumed } => Words {
+                code: "surface-speed-unclamped",
+                message: format!(
+                    "constant surface speed with no `G50 S` clamp: toward the centre the spindle runs at the machine's maximum, {max_rpm:.0} rpm{}",
+                    if *assumed { " (assumed: the settings give no `max_spindle_rpm`)" } else { "" }
+                )
+                .into(),
+                label: "spindle at its maximum".into(),
+                hint: Some("program the clamp before `G96` (`G50 S2000`; `G92 S` in G-code systems B and C)".into()),
+            },
+            ThreadUnderSurfaceSpeed => Words {
+                code: "thread-under-surface-speed",
+                message: "a thread cut under constant surface speed (`G96`): the spindle speed changes with the diameter of each pass".into(),
+                label: "thread under G96".into(),
+                hint: Some("cut threads at a constant spindle speed: `G97 S…` before the thread".into()),
+            },
+            ImplausibleFeed { feed, per_revolution, inch } => {
+                let unit = match (per_revolution, inch) {
+                    (true, false) => "mm/rev",
+                    (true, true) => "in/rev",
+                    (false, false) => "mm/min",
+                    (false, true) => "in/min",
+                };
+                Words {
+                    code: "implausible-feed",
+                    message: format!("a feed of {feed} {unit} is far outside what lathes cut at").into(),
+                    label: "implausible feed".into(),
+                    hint: Some(if *per_revolution {
+                        "is this a feed per minute? program `G98` (`G94` in G-code systems B and C) before it".into()
+                    } else {
+                        "is this a feed per revolution? program `G99` (`G95` in G-code systems B and C) before it".into()
+                    }),
+                }
+            }
+            CycleSelectedAlone { code } => Words {
+                code: "cycle-selected",
+                message: format!("`{code}` with no `X`/`Z` selects its single cycle without running it; blocks with only `X`/`Z` after it run the cycle").into(),
+                label: "cycle selected".into(),
+                hint: Some(format!("if `{code}` means something else on this control (absolute positions, feed per minute), it uses another G-code system: set `gcode_system` in the machine settings").into()),
+            },
+            CycleOutOfPlane { code } => Words {
+                code: "cycle-out-of-plane",
+                message: format!("{code} drills along X with a live tool, off the XZ plane of the turned part; its moves are left out of the toolpath").into(),
+                label: "side drilling".into(),
+                hint: None,
             },
             DivisionByZero => Words {
                 code: "division-by-zero",

@@ -6,9 +6,11 @@ use std::str::FromStr;
 
 use serde::Deserialize;
 
-/// An address: a letter `A`–`Z`, or an OSP two-letter extended address such as `XA`.
+/// An address: a letter `A`–`Z`, an OSP two-letter extended address such as `XA`, or a
+/// Fanuc comma address such as `,C` (chamfer, corner rounding and angle in a move block).
 ///
-/// Stored as one `u16` so that words stay small: 0–25 are letters, from 26 on a letter pair.
+/// Stored as one `u16` so that words stay small: 0–25 are letters, from 26 on a letter pair,
+/// from `COMMA_BASE` on a comma and a letter.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Address(u16);
 
@@ -21,8 +23,18 @@ impl Address {
         Address(26 + (first - b'A') as u16 * 26 + (second - b'A') as u16)
     }
 
+    /// `,C`, `,R`, `,A`: a comma and a letter.
+    pub const fn comma(letter: u8) -> Address {
+        Address(COMMA_BASE + (letter - b'A') as u16)
+    }
+
     pub fn is_letter(self) -> bool {
         self.0 < 26
+    }
+
+    /// A comma address (`,C`), written with no `=`.
+    pub fn is_comma(self) -> bool {
+        self.0 >= COMMA_BASE
     }
 
     /// The letter of a one-letter address.
@@ -34,6 +46,8 @@ impl Address {
     pub fn bytes(self) -> ([u8; 2], usize) {
         if self.0 < 26 {
             ([b'A' + self.0 as u8, 0], 1)
+        } else if self.is_comma() {
+            ([b',', b'A' + (self.0 - COMMA_BASE) as u8], 2)
         } else {
             let pair = self.0 - 26;
             ([b'A' + (pair / 26) as u8, b'A' + (pair % 26) as u8], 2)
@@ -73,6 +87,9 @@ impl Address {
     pub const Z: Address = Address::letter(b'Z');
 }
 
+/// The first comma address: after the 26 letters and the 26 × 26 letter pairs.
+const COMMA_BASE: u16 = 26 + 26 * 26;
+
 impl fmt::Debug for Address {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.name())
@@ -91,6 +108,7 @@ impl FromStr for Address {
         match s.as_bytes() {
             [a] if a.is_ascii_uppercase() => Ok(Address::letter(*a)),
             [a, b] if a.is_ascii_uppercase() && b.is_ascii_uppercase() => Ok(Address::extended(*a, *b)),
+            [b',', b] if b.is_ascii_uppercase() => Ok(Address::comma(*b)),
             _ => Err(format!("`{s}` is not an address")),
         }
     }

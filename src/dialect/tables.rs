@@ -11,7 +11,7 @@ use serde::Deserialize;
 
 use super::address::parse_code;
 pub use super::address::{Address, Code};
-use super::{Dialect, DialectConfig, GCodeSystem, MachineKind};
+use super::{Control, Dialect, DialectConfig, GCodeSystem, MachineKind};
 
 const FANUC_TOML: &str = include_str!("../../grammar/fanuc.toml");
 const OSP_TOML: &str = include_str!("../../grammar/osp.toml");
@@ -91,15 +91,22 @@ pub enum Role {
     NoReturn,
     OffsetGroup,
     PeckDepth,
+    /// Haas `G83 J`: how much each peck is shorter than the one before.
+    PeckReduction,
     PeckRetract,
     Phase,
     ProfileEnd,
     ProfileStart,
     ReferenceNumber,
+    /// A drilling cycle's R point: Fanuc `R`, the signed distance from the initial level;
+    /// Haas `R`, the plane's position.
+    RPoint,
     Relief,
     ReliefX,
     ReliefZ,
     Retract,
+    /// A drilling cycle's `K`: how many times it runs (Fanuc).
+    Repeats,
     RoughAllowanceX,
     RoughAllowanceZ,
     ShiftAngle,
@@ -199,8 +206,20 @@ pub enum GFunction {
     CoordinateSetOrClamp,
     Cw,
     DiameterGrooving,
+    /// A drilling cycle turnpass does not simulate (OSP live-tool and machining-centre
+    /// cycles; `grammar/osp.toml` says why).
     Drilling,
     DrillingCancel,
+    /// Fanuc system B/C `G98`/`G99`: a drilling cycle returns to the initial level, or to
+    /// the R point.
+    DrillReturnInitial,
+    DrillReturnRPoint,
+    /// Drilling, tapping and boring along Z on the face (`semantic/cycles/face_*.rs`), and
+    /// along X on the side (`side_drilling.rs`).
+    FaceDrilling,
+    FaceTapping,
+    FaceBoring,
+    SideDrilling,
     Dwell,
     FacePeck,
     FacingCycle,
@@ -277,6 +296,8 @@ pub struct GInfo {
     /// Whose the block's F and S are; every `cycle` and `lap_call` code says (tested), no
     /// other code does.
     pub feed_and_speed: Option<FeedAndSpeed>,
+    /// A drilling cycle's retract and peck (`drilling` in `grammar/`).
+    pub drilling: Option<DrillingFacts>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -488,6 +509,56 @@ struct RawG {
     function: Option<GFunction>,
     feed_and_speed: Option<FeedAndSpeed>,
     machine: Option<MachineScope>,
+    /// The Fanuc-compatible controls the entry is for (all when absent).
+    control: Option<Vec<Control>>,
+    /// How a drilling cycle retracts and pecks.
+    drilling: Option<DrillingFacts>,
+}
+
+/// What a drilling cycle does after it reaches the bottom of the hole, and how it pecks
+/// (`drilling` of a `[[g]]` entry).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DrillingFacts {
+    pub retract: DrillRetract,
+    /// How `Q` pecks: back a little and on (`high_speed`), or out to the R point and back
+    /// down (`full`); absent for a cycle that does not peck.
+    pub peck: Option<DrillPeck>,
+    /// `R` is the R plane's position (Haas), not the distance from the initial level
+    /// (Fanuc).
+    #[serde(default)]
+    pub r_plane: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DrillRetract {
+    /// Rapid out (drilling).
+    Rapid,
+    /// Out at the cutting feed (boring, reaming).
+    Feed,
+    /// The spindle reverses and the tap backs out at the feed it went in (tapping).
+    Reverse,
+    /// The spindle stops and the tool rapids out (Haas `G86`).
+    SpindleStopRapid,
+    /// The spindle stops and the operator jogs the tool out (Haas `G87`, `G88`).
+    Manual,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DrillPeck {
+    HighSpeed,
+    Full,
+}
+
+/// What a Fanuc-compatible control accepts that a Fanuc does not (`[control.NAME]`).
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ControlRules {
+    /// Lower-case letters read as the upper-case ones (`o0001`, `t101`, `g01 x10.`).
+    #[serde(default)]
+    lower_case: bool,
 }
 
 #[derive(Debug, Deserialize)]
@@ -504,6 +575,14 @@ struct RawDialect {
     address: BTreeMap<String, AddressSpec>,
     #[serde(default)]
     extended: BTreeMap<String, AddressSpec>,
+    /// Fanuc comma addresses, keyed by their letter (`C` is `,C`).
+    #[serde(default)]
+    comma: BTreeMap<String, AddressSpec>,
+    #[serde(default)]
+    machine_variables: MachineVariables,
+    /// Keyed by the control's name (`haas`).
+    #[serde(default)]
+    control: BTreeMap<String, ControlRules>,
     expression: ExpressionRules,
     keywords: BTreeMap<String, KeywordInfo>,
     g: Vec<RawG>,
@@ -512,6 +591,20 @@ struct RawDialect {
     foreign_g: BTreeMap<String, String>,
     m_functions: MFunctions,
     schema: BTreeMap<String, RawSchema>,
+}
+
+/// The common variables the control keeps in memory: a program may read them before it
+/// sets them, and their values come from the machine.
+#[derive(Debug, Clone, Default, Deserialize)]
+pub struct MachineVariables {
+    /// Inclusive ranges of variable numbers (`#500`–`#999`, OSP `V1`–`V200`).
+    pub numbers: Vec<[u32; 2]>,
+}
+
+impl MachineVariables {
+    pub fn holds(&self, number: u32) -> bool {
+        self.numbers.iter().any(|[low, high]| (*low..=*high).contains(&number))
+    }
 }
 
 /// The M codes the semantic pass acts on.
@@ -550,7 +643,13 @@ pub struct Tables {
     pub lexical: Lexical,
     pub expression: ExpressionRules,
     letters: [Option<AddressSpec>; 26],
+    /// The two-letter (OSP) and comma (Fanuc) addresses.
     extended: Vec<(Address, AddressSpec)>,
+    /// The dialect has comma words (`,C`, `,R`, `,A`), so a comma ends a value.
+    pub has_comma_words: bool,
+    pub machine_variables: MachineVariables,
+    /// Lower-case letters read as upper-case ones (`[control.NAME] lower_case`).
+    pub lower_case: bool,
     keywords: Vec<(String, KeywordInfo)>,
     g_index: Vec<u16>,
     g_infos: Vec<GInfo>,
@@ -646,18 +745,26 @@ impl Tables {
 
 /// The tables of a configuration, compiled on first use.
 pub fn tables(config: DialectConfig) -> &'static Tables {
-    static CACHE: [OnceLock<Tables>; 5] = [const { OnceLock::new() }; 5];
+    // Fanuc: three G-code systems on each of three controls; OSP: lathe and machining centre.
+    static CACHE: [OnceLock<Tables>; 11] = [const { OnceLock::new() }; 11];
     let (slot, normalised) = match config.dialect {
         Dialect::Fanuc => {
-            let slot = match config.gcode_system {
+            let system = match config.gcode_system {
                 GCodeSystem::A => 0,
                 GCodeSystem::B => 1,
                 GCodeSystem::C => 2,
             };
-            (slot, DialectConfig::new(Dialect::Fanuc, config.gcode_system, MachineKind::Lathe))
+            let control = match config.control {
+                Control::Fanuc => 0,
+                Control::Haas => 1,
+                Control::Denford => 2,
+            };
+            let normalised = DialectConfig::new(Dialect::Fanuc, config.gcode_system, MachineKind::Lathe)
+                .with_control(config.control);
+            (control * 3 + system, normalised)
         }
         Dialect::Osp => {
-            let slot = if config.machine_kind == MachineKind::Lathe { 3 } else { 4 };
+            let slot = if config.machine_kind == MachineKind::Lathe { 9 } else { 10 };
             (slot, DialectConfig::new(Dialect::Osp, GCodeSystem::A, config.machine_kind))
         }
     };
@@ -680,11 +787,17 @@ fn compile(config: DialectConfig) -> Tables {
             letters[(letter - b'A') as usize] = Some(spec.clone());
         }
     }
-    let extended = raw
+    let mut extended: Vec<(Address, AddressSpec)> = raw
         .extended
         .iter()
         .filter_map(|(name, spec)| name.parse::<Address>().ok().map(|a| (a, spec.clone())))
         .collect();
+    let has_comma_words = !raw.comma.is_empty();
+    extended.extend(
+        raw.comma
+            .iter()
+            .filter_map(|(name, spec)| format!(",{name}").parse::<Address>().ok().map(|a| (a, spec.clone()))),
+    );
 
     let scope_applies = |machine: Option<MachineScope>| {
         matches!(
@@ -721,8 +834,9 @@ fn compile(config: DialectConfig) -> Tables {
     let mut g_infos = Vec::new();
     let mut g_elsewhere = HashMap::new();
     for g in &raw.g {
+        let on_this_control = g.control.as_ref().is_none_or(|controls| controls.contains(&config.control));
         let mine = if config.dialect == Dialect::Fanuc {
-            code_for(g, config.gcode_system)
+            code_for(g, config.gcode_system).filter(|_| on_this_control)
         } else if scope_applies(g.machine) {
             g.code.clone()
         } else {
@@ -745,12 +859,17 @@ fn compile(config: DialectConfig) -> Tables {
                     note: g.note.clone(),
                     function: g.function,
                     feed_and_speed: g.feed_and_speed,
+                    drilling: g.drilling,
                 });
                 g_index[code.0 as usize] = g_infos.len() as u16;
             }
             None => {
                 // Remember where else this function lives, for hints on foreign codes.
-                let others: Vec<(String, Place)> = if config.dialect == Dialect::Fanuc {
+                // A code of another control is no code of this one in another system: its
+                // hint is `[foreign_g]`'s.
+                let others: Vec<(String, Place)> = if config.dialect == Dialect::Fanuc && !on_this_control {
+                    Vec::new()
+                } else if config.dialect == Dialect::Fanuc {
                     [GCodeSystem::A, GCodeSystem::B, GCodeSystem::C]
                         .into_iter()
                         .filter_map(|s| code_for(g, s).map(|c| (c, Place::GCodeSystem(s))))
@@ -800,6 +919,9 @@ fn compile(config: DialectConfig) -> Tables {
         expression: raw.expression,
         letters,
         extended,
+        has_comma_words,
+        machine_variables: raw.machine_variables,
+        lower_case: raw.control.get(config.control.name()).is_some_and(|rules| rules.lower_case),
         keywords,
         g_index,
         g_infos,

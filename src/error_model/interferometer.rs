@@ -33,6 +33,10 @@ pub struct Profile {
     /// takes the other's values).
     pub up_measured: Vec<bool>,
     pub down_measured: Vec<bool>,
+    /// How many runs each direction has at the target (0 for none): ISO 230-2's figures
+    /// of spread need two or more.
+    pub up_runs: Vec<usize>,
+    pub down_runs: Vec<usize>,
 }
 
 impl Profile {
@@ -458,6 +462,8 @@ fn build(runs: &BTreeMap<OrderedTarget, Runs>) -> Option<Profile> {
         p.down_sigma.push(sigma(down));
         p.up_measured.push(!r.up.is_empty());
         p.down_measured.push(!r.down.is_empty());
+        p.up_runs.push(r.up.len());
+        p.down_runs.push(r.down.len());
     }
     (!p.targets.is_empty()).then_some(p)
 }
@@ -476,6 +482,8 @@ fn reversal(m1: &Profile, m2: &Profile) -> Profile {
             p.down_sigma.push((m1.down_sigma[i].powi(2) + m2.down_sigma[j].powi(2)).sqrt() / 2.0);
             p.up_measured.push(m1.up_measured[i] && m2.up_measured[j]);
             p.down_measured.push(m1.down_measured[i] && m2.down_measured[j]);
+            p.up_runs.push(m1.up_runs[i].min(m2.up_runs[j]));
+            p.down_runs.push(m1.down_runs[i].min(m2.down_runs[j]));
         }
     }
     p
@@ -493,56 +501,88 @@ fn sigma(values: &[f64]) -> f64 {
     (values.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (values.len() - 1) as f64).sqrt()
 }
 
-/// The ISO 230-2 figures of a linear positioning profile, mm.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+/// The ISO 230-2 figures of a linear positioning profile, mm. A figure the table cannot
+/// give is `None` (JSON null), and `not_measured` says why, keyed by the figure's field.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Iso230_2 {
-    /// Bidirectional accuracy A.
-    pub accuracy: f64,
+    /// Bidirectional accuracy A: it needs the spread s at every target.
+    pub accuracy: Option<f64>,
     /// Bidirectional systematic positioning error E.
     pub systematic: f64,
     /// Range of the mean bidirectional deviation M.
     pub mean_range: f64,
-    /// Axis reversal value B (largest |B_i|), and the mean reversal value.
-    pub reversal: f64,
-    pub mean_reversal: f64,
-    /// Bidirectional repeatability R.
-    pub repeatability: f64,
+    /// Axis reversal value B (largest |B_i|), and the mean reversal value: they need both
+    /// directions at a target.
+    pub reversal: Option<f64>,
+    pub mean_reversal: Option<f64>,
+    /// Bidirectional repeatability R: it needs the spread s at every target.
+    pub repeatability: Option<f64>,
+    /// Why a figure is `None`, by its field's name.
+    pub not_measured: BTreeMap<&'static str, &'static str>,
 }
 
-/// ISO 230-2 figures (the formulas of its sections 2.10–2.24, with k = 2).
+/// Why B and the mean reversal value are not measured.
+pub const ONE_DIRECTION: &str = "measured in one direction only (a reversal value needs both)";
+/// Why A and R are not measured.
+pub const ONE_RUN: &str = "a single run in a direction at some target (the spread s of the runs needs two or more)";
+
+/// ISO 230-2 figures (the formulas of its sections 2.10–2.24, with k = 2). B and the mean
+/// reversal value are taken over the targets measured both ways; A and R need every
+/// measured direction at every target to have two or more runs (s of one run is unknown,
+/// not zero).
 pub fn report(p: &Profile) -> Iso230_2 {
     let n = p.targets.len();
+    let runs = |v: &[usize], i: usize| v.get(i).copied().unwrap_or(1);
+    let measured = |v: &[bool], i: usize| v.get(i).copied().unwrap_or(true);
     let mut max_up_down = f64::NEG_INFINITY;
     let mut min_up_down = f64::INFINITY;
     let mut max_acc = f64::NEG_INFINITY;
     let mut min_acc = f64::INFINITY;
     let mut means = Vec::with_capacity(n);
-    let mut reversal: f64 = 0.0;
+    let mut reversal: Option<f64> = None;
     let mut reversal_sum = 0.0;
+    let mut both_ways = 0usize;
     let mut repeatability: f64 = 0.0;
+    let mut spread_known = true;
     for i in 0..n {
         let (u, d, su, sd) = (p.up[i], p.down[i], p.up_sigma[i], p.down_sigma[i]);
+        let (up, down) = (measured(&p.up_measured, i), measured(&p.down_measured, i));
+        spread_known &= (!up || runs(&p.up_runs, i) >= 2) && (!down || runs(&p.down_runs, i) >= 2);
         max_up_down = max_up_down.max(u.max(d));
         min_up_down = min_up_down.min(u.min(d));
         max_acc = max_acc.max((u + 2.0 * su).max(d + 2.0 * sd));
         min_acc = min_acc.min((u - 2.0 * su).min(d - 2.0 * sd));
         means.push((u + d) / 2.0);
-        let b = u - d;
-        if b.abs() > reversal.abs() {
-            reversal = b;
+        // A direction not measured holds the other's values: B_i is 0 there, not measured.
+        let b = if up && down { u - d } else { 0.0 };
+        if up && down {
+            if reversal.is_none_or(|r: f64| b.abs() > r) {
+                reversal = Some(b.abs());
+            }
+            reversal_sum += b;
+            both_ways += 1;
         }
-        reversal_sum += b;
         let r = (2.0 * su + 2.0 * sd + b.abs()).max(4.0 * su).max(4.0 * sd);
         repeatability = repeatability.max(r);
     }
     let (mean_max, mean_min) = means.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), &m| (a.max(m), b.min(m)));
+    let mut not_measured = BTreeMap::new();
+    if reversal.is_none() {
+        not_measured.insert("reversal", ONE_DIRECTION);
+        not_measured.insert("mean_reversal", ONE_DIRECTION);
+    }
+    if !spread_known {
+        not_measured.insert("accuracy", ONE_RUN);
+        not_measured.insert("repeatability", ONE_RUN);
+    }
     Iso230_2 {
-        accuracy: max_acc - min_acc,
+        accuracy: spread_known.then_some(max_acc - min_acc),
         systematic: max_up_down - min_up_down,
         mean_range: mean_max - mean_min,
-        reversal: reversal.abs(),
-        mean_reversal: reversal_sum / n.max(1) as f64,
-        repeatability,
+        reversal,
+        mean_reversal: (both_ways > 0).then(|| reversal_sum / both_ways as f64),
+        repeatability: spread_known.then_some(repeatability),
+        not_measured,
     }
 }
 

@@ -7,7 +7,9 @@
 //! straightness and angular deviations say how large and how direction-dependent those
 //! are. Straightness measured as two reversed runs (`straightness_m1_mm`,
 //! `straightness_m2_mm`) has been reduced by the reversal technique (eq. 2.5–2.7), which
-//! the report says. Then the parametric effects with their parameters.
+//! the report says. A figure the table cannot give (B of a table measured one way, A and R
+//! of a single run) is n/a, with the reason. Then the parametric effects with their
+//! parameters.
 
 use std::fmt;
 
@@ -120,12 +122,41 @@ impl fmt::Display for ModelReport {
             )?;
             for row in &table.rows {
                 let iso = &row.iso;
-                let figures = [iso.accuracy, iso.systematic, iso.mean_range, iso.reversal, iso.repeatability];
+                let figures = [
+                    iso.accuracy,
+                    Some(iso.systematic),
+                    Some(iso.mean_range),
+                    iso.reversal,
+                    iso.repeatability,
+                    iso.mean_reversal,
+                ];
                 write!(f, "  {:<13} {:>7}", row.quantity, row.targets)?;
-                for value in figures.into_iter().chain([iso.mean_reversal]) {
-                    write!(f, " {:>10}", figure(value))?;
+                for value in figures {
+                    write!(f, " {:>10}", value.map_or_else(|| "n/a".to_string(), figure))?;
                 }
                 writeln!(f, "  {}", row.unit)?;
+            }
+            // Why a figure is n/a: the figures sharing a reason on one line, with the
+            // quantities it holds for.
+            let mut notes: Vec<(Vec<&str>, &str, Vec<&str>)> = Vec::new();
+            for row in &table.rows {
+                let mut reasons: Vec<(&str, Vec<&str>)> = Vec::new();
+                for (field, name) in FIGURES {
+                    let Some(reason) = row.iso.not_measured.get(field) else { continue };
+                    match reasons.iter_mut().find(|(r, _)| r == reason) {
+                        Some((_, names)) => names.push(name),
+                        None => reasons.push((reason, vec![name])),
+                    }
+                }
+                for (reason, names) in reasons {
+                    match notes.iter_mut().find(|(n, r, _)| *n == names && *r == reason) {
+                        Some((_, _, quantities)) => quantities.push(row.quantity),
+                        None => notes.push((names, reason, vec![row.quantity])),
+                    }
+                }
+            }
+            for (names, reason, quantities) in notes {
+                writeln!(f, "  {} n/a ({}): {reason}", names.join(" and "), quantities.join(", "))?;
             }
             if table.straightness_by_reversal {
                 writeln!(
@@ -143,6 +174,16 @@ impl fmt::Display for ModelReport {
         Ok(())
     }
 }
+
+/// The figures' fields and their names in the table's heading.
+const FIGURES: [(&str, &str); 6] = [
+    ("accuracy", "A"),
+    ("systematic", "E"),
+    ("mean_range", "M"),
+    ("reversal", "B"),
+    ("repeatability", "R"),
+    ("mean_reversal", "mean B"),
+];
 
 /// A figure to four decimals, with no minus sign on a value that rounds to zero.
 fn figure(value: f64) -> String {

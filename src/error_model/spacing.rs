@@ -52,7 +52,7 @@ impl Spacing {
 
     /// How many equal steps a move of `length_mm` taking `duration_min` needs, at least one.
     pub fn steps(&self, length_mm: f64, duration_min: f64) -> usize {
-        let count = |extent: f64, step: f64| if step > 0.0 && extent > 0.0 { ceil(extent / step) } else { 0.0 };
+        let count = |extent: f64, step: f64| if step > 0.0 && extent > 0.0 { (extent / step).ceil() } else { 0.0 };
         let n = count(length_mm, self.mm).max(count(duration_min, self.minutes));
         // `as` saturates, and a NaN (a degenerate move) becomes 0: one step either way.
         (n as usize).max(1)
@@ -91,6 +91,13 @@ impl ArcTerms {
         }
     }
 
+    /// Whether a correction steps where the path turns a corner: terms of the commanded
+    /// velocity (a loop lag) or of the surface normal (a nose radius error) change at once
+    /// where the direction does.
+    pub fn steps_at_corners(&self) -> bool {
+        self.lag_min != 0.0 || self.nose_mm != 0.0
+    }
+
     /// The largest angle between samples of an arc of `radius_mm` at `feed` mm/min for the
     /// chord between them to follow these terms within `allowance` mm; unbounded for none.
     pub fn radians(&self, radius_mm: f64, feed: f64, allowance: f64) -> f64 {
@@ -114,42 +121,9 @@ pub fn step_for_curvature(curvature: f64, allowance: f64) -> f64 {
     }
 }
 
-/// `x.ceil()`, without the library call it is on this target (every move's step count takes
-/// one or two): below 2⁵² in size the truncation toward zero is exact, and is one short where
-/// it fell below `x` (the sign of a zero is `x`'s, as `ceil` keeps it); from 2⁵² on every
-/// f64 is whole already, and those, the infinities and NaN take `ceil` itself.
-pub(crate) fn ceil(x: f64) -> f64 {
-    const WHOLE_FROM: f64 = 4_503_599_627_370_496.0;
-    if x.abs() < WHOLE_FROM {
-        let whole = x as i64 as f64;
-        if whole < x { whole + 1.0 } else { whole.copysign(x) }
-    } else {
-        x.ceil()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    proptest::proptest! {
-        #[test]
-        fn ceil_is_the_library_ceil(
-            x in proptest::prop_oneof![-1e6f64..1e6, -2.0f64..2.0, proptest::num::f64::ANY, -1e17f64..1e17],
-        ) {
-            proptest::prop_assert_eq!(ceil(x).to_bits(), x.ceil().to_bits(), "{}", x);
-        }
-    }
-
-    #[test]
-    fn ceil_keeps_the_edges() {
-        let next_below_one = f64::from_bits(1.0f64.to_bits() - 1);
-        let edges = [0.0, -0.0, -0.5, 0.5, 3.0, -3.0, next_below_one, -next_below_one, 4_503_599_627_370_495.5];
-        for x in edges.into_iter().chain([f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 1e300, -1e300, f64::MIN_POSITIVE])
-        {
-            assert_eq!(ceil(x).to_bits(), x.ceil().to_bits(), "{x}");
-        }
-    }
 
     #[test]
     fn a_parabola_sampled_at_the_step_departs_from_its_chords_by_the_allowance() {

@@ -170,6 +170,20 @@ impl Tracker {
         Step { to, slide, direction, since_reversal: since }
     }
 
+    /// The part of the move `step` describes (`step` of this tracker) that the command
+    /// travels inside the play before a reversing slide moves: per axis that reverses, from
+    /// the commanded point to the edge of the play in the new direction (zero on an axis
+    /// that keeps its direction). Compensation writes it as a move of its own, the take-up.
+    pub fn take_up(&self, step: &Step) -> Xz {
+        let axis = |new: i8, old: i8, slide: f64, at: f64, play: f64| {
+            if new == old { 0.0 } else { slide + f64::from(new) * play / 2.0 - at }
+        };
+        Xz::new(
+            axis(step.direction.x, self.direction.x, self.slide.x, self.at.x, self.play.x),
+            axis(step.direction.z, self.direction.z, self.slide.z, self.at.z, self.play.z),
+        )
+    }
+
     /// `peek` of the move `step` describes (`step` of this tracker).
     // Inlined where the model is evaluated on the sample at once: the parts of the sample
     // the model does not read need not be written out and read back.

@@ -1,22 +1,22 @@
-//! Diagnostics for the editor: the parse's, and the semantic pass's once the program parses.
+//! Diagnostics for the editor: the parse's and the semantic pass's.
 //!
 //! The diagnostics are the ones `turnpass check` reports, with the same codes, messages and
 //! spans; the protocol wants ranges in lines and UTF-16 columns (`position.rs`). A label
 //! and a hint have no field of their own in the protocol: the hint is added to the related
 //! information at the diagnostic's own range (editors show it under the message), and both
 //! travel in `data` for tools, with the byte offsets of the span and the pass that found it
-//! (`syntax`: the diagnostics `check` reports; `semantic`).
+//! (`syntax` or `semantic`).
 //!
-//! **Why the semantic pass waits for a clean parse.** An invalid block loses its words, so
-//! a typo in `N20 G01 X1O.` would make `G71 P20` report a missing `N20`: the semantic pass
-//! would explain the typo's consequences instead of the typo. It therefore runs when the
-//! parse has no errors (warnings are fine), as `simulate` would run it.
+//! **The semantic pass runs on a program with parse errors too**, as `check` runs it: the
+//! blocks that parsed are checked, and the interpreter leaves out only what depends on a
+//! damaged block (a `P`/`Q` naming it, a profile holding it, the position after it), so a
+//! typo in `N20 G01 X1O.` gets its parse error and no "missing `N20`" on `G71 P20`.
 
 use lsp_types::{DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString, Uri};
 
 use crate::diagnostic::{Diagnostic, Severity};
 use crate::machine::MachineSettings;
-use crate::semantic::{self, LowerOptions, Machine};
+use crate::semantic::{LowerOptions, Machine};
 use crate::source::Span;
 
 use super::document::{Document, Snapshot};
@@ -42,11 +42,7 @@ impl SemanticJob {
 
     /// The semantic pass's diagnostics (none for a program it does not lower).
     pub fn run(&self) -> Vec<Diagnostic> {
-        let program = self.snapshot.program();
-        if !semantic::lowers(&program) {
-            return Vec::new();
-        }
-        semantic::lower(&program, &self.machine, &self.options).diagnostics
+        crate::pipeline::semantic_diagnostics(&self.snapshot.program(), &self.machine, &self.options)
     }
 }
 

@@ -135,6 +135,7 @@ impl Document {
 
     pub fn config(&self) -> DialectConfig {
         DialectConfig::new(self.detection.dialect, self.options.gcode_system, self.detection.machine_kind)
+            .with_control(self.options.control)
     }
 
     /// How many chunks the parse is kept in.

@@ -9,8 +9,8 @@
 //! **When diagnostics are published.** Edits mark a document; when no message is waiting,
 //! the loop calls [`Server::idle`], which publishes each marked document once, for its
 //! latest version (a burst of keystrokes costs one publish). A program up to
-//! `semanticInlineLimit` bytes (256 KiB by default, where the pass takes a few
-//! milliseconds) gets its semantic diagnostics in that same
+//! `semanticInlineLimit` bytes (by default `parallel::Tuning::lsp_inline_bytes`, 256 KiB,
+//! where the pass takes a few milliseconds) gets its semantic diagnostics in that same
 //! publish. A larger one is published at once with its parse diagnostics and the previous
 //! semantic diagnostics moved across the edits, and again when the semantic pass, run on
 //! another thread, has finished with that version.
@@ -35,9 +35,6 @@ use super::analysis::{self, SemanticDiagnostics, SemanticJob};
 use super::document::{Document, LinePosition};
 use super::settings::{InitOptions, Settings};
 use super::{definition, format, hover, symbols};
-
-/// Programs up to this size get their semantic diagnostics in the same publish.
-pub const DEFAULT_SEMANTIC_INLINE_LIMIT: usize = 256 << 10;
 
 /// Where the server gets what lives outside the protocol: the settings files.
 pub trait Host {
@@ -118,7 +115,7 @@ impl<H: Host> Server<H> {
             messages.push(show_message(MessageType::WARNING, problem));
             InitOptions::default()
         });
-        let inline_limit = init.semantic_inline_limit.unwrap_or(DEFAULT_SEMANTIC_INLINE_LIMIT);
+        let inline_limit = init.semantic_inline_limit.unwrap_or(crate::parallel::tuning().lsp_inline_bytes);
         let max_diagnostics = match init.max_diagnostics {
             None => analysis::DEFAULT_MAX_DIAGNOSTICS,
             Some(0) => usize::MAX,
@@ -347,10 +344,7 @@ impl<H: Host> Server<H> {
                 continue;
             }
             open.dirty = false;
-            if open.document.has_errors() {
-                open.semantic.clear();
-                open.semantic_version = None;
-            } else if open.semantic_version != Some(open.version) && !open.running {
+            if open.semantic_version != Some(open.version) && !open.running {
                 let inline = open.document.len() <= self.inline_limit;
                 let work = SemanticJob::new(open.document.snapshot(), &open.settings.machine);
                 jobs.push(Job { uri: uri.clone(), generation: open.generation, version: open.version, work, inline });
@@ -373,7 +367,7 @@ impl<H: Host> Server<H> {
             return Vec::new();
         }
         open.running = false;
-        if result.version != open.version || open.document.has_errors() {
+        if result.version != open.version {
             open.dirty = true;
             return Vec::new();
         }

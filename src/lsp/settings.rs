@@ -76,6 +76,7 @@ impl InitOptions {
             self.gcode_system.as_deref().and_then(|s| s.parse::<GCodeSystem>().map_err(|e| problems.push(e)).ok());
         let dialect = dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
         let gcode_system = gcode_system.or(settings.gcode_system).unwrap_or_default();
+        let control = settings.control.unwrap_or_default();
         let decimal_input = self.decimal_input.or(settings.decimal_input).unwrap_or_default();
         // The settings in force, the client's options included.
         let machine = MachineSettings {
@@ -84,10 +85,12 @@ impl InitOptions {
                 DialectChoice::Auto => None,
             },
             gcode_system: Some(gcode_system),
+            control: Some(control),
             decimal_input: Some(decimal_input),
             ..settings
         };
         let canonical = CanonicalOptions { decimal_input, increment_places: machine.increment_places() };
-        (Settings { parse: ParseOptions { dialect, gcode_system, machine_kind: None }, machine, canonical }, problems)
+        let parse = ParseOptions { dialect, gcode_system, machine_kind: None, control };
+        (Settings { parse, machine, canonical }, problems)
     }
 }

@@ -62,7 +62,7 @@ fn serve(connection: &Connection) -> Result<bool, String> {
     let (events, queue) = mpsc::channel::<Event>();
     let receiver = connection.receiver.clone();
     let forward = events.clone();
-    std::thread::spawn(move || {
+    crate::parallel::detach(move || {
         for message in receiver {
             if forward.send(Event::Message(message)).is_err() {
                 break;
@@ -80,7 +80,7 @@ fn serve(connection: &Connection) -> Result<bool, String> {
                         send(server.finished(job.run()))?;
                     } else {
                         let events = events.clone();
-                        std::thread::spawn(move || {
+                        crate::parallel::detach(move || {
                             let _ = events.send(Event::Finished(job.run()));
                         });
                     }

@@ -34,7 +34,7 @@ pub fn print_canonical(program: &Program<'_>, options: &CanonicalOptions) -> Vec
     let mut line = String::new();
     for (index, block) in program.blocks().iter().enumerate() {
         match block.statement {
-            Statement::Invalid | Statement::Trailing | Statement::Header => {
+            Statement::Invalid | Statement::Trailing | Statement::Leader | Statement::Header => {
                 out.extend_from_slice(block.span.text(source));
             }
             statement => {
@@ -106,6 +106,8 @@ fn address_order(address: Address) -> u16 {
             Some(p) => p as u16,
             None => 100 + letter as u16,
         },
+        // A comma word belongs to the move: right after the coordinates and the centre.
+        None if address.is_comma() => 50 + address.bytes().0[1] as u16,
         None => {
             let (bytes, _) = address.bytes();
             500 + (bytes[0] - b'A') as u16 * 26 + (bytes[1] - b'A') as u16
@@ -214,7 +216,7 @@ fn write_word(out: &mut String, program: &Program<'_>, word: &Word, form: Option
                 )
             {
                 out.push_str(&address.name());
-                if !address.is_letter() {
+                if !address.is_letter() && !address.is_comma() {
                     out.push('=');
                 }
                 write_canonical_number(out, tables, address, number, options);

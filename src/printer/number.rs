@@ -33,26 +33,8 @@ pub fn write_number(out: &mut impl Text, number: Number, style: Style) {
     if usize::from(number.scale) > MANTISSA_DIGITS {
         return write_long_fraction(out, number, style);
     }
-    // The mantissa's digits on the stack, right-aligned and padded with zeros (a fraction
-    // longer than the mantissa starts with zeros), two digits per division: a compensated
-    // program prints millions of numbers, and building each from strings cost a few
-    // allocations, digit by digit a division each.
-    let mut digits = [b'0'; MANTISSA_DIGITS];
-    let mut start = MANTISSA_DIGITS;
-    let mut value = number.mantissa.unsigned_abs();
-    while value > 0 {
-        let Some(next) = start.checked_sub(2) else { break };
-        let pair = (value % 100) as usize;
-        if let (Some(slot), Some(pair)) = (digits.get_mut(next..start), DIGIT_PAIRS.get(2 * pair..2 * pair + 2)) {
-            slot.copy_from_slice(pair);
-        }
-        value /= 100;
-        start = next;
-    }
-    // A pair whose first digit is the leading zero of an odd count of digits.
-    if digits.get(start) == Some(&b'0') {
-        start += 1;
-    }
+    // A fraction longer than the mantissa starts with the zeros the digits are padded with.
+    let (digits, start) = digits(number.mantissa.unsigned_abs());
     // The fraction's digits written are `fraction_start..fraction_end`.
     let fraction_start = MANTISSA_DIGITS - usize::from(number.scale);
     let mut fraction_end = MANTISSA_DIGITS;
@@ -87,16 +69,32 @@ pub fn write_number(out: &mut impl Text, number: Number, style: Style) {
     out.push_ascii(spelling.bytes.get(..spelling.length).unwrap_or_default());
 }
 
+/// Write `value`'s decimal digits (`0` for zero): codes and other whole numbers.
+pub(crate) fn write_whole(out: &mut impl Text, value: u64) {
+    let (digits, start) = digits(value);
+    out.push_ascii(digits.get(start..).filter(|d| !d.is_empty()).unwrap_or(b"0"));
+}
+
+/// The crate's one digit writer: `value`'s decimal digits right-aligned in a buffer padded
+/// with `0`, and where the first of them is (the buffer's end for zero). On the stack: a
+/// printed program has millions of numbers and codes, and `format!` costs an allocation
+/// each.
+fn digits(value: u64) -> ([u8; MANTISSA_DIGITS], usize) {
+    let mut digits = [b'0'; MANTISSA_DIGITS];
+    if value == 0 {
+        return (digits, MANTISSA_DIGITS);
+    }
+    let mut buffer = itoa::Buffer::new();
+    let text = buffer.format(value).as_bytes();
+    let start = MANTISSA_DIGITS - text.len();
+    if let Some(slot) = digits.get_mut(start..) {
+        slot.copy_from_slice(text);
+    }
+    (digits, start)
+}
+
 /// The most decimal digits a mantissa has (`u64::MAX` has 20).
 const MANTISSA_DIGITS: usize = 20;
-
-/// "00" to "99", for the digits of a number two at a time.
-const DIGIT_PAIRS: &[u8; 200] = b"\
-0001020304050607080910111213141516171819\
-2021222324252627282930313233343536373839\
-4041424344454647484950515253545556575859\
-6061626364656667686970717273747576777879\
-8081828384858687888990919293949596979899";
 
 /// A number's spelling as it is put together.
 struct Spelling {
@@ -117,19 +115,11 @@ impl Spelling {
 /// `write_number` for a fraction longer than any mantissa's digits (more than twenty
 /// places), digit by digit.
 fn write_long_fraction(out: &mut impl Text, number: Number, style: Style) {
-    let mut digits = [0u8; MANTISSA_DIGITS];
-    let mut count = 0;
-    let mut value = number.mantissa.unsigned_abs();
-    while value > 0 {
-        if let Some(slot) = digits.get_mut(count) {
-            *slot = (value % 10) as u8;
-        }
-        value /= 10;
-        count += 1;
-    }
+    let (digits, start) = digits(number.mantissa.unsigned_abs());
+    let count = MANTISSA_DIGITS - start;
     // Digit `k` of the mantissa (0 the last); a fraction longer than the mantissa starts
     // with zeros.
-    let digit = |k: usize| b'0' + digits.get(k).copied().unwrap_or(0);
+    let digit = |k: usize| MANTISSA_DIGITS.checked_sub(k + 1).and_then(|at| digits.get(at)).copied().unwrap_or(b'0');
     let scale = usize::from(number.scale);
     // The fraction's digits written are those from `last_place` up.
     let mut last_place = 0;
@@ -235,6 +225,15 @@ mod tests {
     }
 
     proptest::proptest! {
+        #[test]
+        fn whole_numbers_are_written_as_rust_writes_them(
+            value in proptest::prop_oneof![proptest::num::u64::ANY, 0u64..1000, proptest::strategy::Just(u64::MAX)],
+        ) {
+            let mut out = String::new();
+            write_whole(&mut out, value);
+            proptest::prop_assert_eq!(out, value.to_string());
+        }
+
         #[test]
         fn the_stack_spelling_is_the_string_spelling(
             mantissa in proptest::prop_oneof![proptest::num::i64::ANY, -100_000i64..100_000, proptest::strategy::Just(0i64)],

@@ -52,9 +52,10 @@ pub enum BlockArcWords {
 }
 
 /// The counts the style is decided by, gathered block by block: `ProgramStyle::infer` reads
-/// every block for them, and a caller that reads every block anyway
-/// (`compensation::rewrite::ProgramTables`) gathers them in its own pass, so that the long
-/// arrays of a big program's blocks and words are read from memory once rather than twice.
+/// every block for them, and a caller that reads every block anyway (the compensation's
+/// rewrite, `compensation::rewrite::MotionBlocks::new`) gathers them in its own pass, so
+/// that the long arrays of a big program's blocks and words are read from memory once
+/// rather than twice.
 pub struct StyleTally {
     /// The program's dialect and its tables, looked up once rather than per block.
     dialect: Dialect,

@@ -98,6 +98,7 @@ impl Interpreter<'_, '_> {
             let clamp = command.and_then(|c| c.function) == Some(GFunction::CoordinateSetOrClamp);
             if clamp {
                 self.modal.clamp = speed.min(self.machine.max_rpm);
+                self.modal.clamp_programmed = true;
             } else if !cycle_feed {
                 self.modal.speed = speed;
             }
@@ -203,7 +204,14 @@ impl Interpreter<'_, '_> {
             GFunction::CompensationOff => self.modal.compensation = Compensation::Off,
             GFunction::CompensationLeft => self.modal.compensation = Compensation::Left,
             GFunction::CompensationRight => self.modal.compensation = Compensation::Right,
+            GFunction::DrillingCancel => super::cycles::drilling::cancel(self),
+            GFunction::DrillReturnInitial => self.cycle_memory.drilling.return_to_r_point = false,
+            GFunction::DrillReturnRPoint => self.cycle_memory.drilling.return_to_r_point = true,
             _ => {}
+        }
+        // A code of the motion group ends a modal drilling cycle (group 10).
+        if self.modal.motion != MotionMode::Drilling {
+            self.cycle_memory.drilling.cycle = None;
         }
     }
 

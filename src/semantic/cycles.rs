@@ -10,6 +10,10 @@
 
 mod canonical;
 mod compound_thread;
+pub(super) mod drilling;
+mod face_boring;
+mod face_drilling;
+mod face_tapping;
 mod finishing;
 mod grooving;
 mod lap_contour;
@@ -21,6 +25,7 @@ mod lap_thread;
 mod multiple_threading;
 mod pattern_repeat;
 mod peck_grooving;
+mod side_drilling;
 mod single;
 mod stock_removal;
 mod tapping;
@@ -28,7 +33,7 @@ pub mod thread_infeed;
 pub mod thread_pass;
 mod thread_single;
 
-use crate::diagnostic::DiagnosticKind;
+use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::{GFunction, Role};
 use crate::source::Span;
 use crate::syntax::{Command, CommandId, WordKind};
@@ -64,6 +69,12 @@ pub(super) struct CycleMemory {
     pub peck: peck_grooving::PeckMemory,
     /// `G76 P(m)(r)(a) Q(Δdmin) R(d)`.
     pub thread: multiple_threading::ThreadMemory,
+    /// The last cycle block that made no move (a two-block cycle's first block) and the
+    /// modal words before it: when the cycle block consumes it, `expand` deletes it, so the
+    /// written blocks start from the words before it (its F and S are the cycle's).
+    pub setup_block: Option<(usize, crate::semantic::ModalAfter)>,
+    /// The modal drilling cycle and the return level.
+    pub drilling: drilling::DrillingModes,
 }
 
 /// A cycle call may run at most this many passes (or pecks): more is a runaway parameter
@@ -131,6 +142,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         GFunction::LapRough => lap_rough::run(interp, index, &command),
         GFunction::LapCopy => lap_copy::run(interp, index, &command),
         GFunction::LapFinish => lap_finish::run(interp, index, &command),
+        GFunction::FaceDrilling | GFunction::FaceTapping | GFunction::FaceBoring | GFunction::SideDrilling => {
+            drilling::run(interp, index, &command, function)
+        }
         // The drilling cycles are not simulated; the other functions are those of no cycle,
         // which no `cycle` or `lap_call` code of `grammar/` names.
         GFunction::Drilling
@@ -144,6 +158,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         | GFunction::CoordinateSetOrClamp
         | GFunction::Cw
         | GFunction::DrillingCancel
+        | GFunction::DrillReturnInitial
+        | GFunction::DrillReturnRPoint
         | GFunction::Dwell
         | GFunction::FeedPerMinute
         | GFunction::FeedPerRev
@@ -181,15 +197,23 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     interp.report_zero_feed(block.span);
     interp.emitter.context = Context { source: block.span, cycle: Span::SYNTHETIC };
     let consumed = std::mem::take(&mut interp.cycle_consumed);
+    let before = match interp.cycle_memory.setup_block {
+        Some((setup, before)) if setup < index && consumed.contains(&setup) => before,
+        _ => interp.modal_before_block,
+    };
+    let kept = interp.expansion_kept.take();
     if interp.emitter.moves.len() > first_move || !consumed.is_empty() {
         interp.expansions.push(Expansion {
             block: index,
             frame: interp.modal.frame,
             consumed,
             moves: first_move..interp.emitter.moves.len(),
-            before: interp.modal_before_block,
+            before,
             after: crate::semantic::ModalAfter::of(&interp.modal),
+            kept,
         });
+    } else {
+        interp.cycle_memory.setup_block = Some((index, interp.modal_before_block));
     }
     flow
 }
@@ -300,11 +324,26 @@ impl Interpreter<'_, '_> {
         match blocks.as_slice() {
             [one] => Some(*one),
             [] => {
-                self.error(DiagnosticKind::MissingSequence { number: key }, span);
+                match self.labels().damaged(&key) {
+                    Some(damaged) => {
+                        let damaged = self.program.block(damaged).span;
+                        let note = Diagnostic::note(DiagnosticKind::DependsOnDamagedBlock { what: "it names" }, span)
+                            .with_related(damaged, format!("N{key}, which does not parse"));
+                        self.diagnostics.push(note);
+                    }
+                    None => self.error(DiagnosticKind::MissingSequence { number: key }, span),
+                }
                 None
             }
             _ => {
-                self.error(DiagnosticKind::DuplicateSequence { number: key, count: blocks.len() }, span);
+                let mut error = Diagnostic::error(
+                    DiagnosticKind::DuplicateSequence { number: key.clone(), count: blocks.len() },
+                    span,
+                );
+                for &block in &blocks {
+                    error = error.with_related(self.program.block(block).span, format!("a block numbered N{key}"));
+                }
+                self.diagnostics.push(error);
                 None
             }
         }

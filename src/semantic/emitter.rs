@@ -233,7 +233,7 @@ impl Emitter {
         }
         // t = ∫ ds / (f · rpm(r)) over the move, with rpm = min(clamp, k / r).
         let k = modal.frame.surface_speed_mm_min(modal.speed) / TAU;
-        let clamp = modal.clamp;
+        let clamp = modal.surface_speed().clamp;
         let (r0, r1) = (self.at.x.abs(), to.x.abs());
         let crossover = if clamp > 0.0 { k / clamp } else { f64::INFINITY };
         // Minutes per unit of the move parameter t ∈ [0, 1] where r(t) is linear.

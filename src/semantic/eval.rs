@@ -82,6 +82,29 @@ impl Variables {
         self.globals.insert(key, value);
     }
 
+    /// The store with the values the machine settings give its common variables
+    /// (`[machine] variables`, `--var`): `#501` on Fanuc, `V12` or a name on OSP. A name that
+    /// is no variable of the dialect is left out.
+    pub fn from_machine(values: &[(String, f64)], dialect: Dialect) -> Variables {
+        let mut variables = Variables::default();
+        for (name, value) in values {
+            let number = match dialect {
+                Dialect::Fanuc => name.strip_prefix('#'),
+                Dialect::Osp => name.strip_prefix('V'),
+            }
+            .and_then(|digits| digits.parse::<u32>().ok());
+            let key = match (number, dialect) {
+                (Some(n), _) => VarKey::Number(n),
+                (None, Dialect::Osp) if name.bytes().all(|b| b.is_ascii_uppercase() || b.is_ascii_digit()) => {
+                    VarKey::Name(name.clone())
+                }
+                _ => continue,
+            };
+            variables.set(key, *value, dialect);
+        }
+        variables
+    }
+
     pub fn push_frame(&mut self) {
         self.frames.push(HashMap::new());
     }
@@ -101,6 +124,11 @@ pub struct Evaluator<'p, 'src> {
 pub type EvalResult<T> = Result<T, Diagnostic>;
 
 impl Evaluator<'_, '_> {
+    /// A common variable the control keeps in memory (`grammar/` `[machine_variables]`).
+    fn machine_keeps(&self, key: &VarKey) -> bool {
+        matches!(key, VarKey::Number(n) if self.program.config().tables().machine_variables.holds(*n))
+    }
+
     fn name_of(&self, span: Span) -> String {
         String::from_utf8_lossy(self.program.text(span)).into_owned()
     }
@@ -141,6 +169,14 @@ impl Evaluator<'_, '_> {
                 let key = self.key(id, variables, warnings)?;
                 match variables.get(&key, self.dialect) {
                     Some(value) => value,
+                    None if self.machine_keeps(&key) => {
+                        // Fanuc reads a vacant variable as 0 in arithmetic.
+                        warnings.push(Diagnostic::warning(
+                            DiagnosticKind::MachineVariableUnknown { name: key.display(self.dialect) },
+                            span,
+                        ));
+                        0.0
+                    }
                     None if key.is_system() => {
                         warnings.push(Diagnostic::warning(
                             DiagnosticKind::SystemVariableUnknown { name: key.display(self.dialect) },

@@ -77,12 +77,27 @@ pub(super) struct Interpreter<'p, 'src> {
     first_program_name: Option<usize>,
     /// The missing home position has been noted (it is one fact, said once per run).
     noted_home_unknown: bool,
+    /// What `plausibility.rs` has warned of already.
+    pub plausibility: super::plausibility::Warned,
     tape_opened: bool,
     cut_off: Option<Span>,
+    /// Time arcs on a second thread from this many blocks on (`parallel::Tuning::arc_times_blocks`).
+    arc_times_beside_from_blocks: usize,
+    /// Whether the tape's `%` follows the leader lines (`check_leader`), once found.
+    leader_confirmed: Option<bool>,
+    /// The position is unknown because of a block that does not parse (`damaged_block`).
+    position_damaged: bool,
+    /// Why `expand` should leave the cycle being run as it is (`Expansion::kept`).
+    pub expansion_kept: Option<&'static str>,
 }
 
 impl<'p, 'src> Interpreter<'p, 'src> {
-    pub fn new(program: &'p Program<'src>, machine: &'p Machine, options: &'p LowerOptions) -> Self {
+    pub fn new(
+        program: &'p Program<'src>,
+        machine: &'p Machine,
+        options: &'p LowerOptions,
+        tuning: &crate::parallel::Tuning,
+    ) -> Self {
         let frame = super::initial_frame(program, machine);
         let dialect = program.config().dialect;
         let start = machine.home.unwrap_or(Xz::new(f64::NAN, f64::NAN));
@@ -94,6 +109,8 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             spindle: SpindleMode::Rpm,
             speed: 0.0,
             clamp: machine.max_rpm,
+            clamp_programmed: false,
+            spindle_limit: machine.spindle_limit().0,
             motion: MotionMode::Rapid,
             compensation: Compensation::Off,
             tool: ToolState { station: 0, offset: 0, nose_radius: 0.0, tip: 0, minor_edge_angle: None },
@@ -113,7 +130,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 program.blocks().len(),
                 options.max_moves.max(program.blocks().len().saturating_mul(super::MOVES_PER_BLOCK)),
             ),
-            variables: Variables::default(),
+            variables: Variables::from_machine(&machine.variables, dialect),
             labels: std::cell::OnceCell::new(),
             diagnostics: Vec::new(),
             expansions: Vec::new(),
@@ -129,8 +146,13 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             executed: 0,
             first_program_name: None,
             noted_home_unknown: false,
+            plausibility: super::plausibility::Warned::default(),
             tape_opened: false,
             cut_off: None,
+            arc_times_beside_from_blocks: tuning.arc_times_blocks,
+            leader_confirmed: None,
+            position_damaged: false,
+            expansion_kept: None,
         }
     }
 
@@ -155,6 +177,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
     /// `span`: noted once per run, as is [`Interpreter::home_unknown`] — both say the
     /// settings give no home position, and the note says what the toolpath does about it.
     pub fn unknown_position(&mut self, span: Span) {
+        if self.position_damaged {
+            return;
+        }
         self.note_home_unknown(DiagnosticKind::UnknownStartPosition, span);
     }
 
@@ -171,18 +196,18 @@ impl<'p, 'src> Interpreter<'p, 'src> {
     }
 
     pub fn run(mut self) -> Lowered {
-        if self.program.blocks().len() >= self.options.arc_times_beside_from_blocks {
+        if self.program.blocks().len() >= self.arc_times_beside_from_blocks {
             // Arcs are timed on a second thread as the blocks run (`emitter/arc_times.rs`).
-            std::thread::scope(|scope| {
-                let (sender, receiver) = std::sync::mpsc::channel();
-                let timing = scope.spawn(move || super::emitter::time_arcs(receiver));
-                self.emitter.time_arcs_beside(sender);
-                self.execute_blocks();
-                let handed = self.emitter.stop_timing_beside();
-                // Timing cannot fail on any input; a panic is a bug, and is passed on.
-                let timed = timing.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-                self.emitter.chain_times(&handed, &timed);
-            });
+            let (sender, receiver) = std::sync::mpsc::channel();
+            self.emitter.time_arcs_beside(sender);
+            let (handed, timed) = crate::parallel::join(
+                || {
+                    self.execute_blocks();
+                    self.emitter.stop_timing_beside()
+                },
+                move || super::emitter::time_arcs(receiver),
+            );
+            self.emitter.chain_times(&handed, &timed);
         } else {
             self.execute_blocks();
         }
@@ -199,7 +224,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 break;
             }
             self.executed += 1;
+            let first_move = self.emitter.moves.len();
             let flow = self.execute(pc);
+            self.check_moves(first_move, blocks[pc].span);
+            if self.position_damaged && self.emitter.at.is_finite() {
+                self.position_damaged = false;
+            }
             // The moves the run keeps are bounded, inside a block (a cycle's passes) too.
             if self.emitter.is_full() {
                 self.runaway(blocks[pc].span);
@@ -302,6 +332,53 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         }
     }
 
+    /// Whether sequence `key`, which names no block that parses, is the name of a block that
+    /// does not: then what refers to it at `span` is not checked, and a note says so (its
+    /// parse error is the finding). `what` says how the word refers to it.
+    pub(super) fn damaged_target(&mut self, key: &str, span: Span, what: &'static str) -> bool {
+        let Some(damaged) = self.labels().damaged(key) else { return false };
+        let damaged = self.program.block(damaged).span;
+        let note = Diagnostic::note(DiagnosticKind::DependsOnDamagedBlock { what }, span)
+            .with_related(damaged, format!("N{key}, which does not parse"));
+        self.diagnostics.push(note);
+        true
+    }
+
+    /// A block that does not parse and names an axis (`X`, `Z`, `U`, `W` with a value after
+    /// it) may have moved the tool anywhere: the position is not known until the next moves
+    /// name both axes, and what depends on it (the moves and checks from there) is left
+    /// out, without the note a missing home position gets. A block that names no axis (a
+    /// cycle call the schema rejects, a note outside a comment) leaves the tool where it is.
+    fn damaged_block(&mut self, index: usize) {
+        let text = self.program.text(self.program.block(index).span);
+        let names_an_axis = text.windows(2).any(|pair| {
+            matches!(pair[0].to_ascii_uppercase(), b'X' | b'Z' | b'U' | b'W')
+                && matches!(pair[1], b'0'..=b'9' | b'-' | b'+' | b'.' | b'=' | b'[' | b'#')
+        });
+        if !names_an_axis {
+            return;
+        }
+        self.finish_corner();
+        self.emitter.at = Xz::new(f64::NAN, f64::NAN);
+        self.position_damaged = true;
+    }
+
+    /// A line the parser took for a tape leader (`syntax.rs`) is one only if the tape's
+    /// `%` follows the leader: a control reading a file with no `%` there reads the line as
+    /// a block and rejects it. The lines up to the `%` are leaders or empty, so the first
+    /// other block decides, once.
+    fn check_leader(&mut self, index: usize) {
+        let tape_follows = *self.leader_confirmed.get_or_insert_with(|| {
+            self.program.blocks()[index..]
+                .iter()
+                .find(|b| !matches!(b.statement, Statement::Leader | Statement::Empty))
+                .is_some_and(|b| b.statement == Statement::TapeMark)
+        });
+        if !tape_follows {
+            self.error(DiagnosticKind::LeaderWithoutTape, self.program.block(index).span);
+        }
+    }
+
     fn first_move_start(&self) -> Xz {
         self.emitter.first_start.unwrap_or(self.emitter.at)
     }
@@ -315,10 +392,16 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             return Flow::Next;
         }
         match block.statement {
-            Statement::Invalid | Statement::Empty | Statement::Header | Statement::Graphics | Statement::Pattern => {
+            Statement::Invalid => {
+                self.damaged_block(index);
                 Flow::Next
             }
+            Statement::Empty | Statement::Header | Statement::Graphics | Statement::Pattern => Flow::Next,
             Statement::Trailing => Flow::End,
+            Statement::Leader => {
+                self.check_leader(index);
+                Flow::Next
+            }
             Statement::TapeMark => {
                 // The first `%` opens the tape (comment lines may stand before it); a second
                 // one ends the program, and the parser already made the rest Trailing.
@@ -492,7 +575,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                     return match self.labels().jump(&key, index) {
                         Some(target) => Flow::Jump(target),
                         None => {
-                            self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            if !self.damaged_target(&key, word.span, "the jump goes to") {
+                                self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            }
                             Flow::End
                         }
                     };
@@ -503,7 +588,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                     return match self.labels().jump(&key, index) {
                         Some(target) => Flow::Jump(target),
                         None => {
-                            self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            if !self.damaged_target(&key, word.span, "the jump goes to") {
+                                self.error(DiagnosticKind::MissingLabel { name: format!("N{key}") }, word.span);
+                            }
                             Flow::End
                         }
                     };

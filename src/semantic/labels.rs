@@ -15,6 +15,9 @@ use crate::syntax::{Program, Statement, WordKind};
 pub struct Labels {
     sequences: HashMap<String, Vec<usize>>,
     programs: HashMap<String, usize>,
+    /// The sequence name a block that does not parse starts with, read from its text: a
+    /// reference to it depends on the damaged block and is not checked.
+    damaged: HashMap<String, usize>,
 }
 
 /// The key of a sequence name or label word: its value on Fanuc, its text on OSP.
@@ -28,7 +31,9 @@ pub fn key(dialect: Dialect, text: &[u8], number: Option<u32>) -> String {
 /// The key of a program name (`O1234`, `:1234`, `OSUB`): its text after `O` or `:`, and on
 /// Fanuc its value.
 pub fn program_key(dialect: Dialect, text: &[u8]) -> String {
-    let name = text.strip_prefix(b"O").or_else(|| text.strip_prefix(b":")).unwrap_or(text);
+    // `o0001` on a control that reads lower case.
+    let name =
+        text.strip_prefix(b"O").or_else(|| text.strip_prefix(b"o")).or_else(|| text.strip_prefix(b":")).unwrap_or(text);
     let name = String::from_utf8_lossy(name).into_owned();
     match dialect {
         Dialect::Fanuc => name.parse::<u64>().map_or(name, |n| n.to_string()),
@@ -42,6 +47,9 @@ impl Labels {
         let mut labels = Labels::default();
         for (index, block) in program.blocks().iter().enumerate() {
             if block.statement == Statement::Invalid {
+                if let Some(key) = damaged_sequence(dialect, program.text(block.span)) {
+                    labels.damaged.entry(key).or_insert(index);
+                }
                 continue;
             }
             for word in program.words_of(block) {
@@ -70,7 +78,35 @@ impl Labels {
         blocks.iter().copied().find(|&b| b > from).or_else(|| blocks.first().copied())
     }
 
+    /// The first block that does not parse and starts with this sequence key.
+    pub fn damaged(&self, key: &str) -> Option<usize> {
+        self.damaged.get(key).copied()
+    }
+
     pub fn program(&self, key: &str) -> Option<usize> {
         self.programs.get(key).copied()
+    }
+}
+
+/// The sequence key the text of a block that does not parse starts with (after blanks and a
+/// block-delete slash): `N20 G01 X1O.` is block N20 whatever its other words say.
+fn damaged_sequence(dialect: Dialect, text: &[u8]) -> Option<String> {
+    let mut rest = text.trim_ascii_start();
+    if let Some(after) = rest.strip_prefix(b"/") {
+        rest = after.trim_ascii_start();
+        let digits = rest.iter().take_while(|c| c.is_ascii_digit()).count();
+        rest = rest[digits..].trim_ascii_start();
+    }
+    let name = rest.strip_prefix(b"N")?;
+    match dialect {
+        Dialect::Fanuc => {
+            let digits = name.iter().take_while(|c| c.is_ascii_digit()).count();
+            let number: u32 = std::str::from_utf8(&name[..digits]).ok()?.parse().ok()?;
+            Some(number.to_string())
+        }
+        Dialect::Osp => {
+            let length = name.iter().take_while(|c| c.is_ascii_alphanumeric()).count();
+            (length > 0).then(|| String::from_utf8_lossy(&name[..length]).into_owned())
+        }
     }
 }

@@ -17,6 +17,8 @@ pub enum MotionMode {
     TurningCycle,
     ThreadCycle,
     FacingCycle,
+    /// A drilling cycle (group 10) repeats at the hole positions of later blocks.
+    Drilling,
 }
 
 /// Spindle speed mode.
@@ -55,6 +57,11 @@ pub struct Modal {
     pub speed: f64,
     /// Spindle speed clamp, rpm (`G50 S`, `G92 S`), and the machine's own top speed.
     pub clamp: f64,
+    /// The program has set the clamp (`G50 S`, `G92 S`).
+    pub clamp_programmed: bool,
+    /// What constant surface speed reaches when neither the program nor the settings
+    /// limit the spindle: `Machine::spindle_limit`.
+    pub spindle_limit: f64,
     pub motion: MotionMode,
     pub compensation: Compensation,
     pub tool: ToolState,
@@ -75,7 +82,8 @@ impl Modal {
 
     /// The constant surface speed in force, as `rpm_at` uses it under `G96`.
     pub fn surface_speed(&self) -> SurfaceSpeed {
-        SurfaceSpeed { mm_per_min: self.frame.surface_speed_mm_min(self.speed), clamp: self.clamp }
+        let clamp = if self.clamp.is_finite() { self.clamp } else { self.spindle_limit };
+        SurfaceSpeed { mm_per_min: self.frame.surface_speed_mm_min(self.speed), clamp }
     }
 }
 

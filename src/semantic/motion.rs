@@ -6,10 +6,12 @@
 //!   the radius, negative for more than half a circle. A radius that cannot reach is an
 //!   error; an `I`/`K` centre whose end radius differs by up to 0.02 mm is moved onto the
 //!   chord's bisector, as the controls tolerate it.
-//! - OSP `A`: a line given by one coordinate and its direction angle (from +Z, counter-
-//!   clockwise).
-//! - OSP `G75`/`G76` with `L`: a chamfer or a rounding between this line and the next,
-//!   which waits for the next move.
+//! - OSP `A`, Fanuc `,A` (direct drawing dimension input): a line given by one coordinate
+//!   and its direction angle (from +Z, counter-clockwise).
+//! - OSP `G75`/`G76` with `L`, Fanuc `,C`/`,R` in a `G01` block: a chamfer or a rounding
+//!   between this line and the next, which waits for the next move. Corners may follow
+//!   each other block after block: a corner block after a corner completes the first and
+//!   waits in its turn (`grammar/fanuc.toml` `[comma]` cites the manual that shows it).
 
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::{Address, Dialect, GFunction};
@@ -40,6 +42,20 @@ pub(super) struct PendingCorner {
     pub corner: Xz,
     pub modal: Modal,
     pub context: super::emitter::Context,
+    /// The word that gave the size (`L`, `,C`, `,R`), for diagnostics.
+    pub word: &'static str,
+    /// A Fanuc corner's block and the modal words before it: `expand` writes its moves out
+    /// (an OSP corner is a code the control has, and stays).
+    pub expand: Option<(usize, super::ModalAfter)>,
+}
+
+/// A corner a line block asks for: rounded or chamfered, its size (program units) and the
+/// word that gives it.
+struct CornerRequest {
+    round: bool,
+    size: f64,
+    word: &'static str,
+    fanuc: bool,
 }
 
 impl Interpreter<'_, '_> {
@@ -77,10 +93,10 @@ impl Interpreter<'_, '_> {
                 _ => {}
             }
         }
-        // OSP: one coordinate and the direction angle A give the other.
-        if self.dialect == Dialect::Osp
-            && x_given != z_given
-            && let Some(angle) = self.address_value(words, Address::A)
+        // One coordinate and the direction angle (OSP `A`, Fanuc `,A`) give the other.
+        let angle_address = if self.dialect == Dialect::Osp { Address::A } else { Address::comma(b'A') };
+        if x_given != z_given
+            && let Some(angle) = self.address_value(words, angle_address)
             && at.is_finite()
         {
             let (sin, cos) = angle.to_radians().sin_cos();
@@ -133,11 +149,15 @@ impl Interpreter<'_, '_> {
         let block = *self.program.block(index);
         let span = block.span;
         let axes = self.axis_target(words);
+        let moves_before = self.emitter.moves.len();
+        let angle_given =
+            self.dialect == Dialect::Fanuc && words.iter().any(|w| word_address(w) == Some(Address::comma(b'A')));
         match self.modal.motion {
             MotionMode::TurningCycle | MotionMode::ThreadCycle | MotionMode::FacingCycle => {
                 // A single cycle repeats with the new end point.
                 return super::cycles::single_cycle_again(self, index, words);
             }
+            MotionMode::Drilling => return super::cycles::drilling::again(self, index, words),
             MotionMode::Rapid => {
                 if let Some(to) = axes.target {
                     self.rapid_to(to, span);
@@ -148,13 +168,8 @@ impl Interpreter<'_, '_> {
                     self.finish_corner();
                     return Flow::Next;
                 };
-                let corner = self.g_infos(words).find_map(|(_, g)| match g.function {
-                    Some(GFunction::ChamferCorner) => Some(false),
-                    Some(GFunction::RoundCorner) => Some(true),
-                    _ => None,
-                });
-                match corner {
-                    Some(round) => self.start_corner(round, to, words, span),
+                match self.corner_request(words) {
+                    Some(request) => self.start_corner(request, to, index, span),
                     None => self.line_to(to, span),
                 }
             }
@@ -183,6 +198,23 @@ impl Interpreter<'_, '_> {
             }
         }
         let _ = block.statement == Statement::Motion;
+        // A Fanuc `,A` line that no corner waits on: `expand` writes it with both coordinates.
+        let own_move = self.emitter.moves.len().checked_sub(1).filter(|&last| last >= moves_before);
+        if angle_given
+            && self.pending_corner.is_none()
+            && let Some(last) = own_move
+            && self.emitter.moves[last].source == span
+        {
+            self.expansions.push(super::Expansion {
+                block: index,
+                frame: self.modal.frame,
+                consumed: Vec::new(),
+                moves: last..last + 1,
+                before: self.modal_before_block,
+                after: super::ModalAfter::of(&self.modal),
+                kept: None,
+            });
+        }
         Flow::Next
     }
 
@@ -229,22 +261,48 @@ impl Interpreter<'_, '_> {
         self.report_zero_feed(span);
     }
 
-    /// OSP `G75`/`G76 G01 … L`: remember the corner; the next line completes it.
-    fn start_corner(&mut self, round: bool, to: Xz, words: &[Word], span: Span) {
-        self.finish_corner();
+    /// The corner a line block asks for: OSP `G75`/`G76` with `L`, Fanuc `,C`/`,R`.
+    fn corner_request(&mut self, words: &[Word]) -> Option<CornerRequest> {
+        let osp = self.g_infos(words).find_map(|(_, g)| match g.function {
+            Some(GFunction::ChamferCorner) => Some(false),
+            Some(GFunction::RoundCorner) => Some(true),
+            _ => None,
+        });
+        if let Some(round) = osp {
+            let size = self.address_value(words, Address::L).unwrap_or(0.0);
+            return Some(CornerRequest { round, size, word: "L", fanuc: false });
+        }
+        if self.dialect != Dialect::Fanuc {
+            return None;
+        }
+        if let Some(size) = self.address_value(words, Address::comma(b'C')) {
+            return Some(CornerRequest { round: false, size, word: ",C", fanuc: true });
+        }
+        let size = self.address_value(words, Address::comma(b'R'))?;
+        Some(CornerRequest { round: true, size, word: ",R", fanuc: true })
+    }
+
+    /// A line block with a corner: remember the corner; the next line completes it. A
+    /// corner already waiting is completed by this line, which then starts at its end.
+    fn start_corner(&mut self, request: CornerRequest, to: Xz, index: usize, span: Span) {
+        if self.pending_corner.is_some() {
+            self.complete_corner(to);
+        }
         if !self.emitter.at.is_finite() {
             self.unknown_position(span);
             self.emitter.arrive(to);
             return;
         }
-        let size = self.address_value(words, Address::L).map(|v| self.modal.frame.mm(v)).unwrap_or(0.0);
+        let size = self.modal.frame.mm(request.size).abs();
         self.pending_corner = Some(PendingCorner {
-            round,
+            round: request.round,
             size,
             from: self.emitter.at,
             corner: to,
             modal: self.modal.clone(),
             context: self.emitter.context,
+            word: request.word,
+            expand: request.fanuc.then_some((index, self.modal_before_block)),
         });
         // The control is at the corner as far as later blocks are concerned.
         self.emitter.at = to;
@@ -262,7 +320,18 @@ impl Interpreter<'_, '_> {
 
     /// The pending corner's line, the chamfer or rounding, then the line to `to`.
     fn corner_then_line(&mut self, to: Xz) {
+        self.complete_corner(to);
+        let modal = self.modal.clone();
+        let span = self.emitter.context.source;
+        self.emitter.line(&modal, to, true);
+        self.report_zero_feed(span);
+    }
+
+    /// The pending corner's line and its chamfer or rounding toward a line to `to`; the
+    /// tool is left at the corner's end.
+    fn complete_corner(&mut self, to: Xz) {
         let Some(corner) = self.pending_corner.take() else { return };
+        let first_move = self.emitter.moves.len();
         let d1 = geometry::direction(corner.from, corner.corner);
         let d2 = geometry::direction(corner.corner, to);
         let (len1, len2) = (corner.from.distance(corner.corner), corner.corner.distance(to));
@@ -275,11 +344,17 @@ impl Interpreter<'_, '_> {
         self.emitter.at = corner.from;
         if turn.abs() < 1e-9 || back > len1 + 1e-9 || back > len2 + 1e-9 {
             self.emitter.line(&corner.modal, corner.corner, true);
-            self.error(DiagnosticKind::CornerDoesNotFit { size_mm: corner.size }, corner.context.source);
+            self.error(
+                DiagnosticKind::CornerDoesNotFit { size_mm: corner.size, word: corner.word },
+                corner.context.source,
+            );
         } else {
             let p1 = Xz::new(corner.corner.x - d1.x * back, corner.corner.z - d1.z * back);
             let p2 = Xz::new(corner.corner.x + d2.x * back, corner.corner.z + d2.z * back);
-            self.emitter.line(&corner.modal, p1, true);
+            // A corner as long as its first line leaves nothing of it before the corner.
+            if p1.distance(corner.from) > 1e-9 {
+                self.emitter.line(&corner.modal, p1, true);
+            }
             if corner.round {
                 // The centre lies on the inside of the turn, a radius from p1.
                 let normal = if cross > 0.0 { Xz::new(d1.z, -d1.x) } else { Xz::new(-d1.z, d1.x) };
@@ -290,9 +365,16 @@ impl Interpreter<'_, '_> {
             }
         }
         self.emitter.context = context;
-        let modal = self.modal.clone();
-        let span = self.emitter.context.source;
-        self.emitter.line(&modal, to, true);
-        self.report_zero_feed(span);
+        if let Some((block, before)) = corner.expand {
+            self.expansions.push(super::Expansion {
+                block,
+                frame: corner.modal.frame,
+                consumed: Vec::new(),
+                moves: first_move..self.emitter.moves.len(),
+                before,
+                after: super::ModalAfter::of(&corner.modal),
+                kept: None,
+            });
+        }
     }
 }

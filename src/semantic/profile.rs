@@ -75,6 +75,8 @@ impl Interpreter<'_, '_> {
         let saved_first = self.emitter.first_start;
         let saved_len = self.emitter.moves.len();
         let saved_diagnostics = self.diagnostics.len();
+        // A corner in the profile is written out by the cycle's expansion, not on its own.
+        let saved_expansions = self.expansions.len();
         let saved_zero_feed = self.emitter.zero_feed;
         // The scratch moves' times are never read: their arcs are not handed to the arc
         // timer (`emitter/arc_times.rs`), so dropping the moves drops nothing of its work.
@@ -99,7 +101,14 @@ impl Interpreter<'_, '_> {
                 | Statement::Spindle
                 | Statement::Empty => {}
                 Statement::LapMarker(_) | Statement::Dwell(_) => continue,
-                Statement::Invalid => continue,
+                Statement::Invalid => {
+                    // The shape is not known: the cycle that reads it is not checked.
+                    let what = "the profile holds";
+                    let note = Diagnostic::note(DiagnosticKind::DependsOnDamagedBlock { what }, saved_context.source)
+                        .with_related(block.span, "this block of the profile does not parse");
+                    failure = Some(note);
+                    break;
+                }
                 _ => {
                     failure = Some(Diagnostic::error(DiagnosticKind::NotAllowedInProfile, block.span));
                     break;
@@ -170,6 +179,7 @@ impl Interpreter<'_, '_> {
         self.diagnostics.extend(raised.into_iter().filter(|d| d.kind != DiagnosticKind::NoFeed));
         self.emitter.zero_feed = saved_zero_feed;
         self.emitter.moves.truncate(saved_len);
+        self.expansions.truncate(saved_expansions);
         self.emitter.resume_timing_beside(timing_beside);
         self.emitter.at = saved_at;
         self.emitter.time = saved_time;

@@ -419,8 +419,12 @@ pub enum Statement {
     Settings,
     /// Text that does not parse; printed back verbatim. The diagnostic says why.
     Invalid,
-    /// Everything after the tape's closing `%`, which controls ignore; printed verbatim.
+    /// Everything after the tape's closing `%` (or a DOS Ctrl-Z), which controls ignore;
+    /// printed verbatim.
     Trailing,
+    /// A line of a tape leader: text before the first `%` and any program text, which
+    /// controls skip; printed verbatim.
+    Leader,
 }
 
 /// One block: usually one line, several with OSP `$` continuation lines.

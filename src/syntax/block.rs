@@ -13,12 +13,12 @@ mod value;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::tables::{SemicolonRule, SequenceStyle, VariableStyle};
-use crate::dialect::{Code, Tables};
+use crate::dialect::{Address, Code, Tables};
 use crate::source::Span;
 
 use super::ast::{CommentKind, Expr, Word, WordKind};
 use super::expr::ExprParser;
-use super::lexer::{Input, is_line_break, is_word_boundary, lex_name, lex_number, lex_paren_comment};
+use super::lexer::{Input, is_line_break, lex_name, lex_number, lex_paren_comment};
 
 pub(super) struct BlockParser<'a, 's> {
     pub source: &'s [u8],
@@ -122,6 +122,16 @@ impl<'a, 's> BlockParser<'a, 's> {
                     position = Position::Prefix;
                     next
                 }
+                b'n' if position != Position::Body && self.tables.lower_case => {
+                    let next = self.sequence(rest)?;
+                    position = Position::Prefix;
+                    next
+                }
+                b'o' if position != Position::Body && self.tables.lower_case => {
+                    let next = self.program_name(rest, &rest[1..])?;
+                    position = Position::Prefix;
+                    next
+                }
                 // `OG=2` at the start of an OSP block is a word, not a program name.
                 b'O' if position != Position::Body && !(self.is_osp() && starts_assignment(rest)) => {
                     let next = self.program_name(rest, &rest[1..])?;
@@ -139,10 +149,17 @@ impl<'a, 's> BlockParser<'a, 's> {
                     verbatim_next = verbatim;
                     next
                 }
+                b'a'..=b'z' if self.tables.lower_case => {
+                    position = Position::Body;
+                    let (next, verbatim) = self.letter(rest)?;
+                    verbatim_next = verbatim;
+                    next
+                }
                 b'#' => {
                     position = Position::Body;
                     self.hash(rest)?
                 }
+                b',' if position == Position::Body && self.tables.has_comma_words => self.comma_word(rest)?,
                 b'0'..=b'9' | b'-' | b'+' | b'.' => return Err(self.number_without_address(rest)),
                 b'$' if !self.is_osp() => {
                     return Err(self.error(
@@ -160,18 +177,77 @@ impl<'a, 's> BlockParser<'a, 's> {
         }
     }
 
+    /// `,C1.`, `,R2.`, `,A30`: a comma word after a move's coordinates.
+    fn comma_word(&mut self, input: Input<'s>) -> WordResult<'s> {
+        let address = match input.get(1) {
+            Some(&letter) if letter.is_ascii_uppercase() => Address::comma(letter),
+            _ => return Err(self.invalid_character(input)),
+        };
+        if self.tables.address(address).is_none() {
+            return Err(self.invalid_character(input));
+        }
+        self.address_value(input, &input[2..], address)
+    }
+
     /// A byte that cannot be where it is, reported by what it is.
     fn invalid_character(&self, at: Input<'s>) -> Diagnostic {
         let c = at.first().copied().unwrap_or(b' ');
+        if let Some(text) = self.plain_text(at) {
+            return text;
+        }
         let kind = match c {
             0 => DiagnosticKind::NulByte,
             0x80..=0xFF => DiagnosticKind::NonAsciiByte { byte: c },
             b'$' if self.tables.lexical.continuation => DiagnosticKind::OrphanContinuation,
-            b'a'..=b'z' => DiagnosticKind::LowerCaseLetter { found: c as char },
+            b'a'..=b'z' => return self.lower_case(at),
             b']' => DiagnosticKind::UnmatchedBracket,
             _ => DiagnosticKind::InvalidCharacter { found: c as char },
         };
         self.error(at, 1, kind)
+    }
+
+    /// A lower-case letter: a misread digit inside a number (`X4l.`, `l` for `1`; `o` for
+    /// `0`), else a letter to write in upper case.
+    pub(super) fn lower_case(&self, at: Input<'s>) -> Diagnostic {
+        let c = at.first().copied().unwrap_or(b' ');
+        let offset = self.offset(at) as usize;
+        let before = offset.checked_sub(1).and_then(|i| self.source.get(i)).copied();
+        let after = at.get(1).copied();
+        let in_number = before.is_some_and(|b| b.is_ascii_digit())
+            && after.is_some_and(|a| a.is_ascii_digit() || a == b'.')
+            || after.is_some_and(|a| a.is_ascii_digit()) && before == Some(b'.');
+        let digit = match c {
+            b'l' => Some('1'),
+            b'o' => Some('0'),
+            _ => None,
+        };
+        let kind = match digit {
+            Some(digit) if in_number => DiagnosticKind::LetterForDigit { found: c as char, digit },
+            _ => DiagnosticKind::LowerCaseLetter { found: c as char },
+        };
+        self.error(at, 1, kind)
+    }
+
+    /// Words where a block belongs (`roughing pass`, `[BILLET X40 Z100`): a run of three or
+    /// more letters that is no keyword, at the start of the block or after a bracket that
+    /// opens nothing. Reported as text, not as damage.
+    fn plain_text(&self, at: Input<'s>) -> Option<Diagnostic> {
+        let start = self.offset(at) as usize;
+        let line_start = self.source[..start].iter().rposition(|&c| is_line_break(c)).map_or(0, |i| i + 1);
+        let head = &self.source[line_start..start];
+        if !head.iter().all(|&c| c == b' ' || c == b'\t') {
+            return None;
+        }
+        let letters_from = usize::from(at.first() == Some(&b'['));
+        let word = at[letters_from..].iter().take_while(|c| c.is_ascii_alphabetic()).count();
+        let lower = at.get(letters_from).is_some_and(|c| c.is_ascii_lowercase());
+        let plain = word >= 3 && (lower || letters_from == 1);
+        if !plain || self.tables.keyword(&at[letters_from..letters_from + word]).is_some() {
+            return None;
+        }
+        let end = at.iter().position(|&c| is_line_break(c) || c == b'(' || c == b';').unwrap_or(at.len());
+        let text = String::from_utf8_lossy(&at[..end]).trim_end().to_string();
+        Some(self.error(at, text.len(), DiagnosticKind::TextOutsideComment { text }))
     }
 
     fn paren_comment(&mut self, input: Input<'s>) -> WordResult<'s> {
@@ -292,7 +368,7 @@ impl<'a, 's> BlockParser<'a, 's> {
         }
         let rest = &after_o[len..];
         if let Some(&c) = rest.first()
-            && !is_word_boundary(c)
+            && !self.boundary(c)
         {
             return Err(self.error(input, 1 + len + 1, DiagnosticKind::InvalidProgramName { max }));
         }

@@ -6,7 +6,7 @@
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::tables::{KeywordKind, Place};
-use crate::dialect::{Address, Dialect, Form, GInfo, GKind, MachineKind, ModalGroup, Tables};
+use crate::dialect::{Address, Dialect, Form, GFunction, GInfo, GKind, MachineKind, ModalGroup, Tables};
 
 use super::ast::{CodeLetter, Command, CommandId, Param, Statement, Word, WordId, WordKind};
 
@@ -34,6 +34,31 @@ fn is_axis(dialect: Dialect, address: Address) -> bool {
 /// radius, angle, or the escape vector of an OSP `G40 G01 K1`).
 fn is_motion_word(dialect: Dialect, address: Address) -> bool {
     is_axis(dialect, address) || matches!(address, Address::I | Address::K | Address::R | Address::L | Address::A)
+}
+
+/// A Fanuc block that gives an axis both as a position and as a distance (`X` and `U`, `Z` and
+/// `W`, `Y` and `V`, `C` and `H`) is refused: the lathe manuals at hand do not say which one a
+/// control takes, other controls refuse redundant absolute and incremental programming of one
+/// axis (Beckhoff TwinCAT CNC by default, channel parameter P-CHAN-00116), and such a block is
+/// most often a misread word (`W110` for `N110`). Refusing it keeps simulate, compensate and the
+/// canonical form, which reorders words, from choosing for the programmer.
+fn axis_given_twice(words: &[Word], seen_letters: u32) -> Result<(), Diagnostic> {
+    const PAIRS: [(u8, u8, char); 4] = [(b'X', b'U', 'X'), (b'Z', b'W', 'Z'), (b'Y', b'V', 'Y'), (b'C', b'H', 'C')];
+    let bit = |letter: u8| 1u32 << (letter - b'A');
+    for (position, distance, axis) in PAIRS {
+        if seen_letters & bit(position) == 0 || seen_letters & bit(distance) == 0 {
+            continue;
+        }
+        let is_either =
+            |w: &&Word| word_address(w).and_then(|a| a.as_letter()).is_some_and(|l| l == position || l == distance);
+        let Some(second) = words.iter().filter(is_either).nth(1) else { continue };
+        let name = |letter: u8| char::from(letter).to_string();
+        return Err(Diagnostic::error(
+            DiagnosticKind::AxisGivenTwice { position: name(position), distance: name(distance), axis },
+            second.span,
+        ));
+    }
+    Ok(())
 }
 
 impl Classifier<'_> {
@@ -137,6 +162,13 @@ impl Classifier<'_> {
             }
             if has_extended {
                 self.check_duplicates(words, false)?;
+            }
+            // A macro call's words are its arguments, not end points.
+            let macro_call = codes
+                .iter()
+                .any(|(_, info)| info.function == Some(GFunction::MacroCall) || info.group == ModalGroup::MacroModal);
+            if dialect == Dialect::Fanuc && !macro_call {
+                axis_given_twice(words, seen_letters)?;
             }
         }
 

@@ -47,7 +47,8 @@ pub(crate) fn block(block: &Block, bases: Bases) -> Block {
         | Statement::Pattern
         | Statement::Settings
         | Statement::Invalid
-        | Statement::Trailing) => other,
+        | Statement::Trailing
+        | Statement::Leader) => other,
     };
     Block {
         span: span(block.span, bases),

@@ -64,11 +64,10 @@ fn non_finite_points_and_time_running_back_are_rejected() {
 }
 
 #[test]
-fn a_long_toolpath_checked_in_halves_gives_the_problems_of_one_pass() {
-    // Long enough to be checked on two threads; the middle move is non-finite, so the second
-    // half must take its previous time from the move before it, and the move after the
-    // middle runs back in time from that one.
-    let count = PARALLEL_VALIDATION_MOVES + 1;
+fn a_non_finite_move_does_not_set_the_time_the_next_must_not_run_back_from() {
+    // The middle move is non-finite, so the move after it is checked against the time of
+    // the move before it, and runs back from that one; so does the last move.
+    let count = 11;
     let middle = count / 2;
     let mut moves: Vec<Move> = (0..count)
         .map(|k| {
@@ -84,7 +83,6 @@ fn a_long_toolpath_checked_in_halves_gives_the_problems_of_one_pass() {
     moves[count - 1].t_end = 0.0;
     let path = Toolpath { start: Xz::default(), moves };
     let problems = validate(&path, None).unwrap_err();
-    assert_eq!(problems, check_moves(&path, 0..count, None));
     let kinds: Vec<_> = problems.iter().map(|d| d.kind.clone()).collect();
     assert_eq!(kinds, [DiagnosticKind::NonFiniteMove, DiagnosticKind::TimeGoesBack, DiagnosticKind::TimeGoesBack]);
 }

@@ -1,5 +1,5 @@
-//! Arcs timed on a second thread while the program runs (`LowerOptions::
-//! arc_times_beside_from_blocks`, on for long programs) give the toolpath the emitter gives
+//! Arcs timed on a second thread while the program runs (`parallel::Tuning::
+//! arc_times_blocks`, on for long programs) give the toolpath the emitter gives
 //! when it times them itself, to the bit: every simulate case, and generated programs of
 //! arcs under constant surface speed, per minute and at a fixed speed, with and without a
 //! spindle clamp, among roughing cycles whose profiles are run as scratch moves and dropped.
@@ -7,10 +7,12 @@
 use std::fmt::Write as _;
 
 use turnpass::machine::{MachineSettings, ModelFile};
+use turnpass::parallel::Tuning;
 use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
 use turnpass::syntax::parse;
 
 use crate::simulate::{parse_options, settings_for};
+use crate::support::check_spans;
 
 /// Everything lowering gives, floats by their exact text (`{:?}` prints the shortest text
 /// that reads back to the same bits).
@@ -21,10 +23,11 @@ fn lowered_text(lowered: &Lowered) -> String {
 /// The program lowered with its arcs timed beside and by the emitter: the two must agree.
 fn assert_same_both_ways(name: &str, source: &[u8], settings: &MachineSettings) {
     let parsed = parse(source, &parse_options(settings));
+    check_spans(&parsed);
     let machine = Machine::from_settings(settings);
     let lower = |from_blocks| {
-        let options = LowerOptions { arc_times_beside_from_blocks: from_blocks, ..LowerOptions::new(false) };
-        lowered_text(&semantic::lower(&parsed.program, &machine, &options))
+        let tuning = Tuning { arc_times_blocks: from_blocks, ..Tuning::DEFAULT };
+        lowered_text(&semantic::lower_tuned(&parsed.program, &machine, &LowerOptions::new(false), &tuning))
     };
     let (beside, itself) = (lower(0), lower(usize::MAX));
     assert!(beside == itself, "{name}: arcs timed beside differ from arcs timed in place");

@@ -326,7 +326,7 @@ fn run_case(case: &Case) {
         }
     }
     let shown = |bytes: &[u8], stream: &str| {
-        let text = placeholders(&String::from_utf8_lossy(bytes)).replace('\x1b', "␛");
+        let text = progress_bar(&placeholders(&String::from_utf8_lossy(bytes)).replace('\x1b', "␛"));
         if case.closed.iter().any(|s| s == stream) {
             format!("(closed){text}")
         } else if case.unopened.iter().any(|s| s == stream) {
@@ -445,4 +445,16 @@ fn fmt_is_lossless_on_every_case_file() {
         }
     }
     assert!(printed >= 10, "only {printed} programs were printed back");
+}
+
+/// A progress bar drawn over itself (`\r[###  ] …`) and cleared at the end (`\r␛[K`) as one
+/// token: how often it is redrawn depends on how the threads that measure ran, what it shows
+/// does not.
+fn progress_bar(text: &str) -> String {
+    match (text.find("\r["), text.rfind("\r␛[K")) {
+        (Some(first), Some(clear)) if first < clear => {
+            format!("{}{{progress bar, drawn and cleared}}{}", &text[..first], &text[clear + "\r␛[K".len()..])
+        }
+        _ => text.to_string(),
+    }
 }

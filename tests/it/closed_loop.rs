@@ -1,9 +1,13 @@
 //! The closed loop on simulation: the thesis' two programs (clean versions) compensated for
 //! a model with several effects (`examples/machines/thesis-several-effects.toml`), every
 //! strategy, then `verify`: the predicted RMS deviation from the nominal part before and
-//! after. `arcs` and `densify` must cut it by 90 % or bring it to the quantisation floor,
-//! increment/√12, where that is higher (these programs are in inch: 0.0001 in gives
-//! 0.733 µm, 15 % of their uncompensated deviation, so the floor is what they can reach).
+//! after. `arcs` and `densify` at a tolerance of 0.3 µm must cut it by 90 % or bring it to
+//! within a quarter above 0.733 µm RMS, where that is higher: the rounding a Z step of the
+//! 0.0001 in increment leaves when spread evenly, the coarser of the two axes' (a written
+//! X, on the diameter, moves the tool half as far). What the loop leaves above the rounding
+//! alone (measured below, `the_rounding_floor_is_the_steps_the_words_can_make`) is the play,
+//! which a slide is not reversed across for less than half an increment
+//! (`InverseOptions::dead_band_mm`), and the warm-up.
 //!
 //! `cargo test --release --test it closed_loop -- --nocapture` prints the table the README
 //! quotes.
@@ -15,17 +19,68 @@
 use std::process::Command;
 
 use turnpass::dialect::{Address, DialectChoice, GCodeSystem};
-use turnpass::semantic::{LowerOptions, Machine, lower};
-use turnpass::syntax::{ParseOptions, WordKind, parse};
+use turnpass::pipeline::Settings;
+use turnpass::semantic::LowerOptions;
+use turnpass::syntax::{ParseOptions, WordKind};
 use turnpass::toolpath::{Motion, Xz};
 
-use crate::support::{repo, with_snapshots};
+use crate::support::{analyse, repo, with_snapshots};
 
 const MODEL: &str = "examples/machines/thesis-several-effects.toml";
 const PROGRAMS: [&str; 2] = ["examples/programs/thesis-o2005-arc.nc", "examples/programs/thesis-o2012-turn-face.nc"];
 const STRATEGIES: [&str; 6] = ["auto", "circle", "semicircle", "quadrant", "arcs", "densify"];
-/// The thesis programs' least increment, 0.0001 in, over √12.
+/// The rounding a Z step of the thesis programs' increment, 0.0001 in, leaves when spread
+/// evenly: the step over √12.
 const FLOOR_MM: f64 = 0.00254 / 3.464_101_615_137_754_6;
+
+/// The rounding floor, measured: the thesis programs compensated for a model the inverse
+/// meets exactly (scale and squareness) at a tolerance far below the increment keep only the
+/// deviation that rounding the written words leaves. It lies between the X step's even
+/// spread (half the 2.54 µm diameter step, over √12: 0.367 µm) and the Z step's (0.733 µm),
+/// and well above zero; the README quotes the figures this prints.
+#[test]
+fn the_rounding_floor_is_the_steps_the_words_can_make() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.nc");
+    let mut table = String::new();
+    for program in PROGRAMS {
+        for strategy in ["arcs", "densify"] {
+            let (code, _) = run(&[
+                "compensate",
+                program,
+                "--model",
+                "examples/machines/thesis-affine-errors.toml",
+                "--strategy",
+                strategy,
+                "--tolerance",
+                "0.00001",
+                "-o",
+                &out.to_string_lossy(),
+                "--force",
+            ]);
+            assert_eq!(code, 0, "{program} {strategy}");
+            let (code, json) = run(&[
+                "verify",
+                program,
+                &out.to_string_lossy(),
+                "--model",
+                "examples/machines/thesis-affine-errors.toml",
+                "--format",
+                "json",
+            ]);
+            assert_eq!(code, 0, "{program} {strategy}: verify\n{json}");
+            let value: serde_json::Value = serde_json::from_str(&json).unwrap();
+            let rms = |side: &str| value["deviation"][side]["rms_mm"].as_f64().unwrap();
+            table.push_str(&format!(
+                "{program} {strategy}: RMS {:.2} -> {:.2} µm\n",
+                rms("before") * 1000.0,
+                rms("after") * 1000.0
+            ));
+            assert!(rms("after") > 0.1e-3 && rms("after") < FLOOR_MM, "{program} {strategy}: {}", rms("after"));
+        }
+    }
+    eprintln!("rounding floor (examples/machines/thesis-affine-errors.toml, --tolerance 0.00001)\n{table}");
+}
 
 fn run(args: &[&str]) -> (i32, String) {
     let output = Command::new(env!("CARGO_BIN_EXE_turnpass")).args(args).current_dir(repo()).output().unwrap();
@@ -60,7 +115,7 @@ fn compensation_brings_the_predicted_deviation_down_to_the_floor() {
                 let improvement = deviation["improvement_percent"].as_f64().unwrap();
                 assert!(after < before, "{program} {strategy}: {after} ≥ {before}");
                 if tolerance.is_some() && (strategy == "arcs" || strategy == "densify") {
-                    let target = (0.1 * before).max(FLOOR_MM);
+                    let target = (0.1 * before).max(1.25 * FLOOR_MM);
                     assert!(after <= target, "{program} {strategy}: RMS {after} above {target}");
                 }
                 let name = program.rsplit('/').next().unwrap();
@@ -163,7 +218,9 @@ fn terms_that_curve_along_a_move_are_followed_between_the_samples() {
     for strategy in STRATEGIES {
         let out = dir.join(format!("{strategy}.nc"));
         let out = out.to_str().unwrap();
-        let (code, _) = run(&["compensate", GENERATED, "--model", CURVED_MODEL, "--strategy", strategy, "-o", out]);
+        let args =
+            ["compensate", GENERATED, "--model", CURVED_MODEL, "--strategy", strategy, "--max-deviation", "0.0025"];
+        let (code, _) = run(&[&args[..], &["-o", out]].concat());
         assert_eq!(code, 0, "{strategy}");
         let args = ["verify", GENERATED, out, "--model", CURVED_MODEL, "--format", "json", "--max-deviation", "0.0025"];
         let (code, json) = run(&args);
@@ -194,13 +251,19 @@ fn terms_that_curve_along_a_move_are_followed_between_the_samples() {
 /// rounding its centre and ends to the increment can make them (2·√2 increments; a control
 /// alarms at some hundredths of a millimetre). The counts of arcs by radius and by centre.
 fn check_arcs(program: &[u8], strategy: &str) -> (usize, usize) {
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(program, &options);
-    assert_eq!(parsed.error_count(), 0, "{strategy}");
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let text = std::fs::read_to_string(repo().join(GENERATED_MODEL)).unwrap();
     let settings = turnpass::machine::ModelFile::from_toml(&text).unwrap().machine;
-    let lowered = lower(&parsed.program, &Machine::from_settings(&settings), &LowerOptions::new(false));
-    assert!(lowered.diagnostics.iter().all(|d| !d.is_error()), "{strategy}: {:?}", lowered.diagnostics);
+    let ready = match analyse(program, &Settings::new(options, &settings, LowerOptions::new(false))).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!("{strategy}: {:?}", analysed.diagnostics),
+    };
+    let (parsed, lowered) = (&ready.parsed, &ready.lowered);
     let blocks = parsed.program.blocks();
     let (mut by_radius, mut by_centre) = (0, 0);
     for (k, m) in lowered.toolpath.moves.iter().enumerate() {

@@ -12,12 +12,13 @@ use turnpass::dialect::{Address, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::ModelSpec;
 use turnpass::machine::{MachineSettings, ModelFile};
+use turnpass::pipeline::{Ready, Settings};
 use turnpass::printer;
-use turnpass::semantic::{LowerOptions, Machine, lower};
+use turnpass::semantic::{LowerOptions, Machine};
 use turnpass::syntax::{CodeLetter, ParseOptions, Program, WordKind, parse};
-use turnpass::toolpath::{Xz, validate};
+use turnpass::toolpath::Xz;
 
-use crate::support::{repo, with_snapshots};
+use crate::support::{analyse, repo, with_snapshots};
 
 const MACHINE: &str = "tests/cases/compensate/machine.toml";
 const HOWA: &str = "tests/cases/compensate/howa.toml";
@@ -47,7 +48,7 @@ fn turnpass(args: &[&str], stdin: Option<&[u8]>) -> (i32, Vec<u8>, String) {
 
 /// The lines of `a` and `b` that differ, as a unified list (`-` removed, `+` added), from
 /// their longest common subsequence.
-fn changed_lines(a: &str, b: &str) -> String {
+pub fn changed_lines(a: &str, b: &str) -> String {
     let (a, b): (Vec<&str>, Vec<&str>) = (a.lines().collect(), b.lines().collect());
     let mut lcs = vec![vec![0usize; b.len() + 1]; a.len() + 1];
     for i in (0..a.len()).rev() {
@@ -102,6 +103,7 @@ fn the_filter_and_the_file_paths_write_the_same_program_and_it_verifies() {
 struct Compensated {
     source: Vec<u8>,
     options: ParseOptions,
+    settings: Settings,
     machine: Machine,
 }
 
@@ -114,17 +116,25 @@ impl Compensated {
             dialect: DialectChoice::Auto,
             gcode_system: settings.gcode_system.unwrap_or(GCodeSystem::A),
             machine_kind: None,
+            control: Default::default(),
         };
         let source = std::fs::read(repo().join(program)).unwrap();
-        (Compensated { source, options, machine: Machine::from_settings(&settings) }, model)
+        let pipeline = Settings::new(options, &settings, LowerOptions::new(false));
+        (Compensated { source, options, machine: pipeline.machine.clone(), settings: pipeline }, model)
     }
 
-    fn run(&self, program: &Program<'_>, model: &ErrorModel, fit: FitOptions) -> Outcome {
-        let lowered = lower(program, &self.machine, &LowerOptions::new(false));
-        let valid = validate(&lowered.toolpath, self.machine.limits).unwrap();
+    /// `source` read, lowered and validated on the case's machine; it must have no error.
+    fn ready<'s>(&self, source: &'s [u8]) -> Ready<'s> {
+        match analyse(source, &self.settings).ready() {
+            Ok(ready) => ready,
+            Err(analysed) => panic!("the program has errors: {:?}", analysed.diagnostics),
+        }
+    }
+
+    fn run(&self, ready: &Ready<'_>, model: &ErrorModel, fit: FitOptions) -> Outcome {
         let options =
             CompensateOptions { fit, max_shift_mm: 0.1, expand_cycles: false, paths: false, block_reports: true };
-        compensate_program(program, &lowered, &valid, &self.machine, model, &options)
+        compensate_program(ready.program(), &ready.lowered, &ready.machine, model, &options)
     }
 
     fn fit(&self) -> FitOptions {
@@ -167,11 +177,12 @@ fn other_words(program: &Program<'_>, index: usize) -> Vec<String> {
 fn untouched_blocks_print_byte_identical_and_edited_blocks_change_only_their_motion() {
     for (path, model_path) in PROGRAMS {
         let (case, model) = Compensated::new(path, model_path);
-        let parsed = parse(&case.source, &case.options);
-        let outcome = case.run(&parsed.program, &model, case.fit());
+        let ready = case.ready(&case.source);
+        let parsed = &ready.parsed;
+        let outcome = case.run(&ready, &model, case.fit());
         assert!(!outcome.refused(), "{path}: {:?}", outcome.diagnostics);
         let output = printer::print(&parsed.program, &outcome.edits);
-        let lowered = lower(&parsed.program, &case.machine, &LowerOptions::new(false));
+        let lowered = &ready.lowered;
         // Blocks an expanded cycle consumed go with it.
         let mut gone: Vec<usize> = Vec::new();
         for edited in outcome.edited.iter().filter(|e| e.cycle) {
@@ -215,8 +226,9 @@ fn untouched_blocks_print_byte_identical_and_edited_blocks_change_only_their_mot
 fn a_model_with_no_errors_edits_nothing() {
     for (path, model_path) in PROGRAMS {
         let (case, _) = Compensated::new(path, model_path);
-        let parsed = parse(&case.source, &case.options);
-        let outcome = case.run(&parsed.program, &ErrorModel::default(), case.fit());
+        let ready = case.ready(&case.source);
+        let parsed = &ready.parsed;
+        let outcome = case.run(&ready, &ErrorModel::default(), case.fit());
         assert!(outcome.edits.is_empty(), "{path}: {:?}", outcome.edited);
         assert_eq!(printer::print(&parsed.program, &outcome.edits), case.source);
     }
@@ -248,9 +260,9 @@ fn an_incremental_program_comes_out_on_the_same_points_as_its_absolute_twin() {
     let mut ends: Vec<Vec<Xz>> = Vec::new();
     for incremental in [true, false] {
         let text = zig_zag(400, incremental);
-        let parsed = parse(text.as_bytes(), &case.options);
-        assert_eq!(parsed.error_count(), 0);
-        let outcome = case.run(&parsed.program, &model, case.fit());
+        let ready = case.ready(text.as_bytes());
+        let parsed = &ready.parsed;
+        let outcome = case.run(&ready, &model, case.fit());
         assert!(!outcome.refused(), "{:?}", outcome.diagnostics);
         let output = printer::print(&parsed.program, &outcome.edits);
         if incremental {
@@ -258,8 +270,7 @@ fn an_incremental_program_comes_out_on_the_same_points_as_its_absolute_twin() {
             assert!(out.lines().filter(|l| l.starts_with('U') || l.starts_with('W')).count() > 400, "{out}");
             assert!(!out.lines().any(|l| l.starts_with('X') && l.contains('W')), "mixed forms:\n{out}");
         }
-        let reparsed = parse(&output, &case.options);
-        let lowered = lower(&reparsed.program, &case.machine, &LowerOptions::new(false));
+        let lowered = case.ready(&output).lowered;
         ends.push(lowered.toolpath.moves.iter().map(|m| m.end).collect());
     }
     // The increments are differences of rounded absolutes: the incremental program reaches
@@ -274,8 +285,8 @@ fn an_incremental_program_comes_out_on_the_same_points_as_its_absolute_twin() {
 #[test]
 fn the_report_shows_each_edited_block_improving() {
     let (case, model) = Compensated::new("tests/cases/compensate/turn.nc", MACHINE);
-    let parsed = parse(&case.source, &case.options);
-    let outcome = case.run(&parsed.program, &model, case.fit());
+    let ready = case.ready(&case.source);
+    let outcome = case.run(&ready, &model, case.fit());
     let report = &outcome.report;
     assert_eq!(report.blocks.len(), outcome.edited.len());
     for block in &report.blocks {

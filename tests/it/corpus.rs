@@ -78,7 +78,12 @@ fn every_corpus_program_parses_prints_back_and_reports_only_its_real_faults() {
         let source = std::fs::read(dir.join(&entry.path)).unwrap();
         let gcode_system: GCodeSystem = entry.gcode_system.as_deref().unwrap_or("A").parse().unwrap();
         // The dialect is detected, not given: detection must agree with the manifest.
-        let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system, machine_kind: None };
+        let options = ParseOptions {
+            dialect: DialectChoice::Auto,
+            gcode_system,
+            machine_kind: None,
+            control: Default::default(),
+        };
         let parsed = parse(&source, &options);
         check_spans(&parsed);
         assert_eq!(parsed.detection.dialect.cli_name(), entry.dialect, "{}: detected dialect", entry.path);

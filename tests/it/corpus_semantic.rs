@@ -12,14 +12,15 @@ use std::path::{Path, PathBuf};
 
 use turnpass::dialect::GCodeSystem;
 use turnpass::machine::{MachineSettings, ModelFile};
+use turnpass::pipeline::Lowering;
 use turnpass::printer::print;
-use turnpass::semantic::{self, Lowered};
+use turnpass::semantic::Lowered;
 use turnpass::source::LineIndex;
 use turnpass::syntax::{Program, parse};
 
 use crate::corpus::{Entry, Fault, manifest};
-use crate::simulate::{Checked, expand_and_compare, lower_and_validate, parse_options};
-use crate::support::{check_spans, external, render, repo, with_snapshots};
+use crate::simulate::{expand_and_compare, parse_options, pipeline_settings};
+use crate::support::{analyse, check_spans, external, render, repo, with_snapshots};
 
 /// The machine file's settings, with the entry's G-code system.
 fn settings_for(entry: &Entry) -> MachineSettings {
@@ -70,18 +71,14 @@ fn cycles_text(program: &Program<'_>, lowered: &Lowered) -> String {
 fn run(path: &Path, name: &str, entry: &Entry) -> String {
     let source = std::fs::read(path).unwrap();
     let settings = settings_for(entry);
-    let parsed = parse(&source, &parse_options(&settings));
-    check_spans(&parsed);
+    let analysed = analyse(&source, &pipeline_settings(&settings, true));
+    let (parsed, diagnostics) = (&analysed.parsed, &analysed.diagnostics);
     assert_eq!(parsed.program.config().dialect.cli_name(), entry.dialect, "{name}: dialect");
-    let Checked { machine, options, lowered, valid, diagnostics } = lower_and_validate(&parsed, &settings);
-    let rendered = render(name, &source, &diagnostics);
+    let rendered = render(name, &source, diagnostics);
 
     assert_eq!(faults(&parsed.program, &parsed.diagnostics), entry.faults, "{name}: parse errors\n{rendered}");
-    let mut lowering_errors = lowered.diagnostics.clone();
-    if let Err(problems) = &valid {
-        lowering_errors.extend(problems.iter().cloned());
-    }
-    lowering_errors.sort_by_key(|d| (d.span.start, d.span.end));
+    // The semantic pass's and the validation's: every diagnostic the parse did not give.
+    let lowering_errors: Vec<_> = diagnostics.iter().filter(|d| !parsed.diagnostics.contains(d)).cloned().collect();
     assert_eq!(
         faults(&parsed.program, &lowering_errors),
         entry.lowering_faults,
@@ -92,16 +89,20 @@ fn run(path: &Path, name: &str, entry: &Entry) -> String {
     let system = settings.gcode_system.unwrap_or(GCodeSystem::A);
     let _ = writeln!(out, "machine: {}, G-code system {system:?}", entry.machine);
     let _ = writeln!(out, "----- DIAGNOSTICS\n{}", rendered.trim_end());
-    if !semantic::lowers(&parsed.program) {
-        // An OSP machining-centre program: only its syntax is checked.
-        assert!(lowered.toolpath.moves.is_empty() && lowered.diagnostics.is_empty(), "{name}: not lowered");
-        out.push_str("----- NOT LOWERED (machining-centre program)\n");
-        return out;
-    }
+    let lowered = match &analysed.lowering {
+        Lowering::NotLowered => {
+            // An OSP machining-centre program: only its syntax is checked.
+            assert_eq!(diagnostics, &parsed.diagnostics, "{name}: not lowered");
+            out.push_str("----- NOT LOWERED (machining-centre program)\n");
+            return out;
+        }
+        Lowering::Invalid(lowered) => lowered,
+        Lowering::Valid(lowered) => lowered,
+    };
     let errors = diagnostics.iter().any(|d| d.is_error());
-    match &valid {
-        Ok(()) => {
-            let summary = turnpass::simulation::summary(&parsed.program, &lowered, &lowered.toolpath, &machine);
+    match &analysed.lowering {
+        Lowering::Valid(valid) => {
+            let summary = turnpass::simulation::summary(&parsed.program, valid, &analysed.machine);
             let _ = writeln!(
                 out,
                 "----- SUMMARY\n{} moves, cycle {:.3} s, cutting {:.3} s, path {:.3} mm, cutting {:.3} mm",
@@ -112,25 +113,27 @@ fn run(path: &Path, name: &str, entry: &Entry) -> String {
                 summary.cutting_length_mm
             );
         }
-        Err(_) => assert!(errors, "{name}: an invalid toolpath is an error"),
+        _ => assert!(errors, "{name}: an invalid toolpath is an error"),
     }
-    let _ = write!(out, "----- CYCLES\n{}", cycles_text(&parsed.program, &lowered));
+    let _ = write!(out, "----- CYCLES\n{}", cycles_text(&parsed.program, lowered));
 
     if errors {
-        // A program with errors is not expanded by the CLI; what expansion there is must
-        // still re-parse.
-        let (edits, _) = turnpass::expand::expansion_edits(&parsed.program, &lowered);
-        let expanded = print(&parsed.program, &edits);
-        let reparsed = parse(&expanded, &parse_options(&settings));
-        check_spans(&reparsed);
-        assert_eq!(
-            reparsed.error_count(),
-            parsed.error_count(),
-            "{name}: the expanded program re-parses with the same errors\n{}",
-            render("expanded", &expanded, &reparsed.diagnostics)
-        );
+        // A program with errors is not expanded by the CLI; what expansion there is of a
+        // valid toolpath must still re-parse.
+        if let Lowering::Valid(valid) = &analysed.lowering {
+            let (edits, _) = turnpass::expand::expansion_edits(&parsed.program, valid);
+            let expanded = print(&parsed.program, &edits);
+            let reparsed = parse(&expanded, &parse_options(&settings));
+            check_spans(&reparsed);
+            assert_eq!(
+                reparsed.error_count(),
+                parsed.error_count(),
+                "{name}: the expanded program re-parses with the same errors\n{}",
+                render("expanded", &expanded, &reparsed.diagnostics)
+            );
+        }
     } else {
-        let _ = expand_and_compare(path, &parsed.program, &machine, &options, &settings);
+        let _ = expand_and_compare(path, &source, &settings);
     }
     out
 }

@@ -4,11 +4,12 @@
 
 use proptest::prelude::*;
 use turnpass::machine::ModelFile;
-use turnpass::semantic::{self, LowerOptions, Machine};
-use turnpass::syntax::parse;
+use turnpass::pipeline::Settings;
+use turnpass::semantic::LowerOptions;
 use turnpass::toolpath::{Motion, Move, Toolpath, Xz};
 
 use crate::simulate::parse_options;
+use crate::support::ready;
 
 pub const MACHINE: &str = r#"
 [machine]
@@ -23,13 +24,8 @@ const TOLERANCE: f64 = 1e-6;
 /// The toolpath of `program`, which must lower without errors.
 fn lower(program: &str) -> Toolpath {
     let settings = ModelFile::from_toml(MACHINE).unwrap().machine;
-    let parsed = parse(program.as_bytes(), &parse_options(&settings));
-    assert_eq!(parsed.error_count(), 0, "{program}\n{:?}", parsed.diagnostics);
-    let machine = Machine::from_settings(&settings);
-    let lowered = semantic::lower(&parsed.program, &machine, &LowerOptions::new(false));
-    let errors: Vec<String> = lowered.diagnostics.iter().filter(|d| d.is_error()).map(|d| d.to_string()).collect();
-    assert!(errors.is_empty(), "{program}\n{errors:?}");
-    lowered.toolpath
+    let settings = Settings::new(parse_options(&settings), &settings, LowerOptions::new(false));
+    ready(program.as_bytes(), &settings).lowered.into_inner().toolpath
 }
 
 /// The moves after the first one (the rapid to the cycle's start point A).

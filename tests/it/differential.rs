@@ -23,11 +23,12 @@ use std::process::Command;
 
 use turnpass::dialect::{Address, DialectChoice, GCodeSystem};
 use turnpass::machine::MachineSettings;
-use turnpass::semantic::{self, LowerOptions, Machine};
-use turnpass::syntax::{CodeLetter, ParseOptions, Program, WordKind, parse};
+use turnpass::pipeline::{Ready, Settings};
+use turnpass::semantic::LowerOptions;
+use turnpass::syntax::{CodeLetter, ParseOptions, Program, WordKind};
 use turnpass::toolpath::Motion;
 
-use crate::support::{check_spans, external, repo};
+use crate::support::{external, ready, repo};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Point {
@@ -114,11 +115,8 @@ fn rs274_points(rs274: &Path, ngc: &str, name: &str) -> Vec<Point> {
     points
 }
 
-fn turnpass_points(program: &Program<'_>) -> Vec<Point> {
-    let machine = Machine::from_settings(&MachineSettings::default());
-    let options = LowerOptions { nose_radius_compensation: false, ..LowerOptions::new(false) };
-    let lowered = semantic::lower(program, &machine, &options);
-    assert!(!lowered.diagnostics.iter().any(|d| d.is_error()), "{:?}", lowered.diagnostics);
+fn turnpass_points(ready: &Ready<'_>) -> Vec<Point> {
+    let lowered = &ready.lowered;
     let mut points = Vec::new();
     if !lowered.toolpath.moves.is_empty() {
         // The first move of a program with no home is where the tool arrives, as rs274's
@@ -183,12 +181,12 @@ fn agrees_with_linuxcnc_rs274() {
             dialect: DialectChoice::Fixed(turnpass::dialect::Dialect::Fanuc),
             gcode_system: GCodeSystem::A,
             machine_kind: None,
+            control: Default::default(),
         };
-        let parsed = parse(&source, &options);
-        check_spans(&parsed);
-        assert_eq!(parsed.error_count(), 0, "{name}");
-        let theirs = moving(rs274_points(&rs274, &translate(&parsed.program), &name));
-        let ours = moving(turnpass_points(&parsed.program));
+        let lower = LowerOptions { nose_radius_compensation: false, ..LowerOptions::new(false) };
+        let ready = ready(&source, &Settings::new(options, &MachineSettings::default(), lower));
+        let theirs = moving(rs274_points(&rs274, &translate(ready.program()), &name));
+        let ours = moving(turnpass_points(&ready));
         assert!(ours.len() > 3, "{name}: too few moves to compare");
         assert_eq!(ours.len(), theirs.len(), "{name}: move counts differ\nours   {ours:?}\ntheirs {theirs:?}");
         for (i, (a, b)) in ours.iter().zip(&theirs).enumerate() {

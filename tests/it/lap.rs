@@ -23,12 +23,14 @@
 use proptest::prelude::*;
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem};
 use turnpass::machine::ModelFile;
-use turnpass::semantic::{self, LowerOptions, Machine};
-use turnpass::syntax::{ParseOptions, parse};
+use turnpass::pipeline::Settings;
+use turnpass::semantic::LowerOptions;
+use turnpass::syntax::ParseOptions;
 use turnpass::toolpath::{Motion, Move, Xz};
 
 use crate::canonical::{Element, Uv};
 use crate::moves::{cycle_moves, samples};
+use crate::support::analyse;
 
 #[derive(Debug, Clone)]
 struct Case {
@@ -176,13 +178,19 @@ fn case() -> impl Strategy<Value = Case> {
         })
 }
 
-fn machine() -> Machine {
+fn settings() -> Settings {
     let settings = ModelFile::from_toml(
         "[machine]\ndialect = \"osp\"\nunits = \"mm\"\nhome = { x = 500.0, z = 300.0 }\nmax_spindle_rpm = 3500\n",
     )
     .unwrap()
     .machine;
-    Machine::from_settings(&settings)
+    let options = ParseOptions {
+        dialect: DialectChoice::Fixed(Dialect::Osp),
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
+    Settings::new(options, &settings, LowerOptions { nose_radius_compensation: false, ..LowerOptions::new(false) })
 }
 
 /// Whether `p` lies strictly inside the region under `elements` (below the contour, within
@@ -283,17 +291,11 @@ proptest! {
     #[test]
     fn lap_cycles_keep_to_the_contour(case in case()) {
         let text = case.program();
-        let options =
-            ParseOptions { dialect: DialectChoice::Fixed(Dialect::Osp), gcode_system: GCodeSystem::A, machine_kind: None };
-        let parsed = parse(text.as_bytes(), &options);
-        prop_assert_eq!(parsed.error_count(), 0, "{}", text);
-        let machine = machine();
-        let lowered = semantic::lower(&parsed.program, &machine, &LowerOptions {
-            nose_radius_compensation: false,
-            ..LowerOptions::new(false)
-        });
-        let errors: Vec<_> = lowered.diagnostics.iter().filter(|d| d.is_error()).collect();
-        prop_assert!(errors.is_empty(), "{:?}\n{}", errors, text);
+        // No error anywhere, and the toolpath validates.
+        let ready = analyse(text.as_bytes(), &settings())
+            .ready()
+            .map_err(|analysed| TestCaseError::fail(format!("{:?}\n{}", analysed.diagnostics, text)))?;
+        let (parsed, lowered) = (&ready.parsed, &ready.lowered);
 
         let start = case.point(case.start);
         let (du, dv) = case.allowance();

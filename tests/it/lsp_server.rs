@@ -117,7 +117,7 @@ proptest! {
         let mut text = String::from_utf8_lossy(&source).into_owned();
         let item = json!({ "uri": uri, "languageId": "gcode", "version": 1, "text": text });
         server.handle(notification("textDocument/didOpen", json!({ "textDocument": item })));
-        let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+        let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None, control: Default::default() };
         for (index, action) in actions.into_iter().enumerate() {
             let version = index as i32 + 2;
             let document = json!({ "uri": uri });

@@ -7,6 +7,7 @@
 
 mod arc_times;
 mod canonical;
+mod check_agrees;
 mod cli;
 mod closed_loop;
 mod compensate;
@@ -36,3 +37,4 @@ mod stock_removal;
 mod support;
 mod thesis;
 mod thesis_compensation;
+mod trust;

@@ -4,12 +4,11 @@
 //! cycle's expansion holding exactly that cycle's moves, and the toolpath valid.
 
 use proptest::prelude::*;
-use turnpass::semantic::{self, LowerOptions, Machine};
-use turnpass::syntax::parse;
-use turnpass::toolpath::validate;
+use turnpass::pipeline::Settings;
+use turnpass::semantic::LowerOptions;
 
 use crate::simulate::{parse_options, settings_for};
-use crate::support::repo;
+use crate::support::{analyse, ready, repo};
 
 /// One step of an outside profile toward the chuck: along -Z, up a face, or a chamfer up
 /// and along, in whole tenths of a millimetre (X as a diameter).
@@ -60,13 +59,14 @@ proptest! {
         let source = program(&plain, &cycle);
         let case = repo().join("tests/cases/simulate/fanuc/nose-radius-g70-g42.nc");
         let settings = settings_for(&case);
-        let parsed = parse(source.as_bytes(), &parse_options(&settings));
-        prop_assert_eq!(parsed.error_count(), 0, "{}", source);
-        let machine = Machine::from_settings(&settings);
-        let lowered = semantic::lower(&parsed.program, &machine, &LowerOptions::new(false));
-        prop_assert!(!lowered.diagnostics.iter().any(|d| d.is_error()), "{source}\n{:?}", lowered.diagnostics);
-        let plain_lowered =
-            semantic::lower(&parsed.program, &machine, &LowerOptions { nose_radius_compensation: false, ..LowerOptions::new(false) });
+        let with = |lower| Settings::new(parse_options(&settings), &settings, lower);
+        // No error anywhere, and the toolpath validates.
+        let compensated = analyse(source.as_bytes(), &with(LowerOptions::new(false)))
+            .ready()
+            .map_err(|analysed| TestCaseError::fail(format!("{source}\n{:?}", analysed.diagnostics)))?;
+        let (parsed, lowered) = (&compensated.parsed, &compensated.lowered);
+        let plain = LowerOptions { nose_radius_compensation: false, ..LowerOptions::new(false) };
+        let plain_lowered = ready(source.as_bytes(), &with(plain)).lowered;
         // The outside corners (a face up, then along -Z) gain their arcs.
         prop_assert!(lowered.toolpath.moves.len() > plain_lowered.toolpath.moves.len());
         prop_assert_eq!(lowered.expansions.len(), 2);
@@ -78,6 +78,5 @@ proptest! {
             let count = lowered.toolpath.moves.iter().filter(|m| m.cycle == span).count();
             prop_assert_eq!(count, moves.len());
         }
-        prop_assert!(validate(&lowered.toolpath, machine.limits).is_ok());
     }
 }

@@ -16,6 +16,7 @@ fn options(dialect: Dialect) -> ParseOptions {
         dialect: DialectChoice::Fixed(dialect),
         gcode_system: GCodeSystem::A,
         machine_kind: Some(MachineKind::Lathe),
+        control: Default::default(),
     }
 }
 

@@ -131,7 +131,12 @@ pub fn options() -> impl Strategy<Value = ParseOptions> {
         ]),
         prop::sample::select(vec![GCodeSystem::A, GCodeSystem::B, GCodeSystem::C]),
     )
-        .prop_map(|(dialect, gcode_system)| ParseOptions { dialect, gcode_system, machine_kind: None })
+        .prop_map(|(dialect, gcode_system)| ParseOptions {
+            dialect,
+            gcode_system,
+            machine_kind: None,
+            control: Default::default(),
+        })
 }
 
 proptest! {

@@ -9,15 +9,15 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use turnpass::diagnostic::Diagnostic;
 use turnpass::dialect::{DialectChoice, GCodeSystem};
 use turnpass::machine::{MachineSettings, ModelFile};
+use turnpass::pipeline::{Lowering, Settings};
 use turnpass::printer::print;
-use turnpass::semantic::{self, LowerOptions, Lowered, Machine};
-use turnpass::syntax::{ParseOptions, Parsed, parse};
-use turnpass::toolpath::{Motion, Toolpath, validate};
+use turnpass::semantic::LowerOptions;
+use turnpass::syntax::ParseOptions;
+use turnpass::toolpath::{Motion, Toolpath};
 
-use crate::support::{check_spans, render, repo, with_snapshots};
+use crate::support::{analyse, render, repo, with_snapshots};
 
 /// The machine settings of a case: `<case>.toml` beside it, else the nearest `machine.toml`
 /// in its directory or above (up to `tests/cases/simulate`).
@@ -42,6 +42,7 @@ pub fn parse_options(settings: &MachineSettings) -> ParseOptions {
         dialect: settings.dialect.map_or(DialectChoice::Auto, DialectChoice::Fixed),
         gcode_system: settings.gcode_system.unwrap_or(GCodeSystem::A),
         machine_kind: None,
+        control: settings.control.unwrap_or_default(),
     }
 }
 
@@ -73,49 +74,30 @@ pub fn moves_text(program: &turnpass::syntax::Program<'_>, toolpath: &Toolpath) 
     out
 }
 
-/// A parsed program lowered on a machine, its toolpath validated.
-pub struct Checked {
-    pub machine: Machine,
-    pub options: LowerOptions,
-    pub lowered: Lowered,
-    /// `Ok` when the toolpath validates.
-    pub valid: Result<(), Vec<Diagnostic>>,
-    /// The diagnostics of the parse, the lowering and the validation, in source order.
-    pub diagnostics: Vec<Diagnostic>,
-}
-
-/// Lower `parsed` on the machine `settings` describe (its block-delete switch included) and
-/// validate the toolpath against the machine's travel.
-pub fn lower_and_validate(parsed: &Parsed<'_>, settings: &MachineSettings) -> Checked {
-    let machine = Machine::from_settings(settings);
-    let options = LowerOptions::new(settings.block_delete.unwrap_or(false));
-    let lowered = semantic::lower(&parsed.program, &machine, &options);
-    let valid = validate(&lowered.toolpath, machine.limits).map(|_| ());
-    let mut diagnostics = parsed.diagnostics.clone();
-    diagnostics.extend(lowered.diagnostics.iter().cloned());
-    if let Err(problems) = &valid {
-        diagnostics.extend(problems.iter().cloned());
-    }
-    diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
-    Checked { machine, options, lowered, valid, diagnostics }
+/// The pipeline's settings for a case's machine `settings` (its block-delete switch
+/// included), with nose-radius compensation on as `simulate` runs, or off as `expand` does.
+pub fn pipeline_settings(settings: &MachineSettings, compensation: bool) -> Settings {
+    let block_delete = settings.block_delete.unwrap_or(false);
+    let lower = LowerOptions { nose_radius_compensation: compensation, ..LowerOptions::new(block_delete) };
+    Settings::new(parse_options(settings), settings, lower)
 }
 
 fn run_case(path: &Path) -> String {
     let source = std::fs::read(path).unwrap();
     let settings = settings_for(path);
-    let parsed = parse(&source, &parse_options(&settings));
-    check_spans(&parsed);
-    let Checked { machine, options, lowered, valid, diagnostics } = lower_and_validate(&parsed, &settings);
+    let analysed = analyse(&source, &pipeline_settings(&settings, true));
+    let diagnostics = &analysed.diagnostics;
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
     let errors = diagnostics.iter().any(|d| d.is_error());
     let err_case = path.components().any(|c| c.as_os_str() == "err");
-    assert_eq!(errors, err_case, "{}:\n{}", path.display(), render(&name, &source, &diagnostics));
+    assert_eq!(errors, err_case, "{}:\n{}", path.display(), render(&name, &source, diagnostics));
 
     let mut out = String::new();
     let _ = writeln!(out, "----- SOURCE\n{}", String::from_utf8_lossy(&source).trim_end());
-    let _ = writeln!(out, "----- DIAGNOSTICS\n{}", render(&name, &source, &diagnostics).trim_end());
-    if valid.is_ok() {
-        let summary = turnpass::simulation::summary(&parsed.program, &lowered, &lowered.toolpath, &machine);
+    let _ = writeln!(out, "----- DIAGNOSTICS\n{}", render(&name, &source, diagnostics).trim_end());
+    let program = &analysed.parsed.program;
+    if let Lowering::Valid(lowered) = &analysed.lowering {
+        let summary = turnpass::simulation::summary(program, lowered, &analysed.machine);
         let _ = writeln!(
             out,
             "----- SUMMARY\ncycle {:.3} s, cutting {:.3} s, path {:.3} mm, cutting {:.3} mm, {} moves",
@@ -137,37 +119,38 @@ fn run_case(path: &Path) -> String {
             );
         }
     }
-    let _ = write!(out, "----- MOVES\n{}", moves_text(&parsed.program, &lowered.toolpath));
+    let lowered = analysed.lowered().expect("every simulate case is a lathe program");
+    let _ = write!(out, "----- MOVES\n{}", moves_text(program, &lowered.toolpath));
     if !errors {
-        let _ =
-            write!(out, "----- EXPANDED\n{}", expand_and_compare(path, &parsed.program, &machine, &options, &settings));
+        let _ = write!(out, "----- EXPANDED\n{}", expand_and_compare(path, &source, &settings));
     }
     out
 }
 
-/// The `expand` output, after checking that it moves the tool as the original does.
-pub fn expand_and_compare(
-    path: &Path,
-    program: &turnpass::syntax::Program<'_>,
-    machine: &Machine,
-    options: &LowerOptions,
-    settings: &MachineSettings,
-) -> String {
-    let plain = LowerOptions { nose_radius_compensation: false, ..*options };
-    let lowered = semantic::lower(program, machine, &plain);
-    let (edits, notes) = turnpass::expand::expansion_edits(program, &lowered);
+/// The `expand` output of `source`, a program with no errors on the machine `settings`
+/// describe, after checking that it moves the tool as the original does.
+pub fn expand_and_compare(path: &Path, source: &[u8], settings: &MachineSettings) -> String {
+    let plain = pipeline_settings(settings, false);
+    let ready = match analyse(source, &plain).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => {
+            panic!("{}: lowered without nose-radius compensation:\n{:?}", path.display(), analysed.diagnostics)
+        }
+    };
+    let (program, machine) = (ready.program(), &ready.machine);
+    let (edits, notes) = turnpass::expand::expansion_edits(program, &ready.lowered);
     let expanded = print(program, &edits);
-    let reparsed = parse(&expanded, &parse_options(settings));
-    check_spans(&reparsed);
+    let again = analyse(&expanded, &plain);
     assert_eq!(
-        reparsed.error_count(),
+        again.parsed.error_count(),
         0,
         "{}: expanded program:\n{}",
         path.display(),
-        render("expanded", &expanded, &reparsed.diagnostics)
+        render("expanded", &expanded, &again.parsed.diagnostics)
     );
-    let again = semantic::lower(&reparsed.program, machine, &plain);
-    assert!(!again.diagnostics.iter().any(|d| d.is_error()), "{}: expanded program lowers with errors", path.display());
+    assert!(again.error_count() == 0, "{}: expanded program lowers with errors", path.display());
+    let again = again.lowered().expect("the expanded program lowers");
+    let lowered = &ready.lowered;
     // Expansion rounds to the least increment, and rapids of zero length vanish.
     let tolerance = machine.increment * machine.scale() * 1.01;
     // Each move's kind, end point, and the F and S words in force (as written), so that an

@@ -24,13 +24,14 @@
 
 use proptest::prelude::*;
 use turnpass::machine::ModelFile;
-use turnpass::semantic::{self, LowerOptions, Machine};
-use turnpass::syntax::parse;
+use turnpass::pipeline::Settings;
+use turnpass::semantic::LowerOptions;
 use turnpass::toolpath::{Motion, Move, Xz};
 
 use crate::canonical::{Element, Uv};
 use crate::moves::{cycle_moves, samples};
 use crate::simulate::parse_options;
+use crate::support::analyse;
 
 const TOLERANCE: f64 = 1e-6;
 
@@ -287,10 +288,10 @@ fn case() -> impl Strategy<Value = Case> {
     })
 }
 
-fn machine() -> (turnpass::machine::MachineSettings, Machine) {
+fn settings() -> Settings {
     let settings = ModelFile::from_toml(crate::cycles::MACHINE).unwrap().machine;
-    let machine = Machine::from_settings(&settings);
-    (settings, machine)
+    let lower = LowerOptions { nose_radius_compensation: false, ..LowerOptions::new(false) };
+    Settings::new(parse_options(&settings), &settings, lower)
 }
 
 fn close(a: Xz, b: Xz) -> bool {
@@ -351,15 +352,11 @@ proptest! {
     #[test]
     fn g71_g72_rough_to_the_shifted_profile(case in case()) {
         let text = case.program();
-        let (settings, machine) = machine();
-        let parsed = parse(text.as_bytes(), &parse_options(&settings));
-        prop_assert_eq!(parsed.error_count(), 0, "{}", text);
-        let lowered = semantic::lower(&parsed.program, &machine, &LowerOptions {
-            nose_radius_compensation: false,
-            ..LowerOptions::new(false)
-        });
-        let errors: Vec<String> = lowered.diagnostics.iter().filter(|d| d.is_error()).map(|d| d.to_string()).collect();
-        prop_assert!(errors.is_empty(), "{:?}\n{}", errors, text);
+        // No error anywhere, and the toolpath validates.
+        let ready = analyse(text.as_bytes(), &settings())
+            .ready()
+            .map_err(|analysed| TestCaseError::fail(format!("{:?}\n{}", analysed.diagnostics, text)))?;
+        let (parsed, lowered) = (&ready.parsed, &ready.lowered);
 
         let shape = case.shape();
         let a = case.start;

@@ -18,11 +18,17 @@ pub fn repo() -> PathBuf {
 /// Options from a first-line pragma comment, `(turnpass: dialect=osp gcode_system=B)`.
 /// Without one, the dialect is detected and the G-code system is A.
 pub fn options_for(source: &[u8]) -> ParseOptions {
-    let mut options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let mut options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     for (key, value) in pragma(source) {
         match (key.as_str(), value.as_str()) {
             ("dialect", value) => options.dialect = value.parse().unwrap(),
             ("gcode_system", value) => options.gcode_system = value.parse().unwrap(),
+            ("control", value) => options.control = value.parse().unwrap(),
             ("machine", "lathe") => options.machine_kind = Some(MachineKind::Lathe),
             ("machine", "mc") => options.machine_kind = Some(MachineKind::MachiningCentre),
             ("decimal_input" | "increment_places", _) => {}
@@ -56,6 +62,28 @@ fn pragma(source: &[u8]) -> Vec<(String, String)> {
         .split_whitespace()
         .filter_map(|s| s.split_once('=').map(|(k, v)| (k.to_string(), v.to_string())))
         .collect()
+}
+
+/// `source` through the library's pipeline (`pipeline::analyse`: parse, lower, validate),
+/// its parse checked for the span invariants: how every test that runs a program past
+/// parsing enters.
+pub fn analyse<'s>(source: &'s [u8], settings: &turnpass::pipeline::Settings) -> turnpass::pipeline::Analysed<'s> {
+    let analysed = turnpass::pipeline::analyse(source, settings);
+    check_spans(&analysed.parsed);
+    analysed
+}
+
+/// [`analyse`] for a program that must be ready for the passes after lowering (no error,
+/// its toolpath valid); the test fails with the program and its diagnostics otherwise.
+pub fn ready<'s>(source: &'s [u8], settings: &turnpass::pipeline::Settings) -> turnpass::pipeline::Ready<'s> {
+    match analyse(source, settings).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!(
+            "the program is not ready:\n{}\n{}",
+            String::from_utf8_lossy(source),
+            render("program", source, &analysed.diagnostics)
+        ),
+    }
 }
 
 pub fn render(name: &str, source: &[u8], diagnostics: &[Diagnostic]) -> String {
@@ -174,6 +202,7 @@ pub fn dump(program: &Program<'_>) -> String {
                 Statement::Settings => "Settings",
                 Statement::Invalid => "Invalid",
                 Statement::Trailing => "Trailing",
+                Statement::Leader => "Leader",
                 _ => unreachable!(),
             },
         };

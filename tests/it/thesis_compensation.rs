@@ -10,13 +10,13 @@ use turnpass::compensation::fit::{self, FitOptions, MovePoints, NominalShape, Se
 use turnpass::compensation::{InverseOptions, compensate_samples, sample_toolpath};
 use turnpass::error_model::model_file::ModelSpec;
 use turnpass::machine::ModelFile;
+use turnpass::pipeline::Settings;
+use turnpass::semantic::LowerOptions;
 use turnpass::semantic::nose_radius::ToolTable;
-use turnpass::semantic::{LowerOptions, Machine, lower};
-use turnpass::syntax::parse;
-use turnpass::toolpath::{Motion, Validated, Xz};
+use turnpass::toolpath::{Motion, Xz};
 
 use crate::simulate::parse_options;
-use crate::support::{check_spans, repo};
+use crate::support::{analyse, repo};
 
 /// The compensated points of every move, by move index, and the toolpath.
 fn compensate(program: &str, model_toml: &str, step: f64) -> (turnpass::toolpath::Toolpath, Vec<Vec<Xz>>) {
@@ -26,15 +26,15 @@ fn compensate(program: &str, model_toml: &str, step: f64) -> (turnpass::toolpath
         .unwrap()
         .build(|file| std::fs::read_to_string(tables.join(file)).map_err(|e| e.to_string()))
         .unwrap();
-    let parsed = parse(program.as_bytes(), &parse_options(&settings));
-    check_spans(&parsed);
-    assert_eq!(parsed.error_count(), 0);
-    let machine = Machine::from_settings(&settings);
-    let lowered = lower(&parsed.program, &machine, &LowerOptions::new(false));
-    assert!(lowered.diagnostics.iter().all(|d| !d.is_error()), "{:?}", lowered.diagnostics);
-    let toolpath = Validated::new(lowered.toolpath, machine.limits).unwrap().into_inner();
+    let pipeline = Settings::new(parse_options(&settings), &settings, LowerOptions::new(false));
+    let ready = match analyse(program.as_bytes(), &pipeline).ready() {
+        Ok(ready) => ready,
+        Err(analysed) => panic!("{:?}", analysed.diagnostics),
+    };
+    let machine = ready.machine;
+    let toolpath = ready.lowered.into_inner().toolpath;
     let samples = sample_toolpath(&toolpath, &ToolTable::from_machine(&machine), step);
-    let options = InverseOptions { tolerance_mm: 1e-6, ..InverseOptions::default() };
+    let options = InverseOptions { tolerance_mm: 1e-6, dead_band_mm: 1e-6, ..InverseOptions::default() };
     let result = compensate_samples(&samples, toolpath.start, &model, &options);
     assert!(result.max_residual_mm < 1e-8, "{}", result.max_residual_mm);
     let mut by_move = vec![Vec::new(); toolpath.moves.len()];

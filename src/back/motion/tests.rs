@@ -62,6 +62,7 @@ fn a_dwell_and_the_modal_words_of_written_blocks() {
             dialect: crate::dialect::DialectChoice::Fixed(dialect),
             gcode_system: GCodeSystem::A,
             machine_kind: None,
+            control: Default::default(),
         };
         let parsed = parse(b"", &options);
         let mut writer = MotionWriter::new(Codes::of(&parsed.program), Vec::new());

@@ -22,7 +22,7 @@ M30
 
 fn toolpath() -> (Toolpath, Machine) {
     let (lowered, machine) = lower_program(PROGRAM);
-    (lowered.toolpath, machine)
+    (lowered.into_inner().toolpath, machine)
 }
 
 fn model(effects: Vec<Effect>) -> ErrorModel {
@@ -53,7 +53,7 @@ fn direction_dependent_and_position_dependent_errors_converge_below_the_toleranc
         Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 11.94, phase: 0.3 }),
         Effect::Squareness(Squareness { urad: 30.0 }),
     ]);
-    let options = InverseOptions { tolerance_mm: 1e-6, ..InverseOptions::default() };
+    let options = InverseOptions { tolerance_mm: 1e-6, dead_band_mm: 1e-6, ..InverseOptions::default() };
     let result = compensate_samples(&samples, path.start, &m, &options);
     assert!(result.max_residual_mm <= 1e-6, "{} after {}", result.max_residual_mm, result.iterations);
     assert!(result.iterations <= 5, "{}", result.iterations);
@@ -103,7 +103,7 @@ fn terms_of_time_given_once_per_sample_solve_and_predict_as_evaluated_at_each_co
     let solved = |terms: &[Xz]| {
         let mut inverse = Inverse::new(path.start, &m, &InverseOptions::default());
         let (mut commanded, mut predicted) = (Vec::new(), Vec::new());
-        inverse.solve(&samples, terms, &mut commanded, Some(&mut predicted));
+        inverse.solve(&samples, terms, (&mut commanded, &mut Vec::new()), Some(&mut predicted));
         (commanded, predicted, inverse.iterations)
     };
     let (with_terms, without) = (solved(&terms), solved(&[]));

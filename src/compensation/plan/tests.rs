@@ -30,7 +30,8 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
     let samples = sample_toolpath(path, &tools, 0.25);
     let model = ErrorModel { tables: None, effects, start_min: 0.0 };
     let fit = FitOptions { strategy: Strategy::Densify, tolerance_mm: 0.0005, step_mm: None };
-    let inverse = InverseOptions { tolerance_mm: fit.tolerance_mm, ..InverseOptions::default() };
+    let inverse =
+        InverseOptions { tolerance_mm: fit.tolerance_mm, dead_band_mm: fit.tolerance_mm, ..InverseOptions::default() };
     let compensated = compensate_samples(&samples, path.start, &model, &inverse);
     let ranges = sample_ranges(path.moves.len(), &samples);
     let writable = vec![true; path.moves.len()];
@@ -40,6 +41,7 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
         toolpath: path,
         samples: &samples,
         commanded: &compensated.commanded,
+        take_ups: &compensated.take_ups,
         ranges: &ranges,
         writable: &writable,
         radius: &radius,
@@ -47,7 +49,7 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
     };
     let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(0));
     let plans = plan_moves(&input, |_| grid, &PlanOptions { fit, play: model.play() });
-    (lowered, plans)
+    (lowered.into_inner(), plans)
 }
 
 #[test]

@@ -78,13 +78,14 @@ impl Context<'_> {
     fn plan_input<'p>(
         &'p self,
         samples: &'p [PathSample],
-        commanded: &'p [Xz],
+        (commanded, take_ups): (&'p [Xz], &'p [Xz]),
         ranges: &'p [Range<usize>],
     ) -> PlanInput<'p> {
         PlanInput {
             toolpath: self.toolpath,
             samples,
             commanded,
+            take_ups,
             ranges,
             writable: &self.writable,
             radius: &self.radius,
@@ -143,6 +144,8 @@ struct Piece {
     /// the solve and both predictions.
     time_terms: Vec<Xz>,
     commanded: Vec<Xz>,
+    /// `Compensated::take_ups`, beside `commanded`.
+    take_ups: Vec<Xz>,
     uncompensated: Vec<Xz>,
     before: Vec<Option<f64>>,
     rounded: Vec<Xz>,
@@ -156,6 +159,7 @@ impl Piece {
         self.ranges.clear();
         self.time_terms.clear();
         self.commanded.clear();
+        self.take_ups.clear();
         self.uncompensated.clear();
         self.before.clear();
         self.rounded.clear();
@@ -186,16 +190,14 @@ pub fn run<'a, 'src>(context: &Context<'src>, mut motion: MotionBlocks<'a, 'src>
     let (to_rewrite, rewriting) = sync_channel::<Piece>(QUEUE);
     // Rewritten pieces go back to be filled again.
     let (to_reuse, reusable) = sync_channel::<Piece>(QUEUE * 3 + 2);
-    std::thread::scope(|scope| {
+    crate::parallel::scope(|scope| {
         let solver = scope.spawn(move || solve(context, &to_plan, &reusable));
         let planner = scope.spawn(move || plan(context, &planning, &to_round));
         let rounder = scope.spawn(move || round(context, &rounding, &to_rewrite));
         let plans = rewrite(context, &mut motion, &rewriting, &to_reuse);
-        // No thread can fail on any input; a panic in one is a bug, and is passed on.
-        let (iterations, residual) = solver.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-        planner.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-        let Measured { diagnostics, figures, mut totals, paths, needs } =
-            rounder.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+        let (iterations, residual) = solver.join();
+        planner.join();
+        let Measured { diagnostics, figures, mut totals, paths, needs } = rounder.join();
         totals.inverse_iterations = iterations;
         totals.inverse_residual_mm = residual;
         Streamed { plans, diagnostics, figures, totals, paths, needs, motion }
@@ -225,18 +227,21 @@ fn pieces(context: &Context<'_>) -> Vec<Range<usize>> {
 /// Stage 1: sample, solve, predict as written, measure that.
 fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver<Piece>) -> (u32, f64) {
     let Context { toolpath, model, options, .. } = *context;
-    let inverse_options = InverseOptions { tolerance_mm: options.fit.tolerance_mm, ..InverseOptions::default() };
+    let tolerance_mm = options.fit.tolerance_mm;
+    let dead_band_mm = tolerance_mm.max(context.grid(0).increment_mm() / 2.0);
+    let inverse_options = InverseOptions { tolerance_mm, dead_band_mm, ..InverseOptions::default() };
     let mut inverse = Inverse::new(toolpath.start, model, &inverse_options);
     let mut as_written = Predictor::new(toolpath.start, model);
-    let mut last: Option<(PathSample, Xz)> = None;
+    let mut last: Option<(PathSample, Xz, Xz)> = None;
     for moves in pieces(context) {
         let mut piece = reusable.try_recv().unwrap_or_default();
         piece.clear();
         piece.moves = moves.clone();
         piece.lead = match last {
-            Some((sample, commanded)) => {
+            Some((sample, commanded, take_up)) => {
                 piece.samples.push(sample);
                 piece.commanded.push(commanded);
+                piece.take_ups.push(take_up);
                 1
             }
             None => 0,
@@ -253,10 +258,13 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
         time_terms(samples, model, &mut piece.time_terms);
         // Where the model predicts the commanded points go is not read: the round stage
         // predicts the rounded ones.
-        inverse.solve(samples, &piece.time_terms, &mut piece.commanded, None);
+        inverse.solve(samples, &piece.time_terms, (&mut piece.commanded, &mut piece.take_ups), None);
         as_written.predict_nominal(samples, &piece.time_terms, &mut piece.uncompensated);
         piece.before.extend(samples.iter().zip(&piece.uncompensated).map(|(s, &p)| context.path.distance(s, p)));
-        last = piece.samples.last().copied().zip(piece.commanded.last().copied());
+        last = match (piece.samples.last(), piece.commanded.last(), piece.take_ups.last()) {
+            (Some(&sample), Some(&commanded), Some(&take_up)) => Some((sample, commanded, take_up)),
+            _ => None,
+        };
         if to_plan.send(piece).is_err() {
             break;
         }
@@ -272,7 +280,7 @@ fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_round: &SyncSender
     while let Ok(mut piece) = planning.recv() {
         piece.spread_ranges(&mut ranges);
         let mut plans = std::mem::take(&mut piece.plans);
-        let input = context.plan_input(&piece.samples, &piece.commanded, &ranges);
+        let input = context.plan_input(&piece.samples, (&piece.commanded, &piece.take_ups), &ranges);
         at = plan_range(&input, piece.moves.clone(), at, |k| context.grid(k), &context.plan_options, &mut plans);
         piece.plans = plans;
         if to_round.send(piece).is_err() {
@@ -306,7 +314,7 @@ fn round(context: &Context<'_>, rounding: &Receiver<Piece>, to_rewrite: &SyncSen
         piece.spread_ranges(&mut ranges);
         piece.rounded.extend(piece.samples.iter().map(|s| s.nominal));
         let grid = |k| context.grid(k);
-        let input = context.plan_input(&piece.samples, &piece.commanded, &ranges);
+        let input = context.plan_input(&piece.samples, (&piece.commanded, &piece.take_ups), &ranges);
         quantised::commanded_moves(&input, piece.moves.start, &piece.plans, grid, &mut piece.rounded);
         let fresh = piece.fresh();
         let samples = piece.samples.get(fresh.clone()).unwrap_or_default();

@@ -45,7 +45,7 @@ fn a_model_name_keeps_only_what_a_comment_can_hold() {
     assert_eq!(printable_name("a;b%c\u{e9}d"), "a b c d");
     assert_eq!(printable_name("  ()  "), "UNNAMED");
     let long = "Okuma Howa V40R (thesis lathe), Table 6 errors and several other effects";
-    assert_eq!(printable_name(long), "Okuma Howa V40R thesis lathe Table 6 errors and");
+    assert_eq!(printable_name(long), "Okuma Howa V40R thesis lathe Table 6 errors...");
     assert_eq!(printable_name(&"x".repeat(60)).len(), NAME_MAX);
     // A name that holds what ends the comment or a field still reads back.
     let odd = Provenance { model: "lathe (3), bay 2; night".to_string(), ..made() };

@@ -17,7 +17,13 @@ fn the_walk_reaches_a_sample_past_many_short_lines() {
     let m = &toolpath.moves[index];
     let tools = ToolTable::from_machine(&machine);
     // Two samples on the quarter arc: its middle and its end.
-    let sampling = Sampling { spacing: Spacing::ANY, arc: ArcTerms::default(), allowance: 1e-9 };
+    let sampling = Sampling {
+        spacing: Spacing::ANY,
+        arc: ArcTerms::default(),
+        allowance: 1e-9,
+        max_arc_radians: Sampling::MAX_ARC_RADIANS,
+        play: Xz::new(0.0, 0.0),
+    };
     let mut samples: Vec<PathSample> = Vec::new();
     sample_moves(toolpath, index..index + 1, &tools, &sampling, &mut samples);
     assert!(samples.len() >= 2, "{}", samples.len());

@@ -161,7 +161,7 @@ pub(super) fn write(
         let compensated = compensated_moves(moves, cycle_plans, compensation_before);
         let blocks = match cycle_blocks(program, expansion, &compensated, start, compensation_before, shift, style) {
             CycleBlocks::Blocks(blocks) => with_call_words(program, expansion.block, blocks),
-            CycleBlocks::Keep | CycleBlocks::NotExpandable => {
+            CycleBlocks::Keep | CycleBlocks::NotExpandable(_) => {
                 let span = program.block(expansion.block).span;
                 diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
                 continue;

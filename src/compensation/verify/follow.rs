@@ -50,6 +50,8 @@
 use std::cell::OnceCell;
 use std::ops::RangeInclusive;
 
+use smallvec::SmallVec;
+
 use crate::compensation::deviation::{Closest, LocalPath, PathIndex};
 use crate::toolpath::{Motion, Xz};
 
@@ -116,12 +118,18 @@ impl<'a> Follower<'a> {
     pub fn measure(&mut self, nominal: Xz, p: Xz) -> Option<Found> {
         let window = self.window(0.0, WINDOW_MM);
         let ahead = self.move_index.max(*window.start())..=*window.end();
-        let candidates: Vec<_> =
-            ahead.clone().filter_map(|k| self.path.closest_on(k, nominal).map(|c| (c.distance, k, c))).collect();
-        let best = candidates.iter().map(|&(distance, _, _)| distance).fold(f64::INFINITY, f64::min);
+        // Distances first (no angles): the closest point is found for the match alone.
+        let candidates: SmallVec<[(f64, usize); 32]> = ahead
+            .clone()
+            .filter_map(|k| {
+                let distance = self.path.distance_to(nominal, k);
+                distance.is_finite().then_some((distance, k))
+            })
+            .collect();
+        let best = candidates.iter().map(|&(distance, _)| distance).fold(f64::INFINITY, f64::min);
         let limit = MATCH_MM.min(best + SLACK_MM);
-        let matched = candidates.into_iter().find(|&(distance, _, _)| distance <= limit);
-        let Some((_, k, closest)) = matched else {
+        let matched = candidates.into_iter().find(|&(distance, _)| distance <= limit);
+        let Some((k, closest)) = matched.and_then(|(_, k)| self.path.closest_on(k, nominal).map(|c| (k, c))) else {
             // Lost: match over the whole path, measure against the whole path.
             if let Some((distance, k)) = self.index().closest(nominal)
                 && distance <= MATCH_MM
@@ -139,6 +147,17 @@ impl<'a> Follower<'a> {
         let around = self.window(WINDOW_MM, WINDOW_MM);
         let moves = *around.start().min(ahead.start())..=*around.end().max(ahead.end());
         self.closest_in(moves, p).map(|(_, k, closest)| Found::on(k, closest))
+    }
+
+    /// The side of the original's path `p` lies on, from what measuring it found
+    /// (`LocalPath::side`).
+    pub fn side(&self, found: &Found, p: Xz) -> f64 {
+        self.path.side(found.move_index, found.point, p)
+    }
+
+    /// The original's move the last point was matched to (its own point's move).
+    pub fn matched_move(&self) -> usize {
+        self.move_index
     }
 
     fn move_to(&mut self, k: usize, param: f64) {
@@ -185,15 +204,16 @@ impl<'a> Follower<'a> {
     /// The closest cutting move of `moves` to `point`: its distance, its index and the
     /// closest point (the earliest move where several are equally close).
     fn closest_in(&self, moves: RangeInclusive<usize>, point: Xz) -> Option<(f64, usize, Closest)> {
-        let mut best: Option<(f64, usize, Closest)> = None;
+        // Distances first (no angles): the closest point is found for the closest move alone.
+        let mut best: Option<(f64, usize)> = None;
         for k in moves {
-            if let Some(closest) = self.path.closest_on(k, point)
-                && best.is_none_or(|(distance, _, _)| closest.distance < distance)
-            {
-                best = Some((closest.distance, k, closest));
+            let distance = self.path.distance_to(point, k);
+            if distance.is_finite() && best.is_none_or(|(closest, _)| distance < closest) {
+                best = Some((distance, k));
             }
         }
-        best
+        let (_, k) = best?;
+        self.path.closest_on(k, point).map(|closest| (closest.distance, k, closest))
     }
 
     fn index(&self) -> &PathIndex<'a> {

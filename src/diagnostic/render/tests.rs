@@ -28,6 +28,7 @@ fn json_of_an_error_on_every_line_looks_at_each_line_once() {
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: None,
+        control: Default::default(),
     };
     let parsed = parse(source, &options);
     assert_eq!(parsed.error_count(), 2000);

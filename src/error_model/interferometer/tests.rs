@@ -42,13 +42,14 @@ fn iso_230_2_figures_by_hand() {
     assert!((r.systematic - 0.005).abs() < 1e-12);
     assert!((r.mean_range - 0.002).abs() < 1e-12);
     // B_i = 0.003 at both targets.
-    assert!((r.reversal - 0.003).abs() < 1e-12 && (r.mean_reversal - 0.003).abs() < 1e-12);
+    assert!((r.reversal.unwrap() - 0.003).abs() < 1e-12 && (r.mean_reversal.unwrap() - 0.003).abs() < 1e-12);
     // A: max(x̄ + 2s) = 0.004 + 0 or 0.002 + 2√2·0.001 = 0.004828…; min(x̄ − 2s) at 100 down:
     // 0.001 − 2√2·0.001 = −0.001828…; also 0 down: −0.001 − 0. So A = 0.006657…
     let two_s = 2.0 * 2f64.sqrt() * 0.001;
-    assert!((r.accuracy - ((0.002 + two_s) - (0.001 - two_s))).abs() < 1e-12);
+    assert!((r.accuracy.unwrap() - ((0.002 + two_s) - (0.001 - two_s))).abs() < 1e-12);
     // R_i = 2s↑ + 2s↓ + |B|: at 0, 2√2·0.001 + 0 + 0.003; at 100, 0 + 2√2·0.001 + 0.003.
-    assert!((r.repeatability - (two_s + 0.003)).abs() < 1e-12);
+    assert!((r.repeatability.unwrap() - (two_s + 0.003)).abs() < 1e-12);
+    assert!(r.not_measured.is_empty());
 }
 
 #[test]
@@ -102,4 +103,28 @@ fn unknown_and_repeated_columns_are_refused_at_their_header_cell() {
 fn row_errors_name_the_line_past_blank_and_comment_lines() {
     let text = "target_mm,direction,linear_mm\n0,up,0.001\n\n# a remark\n5,up,abc\n";
     assert_eq!(parse(text).unwrap_err().to_string(), "line 5: `abc` is not a number in column linear_mm");
+}
+
+/// ISO 230-2 figures a table cannot give are not measured, not zero: B without the other
+/// direction, A and R without two runs (one run each way would make R read |B|).
+#[test]
+fn figures_a_table_cannot_give_are_not_measured() {
+    let one_way =
+        parse("target_mm,direction,run,linear_mm\n0,up,1,0.001\n0,up,2,0.003\n100,up,1,0.004\n100,up,2,0.004\n")
+            .unwrap();
+    let r = report(one_way.linear.as_ref().unwrap());
+    assert_eq!((r.reversal, r.mean_reversal), (None, None));
+    assert_eq!(r.not_measured.get("reversal"), Some(&ONE_DIRECTION));
+    // One direction, two runs: R is its 4s, A its x̄ ± 2s.
+    let four_s = 4.0 * 2f64.sqrt() * 0.001;
+    assert!((r.repeatability.unwrap() - four_s).abs() < 1e-12);
+    assert!(r.accuracy.is_some());
+
+    let each_way_once =
+        parse("target_mm,direction,linear_mm\n0,up,0.001\n0,down,-0.002\n100,up,0.004\n100,down,0.003\n").unwrap();
+    let r = report(each_way_once.linear.as_ref().unwrap());
+    assert!((r.reversal.unwrap() - 0.003).abs() < 1e-12 && (r.mean_reversal.unwrap() - 0.002).abs() < 1e-12);
+    assert_eq!((r.accuracy, r.repeatability), (None, None));
+    assert_eq!(r.not_measured.get("repeatability"), Some(&ONE_RUN));
+    assert!((r.systematic - 0.006).abs() < 1e-12);
 }

@@ -2,7 +2,12 @@ use super::*;
 use crate::dialect::{Dialect, GCodeSystem};
 
 fn fanuc() -> ParseOptions {
-    ParseOptions { dialect: DialectChoice::Fixed(Dialect::Fanuc), gcode_system: GCodeSystem::A, machine_kind: None }
+    ParseOptions {
+        dialect: DialectChoice::Fixed(Dialect::Fanuc),
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    }
 }
 
 fn at(line: u32, column: u32) -> LinePosition {

@@ -71,6 +71,7 @@ proptest! {
             dialect: DialectChoice::Fixed(Dialect::Fanuc),
             gcode_system: GCodeSystem::A,
             machine_kind: None,
+            control: Default::default(),
         };
         let parsed = parse(b"", &options);
         let mut tally = StyleTally::new(&parsed.program);

@@ -49,6 +49,8 @@ pub struct Element {
     /// For arcs: centre and sense in the canonical frame (counter-clockwise in (v, u)... the
     /// sense is only carried through, never interpreted here).
     pub arc: Option<(Uv, bool)>,
+    /// The block the element comes from, where a problem of the shape is reported.
+    pub source: crate::source::Span,
 }
 
 impl Uv {
@@ -103,7 +105,7 @@ pub fn elements(canon: &Canon, profile: &Profile, offset: Xz, skip_first: bool) 
                 Shape::Arc { centre, ccw } => Some((canon.to(shift(centre)), ccw ^ canon.flips())),
                 Shape::Line => None,
             };
-            out.push(Element { start: canon.to(at), end: canon.to(end), arc });
+            out.push(Element { start: canon.to(at), end: canon.to(end), arc, source: segment.source });
         }
         at = end;
     }
@@ -214,7 +216,12 @@ mod tests {
 
     #[test]
     fn a_level_crosses_a_line_and_an_arc() {
-        let line = Element { start: Uv { u: 0.0, v: 0.0 }, end: Uv { u: 10.0, v: -10.0 }, arc: None };
+        let line = Element {
+            start: Uv { u: 0.0, v: 0.0 },
+            end: Uv { u: 10.0, v: -10.0 },
+            arc: None,
+            source: crate::source::Span::SYNTHETIC,
+        };
         assert_eq!(crossings(&[line], 4.0), vec![-4.0]);
         assert!((u_at(&[line], -4.0) - 4.0).abs() < 1e-12);
         // A quarter circle about (0, -10) from (0, 0) to (10, -10), counter-clockwise in the
@@ -223,6 +230,7 @@ mod tests {
             start: Uv { u: 0.0, v: 0.0 },
             end: Uv { u: 10.0, v: -10.0 },
             arc: Some((Uv { u: 0.0, v: -10.0 }, true)),
+            source: crate::source::Span::SYNTHETIC,
         };
         let v = crossings(&[arc], 6.0);
         assert_eq!(v.len(), 1);

@@ -157,6 +157,9 @@ pub(super) fn find(interp: &mut Interpreter<'_, '_>, index: usize, command: &Com
     let contours: Vec<(usize, GFunction)> =
         named.iter().filter_map(|&b| contour_function(interp, b).map(|f| (b, f))).collect();
     let Some(&(first, function)) = contours.iter().find(|(b, _)| *b > index).or_else(|| contours.first()) else {
+        if named.is_empty() && interp.damaged_target(&key, word.span, "the call names") {
+            return None;
+        }
         let mut diagnostic =
             Diagnostic::error(DiagnosticKind::LapContourMissing { name: format!("N{key}") }, word.span);
         if let Some(&other) = named.first() {

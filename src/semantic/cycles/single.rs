@@ -29,6 +29,19 @@ pub struct SingleCycleMemory {
 }
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
+    if interp.form_name(command) == "select" {
+        // The code alone selects the cycle, as any motion code does; it moves nothing, and
+        // the next block with only X/Z runs the cycle from where the tool then is.
+        let block = interp.program.block(index);
+        let code = interp.program.word(command.code_word).kind;
+        if let crate::syntax::WordKind::Code { code, .. } = code {
+            interp
+                .warning(crate::diagnostic::DiagnosticKind::CycleSelectedAlone { code: code.display('G') }, block.span);
+        }
+        interp.cycle_memory.single = None;
+        interp.modal.motion = motion_mode(function);
+        return Flow::Next;
+    }
     let words: Vec<Word> = command.params.iter().map(|p| *interp.program.word(p.word)).collect();
     let axes = interp.axis_target(&words);
     let taper = interp.param(command, Role::Taper).map(|r| interp.modal.frame.mm(r)).unwrap_or(0.0);
@@ -38,18 +51,29 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
         interp.modal.feed = lead;
     }
     interp.cycle_memory.single = Some(SingleCycleMemory { function, end, taper });
-    interp.modal.motion = match function {
-        GFunction::TurningCycle => MotionMode::TurningCycle,
-        GFunction::ThreadCycle => MotionMode::ThreadCycle,
-        _ => MotionMode::FacingCycle,
-    };
+    interp.modal.motion = motion_mode(function);
     cut(interp, index, function, start, end, taper);
     Flow::Next
 }
 
-/// A block repeating the modal single cycle with new end values.
+fn motion_mode(function: GFunction) -> MotionMode {
+    match function {
+        GFunction::TurningCycle => MotionMode::TurningCycle,
+        GFunction::ThreadCycle => MotionMode::ThreadCycle,
+        _ => MotionMode::FacingCycle,
+    }
+}
+
+/// A block repeating the modal single cycle with new end values; after a code that only
+/// selected the cycle, the first such block runs it from where the tool is.
 pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, index: usize, words: &[Word]) -> Flow {
-    let Some(memory) = interp.cycle_memory.single else { return Flow::Next };
+    let function = match interp.modal.motion {
+        MotionMode::TurningCycle => GFunction::TurningCycle,
+        MotionMode::ThreadCycle => GFunction::ThreadCycle,
+        _ => GFunction::FacingCycle,
+    };
+    let at = interp.emitter.at;
+    let memory = interp.cycle_memory.single.unwrap_or(SingleCycleMemory { function, end: at, taper: 0.0 });
     let block = *interp.program.block(index);
     interp.emitter.context = super::super::emitter::Context { source: block.span, cycle: block.span };
     let first_move = interp.emitter.moves.len();
@@ -73,6 +97,7 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         moves: first_move..interp.emitter.moves.len(),
         before: interp.modal_before_block,
         after: crate::semantic::ModalAfter::of(&interp.modal),
+        kept: None,
     });
     Flow::Next
 }

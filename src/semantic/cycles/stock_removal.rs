@@ -120,9 +120,17 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let feed = interp.param(command, Role::Feed).unwrap_or(interp.modal.feed);
     let speed = interp.param(command, Role::Speed);
     let rough = Rough { depth, retract, allowance, type_ii, feed, speed, facing };
-    if let Err(kind) = rough.cut(interp, &without_exit(&profile, start, allowance, facing), start) {
+    if let Err((kind, at)) = rough.cut(interp, &without_exit(&profile, start, allowance, facing), start) {
         let (frame, shift) = (interp.modal.frame, interp.modal.shift);
-        interp.error(rough.wrong_side(&profile, start, frame, shift).unwrap_or(kind), span);
+        match (rough.wrong_side(&profile, start, frame, shift), at) {
+            (Some(kind), _) => interp.error(kind, span),
+            // A profile that turns back is marked where it turns, and points to its cycle.
+            (None, Some(block)) => interp.diagnostics.push(
+                crate::diagnostic::Diagnostic::error(kind, block)
+                    .with_related(span, "the cycle that roughs this profile"),
+            ),
+            (None, None) => interp.error(kind, span),
+        }
     }
     // F and S written in the cycle block are words of that block: they stay modal after
     // it, as every F and S does (a G70 with no F of its own then finishes at that feed
@@ -193,7 +201,7 @@ struct Rough {
 impl Rough {
     /// The canonical frame seen from `start`, and the profile shifted by the allowance in it
     /// (the approach left out), checked against the cycle's type.
-    fn shape(&self, profile: &Profile, start: Xz) -> Result<(Canon, Vec<Element>), DiagnosticKind> {
+    fn shape(&self, profile: &Profile, start: Xz) -> Result<(Canon, Vec<Element>), ShapeError> {
         let shifted_end = Xz::new(profile.end().x + self.allowance.x, profile.end().z + self.allowance.z);
         let canon = Canon {
             swap: self.facing,
@@ -203,9 +211,9 @@ impl Rough {
         // The profile proper starts where the P block goes; that first move is the approach.
         let elements = canonical::elements(&canon, profile, self.allowance, true);
         if elements.is_empty() {
-            return Err(DiagnosticKind::EmptyProfile);
+            return Err((DiagnosticKind::EmptyProfile, None));
         }
-        check_shape(&elements, self.type_ii, self.facing)?;
+        check_shape(&elements, self.type_ii, self.facing).map_err(|(kind, at)| (kind, Some(at)))?;
         Ok((canon, elements))
     }
 
@@ -242,7 +250,7 @@ impl Rough {
         })
     }
 
-    fn cut(&self, interp: &mut Interpreter<'_, '_>, profile: &Profile, start: Xz) -> Result<(), DiagnosticKind> {
+    fn cut(&self, interp: &mut Interpreter<'_, '_>, profile: &Profile, start: Xz) -> Result<(), ShapeError> {
         let (canon, elements) = self.shape(profile, start)?;
         let first = profile.segments[0];
         let a = canon.to(start);
@@ -521,20 +529,22 @@ fn follow_up(elements: &[Element], from: Uv, ceiling: f64) -> Vec<Element> {
 
 /// Type I: monotonic in both axes; Type II: monotonic along the cut. A profile that breaks
 /// its type is what the control rejects.
-fn check_shape(elements: &[Element], type_ii: bool, facing: bool) -> Result<(), DiagnosticKind> {
+/// The first element that breaks the type is where the error is marked.
+fn check_shape(elements: &[Element], type_ii: bool, facing: bool) -> Result<(), (DiagnosticKind, Span)> {
     let along = |e: &Element| e.end.v - e.start.v;
     let across = |e: &Element| e.end.u - e.start.u;
-    if elements.iter().any(|e| along(e) > 1e-9) {
-        return Err(DiagnosticKind::ProfileReverses { axis: if facing { 'X' } else { 'Z' } });
+    if let Some(e) = elements.iter().find(|e| along(e) > 1e-9) {
+        return Err((DiagnosticKind::ProfileReverses { axis: if facing { 'X' } else { 'Z' } }, e.source));
     }
-    if !type_ii && elements.iter().any(|e| across(e) < -1e-9) {
-        return Err(DiagnosticKind::ProfileNotMonotonic { axis: if facing { 'Z' } else { 'X' } });
+    if let Some(e) = elements.iter().find(|e| !type_ii && across(e) < -1e-9) {
+        return Err((DiagnosticKind::ProfileNotMonotonic { axis: if facing { 'Z' } else { 'X' } }, e.source));
     }
     Ok(())
 }
 
-#[cfg(test)]
-mod tests;
+/// Why a profile cannot be roughed, and the block where it breaks its type (none when it
+/// is empty).
+type ShapeError = (DiagnosticKind, Option<Span>);
 
 impl Interpreter<'_, '_> {
     /// Where the program continues after the cycle of block `index` that names a profile:
@@ -549,3 +559,6 @@ impl Interpreter<'_, '_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

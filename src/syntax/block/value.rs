@@ -16,7 +16,8 @@ impl<'s> BlockParser<'_, 's> {
     /// A word that starts with a letter: an address with a value, a code, a keyword, an OSP
     /// extended address, name or assignment. Returns whether a verbatim argument follows.
     pub(super) fn letter(&mut self, input: Input<'s>) -> Result<(Input<'s>, bool), Diagnostic> {
-        let letter = input[0];
+        // A control that reads lower case takes `x10.` as `X10.` (the text keeps its case).
+        let letter = if self.tables.lower_case { input[0].to_ascii_uppercase() } else { input[0] };
         let next = input.get(1).copied();
         let osp = self.is_osp();
         if letter == b'N' {
@@ -112,7 +113,7 @@ impl<'s> BlockParser<'_, 's> {
         }
         if i < n {
             let c = bytes[i];
-            if c == b'O' || !is_word_boundary(c) {
+            if c == b'O' || !(self.boundary(c) || (c == b',' && self.tables.has_comma_words)) {
                 return None;
             }
         }
@@ -289,15 +290,20 @@ impl<'s> BlockParser<'_, 's> {
         Ok(WordKind::Code { letter, code: Code((major * 10 + minor) as u16) })
     }
 
+    /// Whether `c` starts the next word or ends the block's words: a word boundary, or on a
+    /// control that reads lower case (`[control.*] lower_case`) a lower-case letter too.
+    pub(super) fn boundary(&self, c: u8) -> bool {
+        is_word_boundary(c) || (self.tables.lower_case && c.is_ascii_lowercase())
+    }
+
     /// After a value: the next word, a blank, a comment, or the end. Anything else is
     /// damage (`X1.0}2`) or a stray character.
     pub(super) fn expect_boundary(&self, rest: Input<'s>) -> Result<(), Diagnostic> {
         match rest.first() {
             None => Ok(()),
-            Some(&c) if is_word_boundary(c) => Ok(()),
-            Some(&c) if c.is_ascii_lowercase() => {
-                Err(self.error(rest, 1, DiagnosticKind::LowerCaseLetter { found: c as char }))
-            }
+            Some(&c) if self.boundary(c) => Ok(()),
+            Some(b',') if self.tables.has_comma_words => Ok(()),
+            Some(&c) if c.is_ascii_lowercase() => Err(self.lower_case(rest)),
             Some(0) => Err(self.error(rest, 1, DiagnosticKind::NulByte)),
             Some(&c) if c >= 0x80 => Err(self.error(rest, 1, DiagnosticKind::NonAsciiByte { byte: c })),
             Some(b']') => Err(self.error(rest, 1, DiagnosticKind::UnmatchedBracket)),

@@ -1,9 +1,8 @@
 use super::*;
 use crate::back::motion::{Codes, MotionWriter};
-use crate::compensation::test_support::lower_program;
+use crate::compensation::test_support::{analysed, ready};
 use crate::dialect::{DialectChoice, GCodeSystem};
 use crate::printer::{BlockWriter, Edits, print_string};
-use crate::semantic::{LowerOptions, lower};
 use crate::syntax::{ParseOptions, parse};
 use crate::toolpath::Motion;
 
@@ -23,10 +22,8 @@ M30
 /// `centre_by`, from the same start, to its end moved by `end_by` and then onto the new
 /// circle; the printed program, the arc it lowers to, and the planned arc.
 fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolpath::Move, Segment) {
-    let (lowered, machine) = lower_program(PROGRAM);
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(PROGRAM.as_bytes(), &options);
-    let program = &parsed.program;
+    let original = ready(PROGRAM);
+    let (program, lowered, machine) = (original.program(), &original.lowered, &original.machine);
     let m = lowered.toolpath.moves[index];
     let start = lowered.toolpath.start_of(index);
     let centre = Xz::new(m.centre.x + centre_by.x, m.centre.z + centre_by.z);
@@ -38,7 +35,7 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
     let plan = MovePlan { start, segments, changed: true, jumps: 0, lead_in: false, words };
     let block = program.blocks().iter().position(|b| b.span == m.source).unwrap();
     let mark = lowered.coordinates_at(index);
-    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
+    let tools = crate::semantic::nose_radius::ToolTable::from_machine(machine);
     let codes = Codes::of(program);
     let context =
         BlockContext { program, codes, block, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
@@ -47,10 +44,8 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
     let mut edits = Edits::new();
     edits.replace_written(writer.out, vec![(block, text)]);
     let text = print_string(program, &edits);
-    let reparsed = parse(text.as_bytes(), &options);
-    assert_eq!(reparsed.error_count(), 0, "{text}");
-    let relowered = lower(&reparsed.program, &machine, &LowerOptions::new(false));
-    (text, relowered.toolpath.moves[index], segment)
+    let relowered = ready(&text).lowered.toolpath.moves[index];
+    (text, relowered, segment)
 }
 
 #[test]
@@ -80,31 +75,23 @@ fn an_incremental_arc_by_centre_keeps_u_w_i_k() {
 
 #[test]
 fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
-    let (lowered, machine) = lower_program(PROGRAM);
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(PROGRAM.as_bytes(), &options);
+    let ready = ready(PROGRAM);
+    let (program, lowered) = (ready.program(), &ready.lowered);
     let m = lowered.toolpath.moves[2];
     let start = lowered.toolpath.start_of(2);
     let mid = Xz::new(22.0, -13.5);
     let segments = vec![Segment::Line { end: mid }, Segment::Line { end: m.end }].into();
     let plan = MovePlan { start, segments, changed: true, jumps: 0, lead_in: false, words: Default::default() };
     let mark = lowered.coordinates_at(2);
-    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
-    let codes = Codes::of(&parsed.program);
-    let context = BlockContext {
-        program: &parsed.program,
-        codes,
-        block: 4,
-        mark,
-        grid: Grid::new(&mark),
-        radius_arcs: true,
-        tools: &tools,
-    };
-    let mut writer = MotionWriter::new(codes, BlockWriter::new(&parsed.program));
+    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&ready.machine);
+    let codes = Codes::of(program);
+    let context =
+        BlockContext { program, codes, block: 4, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
+    let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
     edits.replace_written(writer.out, vec![(4, text)]);
-    let text = print_string(&parsed.program, &edits);
+    let text = print_string(program, &edits);
     let lines: Vec<&str> = text.lines().skip(4).take(4).collect();
     assert_eq!(lines, ["G01 X44. Z-13.5", "X50. Z-15.", "G02", "G03 U10. W-5. I0 K-5."], "{text}");
 }
@@ -114,7 +101,12 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
 #[test]
 fn writes_radius_reads_an_arc_blocks_own_form_and_gives_a_line_the_programs() {
     let source = "G00 X40. Z2.\nG01 X44. Z-10. R1. F0.2\nG02 X50. Z-15. R5.\nG03 X60. Z-20. I0 K-5.\nG01 Z-25. I1.\n";
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
     let parsed = parse(source.as_bytes(), &options);
     let program = &parsed.program;
     for program_radius_arcs in [false, true] {
@@ -148,15 +140,12 @@ fn writes_radius_reads_an_arc_blocks_own_form_and_gives_a_line_the_programs() {
 fn the_arc_form_from_the_programs_tables_is_the_blocks_own() {
     let source = "G21 G99\nG97 S1000 M03\nG00 X40. Z2.\nG01 X44. Z-10. R1. F0.2\nG02 X50. Z-15. R5.\n\
                   G03 X60. Z-20. I0 K-5.\nG02 X70. Z-25. I5. K0 R5.\nG01 Z-30.\nG04 X1. R2.\nM30\n";
-    let (_, machine) = lower_program(PROGRAM);
-    let options = ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None };
-    let parsed = parse(source.as_bytes(), &options);
-    let program = &parsed.program;
     // An arc with both a radius and a centre, and a dwell with an `R`, lower with errors:
     // only the blocks' words matter here.
-    let lowered = lower(program, &machine, &LowerOptions::new(false));
-    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&machine);
-    let motion = super::super::MotionBlocks::new(program, &lowered, &tools);
+    let analysed = analysed(source);
+    let (program, lowered) = (&analysed.parsed.program, analysed.lowered().unwrap());
+    let tools = crate::semantic::nose_radius::ToolTable::from_machine(&analysed.machine);
+    let motion = super::super::MotionBlocks::new(program, lowered, &tools);
     for block in 0..program.blocks().len() {
         for is_arc in [false, true] {
             let expected = writes_radius(program, block, is_arc, motion.radius_arcs);

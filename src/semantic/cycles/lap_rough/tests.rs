@@ -7,7 +7,12 @@ fn frame(start: Uv) -> RoughFrame {
     let points = [(15.2, 2.1), (15.2, -19.9), (20.2, -29.9), (20.2, -49.9), (30.2, -49.9)];
     let elements = points
         .windows(2)
-        .map(|w| Element { start: Uv { u: w[0].0, v: w[0].1 }, end: Uv { u: w[1].0, v: w[1].1 }, arc: None })
+        .map(|w| Element {
+            start: Uv { u: w[0].0, v: w[0].1 },
+            end: Uv { u: w[1].0, v: w[1].1 },
+            arc: None,
+            source: crate::source::Span::SYNTHETIC,
+        })
         .collect();
     RoughFrame {
         canon: Canon { swap: false, mirror_u: false, mirror_v: false },

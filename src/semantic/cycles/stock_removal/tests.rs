@@ -30,6 +30,7 @@ fn ten_thousand_passes_look_at_a_few_stretches_each() {
         dialect: DialectChoice::Fixed(crate::dialect::Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: None,
+        control: Default::default(),
     };
     let parsed = parse(source, &options);
     assert!(parsed.diagnostics.is_empty(), "{:?}", parsed.diagnostics);

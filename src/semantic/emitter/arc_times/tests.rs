@@ -19,6 +19,7 @@ fn modal(feed_per_rev: bool, feed: f64, spindle: SpindleMode, speed: f64) -> Mod
         dialect: DialectChoice::Fixed(Dialect::Fanuc),
         gcode_system: GCodeSystem::A,
         machine_kind: None,
+        control: Default::default(),
     };
     let parsed = crate::syntax::parse(b"%\nG21\n%\n", &options);
     Modal {
@@ -29,6 +30,8 @@ fn modal(feed_per_rev: bool, feed: f64, spindle: SpindleMode, speed: f64) -> Mod
         spindle,
         speed,
         clamp: 3000.0,
+        clamp_programmed: true,
+        spindle_limit: 3000.0,
         motion: MotionMode::Linear,
         compensation: Compensation::Off,
         tool: ToolState { station: 1, offset: 1, nose_radius: 0.0, tip: 0, minor_edge_angle: None },
