@@ -1,7 +1,8 @@
 //! Command-line interface: arguments, files, settings lookup, output and exit codes.
 //!
 //! Exit codes: 0 ok, 1 the program has errors (or `fmt --check` found changes, or
-//! `compensate` refused, or `verify` found a violation), 2 usage or I/O error. A run that
+//! `compensate` refused, or `verify` found a violation, or a measurement does not read),
+//! 2 usage or I/O error. A run that
 //! exits 1 writes no program, table or plot, to a file or to standard output. Output files
 //! are written to a temporary file beside the target and renamed, so a failed run never
 //! leaves a partial file. One module per command under `cli/`; `common.rs` holds what
@@ -56,8 +57,9 @@ directory or above it ([machine] table: dialect, gcode_system, decimal_input, un
 least_increment; [model], [[axis_table]] and [[effect]] tables: the error model).
 
 Exit codes: 0 ok, 1 the program has errors (or compensate refused it, or verify found a
-violation), 2 usage or I/O error. With exit 1 no program, table or plot is written, to a
-file or to standard output: only the diagnostics (check's output) or the findings (verify's).
+violation, or a measurement does not read), 2 usage or I/O error. With exit 1 no program,
+table or plot is written, to a file or to standard output: only the diagnostics (check's
+output) or the findings (verify's).
 report writes its page whatever verify finds (exit 0, the verdict on the page).
 A closed standard output (`| head`) ends the output quietly; the exit code is the run's.";
 

@@ -298,6 +298,13 @@ pub enum DiagnosticKind {
     /// A machine model file or one of its axis tables that does not read, or holds a value
     /// out of range (`model_file.rs` has the words).
     ModelFile(Box<ModelProblem>),
+    /// A header or row of a measurement or log (CSV) that does not read: what is wrong, and
+    /// the label on the text it is about.
+    DataInvalid {
+        message: String,
+        label: &'static str,
+        hint: Option<String>,
+    },
     /// A block with more words than the AST holds per block.
     TooManyWords {
         max: usize,
@@ -408,6 +415,15 @@ pub enum DiagnosticKind {
     AlreadyCompensated {
         model: Option<String>,
     },
+    /// A move that needs more samples than compensation holds for one move
+    /// (`error_model::sampling::MAX_SAMPLES_PER_MOVE`) at the model's spacing.
+    MoveNeedsTooManySamples {
+        samples: usize,
+        max: usize,
+    },
+    /// The program runs off the end of its text, which ends in the middle of a block, with
+    /// no program end: the text was cut (`Lowered::cut_off`).
+    ProgramCut,
     /// `compensate`: the program it would write, read back and predicted on the model as
     /// `verify` predicts it, deviates from the nominal part here by more than `verify`
     /// allows.
@@ -427,6 +443,12 @@ pub enum DiagnosticKind {
     },
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,
+    /// A roughing cycle's depth of cut below the least increment (program units): the
+    /// control reads it as zero.
+    DepthBelowIncrement {
+        depth: f64,
+        increment: f64,
+    },
     /// A cycle whose profile has no moves.
     EmptyProfile,
     /// A roughing profile that turns back along the cutting direction (both types reject it).

@@ -27,6 +27,30 @@ use crate::syntax::{CodeLetter, Number, Program};
 use crate::syntax::spelling::{Style as NumberStyle, write_number, write_whole};
 use style::WholeNumbers;
 
+/// The errors of `text`, a printing of `program` with edits, read back as `program` was
+/// read (its dialect, G-code system and machine kind). A pass that writes new blocks checks
+/// its output with this before it reports success: a coordinate it computed can need more
+/// digits than the control reads (a cycle's point past `Z99999999.`), and a program that
+/// does not read is no output. Only the edited blocks can hold an error: the others are the
+/// program's own, which read without one.
+pub fn unreadable(program: &Program<'_>, text: &[u8]) -> Vec<crate::diagnostic::Diagnostic> {
+    let mut diagnostics = crate::syntax::parse(text, &read_back_options(program)).diagnostics;
+    diagnostics.retain(crate::diagnostic::Diagnostic::is_error);
+    diagnostics
+}
+
+/// How a printing of `program` is read back: as `program` was read. With `--dialect auto`,
+/// the evidence of the dialect may have been in the blocks an edit replaced.
+pub fn read_back_options(program: &Program<'_>) -> crate::syntax::ParseOptions {
+    let config = program.config();
+    crate::syntax::ParseOptions {
+        dialect: crate::dialect::DialectChoice::Fixed(config.dialect),
+        gcode_system: config.gcode_system,
+        machine_kind: Some(config.machine_kind),
+        control: config.control,
+    }
+}
+
 /// Print `program` with `edits` applied.
 pub fn print(program: &Program<'_>, edits: &Edits) -> Vec<u8> {
     let source = program.source();

@@ -35,6 +35,10 @@ use crate::machine::{MachineSettings, ToolSettings, Units};
 use crate::syntax::Program;
 use crate::toolpath::{Limits, Toolpath, Xz};
 
+/// The moves a run may make for each block of its program, beyond
+/// [`LowerOptions::max_moves`]: a program of millions of blocks, each a move, is no runaway.
+pub const MOVES_PER_BLOCK: usize = 2;
+
 /// How to run the program.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LowerOptions {
@@ -43,8 +47,10 @@ pub struct LowerOptions {
     pub block_delete: bool,
     /// Stop with a diagnostic after this many executed blocks (a runaway loop).
     pub max_executed_blocks: u64,
-    /// … or after this many moves (a loop of cycles fills memory long before it has run
-    /// many blocks).
+    /// … or after this many moves, or [`MOVES_PER_BLOCK`] for every block of the program
+    /// when that is more (a loop of cycles fills memory long before it has run many
+    /// blocks). The moves are what a run holds: at 136 bytes a move, the bound keeps a
+    /// small program that runs away to about 300 MB, and a large one in proportion to its text.
     pub max_moves: usize,
     /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
     /// under the program's own `G41`/`G42`).
@@ -56,7 +62,7 @@ impl LowerOptions {
         LowerOptions {
             block_delete,
             max_executed_blocks: 10_000_000,
-            max_moves: 20_000_000,
+            max_moves: 2_000_000,
             nose_radius_compensation: true,
         }
     }
@@ -130,6 +136,16 @@ impl Machine {
     /// Millimetres per machine unit.
     pub fn scale(&self) -> f64 {
         if self.units == Units::Inch { frame::MM_PER_INCH } else { 1.0 }
+    }
+
+    /// The finest distance a program on this machine can write, mm: its least increment in
+    /// millimetres, in whichever unit gives the finer (a control pairs 0.0001 in with
+    /// 0.001 mm, `Frame::set_inch`). A step finer than this puts points on the same
+    /// increments.
+    pub fn finest_increment_mm(&self) -> f64 {
+        let other_mm =
+            if self.units == Units::Inch { self.increment * 10.0 } else { self.increment / 10.0 * frame::MM_PER_INCH };
+        (self.increment * self.scale()).min(other_mm)
     }
 }
 
@@ -236,6 +252,13 @@ pub struct Lowered {
     /// later pass that writes a move back into its own block (`compensation::rewrite`)
     /// reads them; empty means the start frame, absolute, unshifted throughout.
     pub coordinates: Vec<CoordinateMark>,
+    /// The last block, when the program ran off the end of its text in the middle of a
+    /// block with no program end (M02, M30, M99, `RTS`, a closing `%`): the text was cut (a
+    /// pipe whose writer died, a copy that stopped). What it holds runs, but it is not the
+    /// program, and an output made from it would look whole. A run of a file refuses it
+    /// (`DiagnosticKind::ProgramCut`); an editor's buffer is often in this state as it is
+    /// typed, and is not.
+    pub cut_off: Option<crate::source::Span>,
 }
 
 /// The program coordinates in force from move `from_move` on (see `Lowered::coordinates`).
@@ -290,6 +313,7 @@ pub fn lower_tuned(
             frame: initial_frame(program, machine),
             executed_blocks: 0,
             coordinates: Vec::new(),
+            cut_off: None,
         };
     }
     interpreter::Interpreter::new(program, machine, options, tuning).run()

@@ -23,20 +23,21 @@ use crate::source::{LineIndex, Span};
 use crate::syntax::Program;
 use crate::toolpath::{Compensation, Motion, ValidToolpath, Validated};
 
-/// One row of `simulate --format csv|json`.
+/// One row of `simulate --format csv|json`. Its fields are in the order of the JSON keys
+/// (alphabetical); the CSV columns are in the order `simulate` documents.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct Row {
-    pub line: usize,
-    pub motion: &'static str,
-    pub x_mm: f64,
-    pub z_mm: f64,
+    pub cutting: bool,
     pub cx_mm: Option<f64>,
     pub cz_mm: Option<f64>,
     pub feed_mm_min: f64,
+    pub line: usize,
+    pub motion: &'static str,
     pub rpm: f64,
-    pub t_start_s: f64,
     pub t_end_s: f64,
-    pub cutting: bool,
+    pub t_start_s: f64,
+    pub x_mm: f64,
+    pub z_mm: f64,
 }
 
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -64,15 +65,24 @@ pub struct Summary {
     pub finishing_passes: Vec<FinishingPass>,
 }
 
+/// The rows of a toolpath, one per move, made as they are read (as a JSON array, through
+/// `Serialize`): a table of millions of moves is written out without being held.
+#[derive(Clone, Copy)]
+pub struct Rows<'a> {
+    program: &'a Program<'a>,
+    toolpath: ValidToolpath<'a>,
+}
+
 /// One row per move of the validated toolpath.
-pub fn rows(program: &Program<'_>, toolpath: ValidToolpath<'_>) -> Vec<Row> {
-    let lines = LineIndex::new(program.source());
-    let line_of = |span: Span| if span.is_synthetic() { 0 } else { lines.position(span.start).0 };
-    toolpath
-        .moves
-        .iter()
-        .map(|m| Row {
-            line: line_of(m.source),
+pub fn rows<'a>(program: &'a Program<'_>, toolpath: ValidToolpath<'a>) -> Rows<'a> {
+    Rows { program, toolpath }
+}
+
+impl Rows<'_> {
+    pub fn iter(&self) -> impl Iterator<Item = Row> + '_ {
+        let lines = LineIndex::new(self.program.source());
+        self.toolpath.moves.iter().map(move |m| Row {
+            line: if m.source.is_synthetic() { 0 } else { lines.position(m.source.start).0 },
             motion: m.motion.name(),
             x_mm: m.end.x,
             z_mm: m.end.z,
@@ -84,12 +94,18 @@ pub fn rows(program: &Program<'_>, toolpath: ValidToolpath<'_>) -> Vec<Row> {
             t_end_s: m.t_end,
             cutting: m.cutting,
         })
-        .collect()
+    }
 }
 
-/// The rows as CSV with the column order `simulate` documents.
-pub fn csv(rows: &[Row]) -> Result<Vec<u8>, csv::Error> {
-    let mut writer = csv::Writer::from_writer(Vec::new());
+impl Serialize for Rows<'_> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.iter())
+    }
+}
+
+/// The rows as CSV with the column order `simulate` documents, written to `out` row by row.
+pub fn write_csv(rows: Rows<'_>, out: impl std::io::Write) -> Result<(), csv::Error> {
+    let mut writer = csv::Writer::from_writer(out);
     writer.write_record([
         "line",
         "motion",
@@ -104,7 +120,7 @@ pub fn csv(rows: &[Row]) -> Result<Vec<u8>, csv::Error> {
         "cutting",
     ])?;
     let f = |v: f64| format!("{v:.6}");
-    for row in rows {
+    for row in rows.iter() {
         writer.write_record([
             row.line.to_string(),
             row.motion.to_string(),
@@ -119,7 +135,8 @@ pub fn csv(rows: &[Row]) -> Result<Vec<u8>, csv::Error> {
             row.cutting.to_string(),
         ])?;
     }
-    writer.into_inner().map_err(|e| csv::Error::from(e.into_error()))
+    writer.flush()?;
+    Ok(())
 }
 
 fn tool_entry(machine: &Machine, station: u16, offset: u16) -> Option<&ToolSettings> {

@@ -19,13 +19,13 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use turnpass::dialect::{DecimalInput, DialectChoice, GCodeSystem};
+use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::printer::{CanonicalOptions, print_canonical};
 use turnpass::syntax::{ParseOptions, parse};
 
 /// Both parses detect the dialect and use G-code system A.
 const OPTIONS: ParseOptions =
-    ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None, control: Default::default() };
+    ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None, control: Control::Fanuc };
 
 /// The normal form for calculator-style decimal input at 0.001 mm.
 const CANONICAL: CanonicalOptions = CanonicalOptions { decimal_input: DecimalInput::Calculator, increment_places: 3 };

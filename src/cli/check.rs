@@ -9,13 +9,12 @@ use std::process::ExitCode;
 use clap::Args;
 
 use turnpass::diagnostic::render::{RenderSource, render_terminal, to_json};
-use turnpass::pipeline;
 use turnpass::source::LineIndex;
 use turnpass::syntax::{self, Statement};
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, display_name, model_source, note_machine_defaults, pipeline_settings, plural,
-    read_input, resolve,
+    CliError, Format, ReadArgs, RunArgs, analyse, display_name, model_source, note_machine_defaults, pipeline_settings,
+    plural, read_input, resolve,
 };
 use super::streams;
 
@@ -70,7 +69,7 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
             let diagnostics = parsed.diagnostics.clone();
             (parsed, diagnostics)
         } else {
-            let analysed = pipeline::analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
+            let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
             (analysed.parsed, analysed.diagnostics)
         };
         if let Some(warning) = parsed.program.nothing_to_run() {

@@ -7,8 +7,9 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
+use turnpass::diagnose::measured::MeasuredError;
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
-use turnpass::diagnostic::{Diagnostic, SHOWN_DIAGNOSTICS};
+use turnpass::diagnostic::{Diagnostic, DiagnosticKind, SHOWN_DIAGNOSTICS};
 use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
@@ -145,12 +146,17 @@ pub enum CliError {
     /// Exit code 1, as for any program with errors.
     #[error("{}", String::from_utf8_lossy(.0))]
     Rejected(Vec<u8>),
+    /// A measurement or log whose content is wrong (it does not fit the program, a fit of
+    /// it fails): exit code 1, as for a program with errors.
+    #[error("{0}")]
+    Data(String),
 }
 
 impl CliError {
     pub fn exit_code(&self) -> u8 {
         match self {
-            CliError::Rejected(_) => 1,
+            // The data's own faults, as a program's errors are.
+            CliError::Rejected(_) | CliError::Data(_) | CliError::NotUtf8 { .. } => 1,
             _ => 2,
         }
     }
@@ -199,6 +205,16 @@ pub fn read_data_text(path: &Path) -> Result<String, CliError> {
         let (line, column) = turnpass::source::LineIndex::new(bytes).position(at as u32);
         CliError::NotUtf8 { path: display_name(path), line, column, byte: bytes[at] }
     })
+}
+
+/// A measurement or log that does not read: the problem at its file, line and column,
+/// rendered as a program's diagnostics are, and a line saying what `command` did not do
+/// (exit 1: it is the data's fault, as errors of a program are).
+pub fn data_invalid(name: &str, text: &str, error: MeasuredError, command: &str) -> CliError {
+    let kind = DiagnosticKind::DataInvalid { message: error.message, label: error.label, hint: error.hint };
+    let mut out = rendered(name, text.as_bytes(), &[Diagnostic::error(kind, error.span)]);
+    out.extend_from_slice(format!("{command}: {name} does not read; nothing is done\n").as_bytes());
+    CliError::Rejected(out)
 }
 
 /// The model file for `program`: `--model`, else the nearest `turnpass.toml` above it.
@@ -516,7 +532,7 @@ pub fn ready<'b>(
     command: &str,
     warnings: &mut Vec<u8>,
 ) -> Result<Ready<'b>, Vec<u8>> {
-    let analysed = pipeline::analyse(bytes, &pipeline_settings(resolved, run, true));
+    let analysed = analyse(bytes, &pipeline_settings(resolved, run, true));
     ready_or_why(name, bytes, command, analysed, warnings)
 }
 
@@ -553,6 +569,20 @@ fn ready_or_why<'b>(
             Err(text)
         }
     }
+}
+
+/// `pipeline::analyse` for a file: a text cut in the middle of a block
+/// (`Lowered::cut_off`) is an error, so that nothing made from part of a program looks
+/// whole, and `check` says so as every command that runs it does. (An editor's buffer,
+/// often in this state as it is typed, is not refused: the language server does not
+/// come here.)
+pub fn analyse<'b>(bytes: &'b [u8], settings: &pipeline::Settings) -> Analysed<'b> {
+    let mut analysed = pipeline::analyse(bytes, settings);
+    if let Some(span) = analysed.lowered().and_then(|lowered| lowered.cut_off) {
+        analysed.diagnostics.push(Diagnostic::error(DiagnosticKind::ProgramCut, span));
+        analysed.diagnostics.sort_by_key(|d| d.span.start);
+    }
+    analysed
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse
@@ -613,6 +643,7 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
         let message = format!("the directory {} does not exist", dir.display());
         return Err(error(std::io::Error::new(std::io::ErrorKind::NotFound, message)));
     }
+    remove_stale_temporaries(dir);
     let mut temp = temporary_beside(dir, std::fs::metadata(&target).ok()).map_err(error)?;
     temp.write_all(bytes).map_err(error)?;
     temp.flush().map_err(error)?;
@@ -643,14 +674,53 @@ fn link_target(path: &Path) -> std::io::Result<PathBuf> {
     Err(std::io::Error::other("too many levels of symbolic links"))
 }
 
-/// A temporary file in `dir` that has the mode the file it replaces has (`existing`), or, for
-/// a new file, the mode the umask gives: it is created with `rw-rw-rw-`, which the system
-/// reduces by the umask, so the umask is never read or changed (the batch writes from
-/// several threads at once).
+/// How a temporary output file is named: `.turnpass-PID-XXXXXX.partial`, the process that
+/// writes it and random letters. A run that is killed (SIGKILL, a power cut) leaves it behind;
+/// its name says what it is, and the next run that writes into the folder removes it.
+const TEMPORARY_PREFIX: &str = ".turnpass-";
+const TEMPORARY_SUFFIX: &str = ".partial";
+
+/// Remove the temporary files of runs that are no longer running from `dir`: those whose
+/// process is gone. A file of a run still writing (another turnpass, at the same time) is
+/// left alone. Failures are ignored: a leftover is untidy, not wrong.
+fn remove_stale_temporaries(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(pid) = name
+            .to_str()
+            .and_then(|n| n.strip_prefix(TEMPORARY_PREFIX))
+            .filter(|n| n.ends_with(TEMPORARY_SUFFIX))
+            .and_then(|n| n.split('-').next())
+            .and_then(|pid| pid.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        if pid != std::process::id() && !process_runs(pid) {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
+/// Whether process `pid` runs (on Linux, `/proc` has it; elsewhere a process is taken to
+/// run, and nothing is removed).
+fn process_runs(pid: u32) -> bool {
+    if cfg!(target_os = "linux") { Path::new("/proc").join(pid.to_string()).exists() } else { true }
+}
+
+/// A temporary file in `dir`, named as [`TEMPORARY_PREFIX`] says, that has the mode the file
+/// it replaces has (`existing`), or, for a new file, the mode the umask gives: it is created
+/// with `rw-rw-rw-`, which the system reduces by the umask, so the umask is never read or
+/// changed (the batch writes from several threads at once).
 #[cfg(unix)]
 fn temporary_beside(dir: &Path, existing: Option<std::fs::Metadata>) -> std::io::Result<tempfile::NamedTempFile> {
     use std::os::unix::fs::PermissionsExt;
-    let temp = tempfile::Builder::new().permissions(std::fs::Permissions::from_mode(0o666)).tempfile_in(dir)?;
+    let prefix = format!("{TEMPORARY_PREFIX}{}-", std::process::id());
+    let temp = tempfile::Builder::new()
+        .prefix(&prefix)
+        .suffix(TEMPORARY_SUFFIX)
+        .permissions(std::fs::Permissions::from_mode(0o666))
+        .tempfile_in(dir)?;
     if let Some(existing) = existing {
         temp.as_file().set_permissions(existing.permissions())?;
     }
@@ -659,7 +729,8 @@ fn temporary_beside(dir: &Path, existing: Option<std::fs::Metadata>) -> std::io:
 
 #[cfg(not(unix))]
 fn temporary_beside(dir: &Path, existing: Option<std::fs::Metadata>) -> std::io::Result<tempfile::NamedTempFile> {
-    let temp = tempfile::NamedTempFile::new_in(dir)?;
+    let prefix = format!("{TEMPORARY_PREFIX}{}-", std::process::id());
+    let temp = tempfile::Builder::new().prefix(&prefix).suffix(TEMPORARY_SUFFIX).tempfile_in(dir)?;
     if let Some(existing) = existing {
         temp.as_file().set_permissions(existing.permissions())?;
     }

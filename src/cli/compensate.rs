@@ -134,6 +134,20 @@ impl FitArgs {
         Ok(())
     }
 
+    /// Refuse a `--step` finer than what a program on `machine` can write: its lines' ends
+    /// would fall on the same increments, making lines of no length by the million, and the
+    /// work and memory would follow the option instead of the program.
+    pub fn check_step(&self, machine: &Machine) -> Result<(), CliError> {
+        let finest = machine.finest_increment_mm();
+        match self.step {
+            Some(step) if step < finest * (1.0 - 1e-9) => Err(CliError::Usage(format!(
+                "--step {step} mm is finer than the least increment a program can write on this machine \
+                 ({finest} mm): lines that short would end on the same increments; give --step {finest} or more"
+            ))),
+            _ => Ok(()),
+        }
+    }
+
     pub fn options(&self, machine: &Machine) -> CompensateOptions {
         let half_increment = machine.increment * machine.scale() / 2.0;
         CompensateOptions {
@@ -249,6 +263,7 @@ pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) 
 /// Compensate one program; nothing is written here.
 pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult, CliError> {
     let (bytes, resolved) = read_program(path, &args.read)?;
+    args.fit.check_step(&Machine::from_settings(&resolved.settings))?;
     let model = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
@@ -284,7 +299,10 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let written = printer::print(&program.parsed.program, &outcome.edits);
     // What is about to be written is read back and measured as `verify` measures it; its
     // figures are the ones reported, and a program that misses verify's bound is refused.
-    let reading = pipeline_settings(&resolved, &args.run, true);
+    // Read back as the original was read: with `--dialect auto`, the evidence of the
+    // dialect may have been in the blocks an edit replaced.
+    let mut reading = pipeline_settings(&resolved, &args.run, true);
+    reading.parse = printer::read_back_options(&program.parsed.program);
     let tools = ToolTable::from_machine(&program.machine);
     let original = program.valid();
     let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
@@ -305,6 +323,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             })
         }
         Err(problems) => {
+            // Where in the text about to be written it does not read.
+            messages.extend(rendered(&format!("{name} (compensated)"), &written, &problems));
             let problem = problems.first().map_or_else(String::new, Diagnostic::message);
             Some(Diagnostic::error(DiagnosticKind::CompensationUnreadable { problem }, Span::new(0, 0)))
         }

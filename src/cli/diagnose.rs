@@ -9,15 +9,16 @@ use clap::{Args, ValueEnum};
 
 use turnpass::diagnose::forward::Nominal;
 use turnpass::diagnose::measured::{self, Kind};
-use turnpass::diagnose::synth::{SynthOptions, synth, to_csv};
+use turnpass::diagnose::synth::{SynthOptions, finest_step_deg, synth, to_csv};
 use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, with_table_files};
 use turnpass::pipeline::Ready;
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, display_name, folder_of, model_problems,
-    model_spec, read_data_text, read_program, read_table, ready, required_error_model, write_atomically, write_output,
+    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, data_invalid, display_name, folder_of,
+    model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
+    write_atomically, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -205,10 +206,10 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     let data_name = display_name(&args.measured);
     let text = read_data_text(&args.measured)?;
     let kind = args.kind.map(|k| k.kind(args.axis)).transpose()?;
-    let measured = measured::read(&text, kind).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
+    let measured = measured::read(&text, kind).map_err(|e| data_invalid(&data_name, &text, e, "diagnose"))?;
     let options = Options { max_iterations: args.max_iterations };
     let diagnosis =
-        diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Usage(format!("{data_name}: {e}")))?;
+        diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Data(format!("{data_name}: {e}")))?;
     let out = match args.format {
         Format::Human => report::human(&diagnosis),
         Format::Json => serde_json::to_string_pretty(&report::json(&diagnosis)).unwrap_or_default() + "\n",
@@ -250,10 +251,37 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
 
 pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref())?;
-    let (nominal, truth, _) = match prepare(&args.file, &args.read, &args.run, "synth", None)? {
+    let (nominal, truth, resolved) = match prepare(&args.file, &args.read, &args.run, "synth", None)? {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
     };
+    // A step finer than the machine can move is refused: its rows would repeat positions,
+    // and their number would follow the option.
+    let finest = turnpass::semantic::Machine::from_settings(&resolved.settings).finest_increment_mm();
+    match args.kind {
+        KindArg::Ballbar => {
+            let least = finest_step_deg(&nominal, finest).unwrap_or(0.0);
+            if args.step_deg < least * (1.0 - 1e-9) {
+                // The least step rounded up to two significant digits.
+                let digits = (1.0 - least.log10().floor()).max(0.0) as usize;
+                let scale = 10f64.powi(digits as i32);
+                return Err(CliError::Usage(format!(
+                    "--step-deg {} moves the tool less than the least increment ({finest} mm) round the program's \
+                     smallest test circle: give --step-deg {:.digits$} or more",
+                    args.step_deg,
+                    (least * scale).ceil() / scale
+                )));
+            }
+        }
+        KindArg::Profile if args.spacing < finest * (1.0 - 1e-9) => {
+            return Err(CliError::Usage(format!(
+                "--spacing {} mm is finer than the least increment a program can write on this machine ({finest} \
+                 mm): give --spacing {finest} or more",
+                args.spacing
+            )));
+        }
+        _ => {}
+    }
     let defaults = SynthOptions::default();
     let options = SynthOptions {
         noise_mm: args.noise,

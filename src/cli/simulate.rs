@@ -1,16 +1,17 @@
 //! `turnpass expand` and `turnpass simulate`: the cycles written out, and the toolpath.
 
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
-use turnpass::pipeline::{self, Lowering};
+use turnpass::pipeline::Lowering;
 use turnpass::printer;
 use turnpass::simulation;
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, announce_settings, check_output, display_name, model_file_name, not_lowered,
+    CliError, ReadArgs, RunArgs, analyse, announce_settings, check_output, display_name, model_file_name, not_lowered,
     pipeline_settings, plural, read_program, report, write_output,
 };
 use super::streams;
@@ -59,7 +60,7 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     announce_settings("expand", &name, (&args.read, &args.run), &resolved, args.verbose);
     // Without nose-radius compensation: the blocks `expand` prints stay under the program's
     // own `G41`/`G42`.
-    let analysed = pipeline::analyse(&bytes, &pipeline_settings(&resolved, &args.run, false));
+    let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, false));
     if let Some(warning) = analysed.parsed.program.nothing_to_run() {
         report(&name, &bytes, &[warning]);
         streams::err_line(format_args!("expand: {name} holds no block to run; nothing is written"));
@@ -79,6 +80,14 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     let (edits, notes) = turnpass::expand::expansion_edits(ready.program(), &ready.lowered);
     report(&name, &bytes, &notes);
     let output = printer::print(ready.program(), &edits);
+    let unreadable = printer::unreadable(ready.program(), &output);
+    if !unreadable.is_empty() {
+        report(&format!("{name} (expanded)"), &output, &unreadable);
+        streams::err_line(format_args!(
+            "expand: {name}: the expanded program would not read on the control; nothing is written"
+        ));
+        return Ok(ExitCode::from(1));
+    }
     write_output(args.output.as_deref(), &output)?;
     Ok(ExitCode::SUCCESS)
 }
@@ -87,7 +96,7 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
     announce_settings("simulate", &name, (&args.read, &args.run), &resolved, args.verbose);
-    let analysed = pipeline::analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
+    let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
     if matches!(analysed.lowering, Lowering::NotLowered) {
         return Ok(not_lowered("simulate", &name, &bytes, &analysed.parsed));
     }
@@ -101,27 +110,38 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     };
     let rows = simulation::rows(ready.program(), ready.valid());
     let summary = simulation::summary(ready.program(), &ready.lowered, &ready.machine);
-    let output = match args.format {
+    // The rows are written as they are made: memory follows the moves, not the text.
+    let mut out = streams::Out::new();
+    match args.format {
         SimulateFormat::Csv => {
-            let mut text = simulation::csv(&rows).map_err(|e| CliError::Write {
-                path: "<stdout>".into(),
-                source: std::io::Error::other(e.to_string()),
-            })?;
             // The summary goes to standard error so that standard output stays one CSV table.
             streams::err_line(summary_text(&summary));
-            text.shrink_to_fit();
-            text
+            simulation::write_csv(rows, &mut out).map_err(|error| match error.into_kind() {
+                csv::ErrorKind::Io(source) => streams::stdout_error(source),
+                other => streams::stdout_error(std::io::Error::other(format!("{other:?}"))),
+            })?;
         }
         SimulateFormat::Json => {
-            // `model_file` is null when the machine defaults are in force.
-            let value =
-                serde_json::json!({ "model_file": model_file_name(&resolved), "moves": rows, "summary": summary });
-            let mut text = serde_json::to_vec_pretty(&value).unwrap_or_default();
-            text.push(b'\n');
-            text
+            /// The document's keys in alphabetical order, as the rows' and the summary's.
+            #[derive(serde::Serialize)]
+            struct Document<'a> {
+                /// Null when the machine defaults are in force.
+                model_file: Option<String>,
+                moves: simulation::Rows<'a>,
+                summary: serde_json::Value,
+            }
+            let summary = serde_json::to_value(&summary).unwrap_or_default();
+            let document = Document { model_file: model_file_name(&resolved), moves: rows, summary };
+            serde_json::to_writer_pretty(&mut out, &document).map_err(|error| {
+                streams::stdout_error(error.io_error_kind().map_or_else(
+                    || std::io::Error::other(error.to_string()),
+                    |kind| std::io::Error::new(kind, error.to_string()),
+                ))
+            })?;
+            out.write_all(b"\n").map_err(streams::stdout_error)?;
         }
-    };
-    streams::out(output)?;
+    }
+    out.flush().map_err(streams::stdout_error)?;
     Ok(ExitCode::SUCCESS)
 }
 

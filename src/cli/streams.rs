@@ -6,8 +6,9 @@
 //! dropped, and the run goes on to its own exit code, so that code says the same whether or
 //! not anyone read the output (as ripgrep does, the run ends quietly; unlike a C tool, it is
 //! not killed by SIGPIPE, which would leave a half-written temporary file behind). Any other
-//! failure to write standard output (a full disk under `> out.nc`) is an I/O error, exit 2.
-//! Standard error has nowhere to report its own failures, so they are dropped.
+//! failure to write standard output (a full disk under `> out.nc`, or no standard output at
+//! all, `>&-`) is an I/O error, exit 2. Standard error has nowhere to report its own
+//! failures, so they are dropped.
 
 use std::io::{IsTerminal, Write};
 use std::sync::OnceLock;
@@ -31,6 +32,26 @@ pub enum ColorChoice {
 static COLOR: OnceLock<ColorChoice> = OnceLock::new();
 static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
 static STDERR_CLOSED: AtomicBool = AtomicBool::new(false);
+/// Standard output was not open when the process started (`turnpass simulate part.nc >&-`).
+static STDOUT_UNOPENED: AtomicBool = AtomicBool::new(false);
+
+/// Whether standard output is open, asked before the Rust runtime starts: the runtime puts
+/// `/dev/null` on a standard stream that is not open, after which writing to it succeeds
+/// and the output is silently lost. An output that has nowhere to go is an error instead.
+/// (Standard error that is not open loses only messages, which have nowhere else to go.)
+#[cfg(target_os = "linux")]
+#[used]
+#[unsafe(link_section = ".init_array")]
+static NOTE_UNOPENED_STDOUT: extern "C" fn() = note_unopened_stdout;
+
+#[cfg(target_os = "linux")]
+extern "C" fn note_unopened_stdout() {
+    // SAFETY: F_GETFD reads the descriptor's flags and changes nothing; it fails with EBADF
+    // exactly when descriptor 1 is not open.
+    if unsafe { libc::fcntl(libc::STDOUT_FILENO, libc::F_GETFD) } == -1 {
+        STDOUT_UNOPENED.store(true, Ordering::Relaxed);
+    }
+}
 
 /// Set the colour choice of the run (once, from the command line).
 pub fn set_color(choice: ColorChoice) {
@@ -88,6 +109,23 @@ pub fn out(bytes: impl AsRef<[u8]>) -> Result<(), CliError> {
 
 /// [`out`] of a text given as pieces that follow each other.
 pub fn out_parts<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), CliError> {
+    write_stdout(parts).map_err(stdout_error)
+}
+
+/// A failure to write standard output, as the run reports it.
+pub fn stdout_error(source: std::io::Error) -> CliError {
+    CliError::Write { path: "<stdout>".into(), source }
+}
+
+/// Write and flush the pieces to standard output: a closed pipe marks the stream closed
+/// (and later writes are dropped), any other failure is returned.
+fn write_stdout<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> std::io::Result<()> {
+    if STDOUT_UNOPENED.load(Ordering::Relaxed) {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::NotConnected,
+            "standard output is not open (`>&-`): redirect it to a file, or to /dev/null to discard it",
+        ));
+    }
     if STDOUT_CLOSED.load(Ordering::Relaxed) {
         return Ok(());
     }
@@ -98,8 +136,39 @@ pub fn out_parts<'a>(parts: impl IntoIterator<Item = &'a [u8]>) -> Result<(), Cl
             STDOUT_CLOSED.store(true, Ordering::Relaxed);
             Ok(())
         }
-        Err(source) => Err(CliError::Write { path: "<stdout>".into(), source }),
-        Ok(()) => Ok(()),
+        other => other,
+    }
+}
+
+/// Standard output as a writer, for an output written as it is made (a table of millions
+/// of rows is never held whole): buffered, with [`out`]'s rules. Flush it at the end; a
+/// failure to write is an I/O error of the run ([`stdout_error`]).
+pub struct Out {
+    buffer: Vec<u8>,
+}
+
+impl Out {
+    /// How much is gathered before it is written.
+    const CHUNK: usize = 1 << 16;
+
+    pub fn new() -> Out {
+        Out { buffer: Vec::with_capacity(Self::CHUNK) }
+    }
+}
+
+impl Write for Out {
+    fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+        self.buffer.extend_from_slice(bytes);
+        if self.buffer.len() >= Self::CHUNK {
+            self.flush()?;
+        }
+        Ok(bytes.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        write_stdout([self.buffer.as_slice()])?;
+        self.buffer.clear();
+        Ok(())
     }
 }
 

@@ -15,8 +15,8 @@ use turnpass::error_model::Effect;
 use turnpass::error_model::effects::{ThermalX, ThermalZ};
 
 use super::common::{
-    AxisArg, CliError, Format, display_name, model_problems, model_spec, read_data_text, read_table, write_atomically,
-    write_output,
+    AxisArg, CliError, Format, data_invalid, display_name, model_problems, model_spec, read_data_text, read_table,
+    write_atomically, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -55,8 +55,8 @@ fn curve(f: &FirstOrderFit) -> String {
 pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     let name = display_name(&args.log);
     let text = read_data_text(&args.log)?;
-    let (t, y) = read_thermal_log(&text).map_err(|e| CliError::Usage(format!("{name}: {e}")))?;
-    let fit = fit_log_split(&t, &y, args.split_min).map_err(|e| CliError::Usage(format!("{name}: {e}")))?;
+    let (t, y) = read_thermal_log(&text).map_err(|e| data_invalid(&name, &text, e, "fit-thermal"))?;
+    let fit = fit_log_split(&t, &y, args.split_min).map_err(|e| CliError::Data(format!("{name}: {e}")))?;
     let out = match args.format {
         Format::Json => serde_json::to_string_pretty(&fit).unwrap_or_default() + "\n",
         Format::Human => {

@@ -107,6 +107,29 @@ pub fn compensate_program(
     let tools = ToolTable::from_machine(machine);
     let path = LocalPath::new(toolpath);
     let sampling = sampling(&options.fit, model, path.reach());
+    // A move that needs more samples than a piece may hold is refused before any is made.
+    let oversampled = oversampled_moves(toolpath, &sampling);
+    if !oversampled.is_empty() {
+        return Outcome {
+            edits: Edits::new(),
+            diagnostics: oversampled,
+            report: super::report::build(&ReportInput {
+                program,
+                runs: &[],
+                before: Default::default(),
+                after: Default::default(),
+                max_correction_mm: 0.0,
+                samples: 0,
+                plans: &Default::default(),
+                edited: &[],
+                inverse_iterations: 0,
+                inverse_residual_mm: 0.0,
+                block_reports: false,
+            }),
+            paths: Paths::default(),
+            edited: Vec::new(),
+        };
+    }
     // The rewrite's tables: what can be written for each move, the runs of moves each edited
     // block writes, and the rewrite itself, which reads the whole program.
     let motion = rewrite::MotionBlocks::new(program, lowered, &tools);
@@ -158,6 +181,24 @@ fn unwritable_cycles(program: &Program<'_>, lowered: &Lowered, needs: &[bool], w
         if needs.get(expansion.moves.clone()).is_some_and(|moves| moves.iter().any(|&n| n)) {
             let span = program.block(expansion.block).span;
             out.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+        }
+    }
+    out
+}
+
+/// The moves that need more than `MAX_SAMPLES_PER_MOVE` samples, one error on each block that
+/// makes some.
+fn oversampled_moves(toolpath: &crate::toolpath::Toolpath, sampling: &Sampling) -> Vec<Diagnostic> {
+    let mut out: Vec<Diagnostic> = Vec::new();
+    for (index, m) in toolpath.moves.iter().enumerate() {
+        let samples = crate::error_model::sampling::samples_needed(toolpath, index, sampling);
+        if samples > crate::error_model::sampling::MAX_SAMPLES_PER_MOVE && out.last().is_none_or(|d| d.span != m.source)
+        {
+            let kind = DiagnosticKind::MoveNeedsTooManySamples {
+                samples,
+                max: crate::error_model::sampling::MAX_SAMPLES_PER_MOVE,
+            };
+            out.push(Diagnostic::error(kind, m.source));
         }
     }
     out

@@ -26,7 +26,7 @@ mod ballbar;
 mod profile;
 mod table;
 
-pub(crate) use ballbar::test_circles;
+pub(crate) use ballbar::{smallest_radius, test_circles};
 pub(crate) use profile::surface_points;
 
 use std::ops::Range;

@@ -17,8 +17,9 @@
 
 use serde::Serialize;
 
-use crate::error_model::interferometer::{self, SlideTable};
+use crate::error_model::interferometer::{self, RecordLines, SlideTable};
 pub use crate::error_model::model_file::Axis;
+use crate::source::Span;
 
 /// The direction a ball bar circle was run in.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -132,16 +133,17 @@ impl Measured {
     }
 }
 
-/// What is wrong with a measurement file.
+/// What is wrong with a measurement file: the line of the file (counting the header and
+/// comments), the text it is about (a field, a header cell, or the line) and what is wrong.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("line {line}: {message}")]
 pub struct MeasuredError {
     pub line: usize,
+    pub span: Span,
+    pub label: &'static str,
     pub message: String,
-}
-
-fn error(line: usize, message: impl Into<String>) -> MeasuredError {
-    MeasuredError { line, message: message.into() }
+    /// What was probably meant, where a guess is possible.
+    pub hint: Option<String>,
 }
 
 const BALL_BAR: [&str; 3] = ["angle_deg", "deviation_mm", "direction"];
@@ -149,6 +151,7 @@ const PROFILE: [&str; 4] = ["x_mm", "z_mm", "part", "start_min"];
 
 /// Read a measurement, telling a ball bar trace from a CMM profile by the header (or,
 /// with `kind`, insisting on one). An interferometer table needs its kind, for its axis.
+/// The rows are read one at a time, in one pass: the first bad one ends the reading.
 pub fn read(text: &str, kind: Option<Kind>) -> Result<Measured, MeasuredError> {
     if let Some(Kind::Table(axis)) = kind {
         return read_slide_table(text, axis);
@@ -159,11 +162,10 @@ pub fn read(text: &str, kind: Option<Kind>) -> Result<Measured, MeasuredError> {
         None if table.has("angle_deg") => Kind::BallBar,
         None if table.has("x_mm") => Kind::Profile,
         None if table.has("target_mm") => {
-            return Err(error(table.header_line, "an interferometer table: say which slide (--kind table --axis x|z)"));
+            return Err(table.header_error("an interferometer table: say which slide (--kind table --axis x|z)"));
         }
         None => {
-            return Err(error(
-                table.header_line,
+            return Err(table.header_error(
                 "the header names neither a ball bar trace (angle_deg,deviation_mm,direction) nor a CMM \
                  profile (x_mm,z_mm[,part,start_min])",
             ));
@@ -177,41 +179,90 @@ pub fn read(text: &str, kind: Option<Kind>) -> Result<Measured, MeasuredError> {
 
 /// An ISO 230-2 table of one slide, read by the error model's own reader.
 fn read_slide_table(text: &str, axis: Axis) -> Result<Measured, MeasuredError> {
-    let table = interferometer::parse(text).map_err(|e| error(e.line().unwrap_or(1), e.message()))?;
+    let table = interferometer::parse(text).map_err(|e| MeasuredError {
+        line: e.line().unwrap_or(1),
+        span: e.span(text),
+        label: match e {
+            interferometer::TableError::Row { .. } => "this value",
+            interferometer::TableError::UnknownColumn { .. } => "unknown column",
+            _ => "here",
+        },
+        message: e.message(),
+        hint: None,
+    })?;
     if table.linear.is_none() && table.straightness.is_none() {
-        return Err(error(1, "the table has neither linear_mm nor straightness columns to diagnose"));
+        let message = "the table has neither linear_mm nor straightness columns to diagnose".to_string();
+        return Err(MeasuredError { line: 1, span: Span::new(0, 0), label: "this table", message, hint: None });
     }
     Ok(Measured::Table { axis, table: Box::new(table) })
 }
 
-/// A CSV file's header and rows, each with its line.
-struct Table {
+/// A CSV file's header, and its rows read one at a time, each with its line.
+struct Table<'t> {
+    text: &'t str,
     header: Vec<String>,
     header_line: usize,
-    rows: Vec<(usize, Vec<String>)>,
+    header_cells: Vec<Span>,
+    reader: csv::Reader<&'t [u8]>,
+    lines: RecordLines<'t>,
+    record: csv::StringRecord,
 }
 
-impl Table {
-    fn new(text: &str) -> Result<Table, MeasuredError> {
-        let mut reader = csv::ReaderBuilder::new()
+/// A row: its line, the span of the line, and its fields' spans.
+struct Row {
+    line: usize,
+    span: Span,
+    fields: Vec<Span>,
+}
+
+impl<'t> Table<'t> {
+    fn new(text: &'t str) -> Result<Table<'t>, MeasuredError> {
+        let reader = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
             .flexible(true)
             .has_headers(false)
             .from_reader(text.as_bytes());
-        let line_of = |byte: u64| interferometer::csv_record_line(text, byte);
-        let mut records = Vec::new();
-        for record in reader.records() {
-            let record = record.map_err(|e| {
-                let line = e.position().map_or(0, |p| line_of(p.byte()));
-                error(line, e.to_string())
+        let mut table = Table {
+            text,
+            header: Vec::new(),
+            header_line: 1,
+            header_cells: Vec::new(),
+            reader,
+            lines: RecordLines::new(text),
+            record: csv::StringRecord::new(),
+        };
+        let Some(row) = table.next_row()? else {
+            let end = Span::new(text.len() as u32, text.len() as u32);
+            let message = "the file is empty".into();
+            return Err(MeasuredError { line: 1, span: end, label: "here", message, hint: None });
+        };
+        table.header = table.record.iter().map(str::to_lowercase).collect();
+        table.header_line = row.line;
+        table.header_cells = row.fields;
+        Ok(table)
+    }
+
+    /// The next row that is not blank, read into `self.record`.
+    fn next_row(&mut self) -> Result<Option<Row>, MeasuredError> {
+        loop {
+            let read = self.reader.read_record(&mut self.record).map_err(|e| {
+                let line = e.position().map_or(1, |p| self.lines.line_of(p.byte()));
+                let span = line_span(self.text, &mut self.lines, line);
+                MeasuredError { line, span, label: "here", message: e.to_string(), hint: None }
             })?;
-            let line = record.position().map_or(0, |p| line_of(p.byte()));
-            records.push((line, record.iter().map(str::to_string).collect::<Vec<_>>()));
+            if !read {
+                return Ok(None);
+            }
+            #[cfg(test)]
+            tests::count_row_read();
+            if self.record.len() == 1 && self.record[0].is_empty() {
+                continue;
+            }
+            let line = self.record.position().map_or(1, |p| self.lines.line_of(p.byte()));
+            let span = line_span(self.text, &mut self.lines, line);
+            return Ok(Some(Row { line, span, fields: interferometer::line_cells(self.text, span.start as usize) }));
         }
-        let mut records = records.into_iter().filter(|(_, r)| !(r.len() == 1 && r[0].is_empty()));
-        let Some((header_line, header)) = records.next() else { return Err(error(1, "the file is empty")) };
-        Ok(Table { header: header.iter().map(|h| h.to_lowercase()).collect(), header_line, rows: records.collect() })
     }
 
     fn has(&self, name: &str) -> bool {
@@ -222,44 +273,109 @@ impl Table {
         self.header.iter().position(|h| h == name)
     }
 
+    fn header_error(&self, message: impl Into<String>) -> MeasuredError {
+        let span = match (self.header_cells.first(), self.header_cells.last()) {
+            (Some(first), Some(last)) => Span::new(first.start, last.end),
+            _ => Span::new(0, 0),
+        };
+        MeasuredError { line: self.header_line, span, label: "this header", message: message.into(), hint: None }
+    }
+
     /// Refuse unknown or repeated columns and missing required ones.
     fn check_columns(&self, known: &[&str], required: &[&str]) -> Result<(), MeasuredError> {
+        let cell = |i: usize| self.header_cells.get(i).copied().unwrap_or(Span::new(0, 0));
         for (i, name) in self.header.iter().enumerate() {
             if !known.contains(&name.as_str()) {
-                return Err(error(
-                    self.header_line,
-                    format!("unknown column `{name}` (the columns are {})", known.join(", ")),
-                ));
+                return Err(MeasuredError {
+                    line: self.header_line,
+                    span: cell(i),
+                    label: "unknown column",
+                    message: format!("unknown column `{name}` (the columns are {})", known.join(", ")),
+                    hint: crate::toml_spans::nearest(name, known.iter().copied())
+                        .map(|near| format!("did you mean `{near}`?")),
+                });
             }
             if self.header[..i].contains(name) {
-                return Err(error(self.header_line, format!("the column `{name}` appears twice")));
+                return Err(MeasuredError {
+                    line: self.header_line,
+                    span: cell(i),
+                    label: "second of this name",
+                    message: format!("the column `{name}` appears twice"),
+                    hint: None,
+                });
             }
         }
         for name in required {
             if !self.has(name) {
-                return Err(error(self.header_line, format!("the header has no `{name}` column")));
+                return Err(self.header_error(format!("the header has no `{name}` column")));
             }
-        }
-        if self.rows.is_empty() {
-            return Err(error(self.header_line, "the file has a header but no rows"));
         }
         Ok(())
     }
-}
 
-fn field<'a>(row: &'a [String], column: usize, name: &str, line: usize) -> Result<&'a str, MeasuredError> {
-    match row.get(column).map(String::as_str) {
-        Some(value) if !value.is_empty() => Ok(value),
-        _ => Err(error(line, format!("no value for `{name}`"))),
+    /// The rows, each read and checked by `each` before the next is read; a table with a
+    /// header and no rows is refused.
+    fn rows(mut self, mut each: impl FnMut(&Fields<'_>) -> Result<(), MeasuredError>) -> Result<(), MeasuredError> {
+        let mut any = false;
+        while let Some(row) = self.next_row()? {
+            any = true;
+            each(&Fields { row: &row, record: &self.record })?;
+        }
+        if any { Ok(()) } else { Err(self.header_error("the file has a header but no rows")) }
     }
 }
 
-fn number(row: &[String], column: usize, name: &str, line: usize) -> Result<f64, MeasuredError> {
-    let text = field(row, column, name, line)?;
-    match text.parse::<f64>() {
-        Ok(value) if value.is_finite() => Ok(value),
-        _ => Err(error(line, format!("`{name}` is `{text}`, not a finite number"))),
+/// One row's fields, for reading values with the span they came from.
+struct Fields<'r> {
+    row: &'r Row,
+    record: &'r csv::StringRecord,
+}
+
+impl Fields<'_> {
+    fn line(&self) -> usize {
+        self.row.line
     }
+
+    /// The span of field `column`, else of the line.
+    fn span(&self, column: usize) -> Span {
+        self.row.fields.get(column).copied().unwrap_or(self.row.span)
+    }
+
+    fn error(&self, column: usize, label: &'static str, message: impl Into<String>) -> MeasuredError {
+        MeasuredError { line: self.row.line, span: self.span(column), label, message: message.into(), hint: None }
+    }
+
+    fn text(&self, column: usize, name: &str) -> Result<&str, MeasuredError> {
+        match self.record.get(column) {
+            Some(value) if !value.is_empty() => Ok(value),
+            _ => Err(self.error(column, "no value", format!("no value for `{name}`"))),
+        }
+    }
+
+    fn number(&self, column: usize, name: &str) -> Result<f64, MeasuredError> {
+        let text = self.text(column, name)?;
+        match text.parse::<f64>() {
+            Ok(value) if value.is_finite() => Ok(value),
+            _ => {
+                let mut error =
+                    self.error(column, "not a finite number", format!("`{name}` is `{text}`, not a finite number"));
+                // OCR and typing put the letter O for a zero, as in programs.
+                let zeros = text.replace(['O', 'o'], "0");
+                if zeros != text && zeros.parse::<f64>().is_ok_and(f64::is_finite) {
+                    error.hint = Some(format!("`O` typed for `0`? did you mean `{zeros}`?"));
+                }
+                Err(error)
+            }
+        }
+    }
+}
+
+/// The span of line `line` (1-based) of `text`, without its line break.
+fn line_span(text: &str, lines: &mut RecordLines<'_>, line: usize) -> Span {
+    let start = lines.start_of(line);
+    let rest = &text[start..];
+    let end = start + rest.find(['\n', '\r']).unwrap_or(rest.len());
+    Span::new(start as u32, end as u32)
 }
 
 /// A thermal log (`t_min,value`): times in minutes, increasing, and the logged values.
@@ -267,76 +383,91 @@ pub fn read_thermal_log(text: &str) -> Result<(Vec<f64>, Vec<f64>), MeasuredErro
     let table = Table::new(text)?;
     table.check_columns(&["t_min", "value"], &["t_min", "value"])?;
     let (t, v) = (table.column("t_min").unwrap_or(0), table.column("value").unwrap_or(1));
-    let mut times: Vec<f64> = Vec::with_capacity(table.rows.len());
-    let mut values = Vec::with_capacity(table.rows.len());
-    for (line, row) in &table.rows {
-        let time = number(row, t, "t_min", *line)?;
+    let mut times: Vec<f64> = Vec::new();
+    let mut values = Vec::new();
+    table.rows(|row| {
+        let time = row.number(t, "t_min")?;
         if times.last().is_some_and(|&before| time <= before) {
-            return Err(error(*line, format!("t_min {time} does not come after the row before: times must increase")));
+            return Err(row.error(
+                t,
+                "not after the time before",
+                format!("t_min {time} does not come after the row before: times must increase"),
+            ));
         }
         times.push(time);
-        values.push(number(row, v, "value", *line)?);
-    }
+        values.push(row.number(v, "value")?);
+        Ok(())
+    })?;
     Ok((times, values))
 }
 
-fn read_ball_bar(table: Table) -> Result<Vec<BallBarRow>, MeasuredError> {
+fn read_ball_bar(table: Table<'_>) -> Result<Vec<BallBarRow>, MeasuredError> {
     table.check_columns(&BALL_BAR, &BALL_BAR)?;
     let [angle, deviation, direction] = BALL_BAR.map(|name| table.column(name).unwrap_or(0));
-    let mut out = Vec::with_capacity(table.rows.len());
-    for (line, row) in &table.rows {
-        let line = *line;
-        let text = field(row, direction, "direction", line)?;
+    let mut out = Vec::new();
+    table.rows(|row| {
+        let text = row.text(direction, "direction")?;
         let direction = match text.to_ascii_lowercase().as_str() {
             "ccw" => Direction::Ccw,
             "cw" => Direction::Cw,
-            _ => return Err(error(line, format!("`direction` is `{text}`: write `ccw` (G03) or `cw` (G02)"))),
+            _ => {
+                let message = format!("`direction` is `{text}`: write `ccw` (G03) or `cw` (G02)");
+                return Err(row.error(direction, "not a direction", message));
+            }
         };
-        let deviation_mm = number(row, deviation, "deviation_mm", line)?;
+        let deviation_mm = row.number(deviation, "deviation_mm")?;
         if deviation_mm.abs() > 1.0 {
-            return Err(error(
-                line,
+            return Err(row.error(
+                deviation,
+                "not a deviation",
                 format!("a ball bar deviation of {deviation_mm} mm is not a deviation: write actual − nominal radius"),
             ));
         }
-        out.push(BallBarRow { angle_deg: number(row, angle, "angle_deg", line)?, deviation_mm, direction, line });
-    }
+        let angle_deg = row.number(angle, "angle_deg")?;
+        out.push(BallBarRow { angle_deg, deviation_mm, direction, line: row.line() });
+        Ok(())
+    })?;
     Ok(out)
 }
 
-fn read_profile(table: Table) -> Result<Vec<ProfilePoint>, MeasuredError> {
+fn read_profile(table: Table<'_>) -> Result<Vec<ProfilePoint>, MeasuredError> {
     table.check_columns(&PROFILE, &PROFILE[..2])?;
     let x = table.column("x_mm").unwrap_or(0);
     let z = table.column("z_mm").unwrap_or(0);
     let part = table.column("part");
     let start = table.column("start_min");
-    let mut out: Vec<ProfilePoint> = Vec::with_capacity(table.rows.len());
-    for (line, row) in &table.rows {
-        let line = *line;
-        let x_mm = number(row, x, "x_mm", line)?;
+    let mut out: Vec<ProfilePoint> = Vec::new();
+    // Each part's start time and the line that first gave it.
+    let mut started: std::collections::HashMap<Option<String>, (Option<f64>, usize)> = Default::default();
+    table.rows(|row| {
+        let x_mm = row.number(x, "x_mm")?;
         if x_mm < 0.0 {
-            return Err(error(
-                line,
+            return Err(row.error(
+                x,
+                "negative",
                 format!("x_mm is {x_mm}: x is a radius from the axis of rotation, never negative"),
             ));
         }
-        let part = part.map(|c| field(row, c, "part", line).map(str::to_string)).transpose()?;
-        let start_min = start.map(|c| number(row, c, "start_min", line)).transpose()?;
-        if let Some(t) = start_min
-            && let Some(earlier) = out.iter().find(|p| p.part == part && p.start_min != Some(t))
+        let part = part.map(|c| row.text(c, "part").map(str::to_string)).transpose()?;
+        let start_min = start.map(|c| row.number(c, "start_min")).transpose()?;
+        let (first_start, first_line) = *started.entry(part.clone()).or_insert((start_min, row.line()));
+        if let (Some(t), Some(column)) = (start_min, start)
+            && first_start != Some(t)
         {
-            return Err(error(
-                line,
+            return Err(row.error(
+                column,
+                "another start time",
                 format!(
-                    "part {} started at {} min on line {}, not {t}: one part has one start time",
+                    "part {} started at {} min on line {first_line}, not {t}: one part has one start time",
                     part.as_deref().unwrap_or("(unnamed)"),
-                    earlier.start_min.unwrap_or(f64::NAN),
-                    earlier.line
+                    first_start.unwrap_or(f64::NAN),
                 ),
             ));
         }
-        out.push(ProfilePoint { x_mm, z_mm: number(row, z, "z_mm", line)?, part, start_min, line });
-    }
+        let z_mm = row.number(z, "z_mm")?;
+        out.push(ProfilePoint { x_mm, z_mm, part, start_min, line: row.line() });
+        Ok(())
+    })?;
     Ok(out)
 }
 

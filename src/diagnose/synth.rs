@@ -151,6 +151,15 @@ pub fn synth(
     })
 }
 
+/// The finest `step_deg` of a ball bar trace of `nominal` on a machine whose finest
+/// increment is `increment_mm`: a row moves the tool at least an increment round the
+/// program's smallest test circle (rows closer than that are rows of one position, and
+/// their number would follow the option, not the test). `None` for a program with no test
+/// circle.
+pub fn finest_step_deg(nominal: &Nominal, increment_mm: f64) -> Option<f64> {
+    super::forward::smallest_radius(nominal).map(|radius| (increment_mm / radius).to_degrees())
+}
+
 /// `count` distinct readings of `n` (in order) and the sign of each one's glitch, from a
 /// generator of their own for `seed`.
 pub fn glitches(n: usize, count: usize, seed: u64) -> Vec<(usize, f64)> {

@@ -8,22 +8,27 @@
 use std::borrow::Cow;
 
 use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label, Severity as CsSeverity};
-use codespan_reporting::files::{Files, SimpleFile};
+use codespan_reporting::files::SimpleFile;
 use codespan_reporting::term::{self, Config};
 use serde::Serialize;
 
 use super::{Diagnostic, Severity};
 use crate::source::{DisplayText, Span};
 
-/// A source prepared for rendering: its name and its display text.
+/// A source prepared for rendering: its name, its display text and where its lines start
+/// (found once: a location is a bisection, so thousands of diagnostics cost no more than
+/// one pass over the text each would otherwise make).
 pub struct RenderSource<'a> {
     name: &'a str,
     display: DisplayText,
+    line_starts: Vec<usize>,
 }
 
 impl<'a> RenderSource<'a> {
     pub fn new(name: &'a str, source: &[u8]) -> RenderSource<'a> {
-        RenderSource { name, display: DisplayText::new(source) }
+        let display = DisplayText::new(source);
+        let line_starts = codespan_reporting::files::line_starts(&display.text).collect();
+        RenderSource { name, display, line_starts }
     }
 
     fn range(&self, span: Span) -> std::ops::Range<usize> {
@@ -36,13 +41,16 @@ impl<'a> RenderSource<'a> {
         SimpleFile::new(self.name, self.display.text.as_str())
     }
 
-    /// 1-based line and character column of a source offset.
+    /// 1-based line and character column of a source offset, as codespan counts them.
     pub fn location(&self, offset: u32) -> (usize, usize) {
-        let file = self.file();
-        match file.location((), self.display.offset(offset)) {
-            Ok(location) => (location.line_number, location.column_number),
-            Err(_) => (1, 1),
-        }
+        let text = self.display.text.as_str();
+        let at = self.display.offset(offset);
+        let line = self.line_starts.partition_point(|&start| start <= at).saturating_sub(1);
+        let start = self.line_starts.get(line).copied().unwrap_or(0);
+        let end = self.line_starts.get(line + 1).copied().unwrap_or(text.len());
+        #[cfg(test)]
+        tests::count_looked_at(self.line_starts.len(), end.min(at).saturating_sub(start));
+        (line + 1, codespan_reporting::files::column_index(text, start..end, at) + 1)
     }
 }
 
@@ -159,3 +167,6 @@ pub fn to_json(source: &RenderSource<'_>, diagnostics: &[Diagnostic]) -> Vec<Jso
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests;

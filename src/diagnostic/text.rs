@@ -354,6 +354,12 @@ impl DiagnosticKind {
                 hint: None,
             },
             ModelFile(problem) => problem.words(),
+            DataInvalid { message, label, hint } => Words {
+                code: "data-invalid",
+                message: message.clone().into(),
+                label: (*label).into(),
+                hint: hint.clone().map(Into::into),
+            },
             TooManyWords { max } => Words {
                 code: "too-many-words",
                 message: format!("the block has more than {max} words").into(),
@@ -614,6 +620,36 @@ impl DiagnosticKind {
                 message: "the roughing cycle has no depth of cut".into(),
                 label: "this cycle".into(),
                 hint: Some("give the depth in a first block (`G71 U… R…`, `G72 W… R…`) or as `D` in the cycle block".into()),
+            },
+            MoveNeedsTooManySamples { samples, max } => Words {
+                code: "move-needs-too-many-samples",
+                message: format!(
+                    "compensating this move takes {samples} samples at the spacing the model needs; turnpass samples \
+                     a move at most {max} times"
+                )
+                .into(),
+                label: "this move".into(),
+                hint: Some("check the move's length and feed (a coordinate in the wrong unit or without its decimal \
+                            point), or split it into shorter moves"
+                    .into()),
+            },
+            ProgramCut => Words {
+                code: "program-cut",
+                message: "the text ends in the middle of a block, and the program has no end (M30, M02, M99): \
+                          it looks cut off"
+                    .into(),
+                label: "the text ends here".into(),
+                hint: Some("if the program is whole, end it with M30 (or M02) and a line break".into()),
+            },
+            DepthBelowIncrement { depth, increment } => Words {
+                code: "depth-below-increment",
+                message: format!(
+                    "the depth of cut {depth} is less than the least increment {increment}: the control reads it as 0 \
+                     and refuses the cycle"
+                )
+                .into(),
+                label: "depth of cut".into(),
+                hint: Some(format!("give a depth of at least {increment} (one increment)").into()),
             },
             EmptyProfile => Words {
                 code: "empty-profile",

@@ -105,8 +105,10 @@ pub const COLUMNS: [&str; 8] = [
 /// of it.
 #[derive(Debug, Clone, PartialEq)]
 pub enum TableError {
+    /// A row whose value in `column` (0-based) does not read.
     Row {
         line: usize,
+        column: usize,
         message: String,
     },
     MissingColumn {
@@ -172,6 +174,14 @@ impl TableError {
     pub fn span(&self, text: &str) -> Span {
         match self {
             TableError::UnknownColumn { span, .. } | TableError::DuplicateColumn { span, .. } => *span,
+            TableError::Row { line, column, .. } => {
+                let lines = LineIndex::new(text.as_bytes());
+                let start = if *line >= 1 && *line <= lines.line_count() { lines.line_start(line - 1) } else { 0 };
+                match line_cells(text, start as usize).get(*column) {
+                    Some(cell) => *cell,
+                    None => Span::new(start, start),
+                }
+            }
             _ => {
                 let end = u32::try_from(text.len()).unwrap_or(u32::MAX);
                 let lines = LineIndex::new(text.as_bytes());
@@ -200,9 +210,10 @@ impl std::fmt::Display for TableError {
 
 impl std::error::Error for TableError {}
 
-/// The spans of the cells of the header line that starts at byte `start` of `text`, one per
-/// cell, each without its blanks and quotes.
-fn header_cells(text: &str, start: usize) -> Vec<Span> {
+/// The spans of the cells of the line that starts at byte `start` of `text`, one per cell,
+/// each without its blanks and quotes (a quoted cell with a comma in it shifts the ones
+/// after it; the cells of these tables are numbers and names).
+pub(crate) fn line_cells(text: &str, start: usize) -> Vec<Span> {
     let line_end = text[start..].find(['\n', '\r']).map_or(text.len(), |n| start + n);
     let mut cells = Vec::new();
     let mut cell_start = start;
@@ -223,29 +234,100 @@ struct Runs {
     down: Vec<f64>,
 }
 
-/// The 1-based line of the CSV record a reader positioned at `byte`. The reader's own line
-/// count skips blank lines, and a record's position is where the reader started looking
-/// for it, before the blank and `#` comment lines it passed over: count lines up to the
-/// position, then over those.
-pub fn csv_record_line(text: &str, byte: u64) -> usize {
-    let start = (byte as usize).min(text.len());
-    let mut line = 1 + text.as_bytes()[..start].iter().filter(|&&c| c == b'\n').count();
-    for rest in text.get(start..).unwrap_or("").split('\n') {
-        let trimmed = rest.trim();
-        if !(trimmed.is_empty() || trimmed.starts_with('#')) {
-            break;
-        }
-        line += 1;
+/// The 1-based lines of the CSV records of a text, found as a reader goes through it. The
+/// reader's own line count skips blank lines, and a record's position is where the reader
+/// started looking for it, before the blank and `#` comment lines it passed over: lines are
+/// counted up to the position, then over those. Positions come in order, so each count goes
+/// on from the last one and reading a table is one pass over its text, not one per row.
+pub struct RecordLines<'t> {
+    text: &'t str,
+    /// Where each line starts, up to the furthest line counted.
+    starts: Vec<usize>,
+}
+
+impl<'t> RecordLines<'t> {
+    pub fn new(text: &'t str) -> RecordLines<'t> {
+        RecordLines { text, starts: vec![0] }
     }
-    line
+
+    /// Count lines up to byte `to`.
+    fn count_to(&mut self, to: usize) {
+        let from = self.starts.last().copied().unwrap_or(0);
+        if to > from {
+            #[cfg(test)]
+            tests::count_looked_at(to - from);
+            let mut at = from;
+            while let Some((_, next)) = next_line_end(self.text.as_bytes(), at, to) {
+                if next > to {
+                    break;
+                }
+                self.starts.push(next);
+                at = next;
+            }
+        }
+    }
+
+    /// The line of the record a reader found at `byte`.
+    pub fn line_of(&mut self, byte: u64) -> usize {
+        let mut at = (byte as usize).min(self.text.len());
+        let mut line = self.line_at(at);
+        loop {
+            let (piece, next) = match next_line_end(self.text.as_bytes(), at, self.text.len()) {
+                Some((end, next)) => (&self.text[at..end], Some(next)),
+                None => (&self.text[at..], None),
+            };
+            #[cfg(test)]
+            tests::count_looked_at(piece.len());
+            let trimmed = piece.trim();
+            if !(trimmed.is_empty() || trimmed.starts_with('#')) {
+                return line;
+            }
+            line += 1;
+            match next {
+                Some(next) => at = next,
+                None => return line,
+            }
+        }
+    }
+
+    /// The 1-based line that byte `at` is on.
+    fn line_at(&mut self, at: usize) -> usize {
+        self.count_to(at);
+        self.starts.partition_point(|&s| s <= at).max(1)
+    }
+
+    /// Where line `line` (1-based) starts, counting lines as far as needed.
+    pub fn start_of(&mut self, line: usize) -> usize {
+        while self.starts.len() < line {
+            let from = self.starts.last().copied().unwrap_or(0);
+            let found = next_line_end(self.text.as_bytes(), from, self.text.len());
+            #[cfg(test)]
+            tests::count_looked_at(found.map_or(self.text.len() - from, |(_, next)| next - from));
+            match found {
+                Some((_, next)) => self.starts.push(next),
+                None => return self.text.len(),
+            }
+        }
+        self.starts[line.max(1) - 1]
+    }
+}
+
+/// The first line end in `text[from..to]`: where the line's text ends and where the next
+/// line starts. A line ends at LF, CR LF or a lone CR, as [`LineIndex`] counts lines and as
+/// the CSV reader ends records; a CR LF cut by `to` still counts as one end.
+fn next_line_end(text: &[u8], from: usize, to: usize) -> Option<(usize, usize)> {
+    let at = from + memchr::memchr2(b'\n', b'\r', &text[from..to])?;
+    let next = if text[at] == b'\r' && text.get(at + 1) == Some(&b'\n') { at + 2 } else { at + 1 };
+    Some((at, next))
 }
 
 /// Read a slide's CSV table.
 pub fn parse(text: &str) -> Result<SlideTable, TableError> {
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
-    let headers = reader.headers().map_err(|e| csv_error(text, &e))?.clone();
+    let headers = reader.headers().map_err(|e| csv_error(&mut RecordLines::new(text), &e))?.clone();
     let header_start = headers.position().map_or(0, |p| p.byte() as usize);
-    let header_line = csv_record_line(text, header_start as u64);
+    let mut lines = RecordLines::new(text);
+    let header_line = lines.line_of(header_start as u64);
     let cells = {
         let lines = LineIndex::new(text.as_bytes());
         let start = if header_line >= 1 && header_line <= lines.line_count() {
@@ -253,7 +335,7 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
         } else {
             0
         };
-        let cells = header_cells(text, start);
+        let cells = line_cells(text, start);
         if cells.len() == headers.len() { cells } else { vec![Span::new(start as u32, start as u32); headers.len()] }
     };
     for (i, name) in headers.iter().enumerate() {
@@ -287,21 +369,23 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
     // Per quantity, per target (keyed by its exact bits, in order), the runs each way.
     let mut data: Vec<BTreeMap<OrderedTarget, Runs>> = (0..5).map(|_| BTreeMap::new()).collect();
     for record in reader.records() {
-        let record = record.map_err(|e| csv_error(text, &e))?;
-        let line = record.position().map_or(0, |p| csv_record_line(text, p.byte()));
+        let record = record.map_err(|e| csv_error(&mut lines, &e))?;
+        let line = record.position().map_or(0, |p| lines.line_of(p.byte()));
         let number = |c: usize, name: &str| -> Result<f64, TableError> {
             let text = record.get(c).unwrap_or("");
-            text.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| TableError::Row { line, message: format!("`{text}` is not a number in column {name}") })
+            text.parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| TableError::Row {
+                line,
+                column: c,
+                message: format!("`{text}` is not a number in column {name}"),
+            })
         };
         let t = number(target, "target_mm")?;
         let up = match record.get(direction).unwrap_or("") {
             "up" | "+" | "forward" => true,
             "down" | "-" | "reverse" | "backward" => false,
             other => {
-                return Err(TableError::Row { line, message: format!("direction `{other}` is neither up nor down") });
+                let message = format!("direction `{other}` is neither up nor down");
+                return Err(TableError::Row { line, column: direction, message });
             }
         };
         for (k, (name, c)) in quantities.iter().enumerate() {
@@ -334,8 +418,8 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
 }
 
 /// A CSV reader's error, at the line it gives.
-fn csv_error(text: &str, e: &csv::Error) -> TableError {
-    let line = e.position().map_or(1, |p| csv_record_line(text, p.byte()));
+fn csv_error(lines: &mut RecordLines<'_>, e: &csv::Error) -> TableError {
+    let line = e.position().map_or(1, |p| lines.line_of(p.byte()));
     TableError::Csv { line, message: e.to_string() }
 }
 
@@ -385,11 +469,12 @@ fn build(runs: &BTreeMap<OrderedTarget, Runs>) -> Option<Profile> {
 }
 
 /// The reversal technique (eq. 2.5–2.7): `m1 = a − s`, `m2 = a + s`, so `s = (m2 − m1)/2`
-/// whatever the straightness `a` of the optics. Targets both runs share.
+/// whatever the straightness `a` of the optics. Targets both runs share (a profile's targets
+/// are in order, `build`, so each is found by bisection).
 fn reversal(m1: &Profile, m2: &Profile) -> Profile {
     let mut p = Profile::default();
     for (i, &t) in m1.targets.iter().enumerate() {
-        if let Some(j) = m2.targets.iter().position(|&u| u == t) {
+        if let Ok(j) = m2.targets.binary_search_by(|u| u.partial_cmp(&t).unwrap_or(std::cmp::Ordering::Less)) {
             p.targets.push(t);
             p.up.push((m2.up[j] - m1.up[i]) / 2.0);
             p.down.push((m2.down[j] - m1.down[i]) / 2.0);
@@ -502,4 +587,4 @@ pub fn report(p: &Profile) -> Iso230_2 {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

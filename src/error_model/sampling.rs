@@ -108,6 +108,32 @@ impl Sampling {
     }
 }
 
+/// The most samples one move may need. Compensation holds a piece's samples at once, and a
+/// move's samples are all in one piece: a move that needs more (ten kilometres at the
+/// thesis' 0.254 mm, a metre where the model asks for a sample every micrometre, hours of
+/// a slow feed where it drifts with time) is refused before it is sampled, so that memory
+/// follows the program and not the product of its lengths and the model's steps.
+pub const MAX_SAMPLES_PER_MOVE: usize = 1_000_000;
+
+/// How many samples [`sample_move`] makes of move `index` as `sampling` allows (an arc's
+/// axis reversals aside, at most four more), counted without making them.
+pub fn samples_needed(toolpath: &Toolpath, index: usize, sampling: &Sampling) -> usize {
+    let Some(m) = toolpath.moves.get(index) else { return 0 };
+    let start = toolpath.start_of(index);
+    match m.motion {
+        Motion::Dwell => 0,
+        Motion::Rapid => 1,
+        Motion::Feed => sampling.spacing.steps(start.distance(m.end), minutes(m)),
+        Motion::Cw | Motion::Ccw => {
+            let radius = start.distance(m.centre);
+            let a0 = geometry::angle(start, m.centre);
+            let sweep = geometry::sweep_from(a0, start, m.end, m.centre, m.motion == Motion::Ccw);
+            let by_angle = sampling.arc_steps(radius, sweep, m.feed);
+            sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2)
+        }
+    }
+}
+
 /// Sample every move of `toolpath`; cutting moves at most `step` mm apart.
 pub fn sample_toolpath(toolpath: &Toolpath, tools: &ToolTable, step: f64) -> Vec<PathSample> {
     let mut out = Vec::with_capacity(toolpath.moves.len() * 2);

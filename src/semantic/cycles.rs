@@ -53,10 +53,11 @@ pub(super) use single::single_cycle_again;
 /// A cycle that needs such a memory keeps its type in its own file and a field here.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(super) struct CycleMemory {
-    /// `G71 U(Δd) R(e)`, `G72 W(Δd) R(e)`: depth of cut and retract, program units.
-    pub turning_depth: Option<f64>,
+    /// `G71 U(Δd) R(e)`, `G72 W(Δd) R(e)`: depth of cut (with its word) and retract,
+    /// program units.
+    pub turning_depth: Option<(f64, crate::source::Span)>,
     pub turning_retract: Option<f64>,
-    pub facing_depth: Option<f64>,
+    pub facing_depth: Option<(f64, crate::source::Span)>,
     pub facing_retract: Option<f64>,
     /// The block that last set a depth (the first block of a two-block cycle).
     pub depth_block: Option<usize>,

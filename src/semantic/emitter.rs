@@ -55,16 +55,21 @@ pub struct Emitter {
     pub dwelled: bool,
     /// Where arcs go to be timed on another thread, while one does (`time_arcs_beside`).
     beside: Option<arc_times::Beside>,
+    /// The most moves a run keeps (`LowerOptions::max_moves`): a move past it is dropped,
+    /// so that a cycle with a runaway parameter cannot take memory without bound before the
+    /// interpreter stops the run.
+    limit: usize,
 }
 
 /// Samples for Simpson's rule on arcs under constant surface speed.
 const SIMPSON_INTERVALS: usize = 16;
 
 impl Emitter {
-    /// An emitter at `start`, with room for about `expected_moves` before it grows.
-    pub fn new(start: Xz, rapid: Xz, expected_moves: usize) -> Emitter {
+    /// An emitter at `start`, with room for about `expected_moves` before it grows, that
+    /// keeps at most `limit` moves.
+    pub fn new(start: Xz, rapid: Xz, expected_moves: usize, limit: usize) -> Emitter {
         Emitter {
-            moves: crate::memory::huge_page_vec(expected_moves.max(64)),
+            moves: crate::memory::huge_page_vec(expected_moves.clamp(64, limit.max(64))),
             time: 0.0,
             at: start,
             rapid,
@@ -74,7 +79,14 @@ impl Emitter {
             compensated: false,
             dwelled: false,
             beside: None,
+            limit,
         }
+    }
+
+    /// Whether the run has made as many moves as it keeps: the moves after are dropped, and
+    /// a cycle stops making them.
+    pub fn is_full(&self) -> bool {
+        self.moves.len() >= self.limit
     }
 
     /// While the tool's position is not known (no home), a move only tells where it is
@@ -93,6 +105,10 @@ impl Emitter {
         cutting: bool,
         threading: bool,
     ) {
+        if self.is_full() {
+            self.at = end;
+            return;
+        }
         if self.first_start.is_none() {
             self.first_start = Some(self.at);
         }
@@ -165,7 +181,8 @@ impl Emitter {
     /// An arc about `centre`.
     pub fn arc(&mut self, modal: &Modal, to: Xz, centre: Xz, ccw: bool, cutting: bool) {
         let motion = if ccw { Motion::Ccw } else { Motion::Cw };
-        if let Some(beside) = &mut self.beside
+        if !self.is_full()
+            && let Some(beside) = &mut self.beside
             && let Some(job) = ArcJob::new(self.at, to, centre, ccw, modal)
         {
             beside.hand_over(self.moves.len(), job);

@@ -120,6 +120,7 @@ pub(super) struct Interpreter<'p, 'src> {
     /// What `plausibility.rs` has warned of already.
     pub plausibility: super::plausibility::Warned,
     tape_opened: bool,
+    cut_off: Option<Span>,
     /// Time arcs on a second thread from this many blocks on (`parallel::Tuning::arc_times_blocks`).
     arc_times_beside_from_blocks: usize,
     /// Whether the tape's `%` follows the leader lines (`check_leader`), once found.
@@ -163,7 +164,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             options,
             modal,
             // Most blocks make one move; cycles make many more, and the vector grows for them.
-            emitter: Emitter::new(start, machine.rapid, program.blocks().len()),
+            emitter: Emitter::new(
+                start,
+                machine.rapid,
+                program.blocks().len(),
+                options.max_moves.max(program.blocks().len().saturating_mul(super::MOVES_PER_BLOCK)),
+            ),
             variables: Variables::from_machine(&machine.variables, dialect),
             labels: std::cell::OnceCell::new(),
             diagnostics: Vec::new(),
@@ -184,6 +190,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             noted_home_unknown: false,
             plausibility: super::plausibility::Warned::default(),
             tape_opened: false,
+            cut_off: None,
             arc_times_beside_from_blocks: tuning.arc_times_blocks,
             leader_confirmed: None,
             position_damaged: false,
@@ -254,15 +261,10 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         let blocks = self.program.blocks();
         let mut pc = 0;
         while pc < blocks.len() {
-            if self.executed >= self.options.max_executed_blocks || self.emitter.moves.len() >= self.options.max_moves {
+            if self.executed >= self.options.max_executed_blocks {
+                // Blocks without end come from a loop: the jump back taken last closes it.
                 let jump = self.last_loop_jump.and_then(|at| Some((at, self.loop_jumps.get(&at)?.taken)));
-                let span = blocks[jump.map_or(pc, |(at, _)| at)].span;
-                let kind = DiagnosticKind::RunawayProgram {
-                    blocks: self.executed,
-                    moves: self.emitter.moves.len(),
-                    passes: jump.map(|(_, taken)| taken),
-                };
-                self.error(kind, span);
+                self.runaway(blocks[jump.map_or(pc, |(at, _)| at)].span, jump.map(|(_, taken)| taken));
                 break;
             }
             self.executed += 1;
@@ -271,6 +273,11 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             self.check_moves(first_move, blocks[pc].span);
             if self.position_damaged && self.emitter.at.is_finite() {
                 self.position_damaged = false;
+            }
+            // The moves the run keeps are bounded, inside a block (a cycle's passes) too.
+            if self.emitter.is_full() {
+                self.runaway(blocks[pc].span, None);
+                break;
             }
             if let Some(target) = self.skip_to.take() {
                 pc = target;
@@ -282,6 +289,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 Flow::Jump(target) => target,
                 Flow::End => break,
             };
+        }
+        // Run off the end of the text with no program end, in the middle of a block: the
+        // text was cut (`Lowered::cut_off`).
+        let mid_block = !matches!(self.program.source().last(), None | Some(b'\n' | b'\r' | b'%'));
+        if pc >= blocks.len() && mid_block {
+            self.cut_off = blocks.last().map(|b| b.span);
         }
         self.finish_corner();
     }
@@ -344,6 +357,13 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         true
     }
 
+    /// The run stopped at a bound (blocks or moves) at `span`; `passes`, the jump back's takes
+    /// where a loop ran the blocks.
+    fn runaway(&mut self, span: Span, passes: Option<u64>) {
+        let moves = self.emitter.moves.len();
+        self.error(DiagnosticKind::RunawayProgram { blocks: self.executed, moves, passes }, span);
+    }
+
     /// The lowered program, once the blocks have run.
     fn finish(mut self) -> Lowered {
         let start = self.emitter.moves.first().map(|_| self.first_move_start()).unwrap_or(self.emitter.at);
@@ -380,6 +400,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             frame: super::initial_frame(self.program, self.machine),
             executed_blocks: self.executed,
             coordinates: self.coordinates,
+            cut_off: self.cut_off,
         }
     }
 

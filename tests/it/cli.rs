@@ -4,9 +4,13 @@
 //! Besides its arguments and standard input, a case may set environment variables (`env`,
 //! `env_remove`; `NO_COLOR=1` is set unless a case says otherwise), give the command a
 //! standard stream that is a closed pipe (`closed`: its reader gone before the first write,
-//! as under `| head`) or a terminal (`terminal`: a pseudo-terminal, whose output is
-//! captured), and name outputs that must parse as JSON (`json`: `stdout`, `stderr` or a
-//! file under `{tmp}`). In snapshots the escape character shows as `␛`.
+//! as under `| head`), no stream at all (`unopened`: as under `>&-`), a full disk (`full`:
+//! `/dev/full`, where every write fails for want of space) or a terminal
+//! (`terminal`: a pseudo-terminal, whose output is captured), send both streams into one
+//! pipe whose reader stops after so many bytes (`cut_after`: as `2>&1 | head -c N`; the
+//! snapshot shows what it read), and name outputs that must parse as JSON (`json`:
+//! `stdout`, `stderr` or a file under `{tmp}`). In snapshots the escape character shows as
+//! `␛`.
 
 use std::collections::BTreeMap;
 use std::os::fd::{FromRawFd, OwnedFd};
@@ -41,6 +45,15 @@ struct Case {
     closed: Vec<String>,
     #[serde(default)]
     terminal: Vec<String>,
+    /// Standard streams that are not open at all.
+    #[serde(default)]
+    unopened: Vec<String>,
+    /// Standard streams that are `/dev/full`.
+    #[serde(default)]
+    full: Vec<String>,
+    /// Both streams into one pipe whose reader reads this many bytes and goes away.
+    #[serde(default)]
+    cut_after: Option<usize>,
     #[serde(default)]
     json: Vec<String>,
     /// What the case reads from outside the repository (`support::external`).
@@ -106,12 +119,17 @@ fn mode_of(path: &std::path::Path) -> String {
     format!("{:o}", std::fs::metadata(path).unwrap().permissions().mode() & 0o7777)
 }
 
-/// The write end of a pipe whose read end is already closed: every write finds no reader.
-fn closed_pipe() -> Stdio {
+/// A pipe: its read end and its write end.
+fn open_pipe() -> (OwnedFd, OwnedFd) {
     let mut fds = [0; 2];
     // SAFETY: `pipe` fills both descriptors on success; each is owned exactly once below.
     assert_eq!(unsafe { libc::pipe(fds.as_mut_ptr()) }, 0, "pipe");
-    let (read, write) = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+    unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) }
+}
+
+/// The write end of a pipe whose read end is already closed: every write finds no reader.
+fn closed_pipe() -> Stdio {
+    let (read, write) = open_pipe();
     drop(read);
     Stdio::from(write)
 }
@@ -228,13 +246,53 @@ fn run_case(case: &Case) {
         None => Stdio::null(),
     });
     let mut terminals = BTreeMap::new();
+    // `2>&1 | head -c N`: one pipe for both streams, read up to N bytes on a thread.
+    let mut cut_reader = None;
+    if let Some(limit) = case.cut_after {
+        let (reader, writer) = open_pipe();
+        command.stdout(writer.try_clone().unwrap()).stderr(writer);
+        let reader = std::fs::File::from(reader);
+        cut_reader = Some(std::thread::spawn(move || {
+            use std::io::Read;
+            let mut read = Vec::new();
+            let _ = reader.take(limit as u64).read_to_end(&mut read);
+            read
+        }));
+    }
+    let unopened: Vec<i32> = case
+        .unopened
+        .iter()
+        .map(|s| match s.as_str() {
+            "stdout" => 1,
+            "stderr" => 2,
+            other => panic!("{}: no stream {other}", case.name),
+        })
+        .collect();
+    if !unopened.is_empty() {
+        use std::os::unix::process::CommandExt;
+        // SAFETY: `close` is async-signal-safe; it runs in the child after its streams are
+        // set up, so the command starts with those descriptors not open.
+        unsafe {
+            command.pre_exec(move || {
+                for &fd in &unopened {
+                    libc::close(fd);
+                }
+                Ok(())
+            });
+        }
+    }
     for (stream, set) in
         [("stdout", Command::stdout as fn(&mut Command, Stdio) -> &mut Command), ("stderr", Command::stderr)]
     {
+        if case.cut_after.is_some() {
+            break;
+        }
         let (is_closed, is_terminal) =
             (case.closed.iter().any(|s| s == stream), case.terminal.iter().any(|s| s == stream));
         if is_closed {
             set(&mut command, closed_pipe());
+        } else if case.full.iter().any(|s| s == stream) {
+            set(&mut command, Stdio::from(std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap()));
         } else if is_terminal {
             let (controller, terminal) = pseudo_terminal();
             set(&mut command, terminal);
@@ -250,6 +308,9 @@ fn run_case(case: &Case) {
     let readers: BTreeMap<_, _> =
         terminals.into_iter().map(|(stream, c)| (stream, std::thread::spawn(move || read_terminal(c)))).collect();
     let mut output = child.wait_with_output().unwrap();
+    if let Some(reader) = cut_reader {
+        output.stdout = reader.join().unwrap();
+    }
     for (stream, reader) in readers {
         let bytes = reader.join().unwrap();
         if stream == "stdout" { output.stdout = bytes } else { output.stderr = bytes }
@@ -266,7 +327,17 @@ fn run_case(case: &Case) {
     }
     let shown = |bytes: &[u8], stream: &str| {
         let text = progress_bar(&placeholders(&String::from_utf8_lossy(bytes)).replace('\x1b', "␛"));
-        if case.closed.iter().any(|s| s == stream) { format!("(closed){text}") } else { text }
+        if case.closed.iter().any(|s| s == stream) {
+            format!("(closed){text}")
+        } else if case.unopened.iter().any(|s| s == stream) {
+            format!("(not open){text}")
+        } else if case.full.iter().any(|s| s == stream) {
+            format!("(/dev/full){text}")
+        } else if case.cut_after.is_some() && stream == "stderr" {
+            "(into standard output's pipe)".to_string()
+        } else {
+            text
+        }
     };
     let stdout = shown(&output.stdout, "stdout");
     let stderr = shown(&output.stderr, "stderr");
@@ -286,10 +357,16 @@ fn run_case(case: &Case) {
             (std::fs::read(tmp.path().join(file)).unwrap(), std::fs::read(repo().join(source)).unwrap());
         assert!(found == wanted, "{}: {file} holds other bytes than {source}", case.name);
     }
-    // No temporary file may be left behind by a failed write.
+    // No temporary file may be left behind by a failed write (the ones a case sets up as
+    // the leftovers of another run are its own business: `expect_files`).
     let leftovers: Vec<_> = walk(tmp.path())
         .into_iter()
-        .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with(".tmp")))
+        .filter(|p| {
+            p.file_name().is_some_and(|n| {
+                let n = n.to_string_lossy();
+                (n.starts_with(".tmp") || n.starts_with(".turnpass-")) && !case.setup.values().any(|s| p.ends_with(s))
+            })
+        })
         .collect();
     assert!(leftovers.is_empty(), "{}: leftovers {leftovers:?}", case.name);
     let mut setting = String::new();
@@ -305,6 +382,15 @@ fn run_case(case: &Case) {
     }
     for stream in &case.terminal {
         redirects.push_str(&format!(" ({stream}: a terminal)"));
+    }
+    for stream in &case.unopened {
+        redirects.push_str(&format!(" ({stream}: not open)"));
+    }
+    for stream in &case.full {
+        redirects.push_str(&format!(" ({stream}: /dev/full)"));
+    }
+    if let Some(limit) = case.cut_after {
+        redirects.push_str(&format!(" 2>&1 | head -c {limit}"));
     }
     let mut text = format!(
         "$ {setting}turnpass {}{redirects}\nexit code: {}\n----- STDOUT\n{stdout}\n----- STDERR\n{stderr}",

@@ -49,6 +49,11 @@ pub(crate) fn test_circles(nominal: &Nominal) -> Vec<(Direction, f64)> {
     circles(nominal).iter().map(|c| (c.direction(), c.start_angle.to_degrees())).collect()
 }
 
+/// The radius of the smallest test circle of the program, mm.
+pub(crate) fn smallest_radius(nominal: &Nominal) -> Option<f64> {
+    circles(nominal).iter().map(|c| c.radius).reduce(f64::min)
+}
+
 fn circles(nominal: &Nominal) -> Vec<Circle> {
     let path = &nominal.toolpath;
     path.moves

@@ -1,4 +1,50 @@
 use super::*;
+use crate::error_model::interferometer::tests::take_looked_at;
+
+thread_local! {
+    /// Records the reader read on this thread.
+    static ROWS_READ: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+pub(super) fn count_row_read() {
+    ROWS_READ.with(|n| n.set(n.get() + 1));
+}
+
+/// A trace of 2,000 rows is read in one pass over its text: the lines of its records are
+/// counted on from each other, where a count from the top for each would look at about
+/// 1,000 times the text.
+#[test]
+fn a_long_trace_is_read_in_one_pass() {
+    let text = include_str!("../../../tests/cases/bounded/ballbar-2000-rows.csv");
+    take_looked_at();
+    let Measured::BallBar(rows) = read(text, None).unwrap() else { panic!("not a ball bar") };
+    assert_eq!((rows.len(), rows[1999].line), (2000, 2003));
+    let looked_at = take_looked_at();
+    assert!(looked_at <= 2 * text.len(), "{looked_at} bytes looked at for a text of {}", text.len());
+}
+
+/// A file whose lines end in a lone CR reads as one with LF ends: its records are lines
+/// (as the CSV reader and the program's line index count them), so a bad value is found
+/// at its own line and cell. Found by the readers fuzz target.
+#[test]
+fn a_bad_value_is_found_in_a_file_of_lone_cr_line_ends() {
+    let text = include_str!("../../../tests/cases/bounded/ballbar-cr-line-ends.csv");
+    let error = read(text, None).unwrap_err();
+    assert_eq!(&text[error.span.start as usize..error.span.end as usize], "0.00x9");
+    assert_eq!(error.line, 4);
+}
+
+/// A bad row is reported when it is read: the rows after it are not read first.
+#[test]
+fn a_bad_row_ends_the_reading() {
+    let text = include_str!("../../../tests/cases/bounded/ballbar-bad-row-early.csv");
+    ROWS_READ.with(|n| n.set(0));
+    let error = read(text, None).unwrap_err();
+    assert_eq!((error.line, &text[error.span.start as usize..error.span.end as usize]), (4, "0.00O9"));
+    assert_eq!(error.hint.as_deref(), Some("`O` typed for `0`? did you mean `0.0009`?"));
+    let read = ROWS_READ.with(std::cell::Cell::get);
+    assert!(read <= 2, "{read} records read (the header and the bad row are two)");
+}
 
 #[test]
 fn a_ball_bar_trace_reads_with_its_lines_and_kind_from_the_header() {

@@ -1,5 +1,19 @@
 use super::*;
 
+thread_local! {
+    /// Bytes of a text that `RecordLines` looked at on this thread.
+    static LOOKED_AT: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+pub(crate) fn count_looked_at(bytes: usize) {
+    LOOKED_AT.with(|n| n.set(n.get() + bytes));
+}
+
+/// The bytes `RecordLines` looked at on this thread since the last call.
+pub(crate) fn take_looked_at() -> usize {
+    LOOKED_AT.with(|n| n.replace(0))
+}
+
 /// Two targets, two runs each way: every ISO 230-2 figure worked by hand.
 const TABLE: &str = "\
 # A small ISO 230-2 style table: deviations in mm.
@@ -79,10 +93,10 @@ fn unknown_and_repeated_columns_are_refused_at_their_header_cell() {
     let TableError::DuplicateColumn { span, .. } = error else { panic!("{error:?}") };
     assert_eq!(span, Span::new(32, 41));
     assert_eq!(&text[32..41], "linear_mm");
-    // A row's error covers its line.
+    // A row's error covers the value that does not read.
     let text = "target_mm,direction,linear_mm\n0,up,abc\n";
     let error = parse(text).unwrap_err();
-    assert_eq!(error.span(text), Span::new(30, 38));
+    assert_eq!(error.span(text), Span::new(35, 38));
 }
 
 #[test]

@@ -58,6 +58,7 @@ pub(super) fn depth_block(
     function: GFunction,
 ) -> Flow {
     let depth = interp.param(command, Role::DepthOfCut);
+    let depth = depth.map(|d| (d, interp.param_span(command, Role::DepthOfCut, Span::SYNTHETIC)));
     let retract = interp.param(command, Role::Retract);
     let memory = &mut interp.cycle_memory;
     memory.depth_block = Some(index);
@@ -77,16 +78,25 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let frame = interp.modal.frame;
     let one_block = command.param(Role::DepthOfCut).is_some();
     let depth = if one_block {
-        interp.param(command, Role::DepthOfCut)
+        let written = interp.param(command, Role::DepthOfCut);
+        written.map(|d| (d, interp.param_span(command, Role::DepthOfCut, span)))
     } else if facing {
         interp.cycle_memory.facing_depth
     } else {
         interp.cycle_memory.turning_depth
     };
-    let Some(depth) = depth.map(|d| frame.mm(d.abs())).filter(|d| *d > 0.0) else {
+    let Some((depth, depth_at)) = depth.filter(|(d, _)| d.abs() > 0.0) else {
         interp.error(DiagnosticKind::CycleNeedsDepth, span);
         return Flow::Next;
     };
+    // The control reads the depth to its least increment: less than one is a depth of 0,
+    // which it refuses; a cycle would otherwise cut without end.
+    if depth.abs() < frame.increment * (1.0 - 1e-9) {
+        let at = if depth_at.is_synthetic() { span } else { depth_at };
+        interp.error(DiagnosticKind::DepthBelowIncrement { depth: depth.abs(), increment: frame.increment }, at);
+        return Flow::Next;
+    }
+    let depth = frame.mm(depth.abs());
     let retract = if facing { interp.cycle_memory.facing_retract } else { interp.cycle_memory.turning_retract }
         .map(|e| frame.mm(e.abs()))
         .unwrap_or(DEFAULT_RETRACT_MM);
@@ -265,9 +275,9 @@ impl Rough {
         // Every stretch cut so far, with its level: the tool may rapid along `v` at a
         // height only over a stretch cut at or below that height, and otherwise climbs to
         // A's level first (after a pocket, the stock between it and A is still there).
-        let mut cleared: Vec<(f64, f64, f64)> = Vec::new();
+        let mut cleared = Cleared::default();
         let mut at = a;
-        while level > u_min + 1e-9 {
+        while level > u_min + 1e-9 && !interp.emitter.is_full() {
             let stretches = stretches(&elements, level, a.v, v_end);
             for (v_in, v_out) in stretches.iter().copied() {
                 if (v_in - a.v).abs() < 1e-9 {
@@ -278,15 +288,13 @@ impl Rough {
                     // Into a pocket: across, down at rapid to just over the stock the
                     // previous level left, then feed.
                     at = travel(interp, &go, &cleared, &elements, at, v_in, a.u);
-                    let opened = cleared
-                        .iter()
-                        .any(|&(u, hi, lo)| u <= previous_level + 1e-9 && v_in <= hi + 1e-9 && v_in >= lo - 1e-9);
+                    let opened = cleared.highest_at_or_below(previous_level).iter().any(|s| s.holds(v_in));
                     let clear = if opened { (previous_level + self.retract).min(at.u) } else { at.u };
                     go(interp, Uv { u: clear, v: v_in }, true);
                     go(interp, Uv { u: level, v: v_in }, false);
                 }
                 go(interp, Uv { u: level, v: v_out }, false);
-                cleared.push((level, v_in, v_out));
+                cleared.push(Stretch { u: level, hi: v_in, lo: v_out });
                 let mut here = Uv { u: level, v: v_out };
                 if self.type_ii && v_out > v_end + 1e-9 {
                     // Follow the rising profile up to the previous level.
@@ -337,19 +345,64 @@ impl Rough {
     }
 }
 
+/// A stretch cut at level `u`, from `hi` down to `lo` along `v`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Stretch {
+    u: f64,
+    hi: f64,
+    lo: f64,
+}
+
+impl Stretch {
+    fn holds(&self, v: f64) -> bool {
+        v <= self.hi + 1e-9 && v >= self.lo - 1e-9
+    }
+}
+
+/// The stretches cut so far, in the order they were cut: level after level, each below the
+/// one before. The stock above the profile narrows as the levels go down (the profile is a
+/// function of `v`, so the part of a level above it shrinks with the level), and so a
+/// stretch lies inside a stretch of every level above it. What a stretch at or below a
+/// height can do (hold a point, cover a span) a stretch of the highest level at or below
+/// that height does too: a question about every level at or below a height is asked of
+/// that one level, found by bisection. The work of a pass does not grow with the passes cut
+/// before it, and the cycle is linear in its passes.
+#[derive(Default)]
+struct Cleared {
+    stretches: Vec<Stretch>,
+}
+
+impl Cleared {
+    fn push(&mut self, stretch: Stretch) {
+        self.stretches.push(stretch);
+    }
+
+    /// The stretches of the highest level at or below `u` that has any.
+    fn highest_at_or_below(&self, u: f64) -> &[Stretch] {
+        let first = self.stretches.partition_point(|s| s.u > u + 1e-9);
+        let rest = &self.stretches[first..];
+        let Some(level) = rest.first().map(|s| s.u) else { return rest };
+        let found = &rest[..rest.partition_point(|s| s.u == level)];
+        #[cfg(test)]
+        tests::count_looked_at(self.stretches.len(), found.len());
+        found
+    }
+}
+
 /// How far the tool at `here` may retract at 45° (up and back along the cut) through stock
 /// already cut: as far back as the stretches cut at or below its height reach over it. A
 /// stretch that begins at A's `v` opens onto the outside; one in a pocket ends at the
 /// pocket's near side, and a full retract from a pocket narrower than the retract would
 /// run at rapid into that side (the part, or the stock the previous level left on it).
-fn retract_room(cleared: &[(f64, f64, f64)], here: Uv, a: Uv) -> f64 {
+fn retract_room(cleared: &Cleared, here: Uv, a: Uv) -> f64 {
     if here.u >= a.u - 1e-9 {
         return f64::INFINITY;
     }
     cleared
+        .highest_at_or_below(here.u)
         .iter()
-        .filter(|&&(u, hi, lo)| u <= here.u + 1e-9 && here.v <= hi + 1e-9 && here.v >= lo - 1e-9)
-        .map(|&(_, hi, _)| if hi >= a.v - 1e-9 { f64::INFINITY } else { hi - here.v })
+        .filter(|s| s.holds(here.v))
+        .map(|s| if s.hi >= a.v - 1e-9 { f64::INFINITY } else { s.hi - here.v })
         .fold(0.0, f64::max)
 }
 
@@ -359,14 +412,14 @@ fn retract_room(cleared: &[(f64, f64, f64)], here: Uv, a: Uv) -> f64 {
 fn travel(
     interp: &mut Interpreter<'_, '_>,
     go: &impl Fn(&mut Interpreter<'_, '_>, Uv, bool),
-    cleared: &[(f64, f64, f64)],
+    cleared: &Cleared,
     elements: &[Element],
     at: Uv,
     v: f64,
     a_u: f64,
 ) -> Uv {
     let (hi, lo) = (at.v.max(v), at.v.min(v));
-    let covered = cleared.iter().any(|&(u, top, bottom)| u <= at.u + 1e-9 && top >= hi - 1e-9 && bottom <= lo + 1e-9);
+    let covered = cleared.highest_at_or_below(at.u).iter().any(|s| s.hi >= hi - 1e-9 && s.lo <= lo + 1e-9);
     let safe_u = a_u.max(highest(elements, lo, hi));
     let height = if covered || at.u >= safe_u - 1e-9 { at.u } else { safe_u };
     if height != at.u {
@@ -506,3 +559,6 @@ impl Interpreter<'_, '_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

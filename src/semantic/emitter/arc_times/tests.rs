@@ -59,10 +59,10 @@ fn arcs(emitter: &mut Emitter) {
 fn arcs_timed_beside_are_handed_over_and_come_back_the_same_to_the_bit() {
     let start = Xz::new(40.0, 5.0);
     let rapid = Xz::new(10_000.0, 10_000.0);
-    let mut itself = Emitter::new(start, rapid, 8);
+    let mut itself = Emitter::new(start, rapid, 8, usize::MAX);
     arcs(&mut itself);
 
-    let mut beside = Emitter::new(start, rapid, 8);
+    let mut beside = Emitter::new(start, rapid, 8, usize::MAX);
     let (sender, receiver) = std::sync::mpsc::channel();
     beside.time_arcs_beside(sender);
     arcs(&mut beside);
