@@ -14,7 +14,7 @@
 //! program's text.
 
 mod cycle;
-pub mod grid;
+pub(crate) mod grid;
 pub(crate) mod motion;
 mod thread_pass;
 

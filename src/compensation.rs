@@ -13,19 +13,19 @@
 
 pub mod deviation;
 pub mod fit;
-pub mod inverse;
-pub mod plan;
+pub(crate) mod inverse;
+pub(crate) mod plan;
 pub mod program;
 pub mod provenance;
-pub mod quantised;
-pub mod report;
-pub mod rewrite;
-pub mod safety;
+pub(crate) mod quantised;
+pub(crate) mod report;
+pub(crate) mod rewrite;
+pub(crate) mod safety;
 mod squares;
 #[cfg(test)]
 pub(crate) mod test_support;
 pub mod verify;
-pub mod written;
+pub(crate) mod written;
 
 pub use crate::error_model::sampling::{PathSample, sample_toolpath};
 pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};

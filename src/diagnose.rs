@@ -13,21 +13,21 @@
 //! `thermal_fit.rs` fits the first-order warm-up and cool-down curves of a thermal log
 //! (eq. 5.1–5.2 of the thesis).
 
-pub mod advice;
-pub mod breakdown;
-pub mod candidates;
+pub(crate) mod advice;
+pub(crate) mod breakdown;
+pub(crate) mod candidates;
 pub mod forward;
-pub mod iso230_4;
-pub mod lsq;
+pub(crate) mod iso230_4;
+pub(crate) mod lsq;
 pub mod measured;
 pub mod model_text;
 pub mod noise;
 pub mod report;
-pub mod select;
+pub(crate) mod select;
 pub mod synth;
 pub mod thermal_fit;
-pub mod unexplained;
-pub mod workflow;
+pub(crate) mod unexplained;
+pub(crate) mod workflow;
 
 pub use forward::{Forward, ForwardError, Nominal};
 pub use measured::{Kind, Measured};

@@ -5,8 +5,8 @@
 //! kind (`text.rs`), so a test can match on the kind and a renderer can show the words. Rendering (codespan-reporting, JSON, plain text
 //! for snapshots) lives in [`render`], the only module that imports codespan-reporting.
 
-pub mod fix;
-pub mod model_file;
+pub(crate) mod fix;
+pub(crate) mod model_file;
 pub mod render;
 mod text;
 

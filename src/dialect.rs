@@ -4,9 +4,9 @@
 //! address rules, keywords and cycle word schemas; [`tables`] compiles them once into lookup
 //! structures the parser and the semantic pass share.
 
-pub mod address;
+pub(crate) mod address;
 pub mod detect;
-pub mod tables;
+pub(crate) mod tables;
 
 use std::fmt;
 use std::str::FromStr;

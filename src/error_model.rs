@@ -17,14 +17,14 @@
 //! second-order product the thesis' matrix has.
 
 pub mod effects;
-pub mod fitting;
-pub mod htm;
+pub(crate) mod fitting;
+pub(crate) mod htm;
 pub mod interferometer;
 pub mod model_file;
 pub mod report;
-pub mod sampling;
-pub mod spacing;
-pub mod state;
+pub(crate) mod sampling;
+pub(crate) mod spacing;
+pub(crate) mod state;
 
 pub use effects::Effect;
 pub use spacing::Spacing;

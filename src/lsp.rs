@@ -8,26 +8,26 @@
 //! settings files. `stdio.rs` is the I/O layer: the stdio connection, the message loop, the
 //! worker threads, and the host that reads `turnpass.toml`.
 
-pub mod actions;
+pub(crate) mod actions;
 pub mod analysis;
 mod assemble;
 mod chunk;
-pub mod completion;
-pub mod definition;
-pub mod document;
-pub mod folding;
-pub mod format;
+pub(crate) mod completion;
+pub(crate) mod definition;
+pub(crate) mod document;
+pub(crate) mod folding;
+pub(crate) mod format;
 mod frame;
-pub mod hover;
-pub mod inlay;
-pub mod names;
-pub mod position;
-pub mod rename;
-pub mod roles;
-pub mod semantic_tokens;
+pub(crate) mod hover;
+pub(crate) mod inlay;
+pub(crate) mod names;
+pub(crate) mod position;
+pub(crate) mod rename;
+pub(crate) mod roles;
+pub(crate) mod semantic_tokens;
 pub mod server;
-pub mod settings;
+pub(crate) mod settings;
 pub mod stdio;
-pub mod symbols;
+pub(crate) mod symbols;
 
 pub use document::{Document, LinePosition, Snapshot};

@@ -11,9 +11,9 @@
 //! normal form (`fmt --canonical`).
 
 pub mod canonical;
-pub mod edit;
-pub mod style;
-pub mod written;
+pub(crate) mod edit;
+pub(crate) mod style;
+pub(crate) mod written;
 
 pub use crate::syntax::Text;
 pub use canonical::{CanonicalOptions, print_canonical};

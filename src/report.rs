@@ -7,7 +7,7 @@
 //! inline SVG (without the namespace attribute, which HTML does not need), and it has no
 //! script. Everything taken from a program or a file name is escaped.
 
-pub mod diff;
+pub(crate) mod diff;
 
 use std::fmt::Write as _;
 

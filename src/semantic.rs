@@ -15,17 +15,17 @@
 //! nesting of expressions are bounded, so a runaway loop is a diagnostic, not a hang.
 
 mod block;
-pub mod cycles;
+pub(crate) mod cycles;
 mod emitter;
 mod eval;
 mod frame;
 mod interpreter;
-pub mod labels;
+pub(crate) mod labels;
 mod modal;
 mod motion;
 pub mod nose_radius;
 mod plausibility;
-pub mod profile;
+pub(crate) mod profile;
 
 pub use frame::Frame;
 

@@ -9,7 +9,7 @@
 //! *i + 1* are exactly its line terminator, and everything after a tape's closing `%` is one
 //! `Trailing` block. The printer copies untouched blocks byte for byte on that basis.
 
-pub mod ast;
+pub(crate) mod ast;
 mod block;
 mod classify;
 mod expr;

@@ -88,7 +88,7 @@ impl Grid {
     }
 
     /// A grid point back in the toolpath frame.
-    pub fn to_mm(&self, g: GridPoint) -> Xz {
+    pub fn to_mm(self, g: GridPoint) -> Xz {
         let scale = self.scale();
         Xz::new(self.frame.x_mm(g.x as f64 / scale) + self.shift.x, self.frame.mm(g.z as f64 / scale) + self.shift.z)
     }
@@ -265,6 +265,7 @@ impl Grid {
 
     /// How far the arc the control runs for `words`, written for the arc from `from` to
     /// `end` about `centre` (exact), strays from that arc (infinite when it runs none).
+    #[cfg(test)]
     pub fn arc_gap(&self, from: Xz, end: Xz, centre: Xz, ccw: bool, words: ArcWords) -> f64 {
         let (start, stop) = (self.to_mm(self.point(from)), self.to_mm(self.point(end)));
         // Every point measured, as the bounded choices (`Stray`) are held to.
@@ -427,6 +428,7 @@ impl ArcSpan {
     /// one circle from another circle is extreme where the two centres and the point line
     /// up, so `other` is measured there (where that lies on it), at its ends, and at its
     /// quarters (which catch an arc gone round the other way).
+    #[cfg(test)]
     fn gap(&self, other: &ArcSpan) -> f64 {
         self.gap_above(other, &[f64::INFINITY; GAP_POINTS], f64::NEG_INFINITY)
     }

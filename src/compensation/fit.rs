@@ -24,7 +24,7 @@ pub mod circle;
 mod deviation;
 mod grow;
 mod lm;
-pub mod pinned;
+pub(crate) mod pinned;
 mod split;
 
 use std::f64::consts::{PI, TAU};

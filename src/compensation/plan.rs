@@ -94,6 +94,7 @@ pub struct PlanInput<'a> {
 }
 
 /// Plan every move.
+#[cfg(test)]
 pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, options: &PlanOptions) -> Vec<MovePlan> {
     let mut plans = Vec::with_capacity(input.toolpath.moves.len());
     plan_range(input, 0..input.toolpath.moves.len(), input.toolpath.start, grid_of, options, &mut plans);

@@ -56,11 +56,6 @@ pub fn quantise(
     rounded_start
 }
 
-/// The point of a segment (from `start`) closest to `p`.
-pub fn closest_on_segment(p: Xz, start: Xz, segment: &Segment) -> Xz {
-    Gauge::new(start, segment).closest(p)
-}
-
 /// A segment's constants, computed once for the many samples measured against it.
 #[derive(Debug, Clone, Copy)]
 enum Gauge {
@@ -108,14 +103,6 @@ impl Gauge {
             }
         }
     }
-}
-
-/// For every sample, the reference point the control commands when the program writes
-/// the rounded segments of `plans` (`input.commanded` holds the ideal commands).
-pub fn commanded_path(input: &PlanInput<'_>, plans: &[MovePlan], grid_of: impl Fn(usize) -> Grid) -> Vec<Xz> {
-    let mut out: Vec<Xz> = input.samples.iter().map(|s| s.nominal).collect();
-    commanded_moves(input, 0, plans, grid_of, &mut out);
-    out
 }
 
 /// `commanded_path` for the moves from `first` planned by `plans`, into `out` (one point

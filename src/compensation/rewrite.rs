@@ -21,7 +21,7 @@
 //!   machine positions, not to points of the part.
 
 mod block;
-pub mod cycles;
+pub(crate) mod cycles;
 
 use std::collections::{HashMap, HashSet};
 use std::ops::Range;

@@ -14,8 +14,6 @@
 //! plus the tip offset, so the reference point's arc (`Move.centre`) is the contour's arc
 //! moved by that offset (`contour_centre`).
 
-use std::ops::Range;
-
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
@@ -24,7 +22,8 @@ use crate::error_model::sampling::PathSample;
 
 /// The samples of each move: `ranges[i]` indexes the samples of move `i` (empty for a
 /// dwell). Samples come in move order from `sample_toolpath`.
-pub fn sample_ranges(moves: usize, samples: &[PathSample]) -> Vec<Range<usize>> {
+#[cfg(test)]
+pub fn sample_ranges(moves: usize, samples: &[PathSample]) -> Vec<std::ops::Range<usize>> {
     let mut ranges = vec![0..0; moves];
     let mut k = 0;
     while k < samples.len() {

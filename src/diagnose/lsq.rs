@@ -77,12 +77,6 @@ impl Base {
         }
     }
 
-    /// `Qᵀa` for a column given by its nonzero entries `(row, value)`: its coordinates in
-    /// the basis, so that a sparse column's projection costs its entries, not its length.
-    pub fn coordinates_sparse(&self, entries: &[(usize, f64)]) -> Vec<f64> {
-        self.q.iter().map(|q| entries.iter().map(|&(i, a)| q[i] * a).sum()).collect()
-    }
-
     pub fn residual_of(&self, v: &[f64]) -> Vec<f64> {
         let mut out = v.to_vec();
         self.project_out(&mut out);
@@ -196,12 +190,6 @@ pub fn golden_minimum(f: impl Fn(f64) -> f64, lo: f64, hi: f64, steps: usize, wi
         }
     }
     (lo + hi) / 2.0
-}
-
-/// The Bayesian information criterion of a Gaussian fit with `parameters` parameters.
-pub fn bic(rss: f64, n: usize, parameters: usize) -> f64 {
-    let n = n as f64;
-    n * (rss.max(f64::MIN_POSITIVE) / n).ln() + parameters as f64 * n.ln()
 }
 
 /// The nested F statistic for `added` parameters that take the residual sum of squares

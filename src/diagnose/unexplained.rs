@@ -125,7 +125,7 @@ impl ResidualTable {
     }
 
     /// `model` with this table as its slide's.
-    pub fn into_model(&self, model: &ErrorModel) -> ErrorModel {
+    pub fn applied_to(&self, model: &ErrorModel) -> ErrorModel {
         let mut out = model.clone();
         let tables = out.tables.get_or_insert_with(AxisTables::default);
         let slide = match self.axis {
@@ -323,7 +323,7 @@ fn table(inputs: &Inputs<'_>) -> Result<ResidualTable, String> {
         rms_after_mm: f64::NAN,
     };
     // Through the forward model: the set-up, outliers and found effects refitted beside it.
-    let with = table.into_model(inputs.model);
+    let with = table.applied_to(inputs.model);
     let simulated = f.simulate(&with);
     let difference: Vec<f64> = inputs.measured.iter().zip(&simulated.readings).map(|(m, s)| m - s).collect();
     table.rms_after_mm = rms_kept(&inputs.base.residual_of(&difference), inputs.kept);

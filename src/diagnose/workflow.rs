@@ -246,14 +246,6 @@ impl Diagnosis {
     }
 }
 
-pub fn rms(values: &[f64]) -> f64 {
-    if values.is_empty() { 0.0 } else { (values.iter().map(|v| v * v).sum::<f64>() / values.len() as f64).sqrt() }
-}
-
-pub fn peak(values: &[f64]) -> f64 {
-    values.iter().fold(0.0, |m: f64, v| m.max(v.abs()))
-}
-
 /// The RMS of the values that count.
 pub fn rms_kept(values: &[f64], kept: &[bool]) -> f64 {
     let (sum, count) = values

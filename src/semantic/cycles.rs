@@ -24,15 +24,15 @@ mod lap_rough;
 mod lap_thread;
 mod multiple_threading;
 // `G76 P` decoded as the cycle reads it, for the language server's inlay hints.
-pub use multiple_threading::{ThreadParameters, decode_parameters};
+pub use multiple_threading::decode_parameters;
 mod pattern_repeat;
 mod peck_grooving;
 mod side_drilling;
 mod single;
 mod stock_removal;
 mod tapping;
-pub mod thread_infeed;
-pub mod thread_pass;
+pub(crate) mod thread_infeed;
+pub(crate) mod thread_pass;
 mod thread_single;
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};

@@ -56,7 +56,7 @@ use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
 use super::Machine;
 use path::Curve;
 
-pub mod path;
+pub(crate) mod path;
 
 /// Nose radius (mm) and tip direction by turret station and offset number.
 #[derive(Debug, Clone, Default)]

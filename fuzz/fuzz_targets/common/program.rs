@@ -445,6 +445,8 @@ travel = { x_min = -10.0, x_max = 400.0, z_min = -500.0, z_max = 300.0 }
 /// An input as the targets read it: a byte 0xFF first makes the rest a structured program;
 /// any other input is a program's text as it stands (the seeds: the case files and the
 /// corpus), so that mutation starts from real programs as well as built ones.
+// Each target compiles the shared builders as its own module and uses a part of them.
+#[allow(dead_code)]
 pub fn program_text(data: &[u8]) -> Option<(Vec<u8>, &'static str)> {
     match data {
         [0xFF, machine, rest @ ..] => {

@@ -17,6 +17,7 @@ pub struct KeptPlans {
 
 impl KeptPlans {
     /// Every move's plan, the first move's first.
+    #[cfg(test)]
     pub fn all(plans: Vec<MovePlan>) -> KeptPlans {
         KeptPlans { stretches: vec![(0, plans)] }
     }
