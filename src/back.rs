@@ -16,6 +16,5 @@
 mod cycle;
 pub(crate) mod grid;
 pub(crate) mod motion;
-mod thread_pass;
 
 pub(crate) use cycle::{CycleBlocks, cycle_blocks};

@@ -17,6 +17,7 @@ mod check;
 mod common;
 mod compensate;
 mod diagnose;
+mod error;
 mod fmt;
 mod lsp;
 mod model;

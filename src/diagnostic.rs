@@ -12,7 +12,7 @@ mod text;
 
 use std::fmt;
 
-use crate::source::Span;
+use crate::source::{NotText, Span};
 
 pub use fix::Fix;
 pub use model_file::ModelProblem;
@@ -651,5 +651,19 @@ pub enum DiagnosticKind {
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}[{}]: {}", self.severity.as_str(), self.code(), self.message())
+    }
+}
+
+impl NotText {
+    /// The one diagnostic of such a file, on its first control byte.
+    pub fn diagnostic(&self) -> Diagnostic {
+        let kind = DiagnosticKind::NotText {
+            byte: self.byte,
+            control_bytes: self.control_bytes,
+            sampled: self.sampled,
+            whole_file: self.whole_file,
+            utf16: self.utf16,
+        };
+        Diagnostic::error(kind, Span::new(self.offset, self.offset + 1))
     }
 }

@@ -16,7 +16,7 @@ use crate::toolpath::{Compensation, Validated};
 
 /// Edits that replace each cycle call with its moves (and delete the blocks it consumed).
 /// On a control with no thread move (OSP) a thread pass is written as a single-pass cycle
-/// block (`back/thread_pass.rs`); a cycle whose thread moves are not such passes stays as
+/// block (`back/cycle/thread_pass.rs`); a cycle whose thread moves are not such passes stays as
 /// it is, with a note.
 pub fn expansion_edits(program: &Program<'_>, lowered: &Validated<Lowered>) -> (Edits, Vec<Diagnostic>) {
     let mut edits = Edits::new();

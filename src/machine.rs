@@ -11,7 +11,6 @@ use serde::{Deserialize, Serialize};
 use crate::bounds::{Invalid, Key, Range, Reason};
 use crate::diagnostic::Diagnostic;
 use crate::dialect::{DecimalInput, Dialect, GCodeSystem};
-use crate::error_model::effects::{cyclic_x, cyclic_z};
 use crate::toml_spans::{Document, Problems, Step};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -127,6 +126,9 @@ pub const SPINDLE_RPM: Range = Range::positive(200_000.0, "rpm");
 pub const NOSE_RADIUS: Range = Range::closed(0.0, 50.0, "");
 /// Plausible minor cutting edge angles: from 0 to 90 degrees.
 pub const MINOR_EDGE_ANGLE: Range = Range::closed(0.0, 90.0, "degrees");
+/// Plausible ball screw leads, mm (and their fractions, for the harmonics of a cyclic
+/// error: `error_model::effects::cyclic_x`).
+pub const SCREW_PITCH: Range = Range::closed(0.1, 1_000.0, "mm");
 
 /// A machine model file. Only `[machine]` is read here; the error-model tables that later
 /// passes add are left to them.
@@ -204,8 +206,8 @@ impl MachineSettings {
         push(SPINDLE_RPM.check_option("max_spindle_rpm", self.max_spindle_rpm), &[]);
         if let Some(pitch) = &self.ball_screw_pitch_mm {
             let within = [Key::Name("ball_screw_pitch_mm")];
-            push(cyclic_x::PITCH.check_option("x", pitch.x), &within);
-            push(cyclic_z::PITCH.check_option("z", pitch.z), &within);
+            push(SCREW_PITCH.check_option("x", pitch.x), &within);
+            push(SCREW_PITCH.check_option("z", pitch.z), &within);
         }
         for (name, value) in &self.variables {
             let named = name.strip_prefix('#').map_or_else(

@@ -3,7 +3,9 @@
 //! Coordinates go back through the cycle's frame (units, diameter X) onto its grid; motion
 //! codes, F and S are written where they change; arcs take the program's own form (`R`/`L`
 //! radius or `I K` centre) where it holds them after rounding. On a control with no thread
-//! move (OSP) a thread pass is written as a single-pass cycle block (`thread_pass.rs`).
+//! move (OSP) a thread pass is written as a single-pass cycle block (`cycle/thread_pass.rs`).
+
+mod thread_pass;
 
 use crate::printer::{NewBlock, NewWord, ProgramStyle};
 use crate::semantic::Expansion;
@@ -12,7 +14,6 @@ use crate::toolpath::{Compensation, Move, Xz};
 
 use super::grid::Grid;
 use super::motion::{Codes, Modal, MotionWriter};
-use super::thread_pass;
 
 /// What a cycle call becomes.
 pub(crate) enum CycleBlocks {

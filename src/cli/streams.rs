@@ -16,7 +16,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::ValueEnum;
 
-use super::common::CliError;
+use super::error::CliError;
 
 /// `--color`: when diagnostics and messages are coloured.
 #[derive(Clone, Copy, Debug, Default, ValueEnum, PartialEq, Eq)]

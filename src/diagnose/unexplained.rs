@@ -24,7 +24,6 @@ use super::forward::{Forward, Simulation};
 use super::lsq::{self, Base};
 use super::measured::{Axis, Kind};
 use super::select::{ALPHA, BIC_MARGIN};
-use super::workflow::rms_kept;
 use crate::error_model::effects::{ToolOffsetX, ToolOffsetZ};
 use crate::error_model::htm::AxisTables;
 use crate::error_model::interferometer::{Profile, SlideTable};
@@ -360,4 +359,22 @@ fn least_squares(columns: &[Vec<f64>], y: &[f64]) -> Option<(Vec<f64>, usize)> {
         }
     }
     Some((solution.iter().copied().collect(), rank))
+}
+
+/// The RMS of the values that count.
+pub fn rms_kept(values: &[f64], kept: &[bool]) -> f64 {
+    let (sum, count) = values
+        .iter()
+        .zip(kept.iter().chain(std::iter::repeat(&true)))
+        .filter(|(_, k)| **k)
+        .fold((0.0, 0usize), |(s, c), (v, _)| (s + v * v, c + 1));
+    if count == 0 { 0.0 } else { (sum / count as f64).sqrt() }
+}
+
+pub fn peak_kept(values: &[f64], kept: &[bool]) -> f64 {
+    values
+        .iter()
+        .zip(kept.iter().chain(std::iter::repeat(&true)))
+        .filter(|(_, k)| **k)
+        .fold(0.0, |m: f64, (v, _)| m.max(v.abs()))
 }

@@ -34,7 +34,7 @@ use super::forward::{Forward, ForwardError, Nominal, Simulation};
 use super::lsq::{self, Base};
 use super::measured::{Kind, Measured};
 use super::select::{self, Candidate, Context, FoundFit, Stale, Status};
-use super::unexplained::{self, Unexplained};
+use super::unexplained::{self, Unexplained, peak_kept, rms_kept};
 use crate::error_model::{Effect, ErrorModel};
 
 /// A residual RMS within this factor of the noise floor is at the floor.
@@ -244,24 +244,6 @@ impl Diagnosis {
     pub fn peak_after_mm(&self) -> f64 {
         peak_kept(&self.residual_after, &self.kept)
     }
-}
-
-/// The RMS of the values that count.
-pub fn rms_kept(values: &[f64], kept: &[bool]) -> f64 {
-    let (sum, count) = values
-        .iter()
-        .zip(kept.iter().chain(std::iter::repeat(&true)))
-        .filter(|(_, k)| **k)
-        .fold((0.0, 0usize), |(s, c), (v, _)| (s + v * v, c + 1));
-    if count == 0 { 0.0 } else { (sum / count as f64).sqrt() }
-}
-
-pub fn peak_kept(values: &[f64], kept: &[bool]) -> f64 {
-    values
-        .iter()
-        .zip(kept.iter().chain(std::iter::repeat(&true)))
-        .filter(|(_, k)| **k)
-        .fold(0.0, |m: f64, (v, _)| m.max(v.abs()))
 }
 
 /// An effect found (or a stale one updated): its shape and fitted values.

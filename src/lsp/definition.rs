@@ -11,7 +11,6 @@
 //!
 //! A block with a typo is still found by its name (`names.rs`).
 
-use crate::dialect::GFunction;
 use crate::dialect::{Address, Tables};
 use crate::semantic::labels;
 use crate::source::Span;
@@ -68,28 +67,6 @@ pub fn program(document: &Document, key: &str) -> Option<Span> {
 fn calls_subprogram(block: &BlockRef<'_>, tables: &Tables) -> bool {
     block.words().iter().any(|w| match w.kind {
         WordKind::Code { letter: CodeLetter::M, code } => tables.m_functions.subprogram_call.contains(&code.major()),
-        _ => false,
-    })
-}
-
-/// Whether the block starts a LAP contour (or blank): `G81`, `G82`, `G83`.
-pub(super) fn starts_contour(block: &BlockRef<'_>, tables: &Tables) -> bool {
-    matches!(block.block().statement, Statement::LapMarker(_))
-        && block.words().iter().any(|w| match w.kind {
-            WordKind::Code { letter: CodeLetter::G, code } => matches!(
-                tables.g(code).and_then(|g| g.function),
-                Some(GFunction::LapContourLongitudinal | GFunction::LapContourTransverse | GFunction::LapBlank)
-            ),
-            _ => false,
-        })
-}
-
-/// Whether the block ends a LAP contour: `G80`.
-pub(super) fn ends_contour(block: &BlockRef<'_>, tables: &Tables) -> bool {
-    block.words().iter().any(|w| match w.kind {
-        WordKind::Code { letter: CodeLetter::G, code } => {
-            tables.g(code).and_then(|g| g.function) == Some(GFunction::LapEnd)
-        }
         _ => false,
     })
 }

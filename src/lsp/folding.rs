@@ -12,9 +12,9 @@ use lsp_types::{FoldingRange, FoldingRangeKind};
 use crate::dialect::Role;
 use crate::syntax::{Statement, WordKind};
 
-use super::definition::{ends_contour, starts_contour};
 use super::document::Document;
 use super::names::{self, Use};
+use super::names::{ends_contour, starts_contour};
 
 pub fn folding_ranges(document: &Document) -> Vec<FoldingRange> {
     let tables = document.config().tables();

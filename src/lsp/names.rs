@@ -11,7 +11,7 @@
 //! the name at its start is still the name the control jumps to: it is read from the text
 //! (`N20 G01 X1O.` is still `N20`), so that `P20` reaches the block with the typo in it.
 
-use crate::dialect::{Address, Dialect, KeywordKind, Role, Tables};
+use crate::dialect::{Address, Dialect, GFunction, KeywordKind, Role, Tables};
 use crate::semantic::labels;
 use crate::source::Span;
 use crate::syntax::{CodeLetter, ExprKind, Statement, Word, WordId, WordKind};
@@ -108,7 +108,7 @@ fn name_of(document: &Document, block: &BlockRef<'_>, id: WordId, word: &Word) -
         name,
         word: whole,
         block: block_span,
-        contour: use_ == Use::Definition && super::definition::starts_contour(block, tables),
+        contour: use_ == Use::Definition && starts_contour(block, tables),
     };
     match word.kind {
         WordKind::Sequence { number } => Some(make(labels::key(dialect, text, number), Use::Definition, after_letter)),
@@ -198,5 +198,27 @@ fn leading(document: &Document, block: &BlockRef<'_>) -> Option<Name> {
         word,
         block: block.absolute(own),
         contour: false,
+    })
+}
+
+/// Whether the block starts a LAP contour (or blank): `G81`, `G82`, `G83`.
+pub(super) fn starts_contour(block: &BlockRef<'_>, tables: &Tables) -> bool {
+    matches!(block.block().statement, Statement::LapMarker(_))
+        && block.words().iter().any(|w| match w.kind {
+            WordKind::Code { letter: CodeLetter::G, code } => matches!(
+                tables.g(code).and_then(|g| g.function),
+                Some(GFunction::LapContourLongitudinal | GFunction::LapContourTransverse | GFunction::LapBlank)
+            ),
+            _ => false,
+        })
+}
+
+/// Whether the block ends a LAP contour: `G80`.
+pub(super) fn ends_contour(block: &BlockRef<'_>, tables: &Tables) -> bool {
+    block.words().iter().any(|w| match w.kind {
+        WordKind::Code { letter: CodeLetter::G, code } => {
+            tables.g(code).and_then(|g| g.function) == Some(GFunction::LapEnd)
+        }
+        _ => false,
     })
 }

@@ -9,8 +9,8 @@ use lsp_types::{DocumentSymbol, SymbolKind};
 use crate::source::Span;
 use crate::syntax::{Statement, Word, WordKind};
 
-use super::definition::{ends_contour, starts_contour};
 use super::document::{BlockRef, Document};
+use super::names::{ends_contour, starts_contour};
 
 /// The longest block text shown beside a symbol.
 const DETAIL_CHARS: usize = 60;

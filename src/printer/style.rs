@@ -27,7 +27,7 @@ pub struct ProgramStyle {
     /// blocks write more radius words than centre words.
     pub radius_arcs: bool,
     /// Some block turns thread chamfering on (OSP `M23`): an unchamfered thread pass the back
-    /// end writes then turns it off (`back/thread_pass.rs`).
+    /// end writes then turns it off (`back/cycle/thread_pass.rs`).
     pub thread_chamfering: bool,
 }
 

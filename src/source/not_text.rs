@@ -9,9 +9,6 @@
 //! text in another encoding (Shift-JIS, Latin-1) has bytes above 0x7F, not control bytes.
 //! Compressed or random data has about one in nine, executables far more.
 
-use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::source::Span;
-
 /// How much of the file the rule looks at.
 pub const SAMPLE_BYTES: usize = 8192;
 /// Fewer control bytes than this never make a file binary (a short program with a few tape
@@ -20,7 +17,8 @@ pub const MIN_CONTROL_BYTES: usize = 8;
 /// More than one control byte in this many makes a file binary.
 pub const CONTROL_SHARE_DIVISOR: usize = 20;
 
-/// Why a file is not a text program.
+/// Why a file is not a text program (its diagnostic: `NotText::diagnostic`, in
+/// `diagnostic.rs`, which sits above the source).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NotText {
     /// The first control byte: where the diagnostic points.
@@ -35,18 +33,6 @@ pub struct NotText {
 }
 
 impl NotText {
-    /// The one diagnostic of such a file, on its first control byte.
-    pub fn diagnostic(&self) -> Diagnostic {
-        let kind = DiagnosticKind::NotText {
-            byte: self.byte,
-            control_bytes: self.control_bytes,
-            sampled: self.sampled,
-            whole_file: self.whole_file,
-            utf16: self.utf16,
-        };
-        Diagnostic::error(kind, Span::new(self.offset, self.offset + 1))
-    }
-
     /// The part of the file a renderer may show: everything before the first control byte
     /// (text, by the rule) and that byte replaced by one that is not UTF-8, so that it shows
     /// as U+FFFD. Spans into the file keep their offsets; nothing after the byte is echoed.

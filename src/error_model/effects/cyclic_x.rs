@@ -26,7 +26,7 @@ pub struct CyclicX {
 pub const AMP: Range = Range::magnitude(1.0, "mm");
 /// Plausible `pitch`: from 0.1 to 1,000 mm, the leads of ball screws
 /// (and their fractions, for harmonics).
-pub const PITCH: Range = Range::closed(0.1, 1_000.0, "mm");
+pub const PITCH: Range = crate::machine::SCREW_PITCH;
 /// Plausible `phase`: within ±100 rad (any angle is a phase; a larger number is a
 /// misread value, and its sine loses its precision).
 pub const PHASE: Range = Range::magnitude(100.0, "rad");

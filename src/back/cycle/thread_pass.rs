@@ -25,9 +25,9 @@ use crate::semantic::cycles::thread_pass::{Axes, Pass};
 use crate::syntax::{CodeLetter, Command, Program, Statement, WordKind};
 use crate::toolpath::{Motion, Move, Xz};
 
-use super::CycleBlocks;
-use super::cycle::{CycleWriter, THREAD_MOVES};
-use super::motion::{WordSink, feed_number};
+use super::{CycleWriter, THREAD_MOVES};
+use crate::back::CycleBlocks;
+use crate::back::motion::{WordSink, feed_number};
 
 /// Points closer than this are the same (mm): far below any least increment, far above
 /// the arithmetic's rounding.
