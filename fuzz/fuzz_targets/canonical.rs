@@ -24,8 +24,12 @@ use turnpass::printer::{CanonicalOptions, print_canonical};
 use turnpass::syntax::{ParseOptions, parse};
 
 /// Both parses detect the dialect and use G-code system A.
-const OPTIONS: ParseOptions =
-    ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None, control: Control::Fanuc };
+const OPTIONS: ParseOptions = ParseOptions {
+    dialect: DialectChoice::Auto,
+    gcode_system: GCodeSystem::A,
+    machine_kind: None,
+    control: Control::Fanuc,
+};
 
 /// The normal form for calculator-style decimal input at 0.001 mm.
 const CANONICAL: CanonicalOptions = CanonicalOptions { decimal_input: DecimalInput::Calculator, increment_places: 3 };

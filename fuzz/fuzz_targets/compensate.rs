@@ -48,11 +48,16 @@ fuzz_target!(|data: &[u8]| {
     let (text, model_text, strategy) = match data {
         [0xFF, choice, rest @ ..] => {
             let mut u = Unstructured::new(rest);
-            let (Ok(program), Ok(model)) = (program::Program::arbitrary(&mut u), model::Model::arbitrary(&mut u)) else {
+            let (Ok(program), Ok(model)) = (program::Program::arbitrary(&mut u), model::Model::arbitrary(&mut u))
+            else {
                 return;
             };
             let machine = program::MACHINES[usize::from(*choice) % 2];
-            (program.text().into_bytes(), model.text(machine), Strategy::ALL[usize::from(*choice / 2) % Strategy::ALL.len()])
+            (
+                program.text().into_bytes(),
+                model.text(machine),
+                Strategy::ALL[usize::from(*choice / 2) % Strategy::ALL.len()],
+            )
         }
         _ => (data.to_vec(), format!("{}{FIXED_EFFECTS}", program::MACHINES[0]), Strategy::Auto),
     };

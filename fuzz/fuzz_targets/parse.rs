@@ -24,9 +24,24 @@ use turnpass::syntax::{ParseOptions, Statement, parse};
 
 /// The three ways the target reads each input.
 const OPTIONS: [ParseOptions; 3] = [
-    ParseOptions { dialect: DialectChoice::Auto, gcode_system: GCodeSystem::A, machine_kind: None, control: Control::Fanuc },
-    ParseOptions { dialect: DialectChoice::Fixed(Dialect::Osp), gcode_system: GCodeSystem::A, machine_kind: None, control: Control::Fanuc },
-    ParseOptions { dialect: DialectChoice::Fixed(Dialect::Fanuc), gcode_system: GCodeSystem::B, machine_kind: None, control: Control::Fanuc },
+    ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Control::Fanuc,
+    },
+    ParseOptions {
+        dialect: DialectChoice::Fixed(Dialect::Osp),
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Control::Fanuc,
+    },
+    ParseOptions {
+        dialect: DialectChoice::Fixed(Dialect::Fanuc),
+        gcode_system: GCodeSystem::B,
+        machine_kind: None,
+        control: Control::Fanuc,
+    },
 ];
 
 fuzz_target!(|data: &[u8]| {

@@ -75,9 +75,13 @@ impl Table {
     }
 }
 
-/// An error names a line of `text` and a span inside it, on character boundaries.
+/// An error names a line of `text` and a span inside it, on character boundaries. Lines end
+/// as the readers end them: at LF, CR LF or a lone CR.
 fn check_error(text: &str, error: &MeasuredError) {
-    let lines = text.split('\n').count();
+    let bytes = text.as_bytes();
+    let ends =
+        (0..bytes.len()).filter(|&i| bytes[i] == b'\n' || (bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n')));
+    let lines = ends.count() + 1;
     assert!(error.line >= 1 && error.line <= lines + 1, "line {} of {lines}: {error:?}", error.line);
     let (start, end) = (error.span.start as usize, error.span.end as usize);
     assert!(start <= end && end <= text.len(), "span {start}..{end} of {}: {error:?}", text.len());

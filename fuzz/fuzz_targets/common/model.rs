@@ -25,7 +25,11 @@ impl<'a> Arbitrary<'a> for Parameter {
 impl std::fmt::Display for Parameter {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         // TOML wants a point or an exponent on a float.
-        if self.0.fract() == 0.0 && self.0.abs() < 1e15 { write!(f, "{:.1}", self.0) } else { write!(f, "{:e}", self.0) }
+        if self.0.fract() == 0.0 && self.0.abs() < 1e15 {
+            write!(f, "{:.1}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
     }
 }
 
@@ -82,10 +86,14 @@ impl Model {
             if rows.is_empty() {
                 continue;
             }
-            let _ = writeln!(out, "[[axis_table]]\naxis = \"{name}\"\ncsv = \"\"\"\ntarget_mm,direction,linear_mm,straightness_mm");
+            let _ = writeln!(
+                out,
+                "[[axis_table]]\naxis = \"{name}\"\ncsv = \"\"\"\ntarget_mm,direction,linear_mm,straightness_mm"
+            );
             for row in rows.iter().take(40) {
                 let direction = if row.up { "up" } else { "down" };
-                let _ = writeln!(out, "{},{direction},{},{}", f64::from(row.target) / 10.0, row.linear, row.straightness);
+                let _ =
+                    writeln!(out, "{},{direction},{},{}", f64::from(row.target) / 10.0, row.linear, row.straightness);
             }
             out.push_str("\"\"\"\n");
         }

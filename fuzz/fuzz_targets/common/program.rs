@@ -84,28 +84,106 @@ pub enum ProfileMove {
 
 #[derive(Debug, Clone, Arbitrary)]
 pub enum Block {
-    Rapid { x: Option<Value>, z: Option<Value> },
-    Line { x: Option<Value>, z: Option<Value>, f: Option<Feed> },
-    Incremental { u: Option<Value>, w: Option<Value> },
-    Arc { ccw: bool, x: Value, z: Value, centre: ArcCentre, f: Option<Feed> },
-    Dwell { seconds: Value },
-    Tool { station: u8, offset: u8 },
-    Spindle { surface: bool, speed: Value, clamp: Option<Value> },
-    FeedMode { per_rev: bool },
-    Units { inch: bool },
-    Absolute { absolute: bool },
-    NoseRadius { side: u8 },
+    Rapid {
+        x: Option<Value>,
+        z: Option<Value>,
+    },
+    Line {
+        x: Option<Value>,
+        z: Option<Value>,
+        f: Option<Feed>,
+    },
+    Incremental {
+        u: Option<Value>,
+        w: Option<Value>,
+    },
+    Arc {
+        ccw: bool,
+        x: Value,
+        z: Value,
+        centre: ArcCentre,
+        f: Option<Feed>,
+    },
+    Dwell {
+        seconds: Value,
+    },
+    Tool {
+        station: u8,
+        offset: u8,
+    },
+    Spindle {
+        surface: bool,
+        speed: Value,
+        clamp: Option<Value>,
+    },
+    FeedMode {
+        per_rev: bool,
+    },
+    Units {
+        inch: bool,
+    },
+    Absolute {
+        absolute: bool,
+    },
+    NoseRadius {
+        side: u8,
+    },
     Home,
-    Shift { x: Value, z: Value },
+    Shift {
+        x: Value,
+        z: Value,
+    },
     StockRemoval(StockRemoval),
-    PatternRepeat { relief_x: Value, relief_z: Value, divisions: Count, u: Value, w: Value, profile: Vec<ProfileMove>, f: Feed },
+    PatternRepeat {
+        relief_x: Value,
+        relief_z: Value,
+        divisions: Count,
+        u: Value,
+        w: Value,
+        profile: Vec<ProfileMove>,
+        f: Feed,
+    },
     Finishing,
-    Peck { face: bool, x: Value, z: Value, peck: Value, step: Value, retract: Value, f: Feed },
-    Thread { x: Value, z: Value, taper: Value, height: Value, first: Value, lead: Value, finishes: u8, chamfer: u8, angle: u8, min: Value },
-    Single { kind: u8, x: Value, z: Value, taper: Option<Value>, f: Feed },
-    Call { repeat: Count, body: Vec<SimpleBlock> },
-    Loop { times: Count, body: Vec<SimpleBlock> },
-    Variable { number: u8, value: Value },
+    Peck {
+        face: bool,
+        x: Value,
+        z: Value,
+        peck: Value,
+        step: Value,
+        retract: Value,
+        f: Feed,
+    },
+    Thread {
+        x: Value,
+        z: Value,
+        taper: Value,
+        height: Value,
+        first: Value,
+        lead: Value,
+        finishes: u8,
+        chamfer: u8,
+        angle: u8,
+        min: Value,
+    },
+    Single {
+        kind: u8,
+        x: Value,
+        z: Value,
+        taper: Option<Value>,
+        f: Feed,
+    },
+    Call {
+        repeat: Count,
+        body: Vec<SimpleBlock>,
+    },
+    Loop {
+        times: Count,
+        body: Vec<SimpleBlock>,
+    },
+    Variable {
+        number: u8,
+        value: Value,
+    },
     Raw(RawWord),
 }
 
@@ -146,9 +224,30 @@ pub enum RawWord {
 }
 
 const RAW: [&str; 24] = [
-    "M30", "M02", "M99", "G28 U0 W0", "G53 X0 Z0", "G40", "G04 P1000", "G50 S1500", "G96 S200", "G97 S800",
-    "/G01 X10.", "(COMMENT)", "%", "GOTO 10", "IF [#1 GT 3] GOTO 20", "#1=#1+1", "G00 X[#1*2]", "M98 P9999",
-    "G70 P1 Q2", "G71 U1. R0.5", "G41 G01 X0 Z0 F0.1", "N10", "N20 G00", "G01 X1.E3",
+    "M30",
+    "M02",
+    "M99",
+    "G28 U0 W0",
+    "G53 X0 Z0",
+    "G40",
+    "G04 P1000",
+    "G50 S1500",
+    "G96 S200",
+    "G97 S800",
+    "/G01 X10.",
+    "(COMMENT)",
+    "%",
+    "GOTO 10",
+    "IF [#1 GT 3] GOTO 20",
+    "#1=#1+1",
+    "G00 X[#1*2]",
+    "M98 P9999",
+    "G70 P1 Q2",
+    "G71 U1. R0.5",
+    "G41 G01 X0 Z0 F0.1",
+    "N10",
+    "N20 G00",
+    "G01 X1.E3",
 ];
 
 #[derive(Debug, Clone, Arbitrary)]
@@ -339,7 +438,9 @@ impl Program {
                 }
                 let approach = if cycle.type_ii {
                     match cycle.approach {
-                        ProfileMove::Line { x, z } => ProfileMove::Line { x: x.or(Some(Value(0.0))), z: z.or(Some(Value(0.0))) },
+                        ProfileMove::Line { x, z } => {
+                            ProfileMove::Line { x: x.or(Some(Value(0.0))), z: z.or(Some(Value(0.0))) }
+                        }
                         other => other,
                     }
                 } else {
