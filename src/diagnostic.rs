@@ -436,10 +436,12 @@ pub enum DiagnosticKind {
     /// `compensate`: the program it would write cuts with other feed or spindle words than
     /// the original (a defect of turnpass, never of the program).
     CompensationChangesFeed,
-    /// `compensate`: the program it would write does not read back cleanly (a defect of
-    /// turnpass, never of the program).
+    /// `compensate`: the program it would write does not read back cleanly: a defect of
+    /// turnpass, or (`nose_has_no_room`) a contour the corrections moved so that the tool
+    /// nose no longer fits it under nose-radius compensation.
     CompensationUnreadable {
         problem: String,
+        nose_has_no_room: bool,
     },
     /// A roughing cycle with no depth of cut (no first block, no `D`, or zero).
     CycleNeedsDepth,

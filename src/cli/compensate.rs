@@ -326,7 +326,11 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             // Where in the text about to be written it does not read.
             messages.extend(rendered(&format!("{name} (compensated)"), &written, &problems));
             let problem = problems.first().map_or_else(String::new, Diagnostic::message);
-            Some(Diagnostic::error(DiagnosticKind::CompensationUnreadable { problem }, Span::new(0, 0)))
+            // The original read cleanly, so a nose that does not fit is the moved contour's.
+            let nose_has_no_room = !problems.is_empty()
+                && problems.iter().all(|d| matches!(d.kind, DiagnosticKind::NoseDoesNotFit { .. }));
+            let kind = DiagnosticKind::CompensationUnreadable { problem, nose_has_no_room };
+            Some(Diagnostic::error(kind, Span::new(0, 0)))
         }
     };
     if let Some(diagnostic) = refusal {

@@ -606,14 +606,22 @@ impl DiagnosticKind {
                 label: "this cut".into(),
                 hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
             },
-            CompensationUnreadable { problem } => Words {
+            CompensationUnreadable { problem, nose_has_no_room } => Words {
                 code: "compensation-unreadable",
                 message: format!(
                     "the compensated program does not read back cleanly ({problem}); no compensated program is written"
                 )
                 .into(),
                 label: "from here".into(),
-                hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
+                hint: Some(if *nose_has_no_room {
+                    "the corrections move the contour where the nose has little room, and under nose-radius \
+                     compensation (G41/G42) the control would refuse the moved contour: compensate the pass \
+                     programmed for the tool's reference point (without G41/G42), or use a tool with a smaller nose \
+                     radius"
+                        .into()
+                } else {
+                    "this is a defect of turnpass: please report it with the program and the model".into()
+                }),
             },
             CycleNeedsDepth => Words {
                 code: "cycle-needs-depth",
