@@ -58,7 +58,9 @@ pub(super) fn relief_block(interp: &mut Interpreter<'_, '_>, index: usize, comma
 }
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command) -> Flow {
-    let Some(Call { span, start }) = interp.cycle_call(index) else { return Flow::Next };
+    // With the tool's position unknown the cycle moves nothing (warned), but its profile is
+    // still the cycle's, not blocks to run: the control goes on after `Q`.
+    let Some(Call { span, start }) = interp.cycle_call(index) else { return interp.after_profile(command, index) };
     let frame = interp.modal.frame;
     let one_block = interp.form_name(command) == "one_block";
     let (relief_x, relief_z, divisions) = if one_block {

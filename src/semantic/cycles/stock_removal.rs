@@ -73,7 +73,9 @@ pub(super) fn depth_block(
 }
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
-    let Some(Call { span, start }) = interp.cycle_call(index) else { return Flow::Next };
+    // With the tool's position unknown the cycle moves nothing (warned), but its profile is
+    // still the cycle's, not blocks to run: the control goes on after `Q`.
+    let Some(Call { span, start }) = interp.cycle_call(index) else { return interp.after_profile(command, index) };
     let facing = function == GFunction::StockRemovalFacing;
     let frame = interp.modal.frame;
     let one_block = command.param(Role::DepthOfCut).is_some();
