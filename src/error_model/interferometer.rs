@@ -218,10 +218,10 @@ pub(crate) fn line_cells(text: &str, start: usize) -> Vec<Span> {
     let mut cells = Vec::new();
     let mut cell_start = start;
     for piece in text[start..line_end].split(',') {
-        let leading = piece.len() - piece.trim_start().len();
+        // The cell is the piece without its blanks and quotes, however many: its place is
+        // where that slice starts in the piece.
         let trimmed = piece.trim().trim_matches('"');
-        let quote = usize::from(piece.trim_start().starts_with('"'));
-        let from = cell_start + leading + quote;
+        let from = cell_start + (trimmed.as_ptr() as usize - piece.as_ptr() as usize);
         cells.push(Span::new(from as u32, (from + trimmed.len()) as u32));
         cell_start += piece.len() + 1;
     }
