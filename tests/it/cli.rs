@@ -161,12 +161,7 @@ fn read_terminal(mut controller: std::fs::File) -> Vec<u8> {
 
 #[test]
 fn command_line_cases() {
-    let mut lists: Vec<_> = std::fs::read_dir(repo().join("tests/cases/commands"))
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    lists.sort();
+    let lists = crate::support::case_files(&repo().join("tests/cases/commands"), "toml");
     let mut names = std::collections::BTreeSet::new();
     let cases = lists.iter().flat_map(|path| {
         let cases: Cases = toml::from_str(&std::fs::read_to_string(path).unwrap())

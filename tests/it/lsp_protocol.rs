@@ -88,12 +88,7 @@ struct Session {
 #[test]
 fn protocol_sessions() {
     let dir = repo().join("tests/cases/lsp/protocol");
-    let mut cases: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    cases.sort();
+    let cases = crate::support::case_files(&dir, "toml");
     assert!(!cases.is_empty());
     // Each session waits on a process: run them side by side.
     let transcripts: Vec<(String, String)> = std::thread::scope(|scope| {

@@ -73,12 +73,7 @@ struct Change {
 #[test]
 fn editor_sessions() {
     let dir = repo().join("tests/cases/lsp");
-    let mut cases: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    cases.sort();
+    let cases = crate::support::case_files(&dir, "toml");
     assert!(!cases.is_empty());
     let mut failed = Vec::new();
     for case in cases {

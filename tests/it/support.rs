@@ -15,6 +15,18 @@ pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The case files of a folder with the extension `extension`, in name order (the order of the
+/// snapshots and of a report of failures).
+pub fn case_files(dir: &std::path::Path, extension: &str) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap_or_else(|error| panic!("{}: {error}", dir.display()))
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == extension))
+        .collect();
+    files.sort();
+    files
+}
+
 /// Options from a first-line pragma comment, `(turnpass: dialect=osp gcode_system=B)`.
 /// Without one, the dialect is detected and the G-code system is A.
 pub fn options_for(source: &[u8]) -> ParseOptions {
