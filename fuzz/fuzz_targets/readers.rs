@@ -75,13 +75,22 @@ impl Table {
     }
 }
 
-/// An error names a line of `text` and a span inside it, on character boundaries. Lines end
-/// as the readers end them: at LF, CR LF or a lone CR.
+/// The lines of `text` as the readers split them: at LF, CR LF or a lone CR.
+fn lines_of(text: &str) -> Vec<&str> {
+    let mut lines = Vec::new();
+    let mut rest = text;
+    while let Some(end) = rest.find(['\n', '\r']) {
+        lines.push(&rest[..end]);
+        let skip = if rest[end..].starts_with("\r\n") { 2 } else { 1 };
+        rest = &rest[end + skip..];
+    }
+    lines.push(rest);
+    lines
+}
+
+/// An error names a line of `text` and a span inside it, on character boundaries.
 fn check_error(text: &str, error: &MeasuredError) {
-    let bytes = text.as_bytes();
-    let ends =
-        (0..bytes.len()).filter(|&i| bytes[i] == b'\n' || (bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n')));
-    let lines = ends.count() + 1;
+    let lines = lines_of(text).len();
     assert!(error.line >= 1 && error.line <= lines + 1, "line {} of {lines}: {error:?}", error.line);
     let (start, end) = (error.span.start as usize, error.span.end as usize);
     assert!(start <= end && end <= text.len(), "span {start}..{end} of {}: {error:?}", text.len());
@@ -119,7 +128,10 @@ fuzz_target!(|data: &[u8]| {
     };
     match measured::read(&text, kind) {
         Ok(read) => {
-            let rows = text.lines().filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#')).count();
+            let rows = lines_of(&text)
+                .into_iter()
+                .filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+                .count();
             if !matches!(read, Measured::Table { .. }) {
                 assert!(read.len() < rows, "{} points from {rows} lines with the header", read.len());
             }
