@@ -379,9 +379,9 @@ mod generated {
     }
 
     /// The property allows a refusal; this holds refusals to a small share of the same inputs,
-    /// so that the property is not met by refusing. About one job in seven is refused; with
-    /// 24 jobs a quarter was passed by chance in one run of twelve, with 200 (a few seconds)
-    /// the bound sits four standard deviations above the mean.
+    /// so that the property is not met by refusing. About one job in seven is refused: over
+    /// 200 jobs (a few seconds) the bound of a quarter sits four standard deviations above
+    /// the mean, where over two dozen chance alone would pass it about one run in twelve.
     #[test]
     fn compensate_refuses_few_generated_jobs() {
         let mut runner = proptest::test_runner::TestRunner::new(ProptestConfig {

@@ -25,7 +25,7 @@ fn a_long_trace_is_read_in_one_pass() {
 
 /// A file whose lines end in a lone CR reads as one with LF ends: its records are lines
 /// (as the CSV reader and the program's line index count them), so a bad value is found
-/// at its own line and cell. Found by the readers fuzz target.
+/// at its own line and cell.
 #[test]
 fn a_bad_value_is_found_in_a_file_of_lone_cr_line_ends() {
     let text = include_str!("../../../tests/cases/bounded/ballbar-cr-line-ends.csv");
