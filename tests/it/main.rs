@@ -37,6 +37,7 @@ mod roundtrip;
 mod simulate;
 mod stock_removal;
 mod support;
+mod synth_surface;
 mod thesis;
 mod thesis_compensation;
 mod trust;
