@@ -26,6 +26,10 @@ pub enum ModelProblem {
     OutOfRange { key: String, table: String, error: OutOfRange },
     /// A value that breaks a rule between values or on its form; `rule` says what it asks.
     BrokenRule { key: String, table: String, rule: &'static str },
+    /// A key whose name says it is in the other system of units (`dx_dia` in an effect,
+    /// which is in mm with X as a radius): `said` is what its name says ("a diameter"),
+    /// `instead` the key meant, when there is one.
+    WrongUnits { key: String, table: String, said: &'static str, instead: Option<String> },
     /// An axis table's file cannot be read; `reason` is the reader's, with the path it tried.
     TableUnreadable { axis: char, reason: String },
     /// An axis table with both or neither of `file` and `csv`.
@@ -107,6 +111,21 @@ impl ModelProblem {
                 message: format!("`{key}` in {table}: {rule}").into(),
                 label: "this value".into(),
                 hint: None,
+            },
+            ModelProblem::WrongUnits { key, table, said, instead } => Words {
+                code: "model-wrong-units",
+                message: format!("`{key}` in {table} gives {said}: {}", crate::machine::UNITS_RULE).into(),
+                label: (*said).into(),
+                hint: Some(
+                    match instead {
+                        Some(instead) => format!(
+                            "write `{instead}` in millimetres, X as a radius (a diameter's change is twice the \
+                             radius's)"
+                        ),
+                        None => "an effect has no unit of its own: its lengths are millimetres, X a radius".to_string(),
+                    }
+                    .into(),
+                ),
             },
             ModelProblem::TableUnreadable { axis, reason } => Words {
                 code: "model-table-unreadable",

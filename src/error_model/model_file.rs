@@ -331,10 +331,32 @@ fn read_effects(document: &Document<'_>, problems: &mut Vec<Diagnostic>) -> Vec<
                 Ok(()) => out.push(effect),
                 Err(bad) => problems.push(document.invalid(&at, &bad)),
             },
-            Err(diagnostic) => problems.push(diagnostic),
+            Err(diagnostic) => problems.push(in_other_units(diagnostic)),
         }
     }
     out
+}
+
+/// An unknown key of an effect whose name says it is in the other system of units (`dx_dia`,
+/// `b_inch`, `units`): refused with the rule of units instead of as a misspelling.
+fn in_other_units(diagnostic: Diagnostic) -> Diagnostic {
+    let DiagnosticKind::ModelFile(problem) = &diagnostic.kind else { return diagnostic };
+    let ModelProblem::UnknownKey { key, table, known, .. } = problem.as_ref() else { return diagnostic };
+    let Some(said) = crate::machine::names_other_units(key) else { return diagnostic };
+    // A unit the effect's own keys name (`tool_wear`'s `um_per_m`) is its unit: a misspelling.
+    if known.iter().any(|k| crate::machine::names_other_units(k) == Some(said)) {
+        return diagnostic;
+    }
+    // The key meant: the name without its unit (`dx` of `dx_dia`), if the effect has it.
+    let stripped: String =
+        key.split('_').filter(|word| crate::machine::names_other_units(word).is_none()).collect::<Vec<_>>().join("_");
+    let instead = known.iter().find(|k| **k == stripped).cloned().or_else(|| {
+        toml_spans::nearest(&stripped, known.iter().map(String::as_str))
+            .filter(|_| !stripped.is_empty())
+            .map(str::to_string)
+    });
+    let problem = ModelProblem::WrongUnits { key: key.clone(), table: table.clone(), said, instead };
+    Diagnostic { kind: DiagnosticKind::ModelFile(Box::new(problem)), ..diagnostic }
 }
 
 /// The diagnostic of a table that does not read.
