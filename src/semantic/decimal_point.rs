@@ -41,7 +41,7 @@ use std::collections::HashSet;
 use crate::diagnostic::{CountedWord, Diagnostic, DiagnosticKind, Severity};
 use crate::dialect::{Address, AddressKind, DecimalInput, Dialect, IntegerUnit, Role, roles};
 use crate::source::Span;
-use crate::syntax::{Command, Word, WordKind};
+use crate::syntax::{Command, Number, Word, WordKind};
 
 use super::block::word_address;
 use super::interpreter::Interpreter;
@@ -64,20 +64,23 @@ pub(super) enum Quantity {
     Small,
 }
 
-/// Magnitudes of one quantity, as a histogram of twenty bins a decade from 10⁻⁷ to 10⁷ mm:
-/// its median is the program's scale of that quantity, in fixed memory whatever its size.
+/// Magnitudes of one quantity, as a histogram of four bins an octave (0.075 of a decade),
+/// read from the bits of the value rather than a logarithm (a long program has millions of
+/// such words): its upper quartile is the program's scale of that quantity, in fixed memory
+/// whatever its size.
 #[derive(Debug, Clone)]
 struct Scale {
     bins: Vec<u64>,
 }
 
-const BINS_PER_DECADE: f64 = 20.0;
-const LOWEST_DECADE: f64 = -7.0;
-const BIN_COUNT: usize = 280;
+/// Bins an octave, and the octaves kept: 2⁻³⁰ to 2³⁴ mm (10⁻⁹ to 10¹⁰), the rest clamped.
+const BINS_PER_OCTAVE: i64 = 4;
+const LOWEST_OCTAVE: i64 = -30;
+const OCTAVES: i64 = 64;
 
 impl Default for Scale {
     fn default() -> Scale {
-        Scale { bins: vec![0; BIN_COUNT] }
+        Scale { bins: vec![0; (OCTAVES * BINS_PER_OCTAVE) as usize] }
     }
 }
 
@@ -86,7 +89,11 @@ impl Scale {
         if !(mm.is_finite() && mm > 0.0) {
             return;
         }
-        let bin = ((mm.log10() - LOWEST_DECADE) * BINS_PER_DECADE).floor().clamp(0.0, (BIN_COUNT - 1) as f64);
+        // The exponent, and the top two bits of the mantissa: a quarter of an octave.
+        let bits = mm.to_bits();
+        let exponent = ((bits >> 52) & 0x7ff) as i64 - 1023;
+        let quarter = ((bits >> 50) & 0b11) as i64;
+        let bin = ((exponent - LOWEST_OCTAVE) * BINS_PER_OCTAVE + quarter).clamp(0, OCTAVES * BINS_PER_OCTAVE - 1);
         self.bins[bin as usize] += 1;
     }
 
@@ -102,7 +109,8 @@ impl Scale {
         for (i, count) in self.bins.iter().enumerate() {
             seen += count;
             if 4 * seen >= 3 * total {
-                return Some(10f64.powf((i as f64 + 0.5) / BINS_PER_DECADE + LOWEST_DECADE));
+                let (octave, quarter) = (i as i64 / BINS_PER_OCTAVE + LOWEST_OCTAVE, i as i64 % BINS_PER_OCTAVE);
+                return Some(2f64.powi(octave as i32) * (1.0 + (quarter as f64 + 0.5) / BINS_PER_OCTAVE as f64));
             }
         }
         None
@@ -110,27 +118,69 @@ impl Scale {
 }
 
 /// A word written without a decimal point whose reading as increments is judged at the end.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Copy)]
 struct Candidate {
     span: Span,
-    /// The word as written (`X32`).
-    written: String,
+    address: Address,
+    number: Number,
     quantity: Quantity,
-    /// Its reading in least increments and as written, program units (`0.032`, `32`).
-    counted: f64,
-    as_written: f64,
-    /// Millimetres per program unit, and the radial share of the value (½ for a diameter).
-    mm_per_unit: f64,
-    radial: f64,
-    /// `10^g`: how many increments make a program unit.
-    gap: f64,
-    /// The unit of both readings (`mm`, `in/rev`).
-    unit: &'static str,
+    /// The least increment, program units, and whether they are inches.
+    increment: f64,
+    inch: bool,
+    /// The value is a diameter (its radial share is half of it).
+    diameter: bool,
 }
 
 impl Candidate {
+    /// Its reading in least increments, and as written, program units (`0.032`, `32`).
+    fn counted(&self) -> f64 {
+        self.number.mantissa as f64 * self.increment
+    }
+
     fn counted_mm(&self) -> f64 {
-        self.counted.abs() * self.mm_per_unit
+        self.counted().abs() * if self.inch { super::frame::MM_PER_INCH } else { 1.0 }
+    }
+
+    /// `10^g`: how many increments make a program unit.
+    fn gap(&self) -> f64 {
+        1.0 / self.increment
+    }
+
+    /// The word as written (`X32`).
+    fn written(&self) -> String {
+        format!("{}{}", self.address.name(), crate::syntax::spelling::plain(self.number))
+    }
+
+    /// Its reading in least increments and with a point, with their unit (`0.032 mm`,
+    /// `32 mm`).
+    fn readings(&self) -> (String, String) {
+        let unit = match (self.inch, self.quantity == Quantity::FeedPerRev) {
+            (false, false) => "mm",
+            (true, false) => "in",
+            (false, true) => "mm/rev",
+            (true, true) => "in/rev",
+        };
+        (format!("{} {unit}", roles::short(self.counted())), format!("{} {unit}", roles::short(self.number.to_f64())))
+    }
+}
+
+/// Words seen, one bit a byte of the source where a word starts: a word read again (a loop,
+/// a profile read by two cycles) is judged once, in memory that follows the program.
+#[derive(Debug, Default)]
+struct Seen {
+    bits: Vec<u64>,
+}
+
+impl Seen {
+    /// Mark the word at `offset`; whether it was not marked before.
+    fn insert(&mut self, offset: u32) -> bool {
+        let (word, bit) = (offset as usize / 64, offset % 64);
+        if word >= self.bits.len() {
+            self.bits.resize(word + 1, 0);
+        }
+        let fresh = self.bits[word] & (1 << bit) == 0;
+        self.bits[word] |= 1 << bit;
+        fresh
     }
 }
 
@@ -143,7 +193,7 @@ pub struct Said {
     active: Option<bool>,
     scales: [Scale; 3],
     candidates: Vec<Candidate>,
-    judged: HashSet<u32>,
+    judged: Seen,
     /// Errors of a profile or a corner (their span) and the source range whose words decide
     /// them: a word there that reads implausibly is the likelier cause.
     scopes: Vec<(Span, u32, u32)>,
@@ -303,29 +353,17 @@ impl Interpreter<'_, '_> {
             }
             return;
         }
-        if number.mantissa == 0 || self.decimal_point.judged.contains(&word.span.start) {
+        if number.mantissa == 0 || !self.decimal_point.judged.insert(word.span.start) {
             return;
         }
-        // The reading under increment input, whichever input is in force.
-        let counted = number.mantissa as f64 * frame.increment;
-        self.decimal_point.judged.insert(word.span.start);
-        let per_rev = quantity == Quantity::FeedPerRev;
-        let unit = match (frame.inch, per_rev) {
-            (false, false) => "mm",
-            (true, false) => "in",
-            (false, true) => "mm/rev",
-            (true, true) => "in/rev",
-        };
         self.decimal_point.candidates.push(Candidate {
             span: word.span,
-            written: format!("{}{}", address.name(), crate::syntax::spelling::plain(number)),
+            address,
+            number,
             quantity,
-            counted,
-            as_written: number.to_f64(),
-            mm_per_unit,
-            radial: if diameter && frame.diameter { 0.5 } else { 1.0 },
-            gap: 1.0 / frame.increment,
-            unit,
+            increment: frame.increment,
+            inch: frame.inch,
+            diameter: diameter && frame.diameter,
         });
     }
 
@@ -351,22 +389,21 @@ impl Interpreter<'_, '_> {
             .iter()
             .filter(|c| {
                 let counted = c.counted_mm();
-                let below_scale = |scale: Option<f64>| scale.is_some_and(|scale| counted <= scale * c.gap.powf(-0.75));
+                let below_scale =
+                    |scale: Option<f64>| scale.is_some_and(|scale| counted <= scale * c.gap().powf(-0.75));
                 match c.quantity {
                     Quantity::X => below_scale(scales[0]),
                     Quantity::Z => below_scale(scales[1]),
                     Quantity::FeedPerRev => counted < CUTTING_EDGE_MM || below_scale(scales[2]),
-                    Quantity::Small => counted * c.radial < CUTTING_EDGE_MM,
+                    Quantity::Small => counted * if c.diameter { 0.5 } else { 1.0 } < CUTTING_EDGE_MM,
                 }
             })
-            .cloned()
+            .copied()
             .collect();
         if implausible.is_empty() {
             return;
         }
-        let reading = |c: &Candidate| {
-            (format!("{} {}", roles::short(c.counted), c.unit), format!("{} {}", roles::short(c.as_written), c.unit))
-        };
+        let reading = Candidate::readings;
         if self.machine.decimal_input_given {
             // An error of a profile or a corner that a word in its scope explains points at
             // the word; the word's own warning is then said by the error.
@@ -387,22 +424,21 @@ impl Interpreter<'_, '_> {
                 related.extend(error.related.iter().cloned());
                 let kind = DiagnosticKind::MissingPointCauses {
                     cause: Box::new(error.kind.clone()),
-                    word: cause.written.clone(),
+                    word: cause.written(),
                     readings: Box::new(reading(cause)),
                 };
                 self.diagnostics[index] = Diagnostic { severity: Severity::Error, kind, span: cause.span, related };
                 explained.insert(cause.span.start);
             }
             for c in implausible.iter().filter(|c| !explained.contains(&c.span.start)) {
-                let kind =
-                    DiagnosticKind::MissingDecimalPoint { word: c.written.clone(), readings: Box::new(reading(c)) };
+                let kind = DiagnosticKind::MissingDecimalPoint { word: c.written(), readings: Box::new(reading(c)) };
                 self.warning(kind, c.span);
             }
         } else if let Some(first) = implausible.iter().min_by_key(|c| c.span.start) {
             let (as_increments, as_written) = reading(first);
             let kind = DiagnosticKind::DecimalInputUnset {
                 count: implausible.len(),
-                word: first.written.clone(),
+                word: first.written(),
                 readings: Box::new((as_written, as_increments)),
             };
             self.diagnostics.push(Diagnostic::note(kind, first.span));
