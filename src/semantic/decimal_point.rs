@@ -409,15 +409,27 @@ impl Interpreter<'_, '_> {
             // the word; the word's own warning is then said by the error.
             let mut explained = HashSet::new();
             let scopes = std::mem::take(&mut self.decimal_point.scopes);
+            // Each error found by its span, and the nearest implausible word by a binary
+            // search: a program may hold thousands of both.
+            let mut errors = std::collections::HashMap::new();
+            for (index, d) in self.diagnostics.iter().enumerate() {
+                if d.severity == Severity::Error {
+                    errors.entry(d.span).or_insert(index);
+                }
+            }
+            let mut implausible = implausible;
+            implausible.sort_by_key(|c| c.span.start);
             for (span, from, to) in scopes {
-                let Some(index) = self.diagnostics.iter().position(|d| d.span == span && d.severity == Severity::Error)
-                else {
+                let Some(&index) = errors.get(&span) else { continue };
+                if matches!(self.diagnostics[index].kind, DiagnosticKind::MissingPointCauses { .. }) {
                     continue;
-                };
-                let nearest = implausible
-                    .iter()
-                    .filter(|c| c.span.start >= from && c.span.end <= to)
-                    .min_by_key(|c| c.span.start.abs_diff(span.start).min(c.span.end.abs_diff(span.end)));
+                }
+                let inside = |c: &&Candidate| c.span.start >= from && c.span.end <= to;
+                let k = implausible.partition_point(|c| c.span.start < span.start);
+                let before = k.checked_sub(1).and_then(|i| implausible.get(i)).filter(inside);
+                let after = implausible.get(k).filter(inside);
+                let distance = |c: &Candidate| c.span.start.abs_diff(span.start).min(c.span.end.abs_diff(span.end));
+                let nearest = before.into_iter().chain(after).min_by_key(|c| distance(c));
                 let Some(cause) = nearest else { continue };
                 let error = &self.diagnostics[index];
                 let mut related = vec![(error.span, error.label())];
