@@ -19,11 +19,13 @@
 //!   - an **X or Z position** (a move's or a cycle's end point, absolute) or a **feed per
 //!     revolution** whose reading lies further below the program's scale than its reading
 //!     with a point lies from it, by more than half the gap between the two readings: at
-//!     least `10^(3g/4)` below the median of the program's nonzero readings of that
-//!     quantity, where `10^g` is the gap (1000 for 0.001 mm, 10 000 for 0.0001 in), so 178
-//!     times below in mm and 1000 times in inch. Both readings are set against the program's
-//!     own scale, which a program written wholly in increments sets too: its `Z2000`
-//!     approach reads 2 mm among positions of tens of millimetres and stays quiet;
+//!     least `10^(3g/4)` below the program's scale of that quantity, where `10^g` is the gap
+//!     (1000 for 0.001 mm, 10 000 for 0.0001 in), so 178 times below in mm and 1000 times
+//!     in inch. The scale is the upper quartile of the words of that quantity written with
+//!     a point, which say unambiguously what size the part is (its size rather than its
+//!     clearances and chamfers, which are more numerous). A program written wholly in
+//!     increments has no such word: nothing in it says its words mean other than they read,
+//!     and only the next rule applies to it;
 //!   - a **distance, radius or cut parameter** (`U`/`W` moves, `I`/`K`, an arc's `R`, a
 //!     corner `,C`/`,R`, depths of cut, allowances, retracts) whose reading is under
 //!     [`CUTTING_EDGE_MM`] (radially), or a **feed per revolution** under that much per
@@ -270,8 +272,9 @@ impl Interpreter<'_, '_> {
         active
     }
 
-    /// Note the length and feed words of a motion block.
-    pub(super) fn observe_move_words(&mut self, words: &[Word]) {
+    /// Note the length and feed words of a motion block (a thread move's `F` is a lead, no
+    /// feed).
+    pub(super) fn observe_move_words(&mut self, words: &[Word], thread: bool) {
         if !self.checks_missing_points() {
             return;
         }
@@ -283,7 +286,7 @@ impl Interpreter<'_, '_> {
                 Address::Z => Quantity::Z,
                 Address::U | Address::W | Address::I | Address::K | Address::R => Quantity::Small,
                 a if a == Address::comma(b'C') || a == Address::comma(b'R') => Quantity::Small,
-                Address::F => {
+                Address::F if !thread => {
                     self.observe_feed(word);
                     continue;
                 }

@@ -148,7 +148,7 @@ impl Interpreter<'_, '_> {
     pub(super) fn motion_block(&mut self, index: usize, words: &[Word]) -> Flow {
         let block = *self.program.block(index);
         let span = block.span;
-        self.observe_move_words(words);
+        self.observe_move_words(words, block.statement == Statement::ThreadMove);
         let axes = self.axis_target(words);
         let moves_before = self.emitter.moves.len();
         let angle_given =
