@@ -95,6 +95,28 @@ impl Diagnostic {
     }
 }
 
+/// A word the control counts (least increments, milliseconds, a sequence number, a count)
+/// written with a decimal point: the facts of `IntegerExpected` and
+/// `DecimalPointUnverified`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CountedWord {
+    /// The command, as messages name it (`G76 (multiple threading cycle)`), and the address.
+    pub command: String,
+    pub address: String,
+    /// The word as written (`P0.92`).
+    pub written: String,
+    /// What the word counts.
+    pub unit: crate::dialect::IntegerUnit,
+    /// The word meant and what it reads as (`P920`, `0.92 mm`), when it can be told
+    /// (`dialect::roles::meant`).
+    pub meant: Option<(String, String)>,
+    /// The control whose rule this is (`control` setting), and another that takes the
+    /// point, with the unit it reads the word in then (a Haas reads a dwell `P0.3` in
+    /// seconds).
+    pub control: &'static str,
+    pub elsewhere: Option<(&'static str, &'static str)>,
+}
+
 /// What went wrong. Variants carry the facts their message needs, never preformatted text,
 /// except for suggestions that quote repaired source.
 #[derive(Debug, Clone, PartialEq)]
@@ -256,10 +278,60 @@ pub enum DiagnosticKind {
         command: String,
         words: String,
     },
-    /// A decimal point in a word that counts least increments or names a sequence (`P2.`).
-    IntegerExpected {
-        command: String,
-        address: String,
+    /// A decimal point in a word that counts least increments, milliseconds or passes, or
+    /// names a sequence (`P2.`), which the control refuses.
+    IntegerExpected(Box<CountedWord>),
+    /// A word that counts least increments written with a decimal point, which some controls
+    /// take (as a length) and others may refuse: not verified for this one (`G83 Q3.`).
+    DecimalPointUnverified {
+        /// The word, and its `meant`: the word without a point that reads the same
+        /// everywhere.
+        word: Box<CountedWord>,
+        /// The reading with the point (`3 mm`).
+        reading: String,
+    },
+    /// A length or feed word without a decimal point that counts least increments (increment
+    /// input) and reads implausibly small in its place (`X32` is 0.032 mm).
+    MissingDecimalPoint {
+        /// The word as written (`X32`).
+        word: String,
+        /// Its reading here, and its reading with a point, with their unit (`0.032 mm`,
+        /// `32 mm`).
+        readings: Box<(String, String)>,
+    },
+    /// The settings do not give `decimal_input`, and `count` words without a decimal point
+    /// would read implausibly if the control counted least increments: the first of them,
+    /// read as written (calculator input, in force) and as increments.
+    DecimalInputUnset {
+        count: usize,
+        word: String,
+        /// Its reading as written and in least increments.
+        readings: Box<(String, String)>,
+    },
+    /// An error of a profile or a corner that a word read without its decimal point explains:
+    /// the error, said at the word.
+    MissingPointCauses {
+        cause: Box<DiagnosticKind>,
+        word: String,
+        /// Its reading here, and with a point.
+        readings: Box<(String, String)>,
+    },
+    /// How an OSP longitudinal thread cycle's height reads: a diameter, so the passes cut
+    /// half of it deep (said by `expand` at the call).
+    ThreadHeightAsDiameter {
+        word: String,
+        depth_mm: f64,
+        passes: usize,
+    },
+    /// An OSP thread height (a diameter) nearer the radial height of the thread's pitch
+    /// than its height as a diameter: written as Fanuc's radial `G76` height.
+    ThreadHeightRadial {
+        word: String,
+        /// The depth it cuts, and the pitch, mm.
+        depth_mm: f64,
+        pitch_mm: f64,
+        /// The word with the height doubled (`H1.84`).
+        meant: Option<String>,
     },
     /// Two cycle or motion commands that cannot share a block.
     ConflictingCommands {

@@ -43,6 +43,9 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Validated<Lowered>) -> (
             CycleBlocks::Blocks(blocks) => {
                 edits.replace(expansion.block, blocks);
                 delete_consumed(&mut edits, program, expansion, &calls);
+                if let Some(note) = &expansion.note {
+                    notes.push(Diagnostic::note(note.clone(), program.block(expansion.block).span));
+                }
             }
             CycleBlocks::NotExpandable(reason) => {
                 let span = program.block(expansion.block).span;

@@ -16,6 +16,7 @@
 
 mod block;
 pub(crate) mod cycles;
+mod decimal_point;
 mod emitter;
 mod eval;
 mod frame;
@@ -74,6 +75,9 @@ pub struct Machine {
     pub units: Units,
     pub diameter_programming: bool,
     pub decimal_input: DecimalInput,
+    /// Whether the settings give `decimal_input` (else it is the default, calculator input,
+    /// and a program whose words read differently under the other is told so).
+    pub decimal_input_given: bool,
     /// Least input increment, machine units.
     pub increment: f64,
     /// Home position in the toolpath frame, when the settings give it.
@@ -115,6 +119,7 @@ impl Machine {
             units,
             diameter_programming,
             decimal_input: settings.decimal_input.unwrap_or_default(),
+            decimal_input_given: settings.decimal_input.is_some(),
             increment: settings.least_increment.unwrap_or(if units == Units::Inch { 0.0001 } else { 0.001 }),
             home,
             limits,
@@ -209,6 +214,9 @@ pub struct Expansion {
     pub after: ModalAfter,
     /// Why `expand` leaves the call as it is, if it does (a drilling cycle).
     pub kept: Option<&'static str>,
+    /// What `expand` says of the blocks it writes for the call (how an OSP thread cycle's
+    /// height reads), a note at the call.
+    pub note: Option<crate::diagnostic::DiagnosticKind>,
 }
 
 /// The modal words a cycle leaves in force: the motion code (when it is a plain one; after

@@ -214,11 +214,13 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
     let dialect = read.dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
     let gcode_system = read.gcode_system.or(settings.gcode_system).unwrap_or_default();
     let control = read.control.or(settings.control).unwrap_or_default();
-    let decimal_input = match read.decimal_input {
-        Some(DecimalInputArg::Calculator) => DecimalInput::Calculator,
-        Some(DecimalInputArg::Increment) => DecimalInput::Increment,
-        None => settings.decimal_input.unwrap_or_default(),
+    // Kept unset when neither gives it: the semantic pass says where that matters.
+    let given_decimal_input = match read.decimal_input {
+        Some(DecimalInputArg::Calculator) => Some(DecimalInput::Calculator),
+        Some(DecimalInputArg::Increment) => Some(DecimalInput::Increment),
+        None => settings.decimal_input,
     };
+    let decimal_input = given_decimal_input.unwrap_or_default();
     let fixed_dialect = match dialect {
         DialectChoice::Fixed(dialect) => Some(dialect),
         DialectChoice::Auto => None,
@@ -232,7 +234,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
             dialect: fixed_dialect,
             gcode_system: Some(gcode_system),
             control: Some(control),
-            decimal_input: Some(decimal_input),
+            decimal_input: given_decimal_input,
             ..settings
         },
         model,

@@ -93,6 +93,11 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         _ => None,
     };
     let Some(function) = info.and_then(|g| g.function) else { return Flow::Next };
+    // A decimal point the control refuses: the block alarms, and runs no cycle.
+    if !interp.cycle_points_taken(&command) {
+        return Flow::Next;
+    }
+    interp.observe_cycle_words(&command);
     interp.finish_corner();
     let first_move = interp.emitter.moves.len();
     interp.emitter.context = Context { source: block.span, cycle: block.span };
@@ -204,6 +209,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         _ => interp.modal_before_block,
     };
     let kept = interp.expansion_kept.take();
+    let note = interp.expansion_note.take();
     if interp.emitter.moves.len() > first_move || !consumed.is_empty() {
         interp.expansions.push(Expansion {
             block: index,
@@ -213,6 +219,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             before,
             after: crate::semantic::ModalAfter::of(&interp.modal),
             kept,
+            note,
         });
     } else {
         interp.cycle_memory.setup_block = Some((index, interp.modal_before_block));
@@ -295,8 +302,15 @@ impl Interpreter<'_, '_> {
 
     /// An integer length parameter (`P`/`Q` of `G74`-`G76`): the control reads it in least
     /// input increments whatever the decimal-point setting, so `P2000` is 2 mm on a 0.001 mm
-    /// control. Program units.
+    /// control. Program units. Written with a decimal point where the schema lets a control
+    /// take one (`point_unverified`: `G83 Q3.`, warned of), it is the length as written.
     pub(super) fn param_increments(&mut self, command: &Command, role: Role) -> Option<f64> {
+        let id = command.param(role)?;
+        if let WordKind::Number { number, .. } = self.program.word(id).kind
+            && number.has_point()
+        {
+            return Some(number.to_f64());
+        }
         let count = self.param_count(command, role)?;
         Some(count * self.modal.frame.increment)
     }

@@ -119,6 +119,8 @@ pub(super) struct Interpreter<'p, 'src> {
     noted_home_unknown: bool,
     /// What `plausibility.rs` has warned of already.
     pub plausibility: super::plausibility::Warned,
+    /// What `decimal_point.rs` has said already.
+    pub decimal_point: super::decimal_point::Said,
     tape_opened: bool,
     cut_off: Option<Span>,
     /// Time arcs on a second thread from this many blocks on (`parallel::Tuning::arc_times_blocks`).
@@ -129,6 +131,8 @@ pub(super) struct Interpreter<'p, 'src> {
     position_damaged: bool,
     /// Why `expand` should leave the cycle being run as it is (`Expansion::kept`).
     pub expansion_kept: Option<&'static str>,
+    /// What `expand` says of the cycle being run (`Expansion::note`).
+    pub expansion_note: Option<DiagnosticKind>,
 }
 
 impl<'p, 'src> Interpreter<'p, 'src> {
@@ -189,12 +193,14 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             first_program_name: None,
             noted_home_unknown: false,
             plausibility: super::plausibility::Warned::default(),
+            decimal_point: super::decimal_point::Said::default(),
             tape_opened: false,
             cut_off: None,
             arc_times_beside_from_blocks: tuning.arc_times_blocks,
             leader_confirmed: None,
             position_damaged: false,
             expansion_kept: None,
+            expansion_note: None,
         }
     }
 
@@ -366,6 +372,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
 
     /// The lowered program, once the blocks have run.
     fn finish(mut self) -> Lowered {
+        self.judge_missing_points();
         let start = self.emitter.moves.first().map(|_| self.first_move_start()).unwrap_or(self.emitter.at);
         let mut toolpath = Toolpath { start, moves: std::mem::take(&mut self.emitter.moves) };
         if self.options.nose_radius_compensation {

@@ -148,6 +148,7 @@ impl Interpreter<'_, '_> {
     pub(super) fn motion_block(&mut self, index: usize, words: &[Word]) -> Flow {
         let block = *self.program.block(index);
         let span = block.span;
+        self.observe_move_words(words, block.statement == Statement::ThreadMove);
         let axes = self.axis_target(words);
         let moves_before = self.emitter.moves.len();
         let angle_given =
@@ -213,6 +214,7 @@ impl Interpreter<'_, '_> {
                 before: self.modal_before_block,
                 after: super::ModalAfter::of(&self.modal),
                 kept: None,
+                note: None,
             });
         }
         Flow::Next
@@ -348,6 +350,9 @@ impl Interpreter<'_, '_> {
                 DiagnosticKind::CornerDoesNotFit { size_mm: corner.size, word: corner.word },
                 corner.context.source,
             );
+            // The corner's block and the line after it decide whether it fits: a word of
+            // theirs read without its decimal point is the likelier cause.
+            self.slip_scope(corner.context.source, corner.context.source.start, context.source.end);
         } else {
             let p1 = Xz::new(corner.corner.x - d1.x * back, corner.corner.z - d1.z * back);
             let p2 = Xz::new(corner.corner.x + d2.x * back, corner.corner.z + d2.z * back);
@@ -374,6 +379,7 @@ impl Interpreter<'_, '_> {
                 before,
                 after: super::ModalAfter::of(&corner.modal),
                 kept: None,
+                note: None,
             });
         }
     }

@@ -98,6 +98,7 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         before: interp.modal_before_block,
         after: crate::semantic::ModalAfter::of(&interp.modal),
         kept: None,
+        note: None,
     });
     Flow::Next
 }

@@ -124,15 +124,29 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let rough = Rough { depth, retract, allowance, type_ii, feed, speed, facing };
     if let Err((kind, at)) = rough.cut(interp, &without_exit(&profile, start, allowance, facing), start) {
         let (frame, shift) = (interp.modal.frame, interp.modal.shift);
-        match (rough.wrong_side(&profile, start, frame, shift), at) {
-            (Some(kind), _) => interp.error(kind, span),
+        let reported = match (rough.wrong_side(&profile, start, frame, shift), at) {
+            (Some(kind), _) => {
+                interp.error(kind, span);
+                span
+            }
             // A profile that turns back is marked where it turns, and points to its cycle.
-            (None, Some(block)) => interp.diagnostics.push(
-                crate::diagnostic::Diagnostic::error(kind, block)
-                    .with_related(span, "the cycle that roughs this profile"),
-            ),
-            (None, None) => interp.error(kind, span),
-        }
+            (None, Some(block)) => {
+                interp.diagnostics.push(
+                    crate::diagnostic::Diagnostic::error(kind, block)
+                        .with_related(span, "the cycle that roughs this profile"),
+                );
+                block
+            }
+            (None, None) => {
+                interp.error(kind, span);
+                span
+            }
+        };
+        // The profile's words decide its shape: one read without its decimal point is the
+        // likelier cause (`decimal_point.rs`).
+        let (first, last) =
+            (interp.program.block(*profile.blocks.start()).span, interp.program.block(*profile.blocks.end()).span);
+        interp.slip_scope(reported, first.start, last.end);
     }
     // F and S written in the cycle block are words of that block: they stay modal after
     // it, as every F and S does (a G70 with no F of its own then finishes at that feed
