@@ -16,6 +16,7 @@
 //! superposition is exact to far below the least increment; `htm.rs` keeps the one
 //! second-order product the thesis' matrix has.
 
+pub mod counted_twice;
 pub mod effects;
 pub(crate) mod fitting;
 pub(crate) mod htm;

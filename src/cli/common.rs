@@ -314,7 +314,11 @@ pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>) {
 /// the model file's directory) and `[[effect]]`.
 pub fn load_error_model(path: &Path, text: &str) -> Result<ErrorModel, CliError> {
     let (spec, dir) = model_spec(path, text)?;
-    spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, text, e))
+    let (model, warnings) =
+        spec.build_with_warnings(|file| read_table(&dir, file)).map_err(|e| model_problems(path, text, e))?;
+    // An error the model holds twice is said where the model is read, by every command.
+    streams::err(rendered(&path.display().to_string(), text.as_bytes(), &warnings));
+    Ok(model)
 }
 
 /// A model file's spec and the directory its tables are read from.

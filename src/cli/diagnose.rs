@@ -297,7 +297,8 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
         .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;
     write_output(args.output.as_deref(), to_csv(&measured).as_bytes())?;
     if let Some(path) = &args.output {
-        streams::err_line(format_args!("synth: wrote {} ({} points)", path.display(), measured.len()));
+        let rows = measured.rows();
+        streams::err_line(format_args!("synth: wrote {} ({rows} row{})", path.display(), super::common::plural(rows)));
     }
     Ok(ExitCode::SUCCESS)
 }
