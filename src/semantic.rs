@@ -18,7 +18,7 @@ mod block;
 pub(crate) mod cycles;
 mod emitter;
 mod eval;
-mod frame;
+pub(crate) mod frame;
 mod interpreter;
 pub(crate) mod labels;
 mod modal;

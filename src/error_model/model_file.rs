@@ -202,7 +202,7 @@ impl ModelSpec {
                 Axis::Z => all.z = table,
             }
         }
-        Ok(ErrorModel { tables, effects: self.effect.clone(), start_min: self.model.start_min })
+        Ok(ErrorModel { tables, effects: self.effect.clone(), start_min: self.model.start_min, control: None })
     }
 
     /// Every axis table read from its source, in the file's order, each slide once.
