@@ -26,6 +26,7 @@ mod plot;
 mod report;
 mod simulate;
 mod streams;
+mod table;
 mod thermal;
 mod verify;
 
@@ -48,6 +49,8 @@ Examples:
   turnpass plot part.nc --model machine.toml -o part.svg
   turnpass report part.nc part-comp.nc --model machine.toml -o report.html
   turnpass model report machine.toml
+  turnpass table machine.toml --control linuxcnc -o lathe-comp.ini   (and lathe-comp-x.comp, lathe-comp-z.comp)
+  turnpass compensate part.nc --model machine.toml --with-table lathe-comp.ini -o part-comp.nc
   turnpass diagnose part.nc --model machine.toml --measured cmm.csv --write-model machine-new.toml --plot gap.svg
   turnpass synth ballbar.nc --model truth.toml --kind ballbar --noise 0.0002 --seed 7 -o trace.csv
   turnpass fit-thermal spindle-log.csv --write-model machine.toml --axis z
@@ -99,6 +102,9 @@ enum Command {
     Synth(diagnose::SynthArgs),
     /// Fit the first-order warm-up and cool-down curves of a thermal log.
     FitThermal(thermal::FitThermalArgs),
+    /// Write the part of a model the control's own pitch-error and backlash compensation
+    /// carries, in the control's format (LinuxCNC, Fanuc, Okuma).
+    Table(table::TableArgs),
     /// Serve the Language Server Protocol on standard input and output (for editors).
     Lsp,
     /// Machine models.
@@ -131,6 +137,7 @@ pub fn main() -> ExitCode {
         Command::Diagnose(args) => diagnose::run(args),
         Command::Synth(args) => diagnose::run_synth(args),
         Command::FitThermal(args) => thermal::run(args),
+        Command::Table(args) => table::run(args),
         Command::Lsp => lsp::run(),
         Command::Model { command } => model::run(command),
     };

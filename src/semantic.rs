@@ -19,7 +19,7 @@ pub(crate) mod cycles;
 mod decimal_point;
 mod emitter;
 mod eval;
-mod frame;
+pub(crate) mod frame;
 mod interpreter;
 pub(crate) mod labels;
 mod modal;

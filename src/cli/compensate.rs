@@ -33,6 +33,7 @@ use super::common::{
 };
 use super::numbers::{self, within};
 use super::streams;
+use super::table::{WithTable, split_summary, with_table};
 
 #[derive(Args)]
 pub struct CompensateArgs {
@@ -111,6 +112,10 @@ pub struct FitArgs {
     /// default: the model's `start_min`).
     #[arg(long, allow_negative_numbers = true, value_name = "MIN", value_parser = within(numbers::MINUTES))]
     pub start_min: Option<f64>,
+    /// The machine runs with this control table loaded (as `turnpass table` writes it: a
+    /// LinuxCNC INI file, a Fanuc tape): compensate only what the table leaves.
+    #[arg(long, value_name = "FILE")]
+    pub with_table: Option<PathBuf>,
 }
 
 fn strategy_parser() -> impl TypedValueParser<Value = Strategy> {
@@ -163,13 +168,26 @@ impl FitArgs {
         }
     }
 
-    /// The error model of the program's model file, started at `--start-min` when given.
-    pub fn error_model(&self, resolved: &Resolved, command: &str) -> Result<ErrorModel, CliError> {
+    /// The error model of the program's model file, started at `--start-min` when given, on
+    /// a machine with `--with-table` loaded when given (and that table, whose summary of what
+    /// goes where is said on standard error).
+    pub fn error_model(&self, resolved: &Resolved, command: &str) -> Result<(ErrorModel, Option<WithTable>), CliError> {
         let mut model = required_error_model(resolved, command)?;
         if let Some(start) = self.start_min {
             model.start_min = start;
         }
-        Ok(model)
+        match &self.with_table {
+            Some(path) => {
+                let (combined, with) = with_table(path, &resolved.settings, &model, command)?;
+                let mut text = format!("{command}: {}\n", split_summary(&model, &with));
+                if let Some(why) = with.loaded.unverified {
+                    text.push_str(&format!("{command}: warning: unverified: {why}\n"));
+                }
+                streams::err(text);
+                Ok((combined, Some(with)))
+            }
+            None => Ok((model, None)),
+        }
     }
 
     /// Compensate a ready program with `model`; `paths` keeps every sample's paths (for
@@ -302,7 +320,7 @@ pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) 
 pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult, CliError> {
     let (bytes, resolved) = read_program(path, &args.read)?;
     args.fit.check_step(&Machine::from_settings(&resolved.settings))?;
-    let model = args.fit.error_model(&resolved, "compensate")?;
+    let (model, table) = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
     if args.verbose {
@@ -328,6 +346,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         version: provenance::VERSION.to_string(),
         model: model_name(&resolved),
         model_sha256: model_sha256(&resolved)?,
+        table_sha256: table.map(|table| table.sha256),
         tolerance_mm: args.fit.options(&program.machine).fit.tolerance_mm,
         strategy: args.fit.strategy,
         step_mm: args.fit.step,

@@ -116,7 +116,10 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         Err(turnpass::plot::PlotError::NoFullCircle) => {}
         Err(e) => plots.push(Plot { id: "plot-polar", caption: "The polar plot".to_string(), svg: Err(e.to_string()) }),
     }
-    let Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings } = checked;
+    let Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings, table } = checked;
+    if let Some((_, summary)) = &table {
+        streams::err_line(format_args!("report: {summary}"));
+    }
     let compensated_with = match &provenance {
         Some(Ok(made)) => format!(
             "turnpass {} for the model `{}` (sha256 {}…), tolerance {} mm, strategy {}",

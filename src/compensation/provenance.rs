@@ -9,7 +9,9 @@
 //! (TURNPASS 0.1.0 COMPENSATED, MODEL TEST LATHE, SHA256 1A2B3C4D5E6F, TOLERANCE 0.0005 MM, STRATEGY AUTO, START 30 MIN)
 //! ```
 //!
-//! (`STRATEGY DENSIFY, STEP 0.5 MM` when densify was given a step.) The model is named by
+//! (`STRATEGY DENSIFY, STEP 0.5 MM` when densify was given a step; `TABLE 4F…` after the
+//! model's digest when the program was compensated for a machine with a control table
+//! loaded, `--with-table`: the first digits of that table's SHA-256.) The model is named by
 //! its `[machine] name` or its file name, and by the first [`SHA256_DIGITS`] hex digits of
 //! the SHA-256 of its content ([`model_sha256`]). [`marks`] finds such comments in a parsed
 //! program, [`refusal`] is the diagnostic `compensate` refuses a marked program with, and
@@ -53,6 +55,11 @@ pub struct Provenance {
     pub model: String,
     /// The first [`SHA256_DIGITS`] hex digits of the model's SHA-256, lower case.
     pub model_sha256: String,
+    /// The first [`SHA256_DIGITS`] hex digits of the SHA-256 of the control table the machine
+    /// runs with (`--with-table`: its file and the files it names), lower case; none for a
+    /// machine without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub table_sha256: Option<String>,
     pub tolerance_mm: f64,
     #[serde(serialize_with = "strategy_name")]
     pub strategy: Strategy,
@@ -84,8 +91,10 @@ impl Provenance {
     pub fn text(&self, upper: bool) -> String {
         let model = printable_name(&self.model);
         let model = if upper { model.to_ascii_uppercase() } else { model };
+        let table =
+            self.table_sha256.as_ref().map_or_else(String::new, |t| format!(", TABLE {}", t.to_ascii_uppercase()));
         let mut text = format!(
-            "TURNPASS {} COMPENSATED, MODEL {model}, SHA256 {}, TOLERANCE {} MM, STRATEGY {}",
+            "TURNPASS {} COMPENSATED, MODEL {model}, SHA256 {}{table}, TOLERANCE {} MM, STRATEGY {}",
             self.version,
             self.model_sha256.to_ascii_uppercase(),
             short(self.tolerance_mm, 6),
@@ -128,6 +137,7 @@ impl Provenance {
 fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Result<Provenance, String> {
     let (mut model, mut sha256, mut tolerance, mut strategy, mut step, mut start) =
         (None, None, None, None, None, None);
+    let mut table = None;
     for field in fields {
         let (key, value) = field.split_once(' ').map_or((field, ""), |(k, v)| (k, v.trim()));
         let number = |unit: &str| -> Result<f64, String> {
@@ -148,6 +158,12 @@ fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Re
                 }
                 sha256 = Some(value.to_ascii_lowercase());
             }
+            "TABLE" => {
+                if value.len() < SHA256_DIGITS || !value.bytes().all(|b| b.is_ascii_hexdigit()) {
+                    return Err(format!("TABLE `{value}` is not {SHA256_DIGITS} or more hex digits"));
+                }
+                table = Some(value.to_ascii_lowercase());
+            }
             "TOLERANCE" => tolerance = Some(number(" MM")?),
             "STRATEGY" => {
                 strategy =
@@ -164,6 +180,7 @@ fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Re
         version,
         model: model.ok_or_else(|| missing("MODEL"))?,
         model_sha256: sha256.ok_or_else(|| missing("SHA256"))?,
+        table_sha256: table,
         tolerance_mm: tolerance.ok_or_else(|| missing("TOLERANCE"))?,
         strategy: strategy.ok_or_else(|| missing("STRATEGY"))?,
         step_mm: step,

@@ -22,6 +22,7 @@ use serde::{Deserialize, Deserializer, Serialize};
 
 use crate::bounds::Invalid;
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
@@ -74,6 +75,11 @@ pub trait ParametricEffect: Sized {
     /// The effect with linear parameters `linear` (in the order of `FIT.linear`, the rest
     /// zero) and searched parameter `searched` (NaN for none).
     fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self;
+
+    /// What a control's own axis compensation (its pitch-error table and backlash
+    /// compensation, functions of each axis' own commanded position and direction) carries
+    /// of this effect; the program carries the rest (`control.rs`).
+    fn control_table(&self) -> TablePart;
 
     /// Why a fitted effect is not a physical one, if it is not: the bounds of what
     /// `diagnose` reports as found, over the measurement's `extents`. They are tighter than
@@ -236,6 +242,13 @@ macro_rules! effects {
             pub fn arc_terms(&self, reach: Xz) -> ArcTerms {
                 match self {
                     $(Effect::$Type(e) => e.arc_terms(reach)),+
+                }
+            }
+
+            /// `ParametricEffect::control_table`.
+            pub fn control_table(&self) -> TablePart {
+                match self {
+                    $(Effect::$Type(e) => e.control_table()),+
                 }
             }
 

@@ -288,6 +288,7 @@ proptest::proptest! {
                 Effect::Squareness(Squareness { urad: 20.0 }),
             ],
             start_min: 0.0,
+        control: None,
         };
         let s = Sample { t_min, ..sample(x, z) };
         let mut terms = Vec::new();

@@ -26,7 +26,7 @@ fn toolpath() -> (Toolpath, Machine) {
 }
 
 fn model(effects: Vec<Effect>) -> ErrorModel {
-    ErrorModel { tables: None, effects, start_min: 0.0 }
+    ErrorModel { tables: None, effects, start_min: 0.0, control: None }
 }
 
 #[test]

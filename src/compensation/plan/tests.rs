@@ -28,7 +28,7 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
     let tools = ToolTable::from_machine(&machine);
     let path = &lowered.toolpath;
     let samples = sample_toolpath(path, &tools, 0.25);
-    let model = ErrorModel { tables: None, effects, start_min: 0.0 };
+    let model = ErrorModel { tables: None, effects, start_min: 0.0, control: None };
     let fit = FitOptions { strategy: Strategy::Densify, tolerance_mm: 0.0005, step_mm: None };
     let inverse =
         InverseOptions { tolerance_mm: fit.tolerance_mm, dead_band_mm: fit.tolerance_mm, ..InverseOptions::default() };

@@ -5,6 +5,7 @@ fn made() -> Provenance {
         version: "0.1.0".to_string(),
         model: "test lathe".to_string(),
         model_sha256: "3e3e70e7fa2c".to_string(),
+        table_sha256: None,
         tolerance_mm: 0.0005,
         strategy: Strategy::Auto,
         step_mm: None,
@@ -15,7 +16,8 @@ fn made() -> Provenance {
 #[test]
 fn the_comment_reads_back_as_written() {
     let densify = Provenance { strategy: Strategy::Densify, step_mm: Some(0.254), start_min: 212.5, ..made() };
-    for provenance in [made(), densify] {
+    let table = Provenance { table_sha256: Some("4f0c9a17be21".to_string()), ..made() };
+    for provenance in [made(), densify, table] {
         for upper in [false, true] {
             let text = provenance.text(upper);
             let read = Provenance::parse(&text).expect("a provenance comment").expect("it reads");

@@ -166,6 +166,7 @@ fn a_program_verified_against_itself_deviates_as_much_before_as_after() {
             Effect::BacklashZ(BacklashZ { b: 0.003, axis: Z }),
         ],
         start_min: 0.0,
+        control: None,
     };
     let figures = deviation(lowered.valid(), lowered.valid(), &tools, &model, &Sampling::every_mm(0.254));
     assert!(figures.before.max_mm > 0.001, "{figures:?}");
@@ -262,7 +263,7 @@ fn sampling_from_the_model_measures_as_dense_sampling_does() {
     let promise = increment / 2.0 / 10.0;
     let toolpath = lowered.valid();
     for (name, effects) in [("screw", screw), ("mixed", mixed)] {
-        let model = ErrorModel { tables: None, effects, start_min: 0.0 };
+        let model = ErrorModel { tables: None, effects, start_min: 0.0, control: None };
         let figures = |sampling: &Sampling| deviation(toolpath, toolpath, &tools, &model, sampling).before;
         let sparse = figures(&sampling(&model, increment, &[&toolpath]));
         let dense = figures(&Sampling::every_mm(0.005));

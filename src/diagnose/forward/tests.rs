@@ -22,7 +22,7 @@ fn trace(step_deg: f64) -> Vec<BallBarRow> {
 }
 
 fn model(effects: Vec<Effect>) -> ErrorModel {
-    ErrorModel { tables: None, effects, start_min: 0.0 }
+    ErrorModel { tables: None, effects, start_min: 0.0, control: None }
 }
 
 #[test]

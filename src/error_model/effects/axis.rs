@@ -8,6 +8,7 @@
 use std::fmt::Debug;
 
 use crate::error_model::fitting::{Extents, Search};
+use crate::error_model::model_file::Axis as Slide;
 use crate::error_model::state::Signs;
 use crate::toolpath::Xz;
 
@@ -19,6 +20,9 @@ pub trait Axis: Copy + Default + PartialEq + Debug + Send + Sync + 'static {
 
     /// The axis' letter as the model file writes it in an effect's name.
     const LETTER: char;
+
+    /// The slide, as a value (`model_file::Axis`).
+    const SLIDE: Slide;
 
     /// The searched parameter of a cyclic error of this axis' screw (`diagnose`).
     const PITCH: Search;
@@ -51,6 +55,7 @@ pub struct Z;
 impl Axis for X {
     type Other = Z;
     const LETTER: char = 'x';
+    const SLIDE: Slide = Slide::X;
     const PITCH: Search = Search::PitchX;
     const OFFSET_KEY: &'static [&'static str] = &["dx"];
 
@@ -77,6 +82,7 @@ impl Axis for X {
 impl Axis for Z {
     type Other = X;
     const LETTER: char = 'z';
+    const SLIDE: Slide = Slide::Z;
     const PITCH: Search = Search::PitchZ;
     const OFFSET_KEY: &'static [&'static str] = &["dz"];
 

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
@@ -75,6 +76,10 @@ impl<A: Axis> ParametricEffect for Backlash<A> {
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
         Backlash { b: linear[0], axis: A::default() }
+    }
+
+    fn control_table(&self) -> TablePart {
+        TablePart::Backlash(A::SLIDE, self.b)
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

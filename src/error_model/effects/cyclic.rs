@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
@@ -85,6 +86,11 @@ impl<A: Axis> ParametricEffect for Cyclic<A> {
     fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self {
         let (amp, phase) = amplitude_phase(linear[0], linear[1]);
         Cyclic { amp, pitch: searched, phase, axis: A::default() }
+    }
+
+    fn control_table(&self) -> TablePart {
+        // A function of the axis' own position alone, as the screw's lead error it is.
+        TablePart::Pitch(A::SLIDE)
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

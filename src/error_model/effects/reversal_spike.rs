@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
@@ -78,6 +79,10 @@ impl<A: Axis> ParametricEffect for ReversalSpike<A> {
 
     fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self {
         ReversalSpike { h: linear[0], decay_mm: searched, axis: A::default() }
+    }
+
+    fn control_table(&self) -> TablePart {
+        TablePart::Program("a function of the travel since the axis reversed")
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

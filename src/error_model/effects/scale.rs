@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
@@ -70,6 +71,11 @@ impl<A: Axis> ParametricEffect for Scale<A> {
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
         Scale { ppm: linear[0], axis: A::default() }
+    }
+
+    fn control_table(&self) -> TablePart {
+        // A function of the axis' own position alone.
+        TablePart::Pitch(A::SLIDE)
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

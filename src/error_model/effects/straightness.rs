@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Key, Range, Reason};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
@@ -93,6 +94,11 @@ impl<A: Axis> ParametricEffect for Straightness<A> {
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
         Straightness { coeffs: vec![linear[0]], axis: A::default() }
+    }
+
+    fn control_table(&self) -> TablePart {
+        // A function of the other slide's position.
+        TablePart::CrossAxis(A::SLIDE)
     }
 
     fn out_of_bounds(&self, extents: &Extents) -> Option<String> {

@@ -12,6 +12,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
@@ -85,6 +86,10 @@ impl<A: Axis> ParametricEffect for ToolOffset<A> {
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
         ToolOffset { d: linear[0], axis: A::default() }
+    }
+
+    fn control_table(&self) -> TablePart {
+        TablePart::Program("a constant of the tool, which its offset holds, not an axis table")
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
