@@ -109,7 +109,7 @@ enum Command {
     Report(report::ReportArgs),
     /// Find where a measurement and the model disagree, name the missing effect, add it.
     Diagnose(diagnose::DiagnoseArgs),
-    /// Make a measurement (ball bar trace or CMM profile) from a truth model, with noise.
+    /// Make a measurement (ball bar trace, CMM profile or interferometer table) from a truth model, with noise.
     Synth(diagnose::SynthArgs),
     /// Fit the first-order warm-up and cool-down curves of a thermal log.
     FitThermal(thermal::FitThermalArgs),

@@ -53,10 +53,10 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
     });
     let mut reports = Vec::new();
     let mut worst = 0;
-    for result in results {
+    for (result, file) in results.iter().zip(&args.files) {
         streams::err(&result.messages);
         worst = worst.max(result.code);
-        reports.extend(result.report);
+        reports.push(result.report_entry(&super::common::display_name(file)));
     }
     if args.report.is_some() {
         write_report(args, &reports)?;

@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 
 use turnpass::diagnose::measured::MeasuredError;
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
-use turnpass::diagnostic::{Diagnostic, DiagnosticKind, SHOWN_DIAGNOSTICS};
+use turnpass::diagnostic::{Diagnostic, DiagnosticKind, SHOWN_DIAGNOSTICS, Severity};
 use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
@@ -524,6 +524,19 @@ pub fn ready<'b>(
     command: &str,
     warnings: &mut Vec<u8>,
 ) -> Result<Ready<'b>, Vec<u8>> {
+    ready_or_diagnostics(name, bytes, resolved, run, command, warnings).map_err(|(text, _)| text)
+}
+
+/// [`ready`], with the diagnostics of a program that is not ready beside their rendering
+/// (for a report that lists why).
+pub fn ready_or_diagnostics<'b>(
+    name: &str,
+    bytes: &'b [u8],
+    resolved: &Resolved,
+    run: &RunArgs,
+    command: &str,
+    warnings: &mut Vec<u8>,
+) -> Result<Ready<'b>, (Vec<u8>, Vec<Diagnostic>)> {
     let analysed = analyse(bytes, &pipeline_settings(resolved, run, true));
     ready_or_why(name, bytes, command, analysed, warnings)
 }
@@ -535,11 +548,12 @@ fn ready_or_why<'b>(
     command: &str,
     analysed: Analysed<'b>,
     warnings: &mut Vec<u8>,
-) -> Result<Ready<'b>, Vec<u8>> {
+) -> Result<Ready<'b>, (Vec<u8>, Vec<Diagnostic>)> {
     if let Some(warning) = analysed.parsed.program.nothing_to_run() {
-        let mut text = rendered(name, bytes, &[warning]);
+        let mut text = rendered(name, bytes, std::slice::from_ref(&warning));
         text.extend_from_slice(format!("{command}: {name} holds no block to run; nothing is written\n").as_bytes());
-        return Err(text);
+        // The refusal is the error here: the diagnostic itself is a warning.
+        return Err((text, vec![Diagnostic { severity: Severity::Error, ..warning }]));
     }
     if matches!(analysed.lowering, Lowering::NotLowered) {
         let mut text = rendered(name, bytes, &analysed.diagnostics);
@@ -550,7 +564,7 @@ fn ready_or_why<'b>(
             )
             .as_bytes(),
         );
-        return Err(text);
+        return Err((text, analysed.diagnostics));
     }
     let text = rendered(name, bytes, &analysed.diagnostics);
     match analysed.ready() {
@@ -558,10 +572,10 @@ fn ready_or_why<'b>(
             warnings.extend_from_slice(&text);
             Ok(ready)
         }
-        Err(_) => {
+        Err(analysed) => {
             let mut text = text;
             text.extend_from_slice(format!("{command}: {name} has errors; nothing is written\n").as_bytes());
-            Err(text)
+            Err((text, analysed.diagnostics))
         }
     }
 }

@@ -205,7 +205,7 @@ impl Collector {
         self.last = Some(m.sample_index);
         self.seen += 1;
         self.along_mm += m.sample.covers_mm;
-        if (self.seen - 1) % self.stride != 0 {
+        if !(self.seen - 1).is_multiple_of(self.stride) {
             return;
         }
         self.points.push(PathPoint {

@@ -12,7 +12,7 @@ use turnpass::diagnose::model_text::effect_table;
 use turnpass::diagnose::report::value_with_sigma;
 use turnpass::diagnose::thermal_fit::{FirstOrderFit, Split, fit_log_split};
 use turnpass::error_model::Effect;
-use turnpass::error_model::effects::{ThermalX, ThermalZ};
+use turnpass::error_model::effects::{ThermalX, ThermalZ, X, Z};
 
 use super::common::{
     AxisArg, CliError, Format, data_invalid, display_name, model_problems, model_spec, read_data_text, read_input_text,
@@ -81,8 +81,8 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     let (Some(path), Some(axis)) = (&args.write_model, args.axis) else { return Ok(ExitCode::SUCCESS) };
     let (amp, tau_min) = (fit.warm.gain, fit.warm.tau_min);
     let effect = match axis {
-        AxisArg::X => Effect::ThermalX(ThermalX { amp, tau_min }),
-        AxisArg::Z => Effect::ThermalZ(ThermalZ { amp, tau_min }),
+        AxisArg::X => Effect::ThermalX(ThermalX { amp, tau_min, axis: X }),
+        AxisArg::Z => Effect::ThermalZ(ThermalZ { amp, tau_min, axis: Z }),
     };
     let original = match read_input_text(path) {
         Ok(text) => text,

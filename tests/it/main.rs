@@ -32,6 +32,7 @@ mod parse;
 mod plots;
 mod print;
 mod provenance;
+mod readme;
 mod report_browser;
 mod robustness;
 mod roundtrip;

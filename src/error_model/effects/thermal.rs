@@ -1,5 +1,6 @@
-//! `thermal_x {amp, tau_min}`: first-order warm-up growth in X (eq. 5.1 of the thesis),
-//! `dx = amp · (1 − e^(−t/τ))`, t in minutes since the machine started.
+//! `thermal_x {amp, tau_min}`, `thermal_z {amp, tau_min}`: first-order warm-up growth along
+//! the named axis (eq. 5.1 of the thesis), `amp · (1 − e^(−t/τ))`, t in minutes since the
+//! machine started.
 
 use serde::{Deserialize, Serialize};
 
@@ -9,16 +10,25 @@ use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyo
 use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
+use super::axis::{Axis, X, Z};
 use super::{ParametricEffect, warm_up};
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ThermalX {
+pub struct Thermal<A: Axis> {
     /// Growth at thermal equilibrium, mm.
     pub amp: f64,
     /// Time constant, minutes.
     pub tau_min: f64,
+    /// The axis that grows.
+    #[serde(skip)]
+    pub axis: A,
 }
+
+/// `thermal_x`.
+pub type ThermalX = Thermal<X>;
+/// `thermal_z`.
+pub type ThermalZ = Thermal<Z>;
 
 /// Plausible `amp`: within ±1 mm (spindles and slides grow by micrometres to tens of
 /// micrometres).
@@ -27,14 +37,14 @@ pub const AMP: Range = Range::magnitude(1.0, "mm");
 /// minutes to hours; the sampling step follows `amp/τ²`, so τ must be more than nothing.
 pub const TAU_MIN: Range = Range::closed(0.1, 100_000.0, "min");
 
-impl ThermalX {
+impl<A: Axis> Thermal<A> {
     /// The growth at `t_min` minutes since the machine started.
     pub fn growth(&self, t_min: f64) -> Xz {
-        Xz::new(warm_up(self.amp, self.tau_min, t_min), 0.0)
+        A::along(warm_up(self.amp, self.tau_min, t_min))
     }
 }
 
-impl ParametricEffect for ThermalX {
+impl<A: Axis> ParametricEffect for Thermal<A> {
     fn check(&self) -> Result<(), Invalid> {
         AMP.check_key("amp", self.amp)?;
         TAU_MIN.check_key("tau_min", self.tau_min)
@@ -73,7 +83,7 @@ impl ParametricEffect for ThermalX {
     }
 
     fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self {
-        ThermalX { amp: linear[0], tau_min: searched }
+        Thermal { amp: linear[0], tau_min: searched, axis: A::default() }
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

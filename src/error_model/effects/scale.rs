@@ -1,5 +1,6 @@
-//! `scale_z {ppm}`: the Z slide travels `ppm` parts per million too far (ball-screw lead
-//! error, screw growth): `dz = z · ppm · 1e-6`, zero at the work zero.
+//! `scale_x {ppm}`, `scale_z {ppm}`: the named slide travels `ppm` parts per million too
+//! far (ball-screw lead error, screw growth): `dx = x · ppm · 1e-6`, zero on the spindle
+//! axis; `dz = z · ppm · 1e-6`, zero at the work zero.
 
 use serde::{Deserialize, Serialize};
 
@@ -10,25 +11,34 @@ use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
 
 use super::ParametricEffect;
+use super::axis::{Axis, X, Z};
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ScaleZ {
+pub struct Scale<A: Axis> {
     /// Parts per million of the travel from zero.
     pub ppm: f64,
+    /// The slide that travels too far.
+    #[serde(skip)]
+    pub axis: A,
 }
+
+/// `scale_x`.
+pub type ScaleX = Scale<X>;
+/// `scale_z`.
+pub type ScaleZ = Scale<Z>;
 
 /// Plausible `ppm`: within ±10,000 (1 % of the travel). Ball-screw lead errors and
 /// thermal growth of the screw are tens to hundreds of ppm.
 pub const PPM: Range = Range::magnitude(10_000.0, "ppm");
 
-impl ParametricEffect for ScaleZ {
+impl<A: Axis> ParametricEffect for Scale<A> {
     fn check(&self) -> Result<(), Invalid> {
         PPM.check_key("ppm", self.ppm)
     }
 
     fn displacement(&self, s: &Sample) -> Xz {
-        Xz::new(0.0, s.at.z * self.ppm * 1e-6)
+        A::along(A::of(s.at) * self.ppm * 1e-6)
     }
 
     fn play(&self) -> Xz {
@@ -55,11 +65,11 @@ impl ParametricEffect for ScaleZ {
     const FIT: Fit = Fit::linear(&["ppm"], Search::None);
 
     fn probe(extents: &Extents) -> f64 {
-        MICRON / extents.z * 1e6
+        MICRON / A::extent(extents) * 1e6
     }
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
-        ScaleZ { ppm: linear[0] }
+        Scale { ppm: linear[0], axis: A::default() }
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

@@ -1,26 +1,37 @@
-//! `cyclic_z {amp, pitch, phase}`: the periodic lead error of the Z ball screw,
-//! `dz = amp · sin(2πz/pitch + phase)` (the thesis machine's screw has an 11.94 mm pitch).
+//! `cyclic_x {amp, pitch, phase}`, `cyclic_z {amp, pitch, phase}`: the periodic lead error
+//! of the named slide's ball screw, `dx = amp · sin(2πx/pitch + phase)` (or `dz` of `z`),
+//! locked to the slide position (not to time). The thesis machine's Z screw has an
+//! 11.94 mm pitch.
 
 use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
-use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
+use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
+use super::axis::{Axis, X, Z};
 use super::{ParametricEffect, amplitude_phase};
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct CyclicZ {
+pub struct Cyclic<A: Axis> {
     /// Amplitude, mm.
     pub amp: f64,
     /// Period, mm of travel (the screw's lead).
     pub pitch: f64,
     /// Phase at zero, radians.
     pub phase: f64,
+    /// The slide whose screw has the error.
+    #[serde(skip)]
+    pub axis: A,
 }
+
+/// `cyclic_x`.
+pub type CyclicX = Cyclic<X>;
+/// `cyclic_z`.
+pub type CyclicZ = Cyclic<Z>;
 
 /// Plausible `amp`: within ±1 mm (screws' cyclic errors are micrometres).
 pub const AMP: Range = Range::magnitude(1.0, "mm");
@@ -31,7 +42,7 @@ pub const PITCH: Range = crate::machine::SCREW_PITCH;
 /// misread value, and its sine loses its precision).
 pub const PHASE: Range = Range::magnitude(100.0, "rad");
 
-impl ParametricEffect for CyclicZ {
+impl<A: Axis> ParametricEffect for Cyclic<A> {
     fn check(&self) -> Result<(), Invalid> {
         AMP.check_key("amp", self.amp)?;
         PITCH.check_key("pitch", self.pitch)?;
@@ -39,7 +50,7 @@ impl ParametricEffect for CyclicZ {
     }
 
     fn displacement(&self, s: &Sample) -> Xz {
-        Xz::new(0.0, self.amp * (std::f64::consts::TAU * s.at.z / self.pitch + self.phase).sin())
+        A::along(self.amp * (std::f64::consts::TAU * A::of(s.at) / self.pitch + self.phase).sin())
     }
 
     fn play(&self) -> Xz {
@@ -65,7 +76,7 @@ impl ParametricEffect for CyclicZ {
         ArcTerms::gradient(self.amp * std::f64::consts::TAU / self.pitch)
     }
 
-    const FIT: Fit = Fit::linear(&["sin", "cos"], Search::PitchZ);
+    const FIT: Fit = Fit::linear(&["sin", "cos"], A::PITCH);
 
     fn probe(_extents: &Extents) -> f64 {
         MICRON
@@ -73,7 +84,7 @@ impl ParametricEffect for CyclicZ {
 
     fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self {
         let (amp, phase) = amplitude_phase(linear[0], linear[1]);
-        CyclicZ { amp, pitch: searched, phase }
+        Cyclic { amp, pitch: searched, phase, axis: A::default() }
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

@@ -1,6 +1,7 @@
-//! `reversal_spike_x {h, decay_mm}`: after X reverses, friction holds the slide back for
-//! a moment: `dx = h · d · e^(−s/decay)` with d the new direction of X and s the X travel
-//! since the reversal. One-sided, decaying with travel, at the X reversal points.
+//! `reversal_spike_x {h, decay_mm}`, `reversal_spike_z {h, decay_mm}`: after the named
+//! axis reverses, friction holds the slide back for a moment: `h · d · e^(−s/decay)` along
+//! it, with d the new direction of the axis and s its travel since the reversal.
+//! One-sided, decaying with travel, at the axis' reversal points.
 
 use serde::{Deserialize, Serialize};
 
@@ -10,16 +11,25 @@ use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyo
 use crate::error_model::spacing::{ArcTerms, Spacing, step_for_curvature};
 use crate::toolpath::Xz;
 
+use super::axis::{Axis, X, Z};
 use super::{ParametricEffect, spike};
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct ReversalSpikeX {
+pub struct ReversalSpike<A: Axis> {
     /// Height at the reversal, mm.
     pub h: f64,
     /// Travel over which it falls by e, mm.
     pub decay_mm: f64,
+    /// The axis that reverses.
+    #[serde(skip)]
+    pub axis: A,
 }
+
+/// `reversal_spike_x`.
+pub type ReversalSpikeX = ReversalSpike<X>;
+/// `reversal_spike_z`.
+pub type ReversalSpikeZ = ReversalSpike<Z>;
 
 /// Plausible `h`: within ±1 mm (friction spikes are micrometres).
 pub const H: Range = Range::magnitude(1.0, "mm");
@@ -27,14 +37,14 @@ pub const H: Range = Range::magnitude(1.0, "mm");
 /// `h/decay²`, so the decay must be more than nothing.
 pub const DECAY_MM: Range = Range::closed(0.001, 1_000.0, "mm");
 
-impl ParametricEffect for ReversalSpikeX {
+impl<A: Axis> ParametricEffect for ReversalSpike<A> {
     fn check(&self) -> Result<(), Invalid> {
         H.check_key("h", self.h)?;
         DECAY_MM.check_key("decay_mm", self.decay_mm)
     }
 
     fn displacement(&self, s: &Sample) -> Xz {
-        Xz::new(spike(self.h, self.decay_mm, s.direction.x, s.since_reversal.x), 0.0)
+        A::along(spike(self.h, self.decay_mm, A::sign(s.direction), A::of(s.since_reversal)))
     }
 
     fn play(&self) -> Xz {
@@ -67,7 +77,7 @@ impl ParametricEffect for ReversalSpikeX {
     }
 
     fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self {
-        ReversalSpikeX { h: linear[0], decay_mm: searched }
+        ReversalSpike { h: linear[0], decay_mm: searched, axis: A::default() }
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

@@ -1,8 +1,9 @@
-//! `backlash_x {b}`: lost motion (play) `b` in the X drive. The slide lags its command by
-//! half the play, against the direction it was last pushed in: `dx = −b/2` after a move in
-//! +X, `+b/2` after a move in −X. The offset persists while the axis rests and changes by
-//! `b` across a reversal, during which the slide stands still (the tracker's play
-//! operator, `state.rs`). A negative `b` is an over-compensating control.
+//! `backlash_x {b}`, `backlash_z {b}`: lost motion (play) `b` in the drive of the named
+//! slide. The slide lags its command by half the play, against the direction it was last
+//! pushed in: `−b/2` along the axis after a move in +, `+b/2` after a move in −. The offset
+//! persists while the axis rests and changes by `b` across a reversal, during which the
+//! slide stands still (the tracker's play operator, `state.rs`). A negative `b` is an
+//! over-compensating control.
 
 use serde::{Deserialize, Serialize};
 
@@ -12,30 +13,39 @@ use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
 
+use super::axis::{Axis, X, Z};
 use super::{ParametricEffect, backlash_share as share};
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct BacklashX {
+pub struct Backlash<A: Axis> {
     /// Total play, mm (radius for X).
     pub b: f64,
+    /// The slide whose drive has the play.
+    #[serde(skip)]
+    pub axis: A,
 }
+
+/// `backlash_x`.
+pub type BacklashX = Backlash<X>;
+/// `backlash_z`.
+pub type BacklashZ = Backlash<Z>;
 
 /// Plausible `b`: within ±1 mm. Drives have micrometres to tenths of a millimetre of
 /// play; a negative `b` is an over-compensating control.
 pub const B: Range = Range::magnitude(1.0, "mm");
 
-impl ParametricEffect for BacklashX {
+impl<A: Axis> ParametricEffect for Backlash<A> {
     fn check(&self) -> Result<(), Invalid> {
         B.check_key("b", self.b)
     }
 
     fn displacement(&self, s: &Sample) -> Xz {
-        Xz::new(share(self.b, s.play.x, s.backlash.x, s.direction.x), 0.0)
+        A::along(share(self.b, A::of(s.play), A::of(s.backlash), A::sign(s.direction)))
     }
 
     fn play(&self) -> Xz {
-        if self.b > 0.0 { Xz::new(self.b, 0.0) } else { Xz::new(0.0, 0.0) }
+        if self.b > 0.0 { A::along(self.b) } else { Xz::new(0.0, 0.0) }
     }
 
     const OF_TIME: bool = false;
@@ -64,7 +74,7 @@ impl ParametricEffect for BacklashX {
     }
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
-        BacklashX { b: linear[0] }
+        Backlash { b: linear[0], axis: A::default() }
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {
