@@ -49,19 +49,23 @@ pub struct Diagnostic {
     pub span: Span,
     /// Secondary labels, such as the blocks on the other side of a dialect conflict.
     pub related: Vec<(Span, String)>,
+    /// How many more times the run found the same problem at the same place (a block in a
+    /// loop, a subprogram called again): one diagnostic per block, with a count, so that
+    /// neither output nor memory follows the number of repeats (`merge_repeats`).
+    pub repeats: u32,
 }
 
 impl Diagnostic {
     pub fn error(kind: DiagnosticKind, span: Span) -> Diagnostic {
-        Diagnostic { severity: Severity::Error, kind, span, related: Vec::new() }
+        Diagnostic { severity: Severity::Error, kind, span, related: Vec::new(), repeats: 0 }
     }
 
     pub fn warning(kind: DiagnosticKind, span: Span) -> Diagnostic {
-        Diagnostic { severity: Severity::Warning, kind, span, related: Vec::new() }
+        Diagnostic { severity: Severity::Warning, kind, span, related: Vec::new(), repeats: 0 }
     }
 
     pub fn note(kind: DiagnosticKind, span: Span) -> Diagnostic {
-        Diagnostic { severity: Severity::Note, kind, span, related: Vec::new() }
+        Diagnostic { severity: Severity::Note, kind, span, related: Vec::new(), repeats: 0 }
     }
 
     pub fn with_related(mut self, span: Span, label: impl Into<String>) -> Diagnostic {
@@ -93,6 +97,40 @@ impl Diagnostic {
     pub fn hint(&self) -> Option<String> {
         self.kind.hint()
     }
+
+    /// What a renderer says of the repeats (`repeats`), when there are any.
+    pub fn repeats_note(&self) -> Option<String> {
+        let n = self.repeats;
+        (n > 0).then(|| {
+            format!(
+                "found {n} more time{} as the run comes back to this place; shown once",
+                if n == 1 { "" } else { "s" }
+            )
+        })
+    }
+}
+
+/// Merge the diagnostics of `list` that repeat one before them (the same kind at the same
+/// span, with the same severity) into that one, counting them in its `repeats`: the first
+/// keeps its words and place, the rest go. Passes that run a block many times (the
+/// interpreter in a loop, the toolpath's checks of every move) merge as they go, so that a
+/// loop that leaves the travel four million times is one diagnostic, not four million.
+pub fn merge_repeats(list: &mut Vec<Diagnostic>) {
+    type Key = (Span, std::mem::Discriminant<DiagnosticKind>, Severity);
+    let mut first: std::collections::HashMap<Key, usize> = std::collections::HashMap::new();
+    let mut kept = 0;
+    for k in 0..list.len() {
+        let key = (list[k].span, std::mem::discriminant(&list[k].kind), list[k].severity);
+        match first.get(&key) {
+            Some(&at) => list[at].repeats = list[at].repeats.saturating_add(list[k].repeats.saturating_add(1)),
+            None => {
+                first.insert(key, kept);
+                list.swap(kept, k);
+                kept += 1;
+            }
+        }
+    }
+    list.truncate(kept);
 }
 
 /// A word the control counts (least increments, milliseconds, a sequence number, a count)
@@ -493,6 +531,13 @@ pub enum DiagnosticKind {
         samples: usize,
         max: usize,
     },
+    /// `plot`: the program's path needs more samples in all than a plot holds
+    /// (`error_model::sampling::MAX_SAMPLES_PER_MOVE`, the most compensation holds at once),
+    /// on the block whose move passes the bound.
+    PathNeedsTooManySamples {
+        samples: usize,
+        max: usize,
+    },
     /// The program runs off the end of its text, which ends in the middle of a block, with
     /// no program end: the text was cut (`Lowered::cut_off`).
     ProgramCut,
@@ -508,6 +553,18 @@ pub enum DiagnosticKind {
     /// `compensate`: the program it would write cuts with other feed or spindle words than
     /// the original (a defect of turnpass, never of the program).
     CompensationChangesFeed,
+    /// `compensate`: the program it would write loses this word of the original (an M code,
+    /// T, comment, block-delete slash, program name or spindle speed), or has it out of
+    /// order, as `verify` checks (a defect of turnpass, never of the program).
+    CompensationLosesWord {
+        word: String,
+    },
+    /// `compensate`: an M code or T word inside a profile that only a roughing cycle reads
+    /// (no finishing cycle runs it): the control never runs it, and with the cycle written
+    /// out no block is left to keep it on.
+    ProfileWordNotRun {
+        word: String,
+    },
     /// `compensate`: the program it would write does not read back cleanly: a defect of
     /// turnpass, or (`nose_has_no_room`) a contour the corrections moved so that the tool
     /// nose no longer fits it under nose-radius compensation.

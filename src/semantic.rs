@@ -207,6 +207,14 @@ pub struct Expansion {
     /// The program's frame at the call (units may change along the program).
     pub frame: Frame,
     pub consumed: Vec<usize>,
+    /// The consumed first block of a two-block cycle (`G71 U R`): the control runs it where
+    /// it is, so its M codes and T words stay there when the call is written out.
+    pub setup: Option<usize>,
+    /// The profile blocks the cycle runs as the program's own blocks (a finishing pass:
+    /// `G70`, a LAP finishing cycle), each with the first move of the toolpath it makes
+    /// there: their M codes, T words and comments go on the block written for that move,
+    /// where the control runs them.
+    pub traced: Vec<(usize, usize)>,
     pub moves: std::ops::Range<usize>,
     /// The modal words in force before the call, and after it: the expanded blocks must
     /// leave the latter behind so that the blocks after them run as before.

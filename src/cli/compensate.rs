@@ -28,8 +28,8 @@ use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::Span;
 
 use super::common::{
-    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
-    pipeline_settings, read_program, ready_or_diagnostics, rendered, required_error_model, write_output,
+    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, is_stdout, model_name, model_sha256,
+    model_source, pipeline_settings, read_program, ready_or_diagnostics, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -257,7 +257,7 @@ impl FileResult {
 /// does not share standard output with the program.
 pub fn check_arguments(args: &CompensateArgs) -> Result<(), CliError> {
     args.fit.check()?;
-    let program_to_stdout = args.out_dir.is_none() && args.output.as_deref().is_none_or(|o| o == Path::new("-"));
+    let program_to_stdout = args.out_dir.is_none() && args.output.as_deref().is_none_or(is_stdout);
     if args.report.is_some() && args.report_file.is_none() && program_to_stdout {
         return Err(CliError::Usage(
             "the compensated program goes to standard output, so the report needs a file of its own: give \
@@ -298,13 +298,10 @@ pub fn write_report(args: &CompensateArgs, report: &impl serde::Serialize) -> Re
 /// Refuse, unless `force`, to write `output` when it is one of the `inputs` (the same file,
 /// through a link or by another path): the nominal program would be lost.
 pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) -> Result<(), CliError> {
-    if force || output == Path::new("-") {
+    if force || is_stdout(output) {
         return Ok(());
     }
-    let input = inputs.iter().filter(|input| *input != Path::new("-")).find(|input| {
-        // An output that does not exist yet is no input.
-        same_file::is_same_file(input, output).unwrap_or(false)
-    });
+    let input = inputs.iter().filter(|input| *input != Path::new("-")).find(|input| same_file(input, output));
     match input {
         Some(input) => Err(CliError::Usage(format!(
             "compensate would write {} over the program {}, which it reads; write the compensated program \
@@ -313,6 +310,22 @@ pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) 
             input.display()
         ))),
         None => Ok(()),
+    }
+}
+
+/// Whether `a` and `b` name one file (through a link or by another path): the same device
+/// and inode, as `stat` finds them. Nothing is opened: a FIFO opened to compare it would
+/// wait for a writer. A path that does not exist (an output not made yet) is no input.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        #[cfg(unix)]
+        (Ok(a), Ok(b)) => {
+            use std::os::unix::fs::MetadataExt;
+            (a.dev(), a.ino()) == (b.dev(), b.ino())
+        }
+        #[cfg(not(unix))]
+        (Ok(_), Ok(_)) => std::fs::canonicalize(a).ok().is_some_and(|a| std::fs::canonicalize(b).ok() == Some(a)),
+        _ => false,
     }
 }
 
@@ -351,6 +364,11 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         strategy: args.fit.strategy,
         step_mm: args.fit.step,
         start_min: model.start_min,
+        // Where the text alone would read as the other dialect, the comment names it.
+        dialect: printer::mark::dialect_to_name(
+            &program.parsed.program,
+            &printer::print(&program.parsed.program, &outcome.edits),
+        ),
     };
     provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
     let written = printer::print(&program.parsed.program, &outcome.edits);
@@ -364,8 +382,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let original = program.valid();
     let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
     let mut unreadable = FileResult::failed(1, Vec::new());
-    let refusal = match verify::check_written(original, &written, &reading, &tools, &model) {
-        Ok((figures, feed_change)) => {
+    let refusal = match verify::check_written((&program.parsed.program, original), &written, &reading, &tools, &model) {
+        Ok((figures, feed_change, lost)) => {
             let totals = &mut outcome.report.totals;
             (totals.before, totals.after) = (figures.before, figures.after);
             totals.improvement_percent = figures.improvement_percent;
@@ -376,9 +394,15 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 let kind = DiagnosticKind::CompensationFailsCheck { deviation_mm, bound_mm: bound, tolerance_mm };
                 Diagnostic::error(kind, span)
             });
-            too_far.or_else(|| {
-                feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
-            })
+            too_far
+                .or_else(|| {
+                    feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
+                })
+                .or_else(|| {
+                    lost.map(|word| {
+                        Diagnostic::error(DiagnosticKind::CompensationLosesWord { word: word.text }, word.span)
+                    })
+                })
         }
         Err(problems) => {
             // Where in the text about to be written it does not read.

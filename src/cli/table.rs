@@ -18,7 +18,7 @@ use turnpass::semantic::Machine;
 use turnpass::toolpath::Xz;
 
 use super::common::{
-    CliError, check_output, display_name, folder_of, load_error_model, read_input, rendered, write_atomically,
+    CliError, check_output, display_name, folder_of, load_error_model, read_input, rendered, write_file,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -161,9 +161,9 @@ pub fn run(args: TableArgs) -> Result<ExitCode, CliError> {
     let dir = folder_of(&args.output);
     // The files beside first: the main file, which names them, is whole only once they are.
     for (name, text) in &written.beside {
-        write_atomically(&dir.join(name), text.as_bytes())?;
+        write_file(&dir.join(name), text.as_bytes())?;
     }
-    write_atomically(&args.output, written.main.as_bytes())?;
+    write_file(&args.output, written.main.as_bytes())?;
     let mut summary = table.summary(&model, &loaded);
     summary.push_str(&format!("table: wrote {}", args.output.display()));
     for (name, _) in &written.beside {

@@ -734,6 +734,28 @@ impl DiagnosticKind {
                 label: "this cut".into(),
                 hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
             },
+            CompensationLosesWord { word } => Words {
+                code: "compensation-loses-word",
+                message: format!(
+                    "the compensated program would lose `{word}` here, or have it out of order, where verify checks \
+                     every such word; no compensated program is written"
+                )
+                .into(),
+                label: "this word".into(),
+                hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
+            },
+            ProfileWordNotRun { word } => Words {
+                code: "profile-word-not-run",
+                message: format!(
+                    "`{word}` is inside a profile that only a roughing cycle reads, so the control never runs it; \
+                     the cycle must be written out to compensate it, and no written block can keep the word"
+                )
+                .into(),
+                label: "never run".into(),
+                hint: Some("move it out of the profile (before the cycle), or finish the profile with a G70 that runs \
+                            it"
+                .into()),
+            },
             CompensationUnreadable { problem, nose_has_no_room } => Words {
                 code: "compensation-unreadable",
                 message: format!(
@@ -760,13 +782,25 @@ impl DiagnosticKind {
             MoveNeedsTooManySamples { samples, max } => Words {
                 code: "move-needs-too-many-samples",
                 message: format!(
-                    "compensating this move takes {samples} samples at the spacing the model needs; turnpass samples \
+                    "sampling this move takes {samples} samples at the spacing the model needs; turnpass samples \
                      a move at most {max} times"
                 )
                 .into(),
                 label: "this move".into(),
                 hint: Some("check the move's length and feed (a coordinate in the wrong unit or without its decimal \
                             point), or split it into shorter moves"
+                    .into()),
+            },
+            PathNeedsTooManySamples { samples, max } => Words {
+                code: "path-needs-too-many-samples",
+                message: format!(
+                    "plotting this program takes {samples} samples of its path at the spacing the model needs; a plot \
+                     holds at most {max}"
+                )
+                .into(),
+                label: "the samples pass the bound at this block".into(),
+                hint: Some("plot a shorter program (its finishing passes), or check the moves' lengths and the \
+                            cycles' depths of cut (a depth of one increment makes passes by the thousand)"
                     .into()),
             },
             ProgramCut => Words {

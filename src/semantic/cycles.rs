@@ -204,6 +204,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     interp.report_zero_feed(block.span);
     interp.emitter.context = Context { source: block.span, cycle: Span::SYNTHETIC };
     let consumed = std::mem::take(&mut interp.cycle_consumed);
+    let setup = interp.cycle_setup.take();
+    let traced = std::mem::take(&mut interp.cycle_traced);
     let before = match interp.cycle_memory.setup_block {
         Some((setup, before)) if setup < index && consumed.contains(&setup) => before,
         _ => interp.modal_before_block,
@@ -215,6 +217,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             block: index,
             frame: interp.modal.frame,
             consumed,
+            setup,
+            traced,
             moves: first_move..interp.emitter.moves.len(),
             before,
             after: crate::semantic::ModalAfter::of(&interp.modal),
@@ -260,6 +264,13 @@ impl Interpreter<'_, '_> {
     /// Blocks the cycle being run consumes: `expand` deletes them with its call.
     pub(super) fn consume(&mut self, blocks: impl IntoIterator<Item = usize>) {
         self.cycle_consumed.extend(blocks);
+    }
+
+    /// The first block of a two-block cycle, consumed: it ran where it is
+    /// (`Expansion::setup`).
+    pub(super) fn consume_setup(&mut self, block: Option<usize>) {
+        self.cycle_consumed.extend(block);
+        self.cycle_setup = block.or(self.cycle_setup);
     }
 
     /// The name of the schema form a command matched (`depth`, `profile`, `one_block`, …).

@@ -442,7 +442,8 @@ impl Interpreter<'_, '_> {
                     word: cause.written(),
                     readings: Box::new(reading(cause)),
                 };
-                self.diagnostics[index] = Diagnostic { severity: Severity::Error, kind, span: cause.span, related };
+                self.diagnostics[index] =
+                    Diagnostic { severity: Severity::Error, kind, span: cause.span, related, repeats: error.repeats };
                 explained.insert(cause.span.start);
             }
             for c in implausible.iter().filter(|c| !explained.contains(&c.span.start)) {

@@ -111,8 +111,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let after_q = interp.after_profile(command, index);
     // The profile and the first block are part of the cycle: `expand` deletes them.
     interp.consume(profile.blocks.clone());
+    interp.consume_skipped(index, *profile.blocks.start(), after_q);
     if !one_block {
-        interp.consume(interp.cycle_memory.depth_block);
+        interp.consume_setup(interp.cycle_memory.depth_block);
     }
     if profile.segments.is_empty() {
         interp.error(DiagnosticKind::EmptyProfile, span);
@@ -566,6 +567,19 @@ impl Interpreter<'_, '_> {
     /// Where the program continues after the cycle of block `index` that names a profile:
     /// after its Q block, when that lies ahead (a profile written before its cycle was
     /// already read past; jumping back to it would run the cycle again and again).
+    /// Consume the blocks that the jump after the profile (`after_q`, from [`after_profile`])
+    /// passes over between the call `index` and the profile's first block `first`: the
+    /// control never runs them, so `expand` deletes them with the call. Left in place, they
+    /// would run in the expanded program, whose call is plain moves (a second `G71 P Q`
+    /// sharing the first one's depth block, which the expansion deletes, then has none).
+    ///
+    /// [`after_profile`]: Self::after_profile
+    pub(in crate::semantic) fn consume_skipped(&mut self, index: usize, first: usize, after_q: Flow) {
+        if let Flow::Jump(next) = after_q {
+            self.consume(index + 1..first.min(next));
+        }
+    }
+
     pub(in crate::semantic) fn after_profile(&mut self, command: &Command, index: usize) -> Flow {
         let Some(q) = self.param(command, Role::ProfileEnd) else { return Flow::Next };
         let key = (q.round() as i64).to_string();
