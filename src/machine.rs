@@ -155,7 +155,7 @@ pub const NOSE_RADIUS: Range = Range::closed(0.0, 50.0, "");
 /// Plausible minor cutting edge angles: from 0 to 90 degrees.
 pub const MINOR_EDGE_ANGLE: Range = Range::closed(0.0, 90.0, "degrees");
 /// Plausible ball screw leads, mm (and their fractions, for the harmonics of a cyclic
-/// error: `error_model::effects::cyclic_x`).
+/// error: `error_model::effects::cyclic`).
 pub const SCREW_PITCH: Range = Range::closed(0.1, 1_000.0, "mm");
 
 /// A machine model file. Only `[machine]` is read here; the error-model tables that later

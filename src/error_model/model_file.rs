@@ -233,7 +233,7 @@ impl ModelSpec {
                 Axis::Z => all.z = table,
             }
         }
-        let model = ErrorModel { tables, effects: self.effect.clone(), start_min: self.model.start_min };
+        let model = ErrorModel { tables, effects: self.effect.clone(), start_min: self.model.start_min, control: None };
         Ok((model, warnings))
     }
 
