@@ -9,7 +9,7 @@
 //! that what reads has as many points as rows it read.
 //!
 //! ```sh
-//! RUSTC_BOOTSTRAP=1 cargo fuzz run readers fuzz/corpus/readers -- -max_total_time=1800 -max_len=65536 -jobs=1
+//! RUSTC_BOOTSTRAP=1 cargo fuzz run readers fuzz/corpus/readers -- -max_total_time=1800 -rss_limit_mb=2048 -max_len=65536 -jobs=1
 //! ```
 
 #![no_main]
