@@ -50,8 +50,8 @@ pub struct TableArgs {
     #[arg(long, value_name = "LO,HI", allow_hyphen_values = true, value_parser = pair)]
     pub z: Option<(f64, f64)>,
     /// Where the machine coordinates' zero lies in the program's coordinates, machine units,
-    /// X as programmed (default: the model's [machine] home, where a Fanuc's reference
-    /// position is; else the program's zero).
+    /// X as programmed (default: the model's [machine] home, the reference position; else the
+    /// program's zero).
     #[arg(long, value_name = "X,Z", allow_hyphen_values = true, value_parser = pair)]
     pub zero: Option<(f64, f64)>,
     /// The spacing of the table's nodes, mm (default: as wide as follows the model within the
@@ -175,7 +175,7 @@ pub fn run(args: TableArgs) -> Result<ExitCode, CliError> {
 }
 
 /// The model position of the machine's zero when none is given: the reference position
-/// (`[machine] home`, the point a Fanuc's machine coordinates count from), else the
+/// (`[machine] home`, from which a Fanuc numbers its compensation points), else the
 /// program's zero.
 fn default_zero(settings: &MachineSettings) -> Xz {
     Machine::from_settings(settings).home.unwrap_or(Xz::new(0.0, 0.0))
