@@ -17,6 +17,7 @@
 //! second-order product the thesis' matrix has.
 
 pub mod control;
+pub mod counted_twice;
 pub mod effects;
 pub(crate) mod fitting;
 pub(crate) mod htm;

@@ -13,12 +13,13 @@ use turnpass::control_table::{self, Control, Header, Loaded, Options, ReadError}
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::control::TablePart;
+use turnpass::error_model::model_file::ModelSpec;
 use turnpass::machine::{MachineSettings, Units};
 use turnpass::semantic::Machine;
 use turnpass::toolpath::Xz;
 
 use super::common::{
-    CliError, check_output, display_name, folder_of, load_error_model, read_input, rendered, write_atomically,
+    CliError, check_output, display_name, folder_of, load_error_model, read_input, rendered, write_file,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -94,6 +95,24 @@ pub fn run(args: TableArgs) -> Result<ExitCode, CliError> {
     let text =
         std::fs::read_to_string(path).map_err(|source| CliError::Read { path: path.display().to_string(), source })?;
     let model = load_error_model(path, &text)?;
+    let (spec, _) = super::common::model_spec(path, &text)?;
+    // Only a slide table whose linear column the control's table would carry matters.
+    let has_linear = |axis: char| {
+        model.tables.as_ref().is_some_and(|t| if axis == 'X' { t.x.linear.is_some() } else { t.z.linear.is_some() })
+    };
+    let taken: Vec<Taken> = how_taken(&spec).into_iter().filter(|t| has_linear(t.axis)).collect();
+    if let Some(on) = taken.iter().find(|t| t.on) {
+        return Err(CliError::Usage(format!(
+            "table: the {} slide table of {} was taken with the control's {} compensation on: it holds what the \
+             control's loaded table leaves, not the slide's error, and a table made of it would replace the loaded \
+             one with that remainder; take the table with the compensation off ({} = \"off\") for the control's \
+             table, or compensate the programs with this model as it is",
+            on.axis,
+            path.display(),
+            on.what,
+            on.key
+        )));
+    }
     let settings = turnpass::machine::ModelFile::from_toml(&text).map(|f| f.machine).unwrap_or_default();
     let machine = Machine::from_settings(&settings);
     let units = match args.units {
@@ -161,10 +180,17 @@ pub fn run(args: TableArgs) -> Result<ExitCode, CliError> {
     let dir = folder_of(&args.output);
     // The files beside first: the main file, which names them, is whole only once they are.
     for (name, text) in &written.beside {
-        write_atomically(&dir.join(name), text.as_bytes())?;
+        write_file(&dir.join(name), text.as_bytes())?;
     }
-    write_atomically(&args.output, written.main.as_bytes())?;
+    write_file(&args.output, written.main.as_bytes())?;
     let mut summary = table.summary(&model, &loaded);
+    for unsaid in taken.iter().filter(|t| !t.said) {
+        summary.push_str(&format!(
+            "table: note: the {} slide table does not say whether it was taken with the control's compensation \
+             off, as a table for the control's own is ({} = \"off\" in its [[axis_table]])\n",
+            unsaid.axis, unsaid.key
+        ));
+    }
     summary.push_str(&format!("table: wrote {}", args.output.display()));
     for (name, _) in &written.beside {
         summary.push_str(&format!(", {}", dir.join(name).display()));
@@ -172,6 +198,42 @@ pub fn run(args: TableArgs) -> Result<ExitCode, CliError> {
     summary.push('\n');
     streams::err(summary);
     Ok(ExitCode::SUCCESS)
+}
+
+/// How a slide table with a linear column was taken: with the control's pitch-error or
+/// backlash compensation on (`on`, naming which), and whether it says so at all.
+struct Taken {
+    axis: char,
+    on: bool,
+    said: bool,
+    what: &'static str,
+    key: &'static str,
+}
+
+/// How each slide table of `spec` was taken (`[[axis_table]]`'s `pitch_error_compensation`
+/// and `backlash_compensation`): a control's table is made from a table taken with them off,
+/// the slide's whole error.
+fn how_taken(spec: &ModelSpec) -> Vec<Taken> {
+    use turnpass::error_model::model_file::Switch;
+    let mut out = Vec::new();
+    for table in &spec.axis_table {
+        let axis = table.axis.letter();
+        let (pitch, backlash) = (table.pitch_error_compensation, table.backlash_compensation);
+        if pitch == Some(Switch::On) {
+            out.push(Taken { axis, on: true, said: true, what: "pitch-error", key: "pitch_error_compensation" });
+        } else if backlash == Some(Switch::On) {
+            out.push(Taken { axis, on: true, said: true, what: "backlash", key: "backlash_compensation" });
+        } else {
+            out.push(Taken {
+                axis,
+                on: false,
+                said: pitch.is_some(),
+                what: "pitch-error",
+                key: "pitch_error_compensation",
+            });
+        }
+    }
+    out
 }
 
 /// The model position of the machine's zero when none is given: the reference position

@@ -15,12 +15,12 @@ use turnpass::compensation::verify::{
 use turnpass::error_model::ErrorModel;
 use turnpass::pipeline::Ready;
 use turnpass::semantic::nose_radius::ToolTable;
-use turnpass::source::LineIndex;
+use turnpass::source::{LineIndex, escape_controls};
 use turnpass::syntax::Program;
 
 use super::common::{
     CliError, Format, ReadArgs, Resolved, RunArgs, display_name, model_sha256, model_source, read_program,
-    read_program_bytes, ready, required_error_model, write_output,
+    read_program_bytes, ready, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -92,18 +92,25 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     let progress = Progress::new(streams::stderr_is_terminal(), [&original, &compensated]);
     let checked = checked(
         (&original, &compensated),
-        (&original_name, &compensated_name, &original_bytes),
+        (&original_name, &compensated_name, &original_bytes, &compensated_bytes),
         &resolved,
         &mut model,
         &args.checks,
         Watch::Progress(&|side, measured| progress.measured(side, measured)),
-    )?;
+    );
+    let checked = match checked {
+        Ok(checked) => checked,
+        Err(error) => {
+            streams::err(messages);
+            return Err(error);
+        }
+    };
     progress.finish();
     if let Some((_, summary)) = &checked.table {
         messages.extend_from_slice(format!("verify: {summary}\n").as_bytes());
     }
     for warning in &checked.warnings {
-        messages.extend_from_slice(format!("verify: warning: {warning}\n").as_bytes());
+        messages.extend_from_slice(format!("verify: warning: {}\n", escape_controls(warning)).as_bytes());
     }
     streams::err(messages);
     let Checked { provenance, start, model_sha256, figures, words, limit, violations, table, .. } = checked;
@@ -156,7 +163,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             text.push_str(&format!("  {:<16} {:>10} {:>10} {:>10} {:>8}\n", "", "max", "RMS", "SSQ", "points"));
             text.push_str(&row("as programmed", &figures.before));
             text.push_str(&row("compensated", &figures.after));
-            text.push_str(&format!("  RMS improvement: {:.1} %\n", figures.improvement_percent));
+            let improvement = turnpass::compensation::deviation::improvement_text(figures.improvement_percent);
+            text.push_str(&format!("  RMS improvement: {improvement}\n"));
             text.push_str(&format!(
                 "words: {} M, T, S, comment and block-delete words kept in order; feed and spindle words of every \
                  cut checked\n",
@@ -168,7 +176,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             if violations.is_empty() {
                 text.push_str("ok\n");
             }
-            text
+            // It quotes the programs' words and names: shown escaped.
+            turnpass::source::escape_controls(&text).into_owned()
         }
     };
     write_output(None, text.as_bytes())?;
@@ -239,10 +248,12 @@ impl Progress {
 }
 
 /// `verify`'s checks of `compensated` against `original` on `model` (its start minute set
-/// as they decide), every measured point also handed out as `watch` says.
+/// as they decide), every measured point also handed out as `watch` says. A move that needs
+/// more samples than a measure holds (`verify::oversampled`, the bound `compensate` and
+/// `plot` refuse by) is refused before any is measured: exit 1, its diagnostics rendered.
 pub fn checked(
     (original, compensated): (&Ready<'_>, &Ready<'_>),
-    (original_name, compensated_name, original_bytes): (&str, &str, &[u8]),
+    (original_name, compensated_name, original_bytes, compensated_bytes): (&str, &str, &[u8], &[u8]),
     resolved: &Resolved,
     model: &mut ErrorModel,
     checks: &CheckArgs,
@@ -317,6 +328,16 @@ pub fn checked(
     let machine = &original.machine;
     let (original_path, compensated_path) = (original.valid(), compensated.valid());
     let sampling = verify::sampling(model, machine.increment * machine.scale(), &[&original_path, &compensated_path]);
+    let mut refusal = Vec::new();
+    for (name, bytes, path) in
+        [(original_name, original_bytes, original_path), (compensated_name, compensated_bytes, compensated_path)]
+    {
+        refusal.extend(rendered(name, bytes, &verify::oversampled(&path, &sampling)));
+    }
+    if !refusal.is_empty() {
+        refusal.extend_from_slice(b"a move needs more samples than a measure holds: nothing is measured or written\n");
+        return Err(CliError::Rejected(refusal));
+    }
     let figures = match watch {
         Watch::Each(each) => deviation_each(original_path, compensated_path, &tools, model, &sampling, each),
         Watch::Progress(watch) => deviation_watched(original_path, compensated_path, &tools, model, &sampling, watch),

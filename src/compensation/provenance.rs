@@ -25,10 +25,10 @@
 use sha2::{Digest, Sha256};
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::dialect::tables::SemicolonRule;
-use crate::printer::{Edits, NewBlock, NewWord};
+use crate::dialect::Dialect;
+use crate::printer::Edits;
 use crate::source::Span;
-use crate::syntax::{CommentKind, Program, Statement, WordKind};
+use crate::syntax::{Program, WordKind};
 
 use super::fit::Strategy;
 
@@ -67,6 +67,10 @@ pub struct Provenance {
     pub step_mm: Option<f64>,
     /// Minutes since the machine started when the program starts (thermal effects).
     pub start_min: f64,
+    /// The dialect the program was read and written in, where its text alone would read as
+    /// the other (`printer::mark`); none otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dialect: Option<Dialect>,
 }
 
 fn strategy_name<S: serde::Serializer>(strategy: &Strategy, serializer: S) -> Result<S::Ok, S::Error> {
@@ -104,6 +108,9 @@ impl Provenance {
             text.push_str(&format!(", STEP {} MM", short(step, 6)));
         }
         text.push_str(&format!(", START {} MIN", short(self.start_min, 3)));
+        if let Some(dialect) = self.dialect {
+            text.push_str(&format!(", {}", crate::printer::mark::dialect_field(dialect)));
+        }
         text
     }
 
@@ -135,8 +142,8 @@ impl Provenance {
 
 /// The fields after `TURNPASS version COMPENSATED`.
 fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Result<Provenance, String> {
-    let (mut model, mut sha256, mut tolerance, mut strategy, mut step, mut start) =
-        (None, None, None, None, None, None);
+    let (mut model, mut sha256, mut tolerance, mut strategy, mut step, mut start, mut dialect) =
+        (None, None, None, None, None, None, None);
     let mut table = None;
     for field in fields {
         let (key, value) = field.split_once(' ').map_or((field, ""), |(k, v)| (k, v.trim()));
@@ -171,6 +178,13 @@ fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Re
             }
             "STEP" => step = Some(number(" MM")?),
             "START" => start = Some(number(" MIN")?),
+            "DIALECT" => {
+                dialect = Some(match value.to_ascii_uppercase().as_str() {
+                    "OSP" => Dialect::Osp,
+                    "FANUC" => Dialect::Fanuc,
+                    _ => return Err(format!("DIALECT `{value}` is not OSP or FANUC")),
+                })
+            }
             // A field a later version writes.
             _ => {}
         }
@@ -185,6 +199,7 @@ fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Re
         strategy: strategy.ok_or_else(|| missing("STRATEGY"))?,
         step_mm: step,
         start_min: start.ok_or_else(|| missing("START"))?,
+        dialect,
     })
 }
 
@@ -232,19 +247,10 @@ pub struct Mark {
     pub provenance: Result<Provenance, String>,
 }
 
-/// The text of comment `text` (as written, delimiters included) between its delimiters.
-fn comment_body(text: &[u8]) -> &[u8] {
-    match text {
-        [b'(', body @ .., b')'] => body,
-        [b'(', body @ ..] | [b';', body @ ..] => body,
-        _ => text,
-    }
-}
-
 /// Read comment `text` (as written, delimiters included): `None` when it is not a
 /// provenance comment.
 fn read(text: &[u8]) -> Option<Result<Provenance, String>> {
-    let body = comment_body(text).trim_ascii_start();
+    let body = crate::printer::mark::comment_body(text).trim_ascii_start();
     // Only a comment that starts with the tool's name is read further.
     if !body.get(..8).is_some_and(|head| head.eq_ignore_ascii_case(b"turnpass")) {
         return None;
@@ -274,65 +280,8 @@ pub fn refusal(program: &Program<'_>) -> Option<Diagnostic> {
     Some(Diagnostic::error(DiagnosticKind::AlreadyCompensated { model }, mark.span))
 }
 
-/// Record in `edits` the provenance comment block, after the program's name line: the first
-/// `O…` block among the blocks before the first statement (tape marks, the OSP header, blank
-/// and comment lines), else the last tape mark or header among them, else at the top. The
-/// name block is left as it is, its comment (`O1234 (SHAFT)`) included.
+/// Record in `edits` the provenance comment block, after the program's name line
+/// (`printer::mark::insert_after_name`), in the program's comment style.
 pub fn insert(program: &Program<'_>, edits: &mut Edits, provenance: &Provenance) {
-    let blocks = program.blocks();
-    if blocks.is_empty() {
-        return;
-    }
-    let leading = blocks.iter().take_while(|b| {
-        matches!(b.statement, Statement::Empty | Statement::TapeMark | Statement::Header | Statement::ProgramName)
-    });
-    let mut anchor = None;
-    for (index, block) in leading.enumerate() {
-        match block.statement {
-            Statement::ProgramName => {
-                anchor = Some(index);
-                break;
-            }
-            Statement::TapeMark | Statement::Header => anchor = Some(index),
-            _ => {}
-        }
-    }
-    let style = CommentStyle::of(program);
-    let text = provenance.text(!style.lower_case);
-    let word = if style.semicolon { NewWord::LineComment(format!(" {text}")) } else { NewWord::Comment(text) };
-    let block = NewBlock::new(vec![word]);
-    match anchor {
-        Some(index) => edits.insert_after(index, block),
-        None => edits.insert_before(0, block),
-    }
-}
-
-/// How a program writes its comments.
-struct CommentStyle {
-    /// `; …` to the end of the line rather than `( … )`: the program writes only such
-    /// comments, and its dialect reads them as comments.
-    semicolon: bool,
-    /// Some comment uses lower-case letters.
-    lower_case: bool,
-}
-
-impl CommentStyle {
-    fn of(program: &Program<'_>) -> CommentStyle {
-        let (mut paren, mut semicolon, mut lower_case) = (false, false, false);
-        for block in program.blocks() {
-            for word in program.words_of(block) {
-                let WordKind::Comment(kind) = word.kind else { continue };
-                let body = comment_body(program.text(word.span));
-                match kind {
-                    CommentKind::Paren => paren = true,
-                    // A bare `;` ending a block is an end of block, not a comment style.
-                    CommentKind::Semicolon if !body.trim_ascii().is_empty() => semicolon = true,
-                    CommentKind::Semicolon => {}
-                }
-                lower_case |= body.iter().any(u8::is_ascii_lowercase);
-            }
-        }
-        let reads_semicolon = program.config().tables().lexical.semicolon == SemicolonRule::EndOfBlock;
-        CommentStyle { semicolon: semicolon && !paren && reads_semicolon, lower_case }
-    }
+    crate::printer::mark::insert_after_name(program, edits, |upper| provenance.text(upper));
 }

@@ -46,10 +46,11 @@ fn merged(template: &str, snippet: &str) -> String {
     for line in snippet.lines().map(str::trim) {
         if line.starts_with('[') {
             sections.push((line.to_string(), Vec::new()));
-        } else if !line.is_empty() && !line.starts_with('#') {
-            if let Some(last) = sections.last_mut() {
-                last.1.push(line.to_string());
-            }
+        } else if !line.is_empty()
+            && !line.starts_with('#')
+            && let Some(last) = sections.last_mut()
+        {
+            last.1.push(line.to_string());
         }
     }
     let mut out = String::new();

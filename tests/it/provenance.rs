@@ -25,6 +25,7 @@ fn provenance() -> Provenance {
         strategy: Strategy::Densify,
         step_mm: Some(0.254),
         start_min: 200.0,
+        dialect: None,
     }
 }
 
