@@ -83,6 +83,8 @@ fuzz_target!(|data: &[u8]| {
         fit: FitOptions { strategy, tolerance_mm: machine.increment * machine.scale() / 2.0, step_mm: None },
         max_shift_mm: 0.1,
         expand_cycles: false,
+        profiles_in_place: true,
+        threads_in_place: true,
         paths: false,
         block_reports: true,
     };

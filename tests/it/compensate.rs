@@ -132,8 +132,15 @@ impl Compensated {
     }
 
     fn run(&self, ready: &Ready<'_>, model: &ErrorModel, fit: FitOptions) -> Outcome {
-        let options =
-            CompensateOptions { fit, max_shift_mm: 0.1, expand_cycles: false, paths: false, block_reports: true };
+        let options = CompensateOptions {
+            fit,
+            max_shift_mm: 0.1,
+            expand_cycles: false,
+            profiles_in_place: true,
+            threads_in_place: true,
+            paths: false,
+            block_reports: true,
+        };
         compensate_program(ready.program(), &ready.lowered, &ready.machine, model, &options)
     }
 

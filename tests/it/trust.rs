@@ -413,6 +413,8 @@ mod generated {
             })
             .unwrap();
         let (runs, refused) = (runs.get(), refused.get());
+        // The share, for `--nocapture`: the figure the notes on compensation quote.
+        eprintln!("compensate refused {refused} of {runs} generated jobs");
         assert!(refused * 4 <= runs, "compensate refused {refused} of {runs} generated jobs");
     }
 }
