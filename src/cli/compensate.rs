@@ -276,7 +276,7 @@ impl Trial<'_, '_> {
         if self.program.valid().moves.len() > Self::MAX_MOVES {
             return None;
         }
-        let original = (&self.program.parsed.program, self.program.valid());
+        let original = (&self.program.parsed.program, &self.program.lowered.expansions[..], self.program.valid());
         Strategy::ALL
             .into_iter()
             .filter(|&strategy| strategy != fit.strategy && (fit.step.is_none() || strategy == Strategy::Densify))
@@ -540,47 +540,52 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         let original = program.valid();
         let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
         let mut unreadable = FileResult::failed(1, Vec::new());
-        let refusal =
-            match verify::check_written((&program.parsed.program, original), &written, &reading, &tools, &model) {
-                Ok((figures, feed_change, lost)) => {
-                    let totals = &mut outcome.report.totals;
-                    (totals.before, totals.after) = (figures.before, figures.after);
-                    totals.improvement_percent = figures.improvement_percent;
-                    let too_far = figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
-                        let span = original.moves.get(worst.original_move).map_or(Span::new(0, 0), |m| m.source);
-                        let tolerance_mm = args.fit.options(&program.machine).fit.tolerance_mm;
-                        let deviation_mm = worst.deviation_mm;
-                        let kind = DiagnosticKind::CompensationFailsCheck {
-                            deviation_mm,
-                            bound_mm: bound,
-                            tolerance_mm,
-                            other_strategy: None,
-                        };
-                        Diagnostic::error(kind, span)
-                    });
-                    too_far
-                        .or_else(|| {
-                            feed_change
-                                .map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
+        let refusal = match verify::check_written(
+            (&program.parsed.program, &program.lowered.expansions, original),
+            &written,
+            &reading,
+            &tools,
+            &model,
+        ) {
+            Ok((figures, feed_change, lost)) => {
+                let totals = &mut outcome.report.totals;
+                (totals.before, totals.after) = (figures.before, figures.after);
+                totals.improvement_percent = figures.improvement_percent;
+                let too_far = figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
+                    let span = original.moves.get(worst.original_move).map_or(Span::new(0, 0), |m| m.source);
+                    let tolerance_mm = args.fit.options(&program.machine).fit.tolerance_mm;
+                    let deviation_mm = worst.deviation_mm;
+                    let kind = DiagnosticKind::CompensationFailsCheck {
+                        deviation_mm,
+                        bound_mm: bound,
+                        tolerance_mm,
+                        other_strategy: None,
+                    };
+                    Diagnostic::error(kind, span)
+                });
+                too_far
+                    .or_else(|| {
+                        feed_change
+                            .map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
+                    })
+                    .or_else(|| {
+                        lost.map(|word| {
+                            Diagnostic::error(DiagnosticKind::CompensationLosesWord { word: word.text }, word.span)
                         })
-                        .or_else(|| {
-                            lost.map(|word| {
-                                Diagnostic::error(DiagnosticKind::CompensationLosesWord { word: word.text }, word.span)
-                            })
-                        })
-                }
-                Err(problems) => {
-                    // Where in the text about to be written it does not read.
-                    unreadable.messages = rendered(&format!("{name} (compensated)"), &written, &problems);
-                    unreadable.add_errors(&format!("{name} (compensated)"), &written, &problems);
-                    let problem = problems.first().map_or_else(String::new, Diagnostic::message);
-                    // The original read cleanly, so a nose that does not fit is the moved contour's.
-                    let nose_has_no_room = !problems.is_empty()
-                        && problems.iter().all(|d| matches!(d.kind, DiagnosticKind::NoseDoesNotFit { .. }));
-                    let kind = DiagnosticKind::CompensationUnreadable { problem, nose_has_no_room };
-                    Some(Diagnostic::error(kind, Span::new(0, 0)))
-                }
-            };
+                    })
+            }
+            Err(problems) => {
+                // Where in the text about to be written it does not read.
+                unreadable.messages = rendered(&format!("{name} (compensated)"), &written, &problems);
+                unreadable.add_errors(&format!("{name} (compensated)"), &written, &problems);
+                let problem = problems.first().map_or_else(String::new, Diagnostic::message);
+                // The original read cleanly, so a nose that does not fit is the moved contour's.
+                let nose_has_no_room = !problems.is_empty()
+                    && problems.iter().all(|d| matches!(d.kind, DiagnosticKind::NoseDoesNotFit { .. }));
+                let kind = DiagnosticKind::CompensationUnreadable { problem, nose_has_no_room };
+                Some(Diagnostic::error(kind, Span::new(0, 0)))
+            }
+        };
         if let Some(diagnostic) = refusal {
             if let Some(next) = in_place.without(&outcome) {
                 // The roughing of a cycle kept with its profile edited, and the infeed passes of
