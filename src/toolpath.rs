@@ -28,6 +28,8 @@ use crate::source::Span;
 
 pub use crate::geometry::Xz;
 
+pub mod compact;
+
 /// What a move does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Motion {

@@ -329,14 +329,21 @@ impl<'m> Predictor<'m> {
 
     /// `predict` of the samples' nominal points (the program as written).
     pub fn predict_nominal(&mut self, samples: &[PathSample], time_terms: &[Xz], out: &mut Vec<Xz>) {
-        let (model, count) = (self.model, self.time_count);
-        out.extend(samples.iter().enumerate().map(|(index, s)| {
-            let step = self.tracker.step(s.nominal);
-            let state = self.tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
-            let actual = model.actual_timed(&state, terms_of(time_terms, count, index));
-            self.tracker.take(&step, s.tool, s.cutting);
-            actual
-        }));
+        let count = self.time_count;
+        out.extend(
+            samples.iter().enumerate().map(|(index, s)| self.predict_one(s, terms_of(time_terms, count, index))),
+        );
+    }
+
+    /// `predict_nominal` of one sample, its terms of time `time_terms` (empty: the model
+    /// evaluates them).
+    pub fn predict_one(&mut self, s: &PathSample, time_terms: &[Xz]) -> Xz {
+        let model = self.model;
+        let step = self.tracker.step(s.nominal);
+        let state = self.tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
+        let actual = model.actual_timed(&state, time_terms);
+        self.tracker.take(&step, s.tool, s.cutting);
+        actual
     }
 }
 

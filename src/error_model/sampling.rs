@@ -17,6 +17,7 @@ use crate::error_model::spacing::{ArcTerms, TABLE_STEP_MM};
 use crate::error_model::{ErrorModel, Sample, SampleInputs, Spacing, Tracker};
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
+use crate::toolpath::compact::CompactPath;
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
 
 /// Samples along cutting moves at most this far apart where an axis table or a measure
@@ -46,6 +47,73 @@ pub struct PathSample {
     pub normal: Xz,
     /// The tool's tip direction (nose radii).
     pub tip: Xz,
+}
+
+/// What sampling reads of one move: its geometry, times and feed, whether it cuts, its
+/// tool's tip and which side of it the part is on. `MoveView::of` takes it from a move of a
+/// `Toolpath`, and `toolpath::compact`'s moves give the same fields, so both are sampled by
+/// the one code path below and give the same samples to the bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MoveView {
+    pub start: Xz,
+    pub end: Xz,
+    /// The arc's centre (NaN for a move that is no arc).
+    pub centre: Xz,
+    pub motion: Motion,
+    pub compensation: Compensation,
+    pub cutting: bool,
+    /// Feed, mm/min.
+    pub feed: f64,
+    pub t_start: f64,
+    pub t_end: f64,
+    pub tool: u16,
+    /// The tool's tip direction (`tip_vector`).
+    pub tip: Xz,
+}
+
+impl MoveView {
+    /// Move `index` of `toolpath` with its tool's tip from `tools`; none for a move that
+    /// does not exist.
+    pub fn of(toolpath: &Toolpath, index: usize, tools: &ToolTable) -> Option<MoveView> {
+        let m = toolpath.moves.get(index)?;
+        Some(MoveView {
+            start: toolpath.start_of(index),
+            end: m.end,
+            centre: m.centre,
+            motion: m.motion,
+            compensation: m.compensation,
+            cutting: m.cutting,
+            feed: m.feed,
+            t_start: m.t_start,
+            t_end: m.t_end,
+            tool: m.tool,
+            tip: tip_vector(tools.lookup(m.tool, m.offset).1),
+        })
+    }
+
+    /// Move `index` of the compact `path`: the same fields as `of` takes from the move it
+    /// was made from.
+    pub fn of_compact(path: &CompactPath, index: usize) -> Option<MoveView> {
+        let m = path.moves().get(index)?;
+        Some(MoveView {
+            start: path.start_of(index),
+            end: m.end,
+            centre: path.centre(index),
+            motion: m.motion,
+            compensation: m.compensation,
+            cutting: m.cutting,
+            feed: m.feed,
+            t_start: m.t_start,
+            t_end: m.t_end,
+            tool: m.tool,
+            tip: tip_vector(m.tip),
+        })
+    }
+
+    /// How long the move takes, minutes.
+    fn minutes(&self) -> f64 {
+        (self.t_end - self.t_start) / 60.0
+    }
 }
 
 /// How far apart the samples of a cutting move may be.
@@ -166,14 +234,27 @@ pub fn sample_move(
     angles: Option<(f64, f64)>,
     out: &mut Vec<PathSample>,
 ) {
-    let Some(m) = toolpath.moves.get(index) else { return };
-    let start = toolpath.start_of(index);
-    let (_, tip) = tools.lookup(m.tool, m.offset);
-    let tip = tip_vector(tip);
+    let Some(view) = MoveView::of(toolpath, index, tools) else { return };
+    let approach = if view.motion == Motion::Rapid { thread_approach(toolpath, index, sampling.play) } else { None };
+    sample_view(&view, index, sampling, angles, approach, out);
+}
+
+/// Sample the move `m`, move `index` of its path, as `sampling` allows, appending to `out`;
+/// `angles` as for [`sample_move`]. A rapid that approaches a thread (`approach`, the
+/// directions of [`thread_approach`]) is also sampled one play short of its end.
+pub fn sample_view(
+    m: &MoveView,
+    index: usize,
+    sampling: &Sampling,
+    angles: Option<(f64, f64)>,
+    approach: Option<Xz>,
+    out: &mut Vec<PathSample>,
+) {
+    let (start, tip) = (m.start, m.tip);
     match m.motion {
         Motion::Dwell => {}
         Motion::Rapid => {
-            if let Some(approach) = thread_approach(toolpath, index, sampling.play) {
+            if let Some(approach) = approach {
                 let past = Xz::new(m.end.x - approach.x * sampling.play.x, m.end.z - approach.z * sampling.play.z);
                 out.push(sample(index, m, 1.0, past, Xz::new(0.0, 0.0), false, tip));
             }
@@ -184,10 +265,10 @@ pub fn sample_move(
         }
         Motion::Feed => {
             let length = start.distance(m.end);
-            let n = sampling.spacing.steps(length, minutes(m));
+            let n = sampling.spacing.steps(length, m.minutes());
             let direction = unit(Xz::new(m.end.x - start.x, m.end.z - start.z));
             let velocity = Xz::new(direction.x * m.feed, direction.z * m.feed);
-            let normal = if m.cutting { surface_normal(direction, m, tip) } else { Xz::new(0.0, 0.0) };
+            let normal = if m.cutting { normal_of(direction, m.compensation, tip) } else { Xz::new(0.0, 0.0) };
             if m.cutting && sampling.arc.steps_at_corners() {
                 out.push(PathSample { velocity, ..sample(index, m, 0.0, start, normal, true, tip) });
             }
@@ -209,11 +290,11 @@ pub fn sample_move(
             if m.cutting && sampling.arc.steps_at_corners() {
                 let tangent = Xz::new(sign * a0.cos(), -sign * a0.sin());
                 let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
-                let normal = surface_normal(tangent, m, tip);
+                let normal = normal_of(tangent, m.compensation, tip);
                 out.push(PathSample { velocity, ..sample(index, m, 0.0, start, normal, true, tip) });
             }
             let by_angle = sampling.arc_steps(radius, sweep, m.feed);
-            let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2);
+            let n = sampling.spacing.steps(radius * sweep, m.minutes()).max(by_angle).max(2);
             let mut previous = 0.0;
             for t in arc_fractions(n, a0, sweep, ccw) {
                 let covers_mm = radius * sweep * (t - previous);
@@ -223,7 +304,7 @@ pub fn sample_move(
                 // The tangent of increasing angle is (cos, −sin) in (x, z).
                 let tangent = Xz::new(sign * angle.cos(), -sign * angle.sin());
                 let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
-                let normal = if m.cutting { surface_normal(tangent, m, tip) } else { Xz::new(0.0, 0.0) };
+                let normal = if m.cutting { normal_of(tangent, m.compensation, tip) } else { Xz::new(0.0, 0.0) };
                 out.push(PathSample { velocity, covers_mm, ..sample(index, m, t, p, normal, m.cutting, tip) });
             }
         }
@@ -268,14 +349,12 @@ fn thread_approach(toolpath: &Toolpath, index: usize, play: Xz) -> Option<Xz> {
     (approach.x != 0.0 || approach.z != 0.0).then_some(approach)
 }
 
-/// The sample of move `index` of `toolpath` at `t` (0 at its start, 1 at its end), standing
-/// for no length of path (`covers_mm` is the caller's): where a measure needs a point
-/// between the samples `sample_move` makes (the knee of a backlash take-up). None for a
-/// dwell, a rapid or a move that does not exist.
-pub fn sample_at(toolpath: &Toolpath, index: usize, tools: &ToolTable, t: f64) -> Option<PathSample> {
-    let m = toolpath.moves.get(index)?;
-    let start = toolpath.start_of(index);
-    let tip = tip_vector(tools.lookup(m.tool, m.offset).1);
+/// The sample of the move `m`, move `index` of its path, at `t` (0 at its start, 1 at its
+/// end), standing for no length of path (`covers_mm` is the caller's): where a measure needs
+/// a point between the samples `sample_view` makes (the knee of a backlash take-up). None
+/// for a dwell or a rapid. `angles` as for [`sample_move`].
+pub fn sample_view_at(m: &MoveView, index: usize, angles: Option<(f64, f64)>, t: f64) -> Option<PathSample> {
+    let (start, tip) = (m.start, m.tip);
     let t = t.clamp(0.0, 1.0);
     let (p, tangent) = match m.motion {
         Motion::Dwell | Motion::Rapid => return None,
@@ -285,8 +364,10 @@ pub fn sample_at(toolpath: &Toolpath, index: usize, tools: &ToolTable, t: f64) -
         ),
         Motion::Cw | Motion::Ccw => {
             let ccw = m.motion == Motion::Ccw;
-            let a0 = geometry::angle(start, m.centre);
-            let sweep = geometry::sweep_from(a0, start, m.end, m.centre, ccw);
+            let (a0, sweep) = angles.unwrap_or_else(|| {
+                let a0 = geometry::angle(start, m.centre);
+                (a0, geometry::sweep_from(a0, start, m.end, m.centre, ccw))
+            });
             let sign = if ccw { 1.0 } else { -1.0 };
             let angle = a0 + sign * sweep * t;
             let p = geometry::on_circle(m.centre, start.distance(m.centre), angle);
@@ -294,7 +375,7 @@ pub fn sample_at(toolpath: &Toolpath, index: usize, tools: &ToolTable, t: f64) -
         }
     };
     let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
-    let normal = if m.cutting { surface_normal(tangent, m, tip) } else { Xz::new(0.0, 0.0) };
+    let normal = if m.cutting { normal_of(tangent, m.compensation, tip) } else { Xz::new(0.0, 0.0) };
     Some(PathSample { velocity, ..sample(index, m, t, p, normal, m.cutting, tip) })
 }
 
@@ -325,7 +406,7 @@ fn arc_fractions(n: usize, a0: f64, sweep: f64, ccw: bool) -> impl Iterator<Item
     })
 }
 
-fn sample(index: usize, m: &Move, t: f64, p: Xz, normal: Xz, cutting: bool, tip: Xz) -> PathSample {
+fn sample(index: usize, m: &MoveView, t: f64, p: Xz, normal: Xz, cutting: bool, tip: Xz) -> PathSample {
     PathSample {
         move_index: index,
         param: t,
@@ -350,14 +431,20 @@ fn unit(v: Xz) -> Xz {
     if length > 0.0 { Xz::new(v.x / length, v.z / length) } else { Xz::new(0.0, 0.0) }
 }
 
+/// The normal of the cut surface of move `m`, pointing to the tool: `normal_of` its
+/// compensation.
+pub(crate) fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
+    normal_of(direction, m.compensation, tip)
+}
+
 /// The normal of the cut surface, pointing to the tool: to the left of the direction of
 /// travel under `G41`, to the right under `G42`; without compensation, the side the tool's
 /// body is on (opposite its tip direction); none for a tool with no tip direction.
-pub(crate) fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
+fn normal_of(direction: Xz, compensation: Compensation, tip: Xz) -> Xz {
     // The left normal of (x, z) travel, seen with Z to the right and X up.
     let left = Xz::new(direction.z, -direction.x);
     let right = Xz::new(-left.x, -left.z);
-    match m.compensation {
+    match compensation {
         Compensation::Left => left,
         Compensation::Right => right,
         Compensation::Off => {
