@@ -204,7 +204,7 @@ impl<'a> LocalPath<'a> {
             let index = match m.is_arc().then(|| ArcConstants::of(start, m)) {
                 Some(arc) => {
                     let radius = arc.radius;
-                    reach = Xz::new(reach.x.max(m.centre.x.abs() + radius), reach.z.max(m.centre.z.abs() + radius));
+                    reach = crate::toolpath::reach_past(reach, m.end, Some((m.centre, radius)));
                     // `move_length`, with the sweep the constants hold.
                     total += arc.radius * arc.sector.total();
                     let index = u32::try_from(arcs.len()).unwrap_or(NO_ARC);
@@ -214,7 +214,7 @@ impl<'a> LocalPath<'a> {
                     index
                 }
                 None => {
-                    reach = Xz::new(reach.x.max(m.end.x.abs()), reach.z.max(m.end.z.abs()));
+                    reach = crate::toolpath::reach_past(reach, m.end, None);
                     total += move_length(start, m);
                     NO_ARC
                 }

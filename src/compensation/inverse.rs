@@ -321,6 +321,14 @@ impl<'m> Predictor<'m> {
         }));
     }
 
+    /// Where the slides lag the command now, on the axes with play (`Sample::backlash`): the
+    /// part of the last point's displacement the play operator gives.
+    pub fn backlash(&self) -> Xz {
+        let (slide, at, play) = (self.tracker.slide(), self.tracker.position(), self.tracker.play());
+        let lag = |play: f64, slide: f64, at: f64| if play > 0.0 { slide - at } else { 0.0 };
+        Xz::new(lag(play.x, slide.x, at.x), lag(play.z, slide.z, at.z))
+    }
+
     /// The backlash the tracker would take up on the way to `to` (`Tracker::take_up`), and
     /// where each slide is now.
     pub fn take_up(&self, to: Xz) -> (Xz, Xz) {

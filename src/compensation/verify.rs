@@ -27,10 +27,11 @@ use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::compact::CompactPath;
 use crate::toolpath::{Toolpath, ValidToolpath, Xz};
 
-use super::deviation::{Figures, LocalPath, Tally};
+use super::deviation::{Figures, Tally};
 use super::fit::{FitOptions, Strategy};
 use crate::error_model::sampling::{PathSample, Sampling};
 
+mod arc_steps;
 mod follow;
 mod knee;
 mod measure;
@@ -67,16 +68,14 @@ pub struct Worst {
 /// tables, arcs at least every eighth of a turn and at their extremes), for the chord
 /// between samples to follow the model within a tenth of half the least increment
 /// (`increment_mm`), whatever tolerance the program was compensated to, over the farthest
-/// any of `toolpaths` goes from the origin (`LocalPath::reach`).
+/// any of `toolpaths` goes from the origin (`Toolpath::reach`). An arc's steps are then cut
+/// as finely as the distance measured along it needs (`verify/arc_steps.rs`).
 pub fn sampling(model: &ErrorModel, increment_mm: f64, toolpaths: &[&Toolpath]) -> Sampling {
-    let reach = toolpaths
-        .iter()
-        .map(|t| LocalPath::new(t).reach())
-        .fold(Xz::new(0.0, 0.0), |a, b| Xz::new(a.x.max(b.x), a.z.max(b.z)));
+    let reach = toolpaths.iter().map(|t| t.reach()).fold(Xz::new(0.0, 0.0), |a, b| Xz::new(a.x.max(b.x), a.z.max(b.z)));
     let fit = FitOptions { strategy: Strategy::Auto, tolerance_mm: increment_mm / 2.0, step_mm: None };
     // The written program takes up its play where it does; verify follows it as written.
     let play = Xz::new(0.0, 0.0);
-    Sampling { max_arc_radians: Sampling::MEASURE_ARC_RADIANS, play, ..super::program::sampling(&fit, model, reach) }
+    Sampling { play, ..super::program::sampling(&fit, model, reach) }
 }
 
 /// `toolpath` compact (`toolpath::compact`), its tools' tips from `tools`: the form the

@@ -128,8 +128,8 @@ pub struct Sampling {
     /// How far the chord between samples may stray from the correction, mm (zero, with no
     /// arc terms: no angle step at all, as `every_mm` samples).
     pub allowance: f64,
-    /// The largest angle between an arc's samples, radians (`MAX_ARC_RADIANS` for
-    /// compensation, `MEASURE_ARC_RADIANS` where a deviation is measured).
+    /// The largest angle between an arc's samples, radians (`MAX_ARC_RADIANS`; the
+    /// measure of a deviation cuts an arc's steps further as it needs, `verify/arc_steps.rs`).
     pub max_arc_radians: f64,
     /// The play of each slide where the approach to a thread is sampled through an
     /// overshoot (`thread_approach`; compensation only), mm; zero for none.
@@ -143,13 +143,6 @@ impl Sampling {
     /// and so does compensate's own prediction of `densify`, whose rounded path is walked
     /// to each sample across all the lines between two samples (`quantised::Walk`).
     pub const MAX_ARC_RADIANS: f64 = std::f64::consts::PI / 8.0;
-
-    /// The largest angle between an arc's samples where a deviation from the arc is
-    /// measured (`verify`): the distance from an arc is the part of the displacement along
-    /// its normal, which turns with the arc, so between samples it strays from the straight
-    /// interpolation by up to the displacement times (1 − cos of half the step), under a
-    /// thousandth of it at a 64th of a turn (12 nm of a 10 µm error).
-    pub const MEASURE_ARC_RADIANS: f64 = std::f64::consts::PI / 32.0;
 
     /// Every `step` mm along cutting moves, whatever the model: how `verify`, `diagnose`
     /// and `plot` measure a path, and how the thesis sampled.

@@ -81,11 +81,11 @@ impl CompactPath {
                 let radius = start.distance(m.centre);
                 let start_angle = geometry::angle(start, m.centre);
                 let sweep = geometry::sweep_from(start_angle, start, m.end, m.centre, m.motion == Motion::Ccw);
-                reach = Xz::new(reach.x.max(m.centre.x.abs() + radius), reach.z.max(m.centre.z.abs() + radius));
+                reach = super::reach_past(reach, m.end, Some((m.centre, radius)));
                 arcs.push(CompactArc { centre: m.centre, radius, start_angle, sweep });
                 arcs.len() - 1
             } else {
-                reach = Xz::new(reach.x.max(m.end.x.abs()), reach.z.max(m.end.z.abs()));
+                reach = super::reach_past(reach, m.end, None);
                 NO_ARC
             };
             moves.push(CompactMove {
@@ -135,7 +135,7 @@ impl CompactPath {
     }
 
     /// The farthest the path goes from the origin in each axis, mm (X as a radius): an
-    /// arc's whole circle counts (`deviation::LocalPath::reach`, which it equals).
+    /// arc's whole circle counts (`Toolpath::reach`, which it equals).
     pub fn reach(&self) -> Xz {
         self.reach
     }

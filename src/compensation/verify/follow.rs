@@ -86,6 +86,12 @@ const WINDOW_MOVES: usize = 4096;
 /// can be neither the closest nor as close.
 const BOUND_MARGIN_MM: f64 = 1e-9;
 
+/// How far from an anchor move's bounding box the moves kept as its neighbourhood lie at
+/// most, mm (`Near`): far more than twice a point's distance from its own move (a model's
+/// errors and a correction are micrometres, the shift at most `MATCH_MM`), so a point is
+/// measured against the neighbourhood alone but where it lies further from its own move.
+const NEAR_MM: f64 = 0.5;
+
 /// A predicted point's closest point on the original's path.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Found {
@@ -103,6 +109,47 @@ pub struct Original<'a> {
     ends: Vec<f64>,
     /// The cutting length of the path up to the end of each move, mm.
     cut_ends: Vec<f64>,
+    /// Each move's bounding box (`x_low, z_low, x_high, z_high`), an arc's taken as its whole
+    /// circle's, rounded outward to single precision: the box of every point of the move
+    /// (empty, low above high, for a move that does not cut). Scanned for every point
+    /// measured, so kept small.
+    boxes: Vec<[f32; 4]>,
+}
+
+/// A bounding box of move `m` of `path` (move `k`), rounded outward (`Original::boxes`).
+fn bounding_box(path: &CompactPath, k: usize, m: &CompactMove) -> [f32; 4] {
+    if !m.cuts() {
+        return [f32::INFINITY, f32::INFINITY, f32::NEG_INFINITY, f32::NEG_INFINITY];
+    }
+    let (lo, hi) = match path.arc(k) {
+        Some(arc) => (
+            Xz::new(arc.centre.x - arc.radius, arc.centre.z - arc.radius),
+            Xz::new(arc.centre.x + arc.radius, arc.centre.z + arc.radius),
+        ),
+        None => {
+            let start = path.start_of(k);
+            (Xz::new(start.x.min(m.end.x), start.z.min(m.end.z)), Xz::new(start.x.max(m.end.x), start.z.max(m.end.z)))
+        }
+    };
+    // `as` rounds to nearest; a step outward makes the box hold the move.
+    let down = |v: f64| step_down(v as f32);
+    let up = |v: f64| -step_down(-(v as f32));
+    [down(lo.x), down(lo.z), up(hi.x), up(hi.z)]
+}
+
+/// The next single-precision value below `f` (`f32::next_down`, which the crate's
+/// rust-version does not have): one unit in the last place down, through zero to the
+/// smallest negative subnormal; NaN and negative infinity stay.
+fn step_down(f: f32) -> f32 {
+    if f.is_nan() || f == f32::NEG_INFINITY {
+        f
+    } else if f == 0.0 {
+        -f32::from_bits(1)
+    } else if f > 0.0 {
+        f32::from_bits(f.to_bits() - 1)
+    } else {
+        f32::from_bits(f.to_bits() + 1)
+    }
 }
 
 impl<'a> Original<'a> {
@@ -110,7 +157,9 @@ impl<'a> Original<'a> {
         let (mut total, mut cut) = (0.0, 0.0);
         let mut ends = Vec::with_capacity(path.len());
         let mut cut_ends = Vec::with_capacity(path.len());
+        let mut boxes = Vec::with_capacity(path.len());
         for (k, m) in path.moves().iter().enumerate() {
+            boxes.push(bounding_box(path, k, m));
             let before = total;
             total += path.length(k);
             ends.push(total);
@@ -120,7 +169,7 @@ impl<'a> Original<'a> {
             }
             cut_ends.push(cut);
         }
-        Original { path, ends, cut_ends }
+        Original { path, ends, cut_ends, boxes }
     }
 
     /// The length of move `k`, mm (0 for a dwell or a move that does not exist).
@@ -165,25 +214,11 @@ impl<'a> Original<'a> {
     }
 
     /// A lower bound of the square of `distance(p, k)` (infinity for a move that does not
-    /// cut): the square of the distance from `p` to the move's bounding box, an arc's taken
-    /// as its whole circle's.
+    /// cut): the square of the distance from `p` to the move's bounding box (`boxes`).
     fn lower_bound_squared(&self, p: Xz, k: usize) -> f64 {
-        let Some(m) = self.cuts(k) else { return f64::INFINITY };
-        let (lo, hi) = match self.path.arc(k) {
-            Some(arc) => (
-                Xz::new(arc.centre.x - arc.radius, arc.centre.z - arc.radius),
-                Xz::new(arc.centre.x + arc.radius, arc.centre.z + arc.radius),
-            ),
-            None => {
-                let start = self.path.start_of(k);
-                (
-                    Xz::new(start.x.min(m.end.x), start.z.min(m.end.z)),
-                    Xz::new(start.x.max(m.end.x), start.z.max(m.end.z)),
-                )
-            }
-        };
-        let dx = (lo.x - p.x).max(p.x - hi.x).max(0.0);
-        let dz = (lo.z - p.z).max(p.z - hi.z).max(0.0);
+        let Some(b) = self.boxes.get(k) else { return f64::INFINITY };
+        let dx = (f64::from(b[0]) - p.x).max(p.x - f64::from(b[2])).max(0.0);
+        let dz = (f64::from(b[1]) - p.z).max(p.z - f64::from(b[3])).max(0.0);
         dx * dx + dz * dz
     }
 
@@ -275,6 +310,42 @@ impl<'a> Original<'a> {
         }
     }
 
+    /// The moves within `back` and `ahead` mm of cutting length of the point `at` of move
+    /// `index`, and the `NEIGHBOURS` cutting moves either side of its move, whatever their
+    /// length, at most `WINDOW_MOVES` either side; `cursors` holds where the ends were found
+    /// last, to start from.
+    ///
+    /// The window is what walking out from the match finds, move by move, going on while a
+    /// move lies within the length or fewer than `NEIGHBOURS` cutting moves were passed:
+    /// each of those conditions holds up to some move and not beyond it, so the walk stops
+    /// at the nearest move where both fail (or at a bound), found here from the cutting
+    /// lengths (sorted) and the neighbours.
+    fn window(&self, index: usize, at: f64, back: f64, ahead: f64, cursors: &mut Cursors) -> RangeInclusive<usize> {
+        let original = self;
+        let moves = original.path.len();
+        if moves == 0 {
+            return 0..=0;
+        }
+        let cuts = |k: usize| original.path.moves()[k].cuts();
+        // Behind: stop at the last move whose cut starts more than `back` before the match
+        // and with two cutting moves between it and the match's move.
+        let behind = partition_from(moves, cursors.behind, |k| original.cut_start(k) < at - back);
+        cursors.behind = behind;
+        let near = index.saturating_sub(WINDOW_MOVES)..index.min(moves);
+        let neighbour = near.rev().filter(|&k| cuts(k)).nth(NEIGHBOURS - 1);
+        let both = behind.checked_sub(1).zip(neighbour).map(|(a, b)| a.min(b));
+        let first = [Some(0), index.checked_sub(WINDOW_MOVES), both].into_iter().flatten().max().unwrap_or(0);
+        // Ahead: stop at the first move after which a cut starts more than `ahead` on and
+        // with two cutting moves after the match's.
+        let beyond = partition_from(moves, cursors.ahead, |k| original.cut_start(k) <= at + ahead);
+        cursors.ahead = beyond;
+        let near = index + 1..moves.min(index + WINDOW_MOVES);
+        let neighbour = near.filter(|&k| cuts(k)).nth(NEIGHBOURS - 1);
+        let both = (beyond < moves).then_some(beyond.saturating_sub(1)).zip(neighbour).map(|(a, b)| a.max(b));
+        let last = [Some(moves - 1), Some(index + WINDOW_MOVES - 1), both].into_iter().flatten().min().unwrap_or(0);
+        first.min(index)..=last.max(index.min(moves - 1))
+    }
+
     /// The closest cutting move of `moves` to `p` and its distance (the earliest move where
     /// several are equally close), `anchor` measured first: only a move whose bounding box
     /// comes nearer than the closest so far is measured.
@@ -284,14 +355,9 @@ impl<'a> Original<'a> {
             best = (self.distance(p, anchor), anchor);
         }
         for k in moves {
-            if k == anchor {
+            let bound = best.0 + BOUND_MARGIN_MM;
+            if k == anchor || self.lower_bound_squared(p, k) > bound * bound {
                 continue;
-            }
-            if best.0.is_finite() {
-                let bound = best.0 + BOUND_MARGIN_MM;
-                if self.lower_bound_squared(p, k) > bound * bound {
-                    continue;
-                }
             }
             let distance = self.distance(p, k);
             if distance < best.0 || (distance == best.0 && k < best.1) {
@@ -309,6 +375,42 @@ fn onto_circle(p: Xz, centre: Xz, radius: f64) -> Option<Xz> {
     let v = Xz::new(p.x - centre.x, p.z - centre.z);
     let length = p.distance(centre);
     (length > 0.0).then(|| Xz::new(centre.x + radius * v.x / length, centre.z + radius * v.z / length))
+}
+
+/// The neighbourhood of an anchor move (the own move of the points measured, or their
+/// match): the moves of every window about a point of it (`Original::window`) whose
+/// bounding box comes within `NEAR_MM` of the anchor's, nearest first.
+///
+/// A point `p` at distance `δ` from the anchor is within `δ` of the anchor's box, so its
+/// distance from a move whose box lies `d` from the anchor's is at least `d − δ`: measured
+/// in order of `d`, the moves can stop where `d − δ` passes the closest distance found
+/// (the anchor's, `δ`, to begin with), and where `2δ` stays below `NEAR_MM` no move left
+/// out of the neighbourhood can come as close. A point on a long pass costs the distances
+/// to its own move and to the moves its corners touch, whatever the window holds.
+#[derive(Debug)]
+struct Near {
+    anchor: Option<usize>,
+    /// The moves of the windows about the anchor's points.
+    span: RangeInclusive<usize>,
+    /// Box distance and move, nearest first.
+    moves: Vec<(f64, usize)>,
+    cursors: (Cursors, Cursors),
+}
+
+impl Default for Near {
+    fn default() -> Near {
+        Near { anchor: None, span: 0..=0, moves: Vec::new(), cursors: Default::default() }
+    }
+}
+
+/// The distance between two bounding boxes (`Original::boxes`), a lower bound of the
+/// distance between any two points of their moves.
+fn box_distance(a: &[f32; 4], b: &[f32; 4]) -> f64 {
+    let gap = |low_a: f32, high_a: f32, low_b: f32, high_b: f32| {
+        (f64::from(low_b) - f64::from(high_a)).max(f64::from(low_a) - f64::from(high_b)).max(0.0)
+    };
+    let (dx, dz) = (gap(a[0], a[2], b[0], b[2]), gap(a[1], a[3], b[1], b[3]));
+    (dx * dx + dz * dz).sqrt()
 }
 
 /// Where a window's ends were found last, to find them again from there: the window's
@@ -334,6 +436,10 @@ pub struct Follower<'a> {
     distances: Vec<f64>,
     /// The whole path, for points the window does not match.
     whole: OnceCell<WholePath>,
+    /// The neighbourhood of the last anchor.
+    near: Near,
+    /// The candidates `matched` measured: distance and move.
+    candidates: Vec<(f64, usize)>,
 }
 
 impl<'a> Follower<'a> {
@@ -346,6 +452,8 @@ impl<'a> Follower<'a> {
             about: Cursors::default(),
             distances: Vec::new(),
             whole: OnceCell::new(),
+            near: Near::default(),
+            candidates: Vec::new(),
         }
     }
 
@@ -382,6 +490,12 @@ impl<'a> Follower<'a> {
     /// The first candidate of `ahead` within `SLACK_MM` of the closest candidate's distance
     /// to `nominal` (and within `MATCH_MM`), if any.
     fn matched(&mut self, ahead: RangeInclusive<usize>, nominal: Xz) -> Option<usize> {
+        // Every candidate that may come within `SLACK_MM` of the closest, from the previous
+        // match's neighbourhood.
+        if let Some((best, _)) = self.nearest(&ahead, nominal, self.move_index, SLACK_MM) {
+            let limit = MATCH_MM.min(best + SLACK_MM);
+            return self.candidates.iter().filter(|(distance, _)| *distance <= limit).map(|&(_, k)| k).min();
+        }
         let original = self.original;
         let first = *ahead.start();
         self.distances.clear();
@@ -395,14 +509,9 @@ impl<'a> Follower<'a> {
             best = distance;
         }
         for k in ahead.clone() {
-            if k == anchor || original.cuts(k).is_none() {
+            let bound = best + SLACK_MM.max(BOUND_MARGIN_MM);
+            if k == anchor || original.lower_bound_squared(nominal, k) > bound * bound {
                 continue;
-            }
-            if best.is_finite() {
-                let bound = best + SLACK_MM.max(BOUND_MARGIN_MM);
-                if original.lower_bound_squared(nominal, k) > bound * bound {
-                    continue;
-                }
             }
             let distance = original.distance(nominal, k);
             self.distances[k - first] = distance;
@@ -430,10 +539,78 @@ impl<'a> Follower<'a> {
         self.found(moves, p, k)
     }
 
-    /// The closest move of `moves` to `p` and its closest point.
-    fn found(&self, moves: RangeInclusive<usize>, p: Xz, anchor: usize) -> Option<Found> {
-        let (distance, k) = self.original.closest_in(moves, p, anchor)?;
-        Some(Found { distance, point: self.original.closest_point(p, k), move_index: k })
+    /// The closest move of `moves` to `p` and its closest point; `anchor`, one of `moves`,
+    /// is the own move or the match.
+    fn found(&mut self, moves: RangeInclusive<usize>, p: Xz, anchor: usize) -> Option<Found> {
+        let original = self.original;
+        let (distance, k) = match self.nearest(&moves, p, anchor, 0.0) {
+            Some(best) => best,
+            None => original.closest_in(moves, p, anchor)?,
+        };
+        Some(Found { distance, point: original.closest_point(p, k), move_index: k })
+    }
+
+    /// The closest move to `p` of the moves of `moves` in the anchor's neighbourhood (`Near`),
+    /// and the other moves of `moves` whose distance from `p` may come within `slack` of
+    /// it, into `candidates`: each move's distance, the earliest of equally close moves
+    /// first; `None` where the neighbourhood cannot tell (the anchor does not cut, `p` lies
+    /// too far from it, or `moves` reach beyond the neighbourhood).
+    fn nearest(&mut self, moves: &RangeInclusive<usize>, p: Xz, anchor: usize, slack: f64) -> Option<(f64, usize)> {
+        let original = self.original;
+        self.neighbourhood(anchor);
+        let delta = original.distance(p, anchor);
+        let reach = 2.0 * delta + slack + BOUND_MARGIN_MM;
+        let span = &self.near.span;
+        if reach.is_nan()
+            || reach >= NEAR_MM
+            || moves.start() < span.start()
+            || moves.end() > span.end()
+            || !moves.contains(&anchor)
+        {
+            return None;
+        }
+        self.candidates.clear();
+        self.candidates.push((delta, anchor));
+        let mut best = (delta, anchor);
+        for &(d, m) in &self.near.moves {
+            if d - delta > best.0 + slack + BOUND_MARGIN_MM {
+                break;
+            }
+            if m == anchor || !moves.contains(&m) {
+                continue;
+            }
+            let distance = original.distance(p, m);
+            if distance.is_finite() {
+                self.candidates.push((distance, m));
+            }
+            if distance < best.0 || (distance == best.0 && m < best.1) {
+                best = (distance, m);
+            }
+        }
+        Some(best)
+    }
+
+    /// Make `near` the neighbourhood of move `anchor`.
+    fn neighbourhood(&mut self, anchor: usize) {
+        if self.near.anchor == Some(anchor) {
+            return;
+        }
+        let original = self.original;
+        let start = original.cut_start(anchor);
+        let (behind, ahead) = &mut self.near.cursors;
+        let first = *original.window(anchor, start, WINDOW_MM, WINDOW_MM, behind).start();
+        let last = *original.window(anchor, start + original.length_of(anchor), WINDOW_MM, WINDOW_MM, ahead).end();
+        self.near.anchor = Some(anchor);
+        self.near.span = first..=last;
+        self.near.moves.clear();
+        let Some(own) = original.boxes.get(anchor) else { return };
+        for m in first..=last {
+            let d = original.boxes.get(m).map_or(f64::INFINITY, |b| box_distance(own, b));
+            if d <= NEAR_MM {
+                self.near.moves.push((d, m));
+            }
+        }
+        self.near.moves.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     }
 
     /// The side of the original's path `p` lies on, from what measuring it found
@@ -447,46 +624,21 @@ impl<'a> Follower<'a> {
         self.move_index
     }
 
+    /// The original's path it follows.
+    pub fn path(&self) -> &'a CompactPath {
+        self.original.path
+    }
+
     fn move_to(&mut self, k: usize, param: f64) {
         self.move_index = k;
         self.at = self.original.cut_start(k) + self.original.length_of(k) * param.clamp(0.0, 1.0);
     }
 
-    /// The moves within `back` and `ahead` mm of cutting length of the previous match, and
-    /// the `NEIGHBOURS` cutting moves either side of its move, whatever their length, at
-    /// most `WINDOW_MOVES` either side; `about` names the window's cursors.
-    ///
-    /// The window is what walking out from the match finds, move by move, going on while a
-    /// move lies within the length or fewer than `NEIGHBOURS` cutting moves were passed:
-    /// each of those conditions holds up to some move and not beyond it, so the walk stops
-    /// at the nearest move where both fail (or at a bound), found here from the cutting
-    /// lengths (sorted) and the neighbours.
+    /// The window about the previous match (`Original::window`); `about` names the
+    /// window's cursors.
     fn window(&mut self, back: f64, ahead: f64, about: bool) -> RangeInclusive<usize> {
-        let original = self.original;
-        let moves = original.path.len();
-        let (at, index) = (self.at, self.move_index);
-        if moves == 0 {
-            return 0..=0;
-        }
         let cursors = if about { &mut self.about } else { &mut self.search };
-        let cuts = |k: usize| original.path.moves()[k].cuts();
-        // Behind: stop at the last move whose cut starts more than `back` before the match
-        // and with two cutting moves between it and the match's move.
-        let behind = partition_from(moves, cursors.behind, |k| original.cut_start(k) < at - back);
-        cursors.behind = behind;
-        let near = index.saturating_sub(WINDOW_MOVES)..index.min(moves);
-        let neighbour = near.rev().filter(|&k| cuts(k)).nth(NEIGHBOURS - 1);
-        let both = behind.checked_sub(1).zip(neighbour).map(|(a, b)| a.min(b));
-        let first = [Some(0), index.checked_sub(WINDOW_MOVES), both].into_iter().flatten().max().unwrap_or(0);
-        // Ahead: stop at the first move after which a cut starts more than `ahead` on and
-        // with two cutting moves after the match's.
-        let beyond = partition_from(moves, cursors.ahead, |k| original.cut_start(k) <= at + ahead);
-        cursors.ahead = beyond;
-        let near = index + 1..moves.min(index + WINDOW_MOVES);
-        let neighbour = near.filter(|&k| cuts(k)).nth(NEIGHBOURS - 1);
-        let both = (beyond < moves).then_some(beyond.saturating_sub(1)).zip(neighbour).map(|(a, b)| a.max(b));
-        let last = [Some(moves - 1), Some(index + WINDOW_MOVES - 1), both].into_iter().flatten().min().unwrap_or(0);
-        first.min(index)..=last.max(index.min(moves - 1))
+        self.original.window(self.move_index, self.at, back, ahead, cursors)
     }
 
     fn whole(&self) -> &WholePath {
@@ -658,6 +810,16 @@ fn bounds(path: &CompactPath, k: usize) -> (Xz, Xz) {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn a_step_down_is_one_unit_in_the_last_place() {
+        assert_eq!(step_down(1.0), 1.0 - f32::EPSILON / 2.0);
+        assert_eq!(step_down(-1.0), -1.0 - f32::EPSILON);
+        assert_eq!(step_down(0.0), -f32::from_bits(1));
+        assert_eq!(step_down(f32::INFINITY), f32::MAX);
+        assert_eq!(step_down(f32::NEG_INFINITY), f32::NEG_INFINITY);
+        assert!(step_down(f32::NAN).is_nan());
+    }
 
     proptest! {
         /// The closest point of a circle by projection is the one its angle gives

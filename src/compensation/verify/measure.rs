@@ -25,6 +25,7 @@ use crate::toolpath::{Motion, Xz};
 use super::super::deviation::Tally;
 use super::super::inverse::Predictor;
 use super::super::program::SAMPLE_STEP_MM;
+use super::arc_steps;
 use super::follow::{Follower, Original};
 use super::knee::{self, Axis};
 use super::{Measured, Side, Worst};
@@ -43,7 +44,7 @@ pub fn measure(
     side: Side,
     each: &mut dyn FnMut(Side, Measured),
 ) -> (Tally, Option<Worst>) {
-    let mut walk = Walk::new(program, original, model, side);
+    let mut walk = Walk::new(program, original, model, sampling, side);
     let mut samples = Vec::new();
     let count = program.len();
     for first in (0..count).step_by(CHUNK_MOVES) {
@@ -71,18 +72,41 @@ pub struct Walk<'a> {
     follower: Follower<'a>,
     predictor: Predictor<'a>,
     tally: Tally,
-    /// The distance, with its side, measured at the sample before, and that sample's move
-    /// (none after a sample that does not cut).
-    previous: Option<(f64, usize)>,
+    /// The point measured before (none after a point that does not cut).
+    previous: Option<Point>,
     worst: Option<Worst>,
     /// The last sample given, its move and its place along it.
     move_before: usize,
     param_before: f64,
+    /// The model's allowance (`Sampling::allowance`), which the pieces of an arc's step may
+    /// use again (`arc_steps.rs`).
+    allowance: f64,
+}
+
+/// A point as measured, for the stretch of path from it to the next.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Point {
+    /// Its distance with its side, and the program's move it lies on.
+    signed: f64,
+    own_move: usize,
+    /// The nominal point, where the model puts the tool, and the play's part of that.
+    nominal: Xz,
+    predicted: Xz,
+    play: Xz,
+    /// Its place along its move, and the original's move it was measured against.
+    param: f64,
+    found_move: usize,
 }
 
 impl<'a> Walk<'a> {
     /// The measure of `program` against `original` on `model`, from the program's start.
-    pub fn new(program: &'a CompactPath, original: &'a Original<'a>, model: &'a ErrorModel, side: Side) -> Walk<'a> {
+    pub fn new(
+        program: &'a CompactPath,
+        original: &'a Original<'a>,
+        model: &'a ErrorModel,
+        sampling: &Sampling,
+        side: Side,
+    ) -> Walk<'a> {
         Walk {
             program,
             side,
@@ -95,6 +119,7 @@ impl<'a> Walk<'a> {
             worst: None,
             move_before: usize::MAX,
             param_before: 0.0,
+            allowance: sampling.allowance,
         }
     }
 
@@ -207,22 +232,135 @@ impl<'a> Walk<'a> {
             },
         );
         let signed = found.distance * self.follower.side(&found, p);
-        let d = signed.abs();
-        // The side keeps its meaning along one move only: round a corner the part's surface
-        // may lie on the other side of the travel, so across one the distances are taken as
-        // they are, without a side.
-        let previous = match self.previous {
-            Some((before, k)) if k == s.move_index => Some(before),
-            Some((before, _)) => Some(before.abs().copysign(signed)),
-            None => None,
+        let point = Point {
+            signed,
+            own_move: s.move_index,
+            nominal: s.nominal,
+            predicted: p,
+            play: self.predictor.backlash(),
+            param: s.param,
+            found_move: found.move_index,
         };
-        self.tally.add_signed_along(signed, previous, s.covers_mm / SAMPLE_STEP_MM);
+        let weight = s.covers_mm / SAMPLE_STEP_MM;
+        match self.previous {
+            // The side keeps its meaning along one move only: round a corner the part's
+            // surface may lie on the other side of the travel, so across one the distances
+            // are taken as they are, without a side.
+            Some(before) if before.own_move != s.move_index => {
+                self.add(signed, Some(before.signed.abs().copysign(signed)), weight, s.move_index)
+            }
+            Some(before) => {
+                // Along an arc, the stretch from the point before in the pieces its bound asks
+                // for (`arc_steps.rs`).
+                let mut from = before.signed;
+                let pieces = self.arc_pieces(&before, &point);
+                for &value in &pieces {
+                    self.add(value, Some(from), weight / (pieces.len() + 1) as f64, s.move_index);
+                    from = value;
+                }
+                self.add(signed, Some(from), weight / (pieces.len() + 1) as f64, s.move_index);
+            }
+            None => self.add(signed, None, weight, s.move_index),
+        }
+        self.previous = Some(point);
+        p
+    }
+
+    /// Tally a distance with its side at the end of `weight` points of path whose other end
+    /// is at `previous` (`Tally::add_signed_along`), and keep the largest.
+    fn add(&mut self, signed: f64, previous: Option<f64>, weight: f64, measured_move: usize) {
+        self.tally.add_signed_along(signed, previous, weight);
+        let d = signed.abs();
         if self.worst.is_none_or(|w| d > w.deviation_mm) {
             let original_move = self.follower.matched_move();
-            self.worst = Some(Worst { deviation_mm: d, original_move, measured_move: s.move_index });
+            self.worst = Some(Worst { deviation_mm: d, original_move, measured_move });
         }
-        self.previous = Some((signed, s.move_index));
-        p
+    }
+
+    /// The distances with their sides at the points that cut the stretch of an arc from
+    /// `before` to `after` into the pieces its bound asks for (`arc_steps.rs`), from the
+    /// displacement interpolated between them; none where the stretch is no arc's, its
+    /// ends were measured against different moves or no arc of the original, or the play
+    /// changes along it (a take-up, whose knee is measured).
+    fn arc_pieces(&self, before: &Point, after: &Point) -> SmallVec<[f64; 8]> {
+        let none = SmallVec::new();
+        let (Some(own), Some(reference)) =
+            (self.program.arc(after.own_move), self.follower.path().arc(after.found_move))
+        else {
+            return none;
+        };
+        let radians = own.sweep * (after.param - before.param);
+        let same_play = (before.play.x - after.play.x).abs() <= 1e-12 && (before.play.z - after.play.z).abs() <= 1e-12;
+        // The circle measured against is the arc's own: the original's own move, or for
+        // the compensated program the original's arc it was written from, which its circle
+        // follows within the shift (another pass that passes the ends may run elsewhere
+        // between them).
+        let own_circle = match self.side {
+            Side::Original => after.found_move == after.own_move,
+            Side::Compensated => {
+                own.centre.distance(reference.centre) + (own.radius - reference.radius).abs() <= OWN_CIRCLE_MM
+            }
+        };
+        if before.found_move != after.found_move
+            || !own_circle
+            || !same_play
+            || radians.is_nan()
+            || radians <= 0.0
+            || self.allowance <= 0.0
+        {
+            return none;
+        }
+        // From the reference circle's centre: the arc's own radius along its own radial
+        // (`u`), and the rest, `V` (the model's displacement and the centres' offset).
+        let radial = |n: Xz| {
+            let length = n.distance(own.centre);
+            Xz::new((n.x - own.centre.x) / length, (n.z - own.centre.z) / length)
+        };
+        let rest = |point: &Point, u: Xz| {
+            Xz::new(
+                point.predicted.x - reference.centre.x - own.radius * u.x,
+                point.predicted.z - reference.centre.z - own.radius * u.z,
+            )
+        };
+        let (u0, u1) = (radial(before.nominal), radial(after.nominal));
+        let (v0, v1) = (rest(before, u0), rest(after, u1));
+        let norm = |v: Xz| v.distance(Xz::new(0.0, 0.0));
+        let step = arc_steps::Step {
+            radians,
+            radius: own.radius,
+            largest: norm(v0).max(norm(v1)) + self.allowance,
+            change: norm(Xz::new(v1.x - v0.x, v1.z - v0.z)),
+            allowance: self.allowance,
+        };
+        let pieces = arc_steps::pieces(&step).unwrap_or_else(|| arc_steps::fallback_pieces(radians));
+        if pieces <= 1 {
+            return none;
+        }
+        // The side: the sign that turns the distance from the circle into the measured one,
+        // from the end that is off the circle.
+        let off = |v: Xz, u: Xz| norm(Xz::new(own.radius * u.x + v.x, own.radius * u.z + v.z)) - reference.radius;
+        let side = [(after, off(v1, u1)), (before, off(v0, u0))]
+            .into_iter()
+            .find(|(point, off)| *off != 0.0 && point.signed != 0.0)
+            .map_or(1.0, |(point, off)| (point.signed / off).signum());
+        // Both ends measured against the circle itself (not an end of its arc).
+        let consistent = |point: &Point, v: Xz, u: Xz| (side * off(v, u) - point.signed).abs() <= 1e-9;
+        if !consistent(before, v0, u0) || !consistent(after, v1, u1) {
+            return none;
+        }
+        // Each piece's radial, turned from the start's by its share of the angle.
+        let sense = if self.program.moves()[after.own_move].motion == Motion::Ccw { 1.0 } else { -1.0 };
+        let (sin, cos) = (sense * radians / pieces as f64).sin_cos();
+        let mut u = u0;
+        let mut out = SmallVec::new();
+        for piece in 1..pieces {
+            // u(a + φ) = (sin(a + φ), cos(a + φ)) from u(a) = (sin a, cos a).
+            u = Xz::new(u.x * cos + u.z * sin, u.z * cos - u.x * sin);
+            let s = piece as f64 / pieces as f64;
+            let v = Xz::new(v0.x + (v1.x - v0.x) * s, v0.z + (v1.z - v0.z) * s);
+            out.push(side * (norm(Xz::new(own.radius * u.x + v.x, own.radius * u.z + v.z)) - reference.radius));
+        }
+        out
     }
 
     /// Whether move `index` is longer than a jog (`JOG_MM`, or four times the larger play):
@@ -276,6 +414,12 @@ impl<'a> Walk<'a> {
         out
     }
 }
+
+/// How far the circle of a compensated program's arc may lie from the original's it is
+/// measured against, as the offset of the centres and the difference of the radii, mm, for
+/// the distance between its points to be that from the circle: `compensate`'s default
+/// `--max-shift`, the most it moves a point.
+const OWN_CIRCLE_MM: f64 = 0.1;
 
 /// Moves at most this long (mm) are measured at their end only, unless a play is longer:
 /// `compensate` writes such moves at reversals and corners, where the tool stands still but
