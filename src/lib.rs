@@ -24,6 +24,7 @@
 pub mod back;
 pub mod bounds;
 pub mod compensation;
+pub mod control_table;
 pub mod diagnose;
 pub mod diagnostic;
 pub mod dialect;
@@ -32,6 +33,7 @@ pub mod expand;
 pub mod geometry;
 pub mod lsp;
 pub mod machine;
+pub mod measurement_file;
 mod memory;
 pub mod parallel;
 pub mod pipeline;

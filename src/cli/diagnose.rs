@@ -8,17 +8,19 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 
 use turnpass::diagnose::forward::Nominal;
-use turnpass::diagnose::measured::{self, Kind};
+use turnpass::diagnose::measured::{self, Kind, KindName};
 use turnpass::diagnose::synth::{SynthOptions, finest_step_deg, synth, to_csv};
 use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, with_table_files};
+use turnpass::measurement_file::DataError;
 use turnpass::pipeline::Ready;
+use turnpass::source::Span;
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, data_invalid, display_name, folder_of,
-    model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
-    write_atomically, write_output,
+    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, data_invalid, data_misfit, display_name,
+    folder_of, model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
+    write_file, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -32,6 +34,14 @@ pub enum KindArg {
 }
 
 impl KindArg {
+    fn name(self) -> KindName {
+        match self {
+            KindArg::Ballbar => KindName::BallBar,
+            KindArg::Profile => KindName::Profile,
+            KindArg::Table => KindName::Table,
+        }
+    }
+
     fn kind(self, axis: Option<AxisArg>) -> Result<Kind, CliError> {
         Ok(match self {
             KindArg::Ballbar => Kind::BallBar,
@@ -52,15 +62,15 @@ impl KindArg {
 pub struct DiagnoseArgs {
     /// The program the measurement was made on: the ball bar test, or the part.
     pub file: PathBuf,
-    /// The measurement (CSV): a ball bar trace (angle_deg,deviation_mm,direction) or a CMM
-    /// profile (x_mm,z_mm[,part,start_min]).
+    /// The measurement (CSV): a ball bar trace, a CMM profile or an interferometer table, in
+    /// turnpass's own layout or as instrument software exports it (docs/measurements.md).
     #[arg(long, value_name = "DATA.csv")]
     pub measured: PathBuf,
     /// What the measurement is (default: told by its header). For an interferometer table
     /// (`--kind table --axis x|z`) the program plays no part beyond finding the model.
     #[arg(long, value_enum)]
     pub kind: Option<KindArg>,
-    /// The slide an interferometer table measured.
+    /// The slide an interferometer table measured (default: the table's own `axis:` line).
     #[arg(long, value_enum)]
     pub axis: Option<AxisArg>,
     /// Write the model file with the effects found appended as [[effect]] tables.
@@ -199,30 +209,63 @@ fn prepare(
 pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     check_output(args.write_model.as_deref())?;
     check_output(args.plot.as_deref())?;
+    if args.plot.is_some() && args.kind == Some(KindArg::Table) {
+        return Err(CliError::Usage(format!("--plot: {NO_TABLE_PLOT}")));
+    }
     let (nominal, model, resolved) = match prepare(&args.file, &args.read, &args.run, "diagnose", args.start_min)? {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
     };
     let data_name = display_name(&args.measured);
     let text = read_data_text(&args.measured)?;
-    let kind = args.kind.map(|k| k.kind(args.axis)).transpose()?;
-    let measured = measured::read(&text, kind).map_err(|e| data_invalid(&data_name, &text, e, "diagnose"))?;
+    let kind = args.kind.map(KindArg::name);
+    let axis = args.axis.map(AxisArg::axis);
+    let measured = measured::read_as(&text, kind, axis).map_err(|e| data_invalid(&data_name, &text, e, "diagnose"))?;
     let options = Options { max_iterations: args.max_iterations };
-    let diagnosis =
-        diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Data(format!("{data_name}: {e}")))?;
+    let diagnosis = diagnose(&nominal, &measured, &model, &options).map_err(|e| match e.line() {
+        // A row that does not fit the program: a diagnostic at its line.
+        Some(line) => {
+            let lines = turnpass::source::LineIndex::new(text.as_bytes());
+            let start = if line >= 1 && line <= lines.line_count() { lines.line_start(line - 1) } else { 0 };
+            let end = text[start as usize..].find(['\n', '\r']).map_or(text.len(), |n| start as usize + n) as u32;
+            let mut error = DataError::new(line, Span::new(start, end), "this point", e.message());
+            error.hint = e.hint();
+            data_misfit(&data_name, &text, error, "diagnose")
+        }
+        None => CliError::Data(format!("{data_name}: {e}")),
+    })?;
     let out = match args.format {
-        Format::Human => report::human(&diagnosis),
+        Format::Human => turnpass::source::escape_controls(&report::human(&diagnosis)).into_owned(),
         Format::Json => serde_json::to_string_pretty(&report::json(&diagnosis)).unwrap_or_default() + "\n",
     };
     write_output(None, out.as_bytes())?;
-    if let Some(path) = &args.write_model {
-        let original = model_text_for(&resolved, path)?;
-        let written = model_text::with_found_effects(&original, &diagnosis, &data_name)
-            .map_err(|why| CliError::Usage(format!("{}: not written: {why}", path.display())))?;
-        // The written model must load where it is written, tables and found effects alike.
-        let (spec, dir) = model_spec(path, &written)?;
-        spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
-        write_atomically(path, written.as_bytes())?;
+    // Every output asked for is made, and checked, before any is written: a run that fails
+    // on the second writes neither.
+    let model_file = match &args.write_model {
+        Some(path) => {
+            let original = model_text_for(&resolved, path)?;
+            let written = model_text::with_found_effects(&original, &diagnosis, &data_name)
+                .map_err(|why| CliError::Usage(format!("{}: not written: {why}", path.display())))?;
+            // The written model must load where it is written, tables and found effects alike.
+            let (spec, dir) = model_spec(path, &written)?;
+            spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
+            Some((path, written))
+        }
+        None => None,
+    };
+    let plot = match &args.plot {
+        Some(path) => match turnpass::plot::residuals::residuals_svg(&display_name(&args.file), &diagnosis) {
+            Ok(svg) => Some((path, svg)),
+            Err(error) => {
+                let nothing = if model_file.is_some() { "; nothing is written" } else { "" };
+                streams::err_line(format_args!("diagnose: no plot: {error}{nothing}"));
+                return Ok(ExitCode::from(1));
+            }
+        },
+        None => None,
+    };
+    if let Some((path, written)) = model_file {
+        write_file(path, written.as_bytes())?;
         let plural = super::common::plural;
         let mut what = vec![format!("{} effect{} added", diagnosis.added.len(), plural(diagnosis.added.len()))];
         if !diagnosis.updated.is_empty() {
@@ -234,20 +277,16 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
         }
         streams::err_line(format_args!("diagnose: wrote {} ({})", path.display(), what.join(", ")));
     }
-    if let Some(path) = &args.plot {
-        match turnpass::plot::residuals::residuals_svg(&display_name(&args.file), &diagnosis) {
-            Ok(svg) => {
-                write_atomically(path, svg.as_bytes())?;
-                streams::err_line(format_args!("diagnose: wrote {}", path.display()));
-            }
-            Err(error) => {
-                streams::err_line(format_args!("diagnose: no plot: {error}"));
-                return Ok(ExitCode::from(1));
-            }
-        }
+    if let Some((path, svg)) = plot {
+        write_file(path, svg.as_bytes())?;
+        streams::err_line(format_args!("diagnose: wrote {}", path.display()));
     }
     Ok(ExitCode::SUCCESS)
 }
+
+/// Why `--plot` draws nothing for an interferometer table.
+const NO_TABLE_PLOT: &str =
+    "no plot is drawn for an interferometer table (`turnpass model report` gives its figures); leave out --plot";
 
 pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref())?;
@@ -297,7 +336,8 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
         .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;
     write_output(args.output.as_deref(), to_csv(&measured).as_bytes())?;
     if let Some(path) = &args.output {
-        streams::err_line(format_args!("synth: wrote {} ({} points)", path.display(), measured.len()));
+        let rows = measured.rows();
+        streams::err_line(format_args!("synth: wrote {} ({rows} row{})", path.display(), super::common::plural(rows)));
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -46,7 +46,8 @@ use measure::measure;
 pub struct Deviation {
     pub before: Figures,
     pub after: Figures,
-    pub improvement_percent: f64,
+    /// `None` where the original deviates by nothing (`Figures::improvement_percent`).
+    pub improvement_percent: Option<f64>,
     /// Where the compensated program deviates most (none when nothing of it cuts).
     #[serde(skip)]
     pub worst: Option<Worst>,
@@ -82,6 +83,14 @@ pub fn sampling(model: &ErrorModel, increment_mm: f64, toolpaths: &[&Toolpath]) 
 /// measure reads.
 pub fn compact(toolpath: ValidToolpath<'_>, tools: &ToolTable) -> CompactPath {
     CompactPath::new(toolpath, |tool, offset| tools.lookup(tool, offset).1)
+}
+
+/// The moves of `toolpath` that need more samples than a measure holds
+/// (`error_model::sampling::MAX_SAMPLES_PER_MOVE`), one error on each block that makes
+/// some: `verify` and `report` refuse them before any is measured, as `compensate` and
+/// `plot` refuse them before any is compensated.
+pub fn oversampled(toolpath: &Toolpath, sampling: &Sampling) -> Vec<Diagnostic> {
+    super::program::oversampled_moves(toolpath, sampling)
 }
 
 /// Predict both programs through `model`, sampled as `sampling` allows, and measure them
@@ -174,7 +183,7 @@ pub fn deviation_each(
 
 fn figures(before: Tally, after: Tally, worst: Option<Worst>) -> Deviation {
     let (before, after) = (before.figures(), after.figures());
-    let improvement_percent = (before.improvement_percent(&after) * 1e4).round() / 1e4;
+    let improvement_percent = before.improvement_percent(&after);
     Deviation { before: before.rounded(), after: after.rounded(), improvement_percent, worst }
 }
 
@@ -183,15 +192,16 @@ fn figures(before: Tally, after: Tally, worst: Option<Worst>) -> Deviation {
 /// original was read with)
 /// and measured against `original`'s nominal path by `turnpass verify`'s own computation
 /// (`deviation`, `sampling`), so that the figures it reports are the ones verify finds, with
-/// verify's check of the feed and spindle words (`check_feeds`).
+/// verify's checks of the feed and spindle words (`check_feeds`) and of the other words of
+/// `original_program` (`check_words`: the first one lost).
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
-    original: ValidToolpath<'_>,
+    (original_program, original): (&Program<'_>, ValidToolpath<'_>),
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
     model: &ErrorModel,
-) -> Result<(Deviation, Option<FeedChange>), Vec<Diagnostic>> {
+) -> Result<(Deviation, Option<FeedChange>, Option<MissingWord>), Vec<Diagnostic>> {
     let read = match crate::pipeline::analyse(written, reading).ready() {
         Ok(read) => read,
         Err(analysed) => {
@@ -202,7 +212,12 @@ pub fn check_written(
     let toolpath = read.valid();
     let machine = &reading.machine;
     let sampling = sampling(model, machine.increment * machine.scale(), &[&original, &toolpath]);
-    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(&original, &toolpath)))
+    let oversampled = oversampled(&toolpath, &sampling);
+    if !oversampled.is_empty() {
+        return Err(oversampled);
+    }
+    let lost = check_words(original_program, read.program()).missing;
+    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(&original, &toolpath), lost))
 }
 
 /// The deviation `verify` allows by default: two least increments, mm.

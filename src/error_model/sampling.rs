@@ -181,16 +181,40 @@ pub const MAX_SAMPLES_PER_MOVE: usize = 1_000_000;
 pub fn samples_needed(toolpath: &Toolpath, index: usize, sampling: &Sampling) -> usize {
     let Some(m) = toolpath.moves.get(index) else { return 0 };
     let start = toolpath.start_of(index);
-    match m.motion {
+    let arc = matches!(m.motion, Motion::Cw | Motion::Ccw).then(|| {
+        let a0 = geometry::angle(start, m.centre);
+        (start.distance(m.centre), geometry::sweep_from(a0, start, m.end, m.centre, m.motion == Motion::Ccw))
+    });
+    steps_needed(m.motion, start.distance(m.end), minutes(m), m.feed, arc, sampling)
+}
+
+/// [`samples_needed`] of move `index` of a compact path, whose arcs hold their radius and
+/// sweep (the same as those `samples_needed` finds).
+pub fn samples_needed_compact(path: &CompactPath, index: usize, sampling: &Sampling) -> usize {
+    let Some(m) = path.moves().get(index) else { return 0 };
+    let length = path.start_of(index).distance(m.end);
+    let arc = path.arc(index).map(|arc| (arc.radius, arc.sweep));
+    steps_needed(m.motion, length, (m.t_end - m.t_start) / 60.0, m.feed, arc, sampling)
+}
+
+/// The samples of a move of `motion`, `length` mm long (a line's), taking `minutes`, at
+/// `feed`, an arc's radius and sweep in `arc`.
+fn steps_needed(
+    motion: Motion,
+    length: f64,
+    minutes: f64,
+    feed: f64,
+    arc: Option<(f64, f64)>,
+    sampling: &Sampling,
+) -> usize {
+    match motion {
         Motion::Dwell => 0,
         Motion::Rapid => 1,
-        Motion::Feed => sampling.spacing.steps(start.distance(m.end), minutes(m)),
+        Motion::Feed => sampling.spacing.steps(length, minutes),
         Motion::Cw | Motion::Ccw => {
-            let radius = start.distance(m.centre);
-            let a0 = geometry::angle(start, m.centre);
-            let sweep = geometry::sweep_from(a0, start, m.end, m.centre, m.motion == Motion::Ccw);
-            let by_angle = sampling.arc_steps(radius, sweep, m.feed);
-            sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2)
+            let (radius, sweep) = arc.unwrap_or((0.0, 0.0));
+            let by_angle = sampling.arc_steps(radius, sweep, feed);
+            sampling.spacing.steps(radius * sweep, minutes).max(by_angle).max(2)
         }
     }
 }

@@ -18,7 +18,9 @@
 use smallvec::SmallVec;
 
 use crate::error_model::ErrorModel;
-use crate::error_model::sampling::{MoveView, PathSample, Sampling, sample_view, sample_view_at};
+use crate::error_model::sampling::{
+    MoveView, PathSample, Sampling, sample_view, sample_view_at, samples_needed_compact,
+};
 use crate::toolpath::compact::CompactPath;
 use crate::toolpath::{Motion, Xz};
 
@@ -30,8 +32,10 @@ use super::follow::{Follower, Original};
 use super::knee::{self, Axis};
 use super::{Measured, Side, Worst};
 
-/// Moves sampled and measured at a time: memory follows them, not the program.
+/// Moves sampled and measured at a time, and samples (past the first move's): memory
+/// follows them, not the program.
 const CHUNK_MOVES: usize = 4096;
+const CHUNK_SAMPLES: usize = 1 << 16;
 
 /// Sample `program` as `sampling` allows, predict it through `model` as written, and tally
 /// the distance of each predicted cutting point from `original`, with its side, integrated
@@ -47,9 +51,16 @@ pub fn measure(
     let mut walk = Walk::new(program, original, model, sampling, side);
     let mut samples = Vec::new();
     let count = program.len();
-    for first in (0..count).step_by(CHUNK_MOVES) {
+    let mut next = 0;
+    while next < count {
+        let first = next;
+        let mut held = 0;
+        while next < count && next - first < CHUNK_MOVES && (next == first || held < CHUNK_SAMPLES) {
+            held = samples_needed_compact(program, next, sampling).saturating_add(held);
+            next += 1;
+        }
         samples.clear();
-        for index in first..(first + CHUNK_MOVES).min(count) {
+        for index in first..next {
             if let Some(view) = MoveView::of_compact(program, index) {
                 let angles = program.arc(index).map(|arc| (arc.start_angle, arc.sweep));
                 sample_view(&view, index, sampling, angles, None, &mut samples);
