@@ -217,7 +217,13 @@ pub fn check_written(
         return Err(oversampled);
     }
     let lost = check_words(original_program, read.program()).missing;
-    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(&original, &toolpath), lost))
+    let feeds = check_feeds(&original, &toolpath);
+    // Its words checked, the written program is measured compact: its AST and toolpath
+    // are let go before the measure, which holds the two compact paths and its pieces.
+    let written_path = compact(toolpath, tools);
+    drop(read);
+    let original_path = compact(original, tools);
+    Ok((deviation_of(&original_path, &written_path, model, &sampling, &|_, _| {}), feeds, lost))
 }
 
 /// The deviation `verify` allows by default: two least increments, mm.
