@@ -392,7 +392,13 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let original = program.valid();
     let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
     let mut unreadable = FileResult::failed(1, Vec::new());
-    let refusal = match verify::check_written((&program.parsed.program, original), &written, &reading, &tools, &model) {
+    let refusal = match verify::check_written(
+        (&program.parsed.program, &program.lowered.expansions, original),
+        &written,
+        &reading,
+        &tools,
+        &model,
+    ) {
         Ok((figures, feed_change, lost)) => {
             let totals = &mut outcome.report.totals;
             (totals.before, totals.after) = (figures.before, figures.after);
