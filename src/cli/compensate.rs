@@ -530,6 +530,10 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         };
         provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
         let written = printer::print(&program.parsed.program, &outcome.edits);
+        // The edits are in the text now: they go before the read-back, which holds a second
+        // program.
+        drop(std::mem::take(&mut outcome.edits));
+        drop(std::mem::take(&mut outcome.edited));
         // What is about to be written is read back and measured as `verify` measures it; its
         // figures are the ones reported, and a program that misses verify's bound is refused.
         // Read back as the original was read: with `--dialect auto`, the evidence of the
