@@ -34,6 +34,7 @@ pub mod lsp;
 pub mod machine;
 mod memory;
 pub mod parallel;
+pub mod part;
 pub mod pipeline;
 pub mod plot;
 pub mod printer;

@@ -27,6 +27,7 @@ mod lsp_session;
 mod moves;
 mod nose_radius;
 mod parse;
+mod part;
 mod plots;
 mod print;
 mod provenance;
