@@ -159,7 +159,7 @@ fn typed(
     digit: &str,
 ) -> (Vec<Message>, Vec<turnpass::lsp::server::Job>) {
     let (line, column) = at;
-    let (end, text) = if round % 2 == 0 { (column, digit) } else { (column + 1, "") };
+    let (end, text) = if round.is_multiple_of(2) { (column, digit) } else { (column + 1, "") };
     let range = json!({ "start": { "line": line, "character": column }, "end": { "line": line, "character": end } });
     let params = json!({
         "textDocument": { "uri": URI, "version": round + 2 },

@@ -17,4 +17,4 @@ mod cycle;
 pub(crate) mod grid;
 pub(crate) mod motion;
 
-pub(crate) use cycle::{CycleBlocks, cycle_blocks};
+pub(crate) use cycle::{CycleBlocks, carried_words, carry_traced, cycle_blocks};

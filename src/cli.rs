@@ -1,12 +1,15 @@
 //! Command-line interface: arguments, files, settings lookup, output and exit codes.
 //!
-//! Exit codes: 0 ok, 1 the program has errors (or `fmt --check` found changes, or
-//! `compensate` refused, or `verify` found a violation, or a measurement does not read),
-//! 2 usage or I/O error. A run that
-//! exits 1 writes no program, table or plot, to a file or to standard output. Output files
-//! are written to a temporary file beside the target and renamed, so a failed run never
-//! leaves a partial file. One module per command under `cli/`; `common.rs` holds what
-//! they share; `streams.rs` is the one place that writes to standard output and error.
+//! Exit codes (one rule for every command, README "Exit codes"): 0 the command did what
+//! was asked (no `error` printed), 1 the input cannot give it (the program has errors or no
+//! block to run, an OSP machining-centre program given to a command that runs it, `fmt
+//! --check` found changes, `compensate` refused, `verify` found a violation, a measurement
+//! does not read), 2 usage or I/O error. A run that exits 1 writes no program, table or
+//! plot, to a file or to standard output. Output files are written to a temporary file
+//! beside the target, synced and renamed, so a failed run never leaves a partial file;
+//! devices, FIFOs and standard output are written directly. One module per command under
+//! `cli/`; `common.rs` holds what they share; `streams.rs` is the one place that writes to
+//! standard output and error.
 
 // Every write to a standard stream goes through `streams`, which treats a closed pipe as
 // the end of the output; the print macros would panic on it instead.
@@ -26,6 +29,7 @@ mod plot;
 mod report;
 mod simulate;
 mod streams;
+mod table;
 mod thermal;
 mod verify;
 
@@ -48,6 +52,8 @@ Examples:
   turnpass plot part.nc --model machine.toml -o part.svg
   turnpass report part.nc part-comp.nc --model machine.toml -o report.html
   turnpass model report machine.toml
+  turnpass table machine.toml --control linuxcnc -o lathe-comp.ini   (and lathe-comp-x.comp, lathe-comp-z.comp)
+  turnpass compensate part.nc --model machine.toml --with-table lathe-comp.ini -o part-comp.nc
   turnpass diagnose part.nc --model machine.toml --measured cmm.csv --write-model machine-new.toml --plot gap.svg
   turnpass synth ballbar.nc --model truth.toml --kind ballbar --noise 0.0002 --seed 7 -o trace.csv
   turnpass fit-thermal spindle-log.csv --write-model machine.toml --axis z
@@ -57,10 +63,11 @@ Machine settings come from --model FILE, or from a turnpass.toml found in the pr
 directory or above it ([machine] table: dialect, gcode_system, decimal_input, units,
 least_increment; [model], [[axis_table]] and [[effect]] tables: the error model).
 
-Exit codes: 0 ok, 1 the program has errors (or compensate refused it, or verify found a
-violation, or a measurement does not read), 2 usage or I/O error. With exit 1 no program,
-table or plot is written, to a file or to standard output: only the diagnostics (check's
-output) or the findings (verify's).
+Exit codes: 0 ok, 1 the input cannot give what was asked (the program has errors or nothing
+to run, compensate refused it, verify found a violation, a measurement does not read),
+2 usage or I/O error. With exit 1 no program, table or plot is written, to a file or to
+standard output: only the diagnostics (check's output) or the findings (verify's).
+Every input is read to at most 256 MiB (--max-input-mb raises it).
 report writes its page whatever verify finds (exit 0, the verdict on the page).
 A closed standard output (`| head`) ends the output quietly; the exit code is the run's.";
 
@@ -73,6 +80,16 @@ struct Cli {
     /// empty), always or never.
     #[arg(long, global = true, value_enum, value_name = "WHEN", default_value = "auto")]
     color: streams::ColorChoice,
+    /// The largest input read, in MiB (a program, model, axis table, measurement or log;
+    /// standard input too): a larger one is refused, exit 2. At most 4095.
+    #[arg(
+        long,
+        global = true,
+        value_name = "MIB",
+        default_value_t = turnpass::source::DEFAULT_INPUT_LIMIT_MIB,
+        value_parser = clap::value_parser!(u64).range(1..=turnpass::source::MAX_INPUT_LIMIT_MIB),
+    )]
+    max_input_mb: u64,
 }
 
 #[derive(Subcommand)]
@@ -95,10 +112,13 @@ enum Command {
     Report(report::ReportArgs),
     /// Find where a measurement and the model disagree, name the missing effect, add it.
     Diagnose(diagnose::DiagnoseArgs),
-    /// Make a measurement (ball bar trace or CMM profile) from a truth model, with noise.
+    /// Make a measurement (ball bar trace, CMM profile or interferometer table) from a truth model, with noise.
     Synth(diagnose::SynthArgs),
     /// Fit the first-order warm-up and cool-down curves of a thermal log.
     FitThermal(thermal::FitThermalArgs),
+    /// Write the part of a model the control's own pitch-error and backlash compensation
+    /// carries, in the control's format (LinuxCNC, Fanuc, Okuma).
+    Table(table::TableArgs),
     /// Serve the Language Server Protocol on standard input and output (for editors).
     Lsp,
     /// Machine models.
@@ -114,6 +134,7 @@ pub fn main() -> ExitCode {
         Err(error) => return usage_error(&error),
     };
     streams::set_color(cli.color);
+    common::set_input_limit_mib(cli.max_input_mb);
     if let Err(error) = common::tune_from_environment() {
         streams::err(error.message());
         return ExitCode::from(error.exit_code());
@@ -131,6 +152,7 @@ pub fn main() -> ExitCode {
         Command::Diagnose(args) => diagnose::run(args),
         Command::Synth(args) => diagnose::run_synth(args),
         Command::FitThermal(args) => thermal::run(args),
+        Command::Table(args) => table::run(args),
         Command::Lsp => lsp::run(),
         Command::Model { command } => model::run(command),
     };

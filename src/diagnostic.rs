@@ -49,19 +49,23 @@ pub struct Diagnostic {
     pub span: Span,
     /// Secondary labels, such as the blocks on the other side of a dialect conflict.
     pub related: Vec<(Span, String)>,
+    /// How many more times the run found the same problem at the same place (a block in a
+    /// loop, a subprogram called again): one diagnostic per block, with a count, so that
+    /// neither output nor memory follows the number of repeats (`merge_repeats`).
+    pub repeats: u32,
 }
 
 impl Diagnostic {
     pub fn error(kind: DiagnosticKind, span: Span) -> Diagnostic {
-        Diagnostic { severity: Severity::Error, kind, span, related: Vec::new() }
+        Diagnostic { severity: Severity::Error, kind, span, related: Vec::new(), repeats: 0 }
     }
 
     pub fn warning(kind: DiagnosticKind, span: Span) -> Diagnostic {
-        Diagnostic { severity: Severity::Warning, kind, span, related: Vec::new() }
+        Diagnostic { severity: Severity::Warning, kind, span, related: Vec::new(), repeats: 0 }
     }
 
     pub fn note(kind: DiagnosticKind, span: Span) -> Diagnostic {
-        Diagnostic { severity: Severity::Note, kind, span, related: Vec::new() }
+        Diagnostic { severity: Severity::Note, kind, span, related: Vec::new(), repeats: 0 }
     }
 
     pub fn with_related(mut self, span: Span, label: impl Into<String>) -> Diagnostic {
@@ -93,6 +97,62 @@ impl Diagnostic {
     pub fn hint(&self) -> Option<String> {
         self.kind.hint()
     }
+
+    /// What a renderer says of the repeats (`repeats`), when there are any.
+    pub fn repeats_note(&self) -> Option<String> {
+        let n = self.repeats;
+        (n > 0).then(|| {
+            format!(
+                "found {n} more time{} as the run comes back to this place; shown once",
+                if n == 1 { "" } else { "s" }
+            )
+        })
+    }
+}
+
+/// Merge the diagnostics of `list` that repeat one before them (the same kind at the same
+/// span, with the same severity) into that one, counting them in its `repeats`: the first
+/// keeps its words and place, the rest go. Passes that run a block many times (the
+/// interpreter in a loop, the toolpath's checks of every move) merge as they go, so that a
+/// loop that leaves the travel four million times is one diagnostic, not four million.
+pub fn merge_repeats(list: &mut Vec<Diagnostic>) {
+    type Key = (Span, std::mem::Discriminant<DiagnosticKind>, Severity);
+    let mut first: std::collections::HashMap<Key, usize> = std::collections::HashMap::new();
+    let mut kept = 0;
+    for k in 0..list.len() {
+        let key = (list[k].span, std::mem::discriminant(&list[k].kind), list[k].severity);
+        match first.get(&key) {
+            Some(&at) => list[at].repeats = list[at].repeats.saturating_add(list[k].repeats.saturating_add(1)),
+            None => {
+                first.insert(key, kept);
+                list.swap(kept, k);
+                kept += 1;
+            }
+        }
+    }
+    list.truncate(kept);
+}
+
+/// A word the control counts (least increments, milliseconds, a sequence number, a count)
+/// written with a decimal point: the facts of `IntegerExpected` and
+/// `DecimalPointUnverified`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CountedWord {
+    /// The command, as messages name it (`G76 (multiple threading cycle)`), and the address.
+    pub command: String,
+    pub address: String,
+    /// The word as written (`P0.92`).
+    pub written: String,
+    /// What the word counts.
+    pub unit: crate::dialect::IntegerUnit,
+    /// The word meant and what it reads as (`P920`, `0.92 mm`), when it can be told
+    /// (`dialect::roles::meant`).
+    pub meant: Option<(String, String)>,
+    /// The control whose rule this is (`control` setting), and another that takes the
+    /// point, with the unit it reads the word in then (a Haas reads a dwell `P0.3` in
+    /// seconds).
+    pub control: &'static str,
+    pub elsewhere: Option<(&'static str, &'static str)>,
 }
 
 /// What went wrong. Variants carry the facts their message needs, never preformatted text,
@@ -256,10 +316,60 @@ pub enum DiagnosticKind {
         command: String,
         words: String,
     },
-    /// A decimal point in a word that counts least increments or names a sequence (`P2.`).
-    IntegerExpected {
-        command: String,
-        address: String,
+    /// A decimal point in a word that counts least increments, milliseconds or passes, or
+    /// names a sequence (`P2.`), which the control refuses.
+    IntegerExpected(Box<CountedWord>),
+    /// A word that counts least increments written with a decimal point, which some controls
+    /// take (as a length) and others may refuse: not verified for this one (`G83 Q3.`).
+    DecimalPointUnverified {
+        /// The word, and its `meant`: the word without a point that reads the same
+        /// everywhere.
+        word: Box<CountedWord>,
+        /// The reading with the point (`3 mm`).
+        reading: String,
+    },
+    /// A length or feed word without a decimal point that counts least increments (increment
+    /// input) and reads implausibly small in its place (`X32` is 0.032 mm).
+    MissingDecimalPoint {
+        /// The word as written (`X32`).
+        word: String,
+        /// Its reading here, and its reading with a point, with their unit (`0.032 mm`,
+        /// `32 mm`).
+        readings: Box<(String, String)>,
+    },
+    /// The settings do not give `decimal_input`, and `count` words without a decimal point
+    /// would read implausibly if the control counted least increments: the first of them,
+    /// read as written (calculator input, in force) and as increments.
+    DecimalInputUnset {
+        count: usize,
+        word: String,
+        /// Its reading as written and in least increments.
+        readings: Box<(String, String)>,
+    },
+    /// An error of a profile or a corner that a word read without its decimal point explains:
+    /// the error, said at the word.
+    MissingPointCauses {
+        cause: Box<DiagnosticKind>,
+        word: String,
+        /// Its reading here, and with a point.
+        readings: Box<(String, String)>,
+    },
+    /// How an OSP longitudinal thread cycle's height reads: a diameter, so the passes cut
+    /// half of it deep (said by `expand` at the call).
+    ThreadHeightAsDiameter {
+        word: String,
+        depth_mm: f64,
+        passes: usize,
+    },
+    /// An OSP thread height (a diameter) nearer the radial height of the thread's pitch
+    /// than its height as a diameter: written as Fanuc's radial `G76` height.
+    ThreadHeightRadial {
+        word: String,
+        /// The depth it cuts, and the pitch, mm.
+        depth_mm: f64,
+        pitch_mm: f64,
+        /// The word with the height doubled (`H1.84`).
+        meant: Option<String>,
     },
     /// Two cycle or motion commands that cannot share a block.
     ConflictingCommands {
@@ -442,6 +552,13 @@ pub enum DiagnosticKind {
         samples: usize,
         max: usize,
     },
+    /// `plot`: the program's path needs more samples in all than a plot holds
+    /// (`error_model::sampling::MAX_SAMPLES_PER_MOVE`, the most compensation holds at once),
+    /// on the block whose move passes the bound.
+    PathNeedsTooManySamples {
+        samples: usize,
+        max: usize,
+    },
     /// The program runs off the end of its text, which ends in the middle of a block, with
     /// no program end: the text was cut (`Lowered::cut_off`).
     ProgramCut,
@@ -457,6 +574,18 @@ pub enum DiagnosticKind {
     /// `compensate`: the program it would write cuts with other feed or spindle words than
     /// the original (a defect of turnpass, never of the program).
     CompensationChangesFeed,
+    /// `compensate`: the program it would write loses this word of the original (an M code,
+    /// T, comment, block-delete slash, program name or spindle speed), or has it out of
+    /// order, as `verify` checks (a defect of turnpass, never of the program).
+    CompensationLosesWord {
+        word: String,
+    },
+    /// `compensate`: an M code or T word inside a profile that only a roughing cycle reads
+    /// (no finishing cycle runs it): the control never runs it, and with the cycle written
+    /// out no block is left to keep it on.
+    ProfileWordNotRun {
+        word: String,
+    },
     /// `compensate`: the program it would write does not read back cleanly: a defect of
     /// turnpass, or (`nose_has_no_room`) a contour the corrections moved so that the tool
     /// nose no longer fits it under nose-radius compensation.

@@ -6,6 +6,7 @@
 
 pub(crate) mod address;
 pub mod detect;
+pub(crate) mod roles;
 pub(crate) mod tables;
 
 use std::fmt;
@@ -13,6 +14,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
+pub use roles::IntegerUnit;
 pub use tables::{
     Address, AddressKind, Code, DrillPeck, DrillRetract, DrillingFacts, FeedAndSpeed, Form, GFunction, GInfo, GKind,
     KeywordInfo, KeywordKind, ModalGroup, Role, Schema, SchemaId, Tables,

@@ -16,6 +16,8 @@
 //! superposition is exact to far below the least increment; `htm.rs` keeps the one
 //! second-order product the thesis' matrix has.
 
+pub mod control;
+pub mod counted_twice;
 pub mod effects;
 pub(crate) mod fitting;
 pub(crate) mod htm;
@@ -40,6 +42,10 @@ pub struct ErrorModel {
     pub effects: Vec<Effect>,
     /// Minutes since the machine started when the program starts (thermal effects).
     pub start_min: f64,
+    /// The control's own axis compensation, when the machine runs with a table loaded
+    /// (`control.rs`, `ErrorModel::with_control`): the terms it works on, which `effects`
+    /// and `tables` then lack.
+    pub control: Option<Box<control::ControlTerm>>,
 }
 
 impl ErrorModel {
@@ -64,6 +70,10 @@ impl ErrorModel {
                 Some(&e) => e,
                 None => effect.displacement(sample),
             };
+            d = Xz::new(d.x + e.x, d.z + e.z);
+        }
+        if let Some(control) = &self.control {
+            let e = control.displacement(sample);
             d = Xz::new(d.x + e.x, d.z + e.z);
         }
         d
@@ -115,14 +125,25 @@ impl ErrorModel {
     /// program goes from the origin in each axis (mm, X as a radius). Axis tables keep the
     /// thesis' step (`spacing.rs`).
     pub fn spacing(&self, allowance: f64, reach: Xz) -> Spacing {
-        let tables = if self.tables.is_some() { Spacing::mm(spacing::TABLE_STEP_MM) } else { Spacing::ANY };
-        self.effects.iter().fold(tables, |spacing, effect| spacing.closer(effect.spacing(allowance, reach)))
+        // A control's table is linear between nodes with a kink at each, as a slide table is.
+        let tables = if self.tables.is_some() || self.control.is_some() {
+            Spacing::mm(spacing::TABLE_STEP_MM)
+        } else {
+            Spacing::ANY
+        };
+        self.terms().fold(tables, |spacing, effect| spacing.closer(effect.spacing(allowance, reach)))
     }
 
     /// What makes the whole model's correction turn around an arc (`spacing::ArcTerms`).
     /// Axis tables add none here: they keep the thesis' 0.254 mm along the arc.
     pub fn arc_terms(&self, reach: Xz) -> spacing::ArcTerms {
-        self.effects.iter().fold(spacing::ArcTerms::default(), |terms, effect| terms.plus(effect.arc_terms(reach)))
+        self.terms().fold(spacing::ArcTerms::default(), |terms, effect| terms.plus(effect.arc_terms(reach)))
+    }
+
+    /// Every parametric term of the machine: its effects and those a loaded control table
+    /// works on.
+    fn terms(&self) -> impl Iterator<Item = &Effect> {
+        self.effects.iter().chain(self.control.iter().flat_map(|control| control.carried()))
     }
 
     /// Whether a term of the model depends on the length the tool has cut (wear): the
@@ -133,7 +154,7 @@ impl ErrorModel {
 
     /// Whether the model has any term (an empty model moves nothing).
     pub fn is_empty(&self) -> bool {
-        self.tables.is_none() && self.effects.is_empty()
+        self.tables.is_none() && self.effects.is_empty() && self.control.is_none()
     }
 }
 

@@ -7,9 +7,9 @@
 //! writes the blocks (`back::cycle_blocks`: coordinates back through the program's frame on
 //! its least increment, motion codes and F where they change, arcs in the program's form).
 
-use crate::back::{CycleBlocks, cycle_blocks};
+use crate::back::{CycleBlocks, carried_words, carry_traced, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::printer::{Edits, ProgramStyle};
+use crate::printer::{Edits, NewBlock, ProgramStyle};
 use crate::semantic::Lowered;
 use crate::syntax::{Program, Statement};
 use crate::toolpath::{Compensation, Validated};
@@ -40,9 +40,14 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Validated<Lowered>) -> (
         let shift = lowered.coordinates_at(expansion.moves.start).shift;
         match cycle_blocks(program, expansion, moves, start, compensation_before, shift, &style) {
             CycleBlocks::Keep => {}
-            CycleBlocks::Blocks(blocks) => {
+            CycleBlocks::Blocks(mut blocks) => {
+                let first = expansion.moves.start;
+                carry_traced(program, &mut blocks, moves.len(), expansion.traced.iter().map(|&(m, b)| (m - first, b)));
                 edits.replace(expansion.block, blocks);
                 delete_consumed(&mut edits, program, expansion, &calls);
+                if let Some(note) = &expansion.note {
+                    notes.push(Diagnostic::note(note.clone(), program.block(expansion.block).span));
+                }
             }
             CycleBlocks::NotExpandable(reason) => {
                 let span = program.block(expansion.block).span;
@@ -54,7 +59,9 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Validated<Lowered>) -> (
 }
 
 /// Delete the blocks a cycle consumed; a block that is itself a cycle call keeps its own
-/// expansion.
+/// expansion. The cycle's first block ran where it is (`Expansion::setup`): its M codes, T
+/// words and comments stay there. A profile block's words go with the cycle that runs it
+/// (`carry_traced`); a cycle that only reads its profile (`G71`) never runs them.
 pub(crate) fn delete_consumed(
     edits: &mut Edits,
     program: &Program<'_>,
@@ -62,8 +69,47 @@ pub(crate) fn delete_consumed(
     calls: &std::collections::HashSet<usize>,
 ) {
     for &consumed in &expansion.consumed {
-        if !calls.contains(&consumed) && program.block(consumed).statement != Statement::Invalid {
+        if calls.contains(&consumed) || program.block(consumed).statement == Statement::Invalid {
+            continue;
+        }
+        let kept = if expansion.setup == Some(consumed) { carried_words(program, consumed) } else { Vec::new() };
+        if kept.is_empty() {
             edits.delete(consumed);
+        } else {
+            edits.replace(consumed, vec![NewBlock::new(kept)]);
+        }
+    }
+}
+
+/// Why `expand` does not write the program it printed ([`check_written`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Unwritable {
+    /// The printed program, read back, has errors (over its own text).
+    Errors(Vec<Diagnostic>),
+    /// It runs cleanly but cuts another number of moves than the original.
+    OtherCuts { original: usize, written: usize },
+}
+
+/// What `expand` checks before it writes, as `compensate` checks what it writes
+/// (`compensation::verify::check_written`): `written`, a printing of `original`, read back
+/// with `reading` (the original's settings, its dialect and G-code system fixed:
+/// `printer::read_back_options`), lowered and validated, must run without an error and cut
+/// as many moves as the original. A coordinate past the digits the control reads, or a block
+/// that ran nowhere in the original and runs in the expansion, is found here, not on the
+/// control.
+pub fn check_written(
+    original: &Validated<Lowered>,
+    written: &[u8],
+    reading: &crate::pipeline::Settings,
+) -> Result<(), Unwritable> {
+    let cuts = |lowered: &Lowered| lowered.toolpath.moves.iter().filter(|m| m.cutting).count();
+    match crate::pipeline::analyse(written, reading).ready() {
+        Ok(read) => {
+            let (original, written) = (cuts(original), cuts(&read.lowered));
+            if original == written { Ok(()) } else { Err(Unwritable::OtherCuts { original, written }) }
+        }
+        Err(analysed) => {
+            Err(Unwritable::Errors(analysed.diagnostics.into_iter().filter(Diagnostic::is_error).collect()))
         }
     }
 }

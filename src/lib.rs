@@ -24,6 +24,7 @@
 pub mod back;
 pub mod bounds;
 pub mod compensation;
+pub mod control_table;
 pub mod diagnose;
 pub mod diagnostic;
 pub mod dialect;

@@ -226,6 +226,34 @@ impl StockSettings {
     }
 }
 
+/// The rule of units of a model file, quoted where a key breaks it (`docs/error-model.md`,
+/// "Units"): the settings are the control's, the error model is measured physics.
+pub const UNITS_RULE: &str = "[machine] and its tool table are in the program's units (mm or inch) with X as the \
+                              machine programs it (a diameter on a diameter-programmed lathe), as the control holds \
+                              them; [model], [[axis_table]] and [[effect]] are measured displacements, in \
+                              millimetres with X as a radius";
+
+/// What a key's name says about its units when it names the other system than the table
+/// it is in wants (an effect's `dx_dia`, `b_inch`, `units`): "a diameter", "inches",
+/// "micrometres", or "units of its own". `None` for a name that says nothing of units.
+pub fn names_other_units(key: &str) -> Option<&'static str> {
+    let key = key.to_lowercase();
+    if matches!(key.as_str(), "units" | "unit" | "diameter_programming") {
+        return Some("units of its own");
+    }
+    if key.contains("µm") || key.contains("μm") {
+        return Some("micrometres");
+    }
+    key.split(|c: char| !c.is_ascii_alphanumeric()).find_map(|word| match word {
+        "dia" | "diam" | "diameter" | "diametral" => Some("a diameter"),
+        "in" | "inch" | "inches" => Some("inches"),
+        "um" | "micron" | "microns" | "micrometre" | "micrometres" | "micrometer" | "micrometers" => {
+            Some("micrometres")
+        }
+        _ => None,
+    })
+}
+
 /// Plausible least increments, in the machine's units: from a micrometre (or a millionth
 /// of an inch) to 0.01 (the coarsest input system, IS-A), and a power of ten.
 pub const LEAST_INCREMENT: Range = Range::closed(0.000_001, 0.01, "");
@@ -241,7 +269,7 @@ pub const NOSE_RADIUS: Range = Range::closed(0.0, 50.0, "");
 /// Plausible minor cutting edge angles: from 0 to 90 degrees.
 pub const MINOR_EDGE_ANGLE: Range = Range::closed(0.0, 90.0, "degrees");
 /// Plausible ball screw leads, mm (and their fractions, for the harmonics of a cyclic
-/// error: `error_model::effects::cyclic_x`).
+/// error: `error_model::effects::cyclic`).
 pub const SCREW_PITCH: Range = Range::closed(0.1, 1_000.0, "mm");
 
 /// A machine model file. Only `[machine]` is read here; the error-model tables that later

@@ -12,6 +12,7 @@
 
 pub mod canonical;
 pub(crate) mod edit;
+pub mod mark;
 pub(crate) mod style;
 pub(crate) mod written;
 

@@ -56,6 +56,7 @@ pub struct Page<'a> {
 
 /// `text` with `&`, `<`, `>`, `"` and `'` escaped, for HTML text and attribute values.
 pub fn escape(text: &str) -> String {
+    let text = crate::source::escape_controls(text);
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
         match c {
@@ -209,9 +210,9 @@ fn figures(out: &mut String, page: &Page<'_>) {
     out.push_str(&row("compensated", &d.after));
     let _ = writeln!(
         out,
-        "</table>\n<p>RMS improvement: <strong>{:.1} %</strong>. Largest deviation allowed: {:.3} µm. \
+        "</table>\n<p>RMS improvement: <strong>{}</strong>. Largest deviation allowed: {:.3} µm. \
          Non-motion words checked: {}.</p>",
-        d.improvement_percent,
+        crate::compensation::deviation::improvement_text(d.improvement_percent),
         page.limit_mm * 1000.0,
         page.words_checked
     );
@@ -277,7 +278,7 @@ mod tests {
     #[test]
     fn the_page_escapes_what_the_programs_hold_and_names_no_address() {
         let deviation =
-            Deviation { before: Figures::default(), after: Figures::default(), improvement_percent: 0.0, worst: None };
+            Deviation { before: Figures::default(), after: Figures::default(), improvement_percent: None, worst: None };
         let page = Page {
             version: "0.1.0",
             original: ProgramFile { name: "a<b>.nc", bytes: b"O1\n(<script>)\nG01 X1.\n" },

@@ -16,9 +16,10 @@
 
 mod block;
 pub(crate) mod cycles;
+mod decimal_point;
 mod emitter;
 mod eval;
-mod frame;
+pub(crate) mod frame;
 mod interpreter;
 pub(crate) mod labels;
 mod modal;
@@ -74,6 +75,9 @@ pub struct Machine {
     pub units: Units,
     pub diameter_programming: bool,
     pub decimal_input: DecimalInput,
+    /// Whether the settings give `decimal_input` (else it is the default, calculator input,
+    /// and a program whose words read differently under the other is told so).
+    pub decimal_input_given: bool,
     /// Least input increment, machine units.
     pub increment: f64,
     /// Home position in the toolpath frame, when the settings give it.
@@ -115,6 +119,7 @@ impl Machine {
             units,
             diameter_programming,
             decimal_input: settings.decimal_input.unwrap_or_default(),
+            decimal_input_given: settings.decimal_input.is_some(),
             increment: settings.least_increment.unwrap_or(if units == Units::Inch { 0.0001 } else { 0.001 }),
             home,
             limits,
@@ -208,6 +213,14 @@ pub struct Expansion {
     /// The program's frame at the call (units may change along the program).
     pub frame: Frame,
     pub consumed: Vec<usize>,
+    /// The consumed first block of a two-block cycle (`G71 U R`): the control runs it where
+    /// it is, so its M codes and T words stay there when the call is written out.
+    pub setup: Option<usize>,
+    /// The profile blocks the cycle runs as the program's own blocks (a finishing pass:
+    /// `G70`, a LAP finishing cycle), each with the first move of the toolpath it makes
+    /// there: their M codes, T words and comments go on the block written for that move,
+    /// where the control runs them.
+    pub traced: Vec<(usize, usize)>,
     pub moves: std::ops::Range<usize>,
     /// The modal words in force before the call, and after it: the expanded blocks must
     /// leave the latter behind so that the blocks after them run as before.
@@ -215,6 +228,9 @@ pub struct Expansion {
     pub after: ModalAfter,
     /// Why `expand` leaves the call as it is, if it does (a drilling cycle).
     pub kept: Option<&'static str>,
+    /// What `expand` says of the blocks it writes for the call (how an OSP thread cycle's
+    /// height reads), a note at the call.
+    pub note: Option<crate::diagnostic::DiagnosticKind>,
 }
 
 /// The modal words a cycle leaves in force: the motion code (when it is a plain one; after

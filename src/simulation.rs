@@ -271,10 +271,24 @@ pub fn summary(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Ma
 }
 
 /// The finishing passes of a program, each as the block that makes it and its range of
-/// moves: every `G70`/LAP finishing cycle, then every run of feed moves under nose-radius
-/// compensation outside cycles (less the move that switches compensation on, which
-/// approaches the surface and does not finish it). In program order of the passes' kinds,
-/// not sorted.
+/// moves: every `G70`/LAP finishing cycle, less its approach (`cycle_approach`), then every
+/// run of feed moves under nose-radius compensation outside cycles (less the move that
+/// switches compensation on, which approaches the surface and does not finish it). In
+/// program order of the passes' kinds, not sorted.
+/// The moves at the start of a finishing cycle's `moves` that bring the tool from the cycle's
+/// start point to its profile, not on the finished surface: the moves before the first
+/// cut (the profile's first block written `G00`), and the first cut itself where it is the
+/// profile's first block (written `G01`: Fanuc's move from A to A', which only positions the
+/// tool; the finishing shape is A' to B) or switches nose-radius compensation on.
+fn cycle_approach(moves: &[crate::toolpath::Move], range: Range<usize>) -> Range<usize> {
+    let first_cut = range.clone().find(|&i| moves[i].cutting).unwrap_or(range.end);
+    let switches_on = |i: usize| {
+        moves[i].compensation != Compensation::Off && (i == 0 || moves[i - 1].compensation == Compensation::Off)
+    };
+    let approach = first_cut < range.end && (first_cut == range.start || switches_on(first_cut));
+    range.start..if approach { first_cut + 1 } else { first_cut }
+}
+
 pub fn finishing_moves(program: &Program<'_>, lowered: &Validated<Lowered>) -> Vec<(Span, Range<usize>)> {
     let toolpath = lowered.valid().toolpath();
     let mut out = Vec::new();
@@ -289,7 +303,8 @@ pub fn finishing_moves(program: &Program<'_>, lowered: &Validated<Lowered>) -> V
             _ => false,
         });
         if is_finishing {
-            out.push((block.span, expansion.moves.clone()));
+            let moves = expansion.moves.clone();
+            out.push((block.span, cycle_approach(&toolpath.moves, moves.clone()).end..moves.end));
         }
     }
     let mut i = 0;

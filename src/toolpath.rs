@@ -215,6 +215,7 @@ pub fn validate(toolpath: &Toolpath, limits: Option<Limits>) -> Result<ValidTool
 /// The problems of the moves, in order.
 fn check_moves(toolpath: &Toolpath, limits: Option<Limits>) -> Vec<Diagnostic> {
     let mut problems = Vec::new();
+    let mut merge_at = 4096;
     // The time of the last move whose time was checked: a move with non-finite values is
     // reported as such and does not count.
     let mut previous_time = 0.0;
@@ -244,7 +245,13 @@ fn check_moves(toolpath: &Toolpath, limits: Option<Limits>) -> Vec<Diagnostic> {
         {
             problems.push(Diagnostic::error(DiagnosticKind::OutsideTravel { x_mm: outside.x, z_mm: outside.z }, span));
         }
+        // The moves of a block run many times repeat its problems: merged as they pile up.
+        if problems.len() >= merge_at {
+            crate::diagnostic::merge_repeats(&mut problems);
+            merge_at = 2 * problems.len() + 4096;
+        }
     }
+    crate::diagnostic::merge_repeats(&mut problems);
     problems
 }
 

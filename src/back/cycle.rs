@@ -7,9 +7,10 @@
 
 mod thread_pass;
 
+use crate::dialect::Address;
 use crate::printer::{NewBlock, NewWord, ProgramStyle};
 use crate::semantic::Expansion;
-use crate::syntax::Program;
+use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::{Compensation, Move, Xz};
 
 use super::grid::Grid;
@@ -33,7 +34,8 @@ pub(crate) const THREAD_MOVES: &str = "its thread moves have no plain-block form
 /// `compensation_before` in force before it and the program's coordinates shifted by
 /// `shift` (`G50 X Z`), in the program's `style` (`ProgramStyle::infer`, read once per
 /// program: it reads every block). `expand` passes the cycle's own moves, the compensation
-/// pass its compensated ones.
+/// pass its compensated ones. The block written for `moves[k]` is the `k`-th, so that
+/// [`carry_traced`] can put a profile block's words on the block of its move.
 pub(crate) fn cycle_blocks(
     program: &Program<'_>,
     expansion: &Expansion,
@@ -69,6 +71,43 @@ pub(crate) fn cycle_blocks(
         blocks.push(NewBlock::new(cycle.writer.take_words()));
     }
     CycleBlocks::Blocks(blocks)
+}
+
+/// Put the words of each profile block a cycle runs (`traced`: the block, and the index in
+/// the cycle's `moves` of the first move it makes, `Expansion::traced`) on the block written
+/// for that move ([`cycle_blocks`] writes the `k`-th block for `moves[k]`), where the control
+/// runs them; a block whose elements make no move of their own (an approach of no length at
+/// the end) leaves them on the last move's block.
+pub(crate) fn carry_traced(
+    program: &Program<'_>,
+    blocks: &mut [NewBlock],
+    moves: usize,
+    traced: impl IntoIterator<Item = (usize, usize)>,
+) {
+    for (at, block) in traced {
+        if let Some(written) = blocks.get_mut(at.min(moves.saturating_sub(1))) {
+            written.words.extend(carried_words(program, block));
+        }
+    }
+}
+
+/// The words of block `block` that run where the block runs and that no written move block
+/// gives: its M codes, T words and comments, as copies, in their order. A cycle's first block
+/// (`Expansion::setup`) leaves them where it was; a profile block the cycle runs
+/// (`Expansion::traced`) puts them on the block written for its move.
+pub(crate) fn carried_words(program: &Program<'_>, block: usize) -> Vec<NewWord> {
+    let block = program.block(block);
+    program
+        .words_of(block)
+        .iter()
+        .enumerate()
+        .filter(|(_, word)| match word.kind {
+            WordKind::Code { letter: CodeLetter::M, .. } | WordKind::Comment(_) => true,
+            WordKind::Number { address, .. } | WordKind::Expr { address, .. } => address == Address::T,
+            _ => false,
+        })
+        .map(|(k, _)| NewWord::Copy(block.first_word + k as u32))
+        .collect()
 }
 
 /// The writer of one cycle's blocks, and what they leave in force.

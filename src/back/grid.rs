@@ -70,7 +70,7 @@ impl Grid {
         if number.has_point() && number.scale == self.places && number.mantissa.unsigned_abs() < EXACT_LITERAL_COUNTS {
             number.mantissa
         } else {
-            self.count(self.frame.literal(number, kind()))
+            self.count(self.frame.literal(number, kind(), false))
         }
     }
 
@@ -771,7 +771,7 @@ mod tests {
         ) {
             let g = Grid { places, ..grid(inch, diameter) };
             let number = Number::new(mantissa, places, true);
-            let through_f64 = g.count(g.frame.literal(number, Some(AddressKind::Length)));
+            let through_f64 = g.count(g.frame.literal(number, Some(AddressKind::Length), false));
             proptest::prop_assert_eq!(g.literal_count(number, || Some(AddressKind::Length)), through_f64);
             proptest::prop_assert_eq!(through_f64, mantissa);
         }

@@ -13,7 +13,7 @@ use std::process::ExitCode;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use super::common::{CliError, check_output_dir, write_atomically};
+use super::common::{CliError, check_output_dir, write_file};
 use super::compensate::{CompensateArgs, FileResult, compensate_file, refuse_overwriting_input, write_report};
 use super::streams;
 
@@ -44,19 +44,19 @@ pub fn run(args: &CompensateArgs) -> Result<ExitCode, CliError> {
             Err(error) => FileResult::failed(error.exit_code(), error.message()),
         };
         if let Some(output) = result.output.take()
-            && let Err(error) = write_atomically(target, &output)
+            && let Err(error) = write_file(target, &output)
         {
             result.code = 2;
-            result.messages.extend_from_slice(format!("error: {error}\n").as_bytes());
+            result.messages.extend_from_slice(error.message().as_slice());
         }
         result
     });
     let mut reports = Vec::new();
     let mut worst = 0;
-    for result in results {
+    for (result, file) in results.iter().zip(&args.files) {
         streams::err(&result.messages);
         worst = worst.max(result.code);
-        reports.extend(result.report);
+        reports.push(result.report_entry(&super::common::display_name(file)));
     }
     if args.report.is_some() {
         write_report(args, &reports)?;

@@ -1,7 +1,7 @@
 //! What every command shares: the reading options, settings and model lookup, lowering,
 //! diagnostics on standard error, and output written atomically or to standard output.
 
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 
 use turnpass::diagnose::measured::MeasuredError;
 use turnpass::diagnostic::render::{RenderSource, render_terminal};
-use turnpass::diagnostic::{Diagnostic, DiagnosticKind, SHOWN_DIAGNOSTICS};
+use turnpass::diagnostic::{Diagnostic, DiagnosticKind, SHOWN_DIAGNOSTICS, Severity};
 use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
@@ -18,6 +18,7 @@ use turnpass::parallel::Tuning;
 use turnpass::part::PartCheck;
 use turnpass::pipeline::{self, Analysed, Lowering, Ready};
 use turnpass::semantic::{self, LowerOptions};
+use turnpass::source::escape_controls;
 use turnpass::syntax::{self, ParseOptions};
 
 pub use super::error::CliError;
@@ -144,16 +145,54 @@ fn parse_system(s: &str) -> Result<GCodeSystem, String> {
 }
 
 pub fn display_name(path: &Path) -> String {
-    if path == Path::new("-") { "<stdin>".to_string() } else { path.display().to_string() }
+    // A name is shown with its control characters escaped, as every text from outside is.
+    if path == Path::new("-") {
+        "<stdin>".to_string()
+    } else {
+        turnpass::source::escape_controls(&path.display().to_string()).into_owned()
+    }
 }
 
+/// The largest input read, in mebibytes (`--max-input-mb`; `turnpass::source::DEFAULT_INPUT_LIMIT_MIB`).
+static INPUT_LIMIT_MIB: std::sync::atomic::AtomicU64 =
+    std::sync::atomic::AtomicU64::new(turnpass::source::DEFAULT_INPUT_LIMIT_MIB);
+
+/// Set the largest input read, in mebibytes (once, from the command line).
+pub fn set_input_limit_mib(mib: u64) {
+    INPUT_LIMIT_MIB.store(mib, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// An input's bytes: the file `path`, or standard input for `-`. Every input goes through
+/// here (programs, models, axis tables, measurements, logs), so none is read past the input
+/// limit: a regular file larger than it is refused from its size, unread, and a stream
+/// (standard input, a device, a FIFO) once it has given that much (exit 2).
 pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
-    if path == Path::new("-") {
-        let mut bytes = Vec::new();
-        std::io::stdin().read_to_end(&mut bytes).map_err(|source| CliError::Read { path: "<stdin>".into(), source })?;
-        return Ok(bytes);
+    let mib = INPUT_LIMIT_MIB.load(std::sync::atomic::Ordering::Relaxed);
+    let limit = mib << 20;
+    let name = display_name(path);
+    let read_error = |source| CliError::Read { path: name.clone(), source };
+    let read = if path == Path::new("-") {
+        turnpass::source::read_at_most(std::io::stdin().lock(), limit)
+    } else {
+        let file = std::fs::File::open(path).map_err(read_error)?;
+        if file.metadata().is_ok_and(|meta| meta.is_file() && meta.len() > limit) {
+            Ok(None)
+        } else {
+            turnpass::source::read_at_most(file, limit)
+        }
+    };
+    match read.map_err(read_error)? {
+        Some(bytes) => Ok(bytes),
+        None => Err(CliError::TooLarge { path: name, limit_mib: mib }),
     }
-    std::fs::read(path).map_err(|source| CliError::Read { path: path.display().to_string(), source })
+}
+
+/// An input that must be UTF-8 text (a model file): [`read_input`], then the text.
+pub fn read_input_text(path: &Path) -> Result<String, CliError> {
+    String::from_utf8(read_input(path)?).map_err(|_| CliError::Read {
+        path: display_name(path),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"),
+    })
 }
 
 /// A program file's bytes, refused (exit 1, one diagnostic) when the file is not text
@@ -217,8 +256,7 @@ pub struct Resolved {
 pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
     let model = match model_path(read, program) {
         Some(path) => {
-            let text = std::fs::read_to_string(&path)
-                .map_err(|source| CliError::Read { path: path.display().to_string(), source })?;
+            let text = read_input_text(&path)?;
             Some((path, text))
         }
         None => None,
@@ -235,11 +273,13 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
     let dialect = read.dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
     let gcode_system = read.gcode_system.or(settings.gcode_system).unwrap_or_default();
     let control = read.control.or(settings.control).unwrap_or_default();
-    let decimal_input = match read.decimal_input {
-        Some(DecimalInputArg::Calculator) => DecimalInput::Calculator,
-        Some(DecimalInputArg::Increment) => DecimalInput::Increment,
-        None => settings.decimal_input.unwrap_or_default(),
+    // Kept unset when neither gives it: the semantic pass says where that matters.
+    let given_decimal_input = match read.decimal_input {
+        Some(DecimalInputArg::Calculator) => Some(DecimalInput::Calculator),
+        Some(DecimalInputArg::Increment) => Some(DecimalInput::Increment),
+        None => settings.decimal_input,
     };
+    let decimal_input = given_decimal_input.unwrap_or_default();
     let fixed_dialect = match dialect {
         DialectChoice::Fixed(dialect) => Some(dialect),
         DialectChoice::Auto => None,
@@ -253,7 +293,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
             dialect: fixed_dialect,
             gcode_system: Some(gcode_system),
             control: Some(control),
-            decimal_input: Some(decimal_input),
+            decimal_input: given_decimal_input,
             ..settings
         },
         stock,
@@ -274,7 +314,7 @@ pub fn model_file_name(resolved: &Resolved) -> Option<String> {
 /// Where `resolved`'s machine settings come from, for `--verbose`: the `--model` file, the
 /// `turnpass.toml` found above the program, or none (the machine defaults).
 pub fn model_source(read: &ReadArgs, resolved: &Resolved) -> String {
-    match model_file_name(resolved) {
+    match model_file_name(resolved).map(|name| escape_controls(&name).into_owned()) {
         Some(name) if read.model.is_some() => format!("model file {name} (--model)"),
         Some(name) => format!("model file {name} (the nearest turnpass.toml above the program)"),
         None => "no model file: machine defaults".to_string(),
@@ -335,7 +375,11 @@ pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>, stock: 
 /// the model file's directory) and `[[effect]]`.
 pub fn load_error_model(path: &Path, text: &str) -> Result<ErrorModel, CliError> {
     let (spec, dir) = model_spec(path, text)?;
-    spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, text, e))
+    let (model, warnings) =
+        spec.build_with_warnings(|file| read_table(&dir, file)).map_err(|e| model_problems(path, text, e))?;
+    // An error the model holds twice is said where the model is read, by every command.
+    streams::err(rendered(&path.display().to_string(), text.as_bytes(), &warnings));
+    Ok(model)
 }
 
 /// A model file's spec and the directory its tables are read from.
@@ -353,7 +397,10 @@ pub fn folder_of(path: &Path) -> &Path {
 /// the path it tried.
 pub fn read_table(dir: &Path, file: &str) -> Result<String, String> {
     let path = dir.join(file);
-    std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))
+    read_input_text(&path).map_err(|error| match error {
+        CliError::Read { source, .. } => format!("{}: {source}", path.display()),
+        other => other.to_string(),
+    })
 }
 
 /// The problems of the model file at `path` (its text `text`) rendered as diagnostics on it,
@@ -368,7 +415,7 @@ pub fn model_problems(path: &Path, text: &str, error: ModelError) -> CliError {
             rendered(&table, text.as_bytes(), std::slice::from_ref(diagnostic))
         }
     };
-    out.extend_from_slice(format!("error: invalid machine model {name}\n").as_bytes());
+    out.extend_from_slice(format!("error: invalid machine model {}\n", escape_controls(&name)).as_bytes());
     CliError::Diagnosed(String::from_utf8_lossy(&out).into_owned())
 }
 
@@ -411,9 +458,7 @@ pub fn model_sha256(resolved: &Resolved) -> Result<String, CliError> {
     let mut tables = Vec::new();
     for file in spec.axis_table.iter().filter_map(|table| table.file.as_ref().map(|file| file.get_ref().as_str())) {
         let table = dir.join(file);
-        tables.push(
-            std::fs::read(&table).map_err(|source| CliError::Read { path: table.display().to_string(), source })?,
-        );
+        tables.push(read_input(&table)?);
     }
     let mut digest = model_sha256(text.as_bytes(), tables.iter().map(Vec::as_slice));
     digest.truncate(SHA256_DIGITS);
@@ -508,6 +553,19 @@ pub fn ready<'b>(
     command: &str,
     warnings: &mut Vec<u8>,
 ) -> Result<Ready<'b>, Vec<u8>> {
+    ready_or_diagnostics(name, bytes, resolved, run, command, warnings).map_err(|(text, _)| text)
+}
+
+/// [`ready`], with the diagnostics of a program that is not ready beside their rendering
+/// (for a report that lists why).
+pub fn ready_or_diagnostics<'b>(
+    name: &str,
+    bytes: &'b [u8],
+    resolved: &Resolved,
+    run: &RunArgs,
+    command: &str,
+    warnings: &mut Vec<u8>,
+) -> Result<Ready<'b>, (Vec<u8>, Vec<Diagnostic>)> {
     let analysed = analyse(bytes, &pipeline_settings(resolved, run, true));
     ready_or_why(name, bytes, command, analysed, warnings)
 }
@@ -519,19 +577,23 @@ fn ready_or_why<'b>(
     command: &str,
     analysed: Analysed<'b>,
     warnings: &mut Vec<u8>,
-) -> Result<Ready<'b>, Vec<u8>> {
+) -> Result<Ready<'b>, (Vec<u8>, Vec<Diagnostic>)> {
     if let Some(warning) = analysed.parsed.program.nothing_to_run() {
-        let mut text = rendered(name, bytes, &[warning]);
+        let mut text = rendered(name, bytes, std::slice::from_ref(&warning));
         text.extend_from_slice(format!("{command}: {name} holds no block to run; nothing is written\n").as_bytes());
-        return Err(text);
+        // The refusal is the error here: the diagnostic itself is a warning.
+        return Err((text, vec![Diagnostic { severity: Severity::Error, ..warning }]));
     }
     if matches!(analysed.lowering, Lowering::NotLowered) {
         let mut text = rendered(name, bytes, &analysed.diagnostics);
         text.extend_from_slice(
-            format!("{command}: {name} is an OSP machining-centre program; turnpass {command}s lathe programs only\n")
-                .as_bytes(),
+            format!(
+                "{command}: {name} is an OSP machining-centre program; turnpass runs lathe programs only, so \
+                 nothing is written (`turnpass check` checks its syntax)\n"
+            )
+            .as_bytes(),
         );
-        return Err(text);
+        return Err((text, analysed.diagnostics));
     }
     let text = rendered(name, bytes, &analysed.diagnostics);
     match analysed.ready() {
@@ -539,10 +601,10 @@ fn ready_or_why<'b>(
             warnings.extend_from_slice(&text);
             Ok(ready)
         }
-        Err(_) => {
+        Err(analysed) => {
             let mut text = text;
             text.extend_from_slice(format!("{command}: {name} has errors; nothing is written\n").as_bytes());
-            Err(text)
+            Err((text, analysed.diagnostics))
         }
     }
 }
@@ -562,29 +624,119 @@ pub fn analyse<'b>(bytes: &'b [u8], settings: &pipeline::Settings) -> Analysed<'
 }
 
 /// A program the semantic pass does not lower (an OSP machining-centre program): its parse
-/// diagnostics, a line saying why nothing is printed, and the exit code of its syntax check.
+/// diagnostics, a line saying why nothing is printed, and exit code 1, as every command that
+/// runs a program gives for one it cannot run (`check` checks its syntax, exit 0).
 pub fn not_lowered(command: &str, name: &str, bytes: &[u8], parsed: &syntax::Parsed<'_>) -> ExitCode {
     report(name, bytes, &parsed.diagnostics);
     streams::err_line(format_args!(
-        "{command}: {name} is an OSP machining-centre program; turnpass simulates and expands lathe \
-         programs only, so nothing is printed (its syntax was checked)"
+        "{command}: {name} is an OSP machining-centre program; turnpass runs lathe programs only, so nothing is \
+         printed (`turnpass check` checks its syntax)"
     ));
-    if parsed.has_errors() { ExitCode::from(1) } else { ExitCode::SUCCESS }
+    ExitCode::from(1)
 }
 
-/// Write to `output` atomically, or to standard output for none or `-`.
+/// Write to `output` as [`write_file`] does, or to standard output for none or `-`.
 pub fn write_output(output: Option<&Path>, bytes: &[u8]) -> Result<(), CliError> {
     match output {
-        Some(path) if path != Path::new("-") => write_atomically(path, bytes),
-        _ => streams::out(bytes),
+        Some(path) => write_file(path, bytes),
+        None => streams::out(bytes),
     }
 }
 
-/// Check, before any work, that `output` can be written: the folder it goes into exists and
-/// it is not a folder itself, so a long run never ends in "cannot write". `None` and `-` are
-/// standard output. Every command that writes a file asks this first.
+/// Write `bytes` to `path` as what it names takes them: a regular file (or a new one) is
+/// replaced atomically ([`write_atomically`]); a character device or a FIFO is written
+/// directly, since there is no file to replace and nothing to protect (a temporary file
+/// renamed over `/dev/null` would replace the device); `-` and the names of standard output
+/// (`/dev/stdout`, `/dev/fd/1`, `/proc/self/fd/1`) are standard output itself, so that
+/// `>> app.nc` appends. Anything else is refused ([`output_target`]).
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    match output_target(path)? {
+        OutputTarget::Stdout => streams::out(bytes),
+        OutputTarget::File => write_atomically(path, bytes),
+        OutputTarget::Direct => write_directly(path, bytes),
+    }
+}
+
+/// How an output is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum OutputTarget {
+    /// Standard output.
+    Stdout,
+    /// A regular file, or one to make: a temporary file beside it, renamed over it.
+    File,
+    /// A character device or a FIFO: opened and written.
+    Direct,
+}
+
+/// Whether `path` names standard output: `-`, or a name the system gives descriptor 1.
+pub fn is_stdout(path: &Path) -> bool {
+    [Path::new("-"), Path::new("/dev/stdout"), Path::new("/dev/fd/1"), Path::new("/proc/self/fd/1")].contains(&path)
+}
+
+/// What `path` names as an output, found without opening it (opening a FIFO for reading
+/// or writing waits for the other end): see [`write_file`]. Refused: a folder, a block
+/// device or socket, and a descriptor of this process other than standard output (a file
+/// reopened through `/dev/stderr` or `/dev/fd/N` is written from its start, over what it
+/// held).
+fn output_target(path: &Path) -> Result<OutputTarget, CliError> {
+    if is_stdout(path) {
+        return Ok(OutputTarget::Stdout);
+    }
+    let refused = |why: String| CliError::Write {
+        path: path.display().to_string(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
+    };
+    let descriptor = ["/dev/fd/", "/proc/self/fd/", "/dev/stderr", "/dev/stdin"]
+        .iter()
+        .any(|prefix| path.to_str().is_some_and(|p| p.starts_with(prefix)));
+    if descriptor {
+        return Err(refused(
+            "it names a descriptor of this process; write to standard output (-o - or /dev/stdout) or to a file"
+                .to_string(),
+        ));
+    }
+    let kind = match std::fs::metadata(path) {
+        Ok(meta) => meta.file_type(),
+        Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(OutputTarget::File),
+        // A folder on the way that cannot be read is found when the file is written.
+        Err(_) => return Ok(OutputTarget::File),
+    };
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_char_device() || kind.is_fifo() {
+            return Ok(OutputTarget::Direct);
+        }
+        if kind.is_block_device() || kind.is_socket() {
+            let what = if kind.is_socket() { "a socket" } else { "a block device" };
+            return Err(refused(format!(
+                "it is {what}; turnpass writes to files, character devices, FIFOs and standard output"
+            )));
+        }
+    }
+    if kind.is_dir() {
+        return Err(refused("it is a directory; give a file name".to_string()));
+    }
+    Ok(OutputTarget::File)
+}
+
+/// Write `bytes` into the device or FIFO `path`: opened for writing (a FIFO waits for its
+/// reader, as any writer does), neither made nor truncated.
+fn write_directly(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    let error = |source| CliError::Write { path: path.display().to_string(), source };
+    let mut file = std::fs::OpenOptions::new().write(true).open(path).map_err(error)?;
+    file.write_all(bytes).and_then(|()| file.flush()).map_err(error)
+}
+
+/// Check, before any work, that `output` can be written: what it names can take an output
+/// ([`output_target`]), and for a file the folder it goes into exists, so a long run never
+/// ends in "cannot write". `None` and `-` are standard output. Every command that writes a
+/// file asks this first.
 pub fn check_output(output: Option<&Path>) -> Result<(), CliError> {
-    let Some(path) = output.filter(|p| *p != Path::new("-")) else { return Ok(()) };
+    let Some(path) = output else { return Ok(()) };
+    if output_target(path)? != OutputTarget::File {
+        return Ok(());
+    }
     let error = |message: String| CliError::Write {
         path: path.display().to_string(),
         source: std::io::Error::new(std::io::ErrorKind::NotFound, message),
@@ -606,12 +758,14 @@ pub fn check_output_dir(dir: &Path) -> Result<(), CliError> {
 }
 
 /// Write `bytes` to `path` through a temporary file beside the file written and a rename,
-/// so readers see the old file or the whole new one, never a part.
+/// so readers see the old file or the whole new one, never a part. The temporary file is
+/// synced before the rename and the folder after it: without that, after a power cut the
+/// new name can point at a file whose data never reached the disk (an empty program).
 ///
 /// A new file gets the mode the umask leaves of `rw-rw-rw-`, as any tool's output does (a
 /// DNC service running as another user must be able to read it); a file written over keeps
 /// its mode; a symbolic link is written through to the file it names and stays a link.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     let error = |source| CliError::Write { path: path.display().to_string(), source };
     let target = link_target(path).map_err(error)?;
     let dir = folder_of(&target);
@@ -623,7 +777,13 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     let mut temp = temporary_beside(dir, std::fs::metadata(&target).ok()).map_err(error)?;
     temp.write_all(bytes).map_err(error)?;
     temp.flush().map_err(error)?;
+    temp.as_file().sync_all().map_err(error)?;
     temp.persist(&target).map_err(|e| error(e.error))?;
+    // The rename is an entry of the folder: synced with it. The file is in place whatever
+    // this finds, so a folder that cannot be synced (some file systems refuse) is no error.
+    if let Ok(folder) = std::fs::File::open(dir) {
+        let _ = folder.sync_all();
+    }
     Ok(())
 }
 

@@ -28,11 +28,12 @@ use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::Span;
 
 use super::common::{
-    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, model_name, model_sha256, model_source,
-    pipeline_settings, read_program, ready, rendered, required_error_model, write_output,
+    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, is_stdout, model_name, model_sha256,
+    model_source, pipeline_settings, read_program, ready_or_diagnostics, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
+use super::table::{WithTable, split_summary, with_table};
 
 #[derive(Args)]
 pub struct CompensateArgs {
@@ -111,6 +112,10 @@ pub struct FitArgs {
     /// default: the model's `start_min`).
     #[arg(long, allow_negative_numbers = true, value_name = "MIN", value_parser = within(numbers::MINUTES))]
     pub start_min: Option<f64>,
+    /// The machine runs with this control table loaded (as `turnpass table` writes it: a
+    /// LinuxCNC INI file, a Fanuc tape): compensate only what the table leaves.
+    #[arg(long, value_name = "FILE")]
+    pub with_table: Option<PathBuf>,
 }
 
 fn strategy_parser() -> impl TypedValueParser<Value = Strategy> {
@@ -163,13 +168,26 @@ impl FitArgs {
         }
     }
 
-    /// The error model of the program's model file, started at `--start-min` when given.
-    pub fn error_model(&self, resolved: &Resolved, command: &str) -> Result<ErrorModel, CliError> {
+    /// The error model of the program's model file, started at `--start-min` when given, on
+    /// a machine with `--with-table` loaded when given (and that table, whose summary of what
+    /// goes where is said on standard error).
+    pub fn error_model(&self, resolved: &Resolved, command: &str) -> Result<(ErrorModel, Option<WithTable>), CliError> {
         let mut model = required_error_model(resolved, command)?;
         if let Some(start) = self.start_min {
             model.start_min = start;
         }
-        Ok(model)
+        match &self.with_table {
+            Some(path) => {
+                let (combined, with) = with_table(path, &resolved.settings, &model, command)?;
+                let mut text = format!("{command}: {}\n", split_summary(&model, &with));
+                if let Some(why) = with.loaded.unverified {
+                    text.push_str(&format!("{command}: warning: unverified: {why}\n"));
+                }
+                streams::err(text);
+                Ok((combined, Some(with)))
+            }
+            None => Ok((model, None)),
+        }
     }
 
     /// Compensate a ready program with `model`; `paths` keeps every sample's paths (for
@@ -189,11 +207,49 @@ pub struct FileResult {
     /// The compensated program (only with code 0).
     pub output: Option<Vec<u8>>,
     pub report: Option<serde_json::Value>,
+    /// Why nothing is written (with a code other than 0): the errors, each as `check
+    /// --format json` gives a diagnostic, or `{"message"}` for one that is not on a text.
+    pub errors: Vec<serde_json::Value>,
 }
 
 impl FileResult {
     pub fn failed(code: u8, messages: Vec<u8>) -> FileResult {
-        FileResult { code, messages, output: None, report: None }
+        FileResult { code, messages, output: None, report: None, errors: Vec::new() }
+    }
+
+    /// A failure whose errors are `diagnostics` on the text `bytes`, named `name`.
+    fn refused(code: u8, messages: Vec<u8>, name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) -> FileResult {
+        let mut result = FileResult::failed(code, messages);
+        result.add_errors(name, bytes, diagnostics);
+        result
+    }
+
+    /// The errors among `diagnostics` (on `bytes`, named `name`) as reasons of the failure.
+    fn add_errors(&mut self, name: &str, bytes: &[u8], diagnostics: &[Diagnostic]) {
+        let errors: Vec<Diagnostic> = diagnostics.iter().filter(|d| d.is_error()).cloned().collect();
+        let source = turnpass::diagnostic::render::RenderSource::new(name, bytes);
+        self.errors.extend(
+            turnpass::diagnostic::render::to_json(&source, &errors)
+                .iter()
+                .filter_map(|json| serde_json::to_value(json).ok()),
+        );
+    }
+
+    /// The entry of this program in a batch's `--report json`: its report, or why it failed.
+    pub fn report_entry(&self, name: &str) -> serde_json::Value {
+        match &self.report {
+            Some(report) => report.clone(),
+            None => {
+                let mut errors = self.errors.clone();
+                if errors.is_empty() {
+                    // A failure that is no diagnostic (a file that cannot be read): its message.
+                    let text = String::from_utf8_lossy(&self.messages);
+                    let message = text.trim_end().trim_start_matches("error: ").to_string();
+                    errors.push(serde_json::json!({ "message": message }));
+                }
+                serde_json::json!({ "file": name, "failed": { "exit_code": self.code, "errors": errors } })
+            }
+        }
     }
 }
 
@@ -201,7 +257,7 @@ impl FileResult {
 /// does not share standard output with the program.
 pub fn check_arguments(args: &CompensateArgs) -> Result<(), CliError> {
     args.fit.check()?;
-    let program_to_stdout = args.out_dir.is_none() && args.output.as_deref().is_none_or(|o| o == Path::new("-"));
+    let program_to_stdout = args.out_dir.is_none() && args.output.as_deref().is_none_or(is_stdout);
     if args.report.is_some() && args.report_file.is_none() && program_to_stdout {
         return Err(CliError::Usage(
             "the compensated program goes to standard output, so the report needs a file of its own: give \
@@ -242,13 +298,10 @@ pub fn write_report(args: &CompensateArgs, report: &impl serde::Serialize) -> Re
 /// Refuse, unless `force`, to write `output` when it is one of the `inputs` (the same file,
 /// through a link or by another path): the nominal program would be lost.
 pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) -> Result<(), CliError> {
-    if force || output == Path::new("-") {
+    if force || is_stdout(output) {
         return Ok(());
     }
-    let input = inputs.iter().filter(|input| *input != Path::new("-")).find(|input| {
-        // An output that does not exist yet is no input.
-        same_file::is_same_file(input, output).unwrap_or(false)
-    });
+    let input = inputs.iter().filter(|input| *input != Path::new("-")).find(|input| same_file(input, output));
     match input {
         Some(input) => Err(CliError::Usage(format!(
             "compensate would write {} over the program {}, which it reads; write the compensated program \
@@ -260,40 +313,62 @@ pub fn refuse_overwriting_input(inputs: &[PathBuf], output: &Path, force: bool) 
     }
 }
 
+/// Whether `a` and `b` name one file (through a link or by another path): the same device
+/// and inode, as `stat` finds them. Nothing is opened: a FIFO opened to compare it would
+/// wait for a writer. A path that does not exist (an output not made yet) is no input.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        #[cfg(unix)]
+        (Ok(a), Ok(b)) => {
+            use std::os::unix::fs::MetadataExt;
+            (a.dev(), a.ino()) == (b.dev(), b.ino())
+        }
+        #[cfg(not(unix))]
+        (Ok(_), Ok(_)) => std::fs::canonicalize(a).ok().is_some_and(|a| std::fs::canonicalize(b).ok() == Some(a)),
+        _ => false,
+    }
+}
+
 /// Compensate one program; nothing is written here.
 pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult, CliError> {
     let (bytes, resolved) = read_program(path, &args.read)?;
     args.fit.check_step(&Machine::from_settings(&resolved.settings))?;
-    let model = args.fit.error_model(&resolved, "compensate")?;
+    let (model, table) = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
     if args.verbose {
         messages.extend_from_slice(format!("compensate: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
-    let program = match ready(&name, &bytes, &resolved, &args.run, "compensate", &mut messages) {
+    let program = match ready_or_diagnostics(&name, &bytes, &resolved, &args.run, "compensate", &mut messages) {
         Ok(ready) => ready,
-        Err(text) => return Ok(FileResult::failed(1, text)),
+        Err((text, diagnostics)) => return Ok(FileResult::refused(1, text, &name, &bytes, &diagnostics)),
     };
     // A program that carries a provenance comment was compensated already.
     if let Some(diagnostic) = provenance::refusal(&program.parsed.program).filter(|_| !args.force) {
-        messages.extend(rendered(&name, &bytes, &[diagnostic]));
+        messages.extend(rendered(&name, &bytes, std::slice::from_ref(&diagnostic)));
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
-        return Ok(FileResult::failed(1, messages));
+        return Ok(FileResult::refused(1, messages, &name, &bytes, &[diagnostic]));
     }
     let mut outcome = args.fit.compensate(&program, &model, false, args.report.is_some());
     messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
     if outcome.refused() {
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
-        return Ok(FileResult::failed(1, messages));
+        return Ok(FileResult::refused(1, messages, &name, &bytes, &outcome.diagnostics));
     }
     let provenance = Provenance {
         version: provenance::VERSION.to_string(),
         model: model_name(&resolved),
         model_sha256: model_sha256(&resolved)?,
+        table_sha256: table.map(|table| table.sha256),
         tolerance_mm: args.fit.options(&program.machine).fit.tolerance_mm,
         strategy: args.fit.strategy,
         step_mm: args.fit.step,
         start_min: model.start_min,
+        // Where the text alone would read as the other dialect, the comment names it.
+        dialect: printer::mark::dialect_to_name(
+            &program.parsed.program,
+            &printer::print(&program.parsed.program, &outcome.edits),
+        ),
     };
     provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
     let written = printer::print(&program.parsed.program, &outcome.edits);
@@ -306,8 +381,9 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let tools = ToolTable::from_machine(&program.machine);
     let original = program.valid();
     let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
-    let refusal = match verify::check_written(original, &written, &reading, &tools, &model) {
-        Ok((figures, feed_change)) => {
+    let mut unreadable = FileResult::failed(1, Vec::new());
+    let refusal = match verify::check_written((&program.parsed.program, original), &written, &reading, &tools, &model) {
+        Ok((figures, feed_change, lost)) => {
             let totals = &mut outcome.report.totals;
             (totals.before, totals.after) = (figures.before, figures.after);
             totals.improvement_percent = figures.improvement_percent;
@@ -318,13 +394,20 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 let kind = DiagnosticKind::CompensationFailsCheck { deviation_mm, bound_mm: bound, tolerance_mm };
                 Diagnostic::error(kind, span)
             });
-            too_far.or_else(|| {
-                feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
-            })
+            too_far
+                .or_else(|| {
+                    feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
+                })
+                .or_else(|| {
+                    lost.map(|word| {
+                        Diagnostic::error(DiagnosticKind::CompensationLosesWord { word: word.text }, word.span)
+                    })
+                })
         }
         Err(problems) => {
             // Where in the text about to be written it does not read.
             messages.extend(rendered(&format!("{name} (compensated)"), &written, &problems));
+            unreadable.add_errors(&format!("{name} (compensated)"), &written, &problems);
             let problem = problems.first().map_or_else(String::new, Diagnostic::message);
             // The original read cleanly, so a nose that does not fit is the moved contour's.
             let nose_has_no_room = !problems.is_empty()
@@ -334,9 +417,11 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         }
     };
     if let Some(diagnostic) = refusal {
-        messages.extend(rendered(&name, &bytes, &[diagnostic]));
+        messages.extend(rendered(&name, &bytes, std::slice::from_ref(&diagnostic)));
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
-        return Ok(FileResult::failed(1, messages));
+        unreadable.messages = messages;
+        unreadable.add_errors(&name, &bytes, &[diagnostic]);
+        return Ok(unreadable);
     }
     let totals = &outcome.report.totals;
     messages.extend_from_slice(
@@ -370,5 +455,5 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         );
     }
     let report = args.report.map(|_| serde_json::json!({ "file": name, "report": outcome.report }));
-    Ok(FileResult { code: 0, messages, output: Some(written), report })
+    Ok(FileResult { code: 0, messages, output: Some(written), report, errors: Vec::new() })
 }

@@ -17,8 +17,8 @@ use turnpass::pipeline::Ready;
 
 use super::common::{
     AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, data_invalid, display_name, folder_of,
-    model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
-    write_atomically, write_output,
+    model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model, write_file,
+    write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -199,6 +199,9 @@ fn prepare(
 pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     check_output(args.write_model.as_deref())?;
     check_output(args.plot.as_deref())?;
+    if args.plot.is_some() && args.kind == Some(KindArg::Table) {
+        return Err(CliError::Usage(format!("--plot: {NO_TABLE_PLOT}")));
+    }
     let (nominal, model, resolved) = match prepare(&args.file, &args.read, &args.run, "diagnose", args.start_min)? {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
@@ -211,18 +214,37 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     let diagnosis =
         diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Data(format!("{data_name}: {e}")))?;
     let out = match args.format {
-        Format::Human => report::human(&diagnosis),
+        Format::Human => turnpass::source::escape_controls(&report::human(&diagnosis)).into_owned(),
         Format::Json => serde_json::to_string_pretty(&report::json(&diagnosis)).unwrap_or_default() + "\n",
     };
     write_output(None, out.as_bytes())?;
-    if let Some(path) = &args.write_model {
-        let original = model_text_for(&resolved, path)?;
-        let written = model_text::with_found_effects(&original, &diagnosis, &data_name)
-            .map_err(|why| CliError::Usage(format!("{}: not written: {why}", path.display())))?;
-        // The written model must load where it is written, tables and found effects alike.
-        let (spec, dir) = model_spec(path, &written)?;
-        spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
-        write_atomically(path, written.as_bytes())?;
+    // Every output asked for is made, and checked, before any is written: a run that fails
+    // on the second writes neither.
+    let model_file = match &args.write_model {
+        Some(path) => {
+            let original = model_text_for(&resolved, path)?;
+            let written = model_text::with_found_effects(&original, &diagnosis, &data_name)
+                .map_err(|why| CliError::Usage(format!("{}: not written: {why}", path.display())))?;
+            // The written model must load where it is written, tables and found effects alike.
+            let (spec, dir) = model_spec(path, &written)?;
+            spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
+            Some((path, written))
+        }
+        None => None,
+    };
+    let plot = match &args.plot {
+        Some(path) => match turnpass::plot::residuals::residuals_svg(&display_name(&args.file), &diagnosis) {
+            Ok(svg) => Some((path, svg)),
+            Err(error) => {
+                let nothing = if model_file.is_some() { "; nothing is written" } else { "" };
+                streams::err_line(format_args!("diagnose: no plot: {error}{nothing}"));
+                return Ok(ExitCode::from(1));
+            }
+        },
+        None => None,
+    };
+    if let Some((path, written)) = model_file {
+        write_file(path, written.as_bytes())?;
         let plural = super::common::plural;
         let mut what = vec![format!("{} effect{} added", diagnosis.added.len(), plural(diagnosis.added.len()))];
         if !diagnosis.updated.is_empty() {
@@ -234,20 +256,16 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
         }
         streams::err_line(format_args!("diagnose: wrote {} ({})", path.display(), what.join(", ")));
     }
-    if let Some(path) = &args.plot {
-        match turnpass::plot::residuals::residuals_svg(&display_name(&args.file), &diagnosis) {
-            Ok(svg) => {
-                write_atomically(path, svg.as_bytes())?;
-                streams::err_line(format_args!("diagnose: wrote {}", path.display()));
-            }
-            Err(error) => {
-                streams::err_line(format_args!("diagnose: no plot: {error}"));
-                return Ok(ExitCode::from(1));
-            }
-        }
+    if let Some((path, svg)) = plot {
+        write_file(path, svg.as_bytes())?;
+        streams::err_line(format_args!("diagnose: wrote {}", path.display()));
     }
     Ok(ExitCode::SUCCESS)
 }
+
+/// Why `--plot` draws nothing for an interferometer table.
+const NO_TABLE_PLOT: &str =
+    "no plot is drawn for an interferometer table (`turnpass model report` gives its figures); leave out --plot";
 
 pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref())?;
@@ -297,7 +315,8 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
         .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;
     write_output(args.output.as_deref(), to_csv(&measured).as_bytes())?;
     if let Some(path) = &args.output {
-        streams::err_line(format_args!("synth: wrote {} ({} points)", path.display(), measured.len()));
+        let rows = measured.rows();
+        streams::err_line(format_args!("synth: wrote {} ({rows} row{})", path.display(), super::common::plural(rows)));
     }
     Ok(ExitCode::SUCCESS)
 }

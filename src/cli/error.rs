@@ -5,6 +5,12 @@
 pub enum CliError {
     #[error("cannot read {path}: {source}")]
     Read { path: String, source: std::io::Error },
+    /// An input larger than the input limit (`--max-input-mb`), unread past it.
+    #[error(
+        "{path} is larger than {limit_mib} MiB, the most turnpass reads of an input; give --max-input-mb N to \
+         read up to N MiB (at most 4095)"
+    )]
+    TooLarge { path: String, limit_mib: u64 },
     #[error("cannot write {path}: {source}")]
     Write { path: String, source: std::io::Error },
     /// A model file that does not read, or holds values out of range: its diagnostics,
@@ -43,7 +49,7 @@ impl CliError {
         match self {
             CliError::Rejected(text) => text.clone(),
             CliError::Diagnosed(text) => text.clone().into_bytes(),
-            other => format!("error: {other}\n").into_bytes(),
+            other => format!("error: {}\n", turnpass::source::escape_controls(&other.to_string())).into_bytes(),
         }
     }
 }

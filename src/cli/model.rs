@@ -8,7 +8,10 @@ use clap::{Args, Subcommand};
 
 use turnpass::error_model::report::report;
 
-use super::common::{CliError, Format, model_problems, model_spec, read_table, write_output};
+use super::common::{
+    CliError, Format, model_problems, model_spec, read_input_text, read_table, rendered, write_output,
+};
+use super::streams;
 
 #[derive(Subcommand)]
 pub enum ModelCommand {
@@ -28,15 +31,17 @@ pub fn run(command: ModelCommand) -> Result<ExitCode, CliError> {
     match command {
         ModelCommand::Report(args) => {
             let path = &args.model;
-            let text = std::fs::read_to_string(path)
-                .map_err(|source| CliError::Read { path: path.display().to_string(), source })?;
+            let text = read_input_text(path)?;
             let (spec, dir) = model_spec(path, &text)?;
             let report = report(&spec, |file| read_table(&dir, file)).map_err(|e| model_problems(path, &text, e))?;
+            let (_, warnings) =
+                spec.build_with_warnings(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &text, e))?;
+            streams::err(rendered(&path.display().to_string(), text.as_bytes(), &warnings));
             let out = match args.format {
                 Format::Human => format!("machine model {}\n{report}", path.display()),
                 Format::Json => serde_json::to_string_pretty(&report).unwrap_or_default() + "\n",
             };
-            write_output(None, out.as_bytes())?;
+            write_output(None, turnpass::source::escape_controls(&out).as_bytes())?;
             Ok(ExitCode::SUCCESS)
         }
     }

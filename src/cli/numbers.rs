@@ -44,3 +44,11 @@ pub const MINUTES: Range = START_MIN;
 pub fn within(range: Range) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
     move |text: &str| range.parse(text)
 }
+
+/// `table --x`, `--z`, `--zero`: positions of the machine, as the model file's `[machine]`
+/// gives them (`home`, `travel`).
+pub const POSITION: Range = turnpass::machine::POSITION;
+
+/// `table --detection-unit`: a control's least step of a correction, from 0.000001 to 0.01
+/// machine units, as a least increment.
+pub const DETECTION_UNIT: Range = turnpass::machine::LEAST_INCREMENT;

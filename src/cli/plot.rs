@@ -7,9 +7,11 @@ use std::process::ExitCode;
 
 use clap::Args;
 
+use turnpass::diagnostic::{Diagnostic, Severity};
+
 use super::common::{
     CliError, ReadArgs, RunArgs, check_output, display_name, model_source, read_program, ready, rendered, svg_path,
-    write_atomically,
+    write_file,
 };
 use super::compensate::FitArgs;
 use super::streams;
@@ -44,7 +46,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     args.fit.check()?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     args.fit.check_step(&turnpass::semantic::Machine::from_settings(&resolved.settings))?;
-    let model = args.fit.error_model(&resolved, "plot")?;
+    let (model, _) = args.fit.error_model(&resolved, "plot")?;
     let name = display_name(&args.file);
     let mut messages = Vec::new();
     if args.verbose {
@@ -58,8 +60,33 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
         }
     };
     let outcome = args.fit.compensate(&program, &model, true, false);
-    // The plot shows what compensation would do even where `compensate` would refuse.
-    messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
+    // A path that needs more samples than a plot holds is kept nowhere: nothing to draw.
+    if outcome.refused() && outcome.paths.samples.is_empty() {
+        messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
+        messages.extend_from_slice(format!("plot: {name}: nothing is drawn\n").as_bytes());
+        streams::err(messages);
+        return Ok(ExitCode::from(1));
+    }
+    // The plot shows what compensation would do even where `compensate` would refuse: its
+    // refusals are warnings here, for the plot is drawn (an error is printed only by a run that
+    // exits 1 and writes nothing).
+    let refused = outcome.diagnostics.iter().filter(|d| d.is_error()).count();
+    let shown: Vec<Diagnostic> = outcome
+        .diagnostics
+        .iter()
+        .map(|d| Diagnostic { severity: d.severity.min(Severity::Warning), ..d.clone() })
+        .collect();
+    messages.extend(rendered(&name, &bytes, &shown));
+    if refused > 0 {
+        messages.extend_from_slice(
+            format!(
+                "plot: {name}: compensate refuses this program ({refused} warning{} above); the plot shows the \
+                 compensation it refuses\n",
+                super::common::plural(refused)
+            )
+            .as_bytes(),
+        );
+    }
     streams::err(messages);
     let toolpath = program.valid();
     let [before, after] = turnpass::plot::points_of(toolpath, &outcome.paths);
@@ -71,7 +98,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     };
     match svg {
         Ok((svg, magnify)) => {
-            write_atomically(&args.output, svg.as_bytes())?;
+            write_file(&args.output, svg.as_bytes())?;
             let magnified = magnify.map_or_else(String::new, |k| format!(" (deviations magnified ×{k})"));
             streams::err_line(format_args!("plot: {name}: wrote {}{magnified}", args.output.display()));
             Ok(ExitCode::SUCCESS)

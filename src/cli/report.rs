@@ -17,7 +17,7 @@ use turnpass::report::{ModelFile, Page, Plot, ProgramFile};
 
 use super::common::{
     CliError, ReadArgs, RunArgs, check_output, display_name, model_name, model_source, read_program,
-    read_program_bytes, ready, required_error_model, write_atomically,
+    read_program_bytes, ready, required_error_model, write_file,
 };
 use super::streams;
 use super::verify::{CheckArgs, Checked, Watch, checked};
@@ -78,7 +78,7 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     let mut points = [Collector::new(stride), Collector::new(stride)];
     let checked = checked(
         (&original, &compensated),
-        (&original_name, &compensated_name, &original_bytes),
+        (&original_name, &compensated_name, &original_bytes, &compensated_bytes),
         &resolved,
         &mut model,
         &args.checks,
@@ -86,9 +86,17 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
             let k = usize::from(side == Side::Compensated);
             points[k].add(&measured, &toolpaths[k]);
         }),
-    )?;
+    );
+    let checked = match checked {
+        Ok(checked) => checked,
+        Err(error) => {
+            streams::err(messages);
+            return Err(error);
+        }
+    };
     for warning in &checked.warnings {
-        messages.extend_from_slice(format!("report: warning: {warning}\n").as_bytes());
+        messages
+            .extend_from_slice(format!("report: warning: {}\n", turnpass::source::escape_controls(warning)).as_bytes());
     }
     let [before, after] = points.map(|c| c.points);
     let title = format!("{original_name} → {compensated_name}");
@@ -116,7 +124,10 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         Err(turnpass::plot::PlotError::NoFullCircle) => {}
         Err(e) => plots.push(Plot { id: "plot-polar", caption: "The polar plot".to_string(), svg: Err(e.to_string()) }),
     }
-    let Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings } = checked;
+    let Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings, table } = checked;
+    if let Some((_, summary)) = &table {
+        streams::err_line(format_args!("report: {summary}"));
+    }
     let compensated_with = match &provenance {
         Some(Ok(made)) => format!(
             "turnpass {} for the model `{}` (sha256 {}…), tolerance {} mm, strategy {}",
@@ -145,7 +156,7 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         plots,
     });
     streams::err(messages);
-    write_atomically(&args.output, page.as_bytes())?;
+    write_file(&args.output, page.as_bytes())?;
     let verdict = if violations.is_empty() {
         "verify: ok".to_string()
     } else {
@@ -197,7 +208,7 @@ impl Collector {
         self.last = Some(m.sample_index);
         self.seen += 1;
         self.along_mm += m.sample.covers_mm;
-        if (self.seen - 1) % self.stride != 0 {
+        if !(self.seen - 1).is_multiple_of(self.stride) {
             return;
         }
         self.points.push(PathPoint {

@@ -6,7 +6,8 @@ use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
-use turnpass::pipeline::Lowering;
+use turnpass::expand::Unwritable;
+use turnpass::pipeline::{Analysed, Lowering};
 use turnpass::printer;
 use turnpass::simulation;
 
@@ -63,13 +64,8 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     // Without nose-radius compensation: the blocks `expand` prints stay under the program's
     // own `G41`/`G42`.
     let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, false));
-    if let Some(warning) = analysed.parsed.program.nothing_to_run() {
-        report(&name, &bytes, &[warning]);
-        streams::err_line(format_args!("expand: {name} holds no block to run; nothing is written"));
-        return Ok(ExitCode::from(1));
-    }
-    if matches!(analysed.lowering, Lowering::NotLowered) {
-        return Ok(not_lowered("expand", &name, &bytes, &analysed.parsed));
+    if let Some(code) = cannot_run("expand", &name, &bytes, &analysed) {
+        return Ok(code);
     }
     report(&name, &bytes, &analysed.diagnostics);
     let errors = analysed.error_count();
@@ -79,16 +75,33 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
         streams::err_line(format_args!("expand: {name} has {errors} error{}; nothing is written", plural(errors)));
         return Ok(ExitCode::from(1));
     };
-    let (edits, notes) = turnpass::expand::expansion_edits(ready.program(), &ready.lowered);
+    let (mut edits, notes) = turnpass::expand::expansion_edits(ready.program(), &ready.lowered);
     report(&name, &bytes, &notes);
-    let output = printer::print(ready.program(), &edits);
-    let unreadable = printer::unreadable(ready.program(), &output);
-    if !unreadable.is_empty() {
-        report(&format!("{name} (expanded)"), &output, &unreadable);
-        streams::err_line(format_args!(
-            "expand: {name}: the expanded program would not read on the control; nothing is written"
-        ));
-        return Ok(ExitCode::from(1));
+    let mut output = printer::print(ready.program(), &edits);
+    // Where the text alone would read as the other dialect, a comment names its own.
+    if let Some(dialect) = printer::mark::dialect_to_name(ready.program(), &output) {
+        printer::mark::insert_dialect_mark(ready.program(), &mut edits, dialect);
+        output = printer::print(ready.program(), &edits);
+    }
+    // What is about to be written is read back and run as the control reads the original.
+    let mut reading = pipeline_settings(&resolved, &args.run, false);
+    reading.parse = printer::read_back_options(ready.program());
+    match turnpass::expand::check_written(&ready.lowered, &output, &reading) {
+        Ok(()) => {}
+        Err(Unwritable::Errors(errors)) => {
+            report(&format!("{name} (expanded)"), &output, &errors);
+            streams::err_line(format_args!(
+                "expand: {name}: the expanded program does not read back and run cleanly; nothing is written"
+            ));
+            return Ok(ExitCode::from(1));
+        }
+        Err(Unwritable::OtherCuts { original, written }) => {
+            streams::err_line(format_args!(
+                "expand: {name}: the expanded program would make {written} cutting moves where the program makes \
+                 {original}; nothing is written (a defect of turnpass: please report it with the program)"
+            ));
+            return Ok(ExitCode::from(1));
+        }
     }
     write_output(args.output.as_deref(), &output)?;
     Ok(ExitCode::SUCCESS)
@@ -100,8 +113,8 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     let part = args.stock.check(&resolved);
     announce_settings("simulate", &name, (&args.read, &args.run), &resolved, args.verbose, Some(part.stock.is_some()));
     let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true).with_part(part));
-    if matches!(analysed.lowering, Lowering::NotLowered) {
-        return Ok(not_lowered("simulate", &name, &bytes, &analysed.parsed));
+    if let Some(code) = cannot_run("simulate", &name, &bytes, &analysed) {
+        return Ok(code);
     }
     report(&name, &bytes, &analysed.diagnostics);
     let errors = analysed.error_count();
@@ -146,6 +159,19 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     }
     out.flush().map_err(streams::stdout_error)?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The refusal (exit 1) of a program `command` cannot run, as every command that runs one
+/// refuses it: one with no block to run (its diagnostics, that warning first) or an OSP
+/// machining-centre program (`not_lowered`).
+fn cannot_run(command: &str, name: &str, bytes: &[u8], analysed: &Analysed<'_>) -> Option<ExitCode> {
+    if let Some(warning) = analysed.parsed.program.nothing_to_run() {
+        let diagnostics: Vec<_> = std::iter::once(warning).chain(analysed.diagnostics.iter().cloned()).collect();
+        report(name, bytes, &diagnostics);
+        streams::err_line(format_args!("{command}: {name} holds no block to run; nothing is written"));
+        return Some(ExitCode::from(1));
+    }
+    matches!(analysed.lowering, Lowering::NotLowered).then(|| not_lowered(command, name, bytes, &analysed.parsed))
 }
 
 fn summary_text(summary: &simulation::Summary) -> String {

@@ -185,7 +185,8 @@ pub fn err(bytes: impl AsRef<[u8]>) {
     }
 }
 
-/// One line of text on standard error.
+/// One line of text on standard error, its control characters escaped: a message quotes
+/// names and words from outside (a file name, a comment), which must not drive the terminal.
 pub fn err_line(text: impl std::fmt::Display) {
-    err(format!("{text}\n"));
+    err(format!("{}\n", turnpass::source::escape_controls(&text.to_string())));
 }

@@ -12,11 +12,11 @@ use turnpass::diagnose::model_text::effect_table;
 use turnpass::diagnose::report::value_with_sigma;
 use turnpass::diagnose::thermal_fit::{FirstOrderFit, Split, fit_log_split};
 use turnpass::error_model::Effect;
-use turnpass::error_model::effects::{ThermalX, ThermalZ};
+use turnpass::error_model::effects::{ThermalX, ThermalZ, X, Z};
 
 use super::common::{
-    AxisArg, CliError, Format, data_invalid, display_name, model_problems, model_spec, read_data_text, read_table,
-    write_atomically, write_output,
+    AxisArg, CliError, Format, data_invalid, display_name, model_problems, model_spec, read_data_text, read_input_text,
+    read_table, write_file, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -81,13 +81,13 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     let (Some(path), Some(axis)) = (&args.write_model, args.axis) else { return Ok(ExitCode::SUCCESS) };
     let (amp, tau_min) = (fit.warm.gain, fit.warm.tau_min);
     let effect = match axis {
-        AxisArg::X => Effect::ThermalX(ThermalX { amp, tau_min }),
-        AxisArg::Z => Effect::ThermalZ(ThermalZ { amp, tau_min }),
+        AxisArg::X => Effect::ThermalX(ThermalX { amp, tau_min, axis: X }),
+        AxisArg::Z => Effect::ThermalZ(ThermalZ { amp, tau_min, axis: Z }),
     };
-    let original = match std::fs::read_to_string(path) {
+    let original = match read_input_text(path) {
         Ok(text) => text,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
-        Err(source) => return Err(CliError::Read { path: path.display().to_string(), source }),
+        Err(CliError::Read { source, .. }) if source.kind() == std::io::ErrorKind::NotFound => String::new(),
+        Err(error) => return Err(error),
     };
     let (spec, _) = model_spec(path, &original)?;
     if spec.effect.iter().any(|e| e.name() == effect.name()) {
@@ -121,7 +121,7 @@ pub fn run(args: FitThermalArgs) -> Result<ExitCode, CliError> {
     // The written model must load: the fitted curve is checked against its ranges.
     let (spec, dir) = model_spec(path, &written)?;
     spec.build(|file| read_table(&dir, file)).map_err(|e| model_problems(path, &written, e))?;
-    write_atomically(path, written.as_bytes())?;
+    write_file(path, written.as_bytes())?;
     streams::err_line(format_args!("fit-thermal: wrote {} into {}", effect.name(), path.display()));
     Ok(ExitCode::SUCCESS)
 }

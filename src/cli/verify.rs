@@ -15,15 +15,16 @@ use turnpass::compensation::verify::{
 use turnpass::error_model::ErrorModel;
 use turnpass::pipeline::Ready;
 use turnpass::semantic::nose_radius::ToolTable;
-use turnpass::source::LineIndex;
+use turnpass::source::{LineIndex, escape_controls};
 use turnpass::syntax::Program;
 
 use super::common::{
     CliError, Format, ReadArgs, Resolved, RunArgs, display_name, model_sha256, model_source, read_program,
-    read_program_bytes, ready, required_error_model, write_output,
+    read_program_bytes, ready, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
+use super::table::{WithTable, split_summary, with_table};
 
 #[derive(Args)]
 pub struct VerifyArgs {
@@ -56,9 +57,14 @@ pub struct CheckArgs {
     #[arg(long, value_name = "MIN")]
     pub start_min: Option<f64>,
     /// Verify on the model given even when it is not the one the compensated program's
-    /// provenance comment names (its SHA-256 differs); without this that is a violation.
+    /// provenance comment names (its SHA-256 differs, or its control table); without this
+    /// that is a violation.
     #[arg(long)]
     pub allow_other_model: bool,
+    /// The machine runs with this control table loaded (as `turnpass table` writes it): check
+    /// the program on the machine with the table.
+    #[arg(long, value_name = "FILE")]
+    pub with_table: Option<PathBuf>,
 }
 
 pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
@@ -86,18 +92,28 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     let progress = Progress::new(streams::stderr_is_terminal(), [&original, &compensated]);
     let checked = checked(
         (&original, &compensated),
-        (&original_name, &compensated_name, &original_bytes),
+        (&original_name, &compensated_name, &original_bytes, &compensated_bytes),
         &resolved,
         &mut model,
         &args.checks,
         Watch::Progress(&|side, measured| progress.measured(side, measured)),
-    )?;
+    );
+    let checked = match checked {
+        Ok(checked) => checked,
+        Err(error) => {
+            streams::err(messages);
+            return Err(error);
+        }
+    };
     progress.finish();
+    if let Some((_, summary)) = &checked.table {
+        messages.extend_from_slice(format!("verify: {summary}\n").as_bytes());
+    }
     for warning in &checked.warnings {
-        messages.extend_from_slice(format!("verify: warning: {warning}\n").as_bytes());
+        messages.extend_from_slice(format!("verify: warning: {}\n", escape_controls(warning)).as_bytes());
     }
     streams::err(messages);
-    let Checked { provenance, start, model_sha256, figures, words, limit, violations, .. } = checked;
+    let Checked { provenance, start, model_sha256, figures, words, limit, violations, table, .. } = checked;
     let text = match args.format {
         Format::Json => {
             let value = serde_json::json!({
@@ -112,6 +128,18 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
                 "words_checked": words.checked,
                 "violations": violations,
             });
+            let mut value = value;
+            if let (Some((table, _)), Some(object)) = (&table, value.as_object_mut()) {
+                object.insert(
+                    "control_table".to_string(),
+                    serde_json::json!({
+                        "file": table.path.display().to_string(),
+                        "control": table.loaded.control.name(),
+                        "sha256": table.sha256,
+                        "unverified": table.loaded.unverified,
+                    }),
+                );
+            }
             serde_json::to_string_pretty(&value).unwrap_or_default() + "\n"
         }
         Format::Human => {
@@ -135,7 +163,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             text.push_str(&format!("  {:<16} {:>10} {:>10} {:>10} {:>8}\n", "", "max", "RMS", "SSQ", "points"));
             text.push_str(&row("as programmed", &figures.before));
             text.push_str(&row("compensated", &figures.after));
-            text.push_str(&format!("  RMS improvement: {:.1} %\n", figures.improvement_percent));
+            let improvement = turnpass::compensation::deviation::improvement_text(figures.improvement_percent);
+            text.push_str(&format!("  RMS improvement: {improvement}\n"));
             text.push_str(&format!(
                 "words: {} M, T, S, comment and block-delete words kept in order; feed and spindle words of every \
                  cut checked\n",
@@ -147,7 +176,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             if violations.is_empty() {
                 text.push_str("ok\n");
             }
-            text
+            // It quotes the programs' words and names: shown escaped.
+            turnpass::source::escape_controls(&text).into_owned()
         }
     };
     write_output(None, text.as_bytes())?;
@@ -166,6 +196,8 @@ pub struct Checked {
     pub limit: f64,
     pub violations: Vec<String>,
     pub warnings: Vec<String>,
+    /// The control table the machine runs with (`--with-table`), and what goes where with it.
+    pub table: Option<(WithTable, String)>,
 }
 
 /// How `checked` hands out the points it measures.
@@ -216,10 +248,12 @@ impl Progress {
 }
 
 /// `verify`'s checks of `compensated` against `original` on `model` (its start minute set
-/// as they decide), every measured point also handed out as `watch` says.
+/// as they decide), every measured point also handed out as `watch` says. A move that needs
+/// more samples than a measure holds (`verify::oversampled`, the bound `compensate` and
+/// `plot` refuse by) is refused before any is measured: exit 1, its diagnostics rendered.
 pub fn checked(
     (original, compensated): (&Ready<'_>, &Ready<'_>),
-    (original_name, compensated_name, original_bytes): (&str, &str, &[u8]),
+    (original_name, compensated_name, original_bytes, compensated_bytes): (&str, &str, &[u8], &[u8]),
     resolved: &Resolved,
     model: &mut ErrorModel,
     checks: &CheckArgs,
@@ -227,6 +261,17 @@ pub fn checked(
 ) -> Result<Checked, CliError> {
     let model_sha256 = model_sha256(resolved)?;
     let provenance = compensated_with(&original.parsed.program, &compensated.parsed.program);
+    let mut warnings = Vec::new();
+    let table = match &checks.with_table {
+        Some(path) => {
+            let (combined, with) = with_table(path, &resolved.settings, model, "verify")?;
+            warnings.extend(with.loaded.unverified.map(|why| format!("unverified: {why}")));
+            let summary = split_summary(model, &with);
+            *model = combined;
+            Some((with, summary))
+        }
+        None => None,
+    };
     let start = match (checks.start_min, &provenance) {
         (Some(minutes), _) => Start { minutes, from: "--start-min" },
         (None, Some(Ok(made))) => Start { minutes: made.start_min, from: "the provenance comment" },
@@ -234,7 +279,6 @@ pub fn checked(
     };
     model.start_min = start.minutes;
     let mut violations = Vec::new();
-    let mut warnings = Vec::new();
     let mut warn = |text: String| warnings.push(text);
     if !marks(&original.parsed.program).is_empty() && provenance.is_none() {
         warn(format!(
@@ -265,6 +309,14 @@ pub fn checked(
                     violations.push(format!("{text}: give the model it was compensated for, or --allow-other-model"));
                 }
             }
+            let given = table.as_ref().map(|(t, _)| t.sha256.as_str());
+            if let Some(text) = other_table(compensated_name, made.table_sha256.as_deref(), given) {
+                if checks.allow_other_model {
+                    warn(format!("{text}; verifying as given (--allow-other-model)"));
+                } else {
+                    violations.push(format!("{text}, or --allow-other-model"));
+                }
+            }
         }
         Some(Err(why)) => warn(format!(
             "the provenance comment of {compensated_name} does not read ({why}): its start time and model are not \
@@ -276,6 +328,16 @@ pub fn checked(
     let machine = &original.machine;
     let (original_path, compensated_path) = (original.valid(), compensated.valid());
     let sampling = verify::sampling(model, machine.increment * machine.scale(), &[&original_path, &compensated_path]);
+    let mut refusal = Vec::new();
+    for (name, bytes, path) in
+        [(original_name, original_bytes, original_path), (compensated_name, compensated_bytes, compensated_path)]
+    {
+        refusal.extend(rendered(name, bytes, &verify::oversampled(&path, &sampling)));
+    }
+    if !refusal.is_empty() {
+        refusal.extend_from_slice(b"a move needs more samples than a measure holds: nothing is measured or written\n");
+        return Err(CliError::Rejected(refusal));
+    }
     let figures = match watch {
         Watch::Each(each) => deviation_each(original_path, compensated_path, &tools, model, &sampling, each),
         Watch::Progress(watch) => deviation_watched(original_path, compensated_path, &tools, model, &sampling, watch),
@@ -303,7 +365,30 @@ pub fn checked(
             figures.after.max_mm
         ));
     }
-    Ok(Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings })
+    Ok(Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings, table })
+}
+
+/// Why the control table a program was compensated for (`made`, the first digits of its
+/// SHA-256) is not the one `verify` is given (`given`), in words; none when they agree.
+fn other_table(compensated_name: &str, made: Option<&str>, given: Option<&str>) -> Option<String> {
+    match (made, given) {
+        (None, None) => None,
+        (Some(made), Some(given)) if given.len() >= made.len() && given[..made.len()].eq_ignore_ascii_case(made) => {
+            None
+        }
+        (Some(made), None) => Some(format!(
+            "{compensated_name} was compensated for a machine with the control table {made} loaded, and no table is \
+             given: give it with --with-table"
+        )),
+        (None, Some(given)) => Some(format!(
+            "{compensated_name} was compensated for a machine without a control table, and the table {given} is \
+             given: leave out --with-table"
+        )),
+        (Some(made), Some(given)) => Some(format!(
+            "{compensated_name} was compensated for the control table {made}, and the one given is another \
+             ({given}): give the table it was compensated for"
+        )),
+    }
 }
 
 /// A cut's feed and spindle words as a user reads them.

@@ -59,11 +59,26 @@ impl Figures {
         tally.figures()
     }
 
-    /// How much smaller `after` is than `self`, percent of `self` (by RMS).
-    pub fn improvement_percent(&self, after: &Figures) -> f64 {
-        if self.rms_mm > 0.0 { 100.0 * (1.0 - after.rms_mm / self.rms_mm) } else { 0.0 }
+    /// How much smaller `after` is than `self`, percent of `self` (by RMS), to 0.0001 %;
+    /// `None` where `self` deviates by nothing (an RMS under [`NOTHING_MM`]): a share of
+    /// nothing is no figure, and a rounding error divided by it is a wild one.
+    pub fn improvement_percent(&self, after: &Figures) -> Option<f64> {
+        (self.rms_mm >= NOTHING_MM).then(|| (100.0 * (1.0 - after.rms_mm / self.rms_mm) * 1e4).round() / 1e4)
     }
 }
+
+/// An RMS improvement as `verify` and `report` say it: the percentage, or that there was
+/// nothing to improve.
+pub fn improvement_text(percent: Option<f64>) -> String {
+    match percent {
+        Some(percent) => format!("{percent:.1} %"),
+        None => "none to measure: as programmed, the program deviates by nothing on this model".to_string(),
+    }
+}
+
+/// A deviation this small is none, mm: a nanometre, a thousandth of the finest increment a
+/// lathe control writes and far below what any figure is printed to.
+pub const NOTHING_MM: f64 = 1e-6;
 
 /// The running sums `Figures` are made of, for distances that come one at a time: added in
 /// the same order, they give the same figures as `Figures::of`.

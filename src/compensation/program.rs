@@ -107,8 +107,13 @@ pub fn compensate_program(
     let tools = ToolTable::from_machine(machine);
     let path = LocalPath::new(toolpath);
     let sampling = sampling(&options.fit, model, path.reach());
-    // A move that needs more samples than a piece may hold is refused before any is made.
-    let oversampled = oversampled_moves(toolpath, &sampling);
+    // A move that needs more samples than a piece may hold is refused before any is made,
+    // and so are paths to keep (`plot`) of more samples than that in all: they are held at
+    // once, as one piece.
+    let mut oversampled = oversampled_moves(toolpath, &sampling);
+    if options.paths && oversampled.is_empty() {
+        oversampled.extend(overlong_paths(toolpath, &sampling));
+    }
     if !oversampled.is_empty() {
         return Outcome {
             edits: Edits::new(),
@@ -186,9 +191,24 @@ fn unwritable_cycles(program: &Program<'_>, lowered: &Lowered, needs: &[bool], w
     out
 }
 
+/// An error on the block whose move takes the samples of the whole path past
+/// `MAX_SAMPLES_PER_MOVE`, if one does: the paths `plot` keeps are held whole.
+fn overlong_paths(toolpath: &crate::toolpath::Toolpath, sampling: &Sampling) -> Option<Diagnostic> {
+    use crate::error_model::sampling::{MAX_SAMPLES_PER_MOVE, samples_needed};
+    let needed = |index| samples_needed(toolpath, index, sampling);
+    let mut held = 0usize;
+    let crossing = (0..toolpath.moves.len()).find(|&index| {
+        held = held.saturating_add(needed(index));
+        held > MAX_SAMPLES_PER_MOVE
+    })?;
+    let samples = held.saturating_add((crossing + 1..toolpath.moves.len()).map(needed).sum::<usize>());
+    let kind = DiagnosticKind::PathNeedsTooManySamples { samples, max: MAX_SAMPLES_PER_MOVE };
+    Some(Diagnostic::error(kind, toolpath.moves[crossing].source))
+}
+
 /// The moves that need more than `MAX_SAMPLES_PER_MOVE` samples, one error on each block that
-/// makes some.
-fn oversampled_moves(toolpath: &crate::toolpath::Toolpath, sampling: &Sampling) -> Vec<Diagnostic> {
+/// makes some (`verify` refuses them too: `verify::oversampled`).
+pub(crate) fn oversampled_moves(toolpath: &crate::toolpath::Toolpath, sampling: &Sampling) -> Vec<Diagnostic> {
     let mut out: Vec<Diagnostic> = Vec::new();
     for (index, m) in toolpath.moves.iter().enumerate() {
         let samples = crate::error_model::sampling::samples_needed(toolpath, index, sampling);

@@ -9,7 +9,9 @@
 //! (TURNPASS 0.1.0 COMPENSATED, MODEL TEST LATHE, SHA256 1A2B3C4D5E6F, TOLERANCE 0.0005 MM, STRATEGY AUTO, START 30 MIN)
 //! ```
 //!
-//! (`STRATEGY DENSIFY, STEP 0.5 MM` when densify was given a step.) The model is named by
+//! (`STRATEGY DENSIFY, STEP 0.5 MM` when densify was given a step; `TABLE 4F…` after the
+//! model's digest when the program was compensated for a machine with a control table
+//! loaded, `--with-table`: the first digits of that table's SHA-256.) The model is named by
 //! its `[machine] name` or its file name, and by the first [`SHA256_DIGITS`] hex digits of
 //! the SHA-256 of its content ([`model_sha256`]). [`marks`] finds such comments in a parsed
 //! program, [`refusal`] is the diagnostic `compensate` refuses a marked program with, and
@@ -23,10 +25,10 @@
 use sha2::{Digest, Sha256};
 
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::dialect::tables::SemicolonRule;
-use crate::printer::{Edits, NewBlock, NewWord};
+use crate::dialect::Dialect;
+use crate::printer::Edits;
 use crate::source::Span;
-use crate::syntax::{CommentKind, Program, Statement, WordKind};
+use crate::syntax::{Program, WordKind};
 
 use super::fit::Strategy;
 
@@ -53,6 +55,11 @@ pub struct Provenance {
     pub model: String,
     /// The first [`SHA256_DIGITS`] hex digits of the model's SHA-256, lower case.
     pub model_sha256: String,
+    /// The first [`SHA256_DIGITS`] hex digits of the SHA-256 of the control table the machine
+    /// runs with (`--with-table`: its file and the files it names), lower case; none for a
+    /// machine without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub table_sha256: Option<String>,
     pub tolerance_mm: f64,
     #[serde(serialize_with = "strategy_name")]
     pub strategy: Strategy,
@@ -60,6 +67,10 @@ pub struct Provenance {
     pub step_mm: Option<f64>,
     /// Minutes since the machine started when the program starts (thermal effects).
     pub start_min: f64,
+    /// The dialect the program was read and written in, where its text alone would read as
+    /// the other (`printer::mark`); none otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dialect: Option<Dialect>,
 }
 
 fn strategy_name<S: serde::Serializer>(strategy: &Strategy, serializer: S) -> Result<S::Ok, S::Error> {
@@ -84,8 +95,10 @@ impl Provenance {
     pub fn text(&self, upper: bool) -> String {
         let model = printable_name(&self.model);
         let model = if upper { model.to_ascii_uppercase() } else { model };
+        let table =
+            self.table_sha256.as_ref().map_or_else(String::new, |t| format!(", TABLE {}", t.to_ascii_uppercase()));
         let mut text = format!(
-            "TURNPASS {} COMPENSATED, MODEL {model}, SHA256 {}, TOLERANCE {} MM, STRATEGY {}",
+            "TURNPASS {} COMPENSATED, MODEL {model}, SHA256 {}{table}, TOLERANCE {} MM, STRATEGY {}",
             self.version,
             self.model_sha256.to_ascii_uppercase(),
             short(self.tolerance_mm, 6),
@@ -95,6 +108,9 @@ impl Provenance {
             text.push_str(&format!(", STEP {} MM", short(step, 6)));
         }
         text.push_str(&format!(", START {} MIN", short(self.start_min, 3)));
+        if let Some(dialect) = self.dialect {
+            text.push_str(&format!(", {}", crate::printer::mark::dialect_field(dialect)));
+        }
         text
     }
 
@@ -126,8 +142,9 @@ impl Provenance {
 
 /// The fields after `TURNPASS version COMPENSATED`.
 fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Result<Provenance, String> {
-    let (mut model, mut sha256, mut tolerance, mut strategy, mut step, mut start) =
-        (None, None, None, None, None, None);
+    let (mut model, mut sha256, mut tolerance, mut strategy, mut step, mut start, mut dialect) =
+        (None, None, None, None, None, None, None);
+    let mut table = None;
     for field in fields {
         let (key, value) = field.split_once(' ').map_or((field, ""), |(k, v)| (k, v.trim()));
         let number = |unit: &str| -> Result<f64, String> {
@@ -148,6 +165,12 @@ fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Re
                 }
                 sha256 = Some(value.to_ascii_lowercase());
             }
+            "TABLE" => {
+                if value.len() < SHA256_DIGITS || !value.bytes().all(|b| b.is_ascii_hexdigit()) {
+                    return Err(format!("TABLE `{value}` is not {SHA256_DIGITS} or more hex digits"));
+                }
+                table = Some(value.to_ascii_lowercase());
+            }
             "TOLERANCE" => tolerance = Some(number(" MM")?),
             "STRATEGY" => {
                 strategy =
@@ -155,6 +178,13 @@ fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Re
             }
             "STEP" => step = Some(number(" MM")?),
             "START" => start = Some(number(" MIN")?),
+            "DIALECT" => {
+                dialect = Some(match value.to_ascii_uppercase().as_str() {
+                    "OSP" => Dialect::Osp,
+                    "FANUC" => Dialect::Fanuc,
+                    _ => return Err(format!("DIALECT `{value}` is not OSP or FANUC")),
+                })
+            }
             // A field a later version writes.
             _ => {}
         }
@@ -164,10 +194,12 @@ fn read_fields<'a>(version: String, fields: impl Iterator<Item = &'a str>) -> Re
         version,
         model: model.ok_or_else(|| missing("MODEL"))?,
         model_sha256: sha256.ok_or_else(|| missing("SHA256"))?,
+        table_sha256: table,
         tolerance_mm: tolerance.ok_or_else(|| missing("TOLERANCE"))?,
         strategy: strategy.ok_or_else(|| missing("STRATEGY"))?,
         step_mm: step,
         start_min: start.ok_or_else(|| missing("START"))?,
+        dialect,
     })
 }
 
@@ -215,19 +247,10 @@ pub struct Mark {
     pub provenance: Result<Provenance, String>,
 }
 
-/// The text of comment `text` (as written, delimiters included) between its delimiters.
-fn comment_body(text: &[u8]) -> &[u8] {
-    match text {
-        [b'(', body @ .., b')'] => body,
-        [b'(', body @ ..] | [b';', body @ ..] => body,
-        _ => text,
-    }
-}
-
 /// Read comment `text` (as written, delimiters included): `None` when it is not a
 /// provenance comment.
 fn read(text: &[u8]) -> Option<Result<Provenance, String>> {
-    let body = comment_body(text).trim_ascii_start();
+    let body = crate::printer::mark::comment_body(text).trim_ascii_start();
     // Only a comment that starts with the tool's name is read further.
     if !body.get(..8).is_some_and(|head| head.eq_ignore_ascii_case(b"turnpass")) {
         return None;
@@ -257,65 +280,8 @@ pub fn refusal(program: &Program<'_>) -> Option<Diagnostic> {
     Some(Diagnostic::error(DiagnosticKind::AlreadyCompensated { model }, mark.span))
 }
 
-/// Record in `edits` the provenance comment block, after the program's name line: the first
-/// `O…` block among the blocks before the first statement (tape marks, the OSP header, blank
-/// and comment lines), else the last tape mark or header among them, else at the top. The
-/// name block is left as it is, its comment (`O1234 (SHAFT)`) included.
+/// Record in `edits` the provenance comment block, after the program's name line
+/// (`printer::mark::insert_after_name`), in the program's comment style.
 pub fn insert(program: &Program<'_>, edits: &mut Edits, provenance: &Provenance) {
-    let blocks = program.blocks();
-    if blocks.is_empty() {
-        return;
-    }
-    let leading = blocks.iter().take_while(|b| {
-        matches!(b.statement, Statement::Empty | Statement::TapeMark | Statement::Header | Statement::ProgramName)
-    });
-    let mut anchor = None;
-    for (index, block) in leading.enumerate() {
-        match block.statement {
-            Statement::ProgramName => {
-                anchor = Some(index);
-                break;
-            }
-            Statement::TapeMark | Statement::Header => anchor = Some(index),
-            _ => {}
-        }
-    }
-    let style = CommentStyle::of(program);
-    let text = provenance.text(!style.lower_case);
-    let word = if style.semicolon { NewWord::LineComment(format!(" {text}")) } else { NewWord::Comment(text) };
-    let block = NewBlock::new(vec![word]);
-    match anchor {
-        Some(index) => edits.insert_after(index, block),
-        None => edits.insert_before(0, block),
-    }
-}
-
-/// How a program writes its comments.
-struct CommentStyle {
-    /// `; …` to the end of the line rather than `( … )`: the program writes only such
-    /// comments, and its dialect reads them as comments.
-    semicolon: bool,
-    /// Some comment uses lower-case letters.
-    lower_case: bool,
-}
-
-impl CommentStyle {
-    fn of(program: &Program<'_>) -> CommentStyle {
-        let (mut paren, mut semicolon, mut lower_case) = (false, false, false);
-        for block in program.blocks() {
-            for word in program.words_of(block) {
-                let WordKind::Comment(kind) = word.kind else { continue };
-                let body = comment_body(program.text(word.span));
-                match kind {
-                    CommentKind::Paren => paren = true,
-                    // A bare `;` ending a block is an end of block, not a comment style.
-                    CommentKind::Semicolon if !body.trim_ascii().is_empty() => semicolon = true,
-                    CommentKind::Semicolon => {}
-                }
-                lower_case |= body.iter().any(u8::is_ascii_lowercase);
-            }
-        }
-        let reads_semicolon = program.config().tables().lexical.semicolon == SemicolonRule::EndOfBlock;
-        CommentStyle { semicolon: semicolon && !paren && reads_semicolon, lower_case }
-    }
+    crate::printer::mark::insert_after_name(program, edits, |upper| provenance.text(upper));
 }

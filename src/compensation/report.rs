@@ -62,7 +62,8 @@ pub struct Totals {
     /// Deviation of the cutting points from the nominal path, as programmed and compensated.
     pub before: Figures,
     pub after: Figures,
-    pub improvement_percent: f64,
+    /// `None` where the program as written deviates by nothing (`Figures::improvement_percent`).
+    pub improvement_percent: Option<f64>,
 }
 
 /// The figures of one run of moves (`rewrite::MotionBlocks::move_tables`: the moves an edited block can
@@ -118,7 +119,7 @@ pub fn build(input: &ReportInput<'_>) -> Report {
             inverse_residual_mm: nm(input.inverse_residual_mm),
             before: before.rounded(),
             after: after.rounded(),
-            improvement_percent: (before.improvement_percent(&after) * 1e4).round() / 1e4,
+            improvement_percent: before.improvement_percent(&after),
         },
     }
 }

@@ -32,7 +32,7 @@ use super::deviation::{Figures, LocalPath, Tally};
 use super::fit::{FitOptions, Strategy};
 use super::inverse::Predictor;
 use super::program::SAMPLE_STEP_MM;
-use crate::error_model::sampling::{PathSample, Sampling, sample_at, sample_moves};
+use crate::error_model::sampling::{PathSample, Sampling, sample_at, sample_moves, samples_needed};
 
 mod follow;
 #[cfg(test)]
@@ -45,7 +45,8 @@ use follow::Follower;
 pub struct Deviation {
     pub before: Figures,
     pub after: Figures,
-    pub improvement_percent: f64,
+    /// `None` where the original deviates by nothing (`Figures::improvement_percent`).
+    pub improvement_percent: Option<f64>,
     /// Where the compensated program deviates most (none when nothing of it cuts).
     #[serde(skip)]
     pub worst: Option<Worst>,
@@ -79,8 +80,18 @@ pub fn sampling(model: &ErrorModel, increment_mm: f64, toolpaths: &[&Toolpath]) 
     Sampling { max_arc_radians: Sampling::MEASURE_ARC_RADIANS, play, ..super::program::sampling(&fit, model, reach) }
 }
 
-/// Moves sampled and measured at a time: memory follows them, not the program.
+/// Moves sampled and measured at a time, and samples (past the first move's): memory
+/// follows them, not the program.
 const CHUNK_MOVES: usize = 4096;
+const CHUNK_SAMPLES: usize = 1 << 16;
+
+/// The moves of `toolpath` that need more samples than a measure holds
+/// (`error_model::sampling::MAX_SAMPLES_PER_MOVE`), one error on each block that makes
+/// some: `verify` and `report` refuse them before any is measured, as `compensate` and
+/// `plot` refuse them before any is compensated.
+pub fn oversampled(toolpath: &Toolpath, sampling: &Sampling) -> Vec<Diagnostic> {
+    super::program::oversampled_moves(toolpath, sampling)
+}
 
 /// Predict both programs through `model`, sampled as `sampling` allows, and measure them
 /// against `original`'s nominal path, along the path (each sample stands for the path from
@@ -161,7 +172,7 @@ pub fn deviation_each(
 
 fn figures(before: Tally, after: Tally, worst: Option<Worst>) -> Deviation {
     let (before, after) = (before.figures(), after.figures());
-    let improvement_percent = (before.improvement_percent(&after) * 1e4).round() / 1e4;
+    let improvement_percent = before.improvement_percent(&after);
     Deviation { before: before.rounded(), after: after.rounded(), improvement_percent, worst }
 }
 
@@ -202,9 +213,16 @@ fn measure(
     };
     let mut samples = Vec::new();
     let count = toolpath.moves.len();
-    for first in (0..count).step_by(CHUNK_MOVES) {
+    let mut next = 0;
+    while next < count {
+        let first = next;
+        let mut held = 0;
+        while next < count && next - first < CHUNK_MOVES && (next == first || held < CHUNK_SAMPLES) {
+            held = samples_needed(toolpath, next, sampling).saturating_add(held);
+            next += 1;
+        }
         samples.clear();
-        sample_moves(toolpath, first..(first + CHUNK_MOVES).min(count), tools, sampling, &mut samples);
+        sample_moves(toolpath, first..next, tools, sampling, &mut samples);
         let mut param_before = 0.0;
         let mut move_before = usize::MAX;
         for s in &samples {
@@ -399,15 +417,16 @@ fn knees(
 /// original was read with)
 /// and measured against `original`'s nominal path by `turnpass verify`'s own computation
 /// (`deviation`, `sampling`), so that the figures it reports are the ones verify finds, with
-/// verify's check of the feed and spindle words (`check_feeds`).
+/// verify's checks of the feed and spindle words (`check_feeds`) and of the other words of
+/// `original_program` (`check_words`: the first one lost).
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
-    original: ValidToolpath<'_>,
+    (original_program, original): (&Program<'_>, ValidToolpath<'_>),
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
     model: &ErrorModel,
-) -> Result<(Deviation, Option<FeedChange>), Vec<Diagnostic>> {
+) -> Result<(Deviation, Option<FeedChange>, Option<MissingWord>), Vec<Diagnostic>> {
     let read = match crate::pipeline::analyse(written, reading).ready() {
         Ok(read) => read,
         Err(analysed) => {
@@ -418,7 +437,12 @@ pub fn check_written(
     let toolpath = read.valid();
     let machine = &reading.machine;
     let sampling = sampling(model, machine.increment * machine.scale(), &[&original, &toolpath]);
-    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(&original, &toolpath)))
+    let oversampled = oversampled(&toolpath, &sampling);
+    if !oversampled.is_empty() {
+        return Err(oversampled);
+    }
+    let lost = check_words(original_program, read.program()).missing;
+    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(&original, &toolpath), lost))
 }
 
 /// The deviation `verify` allows by default: two least increments, mm.

@@ -123,6 +123,16 @@ impl Measured {
         self.len() == 0
     }
 
+    /// The rows of the file it was read from (or is written as): a ball bar's or a CMM
+    /// profile's points, a table's rows of readings (`len` counts a table's values, the mean
+    /// of the runs per target, direction and quantity).
+    pub fn rows(&self) -> usize {
+        match self {
+            Measured::Table { table, .. } => table.rows,
+            _ => self.len(),
+        }
+    }
+
     /// The line in the file of point `i`.
     pub fn line(&self, i: usize) -> usize {
         match self {

@@ -209,10 +209,10 @@ mod tests {
     #[test]
     fn effect_tables_read_back_as_the_same_effects_to_six_digits() {
         for effect in [
-            Effect::CyclicZ(CyclicZ { amp: 0.0019834461149, pitch: 11.94, phase: 0.99299540970 }),
-            Effect::StraightnessX(StraightnessX { coeffs: vec![1.999364871858348e-6] }),
-            Effect::BacklashX(BacklashX { b: 0.005 }),
-            Effect::ToolOffsetX(ToolOffsetX { dx: -3.0 }),
+            Effect::CyclicZ(CyclicZ { amp: 0.0019834461149, pitch: 11.94, phase: 0.99299540970, axis: Z }),
+            Effect::StraightnessX(StraightnessX { coeffs: vec![1.999364871858348e-6], axis: X }),
+            Effect::BacklashX(BacklashX { b: 0.005, axis: X }),
+            Effect::ToolOffsetX(ToolOffsetX { d: -3.0, axis: X }),
         ] {
             let text = format!("# a comment the user wrote\n[model]\nstart_min = 5.0\n\n{}", effect_table(&effect));
             let spec = ModelSpec::from_toml(&text).unwrap();

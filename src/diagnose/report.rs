@@ -141,7 +141,14 @@ pub fn human(d: &Diagnosis) -> String {
         Kind::Profile => "datum Z shift removed per part",
         Kind::Table(_) => "set-up removed per quantity",
     };
-    let _ = writeln!(out, "diagnose: {what}, {} points; {setup}:", f.len());
+    let count = match f.kind {
+        // A table's values are the means of its runs, per target, direction and quantity.
+        Kind::Table(_) => {
+            format!("{} rows, {} values (the mean of the runs per target, direction and quantity)", d.rows, f.len())
+        }
+        _ => format!("{} points", f.len()),
+    };
+    let _ = writeln!(out, "diagnose: {what}, {count}; {setup}:");
     for g in &f.groups {
         let _ = writeln!(out, "  {g}");
     }

@@ -108,7 +108,8 @@ pub fn synth(
                 up_runs: vec![1; n],
                 down_runs: vec![1; n],
             };
-            let table = SlideTable { linear: Some(profile.clone()), straightness: Some(profile), angular: None };
+            let table =
+                SlideTable { linear: Some(profile.clone()), straightness: Some(profile), angular: None, rows: 2 * n };
             Measured::Table { axis, table: Box::new(table) }
         }
     };

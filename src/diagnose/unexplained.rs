@@ -24,7 +24,7 @@ use super::forward::{Forward, Simulation};
 use super::lsq::{self, Base};
 use super::measured::{Axis, Kind};
 use super::select::{ALPHA, BIC_MARGIN};
-use crate::error_model::effects::{ToolOffsetX, ToolOffsetZ};
+use crate::error_model::effects::{ToolOffsetX, ToolOffsetZ, X, Z};
 use crate::error_model::htm::AxisTables;
 use crate::error_model::interferometer::{Profile, SlideTable};
 use crate::error_model::{Effect, ErrorModel};
@@ -207,8 +207,8 @@ fn table(inputs: &Inputs<'_>) -> Result<ResidualTable, String> {
     let sensitivity = |effect: Effect| -> Vec<f64> {
         f.response(inputs.model, inputs.simulation, &effect).iter().map(|r| r / probe).collect()
     };
-    let along_x = sensitivity(Effect::ToolOffsetX(ToolOffsetX { dx: probe }));
-    let along_z = sensitivity(Effect::ToolOffsetZ(ToolOffsetZ { dz: probe }));
+    let along_x = sensitivity(Effect::ToolOffsetX(ToolOffsetX { d: probe, axis: X }));
+    let along_z = sensitivity(Effect::ToolOffsetZ(ToolOffsetZ { d: probe, axis: Z }));
     let x: Vec<f64> = inputs.simulation.states.iter().map(|s| s.at.x).collect();
     let z: Vec<f64> = inputs.simulation.states.iter().map(|s| s.at.z).collect();
     let has_table = |axis: Axis| {

@@ -199,6 +199,8 @@ pub struct Update {
 #[derive(Debug, Clone)]
 pub struct Diagnosis {
     pub forward: Forward,
+    /// The rows of the measurement's file (`Measured::rows`).
+    pub rows: usize,
     pub noise_floor_mm: f64,
     /// The residual (measured − simulated, set-up removed) before anything was added, and
     /// after the last addition; an outlier's value is its own residual, and it counts in no
@@ -711,6 +713,7 @@ pub fn diagnose(
         None
     };
     Ok(Diagnosis {
+        rows: measured.rows(),
         noise_floor_mm,
         residual_before,
         residual_after,

@@ -1,6 +1,7 @@
 //! The repairs a hint names exactly: `O` typed for `0`, `l` for `1`, a decimal comma, a
 //! missing `G`, `=` or space, a lower-case letter, a stray NUL or byte-order mark, an open
-//! comment, a decimal point in a count.
+//! comment, a decimal point where the control counts (the value meant, computed from what the
+//! word counts).
 //!
 //! A fix is made from the diagnostic's kind and checked against the text of its line: when
 //! the text is not what the hint assumes (the program changed since), there is no fix, so an
@@ -87,14 +88,29 @@ impl Diagnostic {
                     edits: vec![(at(content, content), ")".to_string())],
                 })
             }
-            IntegerExpected { address, .. } => {
-                // `P1000.` or `P1000.0` → `P1000`; a fraction that is not zero needs judgement.
-                let point = text.iter().position(|&c| c == b'.')?;
-                text[point + 1..].iter().all(|&c| c == b'0').then_some(())?;
+            IntegerExpected(counted) if let Some((word, reading)) = &counted.meant => {
+                let address = &counted.address;
+                // `P0.92` → `P920`, `P100.` → `P100`: the word meant, computed from what
+                // the address counts (`dialect::roles::meant`), in place of the word.
                 text.starts_with(address.as_bytes()).then_some(())?;
-                let written = String::from_utf8_lossy(&text[..point]).into_owned();
-                let edit = (at(start + point, end), String::new());
-                Some(Fix { title: format!("Write `{written}` (no decimal point)"), edits: vec![edit] })
+                text.contains(&b'.').then_some(())?;
+                replace(format!("Write `{word}` ({reading})"), word)
+            }
+            DecimalPointUnverified { word: counted, .. }
+                if text == counted.written.as_bytes()
+                    && let Some((word, reading)) = &counted.meant =>
+            {
+                replace(format!("Write `{word}` ({reading} in least increments)"), word)
+            }
+            MissingDecimalPoint { word, readings } | MissingPointCauses { word, readings, .. }
+                if text == word.as_bytes() =>
+            {
+                let with_point = &readings.1;
+                let edit = (at(end, end), ".".to_string());
+                Some(Fix { title: format!("Write `{word}.` ({with_point})"), edits: vec![edit] })
+            }
+            ThreadHeightRadial { word, meant: Some(meant), .. } if text == word.as_bytes() => {
+                replace(format!("Write `{meant}` (the height as a diameter)"), meant)
             }
             SemicolonInOsp if text == b";" => {
                 let comment =

@@ -26,6 +26,22 @@ pub enum ModelProblem {
     OutOfRange { key: String, table: String, error: OutOfRange },
     /// A value that breaks a rule between values or on its form; `rule` says what it asks.
     BrokenRule { key: String, table: String, rule: &'static str },
+    /// A key whose name says it is in the other system of units (`dx_dia` in an effect,
+    /// which is in mm with X as a radius): `said` is what its name says ("a diameter"),
+    /// `instead` the key meant, when there is one.
+    WrongUnits { key: String, table: String, said: &'static str, instead: Option<String> },
+    /// The same error in a slide table and an effect (`error_model::counted_twice`): `what`
+    /// ("play", "scale") of the `axis` slide, what the table holds and what the effect adds;
+    /// `switch` is the `[[axis_table]]` key that says whether the control's compensation of
+    /// it was on while the table was taken, `measured_with` its value.
+    CountedTwice {
+        axis: char,
+        what: &'static str,
+        table: String,
+        effect: String,
+        switch: &'static str,
+        measured_with: Option<crate::error_model::model_file::Switch>,
+    },
     /// An axis table's file cannot be read; `reason` is the reader's, with the path it tried.
     TableUnreadable { axis: char, reason: String },
     /// An axis table with both or neither of `file` and `csv`.
@@ -107,6 +123,49 @@ impl ModelProblem {
                 message: format!("`{key}` in {table}: {rule}").into(),
                 label: "this value".into(),
                 hint: None,
+            },
+            ModelProblem::WrongUnits { key, table, said, instead } => Words {
+                code: "model-wrong-units",
+                message: format!("`{key}` in {table} gives {said}: {}", crate::machine::UNITS_RULE).into(),
+                label: (*said).into(),
+                hint: Some(
+                    match instead {
+                        Some(instead) => format!(
+                            "write `{instead}` in millimetres, X as a radius (a diameter's change is twice the \
+                             radius's)"
+                        ),
+                        None => "an effect has no unit of its own: its lengths are millimetres, X a radius".to_string(),
+                    }
+                    .into(),
+                ),
+            },
+            ModelProblem::CountedTwice { axis, what, table, effect, switch, measured_with } => Words {
+                code: "model-counted-twice",
+                message: format!(
+                    "the {axis} slide's {what} is counted twice: its table holds {table}, and {effect}; the model \
+                     adds both, so compensation would take it out twice"
+                )
+                .into(),
+                label: format!("this table holds the {what}").into(),
+                hint: Some(
+                    match measured_with {
+                        Some(crate::error_model::model_file::Switch::On) => format!(
+                            "the table was taken with the control's {} on, so it holds the {what} that compensation \
+                             leaves, as the machine runs: keep it there and remove the effect",
+                            switch.replace('_', " ")
+                        ),
+                        Some(crate::error_model::model_file::Switch::Off) => format!(
+                            "the table was taken with the control's {} off, so it holds the slide's whole {what}: \
+                             keep one of the two, and neither if the control compensates it as it runs",
+                            switch.replace('_', " ")
+                        ),
+                        None => format!(
+                            "keep the {what} in one place; and say how the table was taken: `{switch} = \"on\"` \
+                             (it holds what the control's compensation leaves) or `\"off\"` in its [[axis_table]]"
+                        ),
+                    }
+                    .into(),
+                ),
             },
             ModelProblem::TableUnreadable { axis, reason } => Words {
                 code: "model-table-unreadable",

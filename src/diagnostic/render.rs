@@ -13,13 +13,16 @@ use codespan_reporting::term::{self, Config};
 use serde::Serialize;
 
 use super::{Diagnostic, Severity};
-use crate::source::{DisplayText, Span};
+use crate::source::{DisplayText, Span, escape_controls};
 
 /// A source prepared for rendering: its name, its display text and where its lines start
 /// (found once: a location is a bisection, so thousands of diagnostics cost no more than
 /// one pass over the text each would otherwise make).
 pub struct RenderSource<'a> {
+    /// The file's name as given (JSON escapes it its own way), and as shown to people, its
+    /// control characters escaped.
     name: &'a str,
+    shown_name: Cow<'a, str>,
     display: DisplayText,
     line_starts: Vec<usize>,
 }
@@ -28,7 +31,7 @@ impl<'a> RenderSource<'a> {
     pub fn new(name: &'a str, source: &[u8]) -> RenderSource<'a> {
         let display = DisplayText::new(source);
         let line_starts = codespan_reporting::files::line_starts(&display.text).collect();
-        RenderSource { name, display, line_starts }
+        RenderSource { name, shown_name: escape_controls(name), display, line_starts }
     }
 
     fn range(&self, span: Span) -> std::ops::Range<usize> {
@@ -38,10 +41,11 @@ impl<'a> RenderSource<'a> {
     }
 
     fn file(&self) -> SimpleFile<&str, &str> {
-        SimpleFile::new(self.name, self.display.text.as_str())
+        SimpleFile::new(&self.shown_name, self.display.text.as_str())
     }
 
-    /// 1-based line and character column of a source offset, as codespan counts them.
+    /// 1-based line and character column of a source offset, as codespan counts them, an
+    /// escaped control character counting as the one character it is in the source.
     pub fn location(&self, offset: u32) -> (usize, usize) {
         let text = self.display.text.as_str();
         let at = self.display.offset(offset);
@@ -50,7 +54,7 @@ impl<'a> RenderSource<'a> {
         let end = self.line_starts.get(line + 1).copied().unwrap_or(text.len());
         #[cfg(test)]
         tests::count_looked_at(self.line_starts.len(), end.min(at).saturating_sub(start));
-        (line + 1, codespan_reporting::files::column_index(text, start..end, at) + 1)
+        (line + 1, self.display.source_columns(start, end.min(at).max(start)) + 1)
     }
 }
 
@@ -60,16 +64,23 @@ fn to_codespan(diagnostic: &Diagnostic, source: &RenderSource<'_>) -> CsDiagnost
         Severity::Warning => CsSeverity::Warning,
         Severity::Error => CsSeverity::Error,
     };
+    // The words may quote the program (a word, a name): shown escaped, as its text is.
     let words = diagnostic.words();
-    let mut labels = vec![Label::primary((), source.range(diagnostic.span)).with_message(words.label)];
+    let shown = |text: &str| escape_controls(text).into_owned();
+    let mut labels = vec![Label::primary((), source.range(diagnostic.span)).with_message(shown(&words.label))];
     for (span, message) in &diagnostic.related {
-        labels.push(Label::secondary((), source.range(*span)).with_message(message.clone()));
+        labels.push(Label::secondary((), source.range(*span)).with_message(shown(message)));
     }
     let mut notes = Vec::new();
     if let Some(hint) = words.hint {
-        notes.push(format!("hint: {hint}"));
+        notes.push(format!("hint: {}", shown(&hint)));
     }
-    CsDiagnostic::new(severity).with_code(words.code).with_message(words.message).with_labels(labels).with_notes(notes)
+    notes.extend(diagnostic.repeats_note());
+    CsDiagnostic::new(severity)
+        .with_code(words.code)
+        .with_message(shown(&words.message))
+        .with_labels(labels)
+        .with_notes(notes)
 }
 
 /// Plain text, as the terminal shows it without colour; used for snapshots.
@@ -134,6 +145,13 @@ pub struct JsonDiagnostic {
     pub label: String,
     pub hint: Option<String>,
     pub related: Vec<JsonRelated>,
+    /// How many more times the run found it there (`Diagnostic::repeats`); absent for none.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub repeats: u32,
+}
+
+fn is_zero(n: &u32) -> bool {
+    *n == 0
 }
 
 fn json_range(source: &RenderSource<'_>, span: Span) -> JsonRange {
@@ -163,6 +181,7 @@ pub fn to_json(source: &RenderSource<'_>, diagnostics: &[Diagnostic]) -> Vec<Jso
                     .iter()
                     .map(|(span, message)| JsonRelated { range: json_range(source, *span), message: message.clone() })
                     .collect(),
+                repeats: d.repeats,
             }
         })
         .collect()

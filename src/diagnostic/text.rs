@@ -287,12 +287,140 @@ impl DiagnosticKind {
                 label: "this command".into(),
                 hint: None,
             },
-            IntegerExpected { command, address } => Words {
-                code: "integer-expected",
-                message: format!("`{address}` in {command} takes an integer with no decimal point").into(),
-                label: "decimal point".into(),
-                hint: Some("the value counts least increments (e.g. µm) or names a sequence number; remove the decimal point".into()),
+            IntegerExpected(word) => {
+                use crate::dialect::IntegerUnit as U;
+                let super::CountedWord { command, address, written, unit, meant, control, elsewhere } = &**word;
+                let counts = match unit {
+                    U::Increments => "counts least increments of a length",
+                    U::AngleIncrements => "counts thousandths of a degree",
+                    U::Milliseconds => "counts milliseconds",
+                    U::Sequence => "names a sequence number",
+                    U::Count => "is a count",
+                    U::Code => "packs digits into a code",
+                };
+                let mut hint = match (meant, unit) {
+                    (Some((word, reading)), U::Milliseconds) => {
+                        let seconds = reading.trim_end_matches(" s");
+                        format!("write `{word}` ({reading}), or `X{seconds}` in seconds")
+                    }
+                    (Some((word, reading)), _) => format!("write `{word}` ({reading})"),
+                    (None, U::Code) => format!("write the digits of `{written}` without the decimal point"),
+                    (None, _) => format!("`{written}` is no whole number: write the value without a decimal point"),
+                };
+                // Where controls differ, which one's reading this is.
+                let on = match elsewhere {
+                    Some((other, reading)) => {
+                        hint.push_str(&format!(
+                            "; a {} control takes the point and reads `{written}` in {reading} (`control = \"{other}\"`)",
+                            capitalised(other)
+                        ));
+                        format!(" on a {} control", capitalised(control))
+                    }
+                    None => String::new(),
+                };
+                Words {
+                    code: "integer-expected",
+                    message: format!("`{address}` in {command} {counts} and takes no decimal point{on}").into(),
+                    label: "decimal point".into(),
+                    hint: Some(hint.into()),
+                }
+            }
+            DecimalPointUnverified { word, reading } => {
+                let (command, written) = (&word.command, &word.written);
+                let (word, meant) = word.meant.as_ref().map_or(("", ""), |(w, m)| (w.as_str(), m.as_str()));
+                Words {
+                code: "decimal-point-unverified",
+                message: format!(
+                    "`{written}` in {command} reads {reading} with its decimal point, where the control takes one; \
+                     whether this control does is not verified"
+                )
+                .into(),
+                label: format!("{reading} if the point is taken").into(),
+                hint: Some(
+                    format!(
+                        "write `{word}` ({meant} in least increments), which reads the same on every control; \
+                         one that refuses the point alarms at this block"
+                    )
+                    .into(),
+                ),
+            }
+            }
+            MissingDecimalPoint { word, readings } => {
+                let (read, with_point) = &**readings;
+                Words {
+                code: "missing-decimal-point",
+                message: format!(
+                    "`{word}` has no decimal point, so the control counts least increments: it reads {read} here"
+                )
+                .into(),
+                label: format!("{read}; `{word}.` is {with_point}").into(),
+                hint: Some(format!("write `{word}.` for {with_point}").into()),
+            }
+            }
+            DecimalInputUnset { count, word, readings } => {
+                let (as_written, as_increments) = &**readings;
+                Words {
+                code: "decimal-input-unset",
+                message: format!(
+                    "{count} word{} without a decimal point read{} as the machine's decimal input says, which the settings \
+                     do not give: `{word}` is {as_written} with calculator input (in force), {as_increments} on a \
+                     control that counts least increments",
+                    if *count == 1 { "" } else { "s" },
+                    if *count == 1 { "s" } else { "" },
+                )
+                .into(),
+                label: format!("{as_written} or {as_increments}").into(),
+                hint: Some(
+                    "set `decimal_input = \"calculator\"` or `\"increment\"` in the [machine] table of the model file \
+                     (Fanuc parameter DPI), or give `--decimal-input`"
+                        .into(),
+                ),
+            }
+            }
+            MissingPointCauses { cause, word, readings } => {
+                let (read, with_point) = &**readings;
+                let cause = cause.words();
+                Words {
+                    code: cause.code,
+                    message: format!("{}: `{word}` has no decimal point and reads {read}", cause.message).into(),
+                    label: format!("{read}; `{word}.` is {with_point}").into(),
+                    hint: Some(format!("write `{word}.` for {with_point}").into()),
+                }
+            }
+            ThreadHeightAsDiameter { word, depth_mm, passes } => Words {
+                code: "thread-height-as-diameter",
+                message: format!(
+                    "`{word}` is the thread height as a diameter, as the OSP manual gives it (G71/G88: D, U and H \
+                     are diameters): the {passes} pass{} cut {depth_mm:.3} mm deep",
+                    if *passes == 1 { "" } else { "es" }
+                )
+                .into(),
+                label: format!("{depth_mm:.3} mm deep").into(),
+                hint: None,
             },
+            ThreadHeightRadial { word, depth_mm, pitch_mm, meant } => {
+                let full_mm = 2.0 * 0.6134 * pitch_mm;
+                Words {
+                code: "thread-height-radial",
+                message: format!(
+                    "`{word}` is the thread height as a diameter, so the thread is cut {depth_mm:.3} mm deep: about half \
+                     of a 60° thread of pitch {} mm, whose height is {full_mm:.3} mm as a diameter",
+                    short(*pitch_mm)
+                )
+                .into(),
+                label: format!("{depth_mm:.3} mm deep").into(),
+                hint: Some(
+                    match meant {
+                        Some(meant) => format!(
+                            "OSP gives H, D and U as diameters (Fanuc's G76 height is radial): write `{meant}` for the \
+                             full height, and D and U doubled likewise"
+                        ),
+                        None => "OSP gives H, D and U as diameters (Fanuc's G76 height is radial): double them".to_string(),
+                    }
+                    .into(),
+                ),
+            }
+            }
             ConflictingCommands { first, second } => Words {
                 code: "conflicting-commands",
                 message: format!("{first} and {second} cannot share a block").into(),
@@ -639,6 +767,28 @@ impl DiagnosticKind {
                 label: "this cut".into(),
                 hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
             },
+            CompensationLosesWord { word } => Words {
+                code: "compensation-loses-word",
+                message: format!(
+                    "the compensated program would lose `{word}` here, or have it out of order, where verify checks \
+                     every such word; no compensated program is written"
+                )
+                .into(),
+                label: "this word".into(),
+                hint: Some("this is a defect of turnpass: please report it with the program and the model".into()),
+            },
+            ProfileWordNotRun { word } => Words {
+                code: "profile-word-not-run",
+                message: format!(
+                    "`{word}` is inside a profile that only a roughing cycle reads, so the control never runs it; \
+                     the cycle must be written out to compensate it, and no written block can keep the word"
+                )
+                .into(),
+                label: "never run".into(),
+                hint: Some("move it out of the profile (before the cycle), or finish the profile with a G70 that runs \
+                            it"
+                .into()),
+            },
             CompensationUnreadable { problem, nose_has_no_room } => Words {
                 code: "compensation-unreadable",
                 message: format!(
@@ -665,13 +815,25 @@ impl DiagnosticKind {
             MoveNeedsTooManySamples { samples, max } => Words {
                 code: "move-needs-too-many-samples",
                 message: format!(
-                    "compensating this move takes {samples} samples at the spacing the model needs; turnpass samples \
+                    "sampling this move takes {samples} samples at the spacing the model needs; turnpass samples \
                      a move at most {max} times"
                 )
                 .into(),
                 label: "this move".into(),
                 hint: Some("check the move's length and feed (a coordinate in the wrong unit or without its decimal \
                             point), or split it into shorter moves"
+                    .into()),
+            },
+            PathNeedsTooManySamples { samples, max } => Words {
+                code: "path-needs-too-many-samples",
+                message: format!(
+                    "plotting this program takes {samples} samples of its path at the spacing the model needs; a plot \
+                     holds at most {max}"
+                )
+                .into(),
+                label: "the samples pass the bound at this block".into(),
+                hint: Some("plot a shorter program (its finishing passes), or check the moves' lengths and the \
+                            cycles' depths of cut (a depth of one increment makes passes by the thousand)"
                     .into()),
             },
             ProgramCut => Words {
@@ -1062,6 +1224,12 @@ impl DiagnosticKind {
 }
 
 /// A program value as a machinist writes it: up to four decimals, no trailing zeros.
+/// A name with its first letter in upper case (`Haas`).
+fn capitalised(name: &str) -> String {
+    let mut chars = name.chars();
+    chars.next().map_or(String::new(), |first| first.to_uppercase().chain(chars).collect())
+}
+
 fn short(value: f64) -> String {
     let text = format!("{value:.4}");
     let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };

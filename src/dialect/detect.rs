@@ -37,6 +37,11 @@ pub enum Feature {
     ToolLengthOffset,
     HolePattern,
     MachiningCentreName,
+    /// A comment turnpass writes into its outputs, naming the dialect they were read and
+    /// written in (`(TURNPASS … DIALECT OSP)`): written where the text alone would read as
+    /// the other, so it decides.
+    MarkedOsp,
+    MarkedFanuc,
 }
 
 impl Feature {
@@ -45,9 +50,9 @@ impl Feature {
         use Feature::*;
         match self {
             OspHeader | AlphanumericSequence | LapCall | NamedVariable | EqualsValue | OspKeyword | IfWithoutGoto
-            | SixDigitTool => Leaning::Dialect(Dialect::Osp),
+            | SixDigitTool | MarkedOsp => Leaning::Dialect(Dialect::Osp),
             HashVariable | TwoBlockRoughing | IncrementalMove | ArcRadiusR | ColonProgramNumber | PackedSequence
-            | SubprogramCall | WorkOffset => Leaning::Dialect(Dialect::Fanuc),
+            | SubprogramCall | WorkOffset | MarkedFanuc => Leaning::Dialect(Dialect::Fanuc),
             ToolChange | ToolLengthOffset | HolePattern | MachiningCentreName => Leaning::MachiningCentre,
         }
     }
@@ -55,6 +60,8 @@ impl Feature {
     fn weight(self) -> u32 {
         use Feature::*;
         match self {
+            // Above anything the rest of a program can add up to (20 of each feature count).
+            MarkedOsp | MarkedFanuc => 10_000,
             OspHeader | LapCall | NamedVariable | OspKeyword | HashVariable | TwoBlockRoughing | ColonProgramNumber => {
                 10
             }
@@ -86,6 +93,7 @@ impl Feature {
             ToolLengthOffset => "`G56 … H` tool length offset",
             HolePattern => "hole pattern statement (`BHC`, `LAA` …)",
             MachiningCentreName => "machining-centre control named in a comment",
+            MarkedOsp | MarkedFanuc => "turnpass's comment naming the dialect its output was written in",
         }
     }
 }
@@ -151,8 +159,11 @@ impl Detection {
         list
     }
 
+    /// Whether the evidence points both ways (no conflict where turnpass's mark decides).
     pub fn is_conflicted(&self) -> bool {
+        let marked = self.evidence.iter().any(|e| matches!(e.feature, Feature::MarkedOsp | Feature::MarkedFanuc));
         self.choice == Choice::Detected
+            && !marked
             && !self.evidence_for(Leaning::Dialect(Dialect::Osp)).is_empty()
             && !self.evidence_for(Leaning::Dialect(Dialect::Fanuc)).is_empty()
     }
@@ -284,6 +295,9 @@ fn scan_line(source: &[u8], start: usize, end: usize, out: &mut Collector) {
             b'(' => {
                 let close = line[i..].iter().position(|&b| b == b')').map_or(n, |p| i + p + 1);
                 let text = &line[i..close];
+                if let Some(feature) = marked_dialect(&text[1..]) {
+                    out.add(feature, at, start + close);
+                }
                 if let Some(p) = text.windows(3).position(|w| w == b"OSP") {
                     let digits = text[p + 3..].iter().take_while(|c| c.is_ascii_digit()).count();
                     if digits > 0 && text.get(p + 3 + digits) == Some(&b'M') {
@@ -293,7 +307,12 @@ fn scan_line(source: &[u8], start: usize, end: usize, out: &mut Collector) {
                 i = close;
                 continue;
             }
-            b';' => break,
+            b';' => {
+                if let Some(feature) = marked_dialect(&line[i + 1..]) {
+                    out.add(feature, at, end);
+                }
+                break;
+            }
             b'#' => out.add(Feature::HashVariable, at, at + 1),
             b':' if first => out.add(Feature::ColonProgramNumber, at, at + 1),
             b'A'..=b'Z' => {
@@ -368,6 +387,25 @@ fn scan_line(source: &[u8], start: usize, end: usize, out: &mut Collector) {
         Some(85..=88) if has_label => out.add(Feature::LapCall, start, end),
         _ => {}
     }
+}
+
+/// The dialect a comment's body names when it is turnpass's mark: it starts with `TURNPASS`
+/// and one of its comma-separated fields is `DIALECT OSP` or `DIALECT FANUC` (in either case,
+/// as the comment follows the program's).
+fn marked_dialect(body: &[u8]) -> Option<Feature> {
+    let body = body.trim_ascii_start();
+    if !body.get(..8).is_some_and(|head| head.eq_ignore_ascii_case(b"turnpass")) {
+        return None;
+    }
+    body.split(|&b| b == b',' || b == b')').find_map(|field| {
+        let field = field.trim_ascii();
+        let value = field.get(..8).filter(|head| head.eq_ignore_ascii_case(b"dialect ")).map(|_| &field[8..])?;
+        match value.trim_ascii() {
+            value if value.eq_ignore_ascii_case(b"osp") => Some(Feature::MarkedOsp),
+            value if value.eq_ignore_ascii_case(b"fanuc") => Some(Feature::MarkedFanuc),
+            _ => None,
+        }
+    })
 }
 
 /// A run of letters at `i` (`NAT00`, `CALL`, `FLAN=`, `IF`): records its evidence and returns

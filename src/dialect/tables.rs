@@ -337,6 +337,19 @@ pub struct Form {
     pub words: Vec<(Address, Role)>,
     #[serde(default)]
     pub integer: Vec<Address>,
+    /// Words that count least increments without a decimal point, as `integer` words do,
+    /// but that a control may also take with one (read then as a length, as written); which
+    /// controls do is not verified, so a point is warned of with both readings.
+    #[serde(default)]
+    pub point_unverified: Vec<Address>,
+    /// Words that play another role when written with a decimal point (a Haas dwell `P0.3`
+    /// is seconds where `P300` is milliseconds).
+    #[serde(default, deserialize_with = "ordered_map")]
+    pub point_reads: Vec<(Address, Role)>,
+    /// Lengths the control reads as diameters, beside `X` (the OSP thread cycles' `D`, `U`,
+    /// `H`).
+    #[serde(default)]
+    pub diameter: Vec<Address>,
     #[serde(default)]
     pub required: Vec<Address>,
     #[serde(default)]
@@ -389,6 +402,22 @@ impl Form {
 
     pub fn takes_integer(&self, address: Address) -> bool {
         self.integer.contains(&address)
+    }
+
+    /// Whether `address` counts least increments (or milliseconds, a sequence number…) when
+    /// written without a decimal point: an `integer` or a `point_unverified` word.
+    pub fn counts_without_point(&self, address: Address) -> bool {
+        self.integer.contains(&address) || self.point_unverified.contains(&address)
+    }
+
+    /// The role `address` plays when written with a decimal point, where it differs.
+    pub fn role_with_point(&self, address: Address) -> Option<Role> {
+        self.point_reads.iter().find(|(a, _)| *a == address).map(|(_, role)| *role)
+    }
+
+    /// Whether the control reads `address` as a diameter.
+    pub fn is_diameter(&self, address: Address) -> bool {
+        self.diameter.contains(&address)
     }
 
     /// Whether the words present (by address) select this form.
@@ -580,6 +609,8 @@ struct RawDialect {
     comma: BTreeMap<String, AddressSpec>,
     #[serde(default)]
     machine_variables: MachineVariables,
+    #[serde(default)]
+    increment_input: IncrementInput,
     /// Keyed by the control's name (`haas`).
     #[serde(default)]
     control: BTreeMap<String, ControlRules>,
@@ -591,6 +622,18 @@ struct RawDialect {
     foreign_g: BTreeMap<String, String>,
     m_functions: MFunctions,
     schema: BTreeMap<String, RawSchema>,
+}
+
+/// How a word without a decimal point reads on a control set for least-increment input
+/// (`decimal_input = "increment"`), beside the lengths and angles, which count increments
+/// (`[increment_input]`).
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IncrementInput {
+    /// A feed per revolution (and a thread lead) counts least increments of a length per
+    /// revolution (`G99 F250` is 0.25 mm/rev at 0.001 mm); a feed per minute is whole units.
+    #[serde(default)]
+    pub feed_per_revolution_counts: bool,
 }
 
 /// The common variables the control keeps in memory: a program may read them before it
@@ -648,6 +691,7 @@ pub struct Tables {
     /// The dialect has comma words (`,C`, `,R`, `,A`), so a comma ends a value.
     pub has_comma_words: bool,
     pub machine_variables: MachineVariables,
+    pub increment_input: IncrementInput,
     /// Lower-case letters read as upper-case ones (`[control.NAME] lower_case`).
     pub lower_case: bool,
     keywords: Vec<(String, KeywordInfo)>,
@@ -928,6 +972,7 @@ fn compile(config: DialectConfig) -> Tables {
         extended,
         has_comma_words,
         machine_variables: raw.machine_variables,
+        increment_input: raw.increment_input,
         lower_case: raw.control.get(config.control.name()).is_some_and(|rules| rules.lower_case),
         keywords,
         g_index,

@@ -11,15 +11,18 @@
 //! An effect's file holds every fact of it, as its parameters' `ParametricEffect`: the
 //! ranges a model file may give, the displacement, the play, whether it is a function of
 //! time or of the cut length, how closely a move and an arc are sampled for it, and how
-//! `diagnose` fits it (shape, probe, the bounds of a fitted value). The list below the
-//! trait (`effects!`) names each effect once, by its file, which is its name in a model
-//! file: the `Effect` enum, `EffectKind`, `NAMES` and every dispatch of `Effect` come from
-//! it, each an exhaustive match, so a new effect is its file and a line of that list.
+//! `diagnose` fits it (shape, probe, the bounds of a fitted value). A cause that acts on
+//! either slide is one file and one type over its axis (`backlash.rs`, `Backlash<A>`;
+//! `axis.rs`), which gives one effect per axis. The list below the trait (`effects!`)
+//! names each file and, in it, each effect by its name in a model file and its type: the
+//! `Effect` enum, `EffectKind`, `NAMES` and every dispatch of `Effect` come from it, each
+//! an exhaustive match, so a new effect is its file and a line of that list.
 
 use serde::{Deserialize, Deserializer, Serialize};
 
 use crate::bounds::Invalid;
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
@@ -73,6 +76,11 @@ pub trait ParametricEffect: Sized {
     /// zero) and searched parameter `searched` (NaN for none).
     fn fitted(linear: [f64; MAX_LINEAR], searched: f64) -> Self;
 
+    /// What a control's own axis compensation (its pitch-error table and backlash
+    /// compensation, functions of each axis' own commanded position and direction) carries
+    /// of this effect; the program carries the rest (`control.rs`).
+    fn control_table(&self) -> TablePart;
+
     /// Why a fitted effect is not a physical one, if it is not: the bounds of what
     /// `diagnose` reports as found, over the measurement's `extents`. They are tighter than
     /// `check`'s: they bound what a machine in service shows, where `check` refuses only
@@ -81,13 +89,18 @@ pub trait ParametricEffect: Sized {
 }
 
 /// The `Effect` enum, `EffectKind`, `NAMES` and the dispatch of every fact, from the list of
-/// effects: each `file: Type`, the file (a module of this directory) being the effect's name.
+/// effects: each `file { name: Type, … }`, the file a module of this directory and each
+/// `name` an effect's name in a model file, `Type` its parameters (a cause over its axis
+/// names one effect per axis).
 macro_rules! effects {
-    ($($name:ident: $Type:ident),+ $(,)?) => {
+    ($($file:ident { $($name:ident: $Type:ident),+ $(,)? }),+ $(,)?) => {
         $(
-            pub mod $name;
-            pub use $name::$Type;
+            pub mod $file;
+            pub use $file::{$($Type),+};
         )+
+        effects!(@list $($($name: $Type),+),+);
+    };
+    (@list $($name:ident: $Type:ident),+) => {
 
         /// One parametric effect with its parameters. It is written as its parameters
         /// (`Serialize`; its name is `name`); a model file's `[[effect]]` is read by its
@@ -232,6 +245,13 @@ macro_rules! effects {
                 }
             }
 
+            /// `ParametricEffect::control_table`.
+            pub fn control_table(&self) -> TablePart {
+                match self {
+                    $(Effect::$Type(e) => e.control_table()),+
+                }
+            }
+
             /// `ParametricEffect::out_of_bounds`.
             pub fn out_of_bounds(&self, extents: &Extents) -> Option<String> {
                 match self {
@@ -242,25 +262,21 @@ macro_rules! effects {
     };
 }
 
+pub mod axis;
+pub use axis::{X, Z};
+
 effects! {
-    tool_offset_x: ToolOffsetX,
-    tool_offset_z: ToolOffsetZ,
-    scale_x: ScaleX,
-    scale_z: ScaleZ,
-    squareness: Squareness,
-    backlash_x: BacklashX,
-    backlash_z: BacklashZ,
-    cyclic_x: CyclicX,
-    cyclic_z: CyclicZ,
-    servo_mismatch: ServoMismatch,
-    thermal_x: ThermalX,
-    thermal_z: ThermalZ,
-    tool_wear: ToolWear,
-    reversal_spike_x: ReversalSpikeX,
-    reversal_spike_z: ReversalSpikeZ,
-    straightness_x: StraightnessX,
-    straightness_z: StraightnessZ,
-    nose_radius: NoseRadius,
+    tool_offset { tool_offset_x: ToolOffsetX, tool_offset_z: ToolOffsetZ },
+    scale { scale_x: ScaleX, scale_z: ScaleZ },
+    squareness { squareness: Squareness },
+    backlash { backlash_x: BacklashX, backlash_z: BacklashZ },
+    cyclic { cyclic_x: CyclicX, cyclic_z: CyclicZ },
+    servo_mismatch { servo_mismatch: ServoMismatch },
+    thermal { thermal_x: ThermalX, thermal_z: ThermalZ },
+    tool_wear { tool_wear: ToolWear },
+    reversal_spike { reversal_spike_x: ReversalSpikeX, reversal_spike_z: ReversalSpikeZ },
+    straightness { straightness_x: StraightnessX, straightness_z: StraightnessZ },
+    nose_radius { nose_radius: NoseRadius },
 }
 
 /// First-order warm-up growth: `amp · (1 − e^(−t/τ))`, nothing before the machine starts.

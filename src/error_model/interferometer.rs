@@ -73,6 +73,9 @@ pub struct SlideTable {
     pub straightness: Option<Profile>,
     /// Angular error, radians.
     pub angular: Option<Profile>,
+    /// How many rows of readings the table was read from (a row is a target, or a target and
+    /// a direction and a run, as the layout writes them).
+    pub rows: usize,
 }
 
 impl SlideTable {
@@ -368,7 +371,9 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
     }
     // Per quantity, per target (keyed by its exact bits, in order), the runs each way.
     let mut data: Vec<BTreeMap<OrderedTarget, Runs>> = (0..5).map(|_| BTreeMap::new()).collect();
+    let mut rows = 0;
     for record in reader.records() {
+        rows += 1;
         let record = record.map_err(|e| csv_error(&mut lines, &e))?;
         let line = record.position().map_or(0, |p| lines.line_of(p.byte()));
         let number = |c: usize, name: &str| -> Result<f64, TableError> {
@@ -410,7 +415,7 @@ pub fn parse(text: &str) -> Result<SlideTable, TableError> {
         }
         p
     });
-    let table = SlideTable { linear: profile(0), straightness, angular };
+    let table = SlideTable { linear: profile(0), straightness, angular, rows };
     if table.linear.is_none() && table.straightness.is_none() && table.angular.is_none() {
         return Err(TableError::Empty);
     }

@@ -51,6 +51,8 @@ pub struct ModelSpec {
     pub model: ModelSection,
     pub axis_table: Vec<AxisTableSpec>,
     pub effect: Vec<Effect>,
+    /// Where each effect's `[[effect]]` is in the file.
+    pub effect_spans: Vec<Span>,
 }
 
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -92,6 +94,15 @@ pub struct AxisTableSpec {
     pub file: Option<Spanned<String>>,
     #[serde(default)]
     pub csv: Option<Spanned<String>>,
+    /// Whether the control's pitch-error compensation was on while the table was taken (the
+    /// table then holds what that compensation leaves), or off (the slide's whole error);
+    /// `None` when the table does not say.
+    #[serde(default)]
+    pub pitch_error_compensation: Option<Switch>,
+    /// Likewise the control's backlash compensation, which decides what the table's
+    /// reversal holds.
+    #[serde(default)]
+    pub backlash_compensation: Option<Switch>,
     /// The `[[axis_table]]` in the model file.
     #[serde(skip)]
     pub span: Span,
@@ -99,6 +110,14 @@ pub struct AxisTableSpec {
     /// without escapes (so that a place in the table is a place in the file).
     #[serde(skip)]
     pub inline_start: Option<u32>,
+}
+
+/// A compensation of the control, on or off.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Switch {
+    On,
+    Off,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -180,9 +199,9 @@ impl ModelSpec {
             table.span = document.span_of(&[Step::from("axis_table"), Step::Index(index)]);
             table.inline_start = table.csv.as_ref().and_then(|csv| unescaped_start(text, csv));
         }
-        let effect = read_effects(&document, &mut problems);
+        let (effect, effect_spans) = read_effects(&document, &mut problems);
         if problems.is_empty() {
-            Ok(ModelSpec { machine, model, axis_table, effect })
+            Ok(ModelSpec { machine, model, axis_table, effect, effect_spans })
         } else {
             problems.sort_by_key(|d| d.span.start);
             Err(Problems::new(text, problems))
@@ -196,8 +215,19 @@ impl ModelSpec {
 
     /// The error model, reading each table's `file` through `read`.
     pub fn build(&self, read: impl FnMut(&str) -> Result<String, String>) -> Result<ErrorModel, ModelError> {
+        self.build_with_warnings(read).map(|(model, _)| model)
+    }
+
+    /// [`ModelSpec::build`], with the warnings of the model: an error it holds twice, in a
+    /// table and an effect (`counted_twice`), on the model file's text.
+    pub fn build_with_warnings(
+        &self,
+        read: impl FnMut(&str) -> Result<String, String>,
+    ) -> Result<(ErrorModel, Vec<Diagnostic>), ModelError> {
+        let read_tables = self.read_tables(read)?;
+        let warnings = super::counted_twice::counted_twice(self, &read_tables);
         let mut tables: Option<AxisTables> = None;
-        for ReadTable { spec, table, .. } in self.read_tables(read)? {
+        for ReadTable { spec, table, .. } in read_tables {
             let all =
                 tables.get_or_insert_with(|| AxisTables { abbe_y_mm: self.model.abbe_y_mm, ..Default::default() });
             match spec.axis {
@@ -205,7 +235,8 @@ impl ModelSpec {
                 Axis::Z => all.z = table,
             }
         }
-        Ok(ErrorModel { tables, effects: self.effect.clone(), start_min: self.model.start_min })
+        let model = ErrorModel { tables, effects: self.effect.clone(), start_min: self.model.start_min, control: None };
+        Ok((model, warnings))
     }
 
     /// Every axis table read from its source, in the file's order, each slide once.
@@ -297,13 +328,14 @@ fn read_or_note<T: serde::de::DeserializeOwned>(
 
 /// The `[[effect]]` tables, each read by its `kind` so that an error is placed at its own
 /// key, and checked against its parameters' ranges.
-fn read_effects(document: &Document<'_>, problems: &mut Vec<Diagnostic>) -> Vec<Effect> {
-    let Some(list) = document.get(&[Step::from("effect")]) else { return Vec::new() };
+fn read_effects(document: &Document<'_>, problems: &mut Vec<Diagnostic>) -> (Vec<Effect>, Vec<Span>) {
+    let Some(list) = document.get(&[Step::from("effect")]) else { return (Vec::new(), Vec::new()) };
     let DeValue::Array(tables) = list.get_ref() else {
         problems.push(document.wrong_value(&[Step::from("effect")], "write each effect as an [[effect]] table"));
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     };
     let mut out = Vec::new();
+    let mut spans = Vec::new();
     for (index, table) in tables.iter().enumerate() {
         let at = [Step::from("effect"), Step::Index(index)];
         let DeValue::Table(entries) = table.get_ref() else {
@@ -331,13 +363,38 @@ fn read_effects(document: &Document<'_>, problems: &mut Vec<Diagnostic>) -> Vec<
         });
         match effect {
             Ok(effect) => match effect.check() {
-                Ok(()) => out.push(effect),
+                Ok(()) => {
+                    out.push(effect);
+                    spans.push(document.span_of(&at));
+                }
                 Err(bad) => problems.push(document.invalid(&at, &bad)),
             },
-            Err(diagnostic) => problems.push(diagnostic),
+            Err(diagnostic) => problems.push(in_other_units(diagnostic)),
         }
     }
-    out
+    (out, spans)
+}
+
+/// An unknown key of an effect whose name says it is in the other system of units (`dx_dia`,
+/// `b_inch`, `units`): refused with the rule of units instead of as a misspelling.
+fn in_other_units(diagnostic: Diagnostic) -> Diagnostic {
+    let DiagnosticKind::ModelFile(problem) = &diagnostic.kind else { return diagnostic };
+    let ModelProblem::UnknownKey { key, table, known, .. } = problem.as_ref() else { return diagnostic };
+    let Some(said) = crate::machine::names_other_units(key) else { return diagnostic };
+    // A unit the effect's own keys name (`tool_wear`'s `um_per_m`) is its unit: a misspelling.
+    if known.iter().any(|k| crate::machine::names_other_units(k) == Some(said)) {
+        return diagnostic;
+    }
+    // The key meant: the name without its unit (`dx` of `dx_dia`), if the effect has it.
+    let stripped: String =
+        key.split('_').filter(|word| crate::machine::names_other_units(word).is_none()).collect::<Vec<_>>().join("_");
+    let instead = known.iter().find(|k| **k == stripped).cloned().or_else(|| {
+        toml_spans::nearest(&stripped, known.iter().map(String::as_str))
+            .filter(|_| !stripped.is_empty())
+            .map(str::to_string)
+    });
+    let problem = ModelProblem::WrongUnits { key: key.clone(), table: table.clone(), said, instead };
+    Diagnostic { kind: DiagnosticKind::ModelFile(Box::new(problem)), ..diagnostic }
 }
 
 /// The diagnostic of a table that does not read.

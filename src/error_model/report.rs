@@ -33,6 +33,10 @@ pub struct TableReport {
     pub rows: Vec<QuantityReport>,
     /// The straightness was given as two reversed runs and reduced by eq. 2.7.
     pub straightness_by_reversal: bool,
+    /// Whether the control's pitch-error and backlash compensation were on while the table
+    /// was taken, as its `[[axis_table]]` says (`null` when it does not).
+    pub pitch_error_compensation: Option<super::model_file::Switch>,
+    pub backlash_compensation: Option<super::model_file::Switch>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -82,6 +86,8 @@ pub fn report(spec: &ModelSpec, read: impl FnMut(&str) -> Result<String, String>
             source,
             rows,
             straightness_by_reversal: slide.straightness.is_some() && straightness_from_two_runs(&text),
+            pitch_error_compensation: table.pitch_error_compensation,
+            backlash_compensation: table.backlash_compensation,
         });
     }
     let effects = spec.effect.iter().map(|e| EffectReport { kind: e.name(), parameters: parameters(e) }).collect();
@@ -115,6 +121,12 @@ impl fmt::Display for ModelReport {
         }
         for table in &self.tables {
             writeln!(f, "\n{} slide ({}), ISO 230-2 figures:", table.axis, table.source)?;
+            writeln!(
+                f,
+                "  taken with the control's pitch-error compensation {}, backlash compensation {}",
+                super::counted_twice::said(table.pitch_error_compensation),
+                super::counted_twice::said(table.backlash_compensation)
+            )?;
             writeln!(
                 f,
                 "  {:<13} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  unit",

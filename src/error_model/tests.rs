@@ -13,27 +13,27 @@ fn sample(x: f64, z: f64) -> Sample {
 fn effects_follow_their_formulas() {
     let s = Sample { velocity: Xz::new(600.0, 0.0), t_min: 54.59, cut_length_m: 2.0, ..sample(20.0, -50.0) };
     let d = |e: Effect| e.displacement(&s);
-    assert_eq!(d(Effect::ToolOffsetX(ToolOffsetX { dx: 0.003 })), Xz::new(0.003, 0.0));
-    assert_eq!(d(Effect::ToolOffsetZ(ToolOffsetZ { dz: -0.002 })), Xz::new(0.0, -0.002));
-    assert!(close(d(Effect::ScaleX(ScaleX { ppm: 50.0 })).x, 20.0 * 50e-6));
-    assert!(close(d(Effect::ScaleZ(ScaleZ { ppm: 50.0 })).z, -50.0 * 50e-6));
+    assert_eq!(d(Effect::ToolOffsetX(ToolOffsetX { d: 0.003, axis: X })), Xz::new(0.003, 0.0));
+    assert_eq!(d(Effect::ToolOffsetZ(ToolOffsetZ { d: -0.002, axis: Z })), Xz::new(0.0, -0.002));
+    assert!(close(d(Effect::ScaleX(ScaleX { ppm: 50.0, axis: X })).x, 20.0 * 50e-6));
+    assert!(close(d(Effect::ScaleZ(ScaleZ { ppm: 50.0, axis: Z })).z, -50.0 * 50e-6));
     assert!(close(d(Effect::Squareness(Squareness { urad: 20.0 })).x, -50.0 * 20e-6));
     // 600 mm/min is 0.01 mm/ms: 2 ms of lag leave X 0.02 mm behind.
     assert!(close(d(Effect::ServoMismatch(ServoMismatch { dt_ms: 2.0 })).x, -0.02));
     // One time constant: 1 − 1/e of the growth.
-    let thermal = d(Effect::ThermalZ(ThermalZ { amp: 0.01, tau_min: 54.59 })).z;
+    let thermal = d(Effect::ThermalZ(ThermalZ { amp: 0.01, tau_min: 54.59, axis: Z })).z;
     assert!(close(thermal, 0.01 * (1.0 - (-1.0f64).exp())));
     assert!(close(d(Effect::ToolWear(ToolWear { um_per_m: 1.5 })).x, 0.003));
-    let cyclic = d(Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 11.94, phase: 0.5 })).z;
+    let cyclic = d(Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 11.94, phase: 0.5, axis: Z })).z;
     assert!(close(cyclic, 0.002 * (std::f64::consts::TAU * -50.0 / 11.94 + 0.5).sin()));
     // A bow of 1e-6 mm per mm² and 1e-8 per mm³ at z = −50.
-    let bow = d(Effect::StraightnessX(StraightnessX { coeffs: vec![1e-6, 1e-8] })).x;
+    let bow = d(Effect::StraightnessX(StraightnessX { coeffs: vec![1e-6, 1e-8], axis: X })).x;
     assert!(close(bow, 1e-6 * 2500.0 + 1e-8 * -125000.0));
 }
 
 #[test]
 fn backlash_follows_the_last_direction_and_persists_at_rest() {
-    let effect = Effect::BacklashX(BacklashX { b: 0.004 });
+    let effect = Effect::BacklashX(BacklashX { b: 0.004, axis: X });
     let model = ErrorModel { effects: vec![effect.clone()], ..ErrorModel::default() };
     let mut tracker = Tracker::new(Xz::new(10.0, 0.0), model.play());
     let zero = Xz::new(0.0, 0.0);
@@ -61,7 +61,7 @@ fn backlash_follows_the_last_direction_and_persists_at_rest() {
 
 #[test]
 fn reversal_spike_decays_with_travel_since_the_reversal() {
-    let effect = Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 0.5 });
+    let effect = Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 0.5, axis: X });
     let mut tracker = Tracker::new(Xz::new(10.0, 0.0), Xz::new(0.0, 0.0));
     tracker.advance(Xz::new(12.0, 0.0), 1, false);
     tracker.advance(Xz::new(11.5, 0.0), 1, false);
@@ -142,22 +142,22 @@ fn curved_effects_sampled_at_their_spacing_stay_within_the_allowance_of_the_chor
     let reach = Xz::new(80.0, 300.0);
     let step = |e: &Effect| e.spacing(allowance, reach);
     // Along Z through the screw, along X through the X screw.
-    let cyclic_z = Effect::CyclicZ(CyclicZ { amp: 0.004, pitch: 11.94, phase: 0.3 });
+    let cyclic_z = Effect::CyclicZ(CyclicZ { amp: 0.004, pitch: 11.94, phase: 0.3, axis: Z });
     let h = step(&cyclic_z).mm;
     assert!((h - 0.6007).abs() < 1e-3, "{h}");
     let gap = worst_chord_gap(|z| cyclic_z.displacement(&sample(20.0, -z)).z, 60.0, h);
     assert!(gap <= allowance * 1.0001 && gap > allowance * 0.9, "{gap}");
-    let cyclic_x = Effect::CyclicX(CyclicX { amp: 0.002, pitch: 5.0, phase: 0.0 });
+    let cyclic_x = Effect::CyclicX(CyclicX { amp: 0.002, pitch: 5.0, phase: 0.0, axis: X });
     let h = step(&cyclic_x).mm;
     let gap = worst_chord_gap(|x| cyclic_x.displacement(&sample(x, -10.0)).x, 40.0, h);
     assert!(gap <= allowance * 1.0001 && gap > allowance * 0.9, "{gap}");
     // A bow, to the farthest Z the program reaches.
-    let bow = Effect::StraightnessX(StraightnessX { coeffs: vec![2e-7, 1e-9] });
+    let bow = Effect::StraightnessX(StraightnessX { coeffs: vec![2e-7, 1e-9], axis: X });
     let h = step(&bow).mm;
     let gap = worst_chord_gap(|z| bow.displacement(&sample(20.0, -z)).x, reach.z, h);
     assert!(gap <= allowance * 1.0001 && gap > allowance * 0.5, "{gap}");
     // A reversal spike, along the travel since the reversal.
-    let spike = Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 0.8 });
+    let spike = Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 0.8, axis: X });
     let h = step(&spike).mm;
     let at = |s: f64| {
         let sample = Sample { since_reversal: Xz::new(s, 0.0), ..sample(20.0, -10.0) };
@@ -166,23 +166,25 @@ fn curved_effects_sampled_at_their_spacing_stay_within_the_allowance_of_the_chor
     let gap = worst_chord_gap(at, 10.0, h);
     assert!(gap <= allowance * 1.0001 && gap > allowance * 0.5, "{gap}");
     // Warm-up, in time.
-    let thermal = Effect::ThermalZ(ThermalZ { amp: 0.008, tau_min: 54.59 });
+    let thermal = Effect::ThermalZ(ThermalZ { amp: 0.008, tau_min: 54.59, axis: Z });
     let minutes = step(&thermal).minutes;
     assert!((minutes - 54.59 * (8.0 * allowance / 0.008f64).sqrt()).abs() < 1e-9, "{minutes}");
     let gap = worst_chord_gap(|t| thermal.displacement(&Sample { t_min: t, ..sample(20.0, -10.0) }).z, 240.0, minutes);
     assert!(gap <= allowance * 1.0001 && gap > allowance * 0.5, "{gap}");
     // Terms that are affine along a line need no inner sample, and a model of them none.
     for affine in [
-        Effect::ScaleZ(ScaleZ { ppm: 30.0 }),
+        Effect::ScaleZ(ScaleZ { ppm: 30.0, axis: Z }),
         Effect::Squareness(Squareness { urad: 20.0 }),
-        Effect::BacklashX(BacklashX { b: 0.004 }),
+        Effect::BacklashX(BacklashX { b: 0.004, axis: X }),
         Effect::ServoMismatch(ServoMismatch { dt_ms: 1.0 }),
         Effect::ToolWear(ToolWear { um_per_m: 2.0 }),
     ] {
         assert_eq!(step(&affine), Spacing::ANY, "{}", affine.name());
     }
-    let model =
-        ErrorModel { effects: vec![Effect::ScaleZ(ScaleZ { ppm: 30.0 }), cyclic_z.clone()], ..ErrorModel::default() };
+    let model = ErrorModel {
+        effects: vec![Effect::ScaleZ(ScaleZ { ppm: 30.0, axis: Z }), cyclic_z.clone()],
+        ..ErrorModel::default()
+    };
     assert_eq!(model.spacing(allowance, reach), step(&cyclic_z));
     let tables = ErrorModel { tables: Some(htm::AxisTables::default()), ..ErrorModel::default() };
     assert_eq!(tables.spacing(allowance, reach), Spacing::mm(spacing::TABLE_STEP_MM));
@@ -209,8 +211,8 @@ fn terms_that_turn_with_an_arc_stay_within_the_allowance_at_their_angle_step() {
         (d.x, d.z)
     };
     for effect in [
-        Effect::ScaleX(ScaleX { ppm: 40.0 }),
-        Effect::ScaleZ(ScaleZ { ppm: 30.0 }),
+        Effect::ScaleX(ScaleX { ppm: 40.0, axis: X }),
+        Effect::ScaleZ(ScaleZ { ppm: 30.0, axis: Z }),
         Effect::Squareness(Squareness { urad: 25.0 }),
         Effect::ServoMismatch(ServoMismatch { dt_ms: 0.8 }),
         Effect::NoseRadius(NoseRadius { dr: 0.004 }),
@@ -242,14 +244,15 @@ fn terms_that_turn_with_an_arc_stay_within_the_allowance_at_their_angle_step() {
         assert!(gap > allowance, "{}: twice the step gives {gap}", effect.name());
     }
     // Terms with nothing that turns with the arc ask no angle step.
-    let none = Effect::BacklashZ(BacklashZ { b: 0.003 }).arc_terms(reach);
+    let none = Effect::BacklashZ(BacklashZ { b: 0.003, axis: Z }).arc_terms(reach);
     assert_eq!(none.radians(radius, feed, allowance), f64::INFINITY);
 }
 
 #[test]
 fn cut_length_is_followed_only_for_a_model_that_wears() {
     let wear = ErrorModel { effects: vec![Effect::ToolWear(ToolWear { um_per_m: 2.0 })], ..ErrorModel::default() };
-    let offset = ErrorModel { effects: vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.01 })], ..ErrorModel::default() };
+    let offset =
+        ErrorModel { effects: vec![Effect::ToolOffsetX(ToolOffsetX { d: 0.01, axis: X })], ..ErrorModel::default() };
     assert!(wear.wears() && !offset.wears());
     let zero = Xz::new(0.0, 0.0);
     let walk = |model: &ErrorModel| {
@@ -278,13 +281,14 @@ proptest::proptest! {
         let model = ErrorModel {
             tables: None,
             effects: vec![
-                Effect::ThermalX(ThermalX { amp: amp_x, tau_min: tau }),
-                Effect::ScaleZ(ScaleZ { ppm: 30.0 }),
-                Effect::ToolOffsetX(ToolOffsetX { dx: 0.005 }),
-                Effect::ThermalZ(ThermalZ { amp: amp_z, tau_min: tau * 0.7 }),
+                Effect::ThermalX(ThermalX { amp: amp_x, tau_min: tau, axis: X }),
+                Effect::ScaleZ(ScaleZ { ppm: 30.0, axis: Z }),
+                Effect::ToolOffsetX(ToolOffsetX { d: 0.005, axis: X }),
+                Effect::ThermalZ(ThermalZ { amp: amp_z, tau_min: tau * 0.7, axis: Z }),
                 Effect::Squareness(Squareness { urad: 20.0 }),
             ],
             start_min: 0.0,
+        control: None,
         };
         let s = Sample { t_min, ..sample(x, z) };
         let mut terms = Vec::new();

@@ -202,10 +202,13 @@ pub fn to_lsp(document: &Document, uri: &Uri, diagnostic: &Diagnostic, pass: Pas
     let hint = diagnostic.hint();
     // The hint goes in the message: editors show the message everywhere (virtual text,
     // the problems list, the echo area) and related information rarely.
-    let message = match &hint {
+    let mut message = match &hint {
         Some(hint) => format!("{}\nhint: {hint}", diagnostic.message()),
         None => diagnostic.message(),
     };
+    if let Some(repeats) = diagnostic.repeats_note() {
+        message.push_str(&format!("\n{repeats}"));
+    }
     lsp_types::Diagnostic {
         range,
         severity: Some(match diagnostic.severity {

@@ -218,7 +218,7 @@ pub fn completion(document: &Document, offset: usize, settings: &MachineSettings
                     continue;
                 }
                 let (role_meaning, unit) = roles::describe(*role);
-                let unit = roles::unit_text(unit, settings, dialect, form.takes_integer(*address));
+                let unit = roles::word_unit_text(form, *address, unit, settings, dialect, true);
                 let detail = format!("{}: {role_meaning} ({unit})", roles::role_name(*role));
                 let mut completion = item(address.name(), CompletionItemKind::PROPERTY, detail);
                 completion.documentation = Some(Documentation::String(format!(
@@ -347,7 +347,7 @@ pub fn signature_help(document: &Document, offset: usize, settings: &MachineSett
                 label.push_str(&format!("{}({})", address.name(), roles::role_name(*role)));
                 let end = label.encode_utf16().count() as u32;
                 let (role_meaning, unit) = roles::describe(*role);
-                let unit = roles::unit_text(unit, settings, dialect, form.takes_integer(*address));
+                let unit = roles::word_unit_text(form, *address, unit, settings, dialect, true);
                 parameters.push(ParameterInformation {
                     label: ParameterLabel::LabelOffsets([start, end]),
                     documentation: Some(Documentation::String(format!("{role_meaning}; unit: {unit}"))),

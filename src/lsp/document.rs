@@ -692,6 +692,7 @@ pub(crate) fn shift_diagnostic(diagnostic: &Diagnostic, by: u32) -> Diagnostic {
         kind: diagnostic.kind.clone(),
         span: chunk::shifted(diagnostic.span, by),
         related: diagnostic.related.iter().map(|(span, label)| (chunk::shifted(*span, by), label.clone())).collect(),
+        repeats: diagnostic.repeats,
     }
 }
 

@@ -11,9 +11,9 @@ use std::fmt::Write as _;
 use lsp_types::{Hover, HoverContents, MarkupContent, MarkupKind};
 
 use crate::dialect::tables::{KeywordKind, Place};
-use crate::dialect::{Address, AddressKind, Dialect, Form, Tables};
-use crate::machine::MachineSettings;
-use crate::syntax::{CodeLetter, Command, Statement, Word, WordId, WordKind};
+use crate::dialect::{Address, AddressKind, DecimalInput, Dialect, Form, Tables};
+use crate::machine::{MachineSettings, Units};
+use crate::syntax::{CodeLetter, Command, Number, Statement, Word, WordId, WordKind};
 
 use super::document::{BlockRef, Document};
 use super::roles::{self, Unit};
@@ -95,12 +95,20 @@ fn describe(context: &Context<'_>, id: WordId, word: &Word, text: &str) -> Optio
             }
             out
         }
-        WordKind::Number { address, .. } | WordKind::Expr { address, .. } => {
-            match parameter_line(context, id, word, text) {
+        WordKind::Number { address, number } => {
+            let mut out = match parameter_line(context, id, word, text) {
                 Some(line) => line,
                 None => address_line(context, address, text),
+            };
+            if let Some(line) = as_read(context, address, number, text) {
+                out.push_str(&format!("\n\n{line}"));
             }
+            out
         }
+        WordKind::Expr { address, .. } => match parameter_line(context, id, word, text) {
+            Some(line) => line,
+            None => address_line(context, address, text),
+        },
         WordKind::Sequence { .. } => {
             let mut out = format!("**{text}**: sequence name");
             if let Some((command, _)) = context.command()
@@ -194,11 +202,17 @@ fn parameter_line(context: &Context<'_>, id: WordId, word: &Word, text: &str) ->
 }
 
 fn unit_of(context: &Context<'_>, form: &Form, word: &Word, unit: Unit) -> String {
-    let increments = match word.kind {
-        WordKind::Number { address, number } => form.takes_integer(address) && !number.has_point(),
-        _ => false,
+    let (address, increments) = match word.kind {
+        WordKind::Number { address, number } => (Some(address), !number.has_point()),
+        WordKind::Expr { address, .. } => (Some(address), false),
+        _ => (None, false),
     };
-    roles::unit_text(unit, context.settings, context.tables.config.dialect, increments)
+    match address {
+        Some(address) => {
+            roles::word_unit_text(form, address, unit, context.settings, context.tables.config.dialect, increments)
+        }
+        None => roles::unit_text(unit, context.settings, context.tables.config.dialect, false),
+    }
 }
 
 /// "`X10.5` (Fanuc): X position (diameter) or dwell (s); unit: mm", for a word outside a
@@ -223,6 +237,49 @@ fn address_line(context: &Context<'_>, address: Address, text: &str) -> String {
         out.push_str(&format!("; unit: {unit}"));
     }
     out
+}
+
+/// What a Fanuc length or feed word written without a decimal point reads as, when the
+/// machine's decimal input decides it: least increments (`decimal_input = "increment"`), or
+/// the default calculator input while the settings do not say.
+fn as_read(context: &Context<'_>, address: Address, number: Number, text: &str) -> Option<String> {
+    let tables = context.tables;
+    if tables.config.dialect != Dialect::Fanuc || number.has_point() || number.mantissa == 0 {
+        return None;
+    }
+    // A word the command counts (`G76 P920`) says so in its unit already.
+    if context.command().is_some_and(|(_, form)| form.counts_without_point(address)) {
+        return None;
+    }
+    let kind = tables.address(address)?.kind;
+    if !matches!(kind, AddressKind::Length | AddressKind::Feed) {
+        return None;
+    }
+    let settings = context.settings;
+    let inch = settings.units == Some(Units::Inch);
+    let unit = if inch { "in" } else { "mm" };
+    let increment = settings.least_increment.unwrap_or(if inch { 0.0001 } else { 0.001 });
+    let written = number.to_f64();
+    let counted = number.mantissa as f64 * increment;
+    let (counted, written) = (roles::short_value(counted), roles::short_value(written));
+    let feed = kind == AddressKind::Feed;
+    let as_increments = if feed {
+        format!("{counted} {unit}/rev as a feed per revolution (a feed per minute reads {written} {unit}/min)")
+    } else {
+        format!("{counted} {unit}")
+    };
+    match settings.decimal_input {
+        Some(DecimalInput::Increment) => Some(format!(
+            "as read: {as_increments}; without a decimal point the control counts least increments \
+             (`{text}.` is {written} {unit}{})",
+            if feed { "/rev" } else { "" }
+        )),
+        None if !feed => Some(format!(
+            "as read: {written} {unit}, with calculator input (the default: the settings do not give \
+             `decimal_input`); {as_increments} on a control that counts least increments"
+        )),
+        _ => None,
+    }
 }
 
 fn keyword_meaning(kind: KeywordKind) -> &'static str {

@@ -49,7 +49,7 @@ pub fn inlay_hints(document: &Document, range: std::ops::Range<usize>, settings:
                 }),
                 Role::DwellMilliseconds => Some(format!("{} s", short(value / 1000.0, 3))),
                 _ if dialect == Dialect::Fanuc
-                    && form.takes_integer(address)
+                    && form.counts_without_point(address)
                     && !number.has_point()
                     && matches!(unit, Unit::Length | Unit::XLength) =>
                 {

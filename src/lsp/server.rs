@@ -327,7 +327,7 @@ impl<H: Host> Server<H> {
                 let mut found: Vec<CodeActionOrCommand> = Vec::new();
                 if wants(&CodeActionKind::QUICKFIX) {
                     found.extend(
-                        actions::quick_fixes(&open.document, uri, start..end)
+                        actions::quick_fixes(&open.document, uri, &open.semantic, start..end)
                             .into_iter()
                             .map(CodeActionOrCommand::CodeAction),
                     );

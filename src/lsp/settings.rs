@@ -109,7 +109,9 @@ impl InitOptions {
         let dialect = dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
         let gcode_system = gcode_system.or(settings.gcode_system).unwrap_or_default();
         let control = settings.control.unwrap_or_default();
-        let decimal_input = decimal.or(settings.decimal_input).unwrap_or_default();
+        // Kept unset when neither gives it: the semantic pass says where that matters.
+        let given_decimal_input = decimal.or(settings.decimal_input);
+        let decimal_input = given_decimal_input.unwrap_or_default();
         // The settings in force, the client's options included.
         let machine = MachineSettings {
             dialect: match dialect {
@@ -118,7 +120,7 @@ impl InitOptions {
             },
             gcode_system: Some(gcode_system),
             control: Some(control),
-            decimal_input: Some(decimal_input),
+            decimal_input: given_decimal_input,
             ..settings
         };
         let canonical = CanonicalOptions { decimal_input, increment_places: machine.increment_places() };

@@ -36,7 +36,7 @@ impl Host for Files {
                 directory.ancestors().map(|d| d.join("turnpass.toml")).find(|p| p.is_file())?
             }
         };
-        let text = std::fs::read_to_string(&path).map_err(|e| e.to_string());
+        let text = read_settings(&path);
         Some((path, text))
     }
 
@@ -58,6 +58,22 @@ impl Host for Files {
             return None;
         }
         std::fs::read(path).ok()
+    }
+}
+
+/// A settings or model file's text, read no further than the command line's input limit
+/// (`source::DEFAULT_INPUT_LIMIT_MIB`): a `/dev/zero` named as the model is an error, not
+/// a server that reads until memory runs out.
+fn read_settings(path: &Path) -> Result<String, String> {
+    let limit = crate::source::DEFAULT_INPUT_LIMIT_MIB << 20;
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    match crate::source::read_at_most(file, limit) {
+        Ok(Some(bytes)) => String::from_utf8(bytes).map_err(|_| "stream did not contain valid UTF-8".to_string()),
+        Ok(None) => Err(format!(
+            "larger than {} MiB, the most turnpass reads of an input",
+            crate::source::DEFAULT_INPUT_LIMIT_MIB
+        )),
+        Err(e) => Err(e.to_string()),
     }
 }
 

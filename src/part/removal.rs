@@ -61,9 +61,8 @@ impl<'a> Removal<'a> {
     /// The stock cut by the `moves` moves of a program on `machine`.
     pub fn new(stock: Stock, machine: &'a Machine, moves: usize) -> Removal<'a> {
         let size = (stock.outer - stock.bore).max(stock.front - stock.back);
-        let spacing = (size / RAYS_ALONG_LONGER_SIDE)
-            .max(moves as f64 * REACH_OF_A_MOVE / VISITS_PLANNED)
-            .max(FINEST_SPACING);
+        let spacing =
+            (size / RAYS_ALONG_LONGER_SIDE).max(moves as f64 * REACH_OF_A_MOVE / VISITS_PLANNED).max(FINEST_SPACING);
         let lo = Xz::new(stock.bore, stock.back);
         let hi = Xz::new(stock.outer, stock.front);
         let dexels = Dexels::new(lo, hi, spacing, |line| {

@@ -216,7 +216,7 @@ fn write_word(out: &mut String, program: &Program<'_>, word: &Word, form: Option
             let kind = tables.address(address).map(|s| s.kind);
             // A command may take a count where the address is usually a length (`G73 R3`
             // divisions): its schema says so, and a point would make it an error.
-            let integer = form.is_some_and(|f| f.takes_integer(address));
+            let integer = form.is_some_and(|f| f.counts_without_point(address));
             if !integer
                 && matches!(
                     kind,

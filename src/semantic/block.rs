@@ -31,7 +31,8 @@ impl Interpreter<'_, '_> {
         match word.kind {
             WordKind::Number { address, number } => {
                 let kind = self.tables.address(address).map(|s| s.kind);
-                Some(self.modal.frame.literal(number, kind))
+                let feed_counts = self.tables.increment_input.feed_per_revolution_counts && self.modal.feed_per_rev;
+                Some(self.modal.frame.literal(number, kind, feed_counts))
             }
             WordKind::Expr { expr, .. } => self.value_of(expr),
             _ => None,
@@ -92,6 +93,9 @@ impl Interpreter<'_, '_> {
             && let Some(feed) = found.feed.and_then(|word| self.word_value(word))
         {
             self.modal.feed = feed;
+            if let Some(word) = found.feed {
+                self.observe_feed(word);
+            }
         }
         // S: a spindle clamp with G50/G92, otherwise the speed.
         if let Some(speed) = found.speed.and_then(|word| self.word_value(word)) {
@@ -117,8 +121,8 @@ impl Interpreter<'_, '_> {
         self.mark_coordinates();
         let flow = match block.statement {
             Statement::Motion | Statement::ThreadMove => self.motion_block(index, words),
-            Statement::Dwell(_) => {
-                self.dwell(words);
+            Statement::Dwell(id) => {
+                self.dwell(id, words);
                 Flow::Next
             }
             Statement::OneShot(_) => {
@@ -239,19 +243,25 @@ impl Interpreter<'_, '_> {
     }
 
     /// `G04`: seconds in X, U or F, milliseconds in P.
-    fn dwell(&mut self, words: &[Word]) {
+    /// A dwell: its time from the word's role (`grammar/`: seconds, or milliseconds; a Haas
+    /// `P` written with a decimal point is seconds), read as written.
+    fn dwell(&mut self, id: crate::syntax::CommandId, words: &[Word]) {
         let mut seconds = 0.0;
-        for word in words {
-            if let Some(address) = word_address(word) {
-                let raw = match word.kind {
-                    WordKind::Number { number, .. } => Some(number.to_f64()),
-                    _ => self.word_value(word),
-                };
-                match (address, raw) {
-                    (Address::X | Address::U | Address::F, Some(v)) => seconds = v,
-                    (Address::P, Some(v)) => seconds = v / 1000.0,
-                    _ => {}
-                }
+        let params = self.program.command(id).params.clone();
+        for param in params {
+            let word = *self.program.word(param.word);
+            // A block-delete `/` may have cut the word off.
+            if !words.iter().any(|w| w.span == word.span) {
+                continue;
+            }
+            let raw = match word.kind {
+                WordKind::Number { number, .. } => Some(number.to_f64()),
+                _ => self.word_value(&word),
+            };
+            match (param.role, raw) {
+                (crate::dialect::Role::DwellSeconds, Some(v)) => seconds = v,
+                (crate::dialect::Role::DwellMilliseconds, Some(v)) => seconds = v / 1000.0,
+                _ => {}
             }
         }
         let modal = self.modal.clone();

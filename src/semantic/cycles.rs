@@ -93,6 +93,11 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
         _ => None,
     };
     let Some(function) = info.and_then(|g| g.function) else { return Flow::Next };
+    // A decimal point the control refuses: the block alarms, and runs no cycle.
+    if !interp.cycle_points_taken(&command) {
+        return Flow::Next;
+    }
+    interp.observe_cycle_words(&command);
     interp.finish_corner();
     let first_move = interp.emitter.moves.len();
     interp.emitter.context = Context { source: block.span, cycle: block.span };
@@ -199,20 +204,26 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     interp.report_zero_feed(block.span);
     interp.emitter.context = Context { source: block.span, cycle: Span::SYNTHETIC };
     let consumed = std::mem::take(&mut interp.cycle_consumed);
+    let setup = interp.cycle_setup.take();
+    let traced = std::mem::take(&mut interp.cycle_traced);
     let before = match interp.cycle_memory.setup_block {
         Some((setup, before)) if setup < index && consumed.contains(&setup) => before,
         _ => interp.modal_before_block,
     };
     let kept = interp.expansion_kept.take();
+    let note = interp.expansion_note.take();
     if interp.emitter.moves.len() > first_move || !consumed.is_empty() {
         interp.expansions.push(Expansion {
             block: index,
             frame: interp.modal.frame,
             consumed,
+            setup,
+            traced,
             moves: first_move..interp.emitter.moves.len(),
             before,
             after: crate::semantic::ModalAfter::of(&interp.modal),
             kept,
+            note,
         });
     } else {
         interp.cycle_memory.setup_block = Some((index, interp.modal_before_block));
@@ -255,6 +266,13 @@ impl Interpreter<'_, '_> {
         self.cycle_consumed.extend(blocks);
     }
 
+    /// The first block of a two-block cycle, consumed: it ran where it is
+    /// (`Expansion::setup`).
+    pub(super) fn consume_setup(&mut self, block: Option<usize>) {
+        self.cycle_consumed.extend(block);
+        self.cycle_setup = block.or(self.cycle_setup);
+    }
+
     /// The name of the schema form a command matched (`depth`, `profile`, `one_block`, …).
     pub(super) fn form_name(&self, command: &Command) -> &'static str {
         self.tables.schema(command.schema).forms.get(command.form as usize).map_or("", |f| f.name.as_str())
@@ -295,8 +313,15 @@ impl Interpreter<'_, '_> {
 
     /// An integer length parameter (`P`/`Q` of `G74`-`G76`): the control reads it in least
     /// input increments whatever the decimal-point setting, so `P2000` is 2 mm on a 0.001 mm
-    /// control. Program units.
+    /// control. Program units. Written with a decimal point where the schema lets a control
+    /// take one (`point_unverified`: `G83 Q3.`, warned of), it is the length as written.
     pub(super) fn param_increments(&mut self, command: &Command, role: Role) -> Option<f64> {
+        let id = command.param(role)?;
+        if let WordKind::Number { number, .. } = self.program.word(id).kind
+            && number.has_point()
+        {
+            return Some(number.to_f64());
+        }
         let count = self.param_count(command, role)?;
         Some(count * self.modal.frame.increment)
     }

@@ -37,13 +37,27 @@ impl Frame {
     }
 
     /// The value of a literal word in program units: on a least-increment Fanuc control a
-    /// length or angle without a decimal point counts increments.
-    pub fn literal(&self, number: Number, kind: Option<AddressKind>) -> f64 {
-        let counts_increments = self.dialect == Dialect::Fanuc
+    /// length or angle without a decimal point counts increments, and so does a feed per
+    /// revolution when `feed_counts` (the tables' `[increment_input]` and the feed mode say
+    /// so).
+    pub fn literal(&self, number: Number, kind: Option<AddressKind>, feed_counts: bool) -> f64 {
+        if self.counts_increments(number, kind, feed_counts) {
+            number.mantissa as f64 * self.increment
+        } else {
+            number.to_f64()
+        }
+    }
+
+    /// Whether a literal word reads as a count of least increments (see [`Frame::literal`]).
+    pub fn counts_increments(&self, number: Number, kind: Option<AddressKind>, feed_counts: bool) -> bool {
+        self.dialect == Dialect::Fanuc
             && self.decimal_input == DecimalInput::Increment
             && !number.has_point()
-            && matches!(kind, Some(AddressKind::Length | AddressKind::Angle));
-        if counts_increments { number.mantissa as f64 * self.increment } else { number.to_f64() }
+            && match kind {
+                Some(AddressKind::Length | AddressKind::Angle) => true,
+                Some(AddressKind::Feed) => feed_counts,
+                _ => false,
+            }
     }
 
     /// A length in program units to mm.

@@ -26,6 +26,9 @@ use super::labels::{self, Labels};
 use super::modal::{Modal, MotionMode, SpindleMode, ToolState};
 use super::{Expansion, LowerOptions, Lowered, Machine};
 
+/// How many diagnostics may pile up past those merged before their repeats are merged again.
+const MERGE_DIAGNOSTICS_EVERY: usize = 4096;
+
 /// What to do after a block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Flow {
@@ -101,6 +104,12 @@ pub(super) struct Interpreter<'p, 'src> {
     /// The blocks the cycle being run consumes (its profile, its first block, a LAP contour
     /// right after it): `expand` deletes them with its call.
     pub cycle_consumed: Vec<usize>,
+    /// The consumed first block of the cycle being run, and the profile blocks it runs with
+    /// their first moves (`Expansion::setup`, `Expansion::traced`).
+    pub cycle_setup: Option<usize>,
+    pub cycle_traced: Vec<(usize, usize)>,
+    /// The number of diagnostics at which their repeats are merged next.
+    merge_diagnostics_at: usize,
     /// The modal words in force before the block being executed (for `expand`, which
     /// replaces a cycle's block, words and all).
     pub modal_before_block: super::ModalAfter,
@@ -119,6 +128,8 @@ pub(super) struct Interpreter<'p, 'src> {
     noted_home_unknown: bool,
     /// What `plausibility.rs` has warned of already.
     pub plausibility: super::plausibility::Warned,
+    /// What `decimal_point.rs` has said already.
+    pub decimal_point: super::decimal_point::Said,
     tape_opened: bool,
     cut_off: Option<Span>,
     /// Time arcs on a second thread from this many blocks on (`parallel::Tuning::arc_times_blocks`).
@@ -129,6 +140,8 @@ pub(super) struct Interpreter<'p, 'src> {
     position_damaged: bool,
     /// Why `expand` should leave the cycle being run as it is (`Expansion::kept`).
     pub expansion_kept: Option<&'static str>,
+    /// What `expand` says of the cycle being run (`Expansion::note`).
+    pub expansion_note: Option<DiagnosticKind>,
 }
 
 impl<'p, 'src> Interpreter<'p, 'src> {
@@ -179,6 +192,9 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             pending_corner: None,
             skip_to: None,
             cycle_consumed: Vec::new(),
+            cycle_setup: None,
+            cycle_traced: Vec::new(),
+            merge_diagnostics_at: MERGE_DIAGNOSTICS_EVERY,
             modal_before_block: super::ModalAfter { motion: None, f_word: 0.0, s_word: 0.0 },
             coordinates: Vec::new(),
             calls: Vec::new(),
@@ -189,12 +205,14 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             first_program_name: None,
             noted_home_unknown: false,
             plausibility: super::plausibility::Warned::default(),
+            decimal_point: super::decimal_point::Said::default(),
             tape_opened: false,
             cut_off: None,
             arc_times_beside_from_blocks: tuning.arc_times_blocks,
             leader_confirmed: None,
             position_damaged: false,
             expansion_kept: None,
+            expansion_note: None,
         }
     }
 
@@ -268,6 +286,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 break;
             }
             self.executed += 1;
+            // A block run again and again (a loop) repeats its diagnostics: merged as they
+            // pile up, so that memory follows the blocks that have them, not the repeats.
+            if self.diagnostics.len() >= self.merge_diagnostics_at {
+                crate::diagnostic::merge_repeats(&mut self.diagnostics);
+                self.merge_diagnostics_at = 2 * self.diagnostics.len() + MERGE_DIAGNOSTICS_EVERY;
+            }
             let first_move = self.emitter.moves.len();
             let flow = self.execute(pc);
             self.check_moves(first_move, blocks[pc].span);
@@ -366,6 +390,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
 
     /// The lowered program, once the blocks have run.
     fn finish(mut self) -> Lowered {
+        self.judge_missing_points();
         let start = self.emitter.moves.first().map(|_| self.first_move_start()).unwrap_or(self.emitter.at);
         let mut toolpath = Toolpath { start, moves: std::mem::take(&mut self.emitter.moves) };
         if self.options.nose_radius_compensation {
@@ -385,8 +410,8 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 mark.from_move = moved.range(mark.from_move..mark.from_move).start;
             }
         }
+        crate::diagnostic::merge_repeats(&mut self.diagnostics);
         self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
-        self.diagnostics.dedup();
         // A system variable read as 0 is said once, where the program first reads it.
         let mut unknown = std::collections::HashSet::new();
         self.diagnostics.retain(|d| match &d.kind {

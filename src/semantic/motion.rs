@@ -148,6 +148,7 @@ impl Interpreter<'_, '_> {
     pub(super) fn motion_block(&mut self, index: usize, words: &[Word]) -> Flow {
         let block = *self.program.block(index);
         let span = block.span;
+        self.observe_move_words(words, block.statement == Statement::ThreadMove);
         let axes = self.axis_target(words);
         let moves_before = self.emitter.moves.len();
         let angle_given =
@@ -209,10 +210,13 @@ impl Interpreter<'_, '_> {
                 block: index,
                 frame: self.modal.frame,
                 consumed: Vec::new(),
+                setup: None,
+                traced: Vec::new(),
                 moves: last..last + 1,
                 before: self.modal_before_block,
                 after: super::ModalAfter::of(&self.modal),
                 kept: None,
+                note: None,
             });
         }
         Flow::Next
@@ -348,6 +352,9 @@ impl Interpreter<'_, '_> {
                 DiagnosticKind::CornerDoesNotFit { size_mm: corner.size, word: corner.word },
                 corner.context.source,
             );
+            // The corner's block and the line after it decide whether it fits: a word of
+            // theirs read without its decimal point is the likelier cause.
+            self.slip_scope(corner.context.source, corner.context.source.start, context.source.end);
         } else {
             let p1 = Xz::new(corner.corner.x - d1.x * back, corner.corner.z - d1.z * back);
             let p2 = Xz::new(corner.corner.x + d2.x * back, corner.corner.z + d2.z * back);
@@ -370,10 +377,13 @@ impl Interpreter<'_, '_> {
                 block,
                 frame: corner.modal.frame,
                 consumed: Vec::new(),
+                setup: None,
+                traced: Vec::new(),
                 moves: first_move..self.emitter.moves.len(),
                 before,
                 after: super::ModalAfter::of(&corner.modal),
                 kept: None,
+                note: None,
             });
         }
     }

@@ -11,7 +11,7 @@ use std::ops::RangeInclusive;
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::{Address, GFunction};
 use crate::source::Span;
-use crate::syntax::Statement;
+use crate::syntax::{CodeLetter, Statement, WordKind};
 use crate::toolpath::{Compensation, Motion, Xz};
 
 use super::block::effective_words;
@@ -113,6 +113,22 @@ impl Interpreter<'_, '_> {
                     failure = Some(Diagnostic::error(DiagnosticKind::NotAllowedInProfile, block.span));
                     break;
                 }
+            }
+            // An M code that calls, returns or ends takes the program elsewhere: the control
+            // refuses it between P and Q (Fanuc: no M98/M99 in the finishing shape).
+            let functions = &self.tables.m_functions;
+            let leaves = words.iter().find(|w| match w.kind {
+                WordKind::Code { letter: CodeLetter::M, code } => {
+                    let m = code.major();
+                    functions.subprogram_call.contains(&m)
+                        || functions.subprogram_return.contains(&m)
+                        || functions.end.contains(&m)
+                }
+                _ => false,
+            });
+            if let Some(word) = leaves {
+                failure = Some(Diagnostic::error(DiagnosticKind::NotAllowedInProfile, word.span));
+                break;
             }
             self.emitter.context.source = block.span;
             for (_, info) in self.g_infos(&words) {

@@ -4,11 +4,15 @@
 //! The block's own words decide; modal state is the semantic pass's business. A bare `X2.0`
 //! is a `Motion` here even when the modal command is a single cycle.
 
-use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::diagnostic::{CountedWord, Diagnostic, DiagnosticKind};
+use crate::dialect::roles;
 use crate::dialect::tables::{KeywordKind, Place};
-use crate::dialect::{Address, Dialect, Form, GFunction, GInfo, GKind, MachineKind, ModalGroup, Tables};
+use crate::dialect::{
+    Address, Control, Dialect, Form, GFunction, GInfo, GKind, IntegerUnit, MachineKind, ModalGroup, Tables,
+};
 
 use super::ast::{CodeLetter, Command, CommandId, Param, Statement, Word, WordId, WordKind};
+use super::spelling;
 
 pub(super) struct Classifier<'a> {
     pub tables: &'static Tables,
@@ -64,6 +68,26 @@ fn axis_given_twice(words: &[Word], seen_letters: u32) -> Result<(), Diagnostic>
 impl Classifier<'_> {
     fn command_name(&self, info: &GInfo) -> String {
         format!("{} ({})", info.code.display('G'), info.meaning)
+    }
+
+    /// Another Fanuc-compatible control whose form of the same command takes `address`
+    /// with a decimal point (`point_reads` in `grammar/`), and the unit it reads it in then.
+    fn point_taken_elsewhere(
+        &self,
+        info: &GInfo,
+        form: &Form,
+        address: Address,
+    ) -> Option<(&'static str, &'static str)> {
+        let config = self.tables.config;
+        if config.dialect != Dialect::Fanuc {
+            return None;
+        }
+        Control::ALL.into_iter().filter(|c| *c != config.control).find_map(|control| {
+            let tables = config.with_control(control).tables();
+            let schema = tables.schema(tables.g(info.code)?.schema?);
+            let role = schema.forms.iter().find(|f| f.name == form.name)?.role_with_point(address)?;
+            Some((control.name(), roles::unit_word(roles::describe(role).1)))
+        })
     }
 
     pub fn classify(&mut self, words: &[Word], first_word: WordId) -> Result<Statement, Diagnostic> {
@@ -368,11 +392,25 @@ impl Classifier<'_> {
             match word.kind {
                 WordKind::Number { address, number } => {
                     if let Some(role) = form.role_of(address) {
-                        if form.takes_integer(address) && number.has_point() {
-                            return Err(Diagnostic::error(
-                                DiagnosticKind::IntegerExpected { command: command(), address: address.name() },
-                                word.span,
-                            ));
+                        // A point that makes the word another role (a Haas dwell `P0.3`, seconds).
+                        let role = form.role_with_point(address).filter(|_| number.has_point()).unwrap_or(role);
+                        let unit = IntegerUnit::of(role);
+                        // A count of increments depends on the units in force, which the
+                        // semantic pass knows (`G20`/`G21` may change them): it reports
+                        // those, with the value meant.
+                        if form.takes_integer(address) && number.has_point() && !unit.needs_frame() {
+                            let meant = roles::meant(unit, number.to_f64(), None)
+                                .map(|(count, reading)| (format!("{}{count}", address.name()), reading));
+                            let kind = DiagnosticKind::IntegerExpected(Box::new(CountedWord {
+                                command: command(),
+                                address: address.name(),
+                                written: format!("{}{}", address.name(), spelling::plain(number)),
+                                unit,
+                                meant,
+                                control: self.tables.config.control.name(),
+                                elsewhere: self.point_taken_elsewhere(info, form, address),
+                            }));
+                            return Err(Diagnostic::error(kind, word.span));
                         }
                         params.push(Param { role, word: id });
                     } else if !form.any_words && !self.allowed_outside_schema(info.kind, address) {

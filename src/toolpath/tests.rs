@@ -74,6 +74,8 @@ fn a_non_finite_move_does_not_set_the_time_the_next_must_not_run_back_from() {
             let mut m = feed(Xz::new(k as f64, 0.0));
             m.t_start = k as f64;
             m.t_end = k as f64 + 1.0;
+            // A block of its own: the problems of one block are one diagnostic with repeats.
+            m.source = Span::new(k as u32, k as u32 + 1);
             m
         })
         .collect();
@@ -85,4 +87,18 @@ fn a_non_finite_move_does_not_set_the_time_the_next_must_not_run_back_from() {
     let problems = validate(&path, None).unwrap_err();
     let kinds: Vec<_> = problems.iter().map(|d| d.kind.clone()).collect();
     assert_eq!(kinds, [DiagnosticKind::NonFiniteMove, DiagnosticKind::TimeGoesBack, DiagnosticKind::TimeGoesBack]);
+}
+
+#[test]
+fn the_moves_of_one_block_give_one_diagnostic_with_its_repeats() {
+    // A block run in a loop, each pass outside the travel: one diagnostic, the rest counted.
+    let limits = Limits { x_min: -10.0, x_max: 10.0, z_min: -10.0, z_max: 10.0 };
+    let moves: Vec<Move> = (0..10_000)
+        .map(|k| Move { t_start: k as f64, t_end: k as f64 + 1.0, ..feed(Xz::new(20.0 + k as f64, 0.0)) })
+        .collect();
+    let path = Toolpath { start: Xz::default(), moves };
+    let problems = validate(&path, Some(limits)).unwrap_err();
+    assert_eq!(problems.len(), 1, "{:?}", &problems[..problems.len().min(3)]);
+    assert!(matches!(problems[0].kind, DiagnosticKind::OutsideTravel { x_mm, .. } if x_mm == 20.0));
+    assert_eq!(problems[0].repeats, 9_999);
 }

@@ -39,6 +39,11 @@ pub struct Entry {
     /// Errors of the semantic pass.
     #[serde(default)]
     pub lowering_faults: Vec<Fault>,
+    /// Words without a decimal point that read implausibly when the control counts least
+    /// increments (`decimal_input = "increment"`): warned of, or named as the cause of an
+    /// error (`corpus_semantic::missing_points`).
+    #[serde(default)]
+    pub missing_points: usize,
 }
 
 #[derive(Deserialize, PartialEq, Debug, Clone)]

@@ -6,10 +6,15 @@
 //! (`snapshots/corpus/semantic/`): the diagnostics, the move count, the cycle time and path
 //! length, and the moves of each cycle call; not every move. The thesis examples run
 //! always; the corpus programs when the corpus is there (`support::external`).
+//!
+//! `missing_points` reads each again as if its machine counted least increments, and with no
+//! `decimal_input` at all: the words without a decimal point that read implausibly then
+//! (README, "Decimal input") are as many as `tests/corpus.toml` says.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use turnpass::diagnostic::DiagnosticKind;
 use turnpass::dialect::GCodeSystem;
 use turnpass::machine::{MachineSettings, ModelFile};
 use turnpass::pipeline::Lowering;
@@ -138,21 +143,84 @@ fn run(path: &Path, name: &str, entry: &Entry) -> String {
     out
 }
 
-#[test]
-fn every_corpus_program_and_thesis_example_lowers_with_only_its_real_faults() {
-    let manifest = manifest();
-    let corpus = match external::corpus_for("its corpus programs (the thesis examples run)") {
+/// The programs of the manifest that are at hand: the corpus's when it is there, and the
+/// thesis examples.
+fn programs<'m>(manifest: &'m crate::corpus::Manifest, why: &str) -> Vec<(PathBuf, String, &'m Entry)> {
+    let corpus = match external::corpus_for(why) {
         Some(dir) => manifest.file.iter().map(|e| (dir.join(&e.path), e.path.replace('/', "__"), e)).collect(),
         None => Vec::new(),
     };
-    let programs = corpus.into_iter().chain(manifest.example.iter().map(|e| {
-        let path: PathBuf = repo().join(&e.path);
-        let name = format!("example__{}", path.file_name().unwrap().to_string_lossy());
-        (path, name, e)
-    }));
+    corpus
+        .into_iter()
+        .chain(manifest.example.iter().map(|e| {
+            let path: PathBuf = repo().join(&e.path);
+            let name = format!("example__{}", path.file_name().unwrap().to_string_lossy());
+            (path, name, e)
+        }))
+        .collect()
+}
+
+/// How many words of `source` the semantic pass says read implausibly as least increments
+/// on the machine `settings` describe: warnings and errors it names as their cause, and the
+/// count of the note said where the settings do not give `decimal_input`.
+fn missing_points(source: &[u8], settings: &MachineSettings) -> (usize, usize) {
+    let analysed = analyse(source, &pipeline_settings(settings, true));
+    let mut said = 0;
+    let mut noted = 0;
+    for d in &analysed.diagnostics {
+        match &d.kind {
+            DiagnosticKind::MissingDecimalPoint { .. } | DiagnosticKind::MissingPointCauses { .. } => said += 1,
+            DiagnosticKind::DecimalInputUnset { count, .. } => noted += count,
+            _ => {}
+        }
+    }
+    (said, noted)
+}
+
+/// Each program read with increment input, with its own settings, and with no
+/// `decimal_input`: the words read implausibly as increments are `missing_points` of the
+/// manifest under the first, none under the second (calculator input, given), and said once
+/// with that count under the third. The table printed (`--nocapture`) is README's.
+#[test]
+fn missing_points_are_those_the_manifest_counts() {
+    use turnpass::dialect::DecimalInput;
+    let manifest = manifest();
+    let mut failed = Vec::new();
+    println!("| program | decimal_input | increment: words warned of | unset: words counted by the note |");
+    println!("|---|---|---|---|");
+    for (path, name, entry) in programs(&manifest, "its corpus programs (the thesis examples run)") {
+        let source = std::fs::read(&path).unwrap();
+        let own = settings_for(entry);
+        let increment = MachineSettings { decimal_input: Some(DecimalInput::Increment), ..own.clone() };
+        let unset = MachineSettings { decimal_input: None, ..own.clone() };
+        let (as_increments, _) = missing_points(&source, &increment);
+        let (as_own, noted_own) = missing_points(&source, &own);
+        let (_, noted) = missing_points(&source, &unset);
+        let own_input = match own.decimal_input {
+            _ if entry.dialect == "osp" => "(OSP reads a number as written)".to_string(),
+            Some(input) => format!("{input:?}").to_lowercase(),
+            None => "unset".to_string(),
+        };
+        println!("| {} | {own_input} | {as_increments} | {noted} |", entry.path);
+        let expected = if entry.dialect == "fanuc" { entry.missing_points } else { 0 };
+        let own_expected = if own.decimal_input == Some(DecimalInput::Increment) { expected } else { 0 };
+        if as_increments != expected || noted != expected || (as_own, noted_own) != (own_expected, 0) {
+            eprintln!(
+                "{name}: increment input {as_increments}, unset {noted}, its own settings {as_own} (and a note of \
+                 {noted_own}); the manifest says {expected}"
+            );
+            failed.push(name);
+        }
+    }
+    assert!(failed.is_empty(), "failed (see the messages above): {failed:#?}");
+}
+
+#[test]
+fn every_corpus_program_and_thesis_example_lowers_with_only_its_real_faults() {
+    let manifest = manifest();
     // Every program runs, and the failures are reported together.
     let mut failed = Vec::new();
-    for (path, name, entry) in programs {
+    for (path, name, entry) in programs(&manifest, "its corpus programs (the thesis examples run)") {
         let outcome = std::panic::catch_unwind(|| {
             let summary = run(&path, &name, entry);
             with_snapshots("corpus/semantic", || insta::assert_snapshot!(name.clone(), summary));

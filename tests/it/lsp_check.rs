@@ -93,11 +93,19 @@ fn check_json_and_the_server_agree() {
         for (lsp, check) in all.iter().zip(&expected) {
             let context = format!("{name}: {lsp:#}\n{check:#}");
             assert_eq!(lsp["code"], check["code"], "{context}");
-            // The server's message is check's, and its hint on a second line.
-            let message = match check["hint"].as_str() {
-                Some(hint) => json!(format!("{}\nhint: {hint}", check["message"].as_str().unwrap())),
-                None => check["message"].clone(),
-            };
+            // The server's message is check's, its hint on a second line and how many more
+            // times the run found it (`repeats`) on a line of its own.
+            let mut message = check["message"].as_str().unwrap().to_string();
+            if let Some(hint) = check["hint"].as_str() {
+                message.push_str(&format!("\nhint: {hint}"));
+            }
+            if let Some(repeats) = check["repeats"].as_u64() {
+                let s = if repeats == 1 { "" } else { "s" };
+                message.push_str(&format!(
+                    "\nfound {repeats} more time{s} as the run comes back to this place; shown once"
+                ));
+            }
+            let message = json!(message);
             assert_eq!(lsp["message"], message, "{context}");
             let severity = match check["severity"].as_str().unwrap() {
                 "error" => 1,

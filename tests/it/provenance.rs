@@ -20,10 +20,12 @@ fn provenance() -> Provenance {
         version: "0.1.0".to_string(),
         model: "Test lathe (bay 2)".to_string(),
         model_sha256: "3e3e70e7fa2c".to_string(),
+        table_sha256: None,
         tolerance_mm: 0.0005,
         strategy: Strategy::Densify,
         step_mm: Some(0.254),
         start_min: 200.0,
+        dialect: None,
     }
 }
 

@@ -140,7 +140,9 @@ pub(super) fn write(
     // Each depth is cut once per start, in order: a group of `starts` equal passes, the
     // k-th at the phase 360·k/starts.
     if starts > 1 {
-        if passes.len() % starts != 0 || passes.chunks(starts).any(|group| group.iter().any(|p| *p != group[0])) {
+        if !passes.len().is_multiple_of(starts)
+            || passes.chunks(starts).any(|group| group.iter().any(|p| *p != group[0]))
+        {
             return CycleBlocks::NotExpandable(THREAD_MOVES);
         }
         for (index, words) in passes.iter_mut().enumerate() {

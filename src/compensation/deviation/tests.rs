@@ -65,3 +65,15 @@ fn the_reach_counts_an_arcs_whole_circle_and_a_lines_end() {
     let (lowered, _) = lower_program(lines);
     assert_eq!(LocalPath::new(&lowered.toolpath).reach(), Xz::new(150.0, 80.0));
 }
+
+#[test]
+fn an_original_that_deviates_by_nothing_has_no_improvement_ratio() {
+    // A rounding error of the measure divided into a real deviation is a wild figure
+    // (-4.8e17 % was printed): below a nanometre there is nothing to improve.
+    let nothing = Figures::of([1e-19, 0.0, 2e-19]);
+    let something = Figures::of([0.0005, 0.0004]);
+    assert_eq!(nothing.improvement_percent(&something), None);
+    assert_eq!(nothing.improvement_percent(&nothing), None);
+    assert_eq!(Figures::of([0.002]).improvement_percent(&Figures::of([0.001])), Some(50.0));
+    assert_eq!(Figures::of([0.001]).improvement_percent(&Figures::of([0.002])), Some(-100.0));
+}

@@ -26,14 +26,17 @@ fn toolpath() -> (Toolpath, Machine) {
 }
 
 fn model(effects: Vec<Effect>) -> ErrorModel {
-    ErrorModel { tables: None, effects, start_min: 0.0 }
+    ErrorModel { tables: None, effects, start_min: 0.0, control: None }
 }
 
 #[test]
 fn a_constant_offset_is_mirrored_in_one_step() {
     let (path, machine) = toolpath();
     let samples = sample_toolpath(&path, &ToolTable::from_machine(&machine), 0.5);
-    let m = model(vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.01 }), Effect::ToolOffsetZ(ToolOffsetZ { dz: -0.004 })]);
+    let m = model(vec![
+        Effect::ToolOffsetX(ToolOffsetX { d: 0.01, axis: X }),
+        Effect::ToolOffsetZ(ToolOffsetZ { d: -0.004, axis: Z }),
+    ]);
     let result = compensate_samples(&samples, path.start, &m, &InverseOptions::default());
     assert_eq!(result.iterations, 1);
     assert!(result.max_residual_mm < 1e-12);
@@ -47,10 +50,10 @@ fn direction_dependent_and_position_dependent_errors_converge_below_the_toleranc
     let (path, machine) = toolpath();
     let samples = sample_toolpath(&path, &ToolTable::from_machine(&machine), 0.25);
     let m = model(vec![
-        Effect::BacklashX(BacklashX { b: 0.006 }),
-        Effect::BacklashZ(BacklashZ { b: 0.004 }),
-        Effect::ScaleZ(ScaleZ { ppm: 80.0 }),
-        Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 11.94, phase: 0.3 }),
+        Effect::BacklashX(BacklashX { b: 0.006, axis: X }),
+        Effect::BacklashZ(BacklashZ { b: 0.004, axis: Z }),
+        Effect::ScaleZ(ScaleZ { ppm: 80.0, axis: Z }),
+        Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 11.94, phase: 0.3, axis: Z }),
         Effect::Squareness(Squareness { urad: 30.0 }),
     ]);
     let options = InverseOptions { tolerance_mm: 1e-6, dead_band_mm: 1e-6, ..InverseOptions::default() };
@@ -91,10 +94,10 @@ fn terms_of_time_given_once_per_sample_solve_and_predict_as_evaluated_at_each_co
     let m = ErrorModel {
         start_min: 20.0,
         ..model(vec![
-            Effect::BacklashX(BacklashX { b: 0.004 }),
-            Effect::ThermalX(ThermalX { amp: -0.003, tau_min: 12.0 }),
-            Effect::ScaleZ(ScaleZ { ppm: 30.0 }),
-            Effect::ThermalZ(ThermalZ { amp: 0.008, tau_min: 54.59 }),
+            Effect::BacklashX(BacklashX { b: 0.004, axis: X }),
+            Effect::ThermalX(ThermalX { amp: -0.003, tau_min: 12.0, axis: X }),
+            Effect::ScaleZ(ScaleZ { ppm: 30.0, axis: Z }),
+            Effect::ThermalZ(ThermalZ { amp: 0.008, tau_min: 54.59, axis: Z }),
         ])
     };
     let mut terms = Vec::new();
@@ -129,7 +132,8 @@ fn terms_of_time_given_once_per_sample_solve_and_predict_as_evaluated_at_each_co
 fn the_largest_residual_is_the_root_of_the_largest_square() {
     let (path, machine) = toolpath();
     let samples = sample_toolpath(&path, &ToolTable::from_machine(&machine), 0.25);
-    let m = model(vec![Effect::BacklashX(BacklashX { b: 0.006 }), Effect::ScaleZ(ScaleZ { ppm: 80.0 })]);
+    let m =
+        model(vec![Effect::BacklashX(BacklashX { b: 0.006, axis: X }), Effect::ScaleZ(ScaleZ { ppm: 80.0, axis: Z })]);
     let options = InverseOptions { max_iterations: 1, ..InverseOptions::default() };
     let result = compensate_samples(&samples, path.start, &m, &options);
     let largest = samples.iter().zip(&result.predicted).map(|(s, &a)| s.nominal.distance(a)).fold(0.0, f64::max);

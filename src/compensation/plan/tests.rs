@@ -28,7 +28,7 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
     let tools = ToolTable::from_machine(&machine);
     let path = &lowered.toolpath;
     let samples = sample_toolpath(path, &tools, 0.25);
-    let model = ErrorModel { tables: None, effects, start_min: 0.0 };
+    let model = ErrorModel { tables: None, effects, start_min: 0.0, control: None };
     let fit = FitOptions { strategy: Strategy::Densify, tolerance_mm: 0.0005, step_mm: None };
     let inverse =
         InverseOptions { tolerance_mm: fit.tolerance_mm, dead_band_mm: fit.tolerance_mm, ..InverseOptions::default() };
@@ -63,8 +63,10 @@ fn without_errors_every_move_keeps_its_programmed_form() {
 
 #[test]
 fn a_constant_offset_moves_every_end_and_each_line_stays_one_line() {
-    let (lowered, plans) =
-        plans(vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.01 }), Effect::ToolOffsetZ(ToolOffsetZ { dz: -0.005 })]);
+    let (lowered, plans) = plans(vec![
+        Effect::ToolOffsetX(ToolOffsetX { d: 0.01, axis: X }),
+        Effect::ToolOffsetZ(ToolOffsetZ { d: -0.005, axis: Z }),
+    ]);
     for (m, plan) in lowered.toolpath.moves.iter().zip(&plans) {
         assert!(plan.changed);
         assert_eq!(plan.segments.len(), 1, "{m:?}");
@@ -80,7 +82,7 @@ fn a_constant_offset_moves_every_end_and_each_line_stays_one_line() {
 #[test]
 fn the_backlash_at_an_x_reversal_is_its_own_move_at_the_reversal_point() {
     let b = 0.006;
-    let (lowered, plans) = plans(vec![Effect::BacklashX(BacklashX { b })]);
+    let (lowered, plans) = plans(vec![Effect::BacklashX(BacklashX { b, axis: X })]);
     let moves = &lowered.toolpath.moves;
     // Move 3 (`X40. Z-15.`) reverses X after the shoulder went up.
     let reversal = 3;

@@ -5,17 +5,21 @@ fn made() -> Provenance {
         version: "0.1.0".to_string(),
         model: "test lathe".to_string(),
         model_sha256: "3e3e70e7fa2c".to_string(),
+        table_sha256: None,
         tolerance_mm: 0.0005,
         strategy: Strategy::Auto,
         step_mm: None,
         start_min: 30.0,
+        dialect: None,
     }
 }
 
 #[test]
 fn the_comment_reads_back_as_written() {
     let densify = Provenance { strategy: Strategy::Densify, step_mm: Some(0.254), start_min: 212.5, ..made() };
-    for provenance in [made(), densify] {
+    let table = Provenance { table_sha256: Some("4f0c9a17be21".to_string()), ..made() };
+    let osp = Provenance { dialect: Some(Dialect::Osp), ..made() };
+    for provenance in [made(), densify, table, osp] {
         for upper in [false, true] {
             let text = provenance.text(upper);
             let read = Provenance::parse(&text).expect("a provenance comment").expect("it reads");
@@ -37,6 +41,9 @@ fn the_comment_is_written_in_one_form() {
     // An inch machine's default tolerance, half of 0.0001 in, in mm: no float noise.
     let inch = Provenance { tolerance_mm: 0.0001 * 25.4 / 2.0, ..made() };
     assert!(inch.text(true).contains("TOLERANCE 0.00127 MM"), "{}", inch.text(true));
+    // The dialect, where the text alone would read as the other, last.
+    let osp = Provenance { dialect: Some(Dialect::Osp), ..made() };
+    assert!(osp.text(true).ends_with("START 30 MIN, DIALECT OSP"), "{}", osp.text(true));
 }
 
 #[test]

@@ -16,7 +16,7 @@
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 use crate::back::motion::Codes;
-use crate::back::{CycleBlocks, cycle_blocks};
+use crate::back::{CycleBlocks, carried_words, carry_traced, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::expand;
 use crate::printer::{Edits, NewBlock, NewWord, ProgramStyle};
@@ -103,12 +103,15 @@ fn root(group: &mut [usize], mut k: usize) -> usize {
 }
 
 /// The compensated moves of a cycle, as the back end's cycle writer takes them: one move per
-/// segment, in the contour frame. A take-up of the play before a move that switches
-/// compensation is a rapid under the compensation in force before it.
-fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Compensation) -> Vec<Move> {
+/// segment, in the contour frame, and the index of the first of each move's. A take-up of
+/// the play before a move that switches compensation is a rapid under the compensation in
+/// force before it.
+fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Compensation) -> (Vec<Move>, Vec<usize>) {
     let mut out = Vec::with_capacity(moves.len());
+    let mut firsts = Vec::with_capacity(moves.len());
     let mut compensation = compensation_before;
     for (m, plan) in moves.iter().zip(plans) {
+        firsts.push(out.len());
         if m.motion == Motion::Dwell {
             out.push(*m);
             continue;
@@ -126,7 +129,7 @@ fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Co
         }
         compensation = m.compensation;
     }
-    out
+    (out, firsts)
 }
 
 /// Write the chosen cycles into `edits`; problems go to `diagnostics`.
@@ -140,6 +143,14 @@ pub(super) fn write(
     diagnostics: &mut Vec<Diagnostic>,
 ) -> Vec<usize> {
     let calls: HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
+    // The profile blocks whose words a written cycle carries (`back::carry_traced`).
+    let traced: HashSet<usize> = lowered
+        .expansions
+        .iter()
+        .zip(chosen)
+        .filter(|(_, chosen)| **chosen)
+        .flat_map(|(e, _)| e.traced.iter().map(|&(_, block)| block))
+        .collect();
     // A call block that runs more than once (a cycle in a subprogram) must come out the
     // same every time.
     let mut by_block: BTreeMap<usize, Vec<NewBlock>> = BTreeMap::new();
@@ -158,9 +169,18 @@ pub(super) fn write(
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(range.start).shift;
-        let compensated = compensated_moves(moves, cycle_plans, compensation_before);
+        let (compensated, firsts) = compensated_moves(moves, cycle_plans, compensation_before);
         let blocks = match cycle_blocks(program, expansion, &compensated, start, compensation_before, shift, style) {
-            CycleBlocks::Blocks(blocks) => with_call_words(program, expansion.block, blocks),
+            CycleBlocks::Blocks(mut blocks) => {
+                let at = |m: usize| firsts.get(m - range.start).copied().unwrap_or(compensated.len());
+                carry_traced(
+                    program,
+                    &mut blocks,
+                    compensated.len(),
+                    expansion.traced.iter().map(|&(m, b)| (at(m), b)),
+                );
+                with_call_words(program, expansion.block, blocks)
+            }
             CycleBlocks::Keep | CycleBlocks::NotExpandable(_) => {
                 let span = program.block(expansion.block).span;
                 diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
@@ -183,7 +203,7 @@ pub(super) fn write(
             None => {
                 by_block.insert(expansion.block, blocks);
                 written.push(expansion.block);
-                delete_consumed(program, expansion, &calls, edits);
+                delete_consumed(program, expansion, (&calls, &traced), edits, diagnostics);
             }
         }
     }
@@ -222,26 +242,45 @@ fn with_call_words(program: &Program<'_>, call: usize, mut blocks: Vec<NewBlock>
     blocks
 }
 
-/// Delete the blocks a cycle consumed (not another cycle's call), keeping their comments.
-fn delete_consumed(program: &Program<'_>, expansion: &Expansion, calls: &HashSet<usize>, edits: &mut Edits) {
+/// Delete the blocks a cycle consumed (not another cycle's call, `calls`), keeping every
+/// word of theirs that runs: the cycle's first block ran where it is (`Expansion::setup`),
+/// so its M codes, T words and comments stay there; a profile block's words go with the
+/// written cycle that runs it (`traced`, `back::carry_traced`). A profile block no written
+/// cycle runs keeps its comments where it was; its M codes and T words, which only a
+/// finishing cycle runs, have no block to go on: the cycle is refused (an error in
+/// `diagnostics` on the block), as `verify` would find them lost.
+fn delete_consumed(
+    program: &Program<'_>,
+    expansion: &Expansion,
+    (calls, traced): (&HashSet<usize>, &HashSet<usize>),
+    edits: &mut Edits,
+    diagnostics: &mut Vec<Diagnostic>,
+) {
     let mut plain = Edits::new();
     expand::delete_consumed(&mut plain, program, expansion, calls);
     for &consumed in &expansion.consumed {
         if !plain.touches(consumed) {
             continue;
         }
-        let block = program.block(consumed);
-        let comments: Vec<NewWord> = program
-            .words_of(block)
-            .iter()
-            .enumerate()
-            .filter(|(_, w)| matches!(w.kind, WordKind::Comment(_)))
-            .map(|(k, _)| NewWord::Copy(block.first_word + k as u32))
-            .collect();
-        if comments.is_empty() {
+        let mut words = carried_words(program, consumed);
+        let kept = if expansion.setup == Some(consumed) {
+            words
+        } else if traced.contains(&consumed) {
+            Vec::new()
+        } else {
+            let comment = |word: &NewWord| matches!(word, NewWord::Copy(id) if matches!(program.word(*id).kind, WordKind::Comment(_)));
+            if let Some(&NewWord::Copy(id)) = words.iter().find(|word| !comment(word)) {
+                let span = program.word(id).span;
+                let word = String::from_utf8_lossy(program.text(span)).into_owned();
+                diagnostics.push(Diagnostic::error(DiagnosticKind::ProfileWordNotRun { word }, span));
+            }
+            words.retain(comment);
+            words
+        };
+        if kept.is_empty() {
             edits.delete(consumed);
         } else {
-            edits.replace(consumed, vec![NewBlock::new(comments)]);
+            edits.replace(consumed, vec![NewBlock::new(kept)]);
         }
     }
 }

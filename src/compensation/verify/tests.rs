@@ -161,8 +161,12 @@ fn a_program_verified_against_itself_deviates_as_much_before_as_after() {
     let tools = ToolTable::from_machine(&machine);
     let model = ErrorModel {
         tables: None,
-        effects: vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.004 }), Effect::BacklashZ(BacklashZ { b: 0.003 })],
+        effects: vec![
+            Effect::ToolOffsetX(ToolOffsetX { d: 0.004, axis: X }),
+            Effect::BacklashZ(BacklashZ { b: 0.003, axis: Z }),
+        ],
         start_min: 0.0,
+        control: None,
     };
     let figures = deviation(lowered.valid(), lowered.valid(), &tools, &model, &Sampling::every_mm(0.254));
     assert!(figures.before.max_mm > 0.001, "{figures:?}");
@@ -245,21 +249,21 @@ fn sampling_from_the_model_measures_as_dense_sampling_does() {
     let (lowered, machine) = lower_program(SHAPED);
     let tools = ToolTable::from_machine(&machine);
     let screw = vec![
-        Effect::CyclicZ(CyclicZ { amp: 0.004, pitch: 5.0, phase: 0.3 }),
+        Effect::CyclicZ(CyclicZ { amp: 0.004, pitch: 5.0, phase: 0.3, axis: Z }),
         Effect::Squareness(Squareness { urad: 30.0 }),
     ];
     let mixed = vec![
-        Effect::BacklashX(BacklashX { b: 0.004 }),
+        Effect::BacklashX(BacklashX { b: 0.004, axis: X }),
         Effect::Squareness(Squareness { urad: 30.0 }),
-        Effect::ScaleZ(ScaleZ { ppm: 40.0 }),
-        Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 6.0, phase: 0.3 }),
-        Effect::ThermalZ(ThermalZ { amp: 0.008, tau_min: 2.0 }),
+        Effect::ScaleZ(ScaleZ { ppm: 40.0, axis: Z }),
+        Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 6.0, phase: 0.3, axis: Z }),
+        Effect::ThermalZ(ThermalZ { amp: 0.008, tau_min: 2.0, axis: Z }),
     ];
     let increment = machine.increment * machine.scale();
     let promise = increment / 2.0 / 10.0;
     let toolpath = lowered.valid();
     for (name, effects) in [("screw", screw), ("mixed", mixed)] {
-        let model = ErrorModel { tables: None, effects, start_min: 0.0 };
+        let model = ErrorModel { tables: None, effects, start_min: 0.0, control: None };
         let figures = |sampling: &Sampling| deviation(toolpath, toolpath, &tools, &model, sampling).before;
         let sparse = figures(&sampling(&model, increment, &[&toolpath]));
         let dense = figures(&Sampling::every_mm(0.005));

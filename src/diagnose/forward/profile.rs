@@ -68,7 +68,7 @@ impl Surface {
     }
 }
 
-fn surfaces(nominal: &Nominal) -> Vec<Surface> {
+fn surfaces(nominal: &Nominal, purpose: Use) -> Vec<Surface> {
     let path = &nominal.toolpath;
     let make = |index: usize| -> Option<Surface> {
         let m = path.moves.get(index)?;
@@ -88,14 +88,42 @@ fn surfaces(nominal: &Nominal) -> Vec<Surface> {
         (start.distance(m.contour) > 1e-9).then_some(Surface { index, start, end: m.contour, arc, nose, tip })
     };
     let finishing: Vec<Surface> = nominal.finishing.iter().flat_map(|r| r.clone()).filter_map(make).collect();
-    if finishing.is_empty() { (0..path.moves.len()).filter_map(make).collect() } else { finishing }
+    if !finishing.is_empty() {
+        return finishing;
+    }
+    // No finishing pass: every cut is a surface. Only where the surface is sampled, the move
+    // that brings the tool from the air to a run of cuts is left out (see `approaches`).
+    let approaches = if purpose == Use::Sampling { approaches(path) } else { Vec::new() };
+    (0..path.moves.len()).filter(|i| !approaches.contains(i)).filter_map(make).collect()
+}
+
+/// What the surfaces are for: matching measured points (every surface a point may be on), or
+/// sampling points for `synth` (only where the part surely is).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Use {
+    Matching,
+    Sampling,
+}
+
+/// The approaches of a program with no finishing pass: in each run of two or more cuts
+/// that starts after a rapid (or at the start), the first one. A rapid ends in the air, so
+/// that move starts in the air and ends where the next cut goes on: the lead-in to the
+/// contour (`G01 Z0` from `Z2`). Where a run's first cut is itself part of the contour (a
+/// turning cut started in front of the part), nothing in the program says where the
+/// material begins along it, so it is left out of the sampling as well.
+fn approaches(path: &crate::toolpath::Toolpath) -> Vec<usize> {
+    let cut =
+        |i: usize| path.moves[i].cutting && matches!(path.moves[i].motion, Motion::Feed | Motion::Cw | Motion::Ccw);
+    (0..path.moves.len())
+        .filter(|&i| cut(i) && (i == 0 || !cut(i - 1)) && i + 1 < path.moves.len() && cut(i + 1))
+        .collect()
 }
 
 /// Points on the finished surface every `spacing` mm along each finishing move, at least
 /// half a spacing from its ends, each on the surface the program finishes last there: for
 /// synthesising a CMM profile.
 pub(crate) fn surface_points(nominal: &Nominal, spacing: f64) -> Vec<Xz> {
-    let surfaces = surfaces(nominal);
+    let surfaces = surfaces(nominal, Use::Sampling);
     let spacing = if spacing.is_finite() && spacing > 0.0 { spacing } else { 0.5 };
     let mut out = Vec::new();
     for (k, s) in surfaces.iter().enumerate() {
@@ -140,7 +168,7 @@ pub(crate) fn surface_points(nominal: &Nominal, spacing: f64) -> Vec<Xz> {
 }
 
 pub(super) fn forward(nominal: &Nominal, points: &[ProfilePoint]) -> Result<Forward, ForwardError> {
-    let surfaces = surfaces(nominal);
+    let surfaces = surfaces(nominal, Use::Matching);
     if surfaces.is_empty() {
         return Err(ForwardError::NoCuts);
     }

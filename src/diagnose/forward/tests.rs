@@ -22,7 +22,7 @@ fn trace(step_deg: f64) -> Vec<BallBarRow> {
 }
 
 fn model(effects: Vec<Effect>) -> ErrorModel {
-    ErrorModel { tables: None, effects, start_min: 0.0 }
+    ErrorModel { tables: None, effects, start_min: 0.0, control: None }
 }
 
 #[test]
@@ -59,7 +59,7 @@ fn servo_mismatch_flips_with_the_direction_and_backlash_steps_at_the_reversals()
         assert!((reading - expected).abs() < 2e-8, "{theta}: {reading} vs {expected}");
     }
     let b = 0.004;
-    let simulated = forward.simulate(&model(vec![Effect::BacklashX(BacklashX { b })]));
+    let simulated = forward.simulate(&model(vec![Effect::BacklashX(BacklashX { b, axis: X })]));
     // CCW from the top: X falls from 90° to 270° (slide above its command by b/2) and
     // rises elsewhere; away from the reversals the reading is ∓ b/2 · sin θ.
     for (p, reading) in forward.points.iter().zip(&simulated.readings) {
@@ -75,14 +75,16 @@ fn servo_mismatch_flips_with_the_direction_and_backlash_steps_at_the_reversals()
 fn the_response_of_a_term_without_play_is_the_simulated_change() {
     let nominal = nominal(BALL_BAR);
     let forward = Forward::new(&nominal, &Measured::BallBar(trace(2.0))).unwrap();
-    let known =
-        model(vec![Effect::BacklashZ(BacklashZ { b: 0.003 }), Effect::ThermalX(ThermalX { amp: 0.01, tau_min: 20.0 })]);
+    let known = model(vec![
+        Effect::BacklashZ(BacklashZ { b: 0.003, axis: Z }),
+        Effect::ThermalX(ThermalX { amp: 0.01, tau_min: 20.0, axis: X }),
+    ]);
     let base = forward.simulate(&known);
     for effect in [
-        Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 11.94, phase: 0.4 }),
-        Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 2.0 }),
+        Effect::CyclicZ(CyclicZ { amp: 0.002, pitch: 11.94, phase: 0.4, axis: Z }),
+        Effect::ReversalSpikeX(ReversalSpikeX { h: 0.003, decay_mm: 2.0, axis: X }),
         Effect::ServoMismatch(ServoMismatch { dt_ms: 3.0 }),
-        Effect::BacklashX(BacklashX { b: 0.005 }),
+        Effect::BacklashX(BacklashX { b: 0.005, axis: X }),
     ] {
         let fast = forward.response(&known, &base, &effect);
         let mut with = known.clone();
@@ -139,7 +141,7 @@ fn cmm_points_meet_the_finishing_contour_and_read_the_normal_deviation() {
     }
     // A tool 3 µm out in X: the dome reads 3 µm · sin(angle), the cylinder 3 µm, the
     // shoulder nothing.
-    let simulated = forward.simulate(&model(vec![Effect::ToolOffsetX(ToolOffsetX { dx: 0.003 })]));
+    let simulated = forward.simulate(&model(vec![Effect::ToolOffsetX(ToolOffsetX { d: 0.003, axis: X })]));
     for (p, reading) in forward.points.iter().zip(&simulated.readings) {
         let Projection::Normal { normal, .. } = p.projection else { panic!("not a normal") };
         assert!((reading - 0.003 * normal.x).abs() < 1e-12);

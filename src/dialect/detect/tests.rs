@@ -47,3 +47,20 @@ fn header_shape() {
     assert!(!is_osp_header(b"$ G84 XA=60"));
     assert!(!is_osp_header(b"$H2.45 L2 F2"));
 }
+
+#[test]
+fn turnpass_mark_names_the_dialect_and_decides() {
+    // An expanded OSP program whose only OSP evidence was in the cycle it replaced: the mark
+    // decides, against the Fanuc evidence of its `R` arcs, with no conflict to warn about.
+    let d = decide_text("(TURNPASS 0.1.0 EXPANDED, DIALECT OSP)\nG01 X40. F0.1\nG04 F0.14\nG02 X50. Z-5. R5.\n");
+    assert_eq!((d.dialect, d.choice), (Dialect::Osp, Choice::Detected));
+    assert!(!d.is_conflicted());
+    // In lower case, as a `;` comment, as a field of the provenance comment.
+    let d = decide_text("#1=2\n(turnpass 0.1.0 compensated, model m, dialect osp)\n");
+    assert_eq!(d.dialect, Dialect::Osp);
+    let d = decide_text("$A.MIN%\n; TURNPASS 0.1.0 EXPANDED, DIALECT FANUC\n");
+    assert_eq!(d.dialect, Dialect::Fanuc);
+    // Another comment naming a dialect is no mark.
+    let d = decide_text("(DIALECT OSP)\nG00 X1 Z1\n");
+    assert_eq!(d.choice, Choice::Default);
+}

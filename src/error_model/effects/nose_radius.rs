@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
@@ -63,6 +64,10 @@ impl ParametricEffect for NoseRadius {
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
         NoseRadius { dr: linear[0] }
+    }
+
+    fn control_table(&self) -> TablePart {
+        TablePart::Program("a function of the tool's nose and the surface being cut")
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

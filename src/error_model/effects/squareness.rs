@@ -6,6 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
+use crate::error_model::model_file::Axis;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
@@ -61,6 +63,11 @@ impl ParametricEffect for Squareness {
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
         Squareness { urad: linear[0] }
+    }
+
+    fn control_table(&self) -> TablePart {
+        // X as a function of Z's position.
+        TablePart::CrossAxis(Axis::X)
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

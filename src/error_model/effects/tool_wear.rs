@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bounds::{Invalid, Range};
 use crate::error_model::Sample;
+use crate::error_model::control::TablePart;
 use crate::error_model::fitting::{Extents, Fit, MAX_LINEAR, MICRON, Search, beyond};
 use crate::error_model::spacing::{ArcTerms, Spacing};
 use crate::toolpath::Xz;
@@ -62,6 +63,10 @@ impl ParametricEffect for ToolWear {
 
     fn fitted(linear: [f64; MAX_LINEAR], _searched: f64) -> Self {
         ToolWear { um_per_m: linear[0] }
+    }
+
+    fn control_table(&self) -> TablePart {
+        TablePart::Program("a function of the length the tool has cut")
     }
 
     fn out_of_bounds(&self, _extents: &Extents) -> Option<String> {

@@ -4,8 +4,10 @@
 //! `G71 X Z [A | I] B D [U] H [L] [E] F [J] M3x M7x [Q]`
 //!
 //! `X` is the root diameter at the thread's end `Z`, `H` the thread height and `D` the
-//! first depth (both diameters), `U` the finishing allowance (diameter; no finishing pass
-//! without it), `B` the tool's included angle (0 ≤ B < 180, radial infeed at 0), `M32`/
+//! first depth (both diameters: `H1.84` is the 0.92 mm height of an M20×1.5 thread; [M3277]
+//! P-166…170, dialects.md §1.6, and for `G88` 5238-E P-175, "D, DA, DB, XA, XB, U and H
+//! words must be commanded as diameter values"; the 5238-E page of `G71` itself was not
+//! reached), `U` the finishing allowance (diameter; no finishing pass without it), `B` the tool's included angle (0 ≤ B < 180, radial infeed at 0), `M32`/
 //! `M33`/`M34` the infeed mode and `M73`/`M74`/`M75` the pattern (`thread_infeed.rs` gives
 //! the depths), `Q` the number of starts. `G72` swaps the axes: `X` is where the thread
 //! ends, `Z` the root, `W` the allowance, `K` the taper; its `D`, `H` and `W` run along Z
@@ -30,7 +32,7 @@
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::{GFunction, Role};
 use crate::source::Span;
-use crate::syntax::Command;
+use crate::syntax::{Command, WordKind};
 
 use super::super::interpreter::{Flow, Interpreter};
 use super::Call;
@@ -52,6 +54,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let out = thread_pass::outward(axes, from, end);
     let toward_start = if axes.along(from) >= axes.along(end) { 1.0 } else { -1.0 };
     let height = to_mm(infeed.height);
+    if !axes.face {
+        height_read_as_diameter(interp, command, &infeed, lead_mm);
+    }
     let lead = thread_pass::mean_lead(lead_mm, change, length);
     for pass in &infeed.plan.passes {
         let above_root = height - to_mm(pass.depth);
@@ -72,6 +77,47 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     }
     interp.report_zero_feed(span);
     Flow::Next
+}
+
+/// The height of a 60° thread as a diameter, per unit of pitch: twice the ISO external
+/// thread's 0.6134 × pitch (ISO 68-1 basic profile, h3).
+pub(super) const THREAD_HEIGHT_DIAMETER_PER_PITCH: f64 = 2.0 * 0.6134;
+
+/// A longitudinal OSP thread's `H` is a diameter (see the module documentation): say how
+/// the expansion reads it, and warn where it is nearer the radial height of the thread's
+/// pitch than its height as a diameter (under their geometric mean, the full height / √2),
+/// as a programmer used to Fanuc's radial `G76` heights writes it: `H0.92` for M20×1.5 cuts
+/// 0.46 mm deep, half the thread.
+pub(super) fn height_read_as_diameter(
+    interp: &mut Interpreter<'_, '_>,
+    command: &Command,
+    infeed: &CheckedInfeed,
+    lead_mm: f64,
+) {
+    let frame = interp.modal.frame;
+    let Some(id) = command.param(Role::ThreadHeight) else { return };
+    let word = *interp.program.word(id);
+    let written = match word.kind {
+        WordKind::Number { address, number } => {
+            format!("{}{}", address.name(), crate::syntax::spelling::plain(number))
+        }
+        _ => "H".to_string(),
+    };
+    let depth_mm = frame.x_mm(infeed.height);
+    let passes = infeed.plan.passes.len() * infeed.starts as usize;
+    interp.expansion_note = Some(DiagnosticKind::ThreadHeightAsDiameter { word: written.clone(), depth_mm, passes });
+    let pitch_mm = lead_mm / f64::from(infeed.starts.max(1));
+    let full_mm = THREAD_HEIGHT_DIAMETER_PER_PITCH * pitch_mm;
+    let height_mm = frame.mm(infeed.height);
+    if !frame.diameter || pitch_mm <= 0.0 || height_mm >= full_mm / std::f64::consts::SQRT_2 {
+        return;
+    }
+    let meant = match word.kind {
+        WordKind::Number { .. } => Some(format!("H{}", crate::dialect::roles::short(infeed.height * 2.0))),
+        _ => None,
+    };
+    let kind = DiagnosticKind::ThreadHeightRadial { word: written, depth_mm, pitch_mm, meant };
+    interp.warning(kind, word.span);
 }
 
 /// The infeed a multi-pass thread block asks for, checked: the pass plan (program units),

@@ -224,10 +224,13 @@ pub(in crate::semantic) fn again(interp: &mut Interpreter<'_, '_>, index: usize,
         block: index,
         frame: interp.modal.frame,
         consumed: Vec::new(),
+        setup: None,
+        traced: Vec::new(),
         moves: first_move..interp.emitter.moves.len(),
         before: interp.modal_before_block,
         after: crate::semantic::ModalAfter::of(&interp.modal),
         kept: Some(KEPT),
+        note: None,
     });
     interp.emitter.context.cycle = Span::SYNTHETIC;
     Flow::Next
@@ -299,7 +302,7 @@ fn read_hole(
     };
     // A `Q` the schema reads without a decimal point counts least increments (Fanuc).
     let form = interp.tables.schema(command.schema).forms.get(command.form as usize);
-    let q_in_increments = form.is_some_and(|f| f.integer.contains(&crate::dialect::Address::Q));
+    let q_in_increments = form.is_some_and(|f| f.counts_without_point(crate::dialect::Address::Q));
     let q = if q_in_increments {
         interp.param_increments(command, Role::PeckDepth)
     } else {

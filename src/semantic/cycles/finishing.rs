@@ -57,6 +57,13 @@ impl Interpreter<'_, '_> {
         let saved = self.modal.clone();
         self.emitter.at = profile.start;
         for segment in &profile.segments {
+            // The profile's blocks run here, each from the first move its elements make.
+            let block = self.program.blocks().partition_point(|b| b.span.start <= segment.source.start);
+            if let Some(block) = block.checked_sub(1).filter(|&b| profile.blocks.contains(&b))
+                && self.cycle_traced.last().is_none_or(|&(_, last)| last != block)
+            {
+                self.cycle_traced.push((self.emitter.moves.len(), block));
+            }
             self.modal.feed = if segment.feed > 0.0 { segment.feed } else { feed.unwrap_or(saved.feed) };
             if segment.speed > 0.0 {
                 self.modal.speed = segment.speed;

@@ -54,6 +54,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     }
     let Some(infeed) = infeed_of(interp, command, span) else { return flow };
     let face = contour.direction == Direction::Transverse;
+    if !face {
+        super::compound_thread::height_read_as_diameter(interp, command, &infeed, lead_mm);
+    }
     let axes = Axes { face };
     let frame = interp.modal.frame;
     let to_mm = |d: f64| if face { frame.mm(d) } else { frame.x_mm(d) };

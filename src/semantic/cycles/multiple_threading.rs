@@ -239,7 +239,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     };
     // The first block is part of the cycle: `expand` deletes it.
     if !one_block {
-        interp.consume(interp.cycle_memory.thread.first_block);
+        interp.consume_setup(interp.cycle_memory.thread.first_block);
     }
     let saved = interp.modal.clone();
     // The lead is the F of the thread moves (what `expand` writes on its `G32` blocks).

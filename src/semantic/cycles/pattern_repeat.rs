@@ -83,8 +83,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let after_q = interp.after_profile(command, index);
     // The profile and the first block are part of the cycle: `expand` deletes them.
     interp.consume(profile.blocks.clone());
+    interp.consume_skipped(index, *profile.blocks.start(), after_q);
     if !one_block {
-        interp.consume(interp.cycle_memory.pattern.first_block);
+        interp.consume_setup(interp.cycle_memory.pattern.first_block);
     }
     if profile.segments.is_empty() {
         interp.error(DiagnosticKind::EmptyProfile, span);

@@ -197,7 +197,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
 
     // The first block is part of the cycle: `expand` deletes it.
     if !one_block {
-        interp.consume(interp.cycle_memory.peck.first_block);
+        interp.consume_setup(interp.cycle_memory.peck.first_block);
     }
     let saved = interp.modal.clone();
     interp.modal.feed = interp.param(command, Role::Feed).unwrap_or(saved.feed);

@@ -94,10 +94,13 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         block: index,
         frame: interp.modal.frame,
         consumed: Vec::new(),
+        setup: None,
+        traced: Vec::new(),
         moves: first_move..interp.emitter.moves.len(),
         before: interp.modal_before_block,
         after: crate::semantic::ModalAfter::of(&interp.modal),
         kept: None,
+        note: None,
     });
     Flow::Next
 }

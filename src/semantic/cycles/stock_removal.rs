@@ -111,8 +111,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let after_q = interp.after_profile(command, index);
     // The profile and the first block are part of the cycle: `expand` deletes them.
     interp.consume(profile.blocks.clone());
+    interp.consume_skipped(index, *profile.blocks.start(), after_q);
     if !one_block {
-        interp.consume(interp.cycle_memory.depth_block);
+        interp.consume_setup(interp.cycle_memory.depth_block);
     }
     if profile.segments.is_empty() {
         interp.error(DiagnosticKind::EmptyProfile, span);
@@ -124,15 +125,29 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let rough = Rough { depth, retract, allowance, type_ii, feed, speed, facing };
     if let Err((kind, at)) = rough.cut(interp, &without_exit(&profile, start, allowance, facing), start) {
         let (frame, shift) = (interp.modal.frame, interp.modal.shift);
-        match (rough.wrong_side(&profile, start, frame, shift), at) {
-            (Some(kind), _) => interp.error(kind, span),
+        let reported = match (rough.wrong_side(&profile, start, frame, shift), at) {
+            (Some(kind), _) => {
+                interp.error(kind, span);
+                span
+            }
             // A profile that turns back is marked where it turns, and points to its cycle.
-            (None, Some(block)) => interp.diagnostics.push(
-                crate::diagnostic::Diagnostic::error(kind, block)
-                    .with_related(span, "the cycle that roughs this profile"),
-            ),
-            (None, None) => interp.error(kind, span),
-        }
+            (None, Some(block)) => {
+                interp.diagnostics.push(
+                    crate::diagnostic::Diagnostic::error(kind, block)
+                        .with_related(span, "the cycle that roughs this profile"),
+                );
+                block
+            }
+            (None, None) => {
+                interp.error(kind, span);
+                span
+            }
+        };
+        // The profile's words decide its shape: one read without its decimal point is the
+        // likelier cause (`decimal_point.rs`).
+        let (first, last) =
+            (interp.program.block(*profile.blocks.start()).span, interp.program.block(*profile.blocks.end()).span);
+        interp.slip_scope(reported, first.start, last.end);
     }
     // F and S written in the cycle block are words of that block: they stay modal after
     // it, as every F and S does (a G70 with no F of its own then finishes at that feed
@@ -552,6 +567,19 @@ impl Interpreter<'_, '_> {
     /// Where the program continues after the cycle of block `index` that names a profile:
     /// after its Q block, when that lies ahead (a profile written before its cycle was
     /// already read past; jumping back to it would run the cycle again and again).
+    /// Consume the blocks that the jump after the profile (`after_q`, from [`after_profile`])
+    /// passes over between the call `index` and the profile's first block `first`: the
+    /// control never runs them, so `expand` deletes them with the call. Left in place, they
+    /// would run in the expanded program, whose call is plain moves (a second `G71 P Q`
+    /// sharing the first one's depth block, which the expansion deletes, then has none).
+    ///
+    /// [`after_profile`]: Self::after_profile
+    pub(in crate::semantic) fn consume_skipped(&mut self, index: usize, first: usize, after_q: Flow) {
+        if let Flow::Jump(next) = after_q {
+            self.consume(index + 1..first.min(next));
+        }
+    }
+
     pub(in crate::semantic) fn after_profile(&mut self, command: &Command, index: usize) -> Flow {
         let Some(q) = self.param(command, Role::ProfileEnd) else { return Flow::Next };
         let key = (q.round() as i64).to_string();
