@@ -197,7 +197,9 @@ fn finishing_distance(p: Xz, toolpath: &Toolpath, moves: std::ops::Range<usize>,
         .fold(f64::INFINITY, f64::min)
 }
 
-fn settings(nose: f64) -> Settings {
+/// The test lathe with a bar 1 mm (radius) over the profile's top, its face at Z1: the
+/// roughing cycle's start point and the rapids above the profile stay clear of it.
+fn settings(nose: f64, top: f64) -> Settings {
     let machine = MachineSettings {
         dialect: Some(Dialect::Fanuc),
         home: Some(AxisPair { x: 200.0, z: 50.0 }),
@@ -214,7 +216,7 @@ fn settings(nose: f64) -> Settings {
         machine_kind: None,
         control: Default::default(),
     };
-    let stock = StockSettings { diameter: 80.0, length: 100.0, front: Some(1.0), bore: None };
+    let stock = StockSettings { diameter: 2.0 * (top + 1.0), length: 100.0, front: Some(1.0), bore: None };
     Settings::new(options, &machine, LowerOptions::new(false)).with_part(PartCheck { stock: Some(stock) })
 }
 
@@ -222,7 +224,8 @@ fn settings(nose: f64) -> Settings {
 fn check(job: &Job) -> Result<[f64; 3], TestCaseError> {
     let profile = profile(job);
     let (text, groove_z, groove_x) = program(job, &profile);
-    let settings = settings(job.nose);
+    let top = profile.points.iter().map(|p| p.x).fold(0.0, f64::max);
+    let settings = settings(job.nose, top);
     let analysed = turnpass::pipeline::analyse(text.as_bytes(), &settings);
     let errors: Vec<_> = analysed.diagnostics.iter().filter(|d| d.is_error()).collect();
     prop_assert!(errors.is_empty(), "{text}\n{errors:?}");
