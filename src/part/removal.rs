@@ -5,7 +5,7 @@ use smallvec::SmallVec;
 
 use super::dexel::{Dexels, Edge, STOCK, Span, Spans, Taken};
 use super::stock::Stock;
-use super::sweep::Sweep;
+use super::sweep::{Sweep, Wedge};
 use super::tool::{self, Orientation, Tool};
 use crate::semantic::Machine;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
@@ -260,9 +260,11 @@ fn stamps(threaded: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Sto
     (first, (last - first) as u64 + 1)
 }
 
-/// The insert's body swept along an arc: along chords of at most 45°, each moved toward
-/// the part by its sagitta and held to the part's side of the circle the nose sweeps, so the
-/// body never reaches past the nose's own sweep and leaves no film beside it.
+/// The insert's body swept along an arc: the body at the arc's two ends, and along chords of
+/// at most 45°, each moved toward the part by its sagitta and held to the part's side of the
+/// circle the nose sweeps and to the angles it spans, so the body never reaches past the
+/// nose's own sweep (a chord's rounded end beside the nose's disk at the arc's end would
+/// reach past it by a micrometre) and leaves no film beside it.
 fn arc_body(tool: &Tool, c0: Xz, c1: Xz, centre: Xz, ccw: bool, out: &mut SmallVec<[Sweep; 6]>) {
     let radius = c0.distance(centre);
     let a0 = crate::geometry::angle(c0, centre);
@@ -272,6 +274,8 @@ fn arc_body(tool: &Tool, c0: Xz, c1: Xz, centre: Xz, ccw: bool, out: &mut SmallV
     // Where the body lies from the nose centre.
     let body = tool.core.iter().fold(Xz::new(0.0, 0.0), |s, p| Xz::new(s.x + p.x, s.z + p.z));
     let sagitta = radius * (1.0 - (step.abs() / 2.0).cos());
+    out.push(Sweep::rounded(tool.placed(c0), tool.nose));
+    out.push(Sweep::rounded(tool.placed(c1), tool.nose));
     for k in 0..pieces {
         let (from, to) = (a0 + step * k as f64, a0 + step * (k + 1) as f64);
         let mid = (from + to) / 2.0;
@@ -284,18 +288,9 @@ fn arc_body(tool: &Tool, c0: Xz, c1: Xz, centre: Xz, ccw: bool, out: &mut SmallV
             Xz::new(centre.x + r * a.sin(), centre.z + r * a.cos())
         };
         let (p0, p1) = (p(from), p(to));
-        if shift > 0.0 && k == 0 {
-            out.push(Sweep::rounded(tool.placed(c0), tool.nose));
-        }
-        if shift > 0.0 && k + 1 == pieces {
-            out.push(Sweep::rounded(tool.placed(c1), tool.nose));
-        }
         let inner = Sweep::rounded(tool.placed(p0).chain(tool.placed(p1)), tool.nose);
         let clip = if part_inside { radius - tool.nose } else { radius + tool.nose };
-        if part_inside && clip <= 0.0 {
-            out.push(inner);
-        } else {
-            out.push(Sweep::Clipped { inner: Box::new(inner), centre, radius: clip, outside: part_inside });
-        }
+        let wedge = Wedge::between(centre, from, to);
+        out.push(Sweep::Clipped { inner: Box::new(inner), centre, radius: clip, outside: part_inside, wedge });
     }
 }
