@@ -179,6 +179,15 @@ impl<'a> Removal<'a> {
         }
         let start = toolpath.start_of(index);
         let tool = self.tool(m, start);
+        // Most moves of a long program run in air: a move whose tool's box meets no material
+        // does nothing, and its sweeps are not built (a thread pass's count of leads is).
+        if !m.threading {
+            let (lo, hi) = reach_of_move(&tool, start, m);
+            if !self.dexels.may_meet(lo, hi) {
+                self.thread = None;
+                return Some(Outcome::default());
+            }
+        }
         let sweeps = self.sweeps(&tool, start, m)?;
         let planned: u64 = sweeps.iter().map(|s| self.dexels.rays_crossed(s)).sum();
         if self.visits + planned > MAX_RAY_VISITS {
@@ -229,6 +238,32 @@ impl<'a> Removal<'a> {
         };
         Some(Outcome { met: taken.total, depth })
     }
+}
+
+/// A box that holds everything the tool of move `m` (from `start`) sweeps: its nose centre's
+/// path (with an arc's extremes, and the sagitta its body's chords are moved by, `arc_body`)
+/// grown by the core's extent and the nose.
+fn reach_of_move(tool: &Tool, start: Xz, m: &Move) -> (Xz, Xz) {
+    let (c0, c1) = (tool.centre(start), tool.centre(m.end));
+    let mut lo = Xz::new(c0.x.min(c1.x), c0.z.min(c1.z));
+    let mut hi = Xz::new(c0.x.max(c1.x), c0.z.max(c1.z));
+    if m.is_arc() {
+        let centre = tool.centre(m.centre);
+        for p in crate::geometry::arc_extremes(c0, c1, centre, m.motion == Motion::Ccw) {
+            lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
+            hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
+        }
+        let sagitta = c0.distance(centre) * (1.0 - (std::f64::consts::PI / 8.0).cos());
+        lo = Xz::new(lo.x - sagitta, lo.z - sagitta);
+        hi = Xz::new(hi.x + sagitta, hi.z + sagitta);
+    }
+    let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+    for p in &tool.core {
+        core_lo = Xz::new(core_lo.x.min(p.x), core_lo.z.min(p.z));
+        core_hi = Xz::new(core_hi.x.max(p.x), core_hi.z.max(p.z));
+    }
+    let r = tool.nose;
+    (Xz::new(lo.x + core_lo.x - r, lo.z + core_lo.z - r), Xz::new(hi.x + core_hi.x + r, hi.z + core_hi.z + r))
 }
 
 /// Where a thread pass stamps its form along a move: every lead from where the pass began

@@ -138,9 +138,11 @@ fn program(job: &Job, profile: &Profile) -> (String, f64, f64) {
     text += &(lines.join("\n") + "\n");
     text += "G70 P100 Q200\nG00 X100. Z50.\n";
     // The groove: 3 mm wide from 4 mm in front of the profile's end, set at its left corner.
-    let groove_z = end + 4.0;
+    // The groove and the thread where the program puts them: as written, to 4 decimals.
+    let written = |value: f64| format!("{value:.4}").parse::<f64>().unwrap();
+    let groove_z = written(end + 4.0);
     let last_radius = profile.points.last().unwrap().x;
-    let groove_x = last_radius - job.groove_depth;
+    let groove_x = written(2.0 * (last_radius - job.groove_depth)) / 2.0;
     text += &format!(
         "T0303 S600\nG00 X{} Z{}\nG01 X{} F0.05\nG00 X{}\nG00 X100. Z50.\n",
         d(last_radius + 1.0),
@@ -158,6 +160,11 @@ fn program(job: &Job, profile: &Profile) -> (String, f64, f64) {
         d(job.start_radius + 1.0)
     );
     (text, groove_z, groove_x)
+}
+
+/// The thread pass's X (radius) as the program writes it.
+fn thread_root(job: &Job) -> f64 {
+    format!("{:.4}", 2.0 * (job.start_radius - 0.6 * job.thread_lead)).parse::<f64>().unwrap() / 2.0
 }
 
 fn distance_to_segment(p: Xz, a: Xz, b: Xz) -> f64 {
@@ -261,7 +268,7 @@ fn check(job: &Job) -> Result<[f64; 3], TestCaseError> {
         } else if m.threading {
             // The 60° V with a 0.1 nose, its nose centre 0.1 above the pass's X at the stamp:
             // the nearest stamp is a whole number of leads from Z4.
-            let root = job.start_radius - 0.6 * job.thread_lead;
+            let root = thread_root(job);
             let k = ((4.0 - point.at.z) / job.thread_lead).round();
             let apex = Xz::new(root + 0.1, 4.0 - k * job.thread_lead);
             let (s, c) = (30f64.to_radians().sin(), 30f64.to_radians().cos());
