@@ -342,7 +342,10 @@ pub fn checked(
         Watch::Each(each) => deviation_each(original_path, compensated_path, &tools, model, &sampling, each),
         Watch::Progress(watch) => deviation_watched(original_path, compensated_path, &tools, model, &sampling, watch),
     };
-    let words = check_words(&original.parsed.program, &compensated.parsed.program);
+    let words = check_words(
+        (&original.parsed.program, &original.lowered.expansions),
+        (&compensated.parsed.program, &compensated.lowered.expansions),
+    );
     if let Some(change) = check_feeds(&original_path, &compensated_path) {
         let line = LineIndex::new(original_bytes).position(change.source.start).0;
         violations.push(format!(
