@@ -312,10 +312,10 @@ fn lsp(c: &mut Criterion) {
         let clean_last = median(&mut clean.iter_mut().map(|o| o.1).collect::<Vec<_>>());
         let document = Document::new(text.as_bytes().to_vec(), options());
         let parse = median_seconds(|| drop(black_box(Document::new(text.as_bytes().to_vec(), options()))), rounds);
-        let job = SemanticJob::new(document.snapshot(), &MachineSettings::default());
+        let job = SemanticJob::new(document.snapshot(), &MachineSettings::default(), None);
         let semantic_count = job.run().len();
         let radius = MachineSettings { diameter_programming: Some(false), ..MachineSettings::default() };
-        let clean_count = SemanticJob::new(document.snapshot(), &radius).run().len();
+        let clean_count = SemanticJob::new(document.snapshot(), &radius, None).run().len();
         let semantic = median_seconds(|| drop(black_box(job.run())), rounds);
         report.push_str(&format!(
             "turnpass-bench: {mb:.2} MB, {} chunks, {} parse and {semantic_count} semantic diagnostics: keystroke \

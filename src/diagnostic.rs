@@ -430,6 +430,27 @@ pub enum DiagnosticKind {
     },
     /// A move that ends before it starts, or before the previous move ended.
     TimeGoesBack,
+    /// A rapid move whose tool (its nose and the insert behind it) passes through material
+    /// that is still there: a crash. `depth_mm` is how far into the material it goes;
+    /// `assumed` when the stock was assumed (no `[stock]`), which makes it a note.
+    RapidIntoStock {
+        depth_mm: f64,
+        assumed: bool,
+    },
+    /// A feed move that engages more material across its direction than the tool's
+    /// `max_depth`.
+    CutTooDeep {
+        depth_mm: f64,
+        max_mm: f64,
+        assumed: bool,
+    },
+    /// The part model stopped at this block: the program asks more work of it than its
+    /// bound (`rays` ray visits in a run, `stamps` thread forms in a move); the moves after
+    /// it are not checked against the stock.
+    PartModelStopped {
+        rays: u64,
+        stamps: u64,
+    },
     /// A point of the toolpath outside the machine's travel.
     OutsideTravel {
         x_mm: f64,

@@ -36,6 +36,7 @@ pub mod machine;
 pub mod measurement_file;
 mod memory;
 pub mod parallel;
+pub mod part;
 pub mod pipeline;
 pub mod plot;
 pub mod printer;

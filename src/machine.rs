@@ -110,6 +110,120 @@ pub struct ToolSettings {
     /// Minor cutting edge angle, degrees, for the roughness estimate (eq. 9.1 of the
     /// thesis); within `MINOR_EDGE_ANGLE`.
     pub minor_edge_angle: Option<f64>,
+    /// What the tool is (`turning` when absent): the shape the part model cuts with.
+    pub kind: Option<ToolKind>,
+    /// A threading insert's included angle, degrees (60 for ISO and UN threads when
+    /// absent); within `THREAD_ANGLE`. Only for `kind = "threading"`.
+    pub angle: Option<f64>,
+    /// A drill's diameter, machine units; within `TOOL_SIZE`. Needed by `kind = "drill"`.
+    pub diameter: Option<f64>,
+    /// A grooving or part-off insert's width, machine units, at least twice its nose
+    /// radius; within `TOOL_SIZE`. Without it the insert cuts as a round nose.
+    pub width: Option<f64>,
+    /// The deepest cut the tool takes, machine units: a feed move that engages more gets a
+    /// warning; within `TOOL_SIZE`.
+    pub max_depth: Option<f64>,
+}
+
+/// What a tool of the table is, for the part model: the shape it cuts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ToolKind {
+    /// A turning or boring insert: a round nose (the nose radius) on an insert behind it.
+    #[default]
+    Turning,
+    /// A grooving or part-off insert: `width` wide, its corners rounded by the nose radius.
+    Grooving,
+    /// A threading insert: a V of `angle` rounded by the nose radius.
+    Threading,
+    /// A drill on the spindle axis: a cylinder of `diameter`.
+    Drill,
+}
+
+/// The `[stock]` table of a model file: the bar a program starts from, in the machine's
+/// units. `diameter` and `bore` are diameters whatever the machine programs (a bar is
+/// bought by its diameter).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StockSettings {
+    /// The bar's outer diameter; within `STOCK_SIZE`.
+    pub diameter: f64,
+    /// Its length from the front face toward the chuck; within `STOCK_SIZE`.
+    pub length: f64,
+    /// The Z of its front face (0 when absent); within `POSITION`.
+    pub front: Option<f64>,
+    /// The diameter of a bore through it (a tube); within `STOCK_SIZE`, below `diameter`.
+    pub bore: Option<f64>,
+}
+
+/// Plausible stock sizes, machine units: more than nothing, at most 10,000.
+pub const STOCK_SIZE: Range = Range::positive(10_000.0, "");
+/// Plausible tool sizes (drill diameter, insert width, depth of cut), machine units: more
+/// than nothing, at most 500.
+pub const TOOL_SIZE: Range = Range::positive(500.0, "");
+/// Plausible thread forms: an included angle from 10 to 120 degrees (29° ACME to 80° PG).
+pub const THREAD_ANGLE: Range = Range::closed(10.0, 120.0, "degrees");
+
+impl StockSettings {
+    /// The `[stock]` table of `document`, read and checked; none without one.
+    pub fn read(document: &Document<'_>) -> Result<Option<StockSettings>, Vec<Diagnostic>> {
+        let table = [Step::from("stock")];
+        let Some(stock) = document.read::<StockSettings>(&table).map_err(|d| vec![d])? else { return Ok(None) };
+        let mut problems: Vec<Diagnostic> = stock.check().iter().map(|bad| document.invalid(&table, bad)).collect();
+        problems.sort_by_key(|d| d.span.start);
+        if problems.is_empty() { Ok(Some(stock)) } else { Err(problems) }
+    }
+
+    /// Every value outside its range or breaking a rule, with its key.
+    pub fn check(&self) -> Vec<Invalid> {
+        let mut problems = Vec::new();
+        let results = [
+            STOCK_SIZE.check_key("diameter", self.diameter),
+            STOCK_SIZE.check_key("length", self.length),
+            POSITION.check_option("front", self.front),
+            STOCK_SIZE.check_option("bore", self.bore),
+        ];
+        problems.extend(results.into_iter().filter_map(Result::err));
+        if let Some(bore) = self.bore
+            && bore >= self.diameter
+        {
+            let rule = Reason::Rule("a bore is smaller than the bar's diameter");
+            problems.push(Invalid { path: vec![Key::Name("bore")], reason: rule });
+        }
+        problems
+    }
+
+    /// `diameter=50,length=120[,front=0][,bore=20]`, the form of `--stock`, checked as the
+    /// table is.
+    pub fn parse(text: &str) -> Result<StockSettings, String> {
+        let mut values: [Option<f64>; 4] = [None; 4];
+        const KEYS: [&str; 4] = ["diameter", "length", "front", "bore"];
+        for item in text.split(',').map(str::trim).filter(|item| !item.is_empty()) {
+            let (key, value) =
+                item.split_once('=').ok_or_else(|| format!("`{item}` is not KEY=VALUE (keys: {})", KEYS.join(", ")))?;
+            let slot = KEYS
+                .iter()
+                .position(|k| *k == key.trim())
+                .ok_or_else(|| format!("`{}` is not a key of the stock (keys: {})", key.trim(), KEYS.join(", ")))?;
+            let value: f64 = value.trim().parse().map_err(|_| format!("`{}` is not a number", value.trim()))?;
+            values[slot] = Some(value);
+        }
+        let need = |slot: usize| values[slot].ok_or_else(|| format!("the stock needs `{}=`", KEYS[slot]));
+        let stock = StockSettings { diameter: need(0)?, length: need(1)?, front: values[2], bore: values[3] };
+        match stock.check().first() {
+            None => Ok(stock),
+            Some(bad) => {
+                let key = match bad.path.first() {
+                    Some(Key::Name(name)) => *name,
+                    _ => "stock",
+                };
+                Err(match bad.reason {
+                    Reason::OutOfRange(error) => format!("{key}: {error}"),
+                    Reason::Rule(rule) => format!("{key}: {rule}"),
+                })
+            }
+        }
+    }
 }
 
 /// The rule of units of a model file, quoted where a key breaks it (`docs/error-model.md`,
@@ -163,6 +277,8 @@ pub const SCREW_PITCH: Range = Range::closed(0.1, 1_000.0, "mm");
 #[derive(Debug, Clone, Default)]
 pub struct ModelFile {
     pub machine: MachineSettings,
+    /// The `[stock]` table, when the file has one.
+    pub stock: Option<StockSettings>,
 }
 
 impl ModelFile {
@@ -170,8 +286,16 @@ impl ModelFile {
     /// tables are the error model's (`error_model::model_file`).
     pub fn from_toml(text: &str) -> Result<ModelFile, Problems> {
         let document = Document::parse(text).map_err(|d| Problems::new(text, vec![d]))?;
-        let machine = MachineSettings::read(&document).map_err(|d| Problems::new(text, d))?;
-        Ok(ModelFile { machine })
+        let machine = MachineSettings::read(&document);
+        let stock = StockSettings::read(&document);
+        match (machine, stock) {
+            (Ok(machine), Ok(stock)) => Ok(ModelFile { machine, stock }),
+            (machine, stock) => {
+                let mut problems: Vec<Diagnostic> = machine.err().into_iter().chain(stock.err()).flatten().collect();
+                problems.sort_by_key(|d| d.span.start);
+                Err(Problems::new(text, problems))
+            }
+        }
     }
 }
 
@@ -263,6 +387,30 @@ impl MachineSettings {
             if tool.tip > 9 {
                 let rule = Reason::Rule("an imaginary tip direction is 0 to 9");
                 push(Err(Invalid { path: vec![Key::Name("tip")], reason: rule }), &within);
+            }
+            push(THREAD_ANGLE.check_option("angle", tool.angle), &within);
+            push(TOOL_SIZE.check_option("diameter", tool.diameter), &within);
+            push(TOOL_SIZE.check_option("width", tool.width), &within);
+            push(TOOL_SIZE.check_option("max_depth", tool.max_depth), &within);
+            let kind = tool.kind.unwrap_or_default();
+            let rule = |key: &'static str, rule: &'static str| {
+                Err(Invalid { path: vec![Key::Name(key)], reason: Reason::Rule(rule) })
+            };
+            if tool.angle.is_some() && kind != ToolKind::Threading {
+                push(rule("angle", "an included angle is a threading insert's (kind = \"threading\")"), &within);
+            }
+            if tool.width.is_some() && kind != ToolKind::Grooving {
+                push(rule("width", "a width is a grooving insert's (kind = \"grooving\")"), &within);
+            }
+            match (kind, tool.diameter) {
+                (ToolKind::Drill, None) => push(rule("kind", "a drill needs its `diameter`"), &within),
+                (ToolKind::Drill, Some(_)) | (_, None) => {}
+                (_, Some(_)) => push(rule("diameter", "a diameter is a drill's (kind = \"drill\")"), &within),
+            }
+            if let Some(width) = tool.width
+                && width < 2.0 * tool.nose_radius
+            {
+                push(rule("width", "an insert is at least twice its nose radius wide"), &within);
             }
         }
         problems

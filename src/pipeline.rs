@@ -13,6 +13,7 @@
 
 use crate::diagnostic::Diagnostic;
 use crate::machine::MachineSettings;
+use crate::part::{self, PartCheck, PartRun};
 use crate::semantic::{self, LowerOptions, Lowered, Machine};
 use crate::syntax::{self, ParseOptions, Parsed, Program};
 use crate::toolpath::{ValidToolpath, Validated};
@@ -23,12 +24,20 @@ pub struct Settings {
     pub parse: ParseOptions,
     pub machine: Machine,
     pub lower: LowerOptions,
+    /// Run the part model on the valid toolpath (`check`, `simulate`, the language server):
+    /// its crashes and deep cuts join the diagnostics.
+    pub part: Option<PartCheck>,
 }
 
 impl Settings {
     /// A program read with `parse` and run with `lower` on the machine `machine` describes.
     pub fn new(parse: ParseOptions, machine: &MachineSettings, lower: LowerOptions) -> Settings {
-        Settings { parse, machine: Machine::from_settings(machine), lower }
+        Settings { parse, machine: Machine::from_settings(machine), lower, part: None }
+    }
+
+    /// These settings with the part model run on `check`'s stock.
+    pub fn with_part(self, check: PartCheck) -> Settings {
+        Settings { part: Some(check), ..self }
     }
 }
 
@@ -38,8 +47,11 @@ pub struct Analysed<'src> {
     pub parsed: Parsed<'src>,
     pub machine: Machine,
     pub lowering: Lowering,
-    /// Every diagnostic: the parse's, the lowering's and the validation's, in program order.
+    /// Every diagnostic: the parse's, the lowering's and the validation's (and the part
+    /// model's), in program order.
     pub diagnostics: Vec<Diagnostic>,
+    /// The part model's run, when the settings ask for it and the toolpath is valid.
+    pub part: Option<PartRun>,
 }
 
 /// How far a parsed program got.
@@ -77,7 +89,9 @@ impl<'src> Analysed<'src> {
             return Err(Box::new(self));
         }
         match self.lowering {
-            Lowering::Valid(lowered) => Ok(Ready { parsed: self.parsed, lowered, machine: self.machine }),
+            Lowering::Valid(lowered) => {
+                Ok(Ready { parsed: self.parsed, lowered, machine: self.machine, part: self.part })
+            }
             lowering => Err(Box::new(Analysed { lowering, ..self })),
         }
     }
@@ -90,6 +104,8 @@ pub struct Ready<'src> {
     pub parsed: Parsed<'src>,
     pub lowered: Validated<Lowered>,
     pub machine: Machine,
+    /// The part model's run, when the settings asked for it.
+    pub part: Option<PartRun>,
 }
 
 impl Ready<'_> {
@@ -107,43 +123,65 @@ impl Ready<'_> {
 /// Parse `source`, lower it and validate its toolpath (see the module documentation).
 pub fn analyse<'src>(source: &'src [u8], settings: &Settings) -> Analysed<'src> {
     let parsed = syntax::parse(source, &settings.parse);
-    let (lowering, diagnostics) = lower_and_validate(&parsed, settings);
-    Analysed { parsed, machine: settings.machine.clone(), lowering, diagnostics }
+    let (lowering, diagnostics, part) = lower_and_validate(&parsed, settings);
+    Analysed { parsed, machine: settings.machine.clone(), lowering, diagnostics, part }
 }
 
 /// Lower `parsed` and validate its toolpath, whatever the parse found; every diagnostic,
 /// the parse's included, in program order.
-fn lower_and_validate(parsed: &Parsed<'_>, settings: &Settings) -> (Lowering, Vec<Diagnostic>) {
-    let (lowering, found) = lower_program(&parsed.program, &settings.machine, &settings.lower);
+fn lower_and_validate(parsed: &Parsed<'_>, settings: &Settings) -> (Lowering, Vec<Diagnostic>, Option<PartRun>) {
+    let (lowering, found, part) =
+        lower_program(&parsed.program, &settings.machine, &settings.lower, settings.part.as_ref());
     let mut diagnostics = parsed.diagnostics.clone();
     diagnostics.extend(found);
     diagnostics.sort_by_key(|d| d.span.start);
-    (lowering, diagnostics)
+    (lowering, diagnostics, part)
 }
 
-/// Lower `program` and validate its toolpath against the machine's travel limits: how far
-/// it got, and the lowering's diagnostics and the toolpath's problems (not the parse's).
-fn lower_program(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> (Lowering, Vec<Diagnostic>) {
+/// Lower `program` and validate its toolpath against the machine's travel limits, and with
+/// `part` run the part model on a valid toolpath: how far it got, and the lowering's
+/// diagnostics, the toolpath's problems and the part model's findings (not the parse's).
+fn lower_program(
+    program: &Program<'_>,
+    machine: &Machine,
+    options: &LowerOptions,
+    part: Option<&PartCheck>,
+) -> (Lowering, Vec<Diagnostic>, Option<PartRun>) {
     if !semantic::lowers(program) {
-        return (Lowering::NotLowered, Vec::new());
+        return (Lowering::NotLowered, Vec::new(), None);
     }
     let lowered = semantic::lower(program, machine, options);
     let mut diagnostics = lowered.diagnostics.clone();
+    let mut run = None;
     let lowering = match Validated::new(lowered, machine.limits) {
-        Ok(valid) => Lowering::Valid(valid),
+        Ok(valid) => {
+            // A run with an error skipped the block in error: its part is not one the control
+            // makes, so the part model judges only a clean run (as `simulate` prints one).
+            if let Some(check) = part.filter(|_| !diagnostics.iter().any(Diagnostic::is_error)) {
+                let found = part::run(valid.valid(), machine, check);
+                diagnostics.extend(found.diagnostics.iter().cloned());
+                run = Some(found);
+            }
+            Lowering::Valid(valid)
+        }
         Err((lowered, problems)) => {
             diagnostics.extend(problems);
             Lowering::Invalid(lowered)
         }
     };
-    (lowering, diagnostics)
+    (lowering, diagnostics, run)
 }
 
-/// What lowering and validation find in `program` beyond its parse, in program order (none
-/// for a program the semantic pass does not lower): the language server's semantic
-/// diagnostics, the same `analyse` gives `check` and `simulate`.
-pub fn semantic_diagnostics(program: &Program<'_>, machine: &Machine, options: &LowerOptions) -> Vec<Diagnostic> {
-    let (_, mut diagnostics) = lower_program(program, machine, options);
+/// What lowering and validation (and with `part` the part model) find in `program` beyond
+/// its parse, in program order (none for a program the semantic pass does not lower): the
+/// language server's semantic diagnostics, the same `analyse` gives `check` and `simulate`.
+pub fn semantic_diagnostics(
+    program: &Program<'_>,
+    machine: &Machine,
+    options: &LowerOptions,
+    part: Option<&PartCheck>,
+) -> Vec<Diagnostic> {
+    let (_, mut diagnostics, _) = lower_program(program, machine, options, part);
     diagnostics.sort_by_key(|d| d.span.start);
     diagnostics
 }

@@ -158,8 +158,10 @@ impl Machine {
 /// `[machine]` key that sets it (`units = "mm", least_increment = 0.001, …`), for the note
 /// that says a program is read with the machine defaults because no model file gives
 /// settings. The values are read from [`Machine::from_settings`] and the settings' own
-/// defaults, so the note says what is in force and states no number of its own.
-pub fn settings_in_force(settings: &MachineSettings) -> String {
+/// defaults, so the note says what is in force and states no number of its own. `stock` is
+/// for a run of the part model: whether a `[stock]` table or `--stock` gives the bar (without
+/// one it is assumed, and the note says so); none for a run without it.
+pub fn settings_in_force(settings: &MachineSettings, stock: Option<bool>) -> String {
     let machine = Machine::from_settings(settings);
     let given = [
         format!("units = {}", toml_string(&machine.units)),
@@ -179,6 +181,7 @@ pub fn settings_in_force(settings: &MachineSettings) -> String {
         ("travel", machine.limits.is_none()),
         ("max_spindle_rpm", machine.max_rpm.is_infinite()),
         ("tool table", machine.tools.is_empty()),
+        ("stock", stock == Some(false)),
     ]
     .into_iter()
     .filter_map(|(name, missing)| missing.then_some(name))
@@ -189,6 +192,9 @@ pub fn settings_in_force(settings: &MachineSettings) -> String {
     }
     if machine.rapid_assumed {
         parts.push(format!("rapid traverse assumed {} mm/min per axis", machine.rapid.x));
+    }
+    if stock == Some(false) {
+        parts.push("stock assumed: the smallest bar holding every cutting move's start".to_string());
     }
     parts.join("; ")
 }

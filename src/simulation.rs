@@ -17,7 +17,6 @@ use std::ops::Range;
 
 use serde::Serialize;
 
-use crate::machine::ToolSettings;
 use crate::semantic::{Lowered, Machine};
 use crate::source::{LineIndex, Span};
 use crate::syntax::Program;
@@ -63,6 +62,50 @@ pub struct Summary {
     /// True when the machine settings gave no rapid rate and 10 m/min was assumed.
     pub rapid_rate_assumed: bool,
     pub finishing_passes: Vec<FinishingPass>,
+    /// What the part model found, when it ran.
+    pub part: Option<PartFigures>,
+}
+
+/// The part model's figures in `simulate`'s summary: the stock, and the feed moves that cut
+/// air (remove nothing) with the time they take.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct PartFigures {
+    /// True when neither `[stock]` nor `--stock` gave the bar.
+    pub stock_assumed: bool,
+    pub stock_diameter_mm: f64,
+    pub stock_bore_mm: f64,
+    pub stock_front_mm: f64,
+    pub stock_length_mm: f64,
+    pub air_moves: usize,
+    pub air_time_s: f64,
+    pub air_length_mm: f64,
+    /// The Z where a part-off cut the part from the bar, if one did.
+    pub parted_off_at_mm: Option<f64>,
+    /// The move at which the part model stopped at its bound, if it did.
+    pub stopped_at_move: Option<usize>,
+}
+
+impl Summary {
+    /// The summary with the part model's figures, when it ran and found a stock.
+    pub fn with_part(self, run: Option<&crate::part::PartRun>) -> Summary {
+        let figures = run.and_then(|run| {
+            let summary = run.summary.as_ref()?;
+            let stock = summary.stock;
+            Some(PartFigures {
+                stock_assumed: stock.assumed,
+                stock_diameter_mm: 2.0 * stock.outer,
+                stock_bore_mm: 2.0 * stock.bore,
+                stock_front_mm: stock.front,
+                stock_length_mm: stock.front - stock.back,
+                air_moves: summary.air_moves,
+                air_time_s: summary.air_time_s,
+                air_length_mm: summary.air_length_mm,
+                parted_off_at_mm: run.part.as_ref().and_then(|p| p.separated_at),
+                stopped_at_move: summary.stopped_at,
+            })
+        });
+        Summary { part: figures, ..self }
+    }
 }
 
 /// The rows of a toolpath, one per move, made as they are read (as a JSON array, through
@@ -139,14 +182,6 @@ pub fn write_csv(rows: Rows<'_>, out: impl std::io::Write) -> Result<(), csv::Er
     Ok(())
 }
 
-fn tool_entry(machine: &Machine, station: u16, offset: u16) -> Option<&ToolSettings> {
-    machine
-        .tools
-        .iter()
-        .find(|t| t.station as u16 == station && t.offset.unwrap_or(t.station) as u16 == offset)
-        .or_else(|| machine.tools.iter().find(|t| t.station as u16 == station))
-}
-
 /// Peak-to-valley roughness for feed `f` per revolution and nose radius `r` (mm), and the
 /// formula used; see the module documentation.
 pub fn roughness(f: f64, r: f64, minor_edge_angle_deg: Option<f64>) -> (f64, &'static str) {
@@ -201,7 +236,7 @@ pub fn summary(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Ma
             .collect();
         let Some((_, first)) = cutting.first() else { return };
         let feed_per_rev = cutting.iter().map(|(i, m)| per_rev(*i, m)).fold(0.0, f64::max);
-        let entry = tool_entry(machine, first.tool, first.offset);
+        let entry = crate::part::tool::entry(machine, first.tool, first.offset);
         let nose = entry.map_or(0.0, |t| t.nose_radius * machine.scale());
         let (roughness_mm, formula) = if nose > 0.0 {
             let (value, formula) = roughness(feed_per_rev, nose, entry.and_then(|t| t.minor_edge_angle));
@@ -231,6 +266,7 @@ pub fn summary(program: &Program<'_>, lowered: &Validated<Lowered>, machine: &Ma
         cutting_length_mm: cutting_length,
         rapid_rate_assumed: machine.rapid_assumed,
         finishing_passes: passes,
+        part: None,
     }
 }
 

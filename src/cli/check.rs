@@ -13,8 +13,8 @@ use turnpass::source::LineIndex;
 use turnpass::syntax::{self, Statement};
 
 use super::common::{
-    CliError, Format, ReadArgs, RunArgs, analyse, display_name, model_source, note_machine_defaults, pipeline_settings,
-    plural, read_input, resolve,
+    CliError, Format, ReadArgs, RunArgs, StockArgs, analyse, display_name, model_source, note_machine_defaults,
+    pipeline_settings, plural, read_input, resolve,
 };
 use super::streams;
 
@@ -27,6 +27,8 @@ pub struct CheckArgs {
     read: ReadArgs,
     #[command(flatten)]
     run: RunArgs,
+    #[command(flatten)]
+    stock: StockArgs,
     /// Check the syntax only: the parse, without the semantic pass (P/Q targets, arcs,
     /// profiles, feeds) and the toolpath's checks.
     #[arg(long)]
@@ -46,7 +48,12 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
     for path in &args.files {
         let resolved = resolve(&args.read, path)?;
         let bytes = read_input(path)?;
-        note_machine_defaults(&resolved, (!args.syntax_only).then_some(&args.run));
+        let part = args.stock.check(&resolved);
+        note_machine_defaults(
+            &resolved,
+            (!args.syntax_only).then_some(&args.run),
+            (!args.syntax_only).then_some(part.stock.is_some()),
+        );
         let name = display_name(path);
         // A file that is not text gets one diagnostic, not a parse that echoes its bytes.
         if let Some(not_text) = turnpass::source::not_text(&bytes) {
@@ -69,7 +76,7 @@ pub fn check(args: CheckArgs) -> Result<ExitCode, CliError> {
             let diagnostics = parsed.diagnostics.clone();
             (parsed, diagnostics)
         } else {
-            let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
+            let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true).with_part(part));
             (analysed.parsed, analysed.diagnostics)
         };
         if let Some(warning) = parsed.program.nothing_to_run() {

@@ -13,8 +13,9 @@ use turnpass::diagnostic::{Diagnostic, DiagnosticKind, SHOWN_DIAGNOSTICS, Severi
 use turnpass::dialect::{Control, DecimalInput, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, ModelSpec};
-use turnpass::machine::{MachineSettings, ModelFile};
+use turnpass::machine::{MachineSettings, ModelFile, StockSettings};
 use turnpass::parallel::Tuning;
+use turnpass::part::PartCheck;
 use turnpass::pipeline::{self, Analysed, Lowering, Ready};
 use turnpass::semantic::{self, LowerOptions};
 use turnpass::source::escape_controls;
@@ -29,6 +30,24 @@ pub struct RunArgs {
     /// settings, else off).
     #[arg(long, value_enum)]
     pub block_delete: Option<Switch>,
+}
+
+/// The bar a run starts from (`check`, `simulate`).
+#[derive(Args, Clone)]
+pub struct StockArgs {
+    /// The bar the program starts from, for this run, over the model file's [stock]:
+    /// `diameter=D,length=L` with optional `front=Z` (0) and `bore=B`, in the machine's units,
+    /// diameters as diameters. Without either, the smallest bar holding every cut's start is
+    /// assumed, and crashes into it are notes.
+    #[arg(long, value_name = "diameter=D,length=L[,front=Z][,bore=B]", value_parser = StockSettings::parse)]
+    pub stock: Option<StockSettings>,
+}
+
+impl StockArgs {
+    /// The part model's stock: the flag's, else the model file's, else assumed.
+    pub fn check(&self, resolved: &Resolved) -> PartCheck {
+        PartCheck { stock: self.stock.or(resolved.stock) }
+    }
 }
 
 #[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
@@ -238,6 +257,8 @@ pub struct Resolved {
     pub decimal_input: DecimalInput,
     pub increment_places: u8,
     pub settings: MachineSettings,
+    /// The model file's `[stock]`, when it has one.
+    pub stock: Option<StockSettings>,
     /// The model file and its text, when there is one.
     pub model: Option<(PathBuf, String)>,
 }
@@ -250,13 +271,13 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
         }
         None => None,
     };
-    let mut settings = match &model {
+    let (mut settings, stock) = match &model {
         Some((path, text)) => {
-            ModelFile::from_toml(text)
-                .map_err(|problems| model_problems(path, text, ModelError::File(problems)))?
-                .machine
+            let file = ModelFile::from_toml(text)
+                .map_err(|problems| model_problems(path, text, ModelError::File(problems)))?;
+            (file.machine, file.stock)
         }
-        None => MachineSettings::default(),
+        None => (MachineSettings::default(), None),
     };
     settings.variables.extend(read.variables.iter().cloned());
     let dialect = read.dialect.or(settings.dialect.map(DialectChoice::Fixed)).unwrap_or(DialectChoice::Auto);
@@ -285,6 +306,7 @@ pub fn resolve(read: &ReadArgs, program: &Path) -> Result<Resolved, CliError> {
             decimal_input: given_decimal_input,
             ..settings
         },
+        stock,
         model,
     })
 }
@@ -318,8 +340,9 @@ pub fn announce_settings(
     (read, run): (&ReadArgs, &RunArgs),
     resolved: &Resolved,
     verbose: bool,
+    stock: Option<bool>,
 ) {
-    note_machine_defaults(resolved, Some(run));
+    note_machine_defaults(resolved, Some(run), stock);
     if verbose {
         streams::err_line(format_args!("{command}: {name}: {}", model_source(read, resolved)));
     }
@@ -327,9 +350,9 @@ pub fn announce_settings(
 
 /// Say once per run, at the top of standard error, that no model file gives `resolved`'s
 /// settings, which machine defaults are in force (the options given on the command line
-/// included; `run` for a command that runs the program) and how to set them. Nothing when a
-/// model file gives them.
-pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>) {
+/// included; `run` for a command that runs the program; `stock` for one that runs the part
+/// model, whether a stock is given) and how to set them. Nothing when a model file gives them.
+pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>, stock: Option<bool>) {
     static SAID: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
     if resolved.model.is_some() || SAID.swap(true, std::sync::atomic::Ordering::Relaxed) {
         return;
@@ -341,7 +364,7 @@ pub fn note_machine_defaults(resolved: &Resolved, run: Option<&RunArgs>) {
     let mut text =
         String::from("note: no model file (no --model, no turnpass.toml found): machine settings in force:\n");
     let mut line = String::new();
-    for word in semantic::settings_in_force(&settings).split(' ') {
+    for word in semantic::settings_in_force(&settings, stock).split(' ') {
         if !line.is_empty() && line.len() + 1 + word.len() > 96 {
             text.push_str(&format!("  {line}\n"));
             line.clear();

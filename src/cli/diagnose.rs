@@ -192,7 +192,7 @@ fn prepare(
     let name = display_name(file);
     let mut messages = Vec::new();
     let result = match ready(&name, &bytes, &resolved, run, command, &mut messages) {
-        Ok(Ready { parsed, lowered, machine }) => {
+        Ok(Ready { parsed, lowered, machine, .. }) => {
             let mut nominal = Nominal::new(&parsed.program, &lowered, &machine);
             nominal.screw_pitch = resolved.settings.ball_screw_pitch_mm.unwrap_or_default();
             Ok((nominal, model, resolved))

@@ -40,7 +40,7 @@ pub fn fmt(args: FmtArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref().filter(|_| !args.check))?;
     let resolved = resolve(&args.read, &args.file)?;
     let bytes = read_program_bytes(&args.file)?;
-    note_machine_defaults(&resolved, None);
+    note_machine_defaults(&resolved, None, None);
     let name = display_name(&args.file);
     let parsed = syntax::parse(&bytes, &resolved.options);
     report(&name, &bytes, &parsed.diagnostics);

@@ -12,8 +12,8 @@ use turnpass::printer;
 use turnpass::simulation;
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, analyse, announce_settings, check_output, display_name, model_file_name, not_lowered,
-    pipeline_settings, plural, read_program, report, write_output,
+    CliError, ReadArgs, RunArgs, StockArgs, analyse, announce_settings, check_output, display_name, model_file_name,
+    not_lowered, pipeline_settings, plural, read_program, report, write_output,
 };
 use super::streams;
 
@@ -43,6 +43,8 @@ pub struct SimulateArgs {
     read: ReadArgs,
     #[command(flatten)]
     run: RunArgs,
+    #[command(flatten)]
+    stock: StockArgs,
     /// Also say where the machine settings come from.
     #[arg(long, short)]
     verbose: bool,
@@ -58,7 +60,7 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref())?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
-    announce_settings("expand", &name, (&args.read, &args.run), &resolved, args.verbose);
+    announce_settings("expand", &name, (&args.read, &args.run), &resolved, args.verbose, None);
     // Without nose-radius compensation: the blocks `expand` prints stay under the program's
     // own `G41`/`G42`.
     let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, false));
@@ -108,8 +110,9 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
 pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     let name = display_name(&args.file);
-    announce_settings("simulate", &name, (&args.read, &args.run), &resolved, args.verbose);
-    let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true));
+    let part = args.stock.check(&resolved);
+    announce_settings("simulate", &name, (&args.read, &args.run), &resolved, args.verbose, Some(part.stock.is_some()));
+    let analysed = analyse(&bytes, &pipeline_settings(&resolved, &args.run, true).with_part(part));
     if let Some(code) = cannot_run("simulate", &name, &bytes, &analysed) {
         return Ok(code);
     }
@@ -122,7 +125,7 @@ pub fn simulate(args: SimulateArgs) -> Result<ExitCode, CliError> {
         return Ok(ExitCode::from(1));
     };
     let rows = simulation::rows(ready.program(), ready.valid());
-    let summary = simulation::summary(ready.program(), &ready.lowered, &ready.machine);
+    let summary = simulation::summary(ready.program(), &ready.lowered, &ready.machine).with_part(ready.part.as_ref());
     // The rows are written as they are made: memory follows the moves, not the text.
     let mut out = streams::Out::new();
     match args.format {
@@ -182,6 +185,30 @@ fn summary_text(summary: &simulation::Summary) -> String {
     );
     if summary.rapid_rate_assumed {
         out.push_str(" (rapid rate not in the machine settings: 10 m/min assumed)");
+    }
+    if let Some(part) = &summary.part {
+        out.push_str(&format!(
+            "\nstock: bar Ø{:.3}{} mm, front Z{:.3}, {:.3} mm long{}",
+            part.stock_diameter_mm,
+            if part.stock_bore_mm > 0.0 { format!(" bored Ø{:.3}", part.stock_bore_mm) } else { String::new() },
+            part.stock_front_mm,
+            part.stock_length_mm,
+            if part.stock_assumed { " (assumed: the smallest bar holding every cut's start)" } else { "" }
+        ));
+        out.push_str(&format!(
+            "\nair cutting: {} feed move{} {} nothing, {:.1} mm, {}",
+            part.air_moves,
+            plural(part.air_moves),
+            if part.air_moves == 1 { "removes" } else { "remove" },
+            part.air_length_mm,
+            duration_text(part.air_time_s)
+        ));
+        if let Some(z) = part.parted_off_at_mm {
+            out.push_str(&format!("\nparted off at Z{z:.3}: the part is the piece in front"));
+        }
+        if let Some(index) = part.stopped_at_move {
+            out.push_str(&format!("\nthe part model stopped at move {} (its bound on work)", index + 1));
+        }
     }
     for pass in &summary.finishing_passes {
         match pass.roughness_mm {

@@ -46,6 +46,11 @@ pub fn settings() -> MachineSettings {
             nose_radius: 0.8,
             tip: 3,
             minor_edge_angle: None,
+            kind: None,
+            angle: None,
+            diameter: None,
+            width: None,
+            max_depth: None,
         }],
         ..MachineSettings::default()
     }

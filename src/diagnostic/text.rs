@@ -520,6 +520,39 @@ impl DiagnosticKind {
                 label: "this block".into(),
                 hint: None,
             },
+            RapidIntoStock { depth_mm, assumed: false } => Words {
+                code: "rapid-into-stock",
+                message: format!("this rapid move runs {depth_mm:.3} mm into the stock").into(),
+                label: "a crash: the tool meets material at the rapid rate".into(),
+                hint: Some("feed through material (G01), or move clear of the part first: retract in X, then move in Z".into()),
+            },
+            RapidIntoStock { depth_mm, assumed: true } => Words {
+                code: "rapid-into-stock",
+                message: format!(
+                    "this rapid move would run {depth_mm:.3} mm into the stock, if the bar is the one assumed (the smallest \
+                     bar holding every cut's start)"
+                ).into(),
+                label: "a rapid through assumed material".into(),
+                hint: Some("give the bar in the model file's [stock] table (or --stock) to check this for real".into()),
+            },
+            CutTooDeep { depth_mm, max_mm, assumed } => Words {
+                code: "cut-too-deep",
+                message: format!(
+                    "this cut engages {depth_mm:.3} mm of material, more than the tool's max_depth of {max_mm:.3} mm{}",
+                    if *assumed { " (in the assumed stock)" } else { "" }
+                ).into(),
+                label: "deeper than the tool takes".into(),
+                hint: Some("take the material in more passes, or check the tool's max_depth in the tool table".into()),
+            },
+            PartModelStopped { rays, stamps } => Words {
+                code: "part-model-stopped",
+                message: format!(
+                    "the part model stops here: the program asks more of it than its bound on work ({rays} ray visits in \
+                     a run, {stamps} thread forms in a move); the moves from here on are not checked against the stock"
+                ).into(),
+                label: "not checked from here".into(),
+                hint: Some("a program this large or this fine is checked in parts: split it at a tool change".into()),
+            },
             OutsideTravel { x_mm, z_mm } => Words {
                 code: "outside-travel",
                 message: format!("the tool leaves the machine's travel at X{:.3} Z{z_mm:.3} (diameter, mm)", 2.0 * x_mm).into(),

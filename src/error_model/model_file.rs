@@ -43,7 +43,7 @@ use crate::source::Span;
 use crate::toml_spans::{self, Document, Problems, Step};
 
 /// The tables a model file may have at its top level.
-pub const TABLES: [&str; 4] = ["machine", "model", "axis_table", "effect"];
+pub const TABLES: [&str; 5] = ["machine", "stock", "model", "axis_table", "effect"];
 
 #[derive(Debug, Clone, Default)]
 pub struct ModelSpec {
@@ -188,6 +188,9 @@ impl ModelSpec {
             problems.extend(found);
             MachineSettings::default()
         });
+        if let Err(found) = crate::machine::StockSettings::read(&document) {
+            problems.extend(found);
+        }
         let model_path = [Step::from("model")];
         let model: ModelSection = read_or_note(&document, &model_path, &mut problems).unwrap_or_default();
         problems.extend(model.check().iter().map(|bad| document.invalid(&model_path, bad)));

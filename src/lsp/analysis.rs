@@ -14,7 +14,7 @@
 use lsp_types::{DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString, Uri};
 
 use crate::diagnostic::{Diagnostic, Severity};
-use crate::machine::MachineSettings;
+use crate::machine::{MachineSettings, StockSettings};
 use crate::semantic::{LowerOptions, Machine};
 use crate::source::Span;
 
@@ -30,18 +30,22 @@ pub struct SemanticJob {
     pub snapshot: Snapshot,
     pub machine: Machine,
     pub options: LowerOptions,
+    /// The part model's stock, as `check` and `simulate` run it.
+    pub part: crate::part::PartCheck,
 }
 
 impl SemanticJob {
-    pub fn new(snapshot: Snapshot, settings: &MachineSettings) -> SemanticJob {
+    pub fn new(snapshot: Snapshot, settings: &MachineSettings, stock: Option<StockSettings>) -> SemanticJob {
         // As `simulate` runs it: nose-radius compensation on, the machine's block-delete switch.
         let options = LowerOptions::new(settings.block_delete_switch());
-        SemanticJob { snapshot, machine: Machine::from_settings(settings), options }
+        let part = crate::part::PartCheck { stock };
+        SemanticJob { snapshot, machine: Machine::from_settings(settings), options, part }
     }
 
-    /// The semantic pass's diagnostics (none for a program it does not lower).
+    /// The semantic pass's diagnostics (none for a program it does not lower), the part
+    /// model's among them.
     pub fn run(&self) -> Vec<Diagnostic> {
-        crate::pipeline::semantic_diagnostics(&self.snapshot.program(), &self.machine, &self.options)
+        crate::pipeline::semantic_diagnostics(&self.snapshot.program(), &self.machine, &self.options, Some(&self.part))
     }
 }
 

@@ -465,7 +465,7 @@ impl<H: Host> Server<H> {
                 "{}: no turnpass.toml in its directory or above it, and no `model` or `machine` in \
                  initializationOptions; machine settings in force: {}",
                 item.uri.as_str(),
-                crate::semantic::settings_in_force(&settings.machine)
+                crate::semantic::settings_in_force(&settings.machine, Some(settings.stock.is_some()))
             );
             log_message(MessageType::INFO, message)
         });
@@ -576,7 +576,7 @@ impl<H: Host> Server<H> {
             open.dirty = false;
             if open.semantic_version != Some(open.version) && !open.running {
                 let inline = open.document.len() <= self.inline_limit;
-                let work = SemanticJob::new(open.document.snapshot(), &open.settings.machine);
+                let work = SemanticJob::new(open.document.snapshot(), &open.settings.machine, open.settings.stock);
                 jobs.push(Job { uri: uri.clone(), generation: open.generation, version: open.version, work, inline });
                 open.running = true;
                 if inline {

@@ -9,7 +9,7 @@
 use serde::Deserialize;
 
 use crate::dialect::{DecimalInput, DialectChoice, GCodeSystem};
-use crate::machine::{MachineSettings, ModelFile};
+use crate::machine::{MachineSettings, ModelFile, StockSettings};
 use crate::printer::CanonicalOptions;
 use crate::syntax::ParseOptions;
 
@@ -46,6 +46,8 @@ pub struct InitOptions {
 pub struct Settings {
     pub parse: ParseOptions,
     pub machine: MachineSettings,
+    /// The model file's `[stock]`, for the part model.
+    pub stock: Option<StockSettings>,
     pub canonical: CanonicalOptions,
 }
 
@@ -78,8 +80,12 @@ impl InitOptions {
     /// the defaults in place and are returned as messages for the user.
     pub fn settings(&self, model_file: Option<&str>) -> (Settings, Vec<String>) {
         let mut problems = Vec::new();
+        let mut stock = None;
         let from_file = model_file.and_then(|text| match ModelFile::from_toml(text) {
-            Ok(file) => Some(file.machine),
+            Ok(file) => {
+                stock = file.stock;
+                Some(file.machine)
+            }
             Err(error) => {
                 problems.push(format!("machine settings: {error}"));
                 None
@@ -119,6 +125,6 @@ impl InitOptions {
         };
         let canonical = CanonicalOptions { decimal_input, increment_places: machine.increment_places() };
         let parse = ParseOptions { dialect, gcode_system, machine_kind: None, control };
-        (Settings { parse, machine, canonical }, problems)
+        (Settings { parse, machine, stock, canonical }, problems)
     }
 }

@@ -34,6 +34,7 @@ mod moves;
 mod nose_radius;
 mod outputs;
 mod parse;
+mod part;
 mod plots;
 mod print;
 mod provenance;

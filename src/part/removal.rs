@@ -1,0 +1,331 @@
+//! The material each move removes, in program order: the in-process stock after every move,
+//! what each took, and the crashes and deep cuts on the way.
+
+use smallvec::SmallVec;
+
+use super::dexel::{Dexels, Edge, STOCK, Span, Spans, Taken};
+use super::stock::Stock;
+use super::sweep::{Sweep, Wedge};
+use super::tool::{self, Orientation, Tool};
+use crate::semantic::Machine;
+use crate::toolpath::{Motion, Move, Toolpath, Xz};
+
+/// How many rays the longer side of the stock's box holds: the spacing of the dexels is
+/// that side over this (a 300 mm bar: 0.15 mm; a 50 mm part: 0.024 mm).
+pub const RAYS_ALONG_LONGER_SIDE: f64 = 2048.0;
+/// The finest spacing, mm.
+pub const FINEST_SPACING: f64 = 0.001;
+/// The ray visits a run is sized for: a program of many moves gets rays far enough apart
+/// that its moves, each reaching [`REACH_OF_A_MOVE`] across the rays of both families,
+/// visit about this many (a million-move program: rays 0.2 mm apart), so that its check
+/// costs about what its simulation does. Programs of up to some 10,000 moves on a 100 mm
+/// bar keep the spacing [`RAYS_ALONG_LONGER_SIDE`] gives.
+pub const VISITS_PLANNED: f64 = 100_000_000.0;
+/// What a move reaches across the rays, mm, for sizing them: its insert's body and nose in
+/// both families and a few millimetres of travel.
+pub const REACH_OF_A_MOVE: f64 = 20.0;
+/// The most ray visits one run makes: past it the model stops with a note, so a hostile
+/// program (a runaway of fine thread stamps, a million full-length moves) ends in bounded
+/// time.
+pub const MAX_RAY_VISITS: u64 = 3_000_000_000;
+/// The most forms one threading move stamps: past it (a lead of micrometres over metres) the
+/// model stops with a note.
+pub const MAX_STAMPS_PER_MOVE: u64 = 100_000;
+/// Material thinner than this along a ray (mm) is not a crash or a cut: a tool touching a
+/// face it was programmed to touch.
+pub const TOUCH: f64 = 0.0005;
+
+/// What one move did to the stock.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Outcome {
+    /// Material inside the move's sweep (removed, or for a rapid met), summed along the
+    /// rays it crossed, mm.
+    pub met: f64,
+    /// How deep it went across its direction of travel, mm (see [`Removal::step`]).
+    pub depth: f64,
+}
+
+/// The stock as the moves cut it.
+pub struct Removal<'a> {
+    pub dexels: Dexels,
+    pub stock: Stock,
+    machine: &'a Machine,
+    tools: Vec<((u16, u16), Tool)>,
+    /// The thread pass under way: where its first threading move started, and the path
+    /// length threaded since.
+    thread: Option<f64>,
+    pub visits: u64,
+}
+
+impl<'a> Removal<'a> {
+    /// The stock cut by the `moves` moves of a program on `machine`.
+    pub fn new(stock: Stock, machine: &'a Machine, moves: usize) -> Removal<'a> {
+        let size = (stock.outer - stock.bore).max(stock.front - stock.back);
+        let spacing =
+            (size / RAYS_ALONG_LONGER_SIDE).max(moves as f64 * REACH_OF_A_MOVE / VISITS_PLANNED).max(FINEST_SPACING);
+        let lo = Xz::new(stock.bore, stock.back);
+        let hi = Xz::new(stock.outer, stock.front);
+        let dexels = Dexels::new(lo, hi, spacing, |line| {
+            let face = |at: f64, normal: [f32; 2]| Edge { at, normal, by: STOCK };
+            let span = if line.along_z {
+                Span { lo: face(stock.back, [0.0, -1.0]), hi: face(stock.front, [0.0, 1.0]) }
+            } else {
+                Span { lo: face(stock.bore, [-1.0, 0.0]), hi: face(stock.outer, [1.0, 0.0]) }
+            };
+            let mut spans = Spans::new();
+            if line.at > if line.along_z { stock.bore } else { stock.back }
+                && line.at < if line.along_z { stock.outer } else { stock.front }
+            {
+                spans.push(span);
+            }
+            spans
+        });
+        Removal { dexels, stock, machine, tools: Vec::new(), thread: None, visits: 0 }
+    }
+
+    /// The shape of the tool of move `m` from `start`; a tool whose side the table does not
+    /// give takes it from its first cut (`tool::Orientation`).
+    fn tool(&mut self, m: &Move, start: Xz) -> Tool {
+        let key = (m.tool, m.offset);
+        if let Some((_, tool)) = self.tools.iter().find(|(k, _)| *k == key) {
+            return tool.clone();
+        }
+        let settings = tool::entry(self.machine, m.tool, m.offset);
+        let reach = self.stock.front - self.stock.back + 10.0;
+        let orientation = if Tool::knows_its_side(settings) { Orientation::Outside } else { self.side_of(start) };
+        let shape = Tool::new(settings, self.machine, orientation, reach);
+        // A rapid before the first cut does not decide an unknown side.
+        if m.motion != Motion::Rapid || Tool::knows_its_side(settings) {
+            self.tools.push((key, shape.clone()));
+        }
+        shape
+    }
+
+    /// Whether a tool at `p` works from outside or from a bore: the nearer free surface
+    /// along X at its Z (the axis is none).
+    fn side_of(&self, p: Xz) -> Orientation {
+        let index = ((p.z - self.dexels.z_lo) / self.dexels.spacing - 0.5).round();
+        let Some(spans) = (index >= 0.0).then(|| self.dexels.along_x.get(index as usize)).flatten() else {
+            return Orientation::Outside;
+        };
+        for span in spans {
+            if p.x < span.lo.at {
+                return if span.lo.at > 0.0 && std::ptr::eq(span, &spans[0]) && p.x >= 0.0 {
+                    Orientation::Inside
+                } else {
+                    Orientation::Outside
+                };
+            }
+            if p.x <= span.hi.at {
+                let up = span.hi.at - p.x;
+                let down = if span.lo.at <= 1e-9 { f64::INFINITY } else { p.x - span.lo.at };
+                return if up <= down { Orientation::Outside } else { Orientation::Inside };
+            }
+        }
+        Orientation::Outside
+    }
+
+    /// The sweeps of move `index` (`m`, from `start`) with `tool`.
+    /// None when a thread pass would stamp more forms than [`MAX_STAMPS_PER_MOVE`], or more
+    /// than the work left.
+    fn sweeps(&mut self, tool: &Tool, start: Xz, m: &Move) -> Option<SmallVec<[Sweep; 6]>> {
+        let mut out = SmallVec::new();
+        let (c0, c1) = (tool.centre(start), tool.centre(m.end));
+        if m.threading && m.motion == Motion::Feed {
+            let threaded = self.thread.unwrap_or(0.0);
+            let length = start.distance(m.end);
+            self.thread = Some(threaded + length);
+            let lead = if m.rpm > 0.0 { m.feed / m.rpm } else { 0.0 };
+            if lead > 0.0 && length > 0.0 {
+                let (first, count) = stamps(threaded, length, lead, start, m.end, &self.stock);
+                let at = |k: u64| {
+                    let s = (first + k as f64) * lead - threaded;
+                    Xz::new(c0.x + (c1.x - c0.x) * s / length, c0.z + (c1.z - c0.z) * s / length)
+                };
+                if count > 0 {
+                    let each = self.dexels.rays_crossed(&Sweep::rounded(tool.placed(at(0)), tool.nose)).max(1);
+                    if count > MAX_STAMPS_PER_MOVE || self.visits + count * each > MAX_RAY_VISITS {
+                        return None;
+                    }
+                }
+                for k in 0..count {
+                    out.push(Sweep::rounded(tool.placed(at(k)), tool.nose));
+                }
+                return Some(out);
+            }
+        } else {
+            self.thread = None;
+        }
+        if m.is_arc() {
+            let offset = tool.centre_offset;
+            let centre = Xz::new(m.centre.x + offset.x, m.centre.z + offset.z);
+            let ccw = m.motion == Motion::Ccw;
+            if tool.nose > 0.0 {
+                out.push(Sweep::arc(c0, c1, centre, ccw, tool.nose));
+            }
+            arc_body(tool, c0, c1, centre, ccw, &mut out);
+        } else {
+            out.push(Sweep::rounded(tool.placed(c0).chain(tool.placed(c1)), tool.nose));
+        }
+        Some(out)
+    }
+
+    /// Run move `index` of `toolpath`: a rapid only measures what it meets, every other
+    /// move removes what it sweeps. `None` once the bound on work is passed.
+    pub fn step(&mut self, toolpath: &Toolpath, index: usize) -> Option<Outcome> {
+        let m = &toolpath.moves[index];
+        if m.motion == Motion::Dwell {
+            return Some(Outcome::default());
+        }
+        let start = toolpath.start_of(index);
+        let tool = self.tool(m, start);
+        // Most moves of a long program run in air: a move whose tool's box meets no material
+        // does nothing, and its sweeps are not built (a thread pass's count of leads is).
+        if !m.threading {
+            let (lo, hi) = reach_of_move(&tool, start, m);
+            if !self.dexels.may_meet(lo, hi) {
+                self.thread = None;
+                return Some(Outcome::default());
+            }
+        }
+        let sweeps = self.sweeps(&tool, start, m)?;
+        let planned: u64 = sweeps.iter().map(|s| self.dexels.rays_crossed(s)).sum();
+        if self.visits + planned > MAX_RAY_VISITS {
+            return None;
+        }
+        let remove = m.motion != Motion::Rapid;
+        // Across the direction of travel: rays along X measure a move along Z.
+        let (dx, dz) = ((m.end.x - start.x).abs(), (m.end.z - start.z).abs());
+        let across_family = dz < dx;
+        let mut taken = Taken::default();
+        // A cut's depth is measured on the rays across it between its nose's two ends.
+        let (c0, c1) = (tool.centre(start), tool.centre(m.end));
+        let window = if across_family {
+            (true, c0.x.min(c1.x), c0.x.max(c1.x))
+        } else {
+            (false, c0.z.min(c1.z), c0.z.max(c1.z))
+        };
+        let window = (remove && window.2 > window.1).then_some(window);
+        let run = |families: &[bool], taken: &mut Taken, dexels: &mut Dexels| {
+            for sweep in &sweeps {
+                let t = dexels.sweep_families(sweep, index as u32, remove, families.iter().copied(), window);
+                taken.total += t.total;
+                taken.along_x = taken.along_x.max(t.along_x);
+                taken.along_z = taken.along_z.max(t.along_z);
+                taken.rays += t.rays;
+            }
+        };
+        if remove {
+            run(&[true, false], &mut taken, &mut self.dexels);
+        } else {
+            // A rapid only measures; the rays across it are asked first, and those along it
+            // only when they met something (or nothing thicker than their spacing).
+            run(&[across_family], &mut taken, &mut self.dexels);
+            run(&[!across_family], &mut taken, &mut self.dexels);
+        }
+        self.visits += taken.rays;
+        let (across, along) =
+            if across_family { (taken.along_z, taken.along_x) } else { (taken.along_x, taken.along_z) };
+        // A cut's depth is what it engages across its direction. A rapid goes as deep as the
+        // lesser of the two: head-on into a face, the length it travels in; sliding under a
+        // diameter, the depth below it.
+        let depth = if remove {
+            if across > 0.0 { across } else { along }
+        } else if across > 0.0 && along > 0.0 {
+            across.min(along)
+        } else {
+            across.max(along)
+        };
+        Some(Outcome { met: taken.total, depth })
+    }
+}
+
+/// A box that holds everything the tool of move `m` (from `start`) sweeps: its nose centre's
+/// path (with an arc's extremes, and the sagitta its body's chords are moved by, `arc_body`)
+/// grown by the core's extent and the nose.
+fn reach_of_move(tool: &Tool, start: Xz, m: &Move) -> (Xz, Xz) {
+    let (c0, c1) = (tool.centre(start), tool.centre(m.end));
+    let mut lo = Xz::new(c0.x.min(c1.x), c0.z.min(c1.z));
+    let mut hi = Xz::new(c0.x.max(c1.x), c0.z.max(c1.z));
+    if m.is_arc() {
+        let centre = tool.centre(m.centre);
+        for p in crate::geometry::arc_extremes(c0, c1, centre, m.motion == Motion::Ccw) {
+            lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
+            hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
+        }
+        let sagitta = c0.distance(centre) * (1.0 - (std::f64::consts::PI / 8.0).cos());
+        lo = Xz::new(lo.x - sagitta, lo.z - sagitta);
+        hi = Xz::new(hi.x + sagitta, hi.z + sagitta);
+    }
+    let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+    for p in &tool.core {
+        core_lo = Xz::new(core_lo.x.min(p.x), core_lo.z.min(p.z));
+        core_hi = Xz::new(core_hi.x.max(p.x), core_hi.z.max(p.z));
+    }
+    let r = tool.nose;
+    (Xz::new(lo.x + core_lo.x - r, lo.z + core_lo.z - r), Xz::new(hi.x + core_hi.x + r, hi.z + core_hi.z + r))
+}
+
+/// Where a thread pass stamps its form along a move: every lead from where the pass began
+/// (`threaded` before this move), as far as the stock reaches; the first stamp's number of
+/// leads from the pass's start, and how many there are.
+fn stamps(threaded: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Stock) -> (f64, u64) {
+    // Only where the stamp can meet the bar (with the insert's reach about it).
+    let margin = tool::BODY_MM + (stock.outer - stock.bore);
+    let (min, max) = (stock.back - margin, stock.front + margin);
+    let (mut lo, mut hi) = (0.0f64, length);
+    let d = end.z - start.z;
+    if d.abs() < 1e-12 {
+        if start.z < min || start.z > max {
+            return (0.0, 0);
+        }
+    } else {
+        let (t0, t1) = ((min - start.z) / d * length, (max - start.z) / d * length);
+        lo = lo.max(t0.min(t1));
+        hi = hi.min(t0.max(t1));
+    }
+    if hi < lo {
+        return (0.0, 0);
+    }
+    let first = ((threaded + lo) / lead).ceil();
+    let last = ((threaded + hi) / lead).floor();
+    if !(first.is_finite() && last.is_finite()) || last < first {
+        return (0.0, 0);
+    }
+    (first, (last - first) as u64 + 1)
+}
+
+/// The insert's body swept along an arc: the body at the arc's two ends, and along chords of
+/// at most 45°, each moved toward the part by its sagitta and held to the part's side of the
+/// circle the nose sweeps and to the angles it spans, so the body never reaches past the
+/// nose's own sweep (a chord's rounded end beside the nose's disk at the arc's end would
+/// reach past it by a micrometre) and leaves no film beside it.
+fn arc_body(tool: &Tool, c0: Xz, c1: Xz, centre: Xz, ccw: bool, out: &mut SmallVec<[Sweep; 6]>) {
+    let radius = c0.distance(centre);
+    let a0 = crate::geometry::angle(c0, centre);
+    let total = crate::geometry::sweep(c0, c1, centre, ccw);
+    let pieces = (total / (std::f64::consts::PI / 4.0)).ceil().max(1.0) as usize;
+    let step = total / pieces as f64 * if ccw { 1.0 } else { -1.0 };
+    // Where the body lies from the nose centre.
+    let body = tool.core.iter().fold(Xz::new(0.0, 0.0), |s, p| Xz::new(s.x + p.x, s.z + p.z));
+    let sagitta = radius * (1.0 - (step.abs() / 2.0).cos());
+    out.push(Sweep::rounded(tool.placed(c0), tool.nose));
+    out.push(Sweep::rounded(tool.placed(c1), tool.nose));
+    for k in 0..pieces {
+        let (from, to) = (a0 + step * k as f64, a0 + step * (k + 1) as f64);
+        let mid = (from + to) / 2.0;
+        let u = Xz::new(mid.sin(), mid.cos());
+        // The body outside the circle: the part is inside it.
+        let part_inside = u.x * body.x + u.z * body.z > 0.0;
+        let shift = if part_inside { 0.0 } else { sagitta };
+        let p = |a: f64| {
+            let r = radius + shift;
+            Xz::new(centre.x + r * a.sin(), centre.z + r * a.cos())
+        };
+        let (p0, p1) = (p(from), p(to));
+        let inner = Sweep::rounded(tool.placed(p0).chain(tool.placed(p1)), tool.nose);
+        let clip = if part_inside { radius - tool.nose } else { radius + tool.nose };
+        let wedge = Wedge::between(centre, from, to);
+        out.push(Sweep::Clipped { inner: Box::new(inner), centre, radius: clip, outside: part_inside, wedge });
+    }
+}

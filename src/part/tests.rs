@@ -1,0 +1,95 @@
+//! The part model on small programs whose finished part is known by hand.
+
+use crate::dialect::{DialectChoice, GCodeSystem};
+use crate::machine::{AxisPair, MachineSettings, StockSettings, ToolSettings};
+use crate::pipeline::{Settings, analyse};
+use crate::semantic::LowerOptions;
+use crate::syntax::ParseOptions;
+use crate::toolpath::Xz;
+
+use super::*;
+
+fn tool(station: u32, nose: f64, tip: u8) -> ToolSettings {
+    ToolSettings {
+        station,
+        offset: None,
+        x: 0.0,
+        z: 0.0,
+        nose_radius: nose,
+        tip,
+        minor_edge_angle: None,
+        kind: None,
+        angle: None,
+        diameter: None,
+        width: None,
+        max_depth: None,
+    }
+}
+
+fn run_on(program: &str, tools: Vec<ToolSettings>, stock: Option<StockSettings>) -> (PartRun, Vec<Diagnostic>) {
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
+    let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), tool: tools, ..Default::default() };
+    let settings = Settings::new(options, &settings, LowerOptions::new(false)).with_part(PartCheck { stock });
+    let analysed = analyse(program.as_bytes(), &settings);
+    let diagnostics = analysed.diagnostics.clone();
+    (analysed.part.expect("the program lowers and validates"), diagnostics)
+}
+
+const BAR: StockSettings = StockSettings { diameter: 50.0, length: 60.0, front: Some(0.0), bore: None };
+
+#[test]
+fn a_turned_diameter_is_the_pass_radius_everywhere_it_ran() {
+    let program = "O1\nT0101\nG99 G97 S1000 M03\nG00 X52. Z2.\nG01 X40. F0.2\nG01 Z-30.\nG00 X52.\nG00 Z2.\nM30\n";
+    let (run, diagnostics) = run_on(program, vec![tool(1, 0.8, 3)], Some(BAR));
+    assert!(diagnostics.is_empty(), "{diagnostics:?}");
+    let part = run.part.unwrap();
+    let mut seen = 0;
+    for p in part.surface().filter(|p| p.normal.x > 0.99 && p.at.z < -1.0 && p.at.z > -29.0) {
+        assert!((p.at.x - 20.0).abs() < 1e-9, "{p:?}");
+        seen += 1;
+    }
+    assert!(seen > 100, "{seen}");
+    assert!(part.contains(Xz::new(19.9, -10.0)) && !part.contains(Xz::new(20.1, -10.0)));
+    assert!(part.contains(Xz::new(24.9, -31.5)), "the shoulder stays");
+}
+
+#[test]
+fn a_rapid_into_the_bar_is_an_error_with_its_depth_and_a_note_on_an_assumed_bar() {
+    let program = "O1\nT0101\nG00 X52. Z2.\nG00 X46. Z-10.\nG00 X60.\nM30\n";
+    let (_, diagnostics) = run_on(program, vec![tool(1, 0.8, 3)], Some(BAR));
+    let crash: Vec<_> =
+        diagnostics.iter().filter(|d| matches!(d.kind, DiagnosticKind::RapidIntoStock { .. })).collect();
+    // The rapid in, 2 mm deep, and the rapid back out through the same material.
+    assert_eq!(crash.len(), 2, "{diagnostics:?}");
+    assert!(crash[0].is_error());
+    match crash[0].kind {
+        DiagnosticKind::RapidIntoStock { depth_mm, .. } => assert!((depth_mm - 2.0).abs() < 1e-9, "{depth_mm}"),
+        _ => unreachable!(),
+    }
+    let cut = "O1\nT0101\nG99 G97 S1000 M03\nG00 X52. Z2.\nG01 X40. F0.2\nG01 Z-30.\nG00 X36. Z-10.\nM30\n";
+    let (_, diagnostics) = run_on(cut, vec![tool(1, 0.8, 3)], None);
+    let crash: Vec<_> =
+        diagnostics.iter().filter(|d| matches!(d.kind, DiagnosticKind::RapidIntoStock { .. })).collect();
+    assert!(!crash.is_empty() && crash.iter().all(|d| d.severity == crate::diagnostic::Severity::Note), "{crash:?}");
+}
+
+#[test]
+fn a_thread_stamps_its_form_once_per_lead() {
+    // An OD thread, lead 2, one pass 1.2 mm deep (radius) with a 60° insert of nose 0.1.
+    let mut thread = tool(1, 0.1, 8);
+    thread.kind = Some(crate::machine::ToolKind::Threading);
+    let program = "O1\nT0101\nG97 S500 M03\nG00 X52. Z4.\nX47.6\nG32 Z-20. F2.\nG00 X52.\nZ4.\nM30\n";
+    let (run, _) = run_on(program, vec![thread], Some(BAR));
+    let part = run.part.unwrap();
+    // The groove bottoms at z = 4 - 2k, radius 23.8; crests at the bar's 25.
+    for k in 3..=11 {
+        let z = 4.0 - 2.0 * k as f64;
+        assert!(!part.contains(Xz::new(23.85, z)), "groove at {z}");
+        assert!(part.contains(Xz::new(24.9, z + 1.0)), "crest at {}", z + 1.0);
+    }
+}
