@@ -202,8 +202,7 @@ mod tests {
     }
 
     /// A short move far from zero, where the coordinate's rounding, not the closed form,
-    /// sets how near the two knees are (the bound held them to 1e-12 and they were 1.1e-12
-    /// apart).
+    /// sets how near the two knees are (1.1e-12 apart here, above a fixed 1e-12).
     #[test]
     fn a_knee_on_a_short_move_far_from_zero() {
         let path = line(Xz::new(0.0, -227.1157691587802), Xz::new(0.0, -227.1157691587802 + 0.012602762401475122));
