@@ -364,8 +364,8 @@ impl GivenNext {
     ) -> GivenNext {
         use crate::syntax::{Statement, WordKind};
         let blocks = program.blocks();
-        let Some(next) = (after + 1..blocks.len())
-            .find(|&b| !skipped(b) && !matches!(program.block(b).statement, Statement::Empty))
+        let Some(next) =
+            (after + 1..blocks.len()).find(|&b| !skipped(b) && !matches!(program.block(b).statement, Statement::Empty))
         else {
             return GivenNext::default();
         };
@@ -378,9 +378,7 @@ impl GivenNext {
         for word in program.words_of(block) {
             match word.kind {
                 WordKind::BlockDelete { .. } => return GivenNext::default(),
-                WordKind::Code { letter: CodeLetter::G, code } if codes.kind_of(code).is_some() => {
-                    given.motion = true
-                }
+                WordKind::Code { letter: CodeLetter::G, code } if codes.kind_of(code).is_some() => given.motion = true,
                 // A thread move's F is its lead: it gives the feed of the blocks after it,
                 // not of a feed move.
                 WordKind::Number { address: Address::F, .. } | WordKind::Expr { address: Address::F, .. } => {

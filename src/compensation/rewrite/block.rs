@@ -314,9 +314,7 @@ impl BlockContext<'_, '_> {
             }
             at = (segment.end(), end);
         }
-        if kind != original_kind
-            && !GivenNext::after(self.program, &self.codes, self.block, |_| false).motion
-        {
+        if kind != original_kind && !GivenNext::after(self.program, &self.codes, self.block, |_| false).motion {
             out.out.next_block();
             out.motion(original_kind);
         }
