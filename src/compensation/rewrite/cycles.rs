@@ -381,3 +381,131 @@ fn delete_consumed(
         }
     }
 }
+
+/// A finishing cycle's own compensated copy of the profile it shares with a roughing cycle
+/// (`profile_copy`): the blocks to write after the roughing call, and the finishing call
+/// written again naming them.
+pub(super) struct ProfileCopy {
+    /// The roughing call, which stays as written: the copy goes right after it.
+    pub rough: usize,
+    /// The finishing call, whose `P`/`Q` name the copy.
+    pub finish: usize,
+    pub blocks: Vec<NewBlock>,
+    pub call: NewBlock,
+    /// The copy's first and last sequence names.
+    pub names: (String, String),
+}
+
+/// The copy of the profile of `group` that its finishing cycle runs, compensated, where the
+/// roughing cycle is to stay on the profile as written (the compensated profile would break
+/// a rule of the roughing cycle, or cannot carry the correction block for block); why not,
+/// where it cannot be written.
+///
+/// On a Fanuc control the finishing call finds its profile by searching the program for the
+/// sequence numbers its `P` and `Q` name (`semantic::cycles::finishing`), and after a
+/// roughing call whose profile follows it the program goes on after the `Q` block, so the
+/// blocks between the call and the profile never run as plain blocks
+/// (`Interpreter::consume_skipped`): the copy goes there, under sequence numbers the program
+/// does not use. The copy is the finishing pass's compensated moves written as a cycle's
+/// blocks are (`back::cycle_blocks`), the profile blocks' M codes, T words and comments on
+/// the blocks of their moves.
+pub(super) fn profile_copy(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    plans: &KeptPlans,
+    group: &ProfileGroup,
+    style: &ProgramStyle,
+) -> Result<ProfileCopy, &'static str> {
+    use crate::dialect::{Address, Dialect};
+    use crate::syntax::Number;
+    if program.config().dialect != Dialect::Fanuc {
+        return Err("a copy of a LAP contour for its finishing cycle is not written on OSP");
+    }
+    let expansions = &lowered.expansions;
+    let (finishing, roughing): (Vec<usize>, Vec<usize>) =
+        group.members.iter().partition(|&&k| expansions.get(k).is_some_and(|e| !e.traced.is_empty()));
+    let ([finish], [rough]) = (finishing.as_slice(), roughing.as_slice()) else {
+        return Err("its profile is shared by other than one roughing and one finishing cycle");
+    };
+    let (Some(finish), Some(rough)) = (expansions.get(*finish), expansions.get(*rough)) else {
+        return Err("its cycles are not found");
+    };
+    let profile_first = finish.traced.iter().map(|&(_, b)| b).min().unwrap_or(0);
+    if profile_first <= rough.block {
+        return Err("its profile comes before the roughing call, so no block after the call is skipped to hold a copy");
+    }
+    // The finishing call's `P` and `Q` are plain numbers, to be written again.
+    let call = program.block(finish.block);
+    let words = program.words_of(call);
+    let command = match call.statement {
+        crate::syntax::Statement::Cycle(id) => Some(program.command(id)),
+        _ => None,
+    };
+    let role_word = |role| {
+        command
+            .and_then(|c| c.param(role))
+            .filter(|&id| matches!(program.word(id).kind, WordKind::Number { address: Address::P | Address::Q, .. }))
+    };
+    let (Some(p_word), Some(q_word)) =
+        (role_word(crate::dialect::Role::ProfileStart), role_word(crate::dialect::Role::ProfileEnd))
+    else {
+        return Err("the finishing call does not name its profile by plain P and Q numbers");
+    };
+    let first = finish.traced.first().map_or(finish.moves.start, |&(m, _)| m);
+    let end = finish.traced_end.clamp(first, finish.moves.end);
+    let (Some(moves), Some(copy_plans)) = (lowered.toolpath.moves.get(first..end), plans.get(first..end)) else {
+        return Err("its finishing pass was not planned");
+    };
+    let start = copy_plans.first().map_or(lowered.toolpath.start, |p| p.start);
+    let compensation_before =
+        first.checked_sub(1).and_then(|k| lowered.toolpath.moves.get(k)).map_or(Compensation::Off, |m| m.compensation);
+    let shift = lowered.coordinates_at(first).shift;
+    let (compensated, firsts) = compensated_moves(moves, copy_plans, compensation_before);
+    let mut blocks = match cycle_blocks(program, finish, &compensated, start, compensation_before, shift, style) {
+        CycleBlocks::Blocks(blocks) if !blocks.is_empty() => blocks,
+        _ => return Err("its finishing pass has no plain-block form"),
+    };
+    let at = |m: usize| firsts.get(m - first).copied().unwrap_or(compensated.len());
+    carry_traced(program, &mut blocks, compensated.len(), finish.traced.iter().map(|&(m, b)| (at(m), b)));
+    // Numbers the program does not use, after its largest, in its steps of ten.
+    let largest = program
+        .blocks()
+        .iter()
+        .filter_map(|b| program.sequence(b))
+        .filter_map(|w| match w.kind {
+            WordKind::Sequence { number } => number,
+            _ => None,
+        })
+        .max()
+        .unwrap_or(0);
+    let p = (u64::from(largest) / 10 + 1) * 10;
+    let q = if blocks.len() > 1 { p + 10 } else { p };
+    let digits = program.config().tables().lexical.sequence_max;
+    let max = 10u64.saturating_pow(u32::try_from(digits).unwrap_or(u32::MAX)) - 1;
+    if q > max {
+        return Err("no free sequence numbers are left above the program's largest for the copy");
+    }
+    let names = (format!("N{p}"), format!("N{q}"));
+    if let Some(b) = blocks.first_mut() {
+        b.sequence = Some(names.0.clone());
+    }
+    if let Some(b) = blocks.last_mut() {
+        b.sequence = Some(names.1.clone());
+    }
+    let number = |n: u64| Number::new(n as i64, 0, false);
+    let call_words = words
+        .iter()
+        .enumerate()
+        .map(|(k, _)| {
+            let id = call.first_word + k as u32;
+            if id == p_word {
+                NewWord::Number(Address::P, number(p))
+            } else if id == q_word {
+                NewWord::Number(Address::Q, number(q))
+            } else {
+                NewWord::Copy(id)
+            }
+        })
+        .collect();
+    Ok(ProfileCopy { rough: rough.block, finish: finish.block, blocks, call: NewBlock::new(call_words), names })
+}
