@@ -351,7 +351,7 @@ impl InPlace {
         }
         if self.copies && !next.copies {
             because.copies = Some(format!(
-                "with the roughing on the profile as written and a compensated copy for the finishing cycle, {why}"
+                "with the roughing on the profile as written, the finishing on a compensated copy and the cycles {why}"
             ));
         }
         if self.threads && !next.threads {
