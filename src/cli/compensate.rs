@@ -259,9 +259,10 @@ fn cycle_lines(
             CycleForm::ProfileCopied { profile, copy: (first, last), reason } => {
                 let from = profile.first().map_or(0, |&b| line(b));
                 let to = profile.last().map_or(0, |&b| line(b));
+                let names = if first == last { first.clone() } else { format!("{first}-{last}") };
                 format!(
-                    "runs a compensated copy of its profile (lines {from}-{to}), written after the roughing call as \
-                     {first}-{last}, which its P and Q now name ({reason})"
+                    "runs a compensated copy of its profile (lines {from}-{to}), written as {names}, which the call \
+                     now names; the roughing keeps the profile as written ({reason})"
                 )
             }
             CycleForm::Expanded { reason } => format!("expanded: {reason}"),

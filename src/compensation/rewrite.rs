@@ -238,7 +238,7 @@ pub fn finish(
                         chosen[k] = false;
                     }
                     for block in copy.blocks {
-                        out.edits.insert_after(copy.rough, block);
+                        out.edits.insert_after(copy.after, block);
                     }
                     out.edits.replace(copy.finish, vec![copy.call]);
                     if let Some(e) = lowered.expansions.iter().find(|e| e.block == copy.finish) {

@@ -24,7 +24,7 @@ use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::expand;
 use crate::printer::{Edits, NewBlock, NewWord, ProgramStyle};
 use crate::semantic::{Expansion, Lowered};
-use crate::syntax::{CodeLetter, Program, WordKind};
+use crate::syntax::{CodeLetter, Program, WordId, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
 use super::super::fit::Segment;
@@ -383,12 +383,14 @@ fn delete_consumed(
 }
 
 /// A finishing cycle's own compensated copy of the profile it shares with a roughing cycle
-/// (`profile_copy`): the blocks to write after the roughing call, and the finishing call
-/// written again naming them.
+/// (`profile_copy`): the blocks to write after a call, and the finishing call written again
+/// naming them.
 pub(super) struct ProfileCopy {
-    /// The roughing call, which stays as written: the copy goes right after it.
+    /// The roughing call, which stays on the profile as written.
     pub rough: usize,
-    /// The finishing call, whose `P`/`Q` name the copy.
+    /// The call the copy goes right after.
+    pub after: usize,
+    /// The finishing call, which names the copy.
     pub finish: usize,
     pub blocks: Vec<NewBlock>,
     pub call: NewBlock,
@@ -399,16 +401,21 @@ pub(super) struct ProfileCopy {
 /// The copy of the profile of `group` that its finishing cycle runs, compensated, where the
 /// roughing cycle is to stay on the profile as written (the compensated profile would break
 /// a rule of the roughing cycle, or cannot carry the correction block for block); why not,
-/// where it cannot be written.
+/// where it cannot be written. The copy is the finishing pass's compensated moves written as
+/// a cycle's blocks are (`back::cycle_blocks`), the profile blocks' M codes, T words and
+/// comments on the blocks of their moves, under names the program does not use.
 ///
-/// On a Fanuc control the finishing call finds its profile by searching the program for the
-/// sequence numbers its `P` and `Q` name (`semantic::cycles::finishing`), and after a
-/// roughing call whose profile follows it the program goes on after the `Q` block, so the
-/// blocks between the call and the profile never run as plain blocks
-/// (`Interpreter::consume_skipped`): the copy goes there, under sequence numbers the program
-/// does not use. The copy is the finishing pass's compensated moves written as a cycle's
-/// blocks are (`back::cycle_blocks`), the profile blocks' M codes, T words and comments on
-/// the blocks of their moves.
+/// * **Fanuc**: the finishing call finds its profile by searching the program for the
+///   sequence numbers its `P` and `Q` name (`semantic::cycles::finishing`), and after a
+///   roughing call whose profile follows it the program goes on after the `Q` block, so the
+///   blocks between the call and the profile never run as plain blocks
+///   (`Interpreter::consume_skipped`): the copy goes there, numbered at its first and last
+///   block, and only the finishing call's `P` and `Q` change.
+/// * **OSP**: a finishing call followed by its own contour (`G87 N0808` then `N0808 G81` …
+///   `G80`, as the real program OSP7000L writes each of its finishing calls) runs it and goes
+///   on after its `G80` (`semantic::cycles::lap_contour`): the copy goes right after the
+///   finishing call between the contour's own `G81`/`G82` and `G80` words, under a new name
+///   that only the call's name word changes to.
 pub(super) fn profile_copy(
     program: &Program<'_>,
     lowered: &Lowered,
@@ -416,11 +423,9 @@ pub(super) fn profile_copy(
     group: &ProfileGroup,
     style: &ProgramStyle,
 ) -> Result<ProfileCopy, &'static str> {
-    use crate::dialect::{Address, Dialect};
-    use crate::syntax::Number;
-    if program.config().dialect != Dialect::Fanuc {
-        return Err("a copy of a LAP contour for its finishing cycle is not written on OSP");
-    }
+    use crate::dialect::{Address, Dialect, Role};
+    use crate::syntax::{Number, Statement};
+    let osp = program.config().dialect == Dialect::Osp;
     let expansions = &lowered.expansions;
     let (finishing, roughing): (Vec<usize>, Vec<usize>) =
         group.members.iter().partition(|&&k| expansions.get(k).is_some_and(|e| !e.traced.is_empty()));
@@ -431,25 +436,44 @@ pub(super) fn profile_copy(
         return Err("its cycles are not found");
     };
     let profile_first = finish.traced.iter().map(|&(_, b)| b).min().unwrap_or(0);
-    if profile_first <= rough.block {
+    let profile_last = finish.traced.iter().map(|&(_, b)| b).max().unwrap_or(0);
+    if !osp && profile_first <= rough.block {
         return Err("its profile comes before the roughing call, so no block after the call is skipped to hold a copy");
     }
-    // The finishing call's `P` and `Q` are plain numbers, to be written again.
+    // The words of the finishing call that name its profile, to be written again: `P` and
+    // `Q` numbers, or the contour's name.
     let call = program.block(finish.block);
-    let words = program.words_of(call);
     let command = match call.statement {
-        crate::syntax::Statement::Cycle(id) => Some(program.command(id)),
+        Statement::Cycle(id) | Statement::LapCall(id) => Some(program.command(id)),
         _ => None,
     };
     let role_word = |role| {
-        command
-            .and_then(|c| c.param(role))
-            .filter(|&id| matches!(program.word(id).kind, WordKind::Number { address: Address::P | Address::Q, .. }))
+        command.and_then(|c| c.param(role)).filter(|&id| match program.word(id).kind {
+            WordKind::Number { address: Address::P | Address::Q, .. } => !osp,
+            WordKind::Label { .. } => osp,
+            _ => false,
+        })
     };
-    let (Some(p_word), Some(q_word)) =
-        (role_word(crate::dialect::Role::ProfileStart), role_word(crate::dialect::Role::ProfileEnd))
-    else {
-        return Err("the finishing call does not name its profile by plain P and Q numbers");
+    let naming: Vec<WordId> = if osp {
+        role_word(Role::ContourName).into_iter().collect()
+    } else {
+        role_word(Role::ProfileStart).into_iter().chain(role_word(Role::ProfileEnd)).collect()
+    };
+    if naming.len() != if osp { 1 } else { 2 } {
+        return Err("the finishing call does not name its profile by plain words that can be written again");
+    }
+    // An OSP contour's own first and last blocks (`G81`/`G82`, `G80`), whose words other
+    // than their names the copy writes again.
+    let marker = |block: usize| matches!(program.block(block).statement, Statement::LapMarker(_));
+    let markers = if osp {
+        let open = (0..profile_first).rev().find(|&b| marker(b));
+        let close = (profile_last + 1..program.blocks().len()).find(|&b| marker(b));
+        match (open, close) {
+            (Some(open), Some(close)) => Some((open, close)),
+            _ => return Err("the contour's G81/G82 and G80 blocks are not found"),
+        }
+    } else {
+        None
     };
     let first = finish.traced.first().map_or(finish.moves.start, |&(m, _)| m);
     let end = finish.traced_end.clamp(first, finish.moves.end);
@@ -467,45 +491,61 @@ pub(super) fn profile_copy(
     };
     let at = |m: usize| firsts.get(m - first).copied().unwrap_or(compensated.len());
     carry_traced(program, &mut blocks, compensated.len(), finish.traced.iter().map(|&(m, b)| (at(m), b)));
-    // Numbers the program does not use, after its largest, in its steps of ten.
+    // Names the program does not use: numbers above its largest, in steps of ten (at least
+    // four digits on OSP, whose names are text: `N0220` and `N220` name different blocks).
     let largest = program
         .blocks()
         .iter()
-        .filter_map(|b| program.sequence(b))
+        .flat_map(|b| program.words_of(b))
         .filter_map(|w| match w.kind {
-            WordKind::Sequence { number } => number,
+            WordKind::Sequence { number } | WordKind::Label { number } => number,
             _ => None,
         })
         .max()
         .unwrap_or(0);
-    let p = (u64::from(largest) / 10 + 1) * 10;
-    let q = if blocks.len() > 1 { p + 10 } else { p };
+    let mut p = (u64::from(largest) / 10 + 1) * 10;
+    if osp {
+        p = p.max(1000);
+    }
+    let q = if blocks.len() > 1 && !osp { p + 10 } else { p };
     let digits = program.config().tables().lexical.sequence_max;
     let max = 10u64.saturating_pow(u32::try_from(digits).unwrap_or(u32::MAX)) - 1;
     if q > max {
         return Err("no free sequence numbers are left above the program's largest for the copy");
     }
-    let names = (format!("N{p}"), format!("N{q}"));
-    if let Some(b) = blocks.first_mut() {
-        b.sequence = Some(names.0.clone());
-    }
-    if let Some(b) = blocks.last_mut() {
-        b.sequence = Some(names.1.clone());
-    }
+    let unnamed = |block: usize| -> Vec<NewWord> {
+        let b = program.block(block);
+        (0..program.words_of(b).len() as u32)
+            .map(|k| b.first_word + k)
+            .filter(|&id| !matches!(program.word(id).kind, WordKind::Sequence { .. }))
+            .map(NewWord::Copy)
+            .collect()
+    };
+    let names = if let Some((open, close)) = markers {
+        let name = format!("N{p}");
+        blocks.insert(0, NewBlock { sequence: Some(name.clone()), words: unnamed(open) });
+        blocks.push(NewBlock::new(unnamed(close)));
+        (name.clone(), name)
+    } else {
+        let names = (format!("N{p}"), format!("N{q}"));
+        if let Some(b) = blocks.first_mut() {
+            b.sequence = Some(names.0.clone());
+        }
+        if let Some(b) = blocks.last_mut() {
+            b.sequence = Some(names.1.clone());
+        }
+        names
+    };
     let number = |n: u64| Number::new(n as i64, 0, false);
-    let call_words = words
-        .iter()
-        .enumerate()
-        .map(|(k, _)| {
-            let id = call.first_word + k as u32;
-            if id == p_word {
-                NewWord::Number(Address::P, number(p))
-            } else if id == q_word {
-                NewWord::Number(Address::Q, number(q))
-            } else {
-                NewWord::Copy(id)
-            }
+    let call_words = (0..program.words_of(call).len() as u32)
+        .map(|k| call.first_word + k)
+        .map(|id| match naming.iter().position(|&w| w == id) {
+            Some(0) if osp => NewWord::Number(Address::N, number(p)),
+            Some(0) => NewWord::Number(Address::P, number(p)),
+            Some(_) => NewWord::Number(Address::Q, number(q)),
+            None => NewWord::Copy(id),
         })
         .collect();
-    Ok(ProfileCopy { rough: rough.block, finish: finish.block, blocks, call: NewBlock::new(call_words), names })
+    let after = if osp { finish.block } else { rough.block };
+    Ok(ProfileCopy { rough: rough.block, after, finish: finish.block, blocks, call: NewBlock::new(call_words), names })
 }
