@@ -190,6 +190,26 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
     ((to.z - from.z).abs() > 2.0 * (to.x - from.x).abs()).then_some(last)
 }
 
+/// Whether after the Fanuc roughing call at `call` the program goes on after its `Q` block
+/// (`Interpreter::after_profile`): `Q` names exactly one block, and it comes after the call.
+fn jumps_past_q(program: &Program<'_>, call: usize) -> bool {
+    let block = program.block(call);
+    let crate::syntax::Statement::Cycle(id) = block.statement else { return false };
+    let Some(word) = program.command(id).param(crate::dialect::Role::ProfileEnd) else { return false };
+    let WordKind::Number { number, .. } = program.word(word).kind else { return false };
+    let q = number.to_f64();
+    let named: Vec<usize> = program
+        .blocks()
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| {
+            program.sequence(b).is_some_and(|w| matches!(w.kind, WordKind::Sequence { number: Some(n) } if f64::from(n) == q))
+        })
+        .map(|(k, _)| k)
+        .collect();
+    matches!(named.as_slice(), [one] if *one > call)
+}
+
 /// The representative of `k`'s group (with path halving).
 fn root(group: &mut [usize], mut k: usize) -> usize {
     while group[k] != k {
@@ -437,8 +457,9 @@ pub(super) fn profile_copy(
     };
     let profile_first = finish.traced.iter().map(|&(_, b)| b).min().unwrap_or(0);
     let profile_last = finish.traced.iter().map(|&(_, b)| b).max().unwrap_or(0);
-    if !osp && profile_first <= rough.block {
-        return Err("its profile comes before the roughing call, so no block after the call is skipped to hold a copy");
+    if !osp && (profile_first <= rough.block || !jumps_past_q(program, rough.block)) {
+        return Err("the program does not go on after the profile from the roughing call (the profile comes before \
+                    the call, or its Q names no single block), so no block after the call is skipped to hold a copy");
     }
     // The words of the finishing call that name its profile, to be written again: `P` and
     // `Q` numbers, or the contour's name.
