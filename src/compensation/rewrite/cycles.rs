@@ -203,7 +203,9 @@ fn jumps_past_q(program: &Program<'_>, call: usize) -> bool {
         .iter()
         .enumerate()
         .filter(|(_, b)| {
-            program.sequence(b).is_some_and(|w| matches!(w.kind, WordKind::Sequence { number: Some(n) } if f64::from(n) == q))
+            program
+                .sequence(b)
+                .is_some_and(|w| matches!(w.kind, WordKind::Sequence { number: Some(n) } if f64::from(n) == q))
         })
         .map(|(k, _)| k)
         .collect();
