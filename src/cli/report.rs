@@ -16,8 +16,8 @@ use turnpass::plot::PathPoint;
 use turnpass::report::{ModelFile, Page, Plot, ProgramFile};
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, check_output, display_name, model_name, model_source, read_program,
-    read_program_bytes, ready, required_error_model, write_file,
+    CliError, ReadArgs, RunArgs, StockArgs, check_output, display_name, model_name, model_source, read_program,
+    read_program_bytes, ready, ready_with_part, required_error_model, write_file,
 };
 use super::streams;
 use super::verify::{CheckArgs, Checked, Watch, checked};
@@ -41,6 +41,10 @@ pub struct ReportArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// The bar under the path plot's half-section (else the model file's [stock], else the
+    /// smallest bar holding every cut's start, drawn as assumed).
+    #[command(flatten)]
+    pub stock: StockArgs,
     /// Also say where the machine settings and the model come from.
     #[arg(long, short)]
     pub verbose: bool,
@@ -60,7 +64,9 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     if args.verbose {
         messages.extend_from_slice(format!("report: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
-    let original = ready(&original_name, &original_bytes, &resolved, &args.run, "report", &mut messages);
+    let part = args.stock.check(&resolved);
+    let original =
+        ready_with_part(&original_name, &original_bytes, (&resolved, &args.run), part, "report", &mut messages);
     let compensated = ready(&compensated_name, &compensated_bytes, &resolved, &args.run, "report", &mut messages);
     let (original, compensated) = match (original, compensated) {
         (Ok(o), Ok(c)) => (o, c),
@@ -100,7 +106,8 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     }
     let [before, after] = points.map(|c| c.points);
     let title = format!("{original_name} → {compensated_name}");
-    let path = turnpass::plot::path_svg(&title, toolpath, &before, &after, args.magnify);
+    let part = original.part.as_ref().and_then(|run| run.part.as_ref());
+    let path = turnpass::plot::path_svg(&title, toolpath, (&before, &after), args.magnify, part);
     let mut plots = vec![Plot {
         id: "plot-path",
         caption: match &path {
