@@ -165,6 +165,16 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             text.push_str(&row("compensated", &figures.after));
             let improvement = turnpass::compensation::deviation::improvement_text(figures.improvement_percent);
             text.push_str(&format!("  RMS improvement: {improvement}\n"));
+            if let Some(lead) = &figures.lead {
+                text.push_str(&format!(
+                    "thread lead over each pass's length (the tool after each whole spindle turn against the \
+                     programmed lead), largest error, mm: as programmed {:.5}, compensated {:.5} ({} pass{})\n",
+                    lead.before_mm,
+                    lead.after_mm,
+                    lead.passes,
+                    if lead.passes == 1 { "" } else { "es" },
+                ));
+            }
             text.push_str(&format!(
                 "words: {} M, T, S, comment and block-delete words kept in order; feed and spindle words of every \
                  cut checked\n",
@@ -367,6 +377,22 @@ pub fn checked(
             "the predicted deviation of {compensated_name} from the nominal part reaches {:.5} mm, more than {limit:.5} mm",
             figures.after.max_mm
         ));
+    }
+    if let Some(lead) = &figures.lead {
+        if lead.passes_differ {
+            violations.push(format!("{compensated_name} cuts another number of thread passes than {original_name}"));
+        }
+        if lead.after_mm > limit {
+            let line = lead
+                .worst_move
+                .and_then(|m| original_path.moves.get(m))
+                .map_or(0, |m| LineIndex::new(original_bytes).position(m.source.start).0);
+            violations.push(format!(
+                "the predicted lead of the thread {compensated_name} cuts for line {line} of {original_name} errs by \
+                 {:.5} mm over the thread's length, more than {limit:.5} mm",
+                lead.after_mm
+            ));
+        }
     }
     Ok(Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings, table })
 }

@@ -782,6 +782,26 @@ impl DiagnosticKind {
                     }
                 }),
             },
+            ThreadLeadFailsCheck { lead_error_mm, bound_mm } => Words {
+                code: "thread-lead-fails-check",
+                message: format!(
+                    "the compensated program, read back and predicted on the model as `turnpass verify` predicts \
+                     it, would cut this thread with a lead that errs by {lead_error_mm:.5} mm over its length (the \
+                     tool after each whole spindle turn against the programmed lead), more than the {bound_mm:.5} mm \
+                     verify allows; no compensated program is written"
+                )
+                .into(),
+                label: format!("lead off by {:.2} µm over the thread", lead_error_mm * 1000.0).into(),
+                hint: Some(
+                    format!(
+                        "compensation writes a kept thread cycle's final-pass diameter and end, not its lead word, \
+                         so a scale error of the slide along the thread stays in the lead; `--max-deviation {}` \
+                         accepts this program if the thread allows {lead_error_mm:.5} mm",
+                        (lead_error_mm * 1000.0 - 1e-9).ceil() / 1000.0
+                    )
+                    .into(),
+                ),
+            },
             CompensationChangesFeed => Words {
                 code: "compensation-changes-feed",
                 message: "the compensated program would cut this block with other feed or spindle words; no \
