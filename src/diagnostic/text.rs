@@ -794,9 +794,11 @@ impl DiagnosticKind {
                 label: format!("lead off by {:.2} µm over the thread", lead_error_mm * 1000.0).into(),
                 hint: Some(
                     format!(
-                        "compensation writes a kept thread cycle's final-pass diameter and end, not its lead word, \
-                         so a scale error of the slide along the thread stays in the lead; `--max-deviation {}` \
-                         accepts this program if the thread allows {lead_error_mm:.5} mm",
+                        "a kept thread cycle's lead word is written for the slide's error along the thread, but not \
+                         where the cycle is expanded (its thread moves keep the programmed lead), where the block \
+                         has no lead word of its own (a `G92` pass under an earlier block's `F`), or where the \
+                         slide's error is not uniform along the thread; `--max-deviation {}` accepts this program \
+                         if the thread allows {lead_error_mm:.5} mm",
                         (lead_error_mm * 1000.0 - 1e-9).ceil() / 1000.0
                     )
                     .into(),

@@ -669,7 +669,12 @@ pub(super) fn thread_lead(
     };
     // The lead a word gives, per turn, and how far its error runs over the thread's turns.
     let drift = |lead: f64| mark.frame.mm((lead - exact / count).abs()) * turns;
-    let places = grid.places.saturating_add(table.decimals_beyond_increment);
+    // A lead written with the precise-lead word already takes that word's digits.
+    let beyond = match table.precise {
+        Some(precise) if precise.address == address => precise.decimals_beyond_increment,
+        _ => table.decimals_beyond_increment,
+    };
+    let places = grid.places.saturating_add(beyond);
     let plain = round(exact, places);
     let mut words: smallvec::SmallVec<[(crate::dialect::Address, Number); 2]> = smallvec::smallvec![(address, plain)];
     let mut lead = plain.to_f64() / count;
