@@ -28,7 +28,7 @@ use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::Span;
 
 use super::common::{
-    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, is_stdout, model_name, model_sha256,
+    CliError, ReadArgs, Resolved, RunArgs, StockArgs, check_output, display_name, is_stdout, model_name, model_sha256,
     model_source, pipeline_settings, read_program, ready_or_diagnostics, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
@@ -71,6 +71,9 @@ pub struct CompensateArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// The bar the part is cut from, for the check of what is written (as `verify --stock`).
+    #[command(flatten)]
+    pub stock: StockArgs,
     /// Also say, for each program, where the machine settings and the model come from.
     #[arg(long, short)]
     pub verbose: bool,
@@ -382,8 +385,17 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let original = program.valid();
     let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
     let mut unreadable = FileResult::failed(1, Vec::new());
-    let refusal = match verify::check_written((&program.parsed.program, original), &written, &reading, &tools, &model) {
-        Ok((figures, feed_change, lost)) => {
+    let stock = args.stock.check(&resolved).stock;
+    let checked_written = verify::check_written(
+        (&program.parsed.program, original),
+        &written,
+        &reading,
+        &tools,
+        (&model, stock.as_ref()),
+    );
+    let refusal = match checked_written {
+        Ok((measured, feed_change, lost)) => {
+            let figures = measured.deviation;
             let totals = &mut outcome.report.totals;
             (totals.before, totals.after) = (figures.before, figures.after);
             totals.improvement_percent = figures.improvement_percent;
@@ -394,7 +406,10 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 let kind = DiagnosticKind::CompensationFailsCheck { deviation_mm, bound_mm: bound, tolerance_mm };
                 Diagnostic::error(kind, span)
             });
+            // A part model that stopped at its bound measured only part of the part.
+            let stopped = measured.incomplete();
             too_far
+                .or(stopped)
                 .or_else(|| {
                     feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
                 })

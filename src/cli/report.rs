@@ -105,8 +105,9 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         id: "plot-path",
         caption: match &path {
             Ok(drawn) => format!(
-                "The nominal part at true scale; the deviation predicted on the model along the surface normal, \
-                 as programmed and compensated, magnified ×{}; under it the same in µm along the cut.",
+                "The nominal part at true scale; the deviation of the predicted path (pass by pass, every cutting \
+                 point) along the surface normal, as programmed and compensated, magnified ×{}; under it the same \
+                 in µm along the cut.",
                 drawn.magnify
             ),
             Err(_) => "The path plot".to_string(),
@@ -124,7 +125,9 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         Err(turnpass::plot::PlotError::NoFullCircle) => {}
         Err(e) => plots.push(Plot { id: "plot-polar", caption: "The polar plot".to_string(), svg: Err(e.to_string()) }),
     }
-    let Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings, table } = checked;
+    let Checked {
+        provenance, start, model_sha256, figures, measure, words, limit, violations, warnings, table, ..
+    } = checked;
     if let Some((_, summary)) = &table {
         streams::err_line(format_args!("report: {summary}"));
     }
@@ -149,6 +152,7 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         compensated_with,
         start: format!("{} min ({})", start.minutes, start.from),
         deviation: &figures,
+        measure,
         limit_mm: limit,
         words_checked: words.checked,
         violations: &violations,

@@ -21,6 +21,7 @@ use smallvec::SmallVec;
 
 use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
+use crate::machine::StockSettings;
 use crate::pipeline::Settings;
 use crate::semantic::Machine;
 use crate::semantic::nose_radius::ToolTable;
@@ -35,8 +36,37 @@ use super::program::SAMPLE_STEP_MM;
 use crate::error_model::sampling::{PathSample, Sampling, sample_at, sample_moves, samples_needed};
 
 mod follow;
+mod part;
 #[cfg(test)]
 mod tests;
+
+pub use part::{Feature, PartDeviation, Probe, ThreadFigures, ThreadForm, part_deviation, part_deviation_watched};
+
+/// What `verify` measures: the finished part (by default, and `compensate`'s check), or the
+/// passes one by one (`--passes`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Measure {
+    /// The finished part each program cuts on the model against the original's nominal
+    /// part, probed along the nominal surface normal (`part_deviation`).
+    Part,
+    /// Every predicted cutting point of every pass against the original's nominal path
+    /// (`deviation`).
+    Passes,
+}
+
+impl Measure {
+    /// What the figures are, in words, for a table's heading.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Measure::Part => {
+                "the finished part each program cuts on the model, probed along the surface normal of the nominal \
+                 part at every point of its finished surface"
+            }
+            Measure::Passes => "every predicted cutting point of every pass, against the nominal path (pass by pass)",
+        }
+    }
+}
 
 use follow::Follower;
 
@@ -123,8 +153,8 @@ pub fn deviation_watched(
     let side_by_side = original.moves.len() >= crate::parallel::tuning().measure_moves;
     let ((after, worst), (before, _)) = crate::parallel::join_if(
         side_by_side,
-        || measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m)),
-        || measure(original, &path, tools, model, sampling, Side::Original, &mut |side, m| watch(side, &m)),
+        || measure(compensated, Some(&path), tools, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m)),
+        || measure(original, Some(&path), tools, model, sampling, Side::Original, &mut |side, m| watch(side, &m)),
     );
     figures(before, after, worst)
 }
@@ -165,8 +195,8 @@ pub fn deviation_each(
 ) -> Deviation {
     let (original, compensated) = (original.toolpath(), compensated.toolpath());
     let path = LocalPath::new(original);
-    let (before, _) = measure(original, &path, tools, model, sampling, Side::Original, &mut each);
-    let (after, worst) = measure(compensated, &path, tools, model, sampling, Side::Compensated, &mut each);
+    let (before, _) = measure(original, Some(&path), tools, model, sampling, Side::Original, &mut each);
+    let (after, worst) = measure(compensated, Some(&path), tools, model, sampling, Side::Compensated, &mut each);
     figures(before, after, worst)
 }
 
@@ -190,7 +220,7 @@ fn figures(before: Tally, after: Tally, worst: Option<Worst>) -> Deviation {
 /// before its end: the distance along the rest of it is then its own element's.
 fn measure(
     toolpath: &Toolpath,
-    path: &LocalPath<'_>,
+    path: Option<&LocalPath<'_>>,
     tools: &ToolTable,
     model: &ErrorModel,
     sampling: &Sampling,
@@ -204,7 +234,7 @@ fn measure(
         each,
         measured: 0,
         play: model.play(),
-        follower: Follower::new(path),
+        follower: path.map(Follower::new),
         predictor: Predictor::new(toolpath.start, model),
         predicted: Vec::new(),
         tally: Tally::default(),
@@ -268,7 +298,9 @@ struct Measuring<'a, 'p, 'e> {
     /// How many points were measured, cutting or not (`Measured::sample_index`).
     measured: usize,
     play: Xz,
-    follower: Follower<'p>,
+    /// None where the points are only predicted, not measured against a path
+    /// (`predicted_path`): each is then given to `each` as predicted.
+    follower: Option<Follower<'p>>,
     predictor: Predictor<'a>,
     predicted: Vec<Xz>,
     tally: Tally,
@@ -304,6 +336,22 @@ impl Measuring<'_, '_, '_> {
     fn one(&mut self, s: &PathSample) {
         self.predicted.clear();
         self.predictor.predict_nominal(std::slice::from_ref(s), &[], &mut self.predicted);
+        let Some(follower) = self.follower.as_mut() else {
+            if let Some(&predicted) = self.predicted.first() {
+                let sample_index = self.measured;
+                self.measured += 1;
+                let measured = Measured {
+                    sample: *s,
+                    sample_index,
+                    predicted,
+                    distance_mm: 0.0,
+                    closest: predicted,
+                    original_move: 0,
+                };
+                (self.each)(self.side, measured);
+            }
+            return;
+        };
         let Some(&p) = self.predicted.first().filter(|_| s.cutting) else {
             self.measured += 1;
             self.previous = None;
@@ -312,8 +360,8 @@ impl Measuring<'_, '_, '_> {
         let sample_index = self.measured;
         self.measured += 1;
         let found = match self.side {
-            Side::Original => self.follower.measure_from(s.move_index, s.param, p),
-            Side::Compensated => self.follower.measure(s.nominal, p),
+            Side::Original => follower.measure_from(s.move_index, s.param, p),
+            Side::Compensated => follower.measure(s.nominal, p),
         };
         let Some(found) = found else {
             self.previous = None;
@@ -330,7 +378,7 @@ impl Measuring<'_, '_, '_> {
                 original_move: found.move_index,
             },
         );
-        let signed = found.distance * self.follower.side(&found, p);
+        let signed = found.distance * follower.side(&found, p);
         let d = signed.abs();
         // The side keeps its meaning along one move only: round a corner the part's surface
         // may lie on the other side of the travel, so across one the distances are taken as
@@ -342,11 +390,27 @@ impl Measuring<'_, '_, '_> {
         };
         self.tally.add_signed_along(signed, previous, s.covers_mm / SAMPLE_STEP_MM);
         if self.worst.is_none_or(|w| d > w.deviation_mm) {
-            let original_move = self.follower.matched_move();
+            let original_move = follower.matched_move();
             self.worst = Some(Worst { deviation_mm: d, original_move, measured_move: s.move_index });
         }
         self.previous = Some((signed, s.move_index));
     }
+}
+
+/// Every point of `toolpath` as the model puts the tool there, in path order: the samples
+/// `deviation` measures (with the knees of a take-up and the points one step in from a
+/// cutting move's ends), rapids' ends and moves that do not cut included, each given to
+/// `each` with its predicted point (`Measured::predicted`; its other measures are none).
+/// The part measure (`part.rs`) cuts the part along these points.
+pub(crate) fn predicted_path(
+    toolpath: &Toolpath,
+    tools: &ToolTable,
+    model: &ErrorModel,
+    sampling: &Sampling,
+    side: Side,
+    each: &mut dyn FnMut(Side, Measured),
+) {
+    measure(toolpath, None, tools, model, sampling, side, each);
 }
 
 /// Moves at most this long (mm) are measured at their end only, unless a play is longer:
@@ -414,9 +478,9 @@ fn knees(
 
 /// What `compensate` checks before it writes: `written`, the program it is about to write,
 /// read back as the control reads it (through `pipeline::analyse`, with the settings the
-/// original was read with)
-/// and measured against `original`'s nominal path by `turnpass verify`'s own computation
-/// (`deviation`, `sampling`), so that the figures it reports are the ones verify finds, with
+/// original was read with) and measured against `original`'s nominal part by `turnpass
+/// verify`'s own computation (`part_deviation` from `stock`, none to assume it as `verify`
+/// does, with `sampling`), so that the figures it reports are the ones verify finds, with
 /// verify's checks of the feed and spindle words (`check_feeds`) and of the other words of
 /// `original_program` (`check_words`: the first one lost).
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
@@ -425,8 +489,8 @@ pub fn check_written(
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
-    model: &ErrorModel,
-) -> Result<(Deviation, Option<FeedChange>, Option<MissingWord>), Vec<Diagnostic>> {
+    (model, stock): (&ErrorModel, Option<&StockSettings>),
+) -> Result<(PartDeviation, Option<FeedChange>, Option<MissingWord>), Vec<Diagnostic>> {
     let read = match crate::pipeline::analyse(written, reading).ready() {
         Ok(read) => read,
         Err(analysed) => {
@@ -442,7 +506,8 @@ pub fn check_written(
         return Err(oversampled);
     }
     let lost = check_words(original_program, read.program()).missing;
-    Ok((deviation(original, toolpath, tools, model, &sampling), check_feeds(&original, &toolpath), lost))
+    let measured = part_deviation((original, toolpath), tools, model, &sampling, machine, stock);
+    Ok((measured, check_feeds(&original, &toolpath), lost))
 }
 
 /// The deviation `verify` allows by default: two least increments, mm.

@@ -252,8 +252,10 @@ fn stamps(threaded: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Sto
     if hi < lo {
         return (0.0, 0);
     }
-    let first = ((threaded + lo) / lead).ceil();
-    let last = ((threaded + hi) / lead).floor();
+    // A stamp at an end of the stretch, to the rounding of the sums, is on it: a pass cut in
+    // pieces (verify's predicted path) stamps where it does whole.
+    let first = ((threaded + lo) / lead - 1e-9).ceil();
+    let last = ((threaded + hi) / lead + 1e-9).floor();
     if !(first.is_finite() && last.is_finite()) || last < first {
         return (0.0, 0);
     }
