@@ -1,17 +1,19 @@
 #!/bin/sh
-# Makes the seed corpora of the lower, compensate and readers targets in fuzz/corpus/ (which
-# git ignores), from the repository's own files: the programs under tests/cases/ for lower
-# and compensate, the CSV files under tests/cases/ and examples/ for readers (one copy per
-# reader, its first byte choosing it), and random structured inputs (0xFF first) for each.
+# Makes the seed corpora of the targets in fuzz/corpus/ (which git ignores), from the
+# repository's own files: the programs under tests/cases/ for parse, canonical, lower and
+# compensate (and lsp_edits, after its two bytes that choose the reading and the chunk
+# size), the CSV files under tests/cases/ and examples/ for readers (one copy per reader,
+# its first byte choosing it), and random structured inputs (0xFF first) for lower,
+# compensate and readers.
 # The third-party corpus is not copied: give its folder to the run as a second corpus, read
 # in place (fuzz/README.md). Run from the repository root.
 set -eu
-for target in lower compensate readers; do mkdir -p "fuzz/corpus/$target"; done
+for target in parse canonical lsp_edits lower compensate readers; do mkdir -p "fuzz/corpus/$target"; done
 find tests/cases -type f \( -name '*.nc' -o -name '*.NC' -o -name '*.min' -o -name '*.MIN' -o -name '*.ssb' -o -name '*.sub' \) |
     while read -r file; do
         name=$(echo "$file" | tr '/' '_')
-        cp "$file" "fuzz/corpus/lower/$name"
-        cp "$file" "fuzz/corpus/compensate/$name"
+        for target in parse canonical lower compensate; do cp "$file" "fuzz/corpus/$target/$name"; done
+        { printf '\000\020'; head -c 4000 "$file"; } > "fuzz/corpus/lsp_edits/$name"
     done
 find tests/cases examples -type f -name '*.csv' | while read -r file; do
     name=$(echo "$file" | tr '/' '_')

@@ -116,8 +116,7 @@ enum Command {
     Synth(diagnose::SynthArgs),
     /// Fit the first-order warm-up and cool-down curves of a thermal log.
     FitThermal(thermal::FitThermalArgs),
-    /// Write the part of a model the control's own pitch-error and backlash compensation
-    /// carries, in the control's format (LinuxCNC, Fanuc, Okuma).
+    /// Write the control's pitch-error and backlash tables for a model (LinuxCNC, Fanuc, Okuma).
     Table(table::TableArgs),
     /// Serve the Language Server Protocol on standard input and output (for editors).
     Lsp,

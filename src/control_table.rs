@@ -684,7 +684,7 @@ fn detect(text: &str) -> Option<Control> {
     }
 }
 
-/// The line and column at `span`'s start in `text`, 1-based.
+/// The span of line `line` (1-based) of `text`, its line break left out.
 pub fn line_span(text: &str, line: usize) -> Span {
     let mut start = 0usize;
     for (k, l) in text.split_inclusive('\n').enumerate() {

@@ -33,6 +33,7 @@ pub mod expand;
 pub mod geometry;
 pub mod lsp;
 pub mod machine;
+pub mod measurement_file;
 mod memory;
 pub mod parallel;
 pub mod part;

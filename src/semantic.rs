@@ -217,9 +217,9 @@ pub struct Expansion {
     /// it is, so its M codes and T words stay there when the call is written out.
     pub setup: Option<usize>,
     /// The profile blocks the cycle runs as the program's own blocks (a finishing pass:
-    /// `G70`, a LAP finishing cycle), each with the first move of the toolpath it makes
-    /// there: their M codes, T words and comments go on the block written for that move,
-    /// where the control runs them.
+    /// `G70`, a LAP finishing cycle), each as (the index in the cycle's moves of the first
+    /// move it makes there, the block): their M codes, T words and comments go on the block
+    /// written for that move, where the control runs them.
     pub traced: Vec<(usize, usize)>,
     pub moves: std::ops::Range<usize>,
     /// The modal words in force before the call, and after it: the expanded blocks must

@@ -12,9 +12,9 @@ pub use not_text::{NotText, not_text};
 
 /// The largest input read, by default, in mebibytes (2^20 bytes): 2.5 times the 100 MB
 /// programs turnpass is built for, and every other input (a model, an axis table, a
-/// measurement, a thermal log) far below it. A program that large parses into a few
-/// gigabytes; a stream that never ends (`yes`, `/dev/zero`) stops here, with an error, instead
-/// of growing until memory runs out. The command line raises it (`--max-input-mb`).
+/// measurement, a thermal log) far below it. A stream that never ends (`yes`, `/dev/zero`)
+/// stops here, with an error, instead of growing until memory runs out. The command line
+/// raises it (`--max-input-mb`).
 pub const DEFAULT_INPUT_LIMIT_MIB: u64 = 256;
 
 /// The most the limit may be raised to, in mebibytes: spans are `u32` byte offsets, so the

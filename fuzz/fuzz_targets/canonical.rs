@@ -13,7 +13,7 @@
 //! `RUSTC_BOOTSTRAP=1` lets cargo-fuzz use the nightly flags it needs:
 //!
 //! ```sh
-//! RUSTC_BOOTSTRAP=1 cargo fuzz run canonical -- -max_total_time=240 -max_len=4096 -dict=fuzz/gcode.dict
+//! RUSTC_BOOTSTRAP=1 cargo fuzz run canonical -- -max_total_time=240 -rss_limit_mb=2048 -max_len=4096 -dict=fuzz/gcode.dict
 //! ```
 
 #![no_main]

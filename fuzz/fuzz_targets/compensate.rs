@@ -17,7 +17,7 @@
 //!
 //! ```sh
 //! RUSTC_BOOTSTRAP=1 cargo fuzz run compensate fuzz/corpus/compensate ../shared/corpus -- \
-//!     -max_total_time=1800 -max_len=16384 -dict=fuzz/gcode.dict -jobs=1
+//!     -max_total_time=1800 -rss_limit_mb=2048 -max_len=16384 -dict=fuzz/gcode.dict -jobs=1
 //! ```
 
 #![no_main]
@@ -98,7 +98,7 @@ fuzz_target!(|data: &[u8]| {
     // is refused there: that is its check, not a finding.
     let read_back = pipeline::Settings { parse: printer::read_back_options(ready.program()), ..reading };
     let tools = ToolTable::from_machine(machine);
-    let Ok((_, _, lost)) = verify::check_written((ready.program(), ready.valid()), &printed, &read_back, &tools, &model)
+    let Ok((_, _, lost)) = verify::check_written((ready.program(), &ready.lowered.expansions, ready.valid()), &printed, &read_back, &tools, &model)
     else {
         return;
     };

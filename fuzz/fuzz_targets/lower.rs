@@ -11,7 +11,7 @@
 //!
 //! ```sh
 //! RUSTC_BOOTSTRAP=1 cargo fuzz run lower fuzz/corpus/lower tests/cases ../shared/corpus -- \
-//!     -max_total_time=1800 -max_len=16384 -dict=fuzz/gcode.dict -jobs=1
+//!     -max_total_time=1800 -rss_limit_mb=2048 -max_len=16384 -dict=fuzz/gcode.dict -jobs=1
 //! ```
 
 #![no_main]

@@ -13,7 +13,7 @@
 //! boundary survives the trip to a position and back.
 //!
 //! ```sh
-//! RUSTC_BOOTSTRAP=1 cargo fuzz run lsp_edits -- -max_total_time=300 -max_len=4096 -dict=fuzz/gcode.dict
+//! RUSTC_BOOTSTRAP=1 cargo fuzz run lsp_edits -- -max_total_time=300 -rss_limit_mb=2048 -max_len=4096 -dict=fuzz/gcode.dict
 //! ```
 
 #![no_main]

@@ -222,9 +222,19 @@ pub fn read_data_text(path: &Path) -> Result<String, CliError> {
 /// rendered as a program's diagnostics are, and a line saying what `command` did not do
 /// (exit 1: it is the data's fault, as errors of a program are).
 pub fn data_invalid(name: &str, text: &str, error: MeasuredError, command: &str) -> CliError {
+    data_refused(name, text, error, command, "does not read")
+}
+
+/// [`data_invalid`] for a measurement that reads and does not fit the program (a point off
+/// the part, a trace the other way round from the program's circle).
+pub fn data_misfit(name: &str, text: &str, error: MeasuredError, command: &str) -> CliError {
+    data_refused(name, text, error, command, "does not fit the program")
+}
+
+fn data_refused(name: &str, text: &str, error: MeasuredError, command: &str, why: &str) -> CliError {
     let kind = DiagnosticKind::DataInvalid { message: error.message, label: error.label, hint: error.hint };
     let mut out = rendered(name, text.as_bytes(), &[Diagnostic::error(kind, error.span)]);
-    out.extend_from_slice(format!("{command}: {name} does not read; nothing is done\n").as_bytes());
+    out.extend_from_slice(format!("{command}: {name} {why}; nothing is done\n").as_bytes());
     CliError::Rejected(out)
 }
 

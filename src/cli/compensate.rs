@@ -172,9 +172,13 @@ impl FitArgs {
     }
 
     /// The error model of the program's model file, started at `--start-min` when given, on
-    /// a machine with `--with-table` loaded when given (and that table, whose summary of what
-    /// goes where is said on standard error).
-    pub fn error_model(&self, resolved: &Resolved, command: &str) -> Result<(ErrorModel, Option<WithTable>), CliError> {
+    /// a machine with `--with-table` loaded when given (and that table, with the words for
+    /// standard error of what goes where).
+    pub fn error_model(
+        &self,
+        resolved: &Resolved,
+        command: &str,
+    ) -> Result<(ErrorModel, Option<(WithTable, String)>), CliError> {
         let mut model = required_error_model(resolved, command)?;
         if let Some(start) = self.start_min {
             model.start_min = start;
@@ -186,8 +190,7 @@ impl FitArgs {
                 if let Some(why) = with.loaded.unverified {
                     text.push_str(&format!("{command}: warning: unverified: {why}\n"));
                 }
-                streams::err(text);
-                Ok((combined, Some(with)))
+                Ok((combined, Some((with, text))))
             }
             None => Ok((model, None)),
         }
@@ -339,6 +342,9 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let (model, table) = args.fit.error_model(&resolved, "compensate")?;
     let name = display_name(path);
     let mut messages = Vec::new();
+    if let Some((_, said)) = &table {
+        messages.extend_from_slice(said.as_bytes());
+    }
     if args.verbose {
         messages.extend_from_slice(format!("compensate: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
@@ -362,7 +368,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         version: provenance::VERSION.to_string(),
         model: model_name(&resolved),
         model_sha256: model_sha256(&resolved)?,
-        table_sha256: table.map(|table| table.sha256),
+        table_sha256: table.map(|(table, _)| table.sha256),
         tolerance_mm: args.fit.options(&program.machine).fit.tolerance_mm,
         strategy: args.fit.strategy,
         step_mm: args.fit.step,
@@ -387,7 +393,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let mut unreadable = FileResult::failed(1, Vec::new());
     let stock = args.stock.check(&resolved).stock;
     let checked_written = verify::check_written(
-        (&program.parsed.program, original),
+        (&program.parsed.program, &program.lowered.expansions, original),
         &written,
         &reading,
         &tools,

@@ -8,17 +8,19 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 
 use turnpass::diagnose::forward::Nominal;
-use turnpass::diagnose::measured::{self, Kind};
+use turnpass::diagnose::measured::{self, Kind, KindName};
 use turnpass::diagnose::synth::{SynthOptions, finest_step_deg, synth, to_csv};
 use turnpass::diagnose::{Options, diagnose, model_text, report};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::{ModelError, with_table_files};
+use turnpass::measurement_file::DataError;
 use turnpass::pipeline::Ready;
+use turnpass::source::Span;
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, data_invalid, display_name, folder_of,
-    model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model, write_file,
-    write_output,
+    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, data_invalid, data_misfit, display_name,
+    folder_of, model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
+    write_file, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -32,6 +34,14 @@ pub enum KindArg {
 }
 
 impl KindArg {
+    fn name(self) -> KindName {
+        match self {
+            KindArg::Ballbar => KindName::BallBar,
+            KindArg::Profile => KindName::Profile,
+            KindArg::Table => KindName::Table,
+        }
+    }
+
     fn kind(self, axis: Option<AxisArg>) -> Result<Kind, CliError> {
         Ok(match self {
             KindArg::Ballbar => Kind::BallBar,
@@ -52,15 +62,15 @@ impl KindArg {
 pub struct DiagnoseArgs {
     /// The program the measurement was made on: the ball bar test, or the part.
     pub file: PathBuf,
-    /// The measurement (CSV): a ball bar trace (angle_deg,deviation_mm,direction) or a CMM
-    /// profile (x_mm,z_mm[,part,start_min]).
+    /// The measurement (CSV): a ball bar trace, a CMM profile or an interferometer table, in
+    /// turnpass's own layout or as instrument software exports it (docs/measurements.md).
     #[arg(long, value_name = "DATA.csv")]
     pub measured: PathBuf,
     /// What the measurement is (default: told by its header). For an interferometer table
     /// (`--kind table --axis x|z`) the program plays no part beyond finding the model.
     #[arg(long, value_enum)]
     pub kind: Option<KindArg>,
-    /// The slide an interferometer table measured.
+    /// The slide an interferometer table measured (default: the table's own `axis:` line).
     #[arg(long, value_enum)]
     pub axis: Option<AxisArg>,
     /// Write the model file with the effects found appended as [[effect]] tables.
@@ -208,11 +218,22 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     };
     let data_name = display_name(&args.measured);
     let text = read_data_text(&args.measured)?;
-    let kind = args.kind.map(|k| k.kind(args.axis)).transpose()?;
-    let measured = measured::read(&text, kind).map_err(|e| data_invalid(&data_name, &text, e, "diagnose"))?;
+    let kind = args.kind.map(KindArg::name);
+    let axis = args.axis.map(AxisArg::axis);
+    let measured = measured::read_as(&text, kind, axis).map_err(|e| data_invalid(&data_name, &text, e, "diagnose"))?;
     let options = Options { max_iterations: args.max_iterations };
-    let diagnosis =
-        diagnose(&nominal, &measured, &model, &options).map_err(|e| CliError::Data(format!("{data_name}: {e}")))?;
+    let diagnosis = diagnose(&nominal, &measured, &model, &options).map_err(|e| match e.line() {
+        // A row that does not fit the program: a diagnostic at its line.
+        Some(line) => {
+            let lines = turnpass::source::LineIndex::new(text.as_bytes());
+            let start = if line >= 1 && line <= lines.line_count() { lines.line_start(line - 1) } else { 0 };
+            let end = text[start as usize..].find(['\n', '\r']).map_or(text.len(), |n| start as usize + n) as u32;
+            let mut error = DataError::new(line, Span::new(start, end), "this point", e.message());
+            error.hint = e.hint();
+            data_misfit(&data_name, &text, error, "diagnose")
+        }
+        None => CliError::Data(format!("{data_name}: {e}")),
+    })?;
     let out = match args.format {
         Format::Human => turnpass::source::escape_controls(&report::human(&diagnosis)).into_owned(),
         Format::Json => serde_json::to_string_pretty(&report::json(&diagnosis)).unwrap_or_default() + "\n",

@@ -46,7 +46,10 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     args.fit.check()?;
     let (bytes, resolved) = read_program(&args.file, &args.read)?;
     args.fit.check_step(&turnpass::semantic::Machine::from_settings(&resolved.settings))?;
-    let (model, _) = args.fit.error_model(&resolved, "plot")?;
+    let (model, table) = args.fit.error_model(&resolved, "plot")?;
+    if let Some((_, said)) = &table {
+        streams::err(said);
+    }
     let name = display_name(&args.file);
     let mut messages = Vec::new();
     if args.verbose {

@@ -143,6 +143,12 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         Some(Err(why)) => format!("a provenance comment that does not read ({why})"),
         None => format!("{compensated_name} carries no provenance comment"),
     };
+    // Checked on the machine with a control table loaded: the page says so where it says
+    // what the program was compensated for.
+    let compensated_with = match &table {
+        Some((_, summary)) => format!("{compensated_with}; checked as {summary}"),
+        None => compensated_with,
+    };
     let model_file = resolved.model.as_ref().map_or_else(String::new, |(path, _)| path.display().to_string());
     let page = turnpass::report::html(&Page {
         version: env!("CARGO_PKG_VERSION"),

@@ -13,6 +13,7 @@ use turnpass::control_table::{self, Control, Header, Loaded, Options, ReadError}
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::control::TablePart;
+use turnpass::error_model::model_file::ModelSpec;
 use turnpass::machine::{MachineSettings, Units};
 use turnpass::semantic::Machine;
 use turnpass::toolpath::Xz;
@@ -50,8 +51,8 @@ pub struct TableArgs {
     #[arg(long, value_name = "LO,HI", allow_hyphen_values = true, value_parser = pair)]
     pub z: Option<(f64, f64)>,
     /// Where the machine coordinates' zero lies in the program's coordinates, machine units,
-    /// X as programmed (default: the model's [machine] home, where a Fanuc's reference
-    /// position is; else the program's zero).
+    /// X as programmed (default: the model's [machine] home, the reference position; else the
+    /// program's zero).
     #[arg(long, value_name = "X,Z", allow_hyphen_values = true, value_parser = pair)]
     pub zero: Option<(f64, f64)>,
     /// The spacing of the table's nodes, mm (default: as wide as follows the model within the
@@ -94,6 +95,24 @@ pub fn run(args: TableArgs) -> Result<ExitCode, CliError> {
     let text =
         std::fs::read_to_string(path).map_err(|source| CliError::Read { path: path.display().to_string(), source })?;
     let model = load_error_model(path, &text)?;
+    let (spec, _) = super::common::model_spec(path, &text)?;
+    // Only a slide table whose linear column the control's table would carry matters.
+    let has_linear = |axis: char| {
+        model.tables.as_ref().is_some_and(|t| if axis == 'X' { t.x.linear.is_some() } else { t.z.linear.is_some() })
+    };
+    let taken: Vec<Taken> = how_taken(&spec).into_iter().filter(|t| has_linear(t.axis)).collect();
+    if let Some(on) = taken.iter().find(|t| t.on) {
+        return Err(CliError::Usage(format!(
+            "table: the {} slide table of {} was taken with the control's {} compensation on: it holds what the \
+             control's loaded table leaves, not the slide's error, and a table made of it would replace the loaded \
+             one with that remainder; take the table with the compensation off ({} = \"off\") for the control's \
+             table, or compensate the programs with this model as it is",
+            on.axis,
+            path.display(),
+            on.what,
+            on.key
+        )));
+    }
     let settings = turnpass::machine::ModelFile::from_toml(&text).map(|f| f.machine).unwrap_or_default();
     let machine = Machine::from_settings(&settings);
     let units = match args.units {
@@ -165,6 +184,13 @@ pub fn run(args: TableArgs) -> Result<ExitCode, CliError> {
     }
     write_file(&args.output, written.main.as_bytes())?;
     let mut summary = table.summary(&model, &loaded);
+    for unsaid in taken.iter().filter(|t| !t.said) {
+        summary.push_str(&format!(
+            "table: note: the {} slide table does not say whether it was taken with the control's compensation \
+             off, as a table for the control's own is ({} = \"off\" in its [[axis_table]])\n",
+            unsaid.axis, unsaid.key
+        ));
+    }
     summary.push_str(&format!("table: wrote {}", args.output.display()));
     for (name, _) in &written.beside {
         summary.push_str(&format!(", {}", dir.join(name).display()));
@@ -174,8 +200,44 @@ pub fn run(args: TableArgs) -> Result<ExitCode, CliError> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// How a slide table with a linear column was taken: with the control's pitch-error or
+/// backlash compensation on (`on`, naming which), and whether it says so at all.
+struct Taken {
+    axis: char,
+    on: bool,
+    said: bool,
+    what: &'static str,
+    key: &'static str,
+}
+
+/// How each slide table of `spec` was taken (`[[axis_table]]`'s `pitch_error_compensation`
+/// and `backlash_compensation`): a control's table is made from a table taken with them off,
+/// the slide's whole error.
+fn how_taken(spec: &ModelSpec) -> Vec<Taken> {
+    use turnpass::error_model::model_file::Switch;
+    let mut out = Vec::new();
+    for table in &spec.axis_table {
+        let axis = table.axis.letter();
+        let (pitch, backlash) = (table.pitch_error_compensation, table.backlash_compensation);
+        if pitch == Some(Switch::On) {
+            out.push(Taken { axis, on: true, said: true, what: "pitch-error", key: "pitch_error_compensation" });
+        } else if backlash == Some(Switch::On) {
+            out.push(Taken { axis, on: true, said: true, what: "backlash", key: "backlash_compensation" });
+        } else {
+            out.push(Taken {
+                axis,
+                on: false,
+                said: pitch.is_some(),
+                what: "pitch-error",
+                key: "pitch_error_compensation",
+            });
+        }
+    }
+    out
+}
+
 /// The model position of the machine's zero when none is given: the reference position
-/// (`[machine] home`, the point a Fanuc's machine coordinates count from), else the
+/// (`[machine] home`, from which a Fanuc numbers its compensation points), else the
 /// program's zero.
 fn default_zero(settings: &MachineSettings) -> Xz {
     Machine::from_settings(settings).home.unwrap_or(Xz::new(0.0, 0.0))

@@ -526,7 +526,10 @@ pub fn checked(
             (part.deviation, Some(part))
         }
     };
-    let words = check_words(&original.parsed.program, &compensated.parsed.program);
+    let words = check_words(
+        (&original.parsed.program, &original.lowered.expansions),
+        (&compensated.parsed.program, &compensated.lowered.expansions),
+    );
     if let Some(change) = check_feeds(&original_path, &compensated_path) {
         let line = LineIndex::new(original_bytes).position(change.source.start).0;
         violations.push(format!(

@@ -23,8 +23,8 @@ use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
 use crate::machine::StockSettings;
 use crate::pipeline::Settings;
-use crate::semantic::Machine;
 use crate::semantic::nose_radius::ToolTable;
+use crate::semantic::{Expansion, Machine};
 use crate::source::Span;
 use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::{Toolpath, ValidToolpath, Xz};
@@ -485,7 +485,7 @@ fn knees(
 /// `original_program` (`check_words`: the first one lost).
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
-    (original_program, original): (&Program<'_>, ValidToolpath<'_>),
+    (original_program, original_expansions, original): (&Program<'_>, &[Expansion], ValidToolpath<'_>),
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
@@ -505,7 +505,7 @@ pub fn check_written(
     if !oversampled.is_empty() {
         return Err(oversampled);
     }
-    let lost = check_words(original_program, read.program()).missing;
+    let lost = check_words((original_program, original_expansions), (read.program(), &read.lowered.expansions)).missing;
     let measured = part_deviation((original, toolpath), tools, model, &sampling, machine, stock);
     Ok((measured, check_feeds(&original, &toolpath), lost))
 }
@@ -540,10 +540,42 @@ enum Kept {
 /// The words that must survive, and the speed changes, each with its span.
 type KeptWords = (Vec<(Kept, Span)>, Vec<(f64, Span)>);
 
-fn kept_words(program: &Program<'_>) -> KeptWords {
+/// The blocks of `program` in the order their words run: each in its place, but for a block a
+/// cycle consumes (a profile between P and Q, which the roughing cycle reads and the program
+/// skips), whose words run where a cycle runs it as its own block (`Expansion::traced`: a
+/// `G70` or LAP finishing pass), after that call's own words, once per such call. A
+/// consumed profile no finishing cycle runs runs nowhere. Expanding a cycle, or keeping it,
+/// writes the words where they run, so two programs that run the same words compare equal
+/// in this order even where the text moved them.
+fn run_order(program: &Program<'_>, expansions: &[Expansion]) -> Vec<usize> {
+    let blocks = program.blocks().len();
+    let mut skipped = vec![false; blocks];
+    let mut traced: Vec<Vec<usize>> = vec![Vec::new(); blocks];
+    for expansion in expansions {
+        for &block in expansion.consumed.iter().filter(|&&b| Some(b) != expansion.setup) {
+            if let Some(skip) = skipped.get_mut(block) {
+                *skip = true;
+            }
+        }
+        if let Some(calls) = traced.get_mut(expansion.block) {
+            calls.extend(expansion.traced.iter().map(|&(_, block)| block));
+        }
+    }
+    let mut order = Vec::with_capacity(blocks);
+    for block in 0..blocks {
+        if !skipped[block] {
+            order.push(block);
+        }
+        order.extend(traced[block].iter().copied().filter(|&b| b < blocks));
+    }
+    order
+}
+
+fn kept_words(program: &Program<'_>, expansions: &[Expansion]) -> KeptWords {
     let mut words = Vec::new();
     let mut speeds: Vec<(f64, Span)> = Vec::new();
-    for block in program.blocks() {
+    for block in run_order(program, expansions) {
+        let block = program.block(block);
         for word in program.words_of(block) {
             let kept = match word.kind {
                 WordKind::Code { letter: CodeLetter::M, code } => Some(Kept::M(code.major(), code.minor())),
@@ -574,10 +606,14 @@ fn kept_words(program: &Program<'_>) -> KeptWords {
     (words, speeds)
 }
 
-/// Check that `compensated` keeps the non-motion words of `original` in order.
-pub fn check_words(original: &Program<'_>, compensated: &Program<'_>) -> WordCheck {
-    let (words, speeds) = kept_words(original);
-    let (new_words, new_speeds) = kept_words(compensated);
+/// Check that `compensated` keeps the non-motion words of `original` in the order they run
+/// (each program with the cycles its lowering expanded, see [`run_order`]).
+pub fn check_words(
+    (original, original_expansions): (&Program<'_>, &[Expansion]),
+    (compensated, compensated_expansions): (&Program<'_>, &[Expansion]),
+) -> WordCheck {
+    let (words, speeds) = kept_words(original, original_expansions);
+    let (new_words, new_speeds) = kept_words(compensated, compensated_expansions);
     let checked = words.len() + speeds.len();
     let missing = first_missing(&words, &new_words, |a, b| a == b)
         .map(|span| MissingWord { text: String::from_utf8_lossy(original.text(span)).into_owned(), span })

@@ -99,7 +99,56 @@ pub enum ForwardError {
     #[error(
         "line {line}: the point x {x:.4} z {z:.4} is {distance:.3} mm from the nearest finished surface of the program"
     )]
-    NotOnPart { line: usize, x: f64, z: f64, distance: f64 },
+    NotOnPart {
+        line: usize,
+        x: f64,
+        z: f64,
+        distance: f64,
+        /// How far the point would be with its x halved, when that puts it on the part: its x
+        /// was most likely a diameter.
+        halved: Option<f64>,
+    },
+}
+
+impl ForwardError {
+    /// The line of the measurement file the error is about, if it is about one.
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            ForwardError::NoCircleLeft { line, .. }
+            | ForwardError::DirectionMismatch { line, .. }
+            | ForwardError::NotOnPart { line, .. } => Some(*line),
+            _ => None,
+        }
+    }
+
+    /// What is wrong, without the line.
+    pub fn message(&self) -> String {
+        let text = self.to_string();
+        match self.line() {
+            Some(line) => text.strip_prefix(&format!("line {line}: ")).unwrap_or(&text).to_string(),
+            None => text,
+        }
+    }
+
+    /// What would put it right, where a guess is possible.
+    pub fn hint(&self) -> Option<String> {
+        match self {
+            ForwardError::NotOnPart { halved: Some(distance), .. } => Some(format!(
+                "with its x halved the point lies {distance:.4} mm from the surface: the file's x is most likely a \
+                 diameter; turnpass's own x_mm is a radius, so name the column `x_dia_mm` or `X diameter (mm)`, or \
+                 write `x: diameter` above the header"
+            )),
+            ForwardError::NotOnPart { .. } => Some(
+                "check that the file measures this program's part in its work coordinates: x from the axis of \
+                 rotation, z from the program's Z0"
+                    .to_string(),
+            ),
+            ForwardError::DirectionMismatch { .. } => {
+                Some("the rows of a run follow the program's test circles in order; check the file's direction".into())
+            }
+            _ => None,
+        }
+    }
 }
 
 /// How a point's reading follows from the predicted tool position.

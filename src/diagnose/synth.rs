@@ -108,8 +108,13 @@ pub fn synth(
                 up_runs: vec![1; n],
                 down_runs: vec![1; n],
             };
-            let table =
-                SlideTable { linear: Some(profile.clone()), straightness: Some(profile), angular: None, rows: 2 * n };
+            let table = SlideTable {
+                linear: Some(profile.clone()),
+                straightness: Some(profile),
+                angular: None,
+                rows: 2 * n,
+                straightness_by_reversal: false,
+            };
             Measured::Table { axis, table: Box::new(table) }
         }
     };

@@ -48,10 +48,11 @@ pub enum ModelProblem {
     TableSource { axis: char },
     /// A second table for a slide that has one.
     DuplicateTable { axis: char },
-    /// A column of an axis table with a name the format does not have.
-    UnknownColumn { axis: char, column: String, known: Vec<&'static str>, suggestion: Option<&'static str> },
-    /// An axis table that does not read; `message` says why.
-    TableInvalid { axis: char, message: String },
+    /// A column of an axis table that the table's reader cannot place; `hint` says what would.
+    UnknownColumn { axis: char, column: String, hint: Option<String> },
+    /// An axis table that does not read: what is wrong, the label on the text, and what
+    /// would put it right.
+    TableInvalid { axis: char, message: String, label: &'static str, hint: Option<String> },
 }
 
 /// `known` as a list in backticks.
@@ -188,17 +189,17 @@ impl ModelProblem {
                 label: "second table".into(),
                 hint: Some("give each slide one [[axis_table]]".into()),
             },
-            ModelProblem::UnknownColumn { axis, column, known, suggestion } => Words {
+            ModelProblem::UnknownColumn { axis, column, hint } => Words {
                 code: "table-unknown-column",
                 message: format!("unknown column `{column}` in the {axis} slide's table").into(),
                 label: "unknown column".into(),
-                hint: guess(*suggestion, "columns", list(known)),
+                hint: hint.clone().map(Cow::Owned),
             },
-            ModelProblem::TableInvalid { axis, message } => Words {
+            ModelProblem::TableInvalid { axis, message, label, hint } => Words {
                 code: "table-invalid",
                 message: format!("the {axis} slide's table: {message}").into(),
-                label: "here".into(),
-                hint: None,
+                label: (*label).into(),
+                hint: hint.clone().map(Cow::Owned),
             },
         }
     }

@@ -22,6 +22,12 @@
 //!   with play `b − b_c` (the play operator on the corrected command is the play operator
 //!   on the command with the play reduced, for every command, also a reversal inside the
 //!   play; with `b_c > b` the slide leads by `(b_c − b)/2`, the model's negative backlash).
+//!   `b_c` is the constant part of the table's reversal (a file's forward column less its
+//!   reverse one, at its smallest), at most the drive's play; the rest of the reversal is
+//!   switched with the direction. That is exact when the table takes up the whole play;
+//!   when it takes up less, a reversal that stops between what it takes up and the play
+//!   lands differently (the model switches the rest with the slide, after the play), and
+//!   every reversal past the play lands alike (`control/tests.rs`).
 //!
 //! Everything else stays as it is, for the program to compensate. The correction is
 //! switched by the direction the model's tracker gives the axis: with the play taken up
@@ -287,3 +293,6 @@ fn index(axis: Axis) -> usize {
         Axis::Z => 1,
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -2,12 +2,27 @@
 //! target position, runs in each direction, with the linear positioning deviation and,
 //! where measured, the straightness and the angular error of the slide.
 //!
-//! The CSV has a header row; `target_mm` and `direction` (`up`/`down`, or `+`/`-`) are
-//! required, `run` is optional (repeated runs per target and direction), and each error is
-//! an optional column: `linear_mm`, `straightness_mm` (or the two runs of the reversal
-//! technique, `straightness_m1_mm` and `straightness_m2_mm`, reduced by eq. 2.7 of the
-//! thesis: `s = (m2 − m1)/2`), and `angular_deg`. Deviations are measured − target, mm.
-//! Any other column is refused: a misspelt name (`linear_um`) would otherwise drop its data.
+//! One reader takes the table in the layouts laser software exports (`docs/measurements.md`),
+//! each a mapping of its columns onto the same readings (target, direction, run, quantity):
+//!
+//! * long, a row per reading: a target column, a `direction` column (up/down, +/−,
+//!   forward/reverse, ↑/↓), optionally a `run` column, and a column per quantity: the
+//!   canonical `target_mm,direction,run,linear_mm,straightness_mm,straightness_m1_mm,
+//!   straightness_m2_mm,angular_deg`, or names with their units (`Target (mm)`,
+//!   `Error (µm)`, `Pitch (arcsec)`);
+//! * wide, a row per target: a target column and a column per run and direction
+//!   (`Run 1 Fwd (um)`, `Run 1 Rev (um)`, …: ISO 230-2's runs j = 1, 2, … in each direction),
+//!   linear readings unless the name says another quantity.
+//!
+//! A column's unit is in its name, else in the preamble (`units: um`, `target units: in`,
+//! `angle units: arcsec`); linear readings are errors (measured − target) or positions, as
+//! the name (`error`, `position`) or the preamble (`readings: positions`) says, else as the
+//! values tell (an error is within 1 mm of zero, a position within 1 mm of its target; when
+//! both or neither hold, the file must say). Columns the software computed from the runs
+//! (means, spreads, the reversal) and the conditions it logged (temperatures, time) are not
+//! read. Any other column is refused: a misspelt name would otherwise drop its data. The two
+//! straightness runs of the reversal technique are reduced by eq. 2.7 of the thesis,
+//! `s = (m2 − m1)/2`. Values are kept as deviations in mm and angles in radians.
 //!
 //! The model uses the mean deviation of the direction the slide moves in (the mean
 //! bidirectional deviation ± half the reversal value), interpolated linearly between
@@ -15,8 +30,8 @@
 
 use std::collections::BTreeMap;
 
-use crate::source::{LineIndex, Span};
-use crate::toml_spans::nearest;
+use crate::measurement_file::{ColumnName, DataError, DataFile, Row, Unit, column_name};
+use crate::source::Span;
 
 /// One measured quantity of a slide along its targets.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -76,6 +91,8 @@ pub struct SlideTable {
     /// How many rows of readings the table was read from (a row is a target, or a target and
     /// a direction and a run, as the layout writes them).
     pub rows: usize,
+    /// The straightness was given as the two runs of the reversal technique (eq. 2.5–2.7).
+    pub straightness_by_reversal: bool,
 }
 
 impl SlideTable {
@@ -92,7 +109,7 @@ impl SlideTable {
     }
 }
 
-/// The columns a table may have, in the order the module documentation gives them.
+/// The columns of the canonical long layout, in the order the documentation gives them.
 pub const COLUMNS: [&str; 8] = [
     "target_mm",
     "direction",
@@ -104,131 +121,561 @@ pub const COLUMNS: [&str; 8] = [
     "angular_deg",
 ];
 
-/// A table that does not read. Lines are 1-based lines of the text; spans are byte ranges
-/// of it.
-#[derive(Debug, Clone, PartialEq)]
-pub enum TableError {
-    /// A row whose value in `column` (0-based) does not read.
-    Row {
-        line: usize,
-        column: usize,
-        message: String,
-    },
-    MissingColumn {
-        line: usize,
-        name: &'static str,
-    },
-    /// A header cell that names no column of `COLUMNS` (a misspelt name is refused, not
-    /// ignored); `suggestion` is the column it most likely means.
-    UnknownColumn {
-        line: usize,
-        span: Span,
-        name: String,
-        suggestion: Option<&'static str>,
-    },
-    DuplicateColumn {
-        line: usize,
-        span: Span,
-        name: String,
-    },
-    NoErrors {
-        line: usize,
-    },
-    Empty,
-    Csv {
-        line: usize,
-        message: String,
-    },
+/// The preamble keys a table's reader takes (`measurement_file`).
+pub const PREAMBLE: [&str; 9] =
+    ["units", "unit", "target_units", "position_units", "angle_units", "angular_units", "readings", "axis", "slide"];
+
+/// What a table's reading is of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Quantity {
+    Linear,
+    Straightness,
+    /// The two runs of the reversal technique.
+    StraightnessM1,
+    StraightnessM2,
+    Angular,
 }
 
-impl TableError {
-    /// The line the error is on (`None` for a table with no rows at all).
-    pub fn line(&self) -> Option<usize> {
+impl Quantity {
+    fn index(self) -> usize {
         match self {
-            TableError::Row { line, .. }
-            | TableError::MissingColumn { line, .. }
-            | TableError::UnknownColumn { line, .. }
-            | TableError::DuplicateColumn { line, .. }
-            | TableError::NoErrors { line }
-            | TableError::Csv { line, .. } => Some(*line),
-            TableError::Empty => None,
+            Quantity::Linear => 0,
+            Quantity::Straightness => 1,
+            Quantity::StraightnessM1 => 2,
+            Quantity::StraightnessM2 => 3,
+            Quantity::Angular => 4,
         }
     }
 
-    /// What is wrong, without the line.
-    pub fn message(&self) -> String {
+    fn name(self) -> &'static str {
         match self {
-            TableError::Row { message, .. } | TableError::Csv { message, .. } => message.clone(),
-            TableError::MissingColumn { name, .. } => format!("the table has no `{name}` column"),
-            TableError::UnknownColumn { name, .. } => {
-                format!("unknown column `{name}` (the columns are {})", COLUMNS.join(", "))
-            }
-            TableError::DuplicateColumn { name, .. } => format!("the column `{name}` appears twice"),
-            TableError::NoErrors { .. } => {
-                "the table has no error column (linear_mm, straightness_mm, straightness_m1_mm/_m2_mm, angular_deg)"
-                    .to_string()
-            }
-            TableError::Empty => "the table has no rows".to_string(),
+            Quantity::Linear => "linear positioning",
+            Quantity::Straightness => "straightness",
+            Quantity::StraightnessM1 => "straightness (reversal run m1)",
+            Quantity::StraightnessM2 => "straightness (reversal run m2)",
+            Quantity::Angular => "angular",
         }
     }
+}
 
-    /// The text the error is about in `text`, the table it was read from: the header cell of
-    /// a column, else the whole line (the end of the text for a table with no rows).
-    pub fn span(&self, text: &str) -> Span {
-        match self {
-            TableError::UnknownColumn { span, .. } | TableError::DuplicateColumn { span, .. } => *span,
-            TableError::Row { line, column, .. } => {
-                let lines = LineIndex::new(text.as_bytes());
-                let start = if *line >= 1 && *line <= lines.line_count() { lines.line_start(line - 1) } else { 0 };
-                match line_cells(text, start as usize).get(*column) {
-                    Some(cell) => *cell,
-                    None => Span::new(start, start),
+/// Whether a linear column's readings are errors (measured − target) or the positions the
+/// laser measured.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Form {
+    Errors,
+    Positions,
+    /// Neither its name nor the preamble says: the values tell (`resolve_form`).
+    Unsaid,
+}
+
+/// A column of readings.
+#[derive(Debug, Clone, Copy)]
+struct Readings {
+    quantity: Quantity,
+    /// The direction of approach its name gives (wide layout): `true` up.
+    up: Option<bool>,
+    /// The run its name gives (wide layout).
+    run: Option<u32>,
+    /// Millimetres (lengths) or radians (angles) per value; for `Unit::Ppm`, per value and
+    /// millimetre of target.
+    unit: Unit,
+    form: Form,
+}
+
+/// What a header cell is.
+#[derive(Debug, Clone, Copy)]
+enum Column {
+    /// The target position, and millimetres per value.
+    Target(f64),
+    Direction,
+    Run,
+    Readings(Readings),
+    /// A figure the instrument's software computed from the runs (a mean, a spread, the
+    /// reversal), or the conditions it recorded (temperatures, time): recomputed or not
+    /// used, so not read.
+    Ignored,
+}
+
+/// The words of a direction of approach, up (toward +) and down.
+const UP: [&str; 8] = ["up", "fwd", "forward", "forwards", "↑", "+", "positive", "plus"];
+const DOWN: [&str; 11] =
+    ["down", "rev", "reverse", "bwd", "back", "backward", "backwards", "↓", "-", "negative", "minus"];
+/// Words of a column the software computed from the runs, or of the conditions of the test.
+const IGNORED: [&str; 21] = [
+    "mean",
+    "average",
+    "averages",
+    "avg",
+    "std",
+    "stdev",
+    "sigma",
+    "reversal",
+    "range",
+    "dead",
+    "uncertainty",
+    "repeatability",
+    "accuracy",
+    "temp",
+    "temperature",
+    "pressure",
+    "humidity",
+    "time",
+    "date",
+    "timestamp",
+    "comp",
+];
+const LINEAR: [&str; 11] =
+    ["linear", "positioning", "error", "errors", "deviation", "deviations", "dev", "devn", "err", "reading", "value"];
+const ERRORS: [&str; 9] = ["linear", "positioning", "error", "errors", "deviation", "deviations", "dev", "devn", "err"];
+const POSITIONS: [&str; 4] = ["position", "actual", "measured", "laser"];
+const STRAIGHTNESS: [&str; 3] = ["straightness", "straight", "str"];
+const ANGULAR: [&str; 6] = ["angular", "angle", "pitch", "yaw", "roll", "tilt"];
+
+/// A direction of approach as a row or a column name writes it.
+fn direction(word: &str) -> Option<bool> {
+    let word = word.trim().to_lowercase();
+    if UP.contains(&word.as_str()) {
+        Some(true)
+    } else if DOWN.contains(&word.as_str()) {
+        Some(false)
+    } else {
+        None
+    }
+}
+
+/// The unit of a column of `quantity`: its own, else the preamble's for such values.
+fn reading_unit(file: &DataFile<'_>, i: usize, name: &ColumnName, quantity: Quantity) -> Result<Unit, DataError> {
+    let angular = quantity == Quantity::Angular;
+    let keys: &[&str] = if angular { &["angle_units", "angular_units"] } else { &["units", "unit"] };
+    let unit = match name.unit {
+        Some(unit) => unit,
+        None => {
+            let Some(entry) = file.meta_any(keys) else {
+                let cell = &file.header[i].text;
+                // A canonical name misspelt (`linear_mn`) is that, not a column with no unit.
+                let canonical_like = cell.contains('_') && !cell.contains(' ');
+                if let Some(near) = crate::toml_spans::nearest(cell, COLUMNS).filter(|_| canonical_like) {
+                    let mut error =
+                        file.cell_error(i, "unknown column", format!("the column `{cell}` is none a table has"));
+                    error.unknown_column = Some(cell.clone());
+                    return Err(error.with_hint(format!("did you mean `{near}`?")));
                 }
-            }
+                let example = if angular { "arcsec" } else { "um" };
+                return Err(file.cell_error(i, "no unit", format!("the column `{cell}` has no unit")).with_hint(
+                    format!(
+                        "write it in the header, `{cell} ({example})`, or add a line `{}: {example}` above the header",
+                        keys[0].replace('_', " ")
+                    ),
+                ));
+            };
+            Unit::parse(&entry.value).ok_or_else(|| {
+                DataFile::meta_error(entry, "not a unit", format!("`{}` is no unit turnpass knows", entry.value))
+                    .with_hint(UNITS_HINT)
+            })?
+        }
+    };
+    let fits = match quantity {
+        Quantity::Angular => unit.radians().is_some() || unit == Unit::Ppm,
+        Quantity::Linear => unit.mm().is_some() || unit == Unit::Ppm,
+        _ => unit.mm().is_some(),
+    };
+    if !fits {
+        let cell = &file.header[i].text;
+        return Err(file
+            .cell_error(
+                i,
+                "not a unit of this quantity",
+                format!("`{cell}` is {}, given in {}", quantity.name(), unit.name()),
+            )
+            .with_hint(if angular {
+                "an angle is in deg, rad, mrad, µrad or arcsec"
+            } else {
+                "a length is in mm, µm, nm or in (a linear error also in ppm of its target)"
+            }));
+    }
+    Ok(unit)
+}
+
+const UNITS_HINT: &str = "lengths are mm, um (µm), nm or in; a linear error may be ppm of its target; angles deg, rad, \
+                          mrad, urad (µrad) or arcsec";
+
+/// Each header cell's meaning.
+fn map_columns(file: &DataFile<'_>) -> Result<Vec<Column>, DataError> {
+    let readings_said = match file.meta("readings") {
+        None => None,
+        Some(entry) => Some(match entry.value.to_lowercase().as_str() {
+            "errors" | "error" | "deviations" | "deviation" => Form::Errors,
+            "positions" | "position" => Form::Positions,
             _ => {
-                let end = u32::try_from(text.len()).unwrap_or(u32::MAX);
-                let lines = LineIndex::new(text.as_bytes());
-                match self.line() {
-                    Some(line) if line >= 1 && line <= lines.line_count() => {
-                        let start = lines.line_start(line - 1);
-                        let next = if line < lines.line_count() { lines.line_start(line) } else { end };
-                        let trimmed = text[start as usize..next as usize].trim_end().len() as u32;
-                        Span::new(start, start + trimmed)
+                return Err(DataFile::meta_error(
+                    entry,
+                    "not errors or positions",
+                    "`readings` is `errors` or `positions`",
+                )
+                .with_hint("errors: measured − target; positions: what the laser measured"));
+            }
+        }),
+    };
+    let mut columns = Vec::with_capacity(file.header.len());
+    for (i, cell) in file.header.iter().enumerate() {
+        let name = column_name(&cell.text);
+        let up = name.words.iter().find_map(|w| direction(w));
+        let both_ways = name.words.iter().any(|w| direction(w) == Some(true))
+            && name.words.iter().any(|w| direction(w) == Some(false));
+        let numbered = !name.numbers().is_empty();
+        let column = if name.words.is_empty() {
+            None
+        } else if name.has_any(&IGNORED) {
+            Some(Column::Ignored)
+        } else if name.has_any(&["target", "nominal", "commanded"]) && up.is_none() && !numbered {
+            let unit = match name.unit {
+                Some(unit) => Some(unit),
+                None => file
+                    .meta_any(&["target_units", "position_units"])
+                    .map(|e| {
+                        Unit::parse(&e.value).ok_or_else(|| {
+                            DataFile::meta_error(e, "not a unit", format!("`{}` is no unit turnpass knows", e.value))
+                                .with_hint(UNITS_HINT)
+                        })
+                    })
+                    .transpose()?,
+            };
+            let Some(mm) = unit.and_then(Unit::mm) else {
+                let message = match unit {
+                    Some(unit) => format!("the target column `{}` is in {}, not a length", cell.text, unit.name()),
+                    None => format!("the target column `{}` has no unit", cell.text),
+                };
+                return Err(file.cell_error(i, "no length unit", message).with_hint(format!(
+                    "write it in the header, `{} (mm)`, or add a line `target units: mm` above the header",
+                    cell.text
+                )));
+            };
+            Some(Column::Target(mm))
+        } else if (name.is(&["direction"]) || name.is(&["dir"]) || name.is(&["approach"])) && !numbered {
+            Some(Column::Direction)
+        } else if name.is(&["run"]) || name.is(&["run", "number"]) || name.is(&["run", "no"]) || name.is(&["cycle"]) {
+            Some(Column::Run)
+        } else if both_ways {
+            return Err(file.cell_error(
+                i,
+                "both directions",
+                format!("the column `{}` names both directions", cell.text),
+            ));
+        } else {
+            let quantity = if name.has_any(&STRAIGHTNESS) {
+                Some(if name.has("m1") {
+                    Quantity::StraightnessM1
+                } else if name.has("m2") {
+                    Quantity::StraightnessM2
+                } else {
+                    Quantity::Straightness
+                })
+            } else if name.has_any(&ANGULAR) {
+                Some(Quantity::Angular)
+            } else if name.has_any(&LINEAR) || name.has_any(&POSITIONS) || up.is_some() || name.has("run") {
+                Some(Quantity::Linear)
+            } else {
+                None
+            };
+            match quantity {
+                None => None,
+                Some(quantity) => {
+                    let unit = reading_unit(file, i, &name, quantity)?;
+                    let form = if quantity != Quantity::Linear || name.has_any(&ERRORS) {
+                        Form::Errors
+                    } else if name.has_any(&POSITIONS) {
+                        Form::Positions
+                    } else {
+                        readings_said.unwrap_or(Form::Unsaid)
+                    };
+                    if form == Form::Positions && unit == Unit::Ppm {
+                        return Err(file
+                            .cell_error(i, "positions in ppm", format!("`{}` gives positions in ppm", cell.text))
+                            .with_hint("a position is a length: mm, µm or in"));
                     }
-                    _ => Span::new(end, end),
+                    let run = name.numbers().first().copied();
+                    if up.is_none() && run.is_some() {
+                        return Err(file
+                            .cell_error(i, "no direction", format!("the column `{}` names a run but no direction", cell.text))
+                            .with_hint(format!(
+                                "ISO 230-2 numbers the runs j = 1, 2, … in each direction: write `Run {0} Fwd` and `Run {0} Rev` (or up/down, ↑/↓)",
+                                run.unwrap_or(1)
+                            )));
+                    }
+                    Some(Column::Readings(Readings { quantity, up, run, unit, form }))
                 }
+            }
+        };
+        match column {
+            Some(column) => columns.push(column),
+            None => {
+                let mut error =
+                    file.cell_error(i, "unknown column", format!("the column `{}` is none a table has", cell.text));
+                error.unknown_column = Some(cell.text.clone());
+                error.hint = Some(match crate::toml_spans::nearest(&cell.text, COLUMNS) {
+                    Some(near) => format!("did you mean `{near}`?"),
+                    None => "a table's columns are the target, the direction and run, and readings named by \
+                             quantity (`error (um)`, `straightness (um)`, `pitch (arcsec)`) or by run and direction \
+                             (`Run 1 Fwd (um)`); see docs/measurements.md"
+                        .to_string(),
+                });
+                return Err(error);
             }
         }
     }
+    check_layout(file, &columns)?;
+    Ok(columns)
 }
 
-impl std::fmt::Display for TableError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.line() {
-            Some(line) => write!(f, "line {line}: {}", self.message()),
-            None => f.write_str(&self.message()),
+/// One target column; a direction column (long layout: a row per reading) or readings that
+/// name their direction (wide layout: a row per target), not both; no column twice.
+fn check_layout(file: &DataFile<'_>, columns: &[Column]) -> Result<(), DataError> {
+    let count = |f: &dyn Fn(&Column) -> bool| columns.iter().filter(|c| f(c)).count();
+    let second = |f: &dyn Fn(&Column) -> bool, what: &str| -> Result<(), DataError> {
+        match columns.iter().enumerate().filter(|(_, c)| f(c)).nth(1) {
+            Some((i, _)) => Err(file.cell_error(i, "second of this column", format!("a second {what} column"))),
+            None => Ok(()),
+        }
+    };
+    second(&|c| matches!(c, Column::Target(_)), "target")?;
+    second(&|c| matches!(c, Column::Direction), "direction")?;
+    second(&|c| matches!(c, Column::Run), "run")?;
+    if count(&|c| matches!(c, Column::Target(_))) == 0 {
+        return Err(file
+            .header_error("this header", "the table has no target column")
+            .with_hint("name the column of target positions `target_mm` or `Target (mm)`"));
+    }
+    let readings: Vec<(usize, Readings)> = columns
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| match c {
+            Column::Readings(r) => Some((i, *r)),
+            _ => None,
+        })
+        .collect();
+    if readings.is_empty() {
+        return Err(file.header_error("this header", "the table has no readings").with_hint(
+            "a table's readings are linear positioning errors (`linear_mm`, `error (um)`, `Run 1 Fwd (um)`), \
+             straightness or angular errors",
+        ));
+    }
+    let direction_column = count(&|c| matches!(c, Column::Direction)) > 0;
+    let wide = readings.iter().any(|(_, r)| r.up.is_some());
+    if direction_column && wide {
+        let (i, _) = readings.iter().find(|(_, r)| r.up.is_some()).copied().unwrap_or(readings[0]);
+        return Err(file
+            .cell_error(
+                i,
+                "a direction in its name",
+                "this column names a direction, and the table has a direction column",
+            )
+            .with_hint(
+                "a row per reading has a direction column; a row per target has a column per run and direction",
+            ));
+    }
+    if !direction_column && !wide {
+        return Err(file.header_error("this header", "the table has no direction of approach").with_hint(
+            "give a `direction` column (up/down) for a row per reading, or a column per run and direction \
+             (`Run 1 Fwd (um)`, `Run 1 Rev (um)`) for a row per target",
+        ));
+    }
+    for (k, (i, r)) in readings.iter().enumerate() {
+        if wide && r.up.is_none() {
+            return Err(file.cell_error(*i, "no direction", "this column of readings names no direction").with_hint(
+                "in a table with a row per target, each column of readings names its run and direction (`Run 1 Fwd`)",
+            ));
+        }
+        if let Some((_, _)) = readings[..k]
+            .iter()
+            .find(|(_, o)| o.quantity == r.quantity && o.up == r.up && o.run.unwrap_or(1) == r.run.unwrap_or(1))
+        {
+            return Err(file.cell_error(*i, "second of this column", "a second column of the same readings"));
         }
     }
+    Ok(())
 }
 
-impl std::error::Error for TableError {}
+/// A slide table and what its file's preamble says beside it.
+pub struct TableFile {
+    pub table: SlideTable,
+    /// The preamble's `axis` (or `slide`): the slide it says it measured, `x` or `z`, with the
+    /// line and span of the value.
+    pub axis: Option<(char, usize, Span)>,
+}
 
-/// The spans of the cells of the line that starts at byte `start` of `text`, one per cell,
-/// each without its blanks and quotes (a quoted cell with a comma in it shifts the ones
-/// after it; the cells of these tables are numbers and names).
-pub(crate) fn line_cells(text: &str, start: usize) -> Vec<Span> {
-    let line_end = text[start..].find(['\n', '\r']).map_or(text.len(), |n| start + n);
-    let mut cells = Vec::new();
-    let mut cell_start = start;
-    for piece in text[start..line_end].split(',') {
-        // The cell is the piece without its blanks and quotes, however many: its place is
-        // where that slice starts in the piece.
-        let trimmed = piece.trim().trim_matches('"');
-        let from = cell_start + (trimmed.as_ptr() as usize - piece.as_ptr() as usize);
-        cells.push(Span::new(from as u32, (from + trimmed.len()) as u32));
-        cell_start += piece.len() + 1;
+/// Read a slide's table (`read_file`, the preamble's axis left aside).
+pub fn parse(text: &str) -> Result<SlideTable, DataError> {
+    read_file(text).map(|file| file.table)
+}
+
+/// Read a slide's table in any of its layouts (the module documentation).
+pub fn read_file(text: &str) -> Result<TableFile, DataError> {
+    let mut file = DataFile::open(text)?;
+    file.check_preamble(&PREAMBLE)?;
+    let axis = match file.meta_any(&["axis", "slide"]) {
+        None => None,
+        Some(entry) => {
+            let letter = entry.value.trim().to_lowercase();
+            let letter = letter.strip_suffix(" axis").unwrap_or(&letter).trim();
+            match letter {
+                "x" => Some(('x', entry.line, entry.value_span)),
+                "z" => Some(('z', entry.line, entry.value_span)),
+                _ => {
+                    return Err(DataFile::meta_error(
+                        entry,
+                        "not a slide",
+                        format!("`{}` is no slide of a lathe", entry.value),
+                    )
+                    .with_hint("write `axis: x` or `axis: z`"));
+                }
+            }
+        }
+    };
+    let columns = map_columns(&file)?;
+    let target = columns.iter().position(|c| matches!(c, Column::Target(_))).unwrap_or(0);
+    let target_mm = match columns[target] {
+        Column::Target(mm) => mm,
+        _ => 1.0,
+    };
+    let direction_column = columns.iter().position(|c| matches!(c, Column::Direction));
+    let run_column = columns.iter().position(|c| matches!(c, Column::Run));
+    let names: Vec<String> = file.header.iter().map(|c| c.text.clone()).collect();
+    // Per quantity, per target (keyed by its exact bits, in order), the runs each way.
+    let mut data: Vec<BTreeMap<OrderedTarget, Runs>> = (0..5).map(|_| BTreeMap::new()).collect();
+    // Linear readings whose form the values decide: column, target (mm), up, value (mm).
+    let mut unsaid: Vec<(usize, f64, bool, f64)> = Vec::new();
+    // Each column's largest deviation, mm.
+    let mut largest = vec![0.0f64; columns.len()];
+    file.rows(|row| {
+        let t = row.number(target, &names[target])? * target_mm;
+        let row_up = match direction_column {
+            Some(c) => {
+                let text = row.text(c, &names[c])?;
+                Some(direction(text).ok_or_else(|| {
+                    row.error(c, "not a direction", format!("direction `{text}` is neither up nor down"))
+                        .with_hint("write up or down (+ or -, forward or reverse, ↑ or ↓)")
+                })?)
+            }
+            None => None,
+        };
+        if let Some(c) = run_column {
+            row.number(c, &names[c])?;
+        }
+        for (c, column) in columns.iter().enumerate() {
+            let Column::Readings(r) = column else { continue };
+            let Some(v) = row.number_or_empty(c, &names[c])? else { continue };
+            let up = r.up.or(row_up).unwrap_or(true);
+            let value = match (r.quantity, r.unit, r.form) {
+                (Quantity::Angular, Unit::Ppm, _) => v * 1e-6,
+                (Quantity::Angular, unit, _) => v * unit.radians().unwrap_or(1.0),
+                (_, Unit::Ppm, _) => v * 1e-6 * t,
+                (_, unit, Form::Positions) => v * unit.mm().unwrap_or(1.0) - t,
+                (Quantity::Linear, unit, Form::Unsaid) => {
+                    unsaid.push((c, t, up, v * unit.mm().unwrap_or(1.0)));
+                    continue;
+                }
+                (_, unit, _) => v * unit.mm().unwrap_or(1.0),
+            };
+            if r.quantity != Quantity::Angular {
+                plausible(row, c, &names[c], value, r.unit)?;
+                largest[c] = largest[c].max(value.abs());
+            }
+            let runs = data[r.quantity.index()].entry(OrderedTarget(t)).or_default();
+            if up { runs.up.push(value) } else { runs.down.push(value) }
+        }
+        Ok(())
+    })?;
+    if let Some(errors) = resolve_form(&file, &unsaid)? {
+        for (c, t, up, v) in unsaid {
+            let runs = data[Quantity::Linear.index()].entry(OrderedTarget(t)).or_default();
+            let value = if errors { v } else { v - t };
+            largest[c] = largest[c].max(value.abs());
+            if up { runs.up.push(value) } else { runs.down.push(value) }
+        }
     }
-    cells
+    // Millimetres under a micrometre header read as nanometres: no laser table is that good.
+    for (c, column) in columns.iter().enumerate() {
+        let Column::Readings(r) = column else { continue };
+        if matches!(r.unit, Unit::Um | Unit::Nm) && largest[c] > 0.0 && largest[c] < TOO_SMALL_MM {
+            let cell = &names[c];
+            let message = format!(
+                "every reading of `{cell}` is below {} {} (the largest is {:.4} {}): they look like millimetres under a {} header",
+                if r.unit == Unit::Nm { "50" } else { "0.05" },
+                r.unit.name(),
+                largest[c] / r.unit.mm().unwrap_or(1.0),
+                r.unit.name(),
+                r.unit.name()
+            );
+            return Err(file.cell_error(c, "a unit the values do not fit", message).with_hint(
+                "write the unit the values are in (`linear_mm`, `Error (mm)`), or give the values in the unit the header says",
+            ));
+        }
+    }
+    let profile = |k: usize| build(&data[k]);
+    let (straightness, by_reversal) = match (profile(1), profile(2), profile(3)) {
+        (Some(s), _, _) => (Some(s), false),
+        (None, Some(m1), Some(m2)) => (Some(reversal(&m1, &m2)), true),
+        _ => (None, false),
+    };
+    let table = SlideTable {
+        linear: profile(0),
+        straightness,
+        angular: profile(4),
+        rows: file.rows_read(),
+        straightness_by_reversal: by_reversal,
+    };
+    if table.linear.is_none() && table.straightness.is_none() && table.angular.is_none() {
+        return Err(file.header_error("this header", "the table has no readings in its rows"));
+    }
+    Ok(TableFile { table, axis })
+}
+
+/// The largest deviation a table's reading may be, mm: a slide off by more is not measured
+/// with a laser, and the reading is in another unit than its header says.
+pub const LARGEST_DEVIATION_MM: f64 = 1.0;
+
+/// Readings all smaller than this, mm (50 nm), under a µm or nm header are millimetres.
+const TOO_SMALL_MM: f64 = 5e-5;
+
+/// A deviation `value` (mm) of column `c` of `row` within [`LARGEST_DEVIATION_MM`].
+fn plausible(row: &Row<'_>, c: usize, name: &str, value: f64, unit: Unit) -> Result<(), DataError> {
+    if value.abs() <= LARGEST_DEVIATION_MM {
+        return Ok(());
+    }
+    Err(row
+        .error(c, "not a deviation", format!("`{name}` reads as a deviation of {value} mm, which no slide has"))
+        .with_hint(format!(
+            "check the column's unit (it reads as {}); a reading that is a position needs `readings: positions` or a \
+             name that says so (`Run 1 Fwd position (mm)`)",
+            unit.name()
+        )))
+}
+
+/// Whether linear readings whose name and preamble say nothing are errors (`Some(true)`) or
+/// positions, told by their values: an error is within 1 mm of zero, a position within 1 mm
+/// of its target. When both fit (every target within 2 mm of zero) or neither, the file must
+/// say. `None` when there are no such readings.
+fn resolve_form(file: &DataFile<'_>, unsaid: &[(usize, f64, bool, f64)]) -> Result<Option<bool>, DataError> {
+    let Some(&(column, ..)) = unsaid.first() else { return Ok(None) };
+    let errors = unsaid.iter().all(|&(_, _, _, v)| v.abs() <= 1.0);
+    let positions = unsaid.iter().all(|&(_, t, _, v)| (v - t).abs() <= 1.0);
+    let name = &file.header[column].text;
+    let hint = "say which with a line `readings: errors` (measured − target) or `readings: positions` above the header, or \
+                name the column so (`Run 1 Fwd error (um)`)";
+    match (errors, positions) {
+        (true, false) => Ok(Some(true)),
+        (false, true) => Ok(Some(false)),
+        (true, true) => Err(file
+            .cell_error(column, "errors or positions", format!("the readings of `{name}` may be errors or positions: every target lies within 2 mm of zero"))
+            .with_hint(hint)),
+        (false, false) => Err(file
+            .cell_error(
+                column,
+                "neither errors nor positions",
+                format!("the readings of `{name}` are neither errors (some exceed 1 mm) nor positions (some lie more than 1 mm from their targets)"),
+            )
+            .with_hint("check the column's unit; then say what its readings are: `readings: errors` or `readings: positions`")),
+    }
 }
 
 #[derive(Default)]
@@ -237,198 +684,7 @@ struct Runs {
     down: Vec<f64>,
 }
 
-/// The 1-based lines of the CSV records of a text, found as a reader goes through it. The
-/// reader's own line count skips blank lines, and a record's position is where the reader
-/// started looking for it, before the blank and `#` comment lines it passed over: lines are
-/// counted up to the position, then over those. Positions come in order, so each count goes
-/// on from the last one and reading a table is one pass over its text, not one per row.
-pub struct RecordLines<'t> {
-    text: &'t str,
-    /// Where each line starts, up to the furthest line counted.
-    starts: Vec<usize>,
-}
-
-impl<'t> RecordLines<'t> {
-    pub fn new(text: &'t str) -> RecordLines<'t> {
-        RecordLines { text, starts: vec![0] }
-    }
-
-    /// Count lines up to byte `to`.
-    fn count_to(&mut self, to: usize) {
-        let from = self.starts.last().copied().unwrap_or(0);
-        if to > from {
-            #[cfg(test)]
-            tests::count_looked_at(to - from);
-            let mut at = from;
-            while let Some((_, next)) = next_line_end(self.text.as_bytes(), at, to) {
-                if next > to {
-                    break;
-                }
-                self.starts.push(next);
-                at = next;
-            }
-        }
-    }
-
-    /// The line of the record a reader found at `byte`.
-    pub fn line_of(&mut self, byte: u64) -> usize {
-        let mut at = (byte as usize).min(self.text.len());
-        let mut line = self.line_at(at);
-        loop {
-            let (piece, next) = match next_line_end(self.text.as_bytes(), at, self.text.len()) {
-                Some((end, next)) => (&self.text[at..end], Some(next)),
-                None => (&self.text[at..], None),
-            };
-            #[cfg(test)]
-            tests::count_looked_at(piece.len());
-            let trimmed = piece.trim();
-            if !(trimmed.is_empty() || trimmed.starts_with('#')) {
-                return line;
-            }
-            line += 1;
-            match next {
-                Some(next) => at = next,
-                None => return line,
-            }
-        }
-    }
-
-    /// The 1-based line that byte `at` is on.
-    fn line_at(&mut self, at: usize) -> usize {
-        self.count_to(at);
-        self.starts.partition_point(|&s| s <= at).max(1)
-    }
-
-    /// Where line `line` (1-based) starts, counting lines as far as needed.
-    pub fn start_of(&mut self, line: usize) -> usize {
-        while self.starts.len() < line {
-            let from = self.starts.last().copied().unwrap_or(0);
-            let found = next_line_end(self.text.as_bytes(), from, self.text.len());
-            #[cfg(test)]
-            tests::count_looked_at(found.map_or(self.text.len() - from, |(_, next)| next - from));
-            match found {
-                Some((_, next)) => self.starts.push(next),
-                None => return self.text.len(),
-            }
-        }
-        self.starts[line.max(1) - 1]
-    }
-}
-
-/// The first line end in `text[from..to]`: where the line's text ends and where the next
-/// line starts. A line ends at LF, CR LF or a lone CR, as [`LineIndex`] counts lines and as
-/// the CSV reader ends records; a CR LF cut by `to` still counts as one end.
-fn next_line_end(text: &[u8], from: usize, to: usize) -> Option<(usize, usize)> {
-    let at = from + memchr::memchr2(b'\n', b'\r', &text[from..to])?;
-    let next = if text[at] == b'\r' && text.get(at + 1) == Some(&b'\n') { at + 2 } else { at + 1 };
-    Some((at, next))
-}
-
-/// Read a slide's CSV table.
-pub fn parse(text: &str) -> Result<SlideTable, TableError> {
-    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).comment(Some(b'#')).from_reader(text.as_bytes());
-    let headers = reader.headers().map_err(|e| csv_error(&mut RecordLines::new(text), &e))?.clone();
-    let header_start = headers.position().map_or(0, |p| p.byte() as usize);
-    let mut lines = RecordLines::new(text);
-    let header_line = lines.line_of(header_start as u64);
-    let cells = {
-        let lines = LineIndex::new(text.as_bytes());
-        let start = if header_line >= 1 && header_line <= lines.line_count() {
-            lines.line_start(header_line - 1) as usize
-        } else {
-            0
-        };
-        let cells = line_cells(text, start);
-        if cells.len() == headers.len() { cells } else { vec![Span::new(start as u32, start as u32); headers.len()] }
-    };
-    for (i, name) in headers.iter().enumerate() {
-        if !COLUMNS.contains(&name) {
-            let suggestion = nearest(name, COLUMNS);
-            return Err(TableError::UnknownColumn {
-                line: header_line,
-                span: cells[i],
-                name: name.to_string(),
-                suggestion,
-            });
-        }
-        if headers.iter().take(i).any(|h| h == name) {
-            return Err(TableError::DuplicateColumn { line: header_line, span: cells[i], name: name.to_string() });
-        }
-    }
-    let column = |name: &str| headers.iter().position(|h| h == name);
-    let missing = |name: &'static str| TableError::MissingColumn { line: header_line, name };
-    let target = column("target_mm").ok_or_else(|| missing("target_mm"))?;
-    let direction = column("direction").ok_or_else(|| missing("direction"))?;
-    let quantities: [(&str, Option<usize>); 5] = [
-        ("linear_mm", column("linear_mm")),
-        ("straightness_mm", column("straightness_mm")),
-        ("straightness_m1_mm", column("straightness_m1_mm")),
-        ("straightness_m2_mm", column("straightness_m2_mm")),
-        ("angular_deg", column("angular_deg")),
-    ];
-    if quantities.iter().all(|(_, c)| c.is_none()) {
-        return Err(TableError::NoErrors { line: header_line });
-    }
-    // Per quantity, per target (keyed by its exact bits, in order), the runs each way.
-    let mut data: Vec<BTreeMap<OrderedTarget, Runs>> = (0..5).map(|_| BTreeMap::new()).collect();
-    let mut rows = 0;
-    for record in reader.records() {
-        rows += 1;
-        let record = record.map_err(|e| csv_error(&mut lines, &e))?;
-        let line = record.position().map_or(0, |p| lines.line_of(p.byte()));
-        let number = |c: usize, name: &str| -> Result<f64, TableError> {
-            let text = record.get(c).unwrap_or("");
-            text.parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| TableError::Row {
-                line,
-                column: c,
-                message: format!("`{text}` is not a number in column {name}"),
-            })
-        };
-        let t = number(target, "target_mm")?;
-        let up = match record.get(direction).unwrap_or("") {
-            "up" | "+" | "forward" => true,
-            "down" | "-" | "reverse" | "backward" => false,
-            other => {
-                let message = format!("direction `{other}` is neither up nor down");
-                return Err(TableError::Row { line, column: direction, message });
-            }
-        };
-        for (k, (name, c)) in quantities.iter().enumerate() {
-            let Some(c) = *c else { continue };
-            if record.get(c).is_none_or(|s| s.is_empty()) {
-                continue;
-            }
-            let v = number(c, name)?;
-            let runs = data[k].entry(OrderedTarget(t)).or_default();
-            if up { runs.up.push(v) } else { runs.down.push(v) }
-        }
-    }
-    let profile = |k: usize| build(&data[k]);
-    let straightness = match (profile(1), profile(2), profile(3)) {
-        (Some(s), _, _) => Some(s),
-        (None, Some(m1), Some(m2)) => Some(reversal(&m1, &m2)),
-        _ => None,
-    };
-    let angular = profile(4).map(|mut p| {
-        for v in p.up.iter_mut().chain(p.down.iter_mut()).chain(p.up_sigma.iter_mut()).chain(p.down_sigma.iter_mut()) {
-            *v = v.to_radians();
-        }
-        p
-    });
-    let table = SlideTable { linear: profile(0), straightness, angular, rows };
-    if table.linear.is_none() && table.straightness.is_none() && table.angular.is_none() {
-        return Err(TableError::Empty);
-    }
-    Ok(table)
-}
-
-/// A CSV reader's error, at the line it gives.
-fn csv_error(lines: &mut RecordLines<'_>, e: &csv::Error) -> TableError {
-    let line = e.position().map_or(1, |p| lines.line_of(p.byte()));
-    TableError::Csv { line, message: e.to_string() }
-}
-
-/// A target position as a map key: targets are read from text, so equal targets have
+/// A target position as a map key: equal targets are read from equal text, so they have
 /// equal bits.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct OrderedTarget(f64);

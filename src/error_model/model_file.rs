@@ -34,10 +34,11 @@ use toml::de::DeValue;
 use super::ErrorModel;
 use super::effects::{self, Effect};
 use super::htm::AxisTables;
-use super::interferometer::{self, SlideTable, TableError};
+use super::interferometer::{self, SlideTable};
 use crate::bounds::{Invalid, Range};
 use crate::diagnostic::{Diagnostic, DiagnosticKind, ModelProblem};
 use crate::machine::MachineSettings;
+use crate::measurement_file::DataError;
 use crate::source::Span;
 use crate::toml_spans::{self, Document, Problems, Step};
 
@@ -253,33 +254,40 @@ impl ModelSpec {
             if out.iter().any(|t| t.spec.axis == spec.axis) {
                 return Err(model_error(ModelProblem::DuplicateTable { axis }, spec.span));
             }
-            let (table, source_name, text) = match (&spec.file, &spec.csv) {
+            let (file, source_name, text) = match (&spec.file, &spec.csv) {
                 (Some(file), None) => {
                     let at = toml_spans::span(file.span());
                     let text = read(file.get_ref())
                         .map_err(|reason| model_error(ModelProblem::TableUnreadable { axis, reason }, at))?;
-                    let table = interferometer::parse(&text).map_err(|error| ModelError::TableFile {
+                    let read = interferometer::read_file(&text).map_err(|error| ModelError::TableFile {
                         file: file.get_ref().clone(),
-                        diagnostic: Box::new(table_diagnostic(axis, &error, error.span(&text))),
+                        diagnostic: Box::new(table_diagnostic(axis, &error, error.span)),
                         text: text.clone(),
                     })?;
-                    (table, file.get_ref().clone(), text)
+                    (read, file.get_ref().clone(), text)
                 }
                 (None, Some(csv)) => {
-                    let table = interferometer::parse(csv.get_ref()).map_err(|error| {
+                    let read = interferometer::read_file(csv.get_ref()).map_err(|error| {
                         let at = match spec.inline_start {
-                            Some(start) => {
-                                let at = error.span(csv.get_ref());
-                                Span::new(start + at.start, start + at.end)
-                            }
+                            Some(start) => Span::new(start + error.span.start, start + error.span.end),
                             None => toml_spans::span(csv.span()),
                         };
                         ModelError::Model(Box::new(table_diagnostic(axis, &error, at)))
                     })?;
-                    (table, "inline csv".to_string(), csv.get_ref().clone())
+                    (read, "inline csv".to_string(), csv.get_ref().clone())
                 }
                 _ => return Err(model_error(ModelProblem::TableSource { axis }, spec.span)),
             };
+            // A table file that says which slide it measured says it of this one.
+            if let Some((said, _, _)) = file.axis
+                && said != axis.to_ascii_lowercase()
+            {
+                let message = format!("the table's preamble says it measured the {} slide", said.to_ascii_uppercase());
+                let hint = Some(format!("give it `axis = \"{said}\"`, or the {axis} slide's own table"));
+                let problem = ModelProblem::TableInvalid { axis, message, label: "this table", hint };
+                return Err(model_error(problem, spec.span));
+            }
+            let table = file.table;
             out.push(ReadTable { spec, table, source_name, text });
         }
         Ok(out)
@@ -398,13 +406,15 @@ fn in_other_units(diagnostic: Diagnostic) -> Diagnostic {
 }
 
 /// The diagnostic of a table that does not read.
-fn table_diagnostic(axis: char, error: &TableError, at: Span) -> Diagnostic {
-    let problem = match error {
-        TableError::UnknownColumn { name, suggestion, .. } => {
-            let known = interferometer::COLUMNS.to_vec();
-            ModelProblem::UnknownColumn { axis, column: name.clone(), known, suggestion: *suggestion }
-        }
-        other => ModelProblem::TableInvalid { axis, message: other.message() },
+fn table_diagnostic(axis: char, error: &DataError, at: Span) -> Diagnostic {
+    let problem = match &error.unknown_column {
+        Some(column) => ModelProblem::UnknownColumn { axis, column: column.clone(), hint: error.hint.clone() },
+        None => ModelProblem::TableInvalid {
+            axis,
+            message: error.message.clone(),
+            label: error.label,
+            hint: error.hint.clone(),
+        },
     };
     Diagnostic::error(DiagnosticKind::ModelFile(Box::new(problem)), at)
 }

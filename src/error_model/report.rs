@@ -58,7 +58,7 @@ pub struct EffectReport {
 /// The report of a model file, reading its tables through `read`.
 pub fn report(spec: &ModelSpec, read: impl FnMut(&str) -> Result<String, String>) -> Result<ModelReport, ModelError> {
     let mut tables = Vec::new();
-    for ReadTable { spec: table, table: slide, source_name: source, text } in spec.read_tables(read)? {
+    for ReadTable { spec: table, table: slide, source_name: source, .. } in spec.read_tables(read)? {
         let mut rows = Vec::new();
         let mut push = |quantity, unit, profile: &Option<Profile>, scale: f64| {
             if let Some(p) = profile {
@@ -85,23 +85,13 @@ pub fn report(spec: &ModelSpec, read: impl FnMut(&str) -> Result<String, String>
             axis: table.axis.letter(),
             source,
             rows,
-            straightness_by_reversal: slide.straightness.is_some() && straightness_from_two_runs(&text),
+            straightness_by_reversal: slide.straightness.is_some() && slide.straightness_by_reversal,
             pitch_error_compensation: table.pitch_error_compensation,
             backlash_compensation: table.backlash_compensation,
         });
     }
     let effects = spec.effect.iter().map(|e| EffectReport { kind: e.name(), parameters: parameters(e) }).collect();
     Ok(ModelReport { start_min: spec.model.start_min, abbe_y_mm: spec.model.abbe_y_mm, tables, effects })
-}
-
-/// Whether the table's straightness comes from the two runs of the reversal technique
-/// (the parser reads `straightness_mm` first when both are given).
-fn straightness_from_two_runs(text: &str) -> bool {
-    let header = text.lines().find(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty()).unwrap_or("");
-    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
-    !columns.contains(&"straightness_mm")
-        && columns.contains(&"straightness_m1_mm")
-        && columns.contains(&"straightness_m2_mm")
 }
 
 fn parameters(effect: &super::Effect) -> Vec<(String, String)> {

@@ -124,6 +124,22 @@ impl Dexels {
         (first.max(0.0) as usize)..((last as usize + 1).min(count))
     }
 
+    /// Whether the box from `lo` to `hi` may hold material: false when every run of rays
+    /// across it holds its material wholly outside it (the test [`Dexels::sweep_families`]
+    /// passes over a run with).
+    pub fn may_meet(&self, lo: Xz, hi: Xz) -> bool {
+        [(true, lo.x, hi.x, lo.z, hi.z), (false, lo.z, hi.z, lo.x, hi.x)].into_iter().any(
+            |(along_z, from, to, reach_lo, reach_hi)| {
+                let range = self.range(along_z, from, to);
+                let reach = if along_z { &self.reach_z } else { &self.reach_x };
+                !range.is_empty()
+                    && reach[range.start / BLOCK..=(range.end - 1) / BLOCK]
+                        .iter()
+                        .any(|&(lo, hi)| reach_hi > lo && reach_lo < hi)
+            },
+        )
+    }
+
     /// The rays `sweep` crosses, and how many.
     pub fn rays_crossed(&self, sweep: &Sweep) -> u64 {
         let (lo, hi) = sweep.bounds();
@@ -152,7 +168,8 @@ impl Dexels {
         let (lo, hi) = sweep.bounds();
         let mut taken = Taken::default();
         for along_z in families {
-            let prepared = sweep.prepare(along_z);
+            // Made when a ray first needs it: a sweep through air crosses no ray.
+            let mut prepared = None;
             let range = if along_z { self.range(true, lo.x, hi.x) } else { self.range(false, lo.z, hi.z) };
             let (reach_lo, reach_hi) = if along_z { (lo.z, hi.z) } else { (lo.x, hi.x) };
             let mut index = range.start;
@@ -177,7 +194,7 @@ impl Dexels {
                     if reach_hi <= first || reach_lo >= last {
                         continue;
                     }
-                    let crossing = prepared.cross(line);
+                    let crossing = prepared.get_or_insert_with(|| sweep.prepare(along_z)).cross(line);
                     if crossing.is_empty() {
                         continue;
                     }

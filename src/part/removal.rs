@@ -5,7 +5,7 @@ use smallvec::SmallVec;
 
 use super::dexel::{Dexels, Edge, STOCK, Span, Spans, Taken};
 use super::stock::Stock;
-use super::sweep::Sweep;
+use super::sweep::{Sweep, Wedge};
 use super::tool::{self, Orientation, Tool};
 use crate::semantic::Machine;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
@@ -179,6 +179,15 @@ impl<'a> Removal<'a> {
         }
         let start = toolpath.start_of(index);
         let tool = self.tool(m, start);
+        // Most moves of a long program run in air: a move whose tool's box meets no material
+        // does nothing, and its sweeps are not built (a thread pass's count of leads is).
+        if !m.threading {
+            let (lo, hi) = reach_of_move(&tool, start, m);
+            if !self.dexels.may_meet(lo, hi) {
+                self.thread = None;
+                return Some(Outcome::default());
+            }
+        }
         let sweeps = self.sweeps(&tool, start, m)?;
         let planned: u64 = sweeps.iter().map(|s| self.dexels.rays_crossed(s)).sum();
         if self.visits + planned > MAX_RAY_VISITS {
@@ -231,6 +240,32 @@ impl<'a> Removal<'a> {
     }
 }
 
+/// A box that holds everything the tool of move `m` (from `start`) sweeps: its nose centre's
+/// path (with an arc's extremes, and the sagitta its body's chords are moved by, `arc_body`)
+/// grown by the core's extent and the nose.
+fn reach_of_move(tool: &Tool, start: Xz, m: &Move) -> (Xz, Xz) {
+    let (c0, c1) = (tool.centre(start), tool.centre(m.end));
+    let mut lo = Xz::new(c0.x.min(c1.x), c0.z.min(c1.z));
+    let mut hi = Xz::new(c0.x.max(c1.x), c0.z.max(c1.z));
+    if m.is_arc() {
+        let centre = tool.centre(m.centre);
+        for p in crate::geometry::arc_extremes(c0, c1, centre, m.motion == Motion::Ccw) {
+            lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
+            hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
+        }
+        let sagitta = c0.distance(centre) * (1.0 - (std::f64::consts::PI / 8.0).cos());
+        lo = Xz::new(lo.x - sagitta, lo.z - sagitta);
+        hi = Xz::new(hi.x + sagitta, hi.z + sagitta);
+    }
+    let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+    for p in &tool.core {
+        core_lo = Xz::new(core_lo.x.min(p.x), core_lo.z.min(p.z));
+        core_hi = Xz::new(core_hi.x.max(p.x), core_hi.z.max(p.z));
+    }
+    let r = tool.nose;
+    (Xz::new(lo.x + core_lo.x - r, lo.z + core_lo.z - r), Xz::new(hi.x + core_hi.x + r, hi.z + core_hi.z + r))
+}
+
 /// Where a thread pass stamps its form along a move: every lead from where the pass began
 /// (`threaded` before this move), as far as the stock reaches; the first stamp's number of
 /// leads from the pass's start, and how many there are.
@@ -262,9 +297,11 @@ fn stamps(threaded: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Sto
     (first, (last - first) as u64 + 1)
 }
 
-/// The insert's body swept along an arc: along chords of at most 45°, each moved toward
-/// the part by its sagitta and held to the part's side of the circle the nose sweeps, so the
-/// body never reaches past the nose's own sweep and leaves no film beside it.
+/// The insert's body swept along an arc: the body at the arc's two ends, and along chords of
+/// at most 45°, each moved toward the part by its sagitta and held to the part's side of the
+/// circle the nose sweeps and to the angles it spans, so the body never reaches past the
+/// nose's own sweep (a chord's rounded end beside the nose's disk at the arc's end would
+/// reach past it by a micrometre) and leaves no film beside it.
 fn arc_body(tool: &Tool, c0: Xz, c1: Xz, centre: Xz, ccw: bool, out: &mut SmallVec<[Sweep; 6]>) {
     let radius = c0.distance(centre);
     let a0 = crate::geometry::angle(c0, centre);
@@ -274,6 +311,8 @@ fn arc_body(tool: &Tool, c0: Xz, c1: Xz, centre: Xz, ccw: bool, out: &mut SmallV
     // Where the body lies from the nose centre.
     let body = tool.core.iter().fold(Xz::new(0.0, 0.0), |s, p| Xz::new(s.x + p.x, s.z + p.z));
     let sagitta = radius * (1.0 - (step.abs() / 2.0).cos());
+    out.push(Sweep::rounded(tool.placed(c0), tool.nose));
+    out.push(Sweep::rounded(tool.placed(c1), tool.nose));
     for k in 0..pieces {
         let (from, to) = (a0 + step * k as f64, a0 + step * (k + 1) as f64);
         let mid = (from + to) / 2.0;
@@ -286,18 +325,9 @@ fn arc_body(tool: &Tool, c0: Xz, c1: Xz, centre: Xz, ccw: bool, out: &mut SmallV
             Xz::new(centre.x + r * a.sin(), centre.z + r * a.cos())
         };
         let (p0, p1) = (p(from), p(to));
-        if shift > 0.0 && k == 0 {
-            out.push(Sweep::rounded(tool.placed(c0), tool.nose));
-        }
-        if shift > 0.0 && k + 1 == pieces {
-            out.push(Sweep::rounded(tool.placed(c1), tool.nose));
-        }
         let inner = Sweep::rounded(tool.placed(p0).chain(tool.placed(p1)), tool.nose);
         let clip = if part_inside { radius - tool.nose } else { radius + tool.nose };
-        if part_inside && clip <= 0.0 {
-            out.push(inner);
-        } else {
-            out.push(Sweep::Clipped { inner: Box::new(inner), centre, radius: clip, outside: part_inside });
-        }
+        let wedge = Wedge::between(centre, from, to);
+        out.push(Sweep::Clipped { inner: Box::new(inner), centre, radius: clip, outside: part_inside, wedge });
     }
 }

@@ -11,7 +11,7 @@
 //! part is the piece in front (toward +Z, the end the program machined), and the piece
 //! behind is the bar left in the chuck ([`Part::separated_at`]).
 
-use super::dexel::{Dexels, STOCK};
+use super::dexel::{Dexels, STOCK, Span};
 use super::stock::Stock;
 use crate::toolpath::Xz;
 
@@ -61,9 +61,29 @@ impl Part {
         self.dexels.spacing
     }
 
-    /// Whether `p` lies in the part (in front of a part-off cut).
+    /// Whether `p` lies in the part (in front of a part-off cut), as the ray along Z nearest
+    /// it says: exact for a point on a ray, and between rays the nearer ray's word, which may
+    /// be half the spacing away across a surface. [`Part::rays`] gives the exact material.
     pub fn contains(&self, p: Xz) -> bool {
         self.separated_at.is_none_or(|z| p.z >= z) && self.dexels.contains(p)
+    }
+
+    /// The rays of one family (`along_z`: the lines `x = at`, else `z = at`) whose line lies
+    /// between `lo` and `hi`, each with the part's material on it, exactly.
+    pub fn rays(&self, along_z: bool, lo: f64, hi: f64) -> impl Iterator<Item = Ray<'_>> + '_ {
+        let rays = if along_z { &self.dexels.along_z } else { &self.dexels.along_x };
+        let origin = if along_z { self.dexels.x_lo } else { self.dexels.z_lo };
+        let first = ((lo - origin) / self.dexels.spacing - 0.5).ceil().max(0.0);
+        let first = if first.is_finite() { (first as usize).min(rays.len()) } else { rays.len() };
+        rays[first..]
+            .iter()
+            .enumerate()
+            .map(move |(k, spans)| Ray {
+                line: self.dexels.line(along_z, first + k),
+                spans,
+                separated_at: self.separated_at,
+            })
+            .take_while(move |ray| ray.at() <= hi)
     }
 
     /// Every point of the finished surface the rays see: along each ray along Z, then each
@@ -98,5 +118,41 @@ impl Part {
             return None;
         }
         self.dexels.along_x.get(index as usize)?.last().map(|s| s.hi.at)
+    }
+}
+
+/// One ray of a part's dexels and the part's material on it.
+#[derive(Debug, Clone, Copy)]
+pub struct Ray<'p> {
+    line: super::sweep::Line,
+    spans: &'p [Span],
+    separated_at: Option<f64>,
+}
+
+impl Ray<'_> {
+    /// Whether the ray runs along Z (the line `x = at`), else along X (`z = at`).
+    pub fn along_z(&self) -> bool {
+        self.line.along_z
+    }
+
+    /// The coordinate the ray holds fixed, mm.
+    pub fn at(&self) -> f64 {
+        self.line.at
+    }
+
+    /// The point of the ray at parameter `t` (its z for a ray along Z, else its x).
+    pub fn point(&self, t: f64) -> Xz {
+        self.line.point(t)
+    }
+
+    /// The intervals of the part's material on the ray, in order along it (in front of a
+    /// part-off cut).
+    pub fn material(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let from = match self.separated_at {
+            Some(z) if self.line.along_z => z,
+            Some(z) if self.line.at < z => f64::INFINITY,
+            _ => f64::NEG_INFINITY,
+        };
+        self.spans.iter().filter(move |s| s.hi.at > from).map(move |s| (s.lo.at.max(from), s.hi.at))
     }
 }

@@ -90,10 +90,59 @@ pub(crate) enum Sweep {
     Rounded { points: SmallVec<[Xz; 8]>, radius: f64 },
     /// A disk of `radius` (`r`) moved along the arc from `start` to `end` about `centre`.
     ArcNose { start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64, sector: Sector },
-    /// A rounded polygon (`Rounded`) less the disk of `radius` about `centre` (`outside`),
-    /// or within it: the insert's body swept along a chord of an arc, held to the arc's side
-    /// of the circle its nose sweeps, so that its surface there is the circle's.
-    Clipped { inner: Box<Sweep>, centre: Xz, radius: f64, outside: bool },
+    /// A rounded polygon (`Rounded`) within the wedge of its chord, less the disk of `radius`
+    /// about `centre` (`outside`) or within it: the insert's body swept along a chord of an
+    /// arc, held to the arc's side of the circle its nose sweeps, so that its surface there
+    /// is the circle's, and to the angles the chord spans, so that its rounded ends do not
+    /// reach past the nose's disks at the chord's ends (the true sweep there).
+    Clipped { inner: Box<Sweep>, centre: Xz, radius: f64, outside: bool, wedge: Wedge },
+}
+
+/// The points about `centre` whose direction lies between two angles less than a half turn
+/// apart (the angle of a direction is `a` for `(sin a, cos a)`, as `geometry::angle`): those
+/// `p` with `(p − centre)·side ≥ 0` for both sides.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Wedge {
+    centre: Xz,
+    sides: [Xz; 2],
+}
+
+impl Wedge {
+    /// The wedge about `centre` from angle `from` to angle `to`, either way round.
+    pub fn between(centre: Xz, from: f64, to: f64) -> Wedge {
+        let (lo, hi) = (from.min(to), from.max(to));
+        // d/da (sin a, cos a) = (cos a, −sin a) points toward growing angles.
+        Wedge { centre, sides: [Xz::new(lo.cos(), -lo.sin()), Xz::new(-hi.cos(), hi.sin())] }
+    }
+
+    /// The part of `piece` of `line` inside the wedge; a new end's normal faces out of it.
+    fn clip(&self, line: Line, piece: (Hit, Hit)) -> Option<(Hit, Hit)> {
+        let (mut lo, mut hi) = piece;
+        let origin = line.point(0.0);
+        let direction = if line.along_z { Xz::new(0.0, 1.0) } else { Xz::new(1.0, 0.0) };
+        for side in self.sides {
+            // Along the line the side's test is `alpha + beta·t ≥ 0`.
+            let alpha = (origin.x - self.centre.x) * side.x + (origin.z - self.centre.z) * side.z;
+            let beta = direction.x * side.x + direction.z * side.z;
+            let normal = Xz::new(-side.x, -side.z);
+            if beta == 0.0 {
+                if alpha < 0.0 {
+                    return None;
+                }
+            } else if beta > 0.0 {
+                let t = -alpha / beta;
+                if t > lo.t {
+                    lo = Hit { t, normal };
+                }
+            } else {
+                let t = -alpha / beta;
+                if t < hi.t {
+                    hi = Hit { t, normal };
+                }
+            }
+        }
+        (hi.t > lo.t).then_some((lo, hi))
+    }
 }
 
 fn unit(v: Xz) -> Xz {
@@ -166,8 +215,8 @@ impl Sweep {
                     }
                 }
             }
-            Sweep::Clipped { inner, centre, radius, outside } => {
-                out = clip(line, inner.cross(line), *centre, *radius, *outside);
+            Sweep::Clipped { inner, centre, radius, outside, wedge } => {
+                out = clip(line, inner.cross(line), *centre, *radius, *outside, wedge);
             }
         }
         out
@@ -186,12 +235,13 @@ pub(crate) enum Prepared<'s> {
         lower: SmallVec<[Piece; 12]>,
         upper: SmallVec<[Piece; 12]>,
     },
-    /// A prepared rounded polygon less or within a disk (`Sweep::Clipped`).
+    /// A prepared rounded polygon within a wedge, less or within a disk (`Sweep::Clipped`).
     Clipped {
         inner: Box<Prepared<'s>>,
         centre: Xz,
         radius: f64,
         outside: bool,
+        wedge: Wedge,
     },
     General(&'s Sweep),
 }
@@ -231,9 +281,9 @@ impl Piece {
 impl Sweep {
     /// This sweep ready for the rays of one family.
     pub fn prepare(&self, along_z: bool) -> Prepared<'_> {
-        if let Sweep::Clipped { inner, centre, radius, outside } = self {
+        if let Sweep::Clipped { inner, centre, radius, outside, wedge } = self {
             let inner = Box::new(inner.prepare(along_z));
-            return Prepared::Clipped { inner, centre: *centre, radius: *radius, outside: *outside };
+            return Prepared::Clipped { inner, centre: *centre, radius: *radius, outside: *outside, wedge: *wedge };
         }
         let Sweep::Rounded { points, radius } = self else { return Prepared::General(self) };
         let (r, n) = (*radius, points.len());
@@ -327,8 +377,8 @@ impl Prepared<'_> {
     pub fn cross(&self, line: Line) -> Crossing {
         match self {
             Prepared::General(sweep) => sweep.cross(line),
-            Prepared::Clipped { inner, centre, radius, outside } => {
-                clip(line, inner.cross(line), *centre, *radius, *outside)
+            Prepared::Clipped { inner, centre, radius, outside, wedge } => {
+                clip(line, inner.cross(line), *centre, *radius, *outside, wedge)
             }
             Prepared::Chains { along_z, lower, upper } => {
                 let mut out = Crossing::new();
@@ -345,10 +395,11 @@ impl Prepared<'_> {
     }
 }
 
-/// `pieces` of `line` less the disk of `radius` about `centre` (`outside`), or within it.
-fn clip(line: Line, pieces: Crossing, centre: Xz, radius: f64, outside: bool) -> Crossing {
+/// `pieces` of `line` within `wedge`, less the disk of `radius` about `centre` (`outside`),
+/// or within it; a disk of no radius is none.
+fn clip(line: Line, pieces: Crossing, centre: Xz, radius: f64, outside: bool, wedge: &Wedge) -> Crossing {
     let mut out = Crossing::new();
-    let disk = line.circle(centre, radius);
+    let disk = (radius > 0.0).then(|| line.circle(centre, radius)).flatten();
     let at = |t: f64| {
         let p = line.point(t);
         // The sweep's outward normal on the circle: toward the centre when the disk is left
@@ -356,7 +407,7 @@ fn clip(line: Line, pieces: Crossing, centre: Xz, radius: f64, outside: bool) ->
         let n = unit(Xz::new(p.x - centre.x, p.z - centre.z));
         Hit { t, normal: if outside { Xz::new(-n.x, -n.z) } else { n } }
     };
-    for (lo, hi) in pieces {
+    for (lo, hi) in pieces.into_iter().filter_map(|piece| wedge.clip(line, piece)) {
         match (disk, outside) {
             (None, true) => out.push((lo, hi)),
             (None, false) => {}

@@ -138,6 +138,85 @@ fn compensation_brings_the_predicted_deviation_down_to_the_floor() {
     eprintln!("quantisation floor {:.3} µm\n{table}", FLOOR_MM * 1000.0);
 }
 
+/// The closed loop on a machine with the control's own table loaded (issue 30): the table
+/// `turnpass table` writes for the model (LinuxCNC's compensation files, and the Fanuc tape,
+/// whose reading is unverified), then every example program compensated with
+/// `--with-table` for what the table does not carry and verified on the machine with it.
+/// Verify passes (within its bound, every word kept), the deviation falls, and `arcs` and
+/// `densify` at 0.3 µm meet the bar of the loop without a table.
+#[test]
+fn compensation_with_the_control_table_meets_the_same_bound() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut programs: Vec<String> = std::fs::read_dir(repo().join("examples/programs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "nc"))
+        .map(|p| format!("examples/programs/{}", p.file_name().unwrap().to_string_lossy()))
+        .collect();
+    programs.sort();
+    assert!(programs.len() >= 4);
+    let mut table = String::from(
+        "| control | program | strategy | tolerance | RMS before µm | RMS after µm | max after µm |\n|---|---|---|---|---|---|---|\n",
+    );
+    for (control, file, runs) in [
+        ("linuxcnc", "lathe.ini", &[("auto", None), ("arcs", Some("0.0003")), ("densify", Some("0.0003"))][..]),
+        ("fanuc", "lathe.tape", &[("auto", None), ("arcs", Some("0.0003"))][..]),
+    ] {
+        let written = dir.path().join(file);
+        let written = written.to_str().unwrap();
+        // The thesis lathe's travel, inches on the diameter (assumed, as its home is).
+        let args = ["table", MODEL, "--control", control, "-o", written, "--x", "0,8", "--z", "-3,4.5"];
+        let output = Command::new(env!("CARGO_BIN_EXE_turnpass")).args(args).current_dir(repo()).output().unwrap();
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        for program in &programs {
+            for &(strategy, tolerance) in runs {
+                let out = dir.path().join("compensated.nc");
+                let out = out.to_str().unwrap();
+                let mut args = vec![
+                    "compensate",
+                    program,
+                    "--model",
+                    MODEL,
+                    "--with-table",
+                    written,
+                    "--strategy",
+                    strategy,
+                    "-o",
+                    out,
+                ];
+                args.extend(tolerance.iter().flat_map(|t| ["--tolerance", *t]));
+                assert_eq!(run(&args).0, 0, "{control} {program} {strategy}");
+                let (code, json) =
+                    run(&["verify", program, out, "--model", MODEL, "--with-table", written, "--format", "json"]);
+                assert_eq!(code, 0, "{control} {program} {strategy}: verify\n{json}");
+                let value: serde_json::Value = serde_json::from_str(&json).unwrap();
+                assert_eq!(value["violations"].as_array().map(Vec::len), Some(0));
+                let deviation = &value["deviation"];
+                let before = deviation["before"]["rms_mm"].as_f64().unwrap();
+                let after = deviation["after"]["rms_mm"].as_f64().unwrap();
+                let max = deviation["after"]["max_mm"].as_f64().unwrap();
+                assert!(after < before, "{control} {program} {strategy}: {after} ≥ {before}");
+                if tolerance.is_some() {
+                    let target = (0.1 * before).max(1.25 * FLOOR_MM);
+                    assert!(after <= target, "{control} {program} {strategy}: RMS {after} above {target}");
+                }
+                table.push_str(&format!(
+                    "| {control} | {} | {strategy} | {} | {:.2} | {:.2} | {:.2} |\n",
+                    program.rsplit('/').next().unwrap(),
+                    tolerance.map_or("default (1.27 µm)".to_string(), |t| format!(
+                        "{} µm",
+                        t.parse::<f64>().unwrap() * 1000.0
+                    )),
+                    before * 1000.0,
+                    after * 1000.0,
+                    max * 1000.0
+                ));
+            }
+        }
+    }
+    eprintln!("with the control's table loaded:\n{table}");
+}
+
 /// A program in the style of the benchmark generator (`gen_lathe.py`: radius programming,
 /// `R` arcs, some `I K` arcs going the long way round), written by hand to hold the arcs that
 /// once made compensation worse: `R` arcs of 90°, 178.9°, 181.1° and 270°, tiny arcs, and

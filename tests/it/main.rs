@@ -27,6 +27,7 @@ mod lsp_nvim;
 mod lsp_protocol;
 mod lsp_server;
 mod lsp_session;
+mod measured_layouts;
 mod model_file_docs;
 mod moves;
 mod nose_radius;

@@ -6,7 +6,8 @@
 //! path (the programmed tip path offset by the nose radius along the tip direction), a point
 //! the groove left lies on the insert's rounded rectangle at the plunge's bottom, a point a
 //! thread pass left lies on the rounded 60° V stamped at a whole number of leads from the
-//! pass's start. And the nose's own disk holds no material anywhere along the finishing pass.
+//! pass's start. And the nose's own disk holds no material anywhere along the finishing pass, on
+//! any ray of the part.
 
 use proptest::prelude::*;
 
@@ -137,9 +138,11 @@ fn program(job: &Job, profile: &Profile) -> (String, f64, f64) {
     text += &(lines.join("\n") + "\n");
     text += "G70 P100 Q200\nG00 X100. Z50.\n";
     // The groove: 3 mm wide from 4 mm in front of the profile's end, set at its left corner.
-    let groove_z = end + 4.0;
+    // The groove and the thread where the program puts them: as written, to 4 decimals.
+    let written = |value: f64| format!("{value:.4}").parse::<f64>().unwrap();
+    let groove_z = written(end + 4.0);
     let last_radius = profile.points.last().unwrap().x;
-    let groove_x = last_radius - job.groove_depth;
+    let groove_x = written(2.0 * (last_radius - job.groove_depth)) / 2.0;
     text += &format!(
         "T0303 S600\nG00 X{} Z{}\nG01 X{} F0.05\nG00 X{}\nG00 X100. Z50.\n",
         d(last_radius + 1.0),
@@ -157,6 +160,11 @@ fn program(job: &Job, profile: &Profile) -> (String, f64, f64) {
         d(job.start_radius + 1.0)
     );
     (text, groove_z, groove_x)
+}
+
+/// The thread pass's X (radius) as the program writes it.
+fn thread_root(job: &Job) -> f64 {
+    format!("{:.4}", 2.0 * (job.start_radius - 0.6 * job.thread_lead)).parse::<f64>().unwrap() / 2.0
 }
 
 fn distance_to_segment(p: Xz, a: Xz, b: Xz) -> f64 {
@@ -260,7 +268,7 @@ fn check(job: &Job) -> Result<[f64; 3], TestCaseError> {
         } else if m.threading {
             // The 60° V with a 0.1 nose, its nose centre 0.1 above the pass's X at the stamp:
             // the nearest stamp is a whole number of leads from Z4.
-            let root = job.start_radius - 0.6 * job.thread_lead;
+            let root = thread_root(job);
             let k = ((4.0 - point.at.z) / job.thread_lead).round();
             let apex = Xz::new(root + 0.1, 4.0 - k * job.thread_lead);
             let (s, c) = (30f64.to_radians().sin(), 30f64.to_radians().cos());
@@ -272,12 +280,14 @@ fn check(job: &Job) -> Result<[f64; 3], TestCaseError> {
             worst[2] = worst[2].max(error);
         }
     }
-    // Nothing is left inside the nose anywhere along the finishing pass.
+    // Nothing is left inside the nose anywhere along the finishing pass: on every ray the
+    // nose's disk crosses, the part's material stays out of the disk shrunk by EXACT (the
+    // rays hold the material exactly; between rays nothing is known).
     for i in g70.clone() {
         let m = &toolpath.moves[i];
         let (a, b) = (toolpath.start_of(i), m.end);
-        for step in 0..=8 {
-            let s = step as f64 / 8.0;
+        for step in 0..=16 {
+            let s = step as f64 / 16.0;
             let tip = if m.is_arc() {
                 let c = m.centre;
                 let (a0, a1) = ((a.x - c.x).atan2(a.z - c.z), (b.x - c.x).atan2(b.z - c.z));
@@ -295,11 +305,21 @@ fn check(job: &Job) -> Result<[f64; 3], TestCaseError> {
                 Xz::new(a.x + s * (b.x - a.x), a.z + s * (b.z - a.z))
             };
             let centre = Xz::new(tip.x + job.nose, tip.z + job.nose);
-            for k in 0..16 {
-                let angle = k as f64 * std::f64::consts::TAU / 16.0;
-                let q =
-                    Xz::new(centre.x + (job.nose - 0.001) * angle.sin(), centre.z + (job.nose - 0.001) * angle.cos());
-                prop_assert!(!part.contains(q), "material inside the nose at {q:?} (move {i})\n{text}");
+            let inside = job.nose - EXACT;
+            for along_z in [true, false] {
+                let (fixed, param) = if along_z { (centre.x, centre.z) } else { (centre.z, centre.x) };
+                for ray in part.rays(along_z, fixed - inside, fixed + inside) {
+                    let d = ray.at() - fixed;
+                    let w = (inside * inside - d * d).max(0.0).sqrt();
+                    for (lo, hi) in ray.material() {
+                        prop_assert!(
+                            hi <= param - w || lo >= param + w,
+                            "material {lo}..{hi} on the ray at {} (along Z: {along_z}) inside the nose \
+                             about {centre:?} (move {i})\n{text}",
+                            ray.at()
+                        );
+                    }
+                }
             }
         }
     }
@@ -336,4 +356,155 @@ fn how_exact_the_surface_is() {
         worst[0], worst[1], worst[2]
     );
     assert!(worst.iter().all(|w| *w < EXACT));
+}
+
+/// How many nose positions per nose radius of travel the rays are checked at.
+const SAMPLES_PER_RADIUS: f64 = 4.0;
+
+/// The part of one program against this file's geometry: no material is left inside the
+/// nose (shrunk by [`EXACT`]) of any feed move, neither at a surface point (against the
+/// whole nose-centre path of every move, exactly) nor on any ray crossing the nose at nose
+/// positions a quarter of its radius apart; and every surface point was cut by a feed move,
+/// on its nose's envelope or, where the insert behind the nose cut it, beyond. The tool's
+/// nose radius and where its centre sits from the programmed point are the tool table's
+/// (`Tool`); every distance is this file's own. The count of surface points cut, and of
+/// those on a nose's envelope.
+fn no_material_in_a_nose(name: &str, text: &str, analysed: &turnpass::pipeline::Analysed<'_>) -> (usize, usize) {
+    use turnpass::machine::ToolKind;
+    use turnpass::part::tool::{self, Orientation, Tool};
+    let Some(part) = analysed.part.as_ref().and_then(|run| run.part.as_ref()) else { return (0, 0) };
+    let lowered = analysed.lowered().unwrap();
+    let toolpath = &lowered.toolpath;
+    // The nose-centre path of every feed move a nose cuts on: (move, start, end, radius).
+    let mut noses = Vec::new();
+    for (i, m) in toolpath.moves.iter().enumerate() {
+        if !matches!(m.motion, Motion::Feed | Motion::Cw | Motion::Ccw) || m.threading {
+            continue;
+        }
+        let entry = tool::entry(&analysed.machine, m.tool, m.offset);
+        let shape = Tool::new(entry, &analysed.machine, Orientation::Outside, 100.0);
+        if shape.nose <= 0.0 || shape.kind == ToolKind::Threading {
+            continue;
+        }
+        let shift = |q: Xz| Xz::new(q.x + shape.centre_offset.x, q.z + shape.centre_offset.z);
+        noses.push((i, shift(toolpath.start_of(i)), shift(m.end), shift(m.centre), shape.nose));
+    }
+    let distance = |p: Xz, &(i, a, b, c, _): &(usize, Xz, Xz, Xz, f64)| {
+        let m = &toolpath.moves[i];
+        if m.is_arc() { distance_to_arc(p, a, b, c, m.motion == Motion::Ccw) } else { distance_to_segment(p, a, b) }
+    };
+    let (mut cut, mut on_nose) = (0, 0);
+    for point in part.surface() {
+        for nose in &noses {
+            let d = distance(point.at, nose);
+            assert!(
+                d > nose.4 - EXACT,
+                "{name}: the surface point {point:?} lies {d} mm from the nose path of move {} (nose {})\n{text}",
+                nose.0,
+                nose.4
+            );
+        }
+        let Some(by) = point.cut_by else { continue };
+        let m = &toolpath.moves[by];
+        assert!(m.motion != Motion::Rapid, "{name}: the surface point {point:?} was cut by a rapid move {by}");
+        cut += 1;
+        if let Some(nose) = noses.iter().find(|n| n.0 == by)
+            && (distance(point.at, nose) - nose.4).abs() < EXACT
+        {
+            on_nose += 1;
+        }
+    }
+    for &(i, a, b, c, r) in &noses {
+        let m = &toolpath.moves[i];
+        let length = if m.is_arc() {
+            let sweep = |q: Xz| (q.x - c.x).atan2(q.z - c.z);
+            a.distance(c) * (sweep(b) - sweep(a)).abs().min(std::f64::consts::TAU)
+        } else {
+            a.distance(b)
+        };
+        let steps = ((length / r * SAMPLES_PER_RADIUS).ceil() as usize).clamp(1, 10_000);
+        for step in 0..=steps {
+            let s = step as f64 / steps as f64;
+            let centre = if m.is_arc() {
+                let (a0, a1) = ((a.x - c.x).atan2(a.z - c.z), (b.x - c.x).atan2(b.z - c.z));
+                let tau = std::f64::consts::TAU;
+                let sweep =
+                    if m.motion == Motion::Ccw { (a1 - a0).rem_euclid(tau) } else { -(a0 - a1).rem_euclid(tau) };
+                let angle = a0 + s * sweep;
+                let radius = a.distance(c);
+                Xz::new(c.x + radius * angle.sin(), c.z + radius * angle.cos())
+            } else {
+                Xz::new(a.x + s * (b.x - a.x), a.z + s * (b.z - a.z))
+            };
+            let inside = r - EXACT;
+            for along_z in [true, false] {
+                let (fixed, param) = if along_z { (centre.x, centre.z) } else { (centre.z, centre.x) };
+                for ray in part.rays(along_z, fixed - inside, fixed + inside) {
+                    let d = ray.at() - fixed;
+                    let w = (inside * inside - d * d).max(0.0).sqrt();
+                    for (lo, hi) in ray.material() {
+                        assert!(
+                            hi <= param - w || lo >= param + w,
+                            "{name}: material {lo}..{hi} on the ray at {} (along Z: {along_z}) inside the nose \
+                             about {centre:?} (move {i})",
+                            ray.at()
+                        );
+                    }
+                }
+            }
+        }
+    }
+    (cut, on_nose)
+}
+
+/// Every simulate case outside `err/` (on its machine) and every example program (on its folder's
+/// `turnpass.toml`) through the part model, on the stock it assumes, held to
+/// [`no_material_in_a_nose`].
+#[test]
+fn every_simulate_case_and_example_leaves_no_material_in_a_nose() {
+    use crate::simulate::{pipeline_settings, settings_for};
+    use crate::support::{case_files, repo};
+    // Every case outside `err/` (those have errors, and a run with an error makes no part).
+    let mut programs = Vec::new();
+    let mut dirs = vec![repo().join("tests/cases/simulate")];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() && !path.ends_with("err") {
+                dirs.push(path);
+            }
+        }
+        for path in case_files(&dir, "nc") {
+            let settings = settings_for(&path);
+            programs.push((path, settings));
+        }
+    }
+    let examples = repo().join("examples/programs");
+    let model = std::fs::read_to_string(examples.join("turnpass.toml")).unwrap();
+    let machine = turnpass::machine::ModelFile::from_toml(&model).unwrap().machine;
+    for path in case_files(&examples, "nc") {
+        programs.push((path, machine.clone()));
+    }
+    let (mut parts, mut cut, mut on_nose, mut none) = (0, 0, 0, Vec::new());
+    for (path, machine) in &programs {
+        let source = std::fs::read(path).unwrap();
+        let settings = pipeline_settings(machine, true).with_part(PartCheck::default());
+        let analysed = turnpass::pipeline::analyse(&source, &settings);
+        let name = path.display().to_string();
+        let (c, n) = no_material_in_a_nose(&name, &String::from_utf8_lossy(&source), &analysed);
+        if analysed.part.as_ref().is_some_and(|run| run.part.is_some()) {
+            parts += 1;
+        } else {
+            none.push(path.file_name().unwrap().to_string_lossy().into_owned());
+        }
+        cut += c;
+        on_nose += n;
+    }
+    eprintln!(
+        "part: {parts} of {} programs cut a part (none: {}); {cut} surface points cut, {on_nose} of them on a \
+         nose's envelope",
+        programs.len(),
+        none.join(", ")
+    );
+    assert!(parts >= programs.len() / 2, "only {parts} of {} programs made a part", programs.len());
 }

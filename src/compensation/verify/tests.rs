@@ -210,7 +210,7 @@ fn a_provenance_comment_is_not_a_word_to_keep() {
     let (plain, marked) =
         (crate::syntax::parse(plain.as_bytes(), &options), crate::syntax::parse(marked.as_bytes(), &options));
     for (original, compensated) in [(&marked, &plain), (&plain, &marked)] {
-        let check = check_words(&original.program, &compensated.program);
+        let check = check_words((&original.program, &[]), (&compensated.program, &[]));
         assert_eq!(check.missing, None);
         // O1004, (FACE), T0101, (TOOL), M08, M30.
         assert_eq!(check.checked, 6);

@@ -197,7 +197,11 @@ pub(super) fn forward(nominal: &Nominal, points: &[ProfilePoint]) -> Result<Forw
             .collect();
         let nearest = found.iter().map(|f| f.2).fold(f64::INFINITY, f64::min);
         if nearest > MAX_DISTANCE_MM {
-            return Err(ForwardError::NotOnPart { line: p.line, x: p.x_mm, z: p.z_mm, distance: nearest });
+            // A diameter read as a radius: the point halved lies on the part.
+            let halved = Xz::new(p.x_mm / 2.0, p.z_mm);
+            let distance = surfaces.iter().map(|s| s.closest(halved).1).fold(f64::INFINITY, f64::min);
+            let halved = (distance <= MAX_DISTANCE_MM / 10.0).then_some(distance);
+            return Err(ForwardError::NotOnPart { line: p.line, x: p.x_mm, z: p.z_mm, distance: nearest, halved });
         }
         let Some(&(surface, q, _, tangent)) = found.iter().rev().find(|f| f.2 <= nearest + SAME_SURFACE_MM) else {
             return Err(ForwardError::NoCuts);

@@ -1,14 +1,5 @@
 use super::*;
-use crate::error_model::interferometer::tests::take_looked_at;
-
-thread_local! {
-    /// Records the reader read on this thread.
-    static ROWS_READ: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
-}
-
-pub(super) fn count_row_read() {
-    ROWS_READ.with(|n| n.set(n.get() + 1));
-}
+use crate::measurement_file::tests::{take_looked_at, take_rows_read};
 
 /// A trace of 2,000 rows is read in one pass over its text: the lines of its records are
 /// counted on from each other, where a count from the top for each would look at about
@@ -38,11 +29,11 @@ fn a_bad_value_is_found_in_a_file_of_lone_cr_line_ends() {
 #[test]
 fn a_bad_row_ends_the_reading() {
     let text = include_str!("../../../tests/cases/bounded/ballbar-bad-row-early.csv");
-    ROWS_READ.with(|n| n.set(0));
+    take_rows_read();
     let error = read(text, None).unwrap_err();
     assert_eq!((error.line, &text[error.span.start as usize..error.span.end as usize]), (4, "0.00O9"));
     assert_eq!(error.hint.as_deref(), Some("`O` typed for `0`? did you mean `0.0009`?"));
-    let read = ROWS_READ.with(std::cell::Cell::get);
+    let read = take_rows_read();
     assert!(read <= 2, "{read} records read (the header and the bad row are two)");
 }
 
@@ -100,4 +91,64 @@ fn a_thermal_log_reads_and_refuses_times_that_go_back() {
     assert!(message.starts_with("line 3: t_min 0 does not come after"), "{message}");
     let message = read_thermal_log("time,value\n0,1\n").unwrap_err().to_string();
     assert!(message.starts_with("line 1: unknown column `time`"), "{message}");
+}
+
+/// Files in every layout, damaged at random: no reader panics, and an error names a line of
+/// the text and a span inside it, on character boundaries.
+mod damaged {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    const PIECES: [&str; 24] = [
+        "Units: µm\n",
+        "X: diameter\n",
+        "Direction: cw\n",
+        "Start angle: 90 deg\n",
+        "Angle step: 1\n",
+        "Axis: z\n",
+        "Readings: positions\n",
+        "Target (mm),Run 1 Fwd (um),Run 1 Rev (um)\n",
+        "Target (in);Direction;Error (ppm)\n",
+        "Point,X,Y,Z\n",
+        "angle_deg,deviation_mm,direction\n",
+        "x_mm,z_mm,part,start_min\n",
+        "10,1.2,-2.1\n",
+        "10;up;1,5\n",
+        "P1,1.0,0.5,-2\n",
+        "1,0.001,ccw\n",
+        "# µ comment ↑\n",
+        "\r\n",
+        "\"q,uoted\",↓,é\n",
+        "Run 2 ↑ [µm],(,[,)\n",
+        ",,,\n",
+        ":\n",
+        "nan,inf,-0\n",
+        "X (mm),Z (mm)\n",
+    ];
+
+    proptest! {
+        #[test]
+        fn damaged_files_are_refused_with_a_place_in_them(
+            pieces in proptest::collection::vec(0..PIECES.len(), 0..12),
+            cut in 0usize..400,
+        ) {
+            let mut text: String = pieces.iter().map(|&i| PIECES[i]).collect();
+            let mut at = cut.min(text.len());
+            while !text.is_char_boundary(at) {
+                at -= 1;
+            }
+            text.truncate(at);
+            for kind in [None, Some(KindName::BallBar), Some(KindName::Profile), Some(KindName::Table)] {
+                for axis in [None, Some(Axis::X)] {
+                    if let Err(error) = read_as(&text, kind, axis) {
+                        let (start, end) = (error.span.start as usize, error.span.end as usize);
+                        prop_assert!(start <= end && end <= text.len(), "{error:?} in {text:?}");
+                        prop_assert!(text.is_char_boundary(start) && text.is_char_boundary(end), "{error:?}");
+                        prop_assert!(error.line >= 1 && error.line <= text.lines().count() + 1, "{error:?}");
+                    }
+                }
+            }
+        }
+    }
 }

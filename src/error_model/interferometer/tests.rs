@@ -1,19 +1,5 @@
 use super::*;
 
-thread_local! {
-    /// Bytes of a text that `RecordLines` looked at on this thread.
-    static LOOKED_AT: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
-}
-
-pub(crate) fn count_looked_at(bytes: usize) {
-    LOOKED_AT.with(|n| n.set(n.get() + bytes));
-}
-
-/// The bytes `RecordLines` looked at on this thread since the last call.
-pub(crate) fn take_looked_at() -> usize {
-    LOOKED_AT.with(|n| n.replace(0))
-}
-
 /// Two targets, two runs each way: every ISO 230-2 figure worked by hand.
 const TABLE: &str = "\
 # A small ISO 230-2 style table: deviations in mm.
@@ -73,36 +59,85 @@ fn straightness_from_two_reversed_runs_is_half_their_difference() {
 
 #[test]
 fn bad_tables_are_refused_with_the_line() {
-    assert!(matches!(parse("target_mm,linear_mm\n0,1\n"), Err(TableError::MissingColumn { name: "direction", .. })));
-    assert!(matches!(parse("target_mm,direction\n0,up\n"), Err(TableError::NoErrors { .. })));
-    assert!(matches!(parse("target_mm,direction,linear_mm\n0,sideways,1\n"), Err(TableError::Row { line: 2, .. })));
-    assert!(matches!(parse("target_mm,direction,linear_mm\n0,up,abc\n"), Err(TableError::Row { line: 2, .. })));
-    assert!(matches!(parse("target_mm,direction,angular_deg\n"), Err(TableError::Empty)));
+    let message = |text: &str| parse(text).unwrap_err().to_string();
+    assert!(message("target_mm,linear_mm\n0,1\n").starts_with("line 1: the table has no direction of approach"));
+    assert!(message("target_mm,direction\n0,up\n").starts_with("line 1: the table has no readings"));
+    assert!(message("target_mm,direction,linear_mm\n0,sideways,1\n").starts_with("line 2: direction `sideways`"));
+    assert!(message("target_mm,direction,linear_mm\n0,up,abc\n").starts_with("line 2: `linear_mm` is `abc`"));
+    assert!(message("target_mm,direction,angular_deg\n").starts_with("line 1: the file has a header but no rows"));
 }
 
 #[test]
 fn unknown_and_repeated_columns_are_refused_at_their_header_cell() {
-    let text = "# X slide\ntarget_mm, direction,linear_um\n0,up,0.001\n";
+    let text = "# X slide\ntarget_mm, direction,linear_mn\n0,up,0.001\n";
     let Err(error) = parse(text) else { panic!("a misspelt column was accepted") };
-    let TableError::UnknownColumn { line, span, ref name, suggestion } = error else { panic!("{error:?}") };
-    assert_eq!((line, name.as_str(), suggestion), (2, "linear_um", Some("linear_mm")));
-    assert_eq!(&text[span.start as usize..span.end as usize], "linear_um");
-    assert_eq!(error.span(text), span);
+    assert_eq!((error.line, error.unknown_column.as_deref()), (2, Some("linear_mn")));
+    assert_eq!(error.hint.as_deref(), Some("did you mean `linear_mm`?"));
+    assert_eq!(&text[error.span.start as usize..error.span.end as usize], "linear_mn");
     let text = "target_mm,direction,\"linear_mm\",linear_mm\n0,up,0.001,0.002\n";
     let Err(error) = parse(text) else { panic!("a repeated column was accepted") };
-    let TableError::DuplicateColumn { span, .. } = error else { panic!("{error:?}") };
-    assert_eq!(span, Span::new(32, 41));
+    assert_eq!(error.span, Span::new(32, 41));
     assert_eq!(&text[32..41], "linear_mm");
     // A row's error covers the value that does not read.
     let text = "target_mm,direction,linear_mm\n0,up,abc\n";
-    let error = parse(text).unwrap_err();
-    assert_eq!(error.span(text), Span::new(35, 38));
+    assert_eq!(parse(text).unwrap_err().span, Span::new(35, 38));
 }
 
 #[test]
 fn row_errors_name_the_line_past_blank_and_comment_lines() {
     let text = "target_mm,direction,linear_mm\n0,up,0.001\n\n# a remark\n5,up,abc\n";
-    assert_eq!(parse(text).unwrap_err().to_string(), "line 5: `abc` is not a number in column linear_mm");
+    assert_eq!(parse(text).unwrap_err().to_string(), "line 5: `linear_mm` is `abc`, not a finite number");
+}
+
+/// The layouts laser software writes read to the readings of the canonical table: µm and
+/// inches, a row per target with a column per run and direction, readings as positions.
+#[test]
+fn every_layout_reads_to_the_canonical_readings() {
+    let canonical = parse(TABLE).unwrap();
+    let layouts = [
+        "target_mm,direction,run,linear_um\n0,up,1,1\n0,up,2,3\n0,down,1,-1\n0,down,2,-1\n100,up,1,4\n100,up,2,4\n100,down,1,0\n100,down,2,2\n",
+        "Units: µm\nTarget (mm),Run 1 Fwd,Run 1 Rev,Run 2 Fwd,Run 2 Rev\n0,1,-1,3,-1\n100,4,0,4,2\n",
+        "Target (in),Run 1 ↑ (in),Run 1 ↓ (in),Run 2 ↑ (in),Run 2 ↓ (in)\n0,0.00003937007874015748,-0.00003937007874015748,0.00011811023622047244,-0.00003937007874015748\n3.937007874015748,0.00015748031496062992,0,0.00015748031496062992,0.00007874015748031496\n",
+        "readings: positions\nTarget (mm);Run 1 Fwd (mm);Run 1 Rev (mm);Run 2 Fwd (mm);Run 2 Rev (mm);Mean (mm)\n0;0,001;-0,001;0,003;-0,001;0\n100;100,004;100,000;100,004;100,002;0\n",
+    ];
+    for text in layouts {
+        let table = parse(text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+        let (got, want) = (table.linear.as_ref().unwrap(), canonical.linear.as_ref().unwrap());
+        assert_eq!(got.targets, want.targets, "{text}");
+        for (a, b) in [(&got.up, &want.up), (&got.down, &want.down), (&got.up_sigma, &want.up_sigma)] {
+            assert!(a.iter().zip(b).all(|(a, b)| (a - b).abs() < 1e-9), "{a:?} against {b:?}\n{text}");
+        }
+        assert_eq!((&got.up_runs, &got.down_runs), (&want.up_runs, &want.down_runs), "{text}");
+    }
+}
+
+#[test]
+fn unlabelled_readings_are_told_by_their_values_or_refused() {
+    // Errors of a few micrometres on targets 100 mm apart.
+    let errors = parse("Target (mm),Run 1 Fwd (um),Run 1 Rev (um)\n0,1,-1\n100,4,0\n").unwrap();
+    assert!((errors.linear.unwrap().up[1] - 0.004).abs() < 1e-12);
+    // Positions of the laser, in mm.
+    let positions = parse("Target (mm),Run 1 Fwd (mm),Run 1 Rev (mm)\n0,0.001,-0.001\n100,100.004,100.0\n").unwrap();
+    assert!((positions.linear.unwrap().up[1] - 0.004).abs() < 1e-9);
+    // Targets within 2 mm of zero: both would fit.
+    let error = parse("Target (mm),Run 1 Fwd (mm),Run 1 Rev (mm)\n0,0.001,-0.001\n0.5,0.504,0.5\n").unwrap_err();
+    assert!(error.message.contains("may be errors or positions"), "{error}");
+    assert!(error.hint.unwrap().contains("readings: errors"));
+}
+
+#[test]
+fn a_column_or_unit_that_cannot_be_placed_says_what_would_place_it() {
+    let error = parse("Target (mm),Run 1 Fwd,Run 1 Rev\n0,1,-1\n").unwrap_err();
+    assert_eq!(error.message, "the column `Run 1 Fwd` has no unit");
+    assert!(error.hint.unwrap().contains("`Run 1 Fwd (um)`"));
+    let error = parse("Target,direction,error (um)\n0,up,1\n").unwrap_err();
+    assert_eq!(error.message, "the target column `Target` has no unit");
+    let error = parse("Target (mm),Run 1 (um),Run 2 (um)\n0,1,-1\n").unwrap_err();
+    assert!(error.message.contains("names a run but no direction"), "{error}");
+    let error = parse("Units: furlongs\nTarget (mm),Run 1 Fwd,Run 1 Rev\n0,1,-1\n").unwrap_err();
+    assert_eq!((error.line, error.label), (1, "not a unit"));
+    let error = parse("Target (mm),Run 1 Fwd (um),Run 1 Rev (um),Coolant\n0,1,-1,on\n").unwrap_err();
+    assert_eq!(error.unknown_column.as_deref(), Some("Coolant"));
 }
 
 /// ISO 230-2 figures a table cannot give are not measured, not zero: B without the other
