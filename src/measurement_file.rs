@@ -173,15 +173,19 @@ impl<'t> DataFile<'t> {
             record: csv::StringRecord::new(),
             rows: 0,
         };
-        let Some((_, _, cells)) = file.next_record()? else {
+        let Some((line, line_span, cells)) = file.next_record()? else {
             let end = Span::new(text.len() as u32, text.len() as u32);
             return Err(DataError::new(header_line, end, "here", "the file has no header row"));
         };
+        // The header is the first record that is not blank, which may be below the line the
+        // preamble ends on; a quoted cell that runs over a line break has no span of its
+        // own on the line, and takes the line's.
+        file.header_line = line;
         file.header = file
             .record
             .iter()
             .enumerate()
-            .map(|(i, value)| Cell { text: value.to_string(), span: cells.get(i).copied().unwrap_or_default() })
+            .map(|(i, value)| Cell { text: value.to_string(), span: cells.get(i).copied().unwrap_or(line_span) })
             .collect();
         file.rows = 0;
         Ok(file)
@@ -222,8 +226,10 @@ impl<'t> DataFile<'t> {
 
     /// The error of the whole header row.
     pub fn header_error(&self, label: &'static str, message: impl Into<String>) -> DataError {
-        let span = match (self.header.first(), self.header.last()) {
-            (Some(first), Some(last)) => Span::new(first.span.start, last.span.end),
+        let start = self.header.iter().map(|c| c.span.start).min();
+        let end = self.header.iter().map(|c| c.span.end).max();
+        let span = match (start, end) {
+            (Some(start), Some(end)) => Span::new(start, end),
             _ => Span::new(self.base as u32, self.base as u32),
         };
         DataError::new(self.header_line, span, label, message)

@@ -228,7 +228,7 @@ pub(crate) fn write_copy(out: &mut impl Text, program: &Program<'_>, id: u32) ->
     if text.is_ascii() {
         out.push_ascii(text);
     } else {
-        out.push_str(&String::from_utf8_lossy(text));
+        out.push_source(text);
     }
     matches!(word.kind, crate::syntax::WordKind::BlockDelete { .. })
 }

@@ -13,6 +13,14 @@ pub trait Text {
     fn push_byte(&mut self, ascii: u8) {
         self.push_ascii(&[ascii]);
     }
+
+    /// Append `bytes` copied from a program's source (a comment, a word kept as written):
+    /// a printed program takes them byte for byte, whatever encoding they are in (a
+    /// comment in Latin-1 stays Latin-1); a `String` takes them as UTF-8, each byte that
+    /// is not a replacement character.
+    fn push_source(&mut self, bytes: &[u8]) {
+        self.push_str(&String::from_utf8_lossy(bytes));
+    }
 }
 
 impl Text for String {
@@ -40,5 +48,9 @@ impl Text for Vec<u8> {
 
     fn push_byte(&mut self, ascii: u8) {
         self.push(ascii);
+    }
+
+    fn push_source(&mut self, bytes: &[u8]) {
+        self.extend_from_slice(bytes);
     }
 }

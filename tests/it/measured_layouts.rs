@@ -184,6 +184,15 @@ fn run(path: &Path) -> String {
         (Some(_), Err(error)) => panic!("{}: {error}", case.file),
         (None, Ok(_)) => panic!("{}: read, and it must be refused", case.file),
         (None, Err(error)) => {
+            // The error's span lies in the file, forward, and on the line it names.
+            let (start, end) = (error.span.start as usize, error.span.end as usize);
+            assert!(start <= end && end <= text.len(), "{}: span {start}..{end}", case.file);
+            let line = text.as_bytes()[..start].iter().filter(|&&b| b == b'\n').count() + 1;
+            assert_eq!(
+                line, error.line,
+                "{}: the span starts on line {line}, the error names {}",
+                case.file, error.line
+            );
             let kind = DiagnosticKind::DataInvalid { message: error.message, label: error.label, hint: error.hint };
             render_plain(&RenderSource::new(&case.file, text.as_bytes()), &[Diagnostic::error(kind, error.span)])
         }
