@@ -570,6 +570,9 @@ pub enum DiagnosticKind {
         bound_mm: f64,
         /// The tolerance the program was compensated to, mm.
         tolerance_mm: f64,
+        /// The other `--strategy` whose program comes closest, and the largest deviation
+        /// it reaches, mm (`None` where none was tried or none reads back).
+        other_strategy: Option<(&'static str, f64)>,
     },
     /// `compensate`: the program it would write cuts with other feed or spindle words than
     /// the original (a defect of turnpass, never of the program).

@@ -241,6 +241,12 @@ impl Sector {
         Sector { angles: Some((start_angle, total)), ..Sector::unmeasured(start, end, centre, ccw) }
     }
 
+    /// A sector whose start angle and sweep were measured already (as `new` measures them,
+    /// `angle` and `sweep_from`), for one made afresh for each few points it is asked about.
+    pub fn with_angles(start: Xz, end: Xz, centre: Xz, ccw: bool, start_angle: f64, total: f64) -> Sector {
+        Sector { angles: Some((start_angle, total)), ..Sector::unmeasured(start, end, centre, ccw) }
+    }
+
     /// A sector whose angles are measured only when a point next to an end ray needs them:
     /// for one asked about a few points that the cross products place, such as a rounded
     /// segment's (`quantised`), which would spend most of its cost on the two arctangents.

@@ -221,6 +221,10 @@ pub struct Expansion {
     /// move it makes there, the block): their M codes, T words and comments go on the block
     /// written for that move, where the control runs them.
     pub traced: Vec<(usize, usize)>,
+    /// The move after the last one the traced profile makes (the moves after it, up to
+    /// `moves.end`, are the cycle's own: `G70`'s return to the start point); equal to
+    /// `moves.start` where nothing is traced.
+    pub traced_end: usize,
     pub moves: std::ops::Range<usize>,
     /// The modal words in force before the call, and after it: the expanded blocks must
     /// leave the latter behind so that the blocks after them run as before.

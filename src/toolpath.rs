@@ -28,6 +28,8 @@ use crate::source::Span;
 
 pub use crate::geometry::Xz;
 
+pub mod compact;
+
 /// What a move does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Motion {
@@ -127,6 +129,25 @@ impl Toolpath {
 
     pub fn duration(&self) -> f64 {
         self.moves.last().map_or(0.0, |m| m.t_end)
+    }
+
+    /// The farthest the path goes from the origin in each axis, mm (X as a radius): an arc's
+    /// whole circle counts, which bounds it without finding its extremes (`reach_past`).
+    pub fn reach(&self) -> Xz {
+        let start = Xz::new(self.start.x.abs(), self.start.z.abs());
+        self.moves.iter().enumerate().fold(start, |reach, (k, m)| {
+            let arc = m.is_arc().then(|| (m.centre, self.start_of(k).distance(m.centre)));
+            reach_past(reach, m.end, arc)
+        })
+    }
+}
+
+/// `reach` (the farthest a path goes from the origin in each axis) with a move ending at
+/// `end` added; an arc, about its centre with its radius (`arc`), counts its whole circle.
+pub fn reach_past(reach: Xz, end: Xz, arc: Option<(Xz, f64)>) -> Xz {
+    match arc {
+        Some((centre, radius)) => Xz::new(reach.x.max(centre.x.abs() + radius), reach.z.max(centre.z.abs() + radius)),
+        None => Xz::new(reach.x.max(end.x.abs()), reach.z.max(end.z.abs())),
     }
 }
 

@@ -17,10 +17,13 @@ use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
-use turnpass::compensation::verify;
-use turnpass::compensation::{CompensateOptions, Outcome, compensate_program};
+use turnpass::compensation::verify::{self, Measure};
+use turnpass::compensation::{
+    CompensateOptions, CycleForm, Outcome, PROFILE_NOT_IN_PLACE, THREAD_NOT_IN_PLACE, compensate_program,
+};
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
+use turnpass::machine::StockSettings;
 use turnpass::pipeline::Ready;
 use turnpass::printer;
 use turnpass::semantic::Machine;
@@ -74,6 +77,10 @@ pub struct CompensateArgs {
     /// The bar the part is cut from, for the check of what is written (as `verify --stock`).
     #[command(flatten)]
     pub stock: StockArgs,
+    /// Check what is written pass by pass, as `verify --passes` measures it, instead of on the
+    /// finished part (every pass, roughing and thread infeed included, held to the bound).
+    #[arg(long)]
+    pub passes: bool,
     /// Also say, for each program, where the machine settings and the model come from.
     #[arg(long, short)]
     pub verbose: bool,
@@ -166,6 +173,8 @@ impl FitArgs {
             },
             max_shift_mm: self.max_shift,
             expand_cycles: self.expand_cycles,
+            profiles_in_place: true,
+            threads_in_place: true,
             paths: false,
             block_reports: true,
         }
@@ -201,6 +210,144 @@ impl FitArgs {
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
         let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
         compensate_program(&program.parsed.program, &program.lowered, &program.machine, model, &options)
+    }
+
+    /// `compensate` for writing: every edited block reported with `block_reports`, and the
+    /// profiles of cycles and the words of thread cycles compensated in place, or not
+    /// (`in_place`).
+    fn compensate_cycles(
+        &self,
+        program: &Ready<'_>,
+        model: &ErrorModel,
+        block_reports: bool,
+        in_place: InPlace,
+    ) -> Outcome {
+        let options = CompensateOptions {
+            paths: false,
+            block_reports,
+            profiles_in_place: in_place.profiles,
+            threads_in_place: in_place.threads,
+            ..self.options(&program.machine)
+        };
+        compensate_program(&program.parsed.program, &program.lowered, &program.machine, model, &options)
+    }
+}
+
+/// One line per cycle call whose moves change: kept with its profile compensated in place
+/// (the profile's lines), or expanded (and why).
+fn cycle_lines(
+    name: &str,
+    program: &turnpass::syntax::Program<'_>,
+    bytes: &[u8],
+    cycles: &[turnpass::compensation::CycleOutcome],
+) -> Vec<u8> {
+    let mut out = Vec::new();
+    if cycles.iter().all(|c| matches!(c.form, CycleForm::Kept)) {
+        return out;
+    }
+    let lines = turnpass::source::LineIndex::new(bytes);
+    let line = |block: usize| lines.position(program.block(block).span.start).0;
+    for cycle in cycles {
+        let call = line(cycle.block);
+        let text = String::from_utf8_lossy(program.text(program.block(cycle.block).span)).trim_end().to_string();
+        let said = match &cycle.form {
+            CycleForm::Kept => continue,
+            CycleForm::ProfileEdited { profile } => {
+                let first = profile.first().map_or(0, |&b| line(b));
+                let last = profile.last().map_or(0, |&b| line(b));
+                format!("kept; its profile (lines {first}-{last}) is compensated in place")
+            }
+            CycleForm::WordsEdited => "kept; its words carry the final pass's correction".to_string(),
+            CycleForm::Expanded { reason } => format!("expanded: {reason}"),
+        };
+        out.extend_from_slice(format!("compensate: {name}: line {call} `{text}`: {said}\n").as_bytes());
+    }
+    out
+}
+
+/// What a refused program is compensated again with, to find what would meet the bound.
+struct Trial<'a, 'src> {
+    program: &'a Ready<'src>,
+    model: &'a ErrorModel,
+    reading: &'a turnpass::pipeline::Settings,
+    tools: &'a ToolTable,
+    measure: Measure,
+    stock: Option<&'a StockSettings>,
+}
+
+impl Trial<'_, '_> {
+    /// Programs of more moves than this are not compensated again with every strategy.
+    const MAX_MOVES: usize = 100_000;
+
+    /// The other strategy whose compensated program, read back and measured as the check
+    /// before writing measures it, deviates least, with that deviation, mm; `None` for a
+    /// long program (`MAX_MOVES`) or where no other strategy's program reads back.
+    fn closest_strategy(&self, fit: &FitArgs, in_place: InPlace) -> Option<(&'static str, f64)> {
+        if self.program.valid().moves.len() > Self::MAX_MOVES {
+            return None;
+        }
+        let original = (&self.program.parsed.program, &self.program.lowered.expansions[..], self.program.valid());
+        Strategy::ALL
+            .into_iter()
+            .filter(|&strategy| strategy != fit.strategy && (fit.step.is_none() || strategy == Strategy::Densify))
+            .filter_map(|strategy| {
+                let other = FitArgs { strategy, ..fit.clone() };
+                let outcome = other.compensate_cycles(self.program, self.model, false, in_place);
+                if outcome.refused() {
+                    return None;
+                }
+                let written = printer::print(&self.program.parsed.program, &outcome.edits);
+                let checked = verify::check_written(
+                    original,
+                    &written,
+                    self.reading,
+                    self.tools,
+                    (self.model, self.measure, self.stock),
+                )
+                .ok()?;
+                Some((strategy.name(), checked.deviation.after.max_mm))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+}
+
+/// Which cycles keep their calls with a correction in place: those sharing a profile with a
+/// finishing cycle (the profile edited), thread cycles (their words edited).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct InPlace {
+    profiles: bool,
+    threads: bool,
+}
+
+impl InPlace {
+    /// What to try after `outcome` (compensated so) missed the check: the profiles
+    /// expanded if it edited one, else the threads if it edited one; `None` when nothing
+    /// is left to expand.
+    fn without(self, outcome: &Outcome) -> Option<InPlace> {
+        let edited = |profile: bool| {
+            outcome.cycles.iter().any(|c| match c.form {
+                CycleForm::ProfileEdited { .. } => profile,
+                CycleForm::WordsEdited => !profile,
+                _ => false,
+            })
+        };
+        if self.profiles && edited(true) {
+            Some(InPlace { profiles: false, ..self })
+        } else if self.threads && edited(false) {
+            Some(InPlace { threads: false, ..self })
+        } else {
+            None
+        }
+    }
+
+    /// Keep `why` as the reason of the cycles `next` expands.
+    fn said(self, next: InPlace, why: String, (profiles, threads): (&mut Option<String>, &mut Option<String>)) {
+        if self.profiles && !next.profiles {
+            *profiles = Some(format!("with its profile compensated in place and the cycles {why}"));
+        }
+        if self.threads && !next.threads {
+            *threads = Some(format!("with its words compensated in place and the cycle {why}"));
+        }
     }
 }
 
@@ -358,91 +505,176 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
         return Ok(FileResult::refused(1, messages, &name, &bytes, &[diagnostic]));
     }
-    let mut outcome = args.fit.compensate(&program, &model, false, args.report.is_some());
-    messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
-    if outcome.refused() {
-        messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
-        return Ok(FileResult::refused(1, messages, &name, &bytes, &outcome.diagnostics));
-    }
-    let provenance = Provenance {
-        version: provenance::VERSION.to_string(),
-        model: model_name(&resolved),
-        model_sha256: model_sha256(&resolved)?,
-        table_sha256: table.map(|(table, _)| table.sha256),
-        tolerance_mm: args.fit.options(&program.machine).fit.tolerance_mm,
-        strategy: args.fit.strategy,
-        step_mm: args.fit.step,
-        start_min: model.start_min,
-        // Where the text alone would read as the other dialect, the comment names it.
-        dialect: printer::mark::dialect_to_name(
-            &program.parsed.program,
-            &printer::print(&program.parsed.program, &outcome.edits),
-        ),
-    };
-    provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
-    let written = printer::print(&program.parsed.program, &outcome.edits);
-    // What is about to be written is read back and measured as `verify` measures it; its
-    // figures are the ones reported, and a program that misses verify's bound is refused.
-    // Read back as the original was read: with `--dialect auto`, the evidence of the
-    // dialect may have been in the blocks an edit replaced.
-    let mut reading = pipeline_settings(&resolved, &args.run, true);
-    reading.parse = printer::read_back_options(&program.parsed.program);
-    let tools = ToolTable::from_machine(&program.machine);
-    let original = program.valid();
-    let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
-    let mut unreadable = FileResult::failed(1, Vec::new());
+    // Cycles that share a profile with a finishing cycle stay calls, their profile
+    // compensated in place; where the program so written misses the check, they are
+    // expanded instead, and the report says why.
+    let mut because_profiles: Option<String> = None;
+    let mut because_threads: Option<String> = None;
+    let mut in_place = InPlace { profiles: true, threads: true };
     let stock = args.stock.check(&resolved).stock;
-    let checked_written = verify::check_written(
-        (&program.parsed.program, &program.lowered.expansions, original),
-        &written,
-        &reading,
-        &tools,
-        (&model, stock.as_ref()),
-    );
-    let refusal = match checked_written {
-        Ok((measured, feed_change, lost)) => {
-            let figures = measured.deviation;
-            let totals = &mut outcome.report.totals;
-            (totals.before, totals.after) = (figures.before, figures.after);
-            totals.improvement_percent = figures.improvement_percent;
-            let too_far = figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
-                let span = original.moves.get(worst.original_move).map_or(Span::new(0, 0), |m| m.source);
-                let tolerance_mm = args.fit.options(&program.machine).fit.tolerance_mm;
-                let deviation_mm = worst.deviation_mm;
-                let kind = DiagnosticKind::CompensationFailsCheck { deviation_mm, bound_mm: bound, tolerance_mm };
-                Diagnostic::error(kind, span)
-            });
-            // A part model that stopped at its bound measured only part of the part.
-            let stopped = measured.incomplete();
-            too_far
-                .or(stopped)
-                .or_else(|| {
-                    feed_change.map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
-                })
-                .or_else(|| {
-                    lost.map(|word| {
-                        Diagnostic::error(DiagnosticKind::CompensationLosesWord { word: word.text }, word.span)
+    let measure = if args.passes { Measure::Passes } else { Measure::Part };
+    let (mut outcome, written) = loop {
+        let mut outcome = args.fit.compensate_cycles(&program, &model, args.report.is_some(), in_place);
+        if outcome.refused()
+            && let Some(next) = in_place.without(&outcome)
+        {
+            let why = format!(
+                "compensated in place, it cannot be written: {}",
+                outcome.diagnostics.iter().find(|d| d.is_error()).map_or_else(String::new, Diagnostic::message)
+            );
+            in_place.said(next, why, (&mut because_profiles, &mut because_threads));
+            in_place = next;
+            continue;
+        }
+        messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
+        if outcome.refused() {
+            messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
+            return Ok(FileResult::refused(1, messages, &name, &bytes, &outcome.diagnostics));
+        }
+        let provenance = Provenance {
+            version: provenance::VERSION.to_string(),
+            model: model_name(&resolved),
+            model_sha256: model_sha256(&resolved)?,
+            table_sha256: table.as_ref().map(|(table, _)| table.sha256.clone()),
+            tolerance_mm: args.fit.options(&program.machine).fit.tolerance_mm,
+            strategy: args.fit.strategy,
+            step_mm: args.fit.step,
+            start_min: model.start_min,
+            // Where the text alone would read as the other dialect, the comment names it.
+            dialect: printer::mark::dialect_to_name(
+                &program.parsed.program,
+                &printer::print(&program.parsed.program, &outcome.edits),
+            ),
+        };
+        provenance::insert(&program.parsed.program, &mut outcome.edits, &provenance);
+        let written = printer::print(&program.parsed.program, &outcome.edits);
+        // The edits are in the text now: they go before the read-back, which holds a second
+        // program.
+        drop(std::mem::take(&mut outcome.edits));
+        drop(std::mem::take(&mut outcome.edited));
+        // What is about to be written is read back and measured as `verify` measures it; its
+        // figures are the ones reported, and a program that misses verify's bound is refused.
+        // Read back as the original was read: with `--dialect auto`, the evidence of the
+        // dialect may have been in the blocks an edit replaced.
+        let mut reading = pipeline_settings(&resolved, &args.run, true);
+        reading.parse = printer::read_back_options(&program.parsed.program);
+        let tools = ToolTable::from_machine(&program.machine);
+        let original = program.valid();
+        let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
+        let mut unreadable = FileResult::failed(1, Vec::new());
+        let refusal = match verify::check_written(
+            (&program.parsed.program, &program.lowered.expansions, original),
+            &written,
+            &reading,
+            &tools,
+            (&model, measure, stock.as_ref()),
+        ) {
+            Ok(verify::Written { deviation: figures, part, feed_change, lost }) => {
+                let totals = &mut outcome.report.totals;
+                (totals.before, totals.after) = (figures.before, figures.after);
+                totals.improvement_percent = figures.improvement_percent;
+                let too_far = figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
+                    let span = original.moves.get(worst.original_move).map_or(Span::new(0, 0), |m| m.source);
+                    let tolerance_mm = args.fit.options(&program.machine).fit.tolerance_mm;
+                    let deviation_mm = worst.deviation_mm;
+                    let kind = DiagnosticKind::CompensationFailsCheck {
+                        deviation_mm,
+                        bound_mm: bound,
+                        tolerance_mm,
+                        other_strategy: None,
+                    };
+                    Diagnostic::error(kind, span)
+                });
+                // A part model that stopped at its bound measured only part of the part.
+                let stopped = part.as_ref().and_then(|part| part.incomplete());
+                too_far
+                    .or(stopped)
+                    .or_else(|| {
+                        feed_change
+                            .map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))
                     })
-                })
+                    .or_else(|| {
+                        lost.map(|word| {
+                            Diagnostic::error(DiagnosticKind::CompensationLosesWord { word: word.text }, word.span)
+                        })
+                    })
+            }
+            Err(problems) => {
+                // Where in the text about to be written it does not read.
+                unreadable.messages = rendered(&format!("{name} (compensated)"), &written, &problems);
+                unreadable.add_errors(&format!("{name} (compensated)"), &written, &problems);
+                let problem = problems.first().map_or_else(String::new, Diagnostic::message);
+                // The original read cleanly, so a nose that does not fit is the moved contour's.
+                let nose_has_no_room = !problems.is_empty()
+                    && problems.iter().all(|d| matches!(d.kind, DiagnosticKind::NoseDoesNotFit { .. }));
+                let kind = DiagnosticKind::CompensationUnreadable { problem, nose_has_no_room };
+                Some(Diagnostic::error(kind, Span::new(0, 0)))
+            }
+        };
+        if let Some(diagnostic) = refusal {
+            if let Some(next) = in_place.without(&outcome) {
+                // The roughing of a cycle kept with its profile edited, and the infeed passes of
+                // a thread kept with its words edited, are not compensated, only moved with the
+                // profile or the final pass: the finished part holds them to not gouging it.
+                let lines = turnpass::source::LineIndex::new(&bytes);
+                let line = lines.position(diagnostic.span.start).0;
+                let why = match &diagnostic.kind {
+                    DiagnosticKind::CompensationFailsCheck { deviation_mm, .. } => match measure {
+                        Measure::Part => format!(
+                            "kept, the part the program read back cuts is {deviation_mm:.5} mm off on the surface \
+                             line {line} cuts, more than the bound {bound} mm (the check before writing measures the \
+                             finished part: a roughing or thread infeed pass counts where it gouges it)"
+                        ),
+                        Measure::Passes => format!(
+                            "kept, the program read back is {deviation_mm:.5} mm off at line {line}, more than the \
+                             bound {bound} mm (--passes: the check before writing measures every pass, roughing and \
+                             thread infeed passes among them)"
+                        ),
+                    },
+                    DiagnosticKind::CompensationUnreadable { problem, .. } => {
+                        format!("kept, the program read back does not run cleanly ({problem})")
+                    }
+                    _ => format!("kept, the program read back fails the check: {}", diagnostic.message()),
+                };
+                in_place.said(next, why, (&mut because_profiles, &mut because_threads));
+                in_place = next;
+                continue;
+            }
+            let mut diagnostic = diagnostic;
+            if let DiagnosticKind::CompensationFailsCheck { other_strategy, .. } = &mut diagnostic.kind {
+                let trial = Trial {
+                    program: &program,
+                    model: &model,
+                    reading: &reading,
+                    tools: &tools,
+                    measure,
+                    stock: stock.as_ref(),
+                };
+                *other_strategy = trial.closest_strategy(&args.fit, in_place);
+            }
+            messages.append(&mut unreadable.messages);
+            messages.extend(rendered(&name, &bytes, std::slice::from_ref(&diagnostic)));
+            messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
+            unreadable.messages = messages;
+            unreadable.add_errors(&name, &bytes, &[diagnostic]);
+            return Ok(unreadable);
         }
-        Err(problems) => {
-            // Where in the text about to be written it does not read.
-            messages.extend(rendered(&format!("{name} (compensated)"), &written, &problems));
-            unreadable.add_errors(&format!("{name} (compensated)"), &written, &problems);
-            let problem = problems.first().map_or_else(String::new, Diagnostic::message);
-            // The original read cleanly, so a nose that does not fit is the moved contour's.
-            let nose_has_no_room = !problems.is_empty()
-                && problems.iter().all(|d| matches!(d.kind, DiagnosticKind::NoseDoesNotFit { .. }));
-            let kind = DiagnosticKind::CompensationUnreadable { problem, nose_has_no_room };
-            Some(Diagnostic::error(kind, Span::new(0, 0)))
-        }
+        break (outcome, written);
     };
-    if let Some(diagnostic) = refusal {
-        messages.extend(rendered(&name, &bytes, std::slice::from_ref(&diagnostic)));
-        messages.extend_from_slice(format!("compensate: {name}: refused; nothing is written\n").as_bytes());
-        unreadable.messages = messages;
-        unreadable.add_errors(&name, &bytes, &[diagnostic]);
-        return Ok(unreadable);
+    for (constant, reason) in [(PROFILE_NOT_IN_PLACE, &because_profiles), (THREAD_NOT_IN_PLACE, &because_threads)] {
+        let Some(reason) = reason else { continue };
+        for cycle in &mut outcome.report.cycles {
+            if cycle.outcome == "expanded" && cycle.reason.as_deref() == Some(constant) {
+                cycle.reason = Some(reason.clone());
+            }
+        }
+        for cycle in &mut outcome.cycles {
+            if let CycleForm::Expanded { reason: why } = &mut cycle.form
+                && why == constant
+            {
+                why.clone_from(reason);
+            }
+        }
     }
     let totals = &outcome.report.totals;
     messages.extend_from_slice(
@@ -461,6 +693,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         )
         .as_bytes(),
     );
+    messages.extend(cycle_lines(&name, &program.parsed.program, &bytes, &outcome.cycles));
     let tolerance = args.fit.options(&program.machine).fit.tolerance_mm;
     if totals.inverse_residual_mm > tolerance {
         // The figures above are what the written program does; the tolerance asked for is

@@ -117,8 +117,9 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     match turnpass::plot::polar_svg(&title, toolpath, &before, &after) {
         Ok(svg) => plots.push(Plot {
             id: "plot-polar",
-            caption: "The full circle as a ball bar would trace it: radial deviation against the angle, each \
-                      direction, as programmed and compensated, with the ISO 230-4 figures."
+            caption: "The full circle as a ball bar would trace it: radial deviation of the predicted path (pass by \
+                      pass) against the angle, each direction, as programmed and compensated, with the ISO 230-4 \
+                      figures."
                 .to_string(),
             svg: Ok(svg),
         }),

@@ -15,8 +15,8 @@
 //!
 //! `verify` compares two programs whose moves do not correspond: it follows the original's
 //! path along the compensated program (`verify/follow.rs`) and measures against a window of
-//! the original's path around each point's own point, falling back to the whole path
-//! (`PathIndex`, a uniform grid of cells) for points that stray from it.
+//! the original's path around each point's own point, falling back to the whole path for
+//! points that stray from it.
 //!
 //! **SSQ** is the thesis' eq. 5.8, the root of the sum of the squares of the errors,
 //! `SSQ = [Σ P_i²]^½`, where the thesis' `P_i` is the radial error of the ball bar (for
@@ -26,8 +26,6 @@
 //! figures compare only at the same sampling.
 
 use std::borrow::Cow;
-use std::collections::HashMap;
-use std::f64::consts::TAU;
 
 use crate::geometry;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
@@ -193,14 +191,6 @@ pub struct LocalPath<'a> {
 /// four thousand million arcs; they are then computed when asked for).
 const NO_ARC: u32 = u32::MAX;
 
-/// The closest point of a move to a point (`LocalPath::closest_on`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Closest {
-    pub distance: f64,
-    pub param: f64,
-    pub point: Xz,
-}
-
 /// What `distance_to_move` computes of an arc before it looks at the point.
 #[derive(Debug, Clone, Copy)]
 struct ArcConstants {
@@ -229,7 +219,7 @@ impl<'a> LocalPath<'a> {
             let index = match m.is_arc().then(|| ArcConstants::of(start, m)) {
                 Some(arc) => {
                     let radius = arc.radius;
-                    reach = Xz::new(reach.x.max(m.centre.x.abs() + radius), reach.z.max(m.centre.z.abs() + radius));
+                    reach = crate::toolpath::reach_past(reach, m.end, Some((m.centre, radius)));
                     // `move_length`, with the sweep the constants hold.
                     total += arc.radius * arc.sector.total();
                     let index = u32::try_from(arcs.len()).unwrap_or(NO_ARC);
@@ -239,7 +229,7 @@ impl<'a> LocalPath<'a> {
                     index
                 }
                 None => {
-                    reach = Xz::new(reach.x.max(m.end.x.abs()), reach.z.max(m.end.z.abs()));
+                    reach = crate::toolpath::reach_past(reach, m.end, None);
                     total += move_length(start, m);
                     NO_ARC
                 }
@@ -315,80 +305,6 @@ impl<'a> LocalPath<'a> {
         self.arc(k, m).map(|arc| (arc.sector.start_angle(), arc.sector.total()))
     }
 
-    /// The toolpath it measures against.
-    pub fn toolpath(&self) -> &'a Toolpath {
-        self.toolpath
-    }
-
-    /// The length of move `k`, mm (0 for a dwell or a move that does not exist).
-    pub fn length_of(&self, k: usize) -> f64 {
-        let end = self.ends.get(k).copied().unwrap_or(0.0);
-        let start = if k == 0 { 0.0 } else { self.ends.get(k - 1).copied().unwrap_or(end) };
-        (end - start).max(0.0)
-    }
-
-    /// The closest point of move `k` to `p` when the move cuts: its distance (as
-    /// `distance_to` measures it), its parameter along the move (0 at the start, 1 at the
-    /// end; by length along an arc) and the point.
-    /// Which side of move `k` the point `p` lies on, from its closest point `closest` on it:
-    /// +1 to the left of the direction of travel (X up, Z to the right), −1 to the right, 0
-    /// on it. Along a contour the side keeps its meaning from move to move, so a distance
-    /// with its side changes sign only where the path crosses the contour.
-    pub fn side(&self, k: usize, closest: Xz, p: Xz) -> f64 {
-        let Some(m) = self.toolpath.moves.get(k) else { return 0.0 };
-        let start = self.toolpath.start_of(k);
-        let tangent = match m.motion {
-            Motion::Cw | Motion::Ccw => {
-                let radial = Xz::new(closest.x - m.centre.x, closest.z - m.centre.z);
-                // Counter-clockwise turns from +Z toward +X: the tangent is the radial turned
-                // a quarter that way.
-                if m.motion == Motion::Ccw { Xz::new(radial.z, -radial.x) } else { Xz::new(-radial.z, radial.x) }
-            }
-            _ => Xz::new(m.end.x - start.x, m.end.z - start.z),
-        };
-        let off = Xz::new(p.x - closest.x, p.z - closest.z);
-        let cross = tangent.z * off.x - tangent.x * off.z;
-        if cross > 0.0 {
-            1.0
-        } else if cross < 0.0 {
-            -1.0
-        } else {
-            0.0
-        }
-    }
-
-    pub fn closest_on(&self, k: usize, p: Xz) -> Option<Closest> {
-        let m = self.toolpath.moves.get(k).filter(|m| m.cutting && m.motion != Motion::Dwell)?;
-        let start = self.toolpath.start_of(k);
-        let endpoint = |param: f64, point: Xz| Closest { distance: p.distance(point), param, point };
-        let closest = match self.arc(k, m).as_deref() {
-            Some(ArcConstants { radius, sector }) => {
-                let (radius, a0, total) = (*radius, sector.start_angle(), sector.total());
-                let a = geometry::angle(p, m.centre);
-                let delta = if m.motion == Motion::Ccw { (a - a0).rem_euclid(TAU) } else { (a0 - a).rem_euclid(TAU) };
-                if delta <= total + 1e-12 {
-                    let param = if total > 0.0 { (delta / total).min(1.0) } else { 0.0 };
-                    let distance = (p.distance(m.centre) - radius).abs();
-                    Closest { distance, param, point: geometry::on_circle(m.centre, radius, a) }
-                } else {
-                    let (from_start, from_end) = (endpoint(0.0, start), endpoint(1.0, m.end));
-                    if from_end.distance < from_start.distance { from_end } else { from_start }
-                }
-            }
-            None => {
-                let (dx, dz) = (m.end.x - start.x, m.end.z - start.z);
-                let length2 = dx * dx + dz * dz;
-                let t = if length2 > 0.0 {
-                    (((p.x - start.x) * dx + (p.z - start.z) * dz) / length2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                endpoint(t, Xz::new(start.x + dx * t, start.z + dz * t))
-            }
-        };
-        Some(Closest { distance: self.distance_to(p, k), ..closest })
-    }
-
     /// The distance to move `k` when it cuts (infinity otherwise): `distance_to_move`, with
     /// an arc's constants taken from `arcs`.
     pub fn distance_to(&self, p: Xz, k: usize) -> f64 {
@@ -420,118 +336,3 @@ fn move_length(start: Xz, m: &Move) -> f64 {
 
 #[cfg(test)]
 mod tests;
-
-/// A nominal path for closest-point queries.
-pub struct PathIndex<'a> {
-    toolpath: &'a Toolpath,
-    cell: f64,
-    cells: HashMap<(i64, i64), Vec<u32>>,
-    /// Moves too large to enter cell by cell; checked on every query.
-    large: Vec<u32>,
-}
-
-/// A move covering more cells than this is kept aside.
-const MAX_CELLS_PER_MOVE: i64 = 4096;
-
-impl<'a> PathIndex<'a> {
-    /// Index the moves for which `include` holds (all but dwells make sense).
-    pub fn new(toolpath: &'a Toolpath, include: impl Fn(&Move) -> bool) -> PathIndex<'a> {
-        let cell = 1.0;
-        let mut index = PathIndex { toolpath, cell, cells: HashMap::new(), large: Vec::new() };
-        for (k, m) in toolpath.moves.iter().enumerate() {
-            if m.motion == Motion::Dwell || !include(m) {
-                continue;
-            }
-            let start = toolpath.start_of(k);
-            let (lo, hi) = bounds(start, m);
-            if !(lo.is_finite() && hi.is_finite()) {
-                continue;
-            }
-            let (x0, z0) = index.key(lo);
-            let (x1, z1) = index.key(hi);
-            if (x1 - x0 + 1).saturating_mul(z1 - z0 + 1) > MAX_CELLS_PER_MOVE {
-                index.large.push(k as u32);
-                continue;
-            }
-            for x in x0..=x1 {
-                for z in z0..=z1 {
-                    index.cells.entry((x, z)).or_default().push(k as u32);
-                }
-            }
-        }
-        index
-    }
-
-    fn key(&self, p: Xz) -> (i64, i64) {
-        ((p.x / self.cell).floor() as i64, (p.z / self.cell).floor() as i64)
-    }
-
-    /// The distance from `p` to the closest indexed move, if any.
-    pub fn distance(&self, p: Xz) -> Option<f64> {
-        self.closest(p).map(|(distance, _)| distance)
-    }
-
-    /// The distance from `p` to the closest indexed move and that move's index, if any (the
-    /// first such move in the program where several are equally close).
-    pub fn closest(&self, p: Xz) -> Option<(f64, usize)> {
-        let mut best = (f64::INFINITY, usize::MAX);
-        let consider = |k: u32, best: &mut (f64, usize)| {
-            let d = self.distance_to(p, k);
-            let k = k as usize;
-            if d < best.0 || (d == best.0 && k < best.1) {
-                *best = (d, k);
-            }
-        };
-        for &k in &self.large {
-            consider(k, &mut best);
-        }
-        let (cx, cz) = self.key(p);
-        // Search rings of cells outward: after ring r every unseen move is at least
-        // r cells away.
-        for r in 0..64i64 {
-            for x in cx - r..=cx + r {
-                for z in cz - r..=cz + r {
-                    if (x - cx).abs() != r && (z - cz).abs() != r {
-                        continue;
-                    }
-                    if let Some(moves) = self.cells.get(&(x, z)) {
-                        for &k in moves {
-                            consider(k, &mut best);
-                        }
-                    }
-                }
-            }
-            if best.0 <= r as f64 * self.cell {
-                return Some(best);
-            }
-        }
-        // Far from everything: look at every move.
-        for moves in self.cells.values() {
-            for &k in moves {
-                consider(k, &mut best);
-            }
-        }
-        best.0.is_finite().then_some(best)
-    }
-
-    fn distance_to(&self, p: Xz, k: u32) -> f64 {
-        let k = k as usize;
-        match self.toolpath.moves.get(k) {
-            Some(m) => distance_to_move(p, self.toolpath.start_of(k), m),
-            None => f64::INFINITY,
-        }
-    }
-}
-
-/// The bounding box of a move.
-fn bounds(start: Xz, m: &Move) -> (Xz, Xz) {
-    let mut lo = Xz::new(start.x.min(m.end.x), start.z.min(m.end.z));
-    let mut hi = Xz::new(start.x.max(m.end.x), start.z.max(m.end.z));
-    if m.is_arc() {
-        for p in geometry::arc_extremes(start, m.end, m.centre, m.motion == Motion::Ccw) {
-            lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
-            hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
-        }
-    }
-    (lo, hi)
-}

@@ -321,6 +321,14 @@ impl<'m> Predictor<'m> {
         }));
     }
 
+    /// Where the slides lag the command now, on the axes with play (`Sample::backlash`): the
+    /// part of the last point's displacement the play operator gives.
+    pub fn backlash(&self) -> Xz {
+        let (slide, at, play) = (self.tracker.slide(), self.tracker.position(), self.tracker.play());
+        let lag = |play: f64, slide: f64, at: f64| if play > 0.0 { slide - at } else { 0.0 };
+        Xz::new(lag(play.x, slide.x, at.x), lag(play.z, slide.z, at.z))
+    }
+
     /// The backlash the tracker would take up on the way to `to` (`Tracker::take_up`), and
     /// where each slide is now.
     pub fn take_up(&self, to: Xz) -> (Xz, Xz) {
@@ -329,14 +337,21 @@ impl<'m> Predictor<'m> {
 
     /// `predict` of the samples' nominal points (the program as written).
     pub fn predict_nominal(&mut self, samples: &[PathSample], time_terms: &[Xz], out: &mut Vec<Xz>) {
-        let (model, count) = (self.model, self.time_count);
-        out.extend(samples.iter().enumerate().map(|(index, s)| {
-            let step = self.tracker.step(s.nominal);
-            let state = self.tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
-            let actual = model.actual_timed(&state, terms_of(time_terms, count, index));
-            self.tracker.take(&step, s.tool, s.cutting);
-            actual
-        }));
+        let count = self.time_count;
+        out.extend(
+            samples.iter().enumerate().map(|(index, s)| self.predict_one(s, terms_of(time_terms, count, index))),
+        );
+    }
+
+    /// `predict_nominal` of one sample, its terms of time `time_terms` (empty: the model
+    /// evaluates them).
+    pub fn predict_one(&mut self, s: &PathSample, time_terms: &[Xz]) -> Xz {
+        let model = self.model;
+        let step = self.tracker.step(s.nominal);
+        let state = self.tracker.sample_after(&step, s.tool, s.cutting, &inputs_of(s, model));
+        let actual = model.actual_timed(&state, time_terms);
+        self.tracker.take(&step, s.tool, s.cutting);
+        actual
     }
 }
 

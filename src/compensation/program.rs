@@ -36,6 +36,11 @@ pub struct CompensateOptions {
     pub max_shift_mm: f64,
     /// Expand every cycle, not only those whose motion changes.
     pub expand_cycles: bool,
+    /// Compensate a profile that a finishing cycle runs in place, keeping the cycles that
+    /// share it, rather than expand them (`rewrite::CycleChoice`).
+    pub profiles_in_place: bool,
+    /// Compensate a thread cycle's final pass in its own words rather than expand it.
+    pub threads_in_place: bool,
     /// Keep every sample's paths in `Outcome::paths` (for `plot`; a long program has
     /// millions of samples).
     pub paths: bool,
@@ -55,6 +60,8 @@ pub struct Outcome {
     pub paths: Paths,
     /// The blocks edited (motion blocks and expanded cycle calls).
     pub edited: Vec<rewrite::EditedBlock>,
+    /// What became of each cycle call.
+    pub cycles: Vec<rewrite::CycleOutcome>,
 }
 
 /// The paths of the compensation, one point per sample, for plotting.
@@ -127,12 +134,14 @@ pub fn compensate_program(
                 samples: 0,
                 plans: &Default::default(),
                 edited: &[],
+                cycles: &[],
                 inverse_iterations: 0,
                 inverse_residual_mm: 0.0,
                 block_reports: false,
             }),
             paths: Paths::default(),
             edited: Vec::new(),
+            cycles: Vec::new(),
         };
     }
     // The rewrite's tables: what can be written for each move, the runs of moves each edited
@@ -156,7 +165,12 @@ pub fn compensate_program(
     let stream::Streamed { plans, mut diagnostics, figures, totals, paths, needs, motion } =
         stream::run(&context, motion);
     diagnostics.extend(unwritable_cycles(program, lowered, &needs, &context.writable));
-    let rewritten = rewrite::finish(program, lowered, &plans, options.expand_cycles, motion);
+    let choice = rewrite::CycleChoice {
+        expand_all: options.expand_cycles,
+        profiles_in_place: options.profiles_in_place,
+        threads_in_place: options.threads_in_place,
+    };
+    let rewritten = rewrite::finish(program, lowered, &plans, choice, motion);
     diagnostics.extend(rewritten.diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
     let report = super::report::build(&ReportInput {
@@ -168,11 +182,12 @@ pub fn compensate_program(
         samples: totals.samples,
         plans: &plans,
         edited: &rewritten.edited,
+        cycles: &rewritten.cycles,
         inverse_iterations: totals.inverse_iterations,
         inverse_residual_mm: totals.inverse_residual_mm,
         block_reports: options.block_reports,
     });
-    Outcome { edits: rewritten.edits, diagnostics, report, paths, edited: rewritten.edited }
+    Outcome { edits: rewritten.edits, diagnostics, report, paths, edited: rewritten.edited, cycles: rewritten.cycles }
 }
 
 /// A warning on each cycle that cannot be written back while its points need a

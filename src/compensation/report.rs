@@ -17,12 +17,32 @@ use crate::syntax::Program;
 use super::deviation::{Figures, Tally, nm};
 use super::fit::Segment;
 use super::plan::KeptPlans;
-use super::rewrite::EditedBlock;
+use super::rewrite::{CycleForm, CycleOutcome, EditedBlock};
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
     pub blocks: Vec<BlockReport>,
+    /// Every cycle call, and what became of it.
+    pub cycles: Vec<CycleReport>,
     pub totals: Totals,
+}
+
+/// A cycle call: kept as written, kept with its profile compensated in place, or expanded
+/// (and why).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CycleReport {
+    /// 1-based line of the call block.
+    pub line: usize,
+    /// The call block as written.
+    pub block: String,
+    /// `kept`, `profile_edited`, `words_edited` (a thread cycle's final pass) or `expanded`.
+    pub outcome: &'static str,
+    /// With `profile_edited`, the 1-based lines of the profile blocks edited in place.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub profile_lines: Vec<usize>,
+    /// With `expanded`, why the call could not stay.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<String>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -54,6 +74,8 @@ pub struct ArcReport {
 pub struct Totals {
     pub edited_blocks: usize,
     pub expanded_cycles: usize,
+    /// Cycle calls kept as written while their profile is compensated in place.
+    pub profiles_edited: usize,
     pub samples: usize,
     pub max_correction_mm: f64,
     /// Iterations of the inverse at the worst sample, and its largest residual, mm.
@@ -91,6 +113,7 @@ pub struct ReportInput<'a> {
     pub samples: usize,
     pub plans: &'a KeptPlans,
     pub edited: &'a [EditedBlock],
+    pub cycles: &'a [CycleOutcome],
     pub inverse_iterations: u32,
     pub inverse_residual_mm: f64,
     /// Report every edited block, not only the totals.
@@ -108,11 +131,15 @@ pub fn build(input: &ReportInput<'_>) -> Report {
     };
     let before = input.before.figures();
     let after = input.after.figures();
+    let cycles = if input.block_reports { cycle_reports(input) } else { Vec::new() };
+    let profiles_edited = input.cycles.iter().filter(|c| matches!(c.form, CycleForm::ProfileEdited { .. })).count();
     Report {
         blocks,
+        cycles,
         totals: Totals {
             edited_blocks: input.edited.iter().filter(|e| !e.cycle).count(),
             expanded_cycles: input.edited.iter().filter(|e| e.cycle).count(),
+            profiles_edited,
             samples: input.samples,
             max_correction_mm: nm(input.max_correction_mm),
             inverse_iterations: input.inverse_iterations,
@@ -122,6 +149,29 @@ pub fn build(input: &ReportInput<'_>) -> Report {
             improvement_percent: before.improvement_percent(&after),
         },
     }
+}
+
+/// What became of each cycle call, by line.
+fn cycle_reports(input: &ReportInput<'_>) -> Vec<CycleReport> {
+    let program = input.program;
+    let lines = LineIndex::new(program.source());
+    let line = |block: usize| lines.position(program.block(block).span.start).0;
+    input
+        .cycles
+        .iter()
+        .map(|c| {
+            let text = String::from_utf8_lossy(program.text(program.block(c.block).span)).trim_end().to_string();
+            let (outcome, profile_lines, reason) = match &c.form {
+                CycleForm::Kept => ("kept", Vec::new(), None),
+                CycleForm::WordsEdited => ("words_edited", Vec::new(), None),
+                CycleForm::ProfileEdited { profile } => {
+                    ("profile_edited", profile.iter().map(|&b| line(b)).collect(), None)
+                }
+                CycleForm::Expanded { reason } => ("expanded", Vec::new(), Some(reason.clone())),
+            };
+            CycleReport { line: line(c.block), block: text, outcome, profile_lines, reason }
+        })
+        .collect()
 }
 
 /// The reports of `edited`, in order.

@@ -15,8 +15,13 @@
 //!   block: its points are the contour points moved by the correction of their reference
 //!   points, `contour + (commanded − nominal)` (`written.rs`), never the reference points,
 //!   so the control's nose-radius offset still applies on top.
-//! * **Cycles** whose motion changes are expanded into their compensated moves
-//!   (`rewrite/cycles.rs`); the others stay calls.
+//! * **Cycles** whose motion changes stay calls where a finishing cycle runs their profile
+//!   (`G71`/`G72`/`G73` with `G70`, LAP `G85`/`G86` with `G87`): the profile blocks are
+//!   compensated word by word from the finishing pass's moves, as motion blocks are, and
+//!   the roughing, which the control computes from the profile, follows them. The others
+//!   are expanded into their compensated moves (`rewrite/cycles.rs`), and so are those whose
+//!   profile cannot carry the correction (a block that makes several moves, a block that
+//!   also runs as a plain block); cycles whose motion does not change stay calls.
 //! * Moves of other blocks (`G28`, `G53` returns) stay as programmed: they go to fixed
 //!   machine positions, not to points of the part.
 
@@ -29,12 +34,14 @@ use std::ops::Range;
 use crate::back::grid::Grid;
 use crate::back::motion::{Codes, MotionWriter};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::dialect::Address;
 use crate::printer::style::{BlockArcWords, StyleTally};
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
 use crate::source::Span;
 use crate::syntax::{Program, Statement};
+use crate::toolpath::Motion;
 
 use super::plan::{KeptPlans, MovePlan};
 use super::written;
@@ -48,6 +55,8 @@ pub struct Rewrite {
     /// Each edited block (a motion block, or a cycle call that was expanded) and the moves
     /// it writes (for a block that runs several times, its first run).
     pub edited: Vec<EditedBlock>,
+    /// What became of each cycle call.
+    pub cycles: Vec<CycleOutcome>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -92,17 +101,122 @@ impl BlockLookup {
     }
 }
 
+/// What became of a cycle call (each call block once, in block order).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CycleOutcome {
+    #[serde(skip)]
+    pub block: usize,
+    #[serde(flatten)]
+    pub form: CycleForm,
+}
+
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(tag = "outcome", rename_all = "snake_case")]
+pub enum CycleForm {
+    /// The call stays as written, its moves need no correction.
+    Kept,
+    /// The call stays as written and the profile it shares with a finishing cycle is
+    /// compensated in place (its blocks, `profile`): the roughing follows it, as on the
+    /// control.
+    ProfileEdited {
+        #[serde(skip)]
+        profile: Vec<usize>,
+    },
+    /// The call stays, its words carrying the correction of its final pass (a thread
+    /// cycle: the final diameter and the end of the thread).
+    WordsEdited,
+    /// The call is written out as its compensated moves.
+    Expanded { reason: String },
+}
+
+/// Why a cycle is expanded when profiles are not compensated in place (the caller that
+/// asked for it says why).
+pub const PROFILE_NOT_IN_PLACE: &str = "its moves change, and its profile is not compensated in place";
+
+/// Why a thread cycle is expanded when its words are not compensated in place.
+pub const THREAD_NOT_IN_PLACE: &str = "its moves change, and its own words are not compensated in place";
+
+/// How the rewrite treats the cycles whose moves change.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CycleChoice {
+    /// Expand every cycle (`--expand-cycles`).
+    pub expand_all: bool,
+    /// Compensate a profile a finishing cycle runs in place rather than expand the cycles
+    /// that share it.
+    pub profiles_in_place: bool,
+    /// Compensate a thread cycle's final pass in its own words rather than expand it.
+    pub threads_in_place: bool,
+}
+
 /// The edits, once every move is planned and every run of a motion block was given to
 /// `motion`: the cycles, then the motion blocks.
 pub fn finish(
     program: &Program<'_>,
     lowered: &Lowered,
     plans: &KeptPlans,
-    expand_cycles: bool,
-    motion: MotionBlocks<'_, '_>,
+    choice: CycleChoice,
+    mut motion: MotionBlocks<'_, '_>,
 ) -> Rewrite {
     let mut out = Rewrite::default();
-    let chosen = cycles::chosen(program, lowered, plans, expand_cycles, &mut out.diagnostics);
+    let (mut chosen, groups) = cycles::chosen(program, lowered, plans, choice.expand_all, &mut out.diagnostics);
+    let mut in_place: HashMap<usize, Vec<usize>> = HashMap::new();
+    // Why a cycle that could have stayed is expanded, where it is more than the default.
+    let mut why: HashMap<usize, &'static str> = HashMap::new();
+    if choice.profiles_in_place && !choice.expand_all {
+        for group in cycles::profile_groups(lowered, plans, &chosen, &groups) {
+            if !motion.profile_writable(&group.blocks, plans) {
+                for e in group.members.iter().filter_map(|&k| lowered.expansions.get(k)) {
+                    why.insert(
+                        e.block,
+                        "a block of its profile makes several moves that change (an automatic corner, a take-up \
+                         of the play), or also runs as a plain block: the profile cannot carry the correction",
+                    );
+                }
+            } else {
+                motion.write_profile(&group.blocks, plans);
+                let profile: Vec<usize> = {
+                    let mut b: Vec<usize> = group.blocks.iter().map(|&(b, _)| b).collect();
+                    b.sort_unstable();
+                    b.dedup();
+                    b
+                };
+                for &k in &group.members {
+                    chosen[k] = false;
+                    if let Some(e) = lowered.expansions.get(k) {
+                        in_place.insert(e.block, profile.clone());
+                    }
+                }
+            }
+        }
+    }
+    // A thread cycle keeps its call, the final pass's correction in its own words.
+    let mut threads: HashSet<usize> = HashSet::new();
+    if choice.threads_in_place && !choice.expand_all {
+        for (k, e) in lowered.expansions.iter().enumerate() {
+            let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
+            let Some(pass) = cycles::thread_final_pass(program, lowered, e).filter(|_| alone) else { continue };
+            // A cycle that cannot be written out (an OSP thread) is not chosen: its final pass
+            // says whether it needs a correction.
+            let expandable = cycles::expandable(program, lowered, e);
+            let changed = plans.get(pass..pass + 1).is_some_and(|p| p.iter().any(|p| p.changed));
+            if !(chosen.get(k).copied().unwrap_or(false) || (!expandable && changed)) {
+                continue;
+            }
+            if motion.thread_writable(e.block, pass, plans) {
+                motion.write_profile(&[(e.block, pass..pass + 1)], plans);
+                chosen[k] = false;
+                threads.insert(e.block);
+            } else if !expandable {
+                let span = program.block(e.block).span;
+                out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+            } else {
+                why.insert(
+                    e.block,
+                    "its final pass needs more than one move (a take-up of the play), which its words cannot carry",
+                );
+            }
+        }
+    }
     let style = motion.writer.out.style();
     let expanded = cycles::write(program, lowered, plans, &chosen, style, &mut out.edits, &mut out.diagnostics);
     // The first expansion of each call block (a call that runs several times has several).
@@ -110,10 +224,45 @@ pub fn finish(
     for (k, e) in lowered.expansions.iter().enumerate() {
         first_expansion.entry(e.block).or_insert(k);
     }
+    let expanded_set: HashSet<usize> = expanded.iter().copied().collect();
     for block in expanded {
         if let Some(e) = first_expansion.get(&block).and_then(|&k| lowered.expansions.get(k)) {
             out.edited.push(EditedBlock { block, moves: e.moves.clone(), cycle: true });
         }
+    }
+    let mut calls: Vec<usize> = first_expansion.keys().copied().collect();
+    calls.sort_unstable();
+    for block in calls {
+        let form = if let Some(profile) = in_place.remove(&block) {
+            CycleForm::ProfileEdited { profile }
+        } else if threads.contains(&block) {
+            CycleForm::WordsEdited
+        } else if expanded_set.contains(&block) {
+            let threads_cut = first_expansion
+                .get(&block)
+                .and_then(|&k| lowered.expansions.get(k))
+                .and_then(|e| lowered.toolpath.moves.get(e.moves.clone()))
+                .is_some_and(|moves| moves.iter().any(|m| m.threading));
+            let reason = if choice.expand_all {
+                "--expand-cycles"
+            } else if let Some(reason) = why.get(&block) {
+                reason
+            } else if threads_cut && !choice.threads_in_place {
+                THREAD_NOT_IN_PLACE
+            } else if threads_cut {
+                "its moves change, and its end words do not name its final pass (a thread chamfered out, a \
+                 taper or a start shift written in the block), so they cannot carry the correction"
+            } else if !choice.profiles_in_place {
+                PROFILE_NOT_IN_PLACE
+            } else {
+                "its moves change, and no finishing cycle runs a profile of it (a single cycle, a roughing cycle \
+                 with no finishing cycle, a finishing cycle whose own moves cut)"
+            };
+            CycleForm::Expanded { reason: reason.to_string() }
+        } else {
+            CycleForm::Kept
+        };
+        out.cycles.push(CycleOutcome { block, form });
     }
     motion.finish(&mut out);
     out.edited.sort_by_key(|e| e.block);
@@ -302,7 +451,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         let mut writable = vec![false; moves.len()];
         let mut radius = vec![self.radius_arcs; moves.len()];
         for expansion in &lowered.expansions {
-            let expandable = cycles::expandable(program, lowered, expansion);
+            // A thread cycle whose final pass its words can carry is planned like one that
+            // can be written out (`finish` decides which it is).
+            let expandable = cycles::expandable(program, lowered, expansion)
+                || cycles::thread_final_pass(program, lowered, expansion).is_some();
             for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
                 *w = expandable;
             }
@@ -336,10 +488,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     /// The next run (after those given before it), with the plans of its moves; a cycle's
     /// run is the cycles' business (`finish`).
     pub fn add(&mut self, run: &MoveRun, plans: &[MovePlan]) {
-        let (program, lowered, tools) = (self.program, self.lowered, self.tools);
-        let moves = &lowered.toolpath.moves;
-        let first = run.moves.start;
-        let Some(source) = moves.get(first).map(|m| m.source) else { return };
+        let (program, lowered) = (self.program, self.lowered);
+        let Some(source) = lowered.toolpath.moves.get(run.moves.start).map(|m| m.source) else { return };
         if run.cycle {
             return;
         }
@@ -347,15 +497,71 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         if !matches!(program.block(block).statement, Statement::Motion | Statement::ThreadMove) {
             return;
         }
-        // The moves the block writes (not dwells or corners the control makes): none, one
-        // (`single`), or several.
+        let text = if self.rapid_left_alone(block, run.moves.clone()) {
+            None
+        } else {
+            self.block_text(block, run.moves.clone(), plans)
+        };
+        self.settle(block, run.moves.clone(), text);
+    }
+
+    /// Whether the run `moves` of `block` is a rapid that stays as written: one rapid in
+    /// absolute words, followed by nothing or by another plain rapid in absolute words. Its
+    /// end cuts nothing and starts no cut (the next rapid is written from the point the
+    /// model puts it, whatever the point before it), so moving it would only change a
+    /// block the programmer wrote. A rapid before a cut, or before a cycle (whose start
+    /// point the cycle's passes are computed from), is compensated.
+    fn rapid_left_alone(&self, block: usize, moves: Range<usize>) -> bool {
+        let path = &self.lowered.toolpath.moves;
+        let is_plain_rapid = |k: usize| {
+            path.get(k).is_some_and(|m| m.motion == Motion::Rapid && !m.threading && m.cycle == Span::SYNTHETIC)
+        };
+        let k = moves.start;
+        if moves.len() != 1 || !is_plain_rapid(k) || !self.absolute(block, k) {
+            return false;
+        }
+        let next = moves.end;
+        match path.get(next) {
+            None => true,
+            Some(m) => {
+                is_plain_rapid(next) && self.lookup.index(m.source.start).is_some_and(|b| self.absolute(b, next))
+            }
+        }
+    }
+
+    /// Whether `block`, running move `k`, writes its coordinates as absolute ones.
+    fn absolute(&self, block: usize, k: usize) -> bool {
+        let incremental = |word: &crate::syntax::Word| {
+            matches!(
+                word.kind,
+                crate::syntax::WordKind::Number { address: Address::U | Address::W, .. }
+                    | crate::syntax::WordKind::Expr { address: Address::U | Address::W, .. }
+            )
+        };
+        self.lowered.coordinates_at(k).absolute
+            && (self.program.config().dialect != crate::dialect::Dialect::Fanuc
+                || !self.program.words_of(self.program.block(block)).iter().any(incremental))
+    }
+
+    /// The moves `moves` of `block` that write a segment (not dwells or corners the control
+    /// makes): none, one, or several, and whether any changes.
+    fn written_moves(moves: Range<usize>, plans: &[MovePlan]) -> (Option<usize>, bool, bool) {
         let (mut single, mut several, mut any_change) = (None, false, false);
-        for (index, plan) in run.moves.clone().zip(plans).filter(|(_, p)| !p.segments.is_empty()) {
+        for (index, plan) in moves.zip(plans).filter(|(_, p)| !p.segments.is_empty()) {
             several |= single.is_some();
             single.get_or_insert(index);
             any_change |= plan.changed;
         }
-        let text = match single {
+        (single, several, any_change)
+    }
+
+    /// The text `block` is written as for its moves `moves` (`plans` theirs), `None` where it
+    /// writes them as it is or cannot carry them (refused with a diagnostic).
+    fn block_text(&mut self, block: usize, moves: Range<usize>, plans: &[MovePlan]) -> Option<WrittenText> {
+        let (program, lowered, tools) = (self.program, self.lowered, self.tools);
+        let first = moves.start;
+        let (single, several, any_change) = Self::written_moves(moves, plans);
+        match single {
             None => None,
             Some(single) if !several => {
                 let mark = lowered.coordinates_at(single);
@@ -373,7 +579,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     tools,
                 };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
-                match (moves.get(single), plans.get(single - first)) {
+                match (lowered.toolpath.moves.get(single), plans.get(single - first)) {
                     (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan, &mut self.writer),
                     _ => None,
                 }
@@ -384,20 +590,25 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                         DiagnosticKind::CannotRewriteBlock {
                             reason: "it makes several moves (an automatic corner), which cannot each carry a correction",
                         },
-                        source,
+                        program.block(block).span,
                     ));
                 }
                 None
             }
             Some(_) => None,
-        };
+        }
+    }
+
+    /// Record one run of `block` (its moves `moves`) that writes `text`: a first run keeps
+    /// it, a later one is only compared with the first.
+    fn settle(&mut self, block: usize, moves: Range<usize>, text: Option<WrittenText>) {
         let Some(first_run) = self.first_runs.get_mut(block) else { return };
         match (*first_run, text) {
             (FirstRun::NotYet, None) => *first_run = FirstRun::AsWritten,
             (FirstRun::NotYet, Some(text)) => {
                 *first_run = FirstRun::Replaced(self.replacements.len());
                 self.replacements.push((block, text));
-                self.edited.push(EditedBlock { block, moves: run.moves.clone(), cycle: false });
+                self.edited.push(EditedBlock { block, moves, cycle: false });
             }
             (FirstRun::AsWritten, None) => {}
             (FirstRun::AsWritten, Some(text)) => {
@@ -414,6 +625,37 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     self.writer.out.discard(text);
                 }
             }
+        }
+    }
+
+    /// Whether the profile blocks `blocks` (each with the moves a finishing cycle makes for
+    /// it) can each carry their moves' correction as a motion block does: each writes at
+    /// most one segment-writing move where any changes, and none ran as a plain block.
+    pub(super) fn profile_writable(&self, blocks: &[(usize, Range<usize>)], plans: &KeptPlans) -> bool {
+        blocks.iter().all(|(block, moves)| {
+            let Some(plans) = plans.get(moves.clone()) else { return false };
+            let (_, several, any_change) = Self::written_moves(moves.clone(), plans);
+            matches!(self.first_runs.get(*block), Some(FirstRun::NotYet))
+                && !(several && any_change)
+                && matches!(self.program.block(*block).statement, Statement::Motion)
+        })
+    }
+
+    /// Whether the thread cycle called at `block` can carry the correction of its final
+    /// pass `pass` in its own words: the pass is written as one segment, and the block has
+    /// not been written for another run.
+    pub(super) fn thread_writable(&self, block: usize, pass: usize, plans: &KeptPlans) -> bool {
+        let Some([plan]) = plans.get(pass..pass + 1) else { return false };
+        plan.segments.len() == 1 && !plan.lead_in && matches!(self.first_runs.get(block), Some(FirstRun::NotYet))
+    }
+
+    /// Write the profile blocks `blocks` in place, each from the moves a finishing cycle makes
+    /// for it (`profile_writable` said they can).
+    pub(super) fn write_profile(&mut self, blocks: &[(usize, Range<usize>)], plans: &KeptPlans) {
+        for (block, moves) in blocks {
+            let Some(plans) = plans.get(moves.clone()) else { continue };
+            let text = self.block_text(*block, moves.clone(), plans);
+            self.settle(*block, moves.clone(), text);
         }
     }
 

@@ -17,8 +17,6 @@
 //! Spindle speeds are compared as the sequence of speed changes, because an expanded cycle
 //! writes `S` only where the speed changes.
 
-use smallvec::SmallVec;
-
 use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
 use crate::machine::StockSettings;
@@ -27,15 +25,17 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Expansion, Machine};
 use crate::source::Span;
 use crate::syntax::{CodeLetter, Program, WordKind};
+use crate::toolpath::compact::CompactPath;
 use crate::toolpath::{Toolpath, ValidToolpath, Xz};
 
-use super::deviation::{Figures, LocalPath, Tally};
+use super::deviation::{Figures, Tally};
 use super::fit::{FitOptions, Strategy};
-use super::inverse::Predictor;
-use super::program::SAMPLE_STEP_MM;
-use crate::error_model::sampling::{PathSample, Sampling, sample_at, sample_moves, samples_needed};
+use crate::error_model::sampling::{PathSample, Sampling};
 
+mod arc_steps;
 mod follow;
+mod knee;
+mod measure;
 mod part;
 #[cfg(test)]
 mod tests;
@@ -68,7 +68,8 @@ impl Measure {
     }
 }
 
-use follow::Follower;
+use follow::Original;
+use measure::measure;
 
 /// The predicted deviation from the original's nominal path, before and after.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -98,22 +99,21 @@ pub struct Worst {
 /// tables, arcs at least every eighth of a turn and at their extremes), for the chord
 /// between samples to follow the model within a tenth of half the least increment
 /// (`increment_mm`), whatever tolerance the program was compensated to, over the farthest
-/// any of `toolpaths` goes from the origin (`LocalPath::reach`).
+/// any of `toolpaths` goes from the origin (`Toolpath::reach`). An arc's steps are then cut
+/// as finely as the distance measured along it needs (`verify/arc_steps.rs`).
 pub fn sampling(model: &ErrorModel, increment_mm: f64, toolpaths: &[&Toolpath]) -> Sampling {
-    let reach = toolpaths
-        .iter()
-        .map(|t| LocalPath::new(t).reach())
-        .fold(Xz::new(0.0, 0.0), |a, b| Xz::new(a.x.max(b.x), a.z.max(b.z)));
+    let reach = toolpaths.iter().map(|t| t.reach()).fold(Xz::new(0.0, 0.0), |a, b| Xz::new(a.x.max(b.x), a.z.max(b.z)));
     let fit = FitOptions { strategy: Strategy::Auto, tolerance_mm: increment_mm / 2.0, step_mm: None };
     // The written program takes up its play where it does; verify follows it as written.
     let play = Xz::new(0.0, 0.0);
-    Sampling { max_arc_radians: Sampling::MEASURE_ARC_RADIANS, play, ..super::program::sampling(&fit, model, reach) }
+    Sampling { play, ..super::program::sampling(&fit, model, reach) }
 }
 
-/// Moves sampled and measured at a time, and samples (past the first move's): memory
-/// follows them, not the program.
-const CHUNK_MOVES: usize = 4096;
-const CHUNK_SAMPLES: usize = 1 << 16;
+/// `toolpath` compact (`toolpath::compact`), its tools' tips from `tools`: the form the
+/// measure reads.
+pub fn compact(toolpath: ValidToolpath<'_>, tools: &ToolTable) -> CompactPath {
+    CompactPath::new(toolpath, |tool, offset| tools.lookup(tool, offset).1)
+}
 
 /// The moves of `toolpath` that need more samples than a measure holds
 /// (`error_model::sampling::MAX_SAMPLES_PER_MOVE`), one error on each block that makes
@@ -148,13 +148,24 @@ pub fn deviation_watched(
     sampling: &Sampling,
     watch: &(dyn Fn(Side, &Measured) + Sync),
 ) -> Deviation {
-    let (original, compensated) = (original.toolpath(), compensated.toolpath());
-    let path = LocalPath::new(original);
-    let side_by_side = original.moves.len() >= crate::parallel::tuning().measure_moves;
+    let (original, compensated) = (compact(original, tools), compact(compensated, tools));
+    deviation_of(&original, &compensated, model, sampling, watch)
+}
+
+/// `deviation_watched` of two programs held compact.
+pub fn deviation_of(
+    original: &CompactPath,
+    compensated: &CompactPath,
+    model: &ErrorModel,
+    sampling: &Sampling,
+    watch: &(dyn Fn(Side, &Measured) + Sync),
+) -> Deviation {
+    let path = Original::new(original);
+    let side_by_side = original.len() >= crate::parallel::tuning().measure_moves;
     let ((after, worst), (before, _)) = crate::parallel::join_if(
         side_by_side,
-        || measure(compensated, Some(&path), tools, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m)),
-        || measure(original, Some(&path), tools, model, sampling, Side::Original, &mut |side, m| watch(side, &m)),
+        || measure(compensated, &path, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m)),
+        || measure(original, &path, model, sampling, Side::Original, &mut |side, m| watch(side, &m)),
     );
     figures(before, after, worst)
 }
@@ -193,10 +204,10 @@ pub fn deviation_each(
     sampling: &Sampling,
     mut each: impl FnMut(Side, Measured),
 ) -> Deviation {
-    let (original, compensated) = (original.toolpath(), compensated.toolpath());
-    let path = LocalPath::new(original);
-    let (before, _) = measure(original, Some(&path), tools, model, sampling, Side::Original, &mut each);
-    let (after, worst) = measure(compensated, Some(&path), tools, model, sampling, Side::Compensated, &mut each);
+    let (original, compensated) = (compact(original, tools), compact(compensated, tools));
+    let path = Original::new(&original);
+    let (before, _) = measure(&original, &path, model, sampling, Side::Original, &mut each);
+    let (after, worst) = measure(&compensated, &path, model, sampling, Side::Compensated, &mut each);
     figures(before, after, worst)
 }
 
@@ -206,291 +217,33 @@ fn figures(before: Tally, after: Tally, worst: Option<Worst>) -> Deviation {
     Deviation { before: before.rounded(), after: after.rounded(), improvement_percent, worst }
 }
 
-/// Sample `toolpath` as `sampling` allows, predict it through `model` as written, and tally
-/// the distance of each predicted cutting point from `path`, with its side, integrated along
-/// the path between samples (`Tally::add_signed_along`).
-///
-/// Between two samples the model is followed within the sampling's allowance, but two
-/// things bend the deviation faster than any model's term. Where a slide reverses it stands
-/// still while the command crosses its play and moves on from the knee where the command
-/// reaches the far side: each such knee on a cutting move is measured too (`knees`), with
-/// the standing slide's velocity. And round a corner the distance from the path moves from
-/// the one element to the next within a few micrometres of the corner, so a cutting move
-/// longer than two of the thesis' steps is also measured one step after its start and one
-/// before its end: the distance along the rest of it is then its own element's.
-fn measure(
-    toolpath: &Toolpath,
-    path: Option<&LocalPath<'_>>,
-    tools: &ToolTable,
-    model: &ErrorModel,
-    sampling: &Sampling,
-    side: Side,
-    each: &mut dyn FnMut(Side, Measured),
-) -> (Tally, Option<Worst>) {
-    let mut measuring = Measuring {
-        toolpath,
-        tools,
-        side,
-        each,
-        measured: 0,
-        play: model.play(),
-        follower: path.map(Follower::new),
-        predictor: Predictor::new(toolpath.start, model),
-        predicted: Vec::new(),
-        tally: Tally::default(),
-        previous: None,
-        worst: None,
-    };
-    let mut samples = Vec::new();
-    let count = toolpath.moves.len();
-    let mut next = 0;
-    while next < count {
-        let first = next;
-        let mut held = 0;
-        while next < count && next - first < CHUNK_MOVES && (next == first || held < CHUNK_SAMPLES) {
-            held = samples_needed(toolpath, next, sampling).saturating_add(held);
-            next += 1;
-        }
-        samples.clear();
-        sample_moves(toolpath, first..next, tools, sampling, &mut samples);
-        let mut param_before = 0.0;
-        let mut move_before = usize::MAX;
-        for s in &samples {
-            let from = if s.move_index == move_before { param_before } else { 0.0 };
-            (param_before, move_before) = (s.param, s.move_index);
-            let long = longer_than_a_jog(toolpath, s.move_index, measuring.play);
-            if s.param == 0.0 && !long {
-                continue;
-            }
-            // A stretch longer than two of the thesis' steps is also measured one step in
-            // from each end where it is an end of its move (`measure`).
-            let step = SAMPLE_STEP_MM / s.covers_mm * (s.param - from);
-            let mut points: SmallVec<[(f64, f64); 2]> = SmallVec::new();
-            if s.cutting && s.param > from && s.covers_mm > 2.0 * SAMPLE_STEP_MM {
-                if from == 0.0 {
-                    points.push((from + step, SAMPLE_STEP_MM));
-                }
-                if s.param >= 1.0 {
-                    let covered = points.iter().map(|p| p.1).sum::<f64>();
-                    points.push((s.param - step, s.covers_mm - SAMPLE_STEP_MM - covered));
-                }
-            }
-            let mut at = from;
-            let mut covered = 0.0;
-            for (param, covers_mm) in points {
-                if let Some(inner) = sample_at(toolpath, s.move_index, tools, param) {
-                    measuring.sample(&PathSample { covers_mm, ..inner }, at, long);
-                    (at, covered) = (param, covered + covers_mm);
-                }
-            }
-            measuring.sample(&PathSample { covers_mm: s.covers_mm - covered, ..*s }, at, long);
-        }
-    }
-    (measuring.tally, measuring.worst)
-}
-
-/// One program's measure as it goes (`measure`).
-struct Measuring<'a, 'p, 'e> {
-    toolpath: &'a Toolpath,
-    tools: &'a ToolTable,
-    side: Side,
-    each: &'e mut dyn FnMut(Side, Measured),
-    /// How many points were measured, cutting or not (`Measured::sample_index`).
-    measured: usize,
-    play: Xz,
-    /// None where the points are only predicted, not measured against a path
-    /// (`predicted_path`): each is then given to `each` as predicted.
-    follower: Option<Follower<'p>>,
-    predictor: Predictor<'a>,
-    predicted: Vec<Xz>,
-    tally: Tally,
-    /// The distance, with its side, measured at the sample before, and that sample's move
-    /// (none after a sample that does not cut).
-    previous: Option<(f64, usize)>,
-    worst: Option<Worst>,
-}
-
-impl Measuring<'_, '_, '_> {
-    /// Measure `s`, reached from the point at `from` of its move, with the knees of a
-    /// take-up on the way where the move is `long` enough to cut past its play.
-    fn sample(&mut self, s: &PathSample, from: f64, long: bool) {
-        let play = self.play;
-        if (play.x > 0.0 || play.z > 0.0) && s.cutting && long {
-            let (take_up, slide) = self.predictor.take_up(s.nominal);
-            if take_up.x != 0.0 || take_up.z != 0.0 {
-                let mut rest = *s;
-                for mut knee in knees(self.toolpath, self.tools, s, from, take_up, slide, play) {
-                    let share = (knee.param - from) / (s.param - from).max(f64::MIN_POSITIVE);
-                    knee.covers_mm = s.covers_mm * share.clamp(0.0, 1.0) - (s.covers_mm - rest.covers_mm);
-                    rest.covers_mm -= knee.covers_mm;
-                    self.one(&knee);
-                }
-                self.one(&rest);
-                return;
-            }
-        }
-        self.one(s);
-    }
-
-    /// Predict and tally one sample.
-    fn one(&mut self, s: &PathSample) {
-        self.predicted.clear();
-        self.predictor.predict_nominal(std::slice::from_ref(s), &[], &mut self.predicted);
-        let Some(follower) = self.follower.as_mut() else {
-            if let Some(&predicted) = self.predicted.first() {
-                let sample_index = self.measured;
-                self.measured += 1;
-                let measured = Measured {
-                    sample: *s,
-                    sample_index,
-                    predicted,
-                    distance_mm: 0.0,
-                    closest: predicted,
-                    original_move: 0,
-                };
-                (self.each)(self.side, measured);
-            }
-            return;
-        };
-        let Some(&p) = self.predicted.first().filter(|_| s.cutting) else {
-            self.measured += 1;
-            self.previous = None;
-            return;
-        };
-        let sample_index = self.measured;
-        self.measured += 1;
-        let found = match self.side {
-            Side::Original => follower.measure_from(s.move_index, s.param, p),
-            Side::Compensated => follower.measure(s.nominal, p),
-        };
-        let Some(found) = found else {
-            self.previous = None;
-            return;
-        };
-        (self.each)(
-            self.side,
-            Measured {
-                sample: *s,
-                sample_index,
-                predicted: p,
-                distance_mm: found.distance,
-                closest: found.point,
-                original_move: found.move_index,
-            },
-        );
-        let signed = found.distance * follower.side(&found, p);
-        let d = signed.abs();
-        // The side keeps its meaning along one move only: round a corner the part's surface
-        // may lie on the other side of the travel, so across one the distances are taken as
-        // they are, without a side.
-        let previous = match self.previous {
-            Some((before, k)) if k == s.move_index => Some(before),
-            Some((before, _)) => Some(before.abs().copysign(signed)),
-            None => None,
-        };
-        self.tally.add_signed_along(signed, previous, s.covers_mm / SAMPLE_STEP_MM);
-        if self.worst.is_none_or(|w| d > w.deviation_mm) {
-            let original_move = follower.matched_move();
-            self.worst = Some(Worst { deviation_mm: d, original_move, measured_move: s.move_index });
-        }
-        self.previous = Some((signed, s.move_index));
-    }
-}
-
-/// Every point of `toolpath` as the model puts the tool there, in path order: the samples
-/// `deviation` measures (with the knees of a take-up and the points one step in from a
-/// cutting move's ends), rapids' ends and moves that do not cut included, each given to
-/// `each` with its predicted point (`Measured::predicted`; its other measures are none).
-/// The part measure (`part.rs`) cuts the part along these points.
-pub(crate) fn predicted_path(
-    toolpath: &Toolpath,
-    tools: &ToolTable,
-    model: &ErrorModel,
-    sampling: &Sampling,
-    side: Side,
-    each: &mut dyn FnMut(Side, Measured),
-) {
-    measure(toolpath, None, tools, model, sampling, side, each);
-}
-
-/// Moves at most this long (mm) are measured at their end only, unless a play is longer:
-/// `compensate` writes such moves at reversals and corners, where the tool stands still but
-/// for the slides' last micrometres, and the model's terms of velocity (a loop lag in steady
-/// motion) do not describe a move of a few micrometres at a knee or at its start.
-const JOG_MM: f64 = 0.01;
-
-/// Whether move `index` is longer than a jog (`JOG_MM`, or four times the larger play): long
-/// enough for the tool to cut along the part while a reversing slide stands in its play.
-fn longer_than_a_jog(toolpath: &Toolpath, index: usize, play: Xz) -> bool {
-    let jog = JOG_MM.max(4.0 * play.x.max(play.z));
-    toolpath.moves.get(index).is_some_and(|m| toolpath.start_of(index).distance(m.end) > jog)
-}
-
-/// The knees of a take-up on the way to the cutting sample `s` from the point at `from`
-/// of its move: for each axis that reverses there (`take_up`, from the slides at `slide`),
-/// the sample where the command reaches the far side of the play, in path order.
-fn knees(
-    toolpath: &Toolpath,
-    tools: &ToolTable,
-    s: &PathSample,
-    from: f64,
-    take_up: Xz,
-    slide: Xz,
-    play: Xz,
-) -> SmallVec<[PathSample; 2]> {
-    let mut out: SmallVec<[PathSample; 2]> = SmallVec::new();
-    let axes = [(take_up.x, slide.x, play.x, 0), (take_up.z, slide.z, play.z, 1)];
-    for (take_up, slide, play, axis) in axes {
-        if take_up == 0.0 {
-            continue;
-        }
-        let edge = slide + take_up.signum() * play / 2.0;
-        let past = |t: f64| {
-            sample_at(toolpath, s.move_index, tools, t).map(|k| {
-                let at = if axis == 0 { k.nominal.x } else { k.nominal.z };
-                (at - edge) * take_up.signum() >= 0.0
-            })
-        };
-        // Between two samples an axis moves one way (an arc's extremes are samples), so the
-        // command crosses the edge once: found by halving.
-        let (mut low, mut high) = (from, s.param);
-        if past(low) != Some(false) || past(high) != Some(true) {
-            continue;
-        }
-        for _ in 0..48 {
-            let middle = (low + high) / 2.0;
-            if past(middle) == Some(true) { high = middle } else { low = middle }
-        }
-        if let Some(mut knee) = sample_at(toolpath, s.move_index, tools, high) {
-            // The reversing slide has stood still up to the knee: it moves with no velocity
-            // of its own there (a loop lag follows the slide, not the command inside the play).
-            if axis == 0 {
-                knee.velocity.x = 0.0
-            } else {
-                knee.velocity.z = 0.0
-            }
-            out.push(knee);
-        }
-    }
-    out.sort_by(|a, b| a.param.total_cmp(&b.param));
-    out
+/// What `check_written` found: the figures of the program about to be written, on the
+/// measure asked for, and the first word or feed change its read-back lost.
+#[derive(Debug, Clone)]
+pub struct Written {
+    pub deviation: Deviation,
+    /// The finished-part measure's findings (none on the pass measure).
+    pub part: Option<PartDeviation>,
+    pub feed_change: Option<FeedChange>,
+    pub lost: Option<MissingWord>,
 }
 
 /// What `compensate` checks before it writes: `written`, the program it is about to write,
 /// read back as the control reads it (through `pipeline::analyse`, with the settings the
-/// original was read with) and measured against `original`'s nominal part by `turnpass
-/// verify`'s own computation (`part_deviation` from `stock`, none to assume it as `verify`
-/// does, with `sampling`), so that the figures it reports are the ones verify finds, with
-/// verify's checks of the feed and spindle words (`check_feeds`) and of the other words of
-/// `original_program` (`check_words`: the first one lost).
+/// original was read with) and measured against `original` by `turnpass verify`'s own
+/// computation on `measure`: the finished part (`part_deviation` from `stock`, none to
+/// assume it as `verify` does) or pass by pass (`deviation_of`), with `sampling`, so that
+/// the figures it reports are the ones verify finds, with verify's checks of the feed and
+/// spindle words (`check_feeds`) and of the other words of `original_program`
+/// (`check_words`: the first one lost).
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
     (original_program, original_expansions, original): (&Program<'_>, &[Expansion], ValidToolpath<'_>),
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
-    (model, stock): (&ErrorModel, Option<&StockSettings>),
-) -> Result<(PartDeviation, Option<FeedChange>, Option<MissingWord>), Vec<Diagnostic>> {
+    (model, measure, stock): (&ErrorModel, Measure, Option<&StockSettings>),
+) -> Result<Written, Vec<Diagnostic>> {
     let read = match crate::pipeline::analyse(written, reading).ready() {
         Ok(read) => read,
         Err(analysed) => {
@@ -506,8 +259,24 @@ pub fn check_written(
         return Err(oversampled);
     }
     let lost = check_words((original_program, original_expansions), (read.program(), &read.lowered.expansions)).missing;
-    let measured = part_deviation((original, toolpath), tools, model, &sampling, machine, stock);
-    Ok((measured, check_feeds(&original, &toolpath), lost))
+    let feed_change = check_feeds(&original, &toolpath);
+    match measure {
+        Measure::Part => {
+            // The part measure cuts both programs' parts from their toolpaths (the blocks
+            // that cut each surface, the threads' passes), so the read-back is held to the end.
+            let part = part_deviation((original, toolpath), tools, model, &sampling, machine, stock);
+            Ok(Written { deviation: part.deviation, part: Some(part), feed_change, lost })
+        }
+        Measure::Passes => {
+            // Its words checked, the written program is measured compact: its AST and
+            // toolpath are let go before the measure, which holds the two compact paths.
+            let written_path = compact(toolpath, tools);
+            drop(read);
+            let original_path = compact(original, tools);
+            let deviation = deviation_of(&original_path, &written_path, model, &sampling, &|_, _| {});
+            Ok(Written { deviation, part: None, feed_change, lost })
+        }
+    }
 }
 
 /// The deviation `verify` allows by default: two least increments, mm.

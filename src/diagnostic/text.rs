@@ -737,7 +737,7 @@ impl DiagnosticKind {
                         .into(),
                 ),
             },
-            CompensationFailsCheck { deviation_mm, bound_mm, tolerance_mm } => Words {
+            CompensationFailsCheck { deviation_mm, bound_mm, tolerance_mm, other_strategy } => Words {
                 code: "compensation-fails-check",
                 message: format!(
                     "the compensated program, read back and predicted on the model as `turnpass verify` predicts \
@@ -746,17 +746,36 @@ impl DiagnosticKind {
                 )
                 .into(),
                 label: format!("off by {:.2} µm", deviation_mm * 1000.0).into(),
-                hint: Some(if tolerance_mm > bound_mm {
-                    format!(
-                        "--tolerance {tolerance_mm} mm lets the written path stray further than verify allows: give a \
-                         tolerance below {bound_mm:.5} mm, or a larger --max-deviation if the part allows it"
-                    )
-                    .into()
-                } else {
-                    "turnpass cannot compensate this block on this model within the bound: try another --strategy \
-                     or --tolerance, check the model, or run the program uncompensated; please report it with the \
-                     program and the model"
+                hint: Some({
+                    // The bound that accepts what was reached, on the micrometre above it.
+                    let accepting = |mm: f64| (mm * 1000.0).ceil() / 1000.0;
+                    let widen = format!(
+                        "`--max-deviation {}` accepts this program if the part allows {deviation_mm:.5} mm",
+                        accepting(*deviation_mm)
+                    );
+                    let strategy = match other_strategy {
+                        Some((name, reached)) if reached <= bound_mm => {
+                            format!("`--strategy {name}` meets the bound (largest {reached:.5} mm); or ")
+                        }
+                        Some((name, reached)) => format!(
+                            "no --strategy meets the bound (the closest, `--strategy {name}`, reaches {reached:.5} \
+                             mm); "
+                        ),
+                        None => String::new(),
+                    };
+                    if tolerance_mm > bound_mm {
+                        format!(
+                            "--tolerance {tolerance_mm} mm lets the written path stray further than verify allows: \
+                             give a tolerance below {bound_mm:.5} mm; {strategy}{widen}"
+                        )
                         .into()
+                    } else {
+                        format!(
+                            "{strategy}{widen}; otherwise check the model, or run the program uncompensated \
+                             (`compensate --report json` lists what each block reaches)"
+                        )
+                        .into()
+                    }
                 }),
             },
             CompensationChangesFeed => Words {

@@ -17,6 +17,7 @@ use crate::error_model::spacing::{ArcTerms, TABLE_STEP_MM};
 use crate::error_model::{ErrorModel, Sample, SampleInputs, Spacing, Tracker};
 use crate::geometry;
 use crate::semantic::nose_radius::{ToolTable, tip_vector};
+use crate::toolpath::compact::CompactPath;
 use crate::toolpath::{Compensation, Motion, Move, Toolpath, Xz};
 
 /// Samples along cutting moves at most this far apart where an axis table or a measure
@@ -48,6 +49,73 @@ pub struct PathSample {
     pub tip: Xz,
 }
 
+/// What sampling reads of one move: its geometry, times and feed, whether it cuts, its
+/// tool's tip and which side of it the part is on. `MoveView::of` takes it from a move of a
+/// `Toolpath`, and `toolpath::compact`'s moves give the same fields, so both are sampled by
+/// the one code path below and give the same samples to the bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MoveView {
+    pub start: Xz,
+    pub end: Xz,
+    /// The arc's centre (NaN for a move that is no arc).
+    pub centre: Xz,
+    pub motion: Motion,
+    pub compensation: Compensation,
+    pub cutting: bool,
+    /// Feed, mm/min.
+    pub feed: f64,
+    pub t_start: f64,
+    pub t_end: f64,
+    pub tool: u16,
+    /// The tool's tip direction (`tip_vector`).
+    pub tip: Xz,
+}
+
+impl MoveView {
+    /// Move `index` of `toolpath` with its tool's tip from `tools`; none for a move that
+    /// does not exist.
+    pub fn of(toolpath: &Toolpath, index: usize, tools: &ToolTable) -> Option<MoveView> {
+        let m = toolpath.moves.get(index)?;
+        Some(MoveView {
+            start: toolpath.start_of(index),
+            end: m.end,
+            centre: m.centre,
+            motion: m.motion,
+            compensation: m.compensation,
+            cutting: m.cutting,
+            feed: m.feed,
+            t_start: m.t_start,
+            t_end: m.t_end,
+            tool: m.tool,
+            tip: tip_vector(tools.lookup(m.tool, m.offset).1),
+        })
+    }
+
+    /// Move `index` of the compact `path`: the same fields as `of` takes from the move it
+    /// was made from.
+    pub fn of_compact(path: &CompactPath, index: usize) -> Option<MoveView> {
+        let m = path.moves().get(index)?;
+        Some(MoveView {
+            start: path.start_of(index),
+            end: m.end,
+            centre: path.centre(index),
+            motion: m.motion,
+            compensation: m.compensation,
+            cutting: m.cutting,
+            feed: m.feed,
+            t_start: m.t_start,
+            t_end: m.t_end,
+            tool: m.tool,
+            tip: tip_vector(m.tip),
+        })
+    }
+
+    /// How long the move takes, minutes.
+    fn minutes(&self) -> f64 {
+        (self.t_end - self.t_start) / 60.0
+    }
+}
+
 /// How far apart the samples of a cutting move may be.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sampling {
@@ -60,8 +128,8 @@ pub struct Sampling {
     /// How far the chord between samples may stray from the correction, mm (zero, with no
     /// arc terms: no angle step at all, as `every_mm` samples).
     pub allowance: f64,
-    /// The largest angle between an arc's samples, radians (`MAX_ARC_RADIANS` for
-    /// compensation, `MEASURE_ARC_RADIANS` where a deviation is measured).
+    /// The largest angle between an arc's samples, radians (`MAX_ARC_RADIANS`; the
+    /// measure of a deviation cuts an arc's steps further as it needs, `verify/arc_steps.rs`).
     pub max_arc_radians: f64,
     /// The play of each slide where the approach to a thread is sampled through an
     /// overshoot (`thread_approach`; compensation only), mm; zero for none.
@@ -75,13 +143,6 @@ impl Sampling {
     /// and so does compensate's own prediction of `densify`, whose rounded path is walked
     /// to each sample across all the lines between two samples (`quantised::Walk`).
     pub const MAX_ARC_RADIANS: f64 = std::f64::consts::PI / 8.0;
-
-    /// The largest angle between an arc's samples where a deviation from the arc is
-    /// measured (`verify`): the distance from an arc is the part of the displacement along
-    /// its normal, which turns with the arc, so between samples it strays from the straight
-    /// interpolation by up to the displacement times (1 − cos of half the step), under a
-    /// thousandth of it at a 64th of a turn (12 nm of a 10 µm error).
-    pub const MEASURE_ARC_RADIANS: f64 = std::f64::consts::PI / 32.0;
 
     /// Every `step` mm along cutting moves, whatever the model: how `verify`, `diagnose`
     /// and `plot` measure a path, and how the thesis sampled.
@@ -120,16 +181,40 @@ pub const MAX_SAMPLES_PER_MOVE: usize = 1_000_000;
 pub fn samples_needed(toolpath: &Toolpath, index: usize, sampling: &Sampling) -> usize {
     let Some(m) = toolpath.moves.get(index) else { return 0 };
     let start = toolpath.start_of(index);
-    match m.motion {
+    let arc = matches!(m.motion, Motion::Cw | Motion::Ccw).then(|| {
+        let a0 = geometry::angle(start, m.centre);
+        (start.distance(m.centre), geometry::sweep_from(a0, start, m.end, m.centre, m.motion == Motion::Ccw))
+    });
+    steps_needed(m.motion, start.distance(m.end), minutes(m), m.feed, arc, sampling)
+}
+
+/// [`samples_needed`] of move `index` of a compact path, whose arcs hold their radius and
+/// sweep (the same as those `samples_needed` finds).
+pub fn samples_needed_compact(path: &CompactPath, index: usize, sampling: &Sampling) -> usize {
+    let Some(m) = path.moves().get(index) else { return 0 };
+    let length = path.start_of(index).distance(m.end);
+    let arc = path.arc(index).map(|arc| (arc.radius, arc.sweep));
+    steps_needed(m.motion, length, (m.t_end - m.t_start) / 60.0, m.feed, arc, sampling)
+}
+
+/// The samples of a move of `motion`, `length` mm long (a line's), taking `minutes`, at
+/// `feed`, an arc's radius and sweep in `arc`.
+fn steps_needed(
+    motion: Motion,
+    length: f64,
+    minutes: f64,
+    feed: f64,
+    arc: Option<(f64, f64)>,
+    sampling: &Sampling,
+) -> usize {
+    match motion {
         Motion::Dwell => 0,
         Motion::Rapid => 1,
-        Motion::Feed => sampling.spacing.steps(start.distance(m.end), minutes(m)),
+        Motion::Feed => sampling.spacing.steps(length, minutes),
         Motion::Cw | Motion::Ccw => {
-            let radius = start.distance(m.centre);
-            let a0 = geometry::angle(start, m.centre);
-            let sweep = geometry::sweep_from(a0, start, m.end, m.centre, m.motion == Motion::Ccw);
-            let by_angle = sampling.arc_steps(radius, sweep, m.feed);
-            sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2)
+            let (radius, sweep) = arc.unwrap_or((0.0, 0.0));
+            let by_angle = sampling.arc_steps(radius, sweep, feed);
+            sampling.spacing.steps(radius * sweep, minutes).max(by_angle).max(2)
         }
     }
 }
@@ -166,14 +251,27 @@ pub fn sample_move(
     angles: Option<(f64, f64)>,
     out: &mut Vec<PathSample>,
 ) {
-    let Some(m) = toolpath.moves.get(index) else { return };
-    let start = toolpath.start_of(index);
-    let (_, tip) = tools.lookup(m.tool, m.offset);
-    let tip = tip_vector(tip);
+    let Some(view) = MoveView::of(toolpath, index, tools) else { return };
+    let approach = if view.motion == Motion::Rapid { thread_approach(toolpath, index, sampling.play) } else { None };
+    sample_view(&view, index, sampling, angles, approach, out);
+}
+
+/// Sample the move `m`, move `index` of its path, as `sampling` allows, appending to `out`;
+/// `angles` as for [`sample_move`]. A rapid that approaches a thread (`approach`, the
+/// directions of [`thread_approach`]) is also sampled one play short of its end.
+pub fn sample_view(
+    m: &MoveView,
+    index: usize,
+    sampling: &Sampling,
+    angles: Option<(f64, f64)>,
+    approach: Option<Xz>,
+    out: &mut Vec<PathSample>,
+) {
+    let (start, tip) = (m.start, m.tip);
     match m.motion {
         Motion::Dwell => {}
         Motion::Rapid => {
-            if let Some(approach) = thread_approach(toolpath, index, sampling.play) {
+            if let Some(approach) = approach {
                 let past = Xz::new(m.end.x - approach.x * sampling.play.x, m.end.z - approach.z * sampling.play.z);
                 out.push(sample(index, m, 1.0, past, Xz::new(0.0, 0.0), false, tip));
             }
@@ -184,10 +282,10 @@ pub fn sample_move(
         }
         Motion::Feed => {
             let length = start.distance(m.end);
-            let n = sampling.spacing.steps(length, minutes(m));
+            let n = sampling.spacing.steps(length, m.minutes());
             let direction = unit(Xz::new(m.end.x - start.x, m.end.z - start.z));
             let velocity = Xz::new(direction.x * m.feed, direction.z * m.feed);
-            let normal = if m.cutting { surface_normal(direction, m, tip) } else { Xz::new(0.0, 0.0) };
+            let normal = if m.cutting { normal_of(direction, m.compensation, tip) } else { Xz::new(0.0, 0.0) };
             if m.cutting && sampling.arc.steps_at_corners() {
                 out.push(PathSample { velocity, ..sample(index, m, 0.0, start, normal, true, tip) });
             }
@@ -209,11 +307,11 @@ pub fn sample_move(
             if m.cutting && sampling.arc.steps_at_corners() {
                 let tangent = Xz::new(sign * a0.cos(), -sign * a0.sin());
                 let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
-                let normal = surface_normal(tangent, m, tip);
+                let normal = normal_of(tangent, m.compensation, tip);
                 out.push(PathSample { velocity, ..sample(index, m, 0.0, start, normal, true, tip) });
             }
             let by_angle = sampling.arc_steps(radius, sweep, m.feed);
-            let n = sampling.spacing.steps(radius * sweep, minutes(m)).max(by_angle).max(2);
+            let n = sampling.spacing.steps(radius * sweep, m.minutes()).max(by_angle).max(2);
             let mut previous = 0.0;
             for t in arc_fractions(n, a0, sweep, ccw) {
                 let covers_mm = radius * sweep * (t - previous);
@@ -223,7 +321,7 @@ pub fn sample_move(
                 // The tangent of increasing angle is (cos, −sin) in (x, z).
                 let tangent = Xz::new(sign * angle.cos(), -sign * angle.sin());
                 let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
-                let normal = if m.cutting { surface_normal(tangent, m, tip) } else { Xz::new(0.0, 0.0) };
+                let normal = if m.cutting { normal_of(tangent, m.compensation, tip) } else { Xz::new(0.0, 0.0) };
                 out.push(PathSample { velocity, covers_mm, ..sample(index, m, t, p, normal, m.cutting, tip) });
             }
         }
@@ -268,14 +366,12 @@ fn thread_approach(toolpath: &Toolpath, index: usize, play: Xz) -> Option<Xz> {
     (approach.x != 0.0 || approach.z != 0.0).then_some(approach)
 }
 
-/// The sample of move `index` of `toolpath` at `t` (0 at its start, 1 at its end), standing
-/// for no length of path (`covers_mm` is the caller's): where a measure needs a point
-/// between the samples `sample_move` makes (the knee of a backlash take-up). None for a
-/// dwell, a rapid or a move that does not exist.
-pub fn sample_at(toolpath: &Toolpath, index: usize, tools: &ToolTable, t: f64) -> Option<PathSample> {
-    let m = toolpath.moves.get(index)?;
-    let start = toolpath.start_of(index);
-    let tip = tip_vector(tools.lookup(m.tool, m.offset).1);
+/// The sample of the move `m`, move `index` of its path, at `t` (0 at its start, 1 at its
+/// end), standing for no length of path (`covers_mm` is the caller's): where a measure needs
+/// a point between the samples `sample_view` makes (the knee of a backlash take-up). None
+/// for a dwell or a rapid. `angles` as for [`sample_move`].
+pub fn sample_view_at(m: &MoveView, index: usize, angles: Option<(f64, f64)>, t: f64) -> Option<PathSample> {
+    let (start, tip) = (m.start, m.tip);
     let t = t.clamp(0.0, 1.0);
     let (p, tangent) = match m.motion {
         Motion::Dwell | Motion::Rapid => return None,
@@ -285,8 +381,10 @@ pub fn sample_at(toolpath: &Toolpath, index: usize, tools: &ToolTable, t: f64) -
         ),
         Motion::Cw | Motion::Ccw => {
             let ccw = m.motion == Motion::Ccw;
-            let a0 = geometry::angle(start, m.centre);
-            let sweep = geometry::sweep_from(a0, start, m.end, m.centre, ccw);
+            let (a0, sweep) = angles.unwrap_or_else(|| {
+                let a0 = geometry::angle(start, m.centre);
+                (a0, geometry::sweep_from(a0, start, m.end, m.centre, ccw))
+            });
             let sign = if ccw { 1.0 } else { -1.0 };
             let angle = a0 + sign * sweep * t;
             let p = geometry::on_circle(m.centre, start.distance(m.centre), angle);
@@ -294,7 +392,7 @@ pub fn sample_at(toolpath: &Toolpath, index: usize, tools: &ToolTable, t: f64) -
         }
     };
     let velocity = Xz::new(tangent.x * m.feed, tangent.z * m.feed);
-    let normal = if m.cutting { surface_normal(tangent, m, tip) } else { Xz::new(0.0, 0.0) };
+    let normal = if m.cutting { normal_of(tangent, m.compensation, tip) } else { Xz::new(0.0, 0.0) };
     Some(PathSample { velocity, ..sample(index, m, t, p, normal, m.cutting, tip) })
 }
 
@@ -325,7 +423,7 @@ fn arc_fractions(n: usize, a0: f64, sweep: f64, ccw: bool) -> impl Iterator<Item
     })
 }
 
-fn sample(index: usize, m: &Move, t: f64, p: Xz, normal: Xz, cutting: bool, tip: Xz) -> PathSample {
+fn sample(index: usize, m: &MoveView, t: f64, p: Xz, normal: Xz, cutting: bool, tip: Xz) -> PathSample {
     PathSample {
         move_index: index,
         param: t,
@@ -350,14 +448,20 @@ fn unit(v: Xz) -> Xz {
     if length > 0.0 { Xz::new(v.x / length, v.z / length) } else { Xz::new(0.0, 0.0) }
 }
 
+/// The normal of the cut surface of move `m`, pointing to the tool: `normal_of` its
+/// compensation.
+pub(crate) fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
+    normal_of(direction, m.compensation, tip)
+}
+
 /// The normal of the cut surface, pointing to the tool: to the left of the direction of
 /// travel under `G41`, to the right under `G42`; without compensation, the side the tool's
 /// body is on (opposite its tip direction); none for a tool with no tip direction.
-pub(crate) fn surface_normal(direction: Xz, m: &Move, tip: Xz) -> Xz {
+fn normal_of(direction: Xz, compensation: Compensation, tip: Xz) -> Xz {
     // The left normal of (x, z) travel, seen with Z to the right and X up.
     let left = Xz::new(direction.z, -direction.x);
     let right = Xz::new(-left.x, -left.z);
-    match m.compensation {
+    match compensation {
         Compensation::Left => left,
         Compensation::Right => right,
         Compensation::Off => {

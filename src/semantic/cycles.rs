@@ -206,6 +206,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     let consumed = std::mem::take(&mut interp.cycle_consumed);
     let setup = interp.cycle_setup.take();
     let traced = std::mem::take(&mut interp.cycle_traced);
+    let traced_end = interp.cycle_traced_end.take().unwrap_or(first_move);
     let before = match interp.cycle_memory.setup_block {
         Some((setup, before)) if setup < index && consumed.contains(&setup) => before,
         _ => interp.modal_before_block,
@@ -219,6 +220,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             consumed,
             setup,
             traced,
+            traced_end,
             moves: first_move..interp.emitter.moves.len(),
             before,
             after: crate::semantic::ModalAfter::of(&interp.modal),

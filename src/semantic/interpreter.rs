@@ -108,6 +108,8 @@ pub(super) struct Interpreter<'p, 'src> {
     /// their first moves (`Expansion::setup`, `Expansion::traced`).
     pub cycle_setup: Option<usize>,
     pub cycle_traced: Vec<(usize, usize)>,
+    /// The move after the traced profile's last (`Expansion::traced_end`).
+    pub cycle_traced_end: Option<usize>,
     /// The number of diagnostics at which their repeats are merged next.
     merge_diagnostics_at: usize,
     /// The modal words in force before the block being executed (for `expand`, which
@@ -194,6 +196,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             cycle_consumed: Vec::new(),
             cycle_setup: None,
             cycle_traced: Vec::new(),
+            cycle_traced_end: None,
             merge_diagnostics_at: MERGE_DIAGNOSTICS_EVERY,
             modal_before_block: super::ModalAfter { motion: None, f_word: 0.0, s_word: 0.0 },
             coordinates: Vec::new(),
@@ -405,6 +408,11 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             };
             for expansion in &mut self.expansions {
                 expansion.moves = moved.range(expansion.moves.clone());
+                // A corner inserted in front of a profile block's first move is that block's.
+                for (first, _) in &mut expansion.traced {
+                    *first = moved.range(*first..*first).start;
+                }
+                expansion.traced_end = moved.range(expansion.traced_end..expansion.traced_end).start;
             }
             for mark in &mut self.coordinates {
                 mark.from_move = moved.range(mark.from_move..mark.from_move).start;

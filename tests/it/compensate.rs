@@ -138,10 +138,25 @@ impl Compensated {
         }
     }
 
+    /// Compensated as `compensate` writes it: the cycles kept with their profile or words
+    /// edited in place, and, where the program so written does not read back cleanly (a
+    /// profile the roughing cycle refuses), expanded instead.
     fn run(&self, ready: &Ready<'_>, model: &ErrorModel, fit: FitOptions) -> Outcome {
-        let options =
-            CompensateOptions { fit, max_shift_mm: 0.1, expand_cycles: false, paths: false, block_reports: true };
-        compensate_program(ready.program(), &ready.lowered, &ready.machine, model, &options)
+        let options = |in_place: bool| CompensateOptions {
+            fit,
+            max_shift_mm: 0.1,
+            expand_cycles: false,
+            profiles_in_place: in_place,
+            threads_in_place: in_place,
+            paths: false,
+            block_reports: true,
+        };
+        let outcome = compensate_program(ready.program(), &ready.lowered, &ready.machine, model, &options(true));
+        let output = printer::print(ready.program(), &outcome.edits);
+        if outcome.refused() || analyse(&output, &self.settings).ready().is_ok() {
+            return outcome;
+        }
+        compensate_program(ready.program(), &ready.lowered, &ready.machine, model, &options(false))
     }
 
     fn fit(&self) -> FitOptions {

@@ -11,6 +11,7 @@ mod check_agrees;
 mod cli;
 mod closed_loop;
 mod compensate;
+mod compensate_cycles;
 mod control_table;
 mod corpus;
 mod corpus_semantic;

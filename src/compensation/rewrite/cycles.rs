@@ -1,4 +1,6 @@
-//! Canned cycles whose motion changes: expanded into their compensated moves.
+//! Canned cycles whose motion changes: expanded into their compensated moves, unless their
+//! profile can carry the correction in place (`profile_groups`, written by
+//! `rewrite::MotionBlocks::write_profile`).
 //!
 //! A cycle call cannot carry a correction: the control computes its passes from the
 //! call's words. A cycle none of whose moves changes stays as it is; any other is replaced
@@ -14,6 +16,7 @@
 //! A consumed block with a comment leaves the comment behind.
 
 use std::collections::{BTreeMap, HashMap, HashSet};
+use std::ops::Range;
 
 use crate::back::motion::Codes;
 use crate::back::{CycleBlocks, carried_words, carry_traced, cycle_blocks};
@@ -38,14 +41,15 @@ pub fn expandable(program: &Program<'_>, lowered: &Lowered, expansion: &Expansio
 /// The cycles to expand: those whose moves changed (every one with `all`), and those that
 /// share blocks with one of them (a call block, or a consumed block). Indices into
 /// `lowered.expansions`. A cycle to expand that shares blocks with one that cannot be
-/// expanded is refused with an error in `diagnostics` (and not expanded).
+/// expanded is refused with an error in `diagnostics` (and not expanded). With them, each
+/// cycle's group (the representative of the cycles that share blocks with it).
 pub(super) fn chosen(
     program: &Program<'_>,
     lowered: &Lowered,
     plans: &KeptPlans,
     all: bool,
     diagnostics: &mut Vec<Diagnostic>,
-) -> Vec<bool> {
+) -> (Vec<bool>, Vec<usize>) {
     let expansions = &lowered.expansions;
     let expandable: Vec<bool> = expansions.iter().map(|e| expandable(program, lowered, e)).collect();
     let mut chosen: Vec<bool> = expansions
@@ -58,7 +62,9 @@ pub(super) fn chosen(
     let mut group: Vec<usize> = (0..expansions.len()).collect();
     let mut first_with: HashMap<usize, usize> = HashMap::new();
     for (k, e) in expansions.iter().enumerate() {
-        for &block in std::iter::once(&e.block).chain(&e.consumed) {
+        // A finishing cycle's traced profile is the roughing cycle's even where neither
+        // consumed it (a LAP contour written before its calls).
+        for &block in std::iter::once(&e.block).chain(&e.consumed).chain(e.traced.iter().map(|(_, b)| b)) {
             match first_with.get(&block) {
                 Some(&other) => {
                     let (a, b) = (root(&mut group, k), root(&mut group, other));
@@ -90,7 +96,98 @@ pub(super) fn chosen(
         }
         chosen[k] = want && can;
     }
-    chosen
+    (chosen, roots)
+}
+
+/// A group of cycles chosen for expansion whose profile a finishing cycle of the group runs:
+/// the group's cycles (indices into `lowered.expansions`), and each profile block with the
+/// moves the finishing cycle makes for it.
+pub(super) struct ProfileGroup {
+    pub members: Vec<usize>,
+    pub blocks: Vec<(usize, Range<usize>)>,
+}
+
+/// The groups of chosen cycles (`groups`, from `chosen`) that can stay calls with their
+/// profile compensated in place: a finishing cycle of the group runs the profile, and the
+/// moves that are the finishing cycle's own (its return to the start point) are rapids,
+/// which cut nothing and are left as the control makes them. The roughing cycles of the
+/// group are computed by the control from the profile, so their moves need no words of
+/// their own.
+pub(super) fn profile_groups(
+    lowered: &Lowered,
+    plans: &KeptPlans,
+    chosen: &[bool],
+    groups: &[usize],
+) -> Vec<ProfileGroup> {
+    let moves = &lowered.toolpath.moves;
+    let mut by_root: BTreeMap<usize, ProfileGroup> = BTreeMap::new();
+    let mut refused: HashSet<usize> = HashSet::new();
+    for (k, e) in lowered.expansions.iter().enumerate() {
+        if !chosen.get(k).copied().unwrap_or(false) {
+            continue;
+        }
+        let root = groups.get(k).copied().unwrap_or(k);
+        let group = by_root.entry(root).or_insert_with(|| ProfileGroup { members: Vec::new(), blocks: Vec::new() });
+        group.members.push(k);
+        if e.traced.is_empty() {
+            continue;
+        }
+        let first = e.traced.first().map_or(e.moves.start, |&(m, _)| m);
+        let end = e.traced_end.clamp(first, e.moves.end);
+        // The cycle's own moves around the profile: rapids only, or they need writing.
+        let own = (e.moves.start..first).chain(end..e.moves.end);
+        let own_cut_changes = own.into_iter().any(|m| {
+            let changed = plans.get(m..m + 1).is_none_or(|p| p.iter().any(|p| p.changed));
+            changed && moves.get(m).is_none_or(|m| m.motion != Motion::Rapid)
+        });
+        if own_cut_changes {
+            refused.insert(root);
+            continue;
+        }
+        for (n, &(start, block)) in e.traced.iter().enumerate() {
+            let next = e.traced.get(n + 1).map_or(end, |&(m, _)| m);
+            group.blocks.push((block, start..next.max(start)));
+        }
+    }
+    by_root
+        .into_iter()
+        .filter(|(root, group)| !refused.contains(root) && !group.blocks.is_empty())
+        .map(|(_, group)| group)
+        .collect()
+}
+
+/// The final pass of a thread cycle that can carry its correction in its own words: the
+/// cycle cuts only threads between rapids, and its call block writes only the words whose
+/// meaning is the final pass's end (`X`/`Z`, Fanuc's `U`/`W`) besides those that shape the
+/// passes before it (`F` the lead, `P`/`Q` the height and first depth of `G76`, `R` a
+/// `G76` finishing allowance or a taper that stays as written) and the sequence name,
+/// codes and comments. The final pass is the last thread move, and it runs along the axis
+/// (a thread chamfered out is written out instead); the passes before it move with it, as
+/// the control computes them from these words.
+pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<usize> {
+    use crate::dialect::Address;
+    let moves = lowered.toolpath.moves.get(e.moves.clone())?;
+    if !moves.iter().all(|m| m.threading || m.motion == Motion::Rapid) || !moves.iter().any(|m| m.threading) {
+        return None;
+    }
+    let block = program.block(e.block);
+    let words_fit = program.words_of(block).iter().all(|word| match word.kind {
+        WordKind::Number { address, .. } => {
+            matches!(address, Address::X | Address::Z | Address::F | Address::P | Address::Q | Address::R)
+                || (program.config().dialect == crate::dialect::Dialect::Fanuc
+                    && matches!(address, Address::U | Address::W))
+        }
+        WordKind::Expr { .. } => false,
+        _ => true,
+    });
+    if !words_fit {
+        return None;
+    }
+    // The last thread move, which must run along the axis: after a chamfer out of the
+    // thread the cycle's end words name the chamfer's end, not the final pass's.
+    let last = e.moves.start + moves.iter().rposition(|m| m.threading)?;
+    let (from, to) = (lowered.toolpath.start_of(last), lowered.toolpath.moves.get(last)?.end);
+    ((to.z - from.z).abs() > 2.0 * (to.x - from.x).abs()).then_some(last)
 }
 
 /// The representative of `k`'s group (with path halving).

@@ -4,7 +4,7 @@
 //!
 //! **Three parts.** The original program's nominal part is its toolpath cut from the stock
 //! (`part::removal`, the same dexels `check` and `simulate` use). Each program's actual part
-//! is the path the model predicts for it (`verify::predicted_path`: the samples `verify`
+//! is the path the model predicts for it (`verify::measure::predicted`: the samples `verify`
 //! measures, the knees of a take-up among them) cut from the same stock on the same rays: a
 //! line between two predicted points, an arc (the programmed one moved) through two
 //! predicted points of an arc with the mean of their radii about the programmed centre, and
@@ -45,10 +45,12 @@ use crate::part::{Part, Stock};
 use crate::semantic::Machine;
 use crate::semantic::nose_radius::ToolTable;
 use crate::source::Span;
-use crate::toolpath::{Motion, Toolpath, ValidToolpath, Xz};
+use crate::toolpath::compact::CompactPath;
+use crate::toolpath::{Motion, Move, Toolpath, ValidToolpath, Xz};
 
 use super::super::deviation::{Figures, Tally};
-use super::{Deviation, Measured, Side, Worst, predicted_path};
+use super::measure::predicted;
+use super::{Deviation, Measured, Side, Worst, compact};
 
 /// What the part measure found (`part_deviation`).
 #[derive(Debug, Clone, PartialEq)]
@@ -68,7 +70,7 @@ pub struct PartDeviation {
     /// The rays' spacing, mm.
     pub spacing_mm: f64,
     /// The length of the nominal surface not probed, mm: cut by an insert's body along an arc
-    /// (`BodyAlongArcs`), which the part model places only to tens of micrometres, or at an
+    /// on either part (`BodyAlongArcs`), which the part model sweeps along chords, or at an
     /// edge of the actual part that the probe along the normal passes.
     pub unprobed_mm: f64,
     /// Where a part model stopped at its bound on work (the program, the block of its own
@@ -159,6 +161,9 @@ pub fn part_deviation_watched(
     (machine, stock): (&Machine, Option<&StockSettings>),
     watch: &(dyn Fn(Side, &Measured) + Sync),
 ) -> PartDeviation {
+    // The points the model puts the tool at are predicted along the compact paths, as the
+    // pass measure predicts them; the parts are cut along the full toolpaths' pieces.
+    let (original_compact, compensated_compact) = (compact(original, tools), compact(compensated, tools));
     let (original, compensated) = (original.toolpath(), compensated.toolpath());
     let stock = match stock {
         Some(settings) => Some(Stock::from_settings(settings, machine)),
@@ -183,32 +188,36 @@ pub fn part_deviation_watched(
     let rays_for = original.moves.len();
     let block = |toolpath: &Toolpath, k: usize| toolpath.moves.get(k).map_or(Span::new(0, 0), |m| m.source);
     let original_side = || {
-        let points = points(original, tools, model, sampling, Side::Original, watch);
+        let points = points(&original_compact, model, sampling, Side::Original, watch);
         let (nominal_path, origin) = pieces(original, &points, false);
         let (nominal, nominal_stop) = cut(&nominal_path, Some(&origin), stock, machine, rays_for);
         let (path, _) = pieces(original, &points, true);
         let (before, before_stop) = cut(&path, Some(&origin), stock, machine, rays_for);
-        (nominal, nominal_path, before, origin, nominal_stop.or(before_stop))
+        (nominal, nominal_path, (before, path), origin, nominal_stop.or(before_stop))
     };
     let compensated_side = || {
-        let points = points(compensated, tools, model, sampling, Side::Compensated, watch);
+        let points = points(&compensated_compact, model, sampling, Side::Compensated, watch);
         let (path, origin) = pieces(compensated, &points, true);
         let (after, stop) = cut(&path, Some(&origin), stock, machine, rays_for);
-        (after, origin, stop)
+        ((after, path), origin, stop)
     };
-    let ((after, after_origin, after_stop), (nominal, nominal_path, before, before_origin, before_stop)) =
-        crate::parallel::join_if(
-            original.moves.len() >= crate::parallel::tuning().measure_moves,
-            compensated_side,
-            original_side,
-        );
+    let (
+        ((after, after_path), after_origin, after_stop),
+        (nominal, nominal_path, (before, before_path), before_origin, before_stop),
+    ) = crate::parallel::join_if(
+        original.moves.len() >= crate::parallel::tuning().measure_moves,
+        compensated_side,
+        original_side,
+    );
     let stopped = before_stop
         .map(|k| (Side::Original, block(original, k)))
         .or(after_stop.map(|k| (Side::Compensated, block(compensated, k))));
     let separated_at = Part::new(nominal.clone(), stock).separated_at;
     let body = BodyAlongArcs::new(&nominal_path, machine);
-    let probe_before = probe((&nominal, &before_origin, &body), (&before, &before_origin), separated_at);
-    let probe_after = probe((&nominal, &before_origin, &body), (&after, &after_origin), separated_at);
+    let (body_before, body_after) =
+        (BodyAlongArcs::new(&before_path, machine), BodyAlongArcs::new(&after_path, machine));
+    let probe_before = probe((&nominal, &before_origin, &body), (&before, &before_origin, &body_before), separated_at);
+    let probe_after = probe((&nominal, &before_origin, &body), (&after, &after_origin, &body_after), separated_at);
     let unprobed_mm = probe_after.iter().filter(|p| p.1.is_none() && p.2 < 0.0).map(|p| -p.2).sum::<f64>();
     let (probe_before, probe_after): (Vec<_>, Vec<_>) = (
         probe_before.into_iter().filter(|p| p.2 > 0.0).collect(),
@@ -264,7 +273,7 @@ fn cut(
     (removal.dexels, None)
 }
 
-/// A point of a program's path as `predicted_path` gives it: its move, where along it, the
+/// A point of a program's path as `measure::predicted` gives it: its move, where along it, the
 /// point as programmed and as the model puts it.
 #[derive(Clone, Copy)]
 struct Point {
@@ -274,17 +283,17 @@ struct Point {
     predicted: Xz,
 }
 
-/// The points of `toolpath` the measure cuts along (`predicted_path`), each shown to `watch`.
+/// The points of `program` the measure cuts along (`measure::predicted`), each shown to
+/// `watch`.
 fn points(
-    toolpath: &Toolpath,
-    tools: &ToolTable,
+    program: &CompactPath,
     model: &ErrorModel,
     sampling: &Sampling,
     side: Side,
     watch: &(dyn Fn(Side, &Measured) + Sync),
 ) -> Vec<Point> {
-    let mut out = Vec::with_capacity(toolpath.moves.len() * 2);
-    predicted_path(toolpath, tools, model, sampling, side, &mut |side, measured| {
+    let mut out = Vec::with_capacity(program.len() * 2);
+    predicted(program, model, sampling, side, &mut |side, measured| {
         watch(side, &measured);
         let s = measured.sample;
         out.push(Point { move_index: s.move_index, param: s.param, nominal: s.nominal, predicted: measured.predicted });
@@ -327,7 +336,23 @@ fn pieces(toolpath: &Toolpath, points: &[Point], on_model: bool) -> (Toolpath, V
                 (false, _) => None,
             };
             match centre {
-                Some(centre) => piece.centre = centre,
+                Some(centre) => {
+                    // The part model sweeps an insert's body along an arc's chords, moved
+                    // by their sagitta (`part::removal`): the arc goes in sub-arcs whose
+                    // chords are within `BODY_SAGITTA_MM` of it, so that the body cuts where
+                    // it does on the machine, whatever the samples' spacing.
+                    let radius = from.distance(centre);
+                    let sweep = geometry::sweep(from, end, centre, ccw);
+                    let count = sub_arcs(radius, sweep);
+                    let (a0, sign) = (geometry::angle(from, centre), if ccw { 1.0 } else { -1.0 });
+                    for k in 1..count {
+                        let angle = a0 + sign * sweep * k as f64 / count as f64;
+                        let sub = Move { end: geometry::on_circle(centre, radius, angle), centre, ..piece };
+                        path.moves.push(sub);
+                        origin.push(p.move_index);
+                    }
+                    piece.centre = centre;
+                }
                 None => {
                     piece.motion = Motion::Feed;
                     piece.centre = Xz::new(f64::NAN, f64::NAN);
@@ -367,6 +392,25 @@ fn pieces(toolpath: &Toolpath, points: &[Point], on_model: bool) -> (Toolpath, V
     (path, origin)
 }
 
+/// How far the chords an insert's body is swept along may lie from their arc, mm: the part
+/// model's exactness along the surface normal.
+const BODY_SAGITTA_MM: f64 = 1e-4;
+/// The most sub-arcs one piece of an arc is cut into (a radius of metres).
+const MAX_SUB_ARCS: usize = 4096;
+
+/// How many sub-arcs a piece of an arc of `radius` turning `sweep` radians is cut into for
+/// its chords to lie within `BODY_SAGITTA_MM` of it (`pieces`).
+fn sub_arcs(radius: f64, sweep: f64) -> usize {
+    // A NaN fails both comparisons: one piece.
+    let arc = radius > BODY_SAGITTA_MM && sweep > 0.0;
+    if !arc {
+        return 1;
+    }
+    let step = 2.0 * (1.0 - BODY_SAGITTA_MM / radius).acos();
+    // `as` saturates; the count is held to its bound either way.
+    ((sweep / step).ceil() as usize).clamp(1, MAX_SUB_ARCS)
+}
+
 /// A piece of an arc shorter than this (mm) is cut as a line: its chord gives no direction.
 const ARC_PIECE_MM: f64 = 1e-6;
 /// The most a piece of an arc on the model may turn other than the programmed piece
@@ -399,7 +443,7 @@ fn arc_centre(a: Xz, b: Xz, programmed: Xz) -> Option<Xz> {
 /// cut the point on the nominal part, and the length of surface it stands for (mm).
 fn probe(
     (nominal, nominal_origin, body): (&Dexels, &[usize], &BodyAlongArcs<'_>),
-    (actual, origin): (&Dexels, &[usize]),
+    (actual, origin, actual_body): (&Dexels, &[usize], &BodyAlongArcs<'_>),
     separated_at: Option<f64>,
 ) -> Vec<(Probe, Option<usize>, f64)> {
     let mut out = Vec::new();
@@ -419,8 +463,12 @@ fn probe(
                     } else {
                         along.abs() > std::f64::consts::FRAC_1_SQRT_2
                     };
-                    // The axis, the low end of a solid part's rays along X, is no surface.
-                    if !steep || (!along_z && !high && edge.by == STOCK && edge.at <= 1e-12) {
+                    // The axis, the low end of a solid part's rays along X, is no surface; nor
+                    // is the bar's back end, the low end of its rays along Z where no move cut
+                    // it: the bar goes on into the chuck there.
+                    let axis = !along_z && !high && edge.by == STOCK && edge.at <= 1e-12;
+                    let back = along_z && !high && edge.by == STOCK;
+                    if !steep || axis || back {
                         continue;
                     }
                     let at = line.point(edge.at);
@@ -431,6 +479,11 @@ fn probe(
                         .iter()
                         .map(|s| if high { s.hi } else { s.lo })
                         .min_by(|a, b| (a.at - edge.at).abs().total_cmp(&(b.at - edge.at).abs()));
+                    // Where the actual surface on the ray is an insert's body swept along an
+                    // arc, the part model places it along chords (`BodyAlongArcs`):
+                    // the point is not probed, as where the nominal one is.
+                    let actual_body_cut =
+                        nearest.is_some_and(|e| e.by != STOCK && actual_body.cut(e.by as usize, line.point(e.at)));
                     let (signed_mm, cut_by) = match nearest {
                         Some(actual_edge) => {
                             let t = actual_edge.at - edge.at;
@@ -464,7 +517,7 @@ fn probe(
                         continue;
                     }
                     let weight = nominal.spacing / along.abs();
-                    if at_edge || (edge.by != STOCK && body.cut(edge.by as usize, at)) {
+                    if at_edge || actual_body_cut || (edge.by != STOCK && body.cut(edge.by as usize, at)) {
                         // Not probed: its length is kept, negative, for the total.
                         out.push((Probe { at, signed_mm: 0.0, cut_by: None }, None, -weight));
                         continue;
@@ -477,11 +530,13 @@ fn probe(
     out
 }
 
-/// Which points of the nominal part an insert's body cut along an arc: the part model sweeps
-/// a body along an arc's chords held to the nose's circle (`part::removal`), exact near the
-/// nose and off by up to the chord's sagitta at the body's far corners (tens of
-/// micrometres), so such points are not probed. A point on the nose's own sweep (the annulus
-/// its centre's arc sweeps, or the disk at either end) is.
+/// Which points of a part an insert's body cut along an arc: the part model sweeps a body
+/// along an arc's chords moved by their sagitta and held to the nose's circle
+/// (`part::removal`), exact near the nose and off by up to the chord's sagitta at the body's
+/// far corners, so such points are not probed (`pieces` holds the sagitta to
+/// `BODY_SAGITTA_MM`, so that the body cuts nothing it does not cut on the machine). A point
+/// on the nose's own sweep (the annulus its centre's arc sweeps, or the disk at either end)
+/// is.
 /// A tool (station, offset), its nose radius and its nose centre less its reference point.
 type NoseOf = ((u16, u16), (f64, Xz));
 

@@ -1,9 +1,12 @@
+use super::follow::Follower;
 use super::*;
 use crate::compensation::deviation::distance_to_move;
 use crate::compensation::test_support::lower_program;
 use crate::error_model::effects::*;
 use crate::error_model::sampling::PathSample;
 use crate::error_model::sampling::sample_toolpath;
+use crate::semantic::Lowered;
+use crate::toolpath::Validated;
 use crate::toolpath::{Motion, Xz};
 
 /// The closest cutting move of the whole of `toolpath` to `p`, by looking at every move.
@@ -23,8 +26,10 @@ fn predicted(index: usize, sample: &PathSample) -> Xz {
 
 /// Every cutting sample of `compensated` followed along `original` and measured, against the
 /// brute-force closest point of the whole of `original`.
-fn followed_and_brute_force(original: &Toolpath, compensated: &Toolpath) -> Vec<(f64, f64)> {
-    let path = LocalPath::new(original);
+fn followed_and_brute_force(original: &Validated<Lowered>, compensated: &Validated<Lowered>) -> Vec<(f64, f64)> {
+    let compact = super::compact(original.valid(), &ToolTable::default());
+    let (original, compensated) = (&original.toolpath, &compensated.toolpath);
+    let path = Original::new(&compact);
     let mut follower = Follower::new(&path);
     let samples = sample_toolpath(compensated, &ToolTable::default(), 0.254);
     let cutting = samples.iter().enumerate().filter(|(_, s)| s.cutting);
@@ -93,15 +98,16 @@ M30
 fn passes_piled_up_over_each_other_are_measured_against_the_closest_of_them() {
     let (original, _) = lower_program(PILED);
     let (compensated, _) = lower_program(PILED_COMPENSATED);
-    let pairs = followed_and_brute_force(&original.toolpath, &compensated.toolpath);
+    let pairs = followed_and_brute_force(&original, &compensated);
     // The test means something only if some points are closer to another pass than to
     // their own: the brute-force closest of those is another pass, and it must be found.
-    let path = LocalPath::new(&original.toolpath);
+    let compact = super::compact(original.valid(), &ToolTable::default());
+    let path = Original::new(&compact);
     let samples = sample_toolpath(&original.toolpath, &ToolTable::default(), 0.254);
     let elsewhere = (samples.iter().enumerate().filter(|(_, s)| s.cutting))
         .filter(|&(i, s)| {
             let p = predicted(i, s);
-            let own = path.closest_on(s.move_index, p).map_or(f64::INFINITY, |c| c.distance);
+            let own = path.distance(p, s.move_index);
             brute_force(&original.toolpath, p) < own - 1e-6
         })
         .count();
@@ -138,7 +144,7 @@ fn roughing(compensated: bool) -> String {
 fn passes_that_keep_their_distance_are_measured_as_the_whole_path_measures_them() {
     let (original, _) = lower_program(&roughing(false));
     let (compensated, _) = lower_program(&roughing(true));
-    assert_equal(&followed_and_brute_force(&original.toolpath, &compensated.toolpath));
+    assert_equal(&followed_and_brute_force(&original, &compensated));
 }
 
 #[test]
@@ -150,7 +156,7 @@ fn a_point_that_strays_from_the_original_is_measured_against_the_whole_path() {
     let strayed = roughing(true).replacen("Z-13.997\n", "X46.006\nZ-13.997\nX40.006\n", 1);
     let (original, _) = lower_program(&original);
     let (compensated, _) = lower_program(&strayed);
-    let pairs = followed_and_brute_force(&original.toolpath, &compensated.toolpath);
+    let pairs = followed_and_brute_force(&original, &compensated);
     assert!(pairs.iter().any(|&(_, brute)| brute > 1.0));
     assert_equal(&pairs);
 }
@@ -189,7 +195,7 @@ fn there_and_back(shift: f64, pieces: bool) -> String {
 fn the_way_back_beside_a_pass_is_measured_against_itself_not_the_pass() {
     let (original, _) = lower_program(&there_and_back(0.0, false));
     let (compensated, _) = lower_program(&there_and_back(0.006, true));
-    assert_equal(&followed_and_brute_force(&original.toolpath, &compensated.toolpath));
+    assert_equal(&followed_and_brute_force(&original, &compensated));
 }
 
 /// A provenance comment is not one of the program's words: a compensated program may carry

@@ -76,6 +76,7 @@ impl Interpreter<'_, '_> {
                 Shape::Arc { centre, ccw } => self.emitter.arc(&modal, segment.end, centre, ccw, true),
             }
         }
+        self.cycle_traced_end = Some(self.emitter.moves.len());
         // The profile's blocks ran: their motion code, F, S and compensation stay in force
         // after the cycle, as after any executed block.
         let (feed, speed, compensation) = (self.modal.feed, self.modal.speed, self.modal.compensation);

@@ -1,0 +1,152 @@
+//! A validated toolpath as the measures read it: each move's geometry, its times and feed,
+//! and what its samples carry (the tool, its tip, the side of the part), without the
+//! contour, the words, the spindle and the source that a `Move` also holds; an arc's centre,
+//! radius and angles beside the moves, measured once. A long program's measure then holds
+//! neither its AST nor its full moves (`compensation::verify`): 56 bytes a move instead of
+//! 136.
+//!
+//! It is made only from a `ValidToolpath`, so what holds of a validated toolpath (finite,
+//! arcs on their circle, times running on) holds of it.
+
+use crate::geometry;
+
+use super::{Compensation, Motion, ValidToolpath, Xz};
+
+/// One move (`CompactPath`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CompactMove {
+    /// The tool reference point at the end of the move, mm, X as a radius.
+    pub end: Xz,
+    pub t_start: f64,
+    pub t_end: f64,
+    /// Feed, mm/min.
+    pub feed: f64,
+    /// Where the arc's constants are in `CompactPath::arcs` (`NO_ARC`: no arc).
+    arc: usize,
+    pub tool: u16,
+    pub motion: Motion,
+    pub compensation: Compensation,
+    pub cutting: bool,
+    /// The tool's tip direction code (0–9), from the tool table.
+    pub tip: u8,
+}
+
+/// `CompactMove::arc` of a move that is no arc.
+const NO_ARC: usize = usize::MAX;
+
+impl CompactMove {
+    pub fn is_arc(&self) -> bool {
+        self.motion.is_arc()
+    }
+
+    /// Whether it is part of the cut surface: a cutting move that moves (no dwell).
+    pub fn cuts(&self) -> bool {
+        self.cutting && self.motion != Motion::Dwell
+    }
+}
+
+/// An arc's constants, measured once (`geometry::angle`, `geometry::sweep_from`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CompactArc {
+    pub centre: Xz,
+    /// The distance of its start from the centre, mm.
+    pub radius: f64,
+    /// The angle of its start about the centre, and the angle it sweeps (positive, in its
+    /// own sense), radians.
+    pub start_angle: f64,
+    pub sweep: f64,
+}
+
+/// The moves of a validated toolpath, compact (see the module documentation).
+#[derive(Debug, Clone, Default)]
+pub struct CompactPath {
+    /// Where the tool is before the first move.
+    pub start: Xz,
+    moves: Vec<CompactMove>,
+    arcs: Vec<CompactArc>,
+    reach: Xz,
+}
+
+impl CompactPath {
+    /// `toolpath` compact, each move's tip direction code given by `tip` from its tool
+    /// station and offset number.
+    pub fn new(toolpath: ValidToolpath<'_>, tip: impl Fn(u16, u16) -> u8) -> CompactPath {
+        let toolpath = toolpath.toolpath();
+        let mut moves = Vec::with_capacity(toolpath.moves.len());
+        let mut arcs = Vec::new();
+        let mut reach = Xz::new(toolpath.start.x.abs(), toolpath.start.z.abs());
+        for (k, m) in toolpath.moves.iter().enumerate() {
+            let start = toolpath.start_of(k);
+            let arc = if m.is_arc() {
+                let radius = start.distance(m.centre);
+                let start_angle = geometry::angle(start, m.centre);
+                let sweep = geometry::sweep_from(start_angle, start, m.end, m.centre, m.motion == Motion::Ccw);
+                reach = super::reach_past(reach, m.end, Some((m.centre, radius)));
+                arcs.push(CompactArc { centre: m.centre, radius, start_angle, sweep });
+                arcs.len() - 1
+            } else {
+                reach = super::reach_past(reach, m.end, None);
+                NO_ARC
+            };
+            moves.push(CompactMove {
+                end: m.end,
+                t_start: m.t_start,
+                t_end: m.t_end,
+                feed: m.feed,
+                arc,
+                tool: m.tool,
+                motion: m.motion,
+                compensation: m.compensation,
+                cutting: m.cutting,
+                tip: tip(m.tool, m.offset),
+            });
+        }
+        CompactPath { start: toolpath.start, moves, arcs, reach }
+    }
+
+    pub fn moves(&self) -> &[CompactMove] {
+        &self.moves
+    }
+
+    pub fn len(&self) -> usize {
+        self.moves.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.moves.is_empty()
+    }
+
+    /// Where move `index` starts.
+    pub fn start_of(&self, index: usize) -> Xz {
+        match index.checked_sub(1) {
+            Some(before) => self.moves.get(before).map_or(self.start, |m| m.end),
+            None => self.start,
+        }
+    }
+
+    /// The constants of move `index` when it is an arc.
+    pub fn arc(&self, index: usize) -> Option<&CompactArc> {
+        self.moves.get(index).and_then(|m| self.arcs.get(m.arc))
+    }
+
+    /// The arc's centre of move `index`: NaN for a move that is no arc, as `Move::centre`.
+    pub fn centre(&self, index: usize) -> Xz {
+        self.arc(index).map_or(Xz::new(f64::NAN, f64::NAN), |arc| arc.centre)
+    }
+
+    /// The farthest the path goes from the origin in each axis, mm (X as a radius): an
+    /// arc's whole circle counts (`Toolpath::reach`, which it equals).
+    pub fn reach(&self) -> Xz {
+        self.reach
+    }
+
+    /// The length of move `index`, mm (an arc's along it; 0 for a dwell).
+    pub fn length(&self, index: usize) -> f64 {
+        let Some(m) = self.moves.get(index) else { return 0.0 };
+        match (m.motion, self.arc(index)) {
+            (Motion::Dwell, _) => 0.0,
+            (_, Some(arc)) => arc.radius * arc.sweep,
+            (_, None) => self.start_of(index).distance(m.end),
+        }
+    }
+}
