@@ -431,18 +431,19 @@ pub enum DiagnosticKind {
     /// A move that ends before it starts, or before the previous move ended.
     TimeGoesBack,
     /// A rapid move whose tool (its nose and the insert behind it) passes through material
-    /// that is still there: a crash. `depth_mm` is how far into the material it goes;
-    /// `assumed` when the stock was assumed (no `[stock]`), which makes it a note.
+    /// that is still there: a crash. `depth_mm` is how far into the material it goes.
+    /// `assumed` when the stock was assumed (no `[stock]`), which makes it one note for the
+    /// run at the deepest such rapid, holding how many other blocks do it too.
     RapidIntoStock {
         depth_mm: f64,
-        assumed: bool,
+        assumed: Option<u32>,
     },
     /// A feed move that engages more material across its direction than the tool's
-    /// `max_depth`.
+    /// `max_depth`; `assumed` as for [`DiagnosticKind::RapidIntoStock`].
     CutTooDeep {
         depth_mm: f64,
         max_mm: f64,
-        assumed: bool,
+        assumed: Option<u32>,
     },
     /// The part model stopped at this block: the program asks more work of it than its
     /// bound (`rays` ray visits in a run, `stamps` thread forms in a move); the moves after

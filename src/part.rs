@@ -84,19 +84,36 @@ pub fn run(toolpath: ValidToolpath<'_>, machine: &Machine, check: &PartCheck) ->
     // The deepest crash and the deepest over-deep cut of the block being run: one diagnostic
     // per block, however many moves it makes (a cycle's call makes hundreds).
     let mut block: Option<(Span, f64, f64, f64)> = None;
-    let flush = |block: Option<(Span, f64, f64, f64)>, diagnostics: &mut Vec<Diagnostic>| {
+    // On an assumed bar the findings are guesses: a feed approach from clearance makes the
+    // bar reach out to it, and every rapid near it then "meets" material. They are gathered
+    // (the deepest kept, the others counted) and said once for the run, where the deepest is.
+    let mut assumed_crashes: Option<(Span, f64, u32)> = None;
+    let mut assumed_deep: Option<(Span, f64, f64, u32)> = None;
+    let mut flush = |block: Option<(Span, f64, f64, f64)>, diagnostics: &mut Vec<Diagnostic>| {
         let Some((span, crash, deep, max)) = block else { return };
         if crash > 0.0 {
-            let kind = DiagnosticKind::RapidIntoStock { depth_mm: crash, assumed: stock.assumed };
-            diagnostics.push(if stock.assumed { Diagnostic::note(kind, span) } else { Diagnostic::error(kind, span) });
+            if stock.assumed {
+                let found = assumed_crashes.get_or_insert((span, crash, 0));
+                if crash > found.1 {
+                    (found.0, found.1) = (span, crash);
+                }
+                found.2 += 1;
+            } else {
+                let kind = DiagnosticKind::RapidIntoStock { depth_mm: crash, assumed: None };
+                diagnostics.push(Diagnostic::error(kind, span));
+            }
         }
         if deep > 0.0 {
-            let kind = DiagnosticKind::CutTooDeep { depth_mm: deep, max_mm: max, assumed: stock.assumed };
-            diagnostics.push(if stock.assumed {
-                Diagnostic::note(kind, span)
+            if stock.assumed {
+                let found = assumed_deep.get_or_insert((span, deep, max, 0));
+                if deep > found.1 {
+                    (found.0, found.1, found.2) = (span, deep, max);
+                }
+                found.3 += 1;
             } else {
-                Diagnostic::warning(kind, span)
-            });
+                let kind = DiagnosticKind::CutTooDeep { depth_mm: deep, max_mm: max, assumed: None };
+                diagnostics.push(Diagnostic::warning(kind, span));
+            }
         }
     };
     for (index, m) in toolpath.moves.iter().enumerate() {
@@ -150,6 +167,14 @@ pub fn run(toolpath: ValidToolpath<'_>, machine: &Machine, check: &PartCheck) ->
         }
     }
     flush(block.take(), &mut diagnostics);
+    if let Some((span, depth_mm, blocks)) = assumed_crashes {
+        let kind = DiagnosticKind::RapidIntoStock { depth_mm, assumed: Some(blocks - 1) };
+        diagnostics.push(Diagnostic::note(kind, span));
+    }
+    if let Some((span, depth_mm, max_mm, blocks)) = assumed_deep {
+        let kind = DiagnosticKind::CutTooDeep { depth_mm, max_mm, assumed: Some(blocks - 1) };
+        diagnostics.push(Diagnostic::note(kind, span));
+    }
     let part = Part::new(removal.dexels, stock);
     PartRun { diagnostics, summary: Some(summary), part: Some(part) }
 }

@@ -566,6 +566,20 @@ pub fn ready<'b>(
     ready_or_diagnostics(name, bytes, resolved, run, command, warnings).map_err(|(text, _)| text)
 }
 
+/// [`ready`] with the part model run on `part`'s stock (for a command that needs the
+/// finished part).
+pub fn ready_with_part<'b>(
+    name: &str,
+    bytes: &'b [u8],
+    (resolved, run): (&Resolved, &RunArgs),
+    part: PartCheck,
+    command: &str,
+    warnings: &mut Vec<u8>,
+) -> Result<Ready<'b>, Vec<u8>> {
+    let analysed = analyse(bytes, &pipeline_settings(resolved, run, true).with_part(part));
+    ready_or_why(name, bytes, command, analysed, warnings).map_err(|(text, _)| text)
+}
+
 /// [`ready`], with the diagnostics of a program that is not ready beside their rendering
 /// (for a report that lists why).
 pub fn ready_or_diagnostics<'b>(

@@ -18,9 +18,9 @@ use turnpass::pipeline::Ready;
 use turnpass::source::Span;
 
 use super::common::{
-    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, check_output, data_invalid, data_misfit, display_name,
-    folder_of, model_problems, model_spec, read_data_text, read_program, read_table, ready, required_error_model,
-    write_file, write_output,
+    AxisArg, CliError, Format, ReadArgs, Resolved, RunArgs, StockArgs, check_output, data_invalid, data_misfit,
+    display_name, folder_of, model_problems, model_spec, read_data_text, read_program, read_table, ready,
+    ready_with_part, required_error_model, write_file, write_output,
 };
 use super::numbers::{self, within};
 use super::streams;
@@ -173,6 +173,11 @@ pub struct SynthArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// CMM: the bar the part is cut from (or the model file's [stock]): points are then
+    /// sampled only where the finished part's surface is, not where a later groove or thread
+    /// cut the finished profile away or a lead-in runs in front of the bar.
+    #[command(flatten)]
+    pub stock: StockArgs,
 }
 
 /// The program, its model and its nominal path; `Err` with the exit code when the program
@@ -183,6 +188,7 @@ fn prepare(
     run: &RunArgs,
     command: &str,
     start_min: Option<f64>,
+    stock: Option<&StockArgs>,
 ) -> Result<Result<(Nominal, ErrorModel, Resolved), ExitCode>, CliError> {
     let (bytes, resolved) = read_program(file, read)?;
     let mut model = required_error_model(&resolved, command)?;
@@ -191,9 +197,17 @@ fn prepare(
     }
     let name = display_name(file);
     let mut messages = Vec::new();
-    let result = match ready(&name, &bytes, &resolved, run, command, &mut messages) {
-        Ok(Ready { parsed, lowered, machine, .. }) => {
+    // On a bar that is only assumed the part is a guess, and a point it would drop may be on
+    // the real part: without a stock the profile is sampled on the finishing moves alone.
+    let part = stock.map(|stock| stock.check(&resolved)).filter(|part| part.stock.is_some());
+    let ready = match part {
+        Some(part) => ready_with_part(&name, &bytes, (&resolved, run), part, command, &mut messages),
+        None => ready(&name, &bytes, &resolved, run, command, &mut messages),
+    };
+    let result = match ready {
+        Ok(Ready { parsed, lowered, machine, part }) => {
             let mut nominal = Nominal::new(&parsed.program, &lowered, &machine);
+            nominal.part = part.and_then(|run| run.part);
             nominal.screw_pitch = resolved.settings.ball_screw_pitch_mm.unwrap_or_default();
             Ok((nominal, model, resolved))
         }
@@ -212,7 +226,8 @@ pub fn run(args: DiagnoseArgs) -> Result<ExitCode, CliError> {
     if args.plot.is_some() && args.kind == Some(KindArg::Table) {
         return Err(CliError::Usage(format!("--plot: {NO_TABLE_PLOT}")));
     }
-    let (nominal, model, resolved) = match prepare(&args.file, &args.read, &args.run, "diagnose", args.start_min)? {
+    let (nominal, model, resolved) = match prepare(&args.file, &args.read, &args.run, "diagnose", args.start_min, None)?
+    {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
     };
@@ -290,7 +305,8 @@ const NO_TABLE_PLOT: &str =
 
 pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
     check_output(args.output.as_deref())?;
-    let (nominal, truth, resolved) = match prepare(&args.file, &args.read, &args.run, "synth", None)? {
+    let (nominal, truth, resolved) = match prepare(&args.file, &args.read, &args.run, "synth", None, Some(&args.stock))?
+    {
         Ok(ready) => ready,
         Err(code) => return Ok(code),
     };

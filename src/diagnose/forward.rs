@@ -57,6 +57,10 @@ pub struct Nominal {
     /// The program line each move comes from (0 for none).
     pub move_lines: Vec<usize>,
     pub screw_pitch: ScrewPitch,
+    /// The finished part, where the part model ran: a synthesised CMM profile is sampled
+    /// only where its surface is (a finishing pass's lead-in in front of the stock, or a
+    /// stretch a later groove or thread cut away, is no place a probe can touch).
+    pub part: Option<crate::part::Part>,
 }
 
 impl Nominal {
@@ -76,6 +80,7 @@ impl Nominal {
             finishing,
             move_lines,
             screw_pitch: ScrewPitch::default(),
+            part: None,
         }
     }
 }

@@ -75,7 +75,10 @@ pub fn synth(
             Measured::BallBar(rows)
         }
         Kind::Profile => {
-            let surface = surface_points(nominal, options.spacing_mm);
+            let mut surface = surface_points(nominal, options.spacing_mm);
+            if let Some(part) = &nominal.part {
+                surface.retain(|&p| part.is_on_surface(p));
+            }
             let parts = if options.parts.is_empty() { vec![None] } else { options.parts.clone() };
             let several = parts.len() > 1;
             let mut points = Vec::new();

@@ -520,26 +520,30 @@ impl DiagnosticKind {
                 label: "this block".into(),
                 hint: None,
             },
-            RapidIntoStock { depth_mm, assumed: false } => Words {
+            RapidIntoStock { depth_mm, assumed: None } => Words {
                 code: "rapid-into-stock",
                 message: format!("this rapid move runs {depth_mm:.3} mm into the stock").into(),
                 label: "a crash: the tool meets material at the rapid rate".into(),
                 hint: Some("feed through material (G01), or move clear of the part first: retract in X, then move in Z".into()),
             },
-            RapidIntoStock { depth_mm, assumed: true } => Words {
+            RapidIntoStock { depth_mm, assumed: Some(others) } => Words {
                 code: "rapid-into-stock",
                 message: format!(
                     "this rapid move would run {depth_mm:.3} mm into the stock, if the bar is the one assumed (the smallest \
-                     bar holding every cut's start)"
+                     bar holding every cut's start){}",
+                    more_blocks(*others, "rapid moves")
                 ).into(),
-                label: "a rapid through assumed material".into(),
-                hint: Some("give the bar in the model file's [stock] table (or --stock) to check this for real".into()),
+                label: "the deepest rapid through assumed material".into(),
+                hint: Some("give the bar in the model file's [stock] table (or --stock) to check the rapids for real".into()),
             },
             CutTooDeep { depth_mm, max_mm, assumed } => Words {
                 code: "cut-too-deep",
                 message: format!(
                     "this cut engages {depth_mm:.3} mm of material, more than the tool's max_depth of {max_mm:.3} mm{}",
-                    if *assumed { " (in the assumed stock)" } else { "" }
+                    match assumed {
+                        None => String::new(),
+                        Some(others) => format!(" (in the assumed stock){}", more_blocks(*others, "cuts")),
+                    }
                 ).into(),
                 label: "deeper than the tool takes".into(),
                 hint: Some("take the material in more passes, or check the tool's max_depth in the tool table".into()),
@@ -1253,4 +1257,14 @@ fn short(value: f64) -> String {
     let text = format!("{value:.4}");
     let text = if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.') } else { &text };
     if text == "-0" { "0".to_string() } else { text.to_string() }
+}
+
+/// How many more blocks an assumed-stock finding stands for: said once for the run, at the
+/// deepest.
+fn more_blocks(others: u32, what: &str) -> String {
+    match others {
+        0 => String::new(),
+        1 => format!("; one other block's {what} would too, less deep"),
+        n => format!("; {n} other blocks' {what} would too, less deep"),
+    }
 }

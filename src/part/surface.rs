@@ -110,6 +110,22 @@ impl Part {
         along_z.chain(along_x).filter(move |p| in_part(p.at))
     }
 
+    /// Whether `p` lies on the finished surface as far as the rays can tell: a point of the
+    /// surface (an end of the material on a ray) lies within one cell of the rays' grid of
+    /// it (the spacing times √2), as one does of every point of a surface, which crosses a
+    /// side of each cell it passes through. A point in the air farther than that from any
+    /// material, or deep in the material, is not on it.
+    pub fn is_on_surface(&self, p: Xz) -> bool {
+        let reach = self.dexels.spacing * std::f64::consts::SQRT_2;
+        let close = |ray: &Ray<'_>, t: f64| ray.point(t).distance(p) <= reach;
+        // The axis end of a solid part's ray along X is no surface.
+        let on = |ray: &Ray<'_>| {
+            ray.material().any(|(lo, hi)| ((ray.along_z() || lo > 1e-12) && close(ray, lo)) || close(ray, hi))
+        };
+        self.rays(true, p.x - reach, p.x + reach).any(|ray| on(&ray))
+            || self.rays(false, p.z - reach, p.z + reach).any(|ray| on(&ray))
+    }
+
     /// The part's outer radius at `z` as the ray along X nearest it sees (none where there is
     /// no material), for plots and thread measures.
     pub fn outer_radius_at(&self, z: f64) -> Option<f64> {

@@ -508,3 +508,70 @@ fn every_simulate_case_and_example_leaves_no_material_in_a_nose() {
     );
     assert!(parts >= programs.len() / 2, "only {parts} of {} programs made a part", programs.len());
 }
+
+/// Whether every point `synth --kind profile` writes for a generated job lies on the finished
+/// part the part model leaves (issue 29): the job's profile finished under `G42`, so that the
+/// finished surface is the programmed contour, and then grooved and threaded, which cut away
+/// parts of the finished profile. A point is on the part when a point of the part's surface
+/// lies within one cell of the rays' grid (the spacing times √2) of it: every surface through
+/// a cell crosses one of its sides. A point in the air (on an approach, or over a groove or a
+/// thread cut after the finishing pass) is farther from the surface than that.
+fn synth_points_on_the_part(job: &Job) -> Result<usize, TestCaseError> {
+    use turnpass::diagnose::forward::Nominal;
+    use turnpass::diagnose::measured::{Kind, Measured};
+    use turnpass::diagnose::synth::{SynthOptions, synth};
+    use turnpass::error_model::ErrorModel;
+
+    let profile = profile(job);
+    let (text, _, _) = program(job, &profile);
+    let text = text
+        .replace("N100 G00 X", "N100 G42 G00 X")
+        .replace("G70 P100 Q200\nG00 X100. Z50.\n", "G70 P100 Q200\nG40 G00 X100. Z50.\n");
+    let top = profile.points.iter().map(|p| p.x).fold(0.0, f64::max);
+    let ready = match crate::support::analyse(text.as_bytes(), &settings(job.nose, top)).ready() {
+        Ok(ready) => ready,
+        // Under G42 a nose too large for two short elements is refused, as the control does.
+        Err(analysed)
+            if analysed
+                .diagnostics
+                .iter()
+                .filter(|d| d.is_error())
+                .all(|d| matches!(d.kind, turnpass::diagnostic::DiagnosticKind::NoseDoesNotFit { .. })) =>
+        {
+            return Err(TestCaseError::reject("the nose does not fit the profile"));
+        }
+        Err(analysed) => return Err(TestCaseError::fail(format!("{text}\n{:?}", analysed.diagnostics))),
+    };
+    let part = ready.part.as_ref().and_then(|run| run.part.as_ref()).expect("a part");
+    let mut nominal = Nominal::new(ready.program(), &ready.lowered, &ready.machine);
+    nominal.part = Some(part.clone());
+    let options = SynthOptions { spacing_mm: 0.25, ..SynthOptions::default() };
+    let Measured::Profile(points) = synth(&nominal, &ErrorModel::default(), Kind::Profile, &options).unwrap() else {
+        panic!("not a profile")
+    };
+    prop_assert!(!points.is_empty(), "no point on\n{text}");
+    let reach = part.spacing() * std::f64::consts::SQRT_2 + 1e-9;
+    let surface: Vec<Xz> = part.surface().map(|s| s.at).collect();
+    for p in &points {
+        let at = Xz::new(p.x_mm, p.z_mm);
+        let nearest = surface.iter().map(|s| s.distance(at)).fold(f64::INFINITY, f64::min);
+        prop_assert!(
+            nearest <= reach,
+            "the point at X{} Z{} (row {}) is {nearest:.4} mm from the finished part (rays {:.4} mm apart)\n{text}",
+            2.0 * p.x_mm,
+            p.z_mm,
+            p.line,
+            part.spacing()
+        );
+    }
+    Ok(points.len())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
+
+    #[test]
+    fn synth_profile_points_lie_on_the_finished_part(job in job()) {
+        synth_points_on_the_part(&job)?;
+    }
+}

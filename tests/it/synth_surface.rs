@@ -5,9 +5,9 @@
 //! contour the program finishes. Property-tested on generated turned profiles in the three
 //! forms a finishing pass takes: plain moves, a run under `G42`, and `G71` + `G70`.
 //!
-//! The part model (stock and finished part) is not in the pipeline yet; this test checks the
-//! points against the program's own moves. Against the part, a point must also lie where
-//! material is left, which the part model will decide.
+//! This test checks the points against the program's own moves, as `synth` samples them
+//! without a stock; with a stock, `part::synth_profile_points_lie_on_the_finished_part`
+//! holds them to the finished part the part model leaves.
 
 use proptest::prelude::*;
 
