@@ -35,10 +35,11 @@ use crate::compensation::Paths;
 use crate::diagnose::iso230_4;
 use crate::diagnose::measured::Direction;
 use crate::geometry;
+use crate::part::Part;
 use crate::toolpath::{Motion, Toolpath, ValidToolpath, Xz};
 
 pub use path::Drawn;
-use path::{NormalDeviation, PathFigure, Series};
+use path::{NormalDeviation, PathFigure, Section, Series};
 use polar::{PolarFigure, PolarSeries};
 use scale::micrometres;
 
@@ -149,9 +150,9 @@ pub fn points_of(toolpath: ValidToolpath<'_>, paths: &Paths) -> [Vec<PathPoint>;
 pub fn path_svg(
     title: &str,
     toolpath: ValidToolpath<'_>,
-    before: &[PathPoint],
-    after: &[PathPoint],
+    (before, after): (&[PathPoint], &[PathPoint]),
     magnify: Option<f64>,
+    part: Option<&Part>,
 ) -> Result<Drawn, PlotError> {
     let (nominal, rapids) = nominal_lines(&toolpath);
     let series = |label, colour, points: &[PathPoint]| Series { label, colour, runs: runs(points) };
@@ -164,7 +165,23 @@ pub fn path_svg(
         rapids,
         series: vec![series("as programmed", palette::BEFORE, before), series("compensated", palette::AFTER, after)],
         magnify,
+        section: part.map(section),
     })
+}
+
+/// The half-section of `part`: its stock's outline and the part's.
+fn section(part: &Part) -> Section {
+    let stock = &part.stock;
+    Section {
+        stock: vec![
+            (stock.back, stock.bore),
+            (stock.front, stock.bore),
+            (stock.front, stock.outer),
+            (stock.back, stock.outer),
+        ],
+        stock_assumed: stock.assumed,
+        part: part.outline(),
+    }
 }
 
 /// The points in unbroken runs, as deviations along the normal.

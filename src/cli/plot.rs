@@ -10,8 +10,8 @@ use clap::Args;
 use turnpass::diagnostic::{Diagnostic, Severity};
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, check_output, display_name, model_source, read_program, ready, rendered, svg_path,
-    write_file,
+    CliError, ReadArgs, RunArgs, StockArgs, check_output, display_name, model_source, read_program, ready_with_part,
+    rendered, svg_path, write_file,
 };
 use super::compensate::FitArgs;
 use super::streams;
@@ -36,6 +36,10 @@ pub struct PlotArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// The bar under the path plot's half-section (else the model file's [stock], else the
+    /// smallest bar holding every cut's start, drawn as assumed).
+    #[command(flatten)]
+    pub stock: StockArgs,
     /// Also say where the machine settings and the model come from.
     #[arg(long, short)]
     pub verbose: bool,
@@ -55,7 +59,8 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     if args.verbose {
         messages.extend_from_slice(format!("plot: {name}: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
-    let program = match ready(&name, &bytes, &resolved, &args.run, "plot", &mut messages) {
+    let part = args.stock.check(&resolved);
+    let program = match ready_with_part(&name, &bytes, (&resolved, &args.run), part, "plot", &mut messages) {
         Ok(program) => program,
         Err(text) => {
             streams::err(text);
@@ -96,7 +101,8 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     let svg = if args.polar {
         turnpass::plot::polar_svg(&name, toolpath, &before, &after).map(|svg| (svg, None))
     } else {
-        turnpass::plot::path_svg(&name, toolpath, &before, &after, args.magnify)
+        let part = program.part.as_ref().and_then(|run| run.part.as_ref());
+        turnpass::plot::path_svg(&name, toolpath, (&before, &after), args.magnify, part)
             .map(|drawn| (drawn.svg, Some(drawn.magnify)))
     };
     match svg {

@@ -17,7 +17,7 @@ use turnpass::report::{ModelFile, Page, Plot, ProgramFile};
 
 use super::common::{
     CliError, ReadArgs, RunArgs, check_output, display_name, model_name, model_source, read_program,
-    read_program_bytes, ready, required_error_model, write_file,
+    read_program_bytes, ready, ready_with_part, required_error_model, write_file,
 };
 use super::streams;
 use super::verify::{CheckArgs, Checked, Watch, checked};
@@ -60,7 +60,10 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     if args.verbose {
         messages.extend_from_slice(format!("report: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
-    let original = ready(&original_name, &original_bytes, &resolved, &args.run, "report", &mut messages);
+    // The bar the part measure cuts from is the one drawn under the path plot.
+    let part = args.checks.stock.check(&resolved);
+    let original =
+        ready_with_part(&original_name, &original_bytes, (&resolved, &args.run), part, "report", &mut messages);
     let compensated = ready(&compensated_name, &compensated_bytes, &resolved, &args.run, "report", &mut messages);
     let (original, compensated) = match (original, compensated) {
         (Ok(o), Ok(c)) => (o, c),
@@ -100,7 +103,8 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     }
     let [before, after] = points.map(|c| c.points);
     let title = format!("{original_name} → {compensated_name}");
-    let path = turnpass::plot::path_svg(&title, toolpath, &before, &after, args.magnify);
+    let part = original.part.as_ref().and_then(|run| run.part.as_ref());
+    let path = turnpass::plot::path_svg(&title, toolpath, (&before, &after), args.magnify, part);
     let mut plots = vec![Plot {
         id: "plot-path",
         caption: match &path {

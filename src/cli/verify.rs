@@ -72,7 +72,9 @@ pub struct CheckArgs {
     /// finished part (a roughing pass then counts as much as the finishing one).
     #[arg(long)]
     pub passes: bool,
-    /// The bar the parts are cut from (the finished-part measure).
+    /// The bar the parts are cut from (the finished-part measure; `report` draws it under
+    /// the path plot: else the model file's [stock], else the smallest bar holding every
+    /// cut's start, drawn as assumed).
     #[command(flatten)]
     pub stock: StockArgs,
 }

@@ -126,6 +126,37 @@ impl Part {
             || self.rays(false, p.z - reach, p.z + reach).any(|ray| on(&ray))
     }
 
+    /// The half-section's outline for a drawing: for each run of rays along X that hold
+    /// material, a closed polygon of (z, x) points — the outermost material of each ray from
+    /// the back to the front, then the innermost from the front to the back (the axis, or a
+    /// bore). A recess inside the material (an undercut seen from no ray's end) is filled in.
+    pub fn outline(&self) -> Vec<Vec<(f64, f64)>> {
+        let mut polygons = Vec::new();
+        let mut outer: Vec<(f64, f64)> = Vec::new();
+        let mut inner: Vec<(f64, f64)> = Vec::new();
+        let mut close = |outer: &mut Vec<(f64, f64)>, inner: &mut Vec<(f64, f64)>| {
+            if outer.len() > 1 {
+                let mut polygon = std::mem::take(outer);
+                polygon.extend(inner.drain(..).rev());
+                polygons.push(polygon);
+            }
+            outer.clear();
+            inner.clear();
+        };
+        for ray in self.rays(false, f64::NEG_INFINITY, f64::INFINITY) {
+            let mut material = ray.material();
+            let Some((lo, mut hi)) = material.next() else {
+                close(&mut outer, &mut inner);
+                continue;
+            };
+            hi = material.last().map_or(hi, |(_, h)| h);
+            outer.push((ray.at(), hi));
+            inner.push((ray.at(), lo));
+        }
+        close(&mut outer, &mut inner);
+        polygons
+    }
+
     /// The part's outer radius at `z` as the ray along X nearest it sees (none where there is
     /// no material), for plots and thread measures.
     pub fn outer_radius_at(&self, z: f64) -> Option<f64> {

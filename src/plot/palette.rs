@@ -17,3 +17,5 @@ pub(crate) const BEFORE_SECOND: RGBColor = RGBColor(230, 159, 0);
 pub(crate) const AFTER: RGBColor = RGBColor(0, 114, 178);
 /// The second direction compensated: Okabe–Ito sky blue.
 pub(crate) const AFTER_SECOND: RGBColor = RGBColor(86, 180, 233);
+/// The finished part's half-section, filled under the paths.
+pub(crate) const PART: RGBColor = RGBColor(215, 215, 215);

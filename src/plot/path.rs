@@ -9,7 +9,7 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::palette::{GREY, NOMINAL};
+use super::palette::{GREY, NOMINAL, PART};
 use super::scale::{magnification, micrometres, nice_at_least, scale_bar_um};
 use super::{Lines, PlotError, drawing};
 use crate::toolpath::Xz;
@@ -45,6 +45,18 @@ pub(crate) struct PathFigure<'a> {
     pub series: Vec<Series<'a>>,
     /// The magnification asked for; `None` chooses one (`scale::magnification`).
     pub magnify: Option<f64>,
+    /// The part model's half-section under the paths, where it ran.
+    pub section: Option<Section>,
+}
+
+/// The stock and the finished part the program cuts from it, in (Z, X) at true scale.
+pub(crate) struct Section {
+    /// The stock's outline, closed; drawn dashed.
+    pub stock: Vec<(f64, f64)>,
+    /// No `[stock]` or `--stock` gave it: the legend says it is assumed.
+    pub stock_assumed: bool,
+    /// The finished part's half-section polygons (`Part::outline`), filled.
+    pub part: Vec<Vec<(f64, f64)>>,
 }
 
 /// The figure and the magnification it was drawn at.
@@ -134,6 +146,10 @@ pub(crate) fn draw(figure: &PathFigure<'_>) -> Result<Drawn, PlotError> {
         })
         .collect();
     let view = part.union(View::of(magnified.iter().flatten().flatten()));
+    let view = match &figure.section {
+        Some(section) => view.union(View::of(section.stock.iter().chain(section.part.iter().flatten()))),
+        None => view,
+    };
     let view = view.padded(0.06 * view.size().max(1e-3));
 
     // True scale: one millimetre is as many pixels across as up.
@@ -148,7 +164,13 @@ pub(crate) fn draw(figure: &PathFigure<'_>) -> Result<Drawn, PlotError> {
     let plot_height = plot_height.max(MIN_HEIGHT).round();
     let main_height = plot_height as u32 + MARGIN_TOP + MARGIN_BOTTOM + X_LABELS;
     let header_height = TITLE + LINE * (1 + u32::from(figure.side_unknown)) + 6;
-    let mut entries = vec![Entry { label: figure.nominal_label.to_string(), colour: NOMINAL, dashed: false, width: 1 }];
+    let mut entries = Vec::new();
+    if let Some(section) = &figure.section {
+        let stock = if section.stock_assumed { "stock (assumed)" } else { "stock" };
+        entries.push(Entry { label: stock.to_string(), colour: GREY, dashed: true, width: 1 });
+        entries.push(Entry { label: "finished part".to_string(), colour: PART, dashed: false, width: 10 });
+    }
+    entries.push(Entry { label: figure.nominal_label.to_string(), colour: NOMINAL, dashed: false, width: 1 });
     if !figure.rapids.is_empty() {
         entries.push(Entry { label: "rapid".to_string(), colour: GREY, dashed: true, width: 1 });
     }
@@ -201,6 +223,18 @@ pub(crate) fn draw(figure: &PathFigure<'_>) -> Result<Drawn, PlotError> {
             .axis_desc_style(("sans-serif", 14))
             .draw()
             .map_err(drawing)?;
+        if let Some(section) = &figure.section {
+            for polygon in &section.part {
+                chart.draw_series([Polygon::new(polygon.clone(), PART.filled())]).map_err(drawing)?;
+            }
+            let mut outline = section.stock.clone();
+            outline.extend(section.stock.first().copied());
+            for (a, b) in outline.windows(2).map(|w| (w[0], w[1])) {
+                if let Some((a, b)) = clip(a, b, &view) {
+                    chart.draw_series(DashedLineSeries::new([a, b], 3, 3, GREY.stroke_width(1))).map_err(drawing)?;
+                }
+            }
+        }
         for line in &figure.rapids {
             for (a, b) in line.windows(2).map(|w| (w[0], w[1])) {
                 if let Some((a, b)) = clip(a, b, &view) {

@@ -140,6 +140,7 @@ fn profile(title: &str, d: &Diagnosis) -> Result<String, PlotError> {
             Series { label: "residual, with the effects found", colour: AFTER, runs: deviations(&d.residual_after) },
         ],
         magnify: None,
+        section: None,
     })?;
     Ok(drawn.svg)
 }
