@@ -180,6 +180,7 @@ fn end_to_end(c: &mut Criterion) {
         max_shift_mm: 0.1,
         expand_cycles: false,
         profiles_in_place: true,
+        profiles_copied: true,
         threads_in_place: true,
         paths: false,
         block_reports: false,

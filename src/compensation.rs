@@ -31,4 +31,6 @@ pub use crate::error_model::sampling::{PathSample, sample_toolpath};
 pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};
 pub use inverse::{Compensated, InverseOptions, compensate_samples, predict};
 pub use program::{CompensateOptions, Outcome, Paths, compensate_program};
-pub use rewrite::{CycleForm, CycleOutcome, PROFILE_NOT_IN_PLACE, THREAD_NOT_IN_PLACE};
+pub use rewrite::{
+    CycleForm, CycleOutcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE, THREAD_NOT_IN_PLACE,
+};

@@ -84,6 +84,7 @@ fuzz_target!(|data: &[u8]| {
         max_shift_mm: 0.1,
         expand_cycles: false,
         profiles_in_place: true,
+        profiles_copied: true,
         threads_in_place: true,
         paths: false,
         block_reports: true,

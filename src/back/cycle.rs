@@ -14,7 +14,7 @@ use crate::syntax::{CodeLetter, Program, WordKind};
 use crate::toolpath::{Compensation, Move, Xz};
 
 use super::grid::Grid;
-use super::motion::{Codes, Modal, MotionWriter};
+use super::motion::{Codes, GivenNext, Modal, MotionWriter};
 
 /// What a cycle call becomes.
 pub(crate) enum CycleBlocks {
@@ -67,7 +67,9 @@ pub(crate) fn cycle_blocks(
             block
         })
         .collect();
-    if cycle.writer.restore(&mut cycle.modal, &expansion.after) {
+    // The control goes on after the blocks the cycle consumed (its profile after the call).
+    let next = GivenNext::after(program, &codes, expansion.block, |b| expansion.consumed.contains(&b));
+    if cycle.writer.restore(&mut cycle.modal, &expansion.after, next) {
         blocks.push(NewBlock::new(cycle.writer.take_words()));
     }
     CycleBlocks::Blocks(blocks)

@@ -312,10 +312,12 @@ impl<W: WordSink> MotionWriter<W> {
     /// The words that put back the modal motion code, F and S the program has after a
     /// cycle (`after`), where the blocks written for it (`modal`) left others in force (a
     /// `G01 F0.25` from a roughing pass would otherwise carry into the blocks after the
-    /// call); whether there are any.
-    pub(crate) fn restore(&mut self, modal: &mut Modal, after: &ModalAfter) -> bool {
+    /// call) and the block the control runs next does not give them itself (`next`);
+    /// whether there are any.
+    pub(crate) fn restore(&mut self, modal: &mut Modal, after: &ModalAfter, next: GivenNext) -> bool {
         let mut any = false;
         if let Some(motion) = after.motion
+            && !next.motion
             && modal.motion.is_some_and(|written| written != (motion, false))
         {
             // A dwell leaves no motion to put back, nor anything else.
@@ -324,17 +326,71 @@ impl<W: WordSink> MotionWriter<W> {
             modal.motion = Some((motion, false));
             any = true;
         }
-        if after.f_word > 0.0 && modal.feed.is_some_and(|f| f != after.f_word) {
+        if after.f_word > 0.0 && !next.feed && modal.feed.is_some_and(|f| f != after.f_word) {
             self.out.number(Address::F, feed_number(after.f_word));
             modal.feed = Some(after.f_word);
             any = true;
         }
-        if after.s_word > 0.0 && modal.speed.is_some_and(|s| s != after.s_word) {
+        if after.s_word > 0.0 && !next.speed && modal.speed.is_some_and(|s| s != after.s_word) {
             self.out.number(Address::S, feed_number(after.s_word));
             modal.speed = Some(after.s_word);
             any = true;
         }
         any
+    }
+}
+
+/// The modal words the block the control runs after some written blocks gives itself: a
+/// motion code, F, S. A word it gives needs no block of its own to put it back (a lone
+/// `G01` or `F0.05` before a block that writes `G00` or its own F); a word it does not
+/// give is restored, as the block may run under it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct GivenNext {
+    pub motion: bool,
+    pub feed: bool,
+    pub speed: bool,
+}
+
+impl GivenNext {
+    /// What the first block after `after` that `skipped` does not pass over gives, read as
+    /// the control runs the text on: blocks that run nothing (comments, labels) are passed
+    /// over. A block the operator may skip (`/`), or one that is not a plain motion block
+    /// (a cycle call, `M99`, a jump), gives nothing: the control may run another block next.
+    pub(crate) fn after(
+        program: &Program<'_>,
+        codes: &Codes,
+        after: usize,
+        skipped: impl Fn(usize) -> bool,
+    ) -> GivenNext {
+        use crate::syntax::{Statement, WordKind};
+        let blocks = program.blocks();
+        let Some(next) =
+            (after + 1..blocks.len()).find(|&b| !skipped(b) && !matches!(program.block(b).statement, Statement::Empty))
+        else {
+            return GivenNext::default();
+        };
+        let block = program.block(next);
+        let plain = matches!(block.statement, Statement::Motion);
+        if !(plain || matches!(block.statement, Statement::ThreadMove)) {
+            return GivenNext::default();
+        }
+        let mut given = GivenNext::default();
+        for word in program.words_of(block) {
+            match word.kind {
+                WordKind::BlockDelete { .. } => return GivenNext::default(),
+                WordKind::Code { letter: CodeLetter::G, code } if codes.kind_of(code).is_some() => given.motion = true,
+                // A thread move's F is its lead: it gives the feed of the blocks after it,
+                // not of a feed move.
+                WordKind::Number { address: Address::F, .. } | WordKind::Expr { address: Address::F, .. } => {
+                    given.feed |= plain
+                }
+                WordKind::Number { address: Address::S, .. } | WordKind::Expr { address: Address::S, .. } => {
+                    given.speed = true
+                }
+                _ => {}
+            }
+        }
+        given
     }
 }
 

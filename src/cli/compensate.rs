@@ -19,7 +19,8 @@ use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::verify::{self, Measure};
 use turnpass::compensation::{
-    CompensateOptions, CycleForm, Outcome, PROFILE_NOT_IN_PLACE, THREAD_NOT_IN_PLACE, compensate_program,
+    CompensateOptions, CycleForm, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
+    THREAD_NOT_IN_PLACE, compensate_program,
 };
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
@@ -174,6 +175,7 @@ impl FitArgs {
             max_shift_mm: self.max_shift,
             expand_cycles: self.expand_cycles,
             profiles_in_place: true,
+            profiles_copied: true,
             threads_in_place: true,
             paths: false,
             block_reports: true,
@@ -226,6 +228,7 @@ impl FitArgs {
             paths: false,
             block_reports,
             profiles_in_place: in_place.profiles,
+            profiles_copied: in_place.copies,
             threads_in_place: in_place.threads,
             ..self.options(&program.machine)
         };
@@ -258,6 +261,18 @@ fn cycle_lines(
                 format!("kept; its profile (lines {first}-{last}) is compensated in place")
             }
             CycleForm::WordsEdited => "kept; its words carry the final pass's correction".to_string(),
+            CycleForm::RoughsOriginal => {
+                "kept; it roughs the profile as written, its finishing cycle runs a compensated copy".to_string()
+            }
+            CycleForm::ProfileCopied { profile, copy: (first, last), reason } => {
+                let from = profile.first().map_or(0, |&b| line(b));
+                let to = profile.last().map_or(0, |&b| line(b));
+                let names = if first == last { first.clone() } else { format!("{first}-{last}") };
+                format!(
+                    "runs a compensated copy of its profile (lines {from}-{to}), written as {names}, which the call \
+                     now names; the roughing keeps the profile as written ({reason})"
+                )
+            }
             CycleForm::Expanded { reason } => format!("expanded: {reason}"),
         };
         out.extend_from_slice(format!("compensate: {name}: line {call} `{text}`: {said}\n").as_bytes());
@@ -312,28 +327,34 @@ impl Trial<'_, '_> {
 }
 
 /// Which cycles keep their calls with a correction in place: those sharing a profile with a
-/// finishing cycle (the profile edited), thread cycles (their words edited).
+/// finishing cycle (the profile edited, or else copied for the finishing cycle), thread
+/// cycles (their words edited).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct InPlace {
     profiles: bool,
+    copies: bool,
     threads: bool,
 }
 
+/// Why the check before writing turned down each way of keeping cycles that was tried.
+#[derive(Debug, Clone, Default)]
+struct Because {
+    profiles: Option<String>,
+    copies: Option<String>,
+    threads: Option<String>,
+}
+
 impl InPlace {
-    /// What to try after `outcome` (compensated so) missed the check: the profiles
-    /// expanded if it edited one, else the threads if it edited one; `None` when nothing
-    /// is left to expand.
+    /// What to try after `outcome` (compensated so) missed the check: the profiles copied
+    /// for their finishing cycles if it edited one in place, else expanded if it copied one,
+    /// else the threads expanded if it edited one; `None` when nothing is left to expand.
     fn without(self, outcome: &Outcome) -> Option<InPlace> {
-        let edited = |profile: bool| {
-            outcome.cycles.iter().any(|c| match c.form {
-                CycleForm::ProfileEdited { .. } => profile,
-                CycleForm::WordsEdited => !profile,
-                _ => false,
-            })
-        };
-        if self.profiles && edited(true) {
+        let any = |form: fn(&CycleForm) -> bool| outcome.cycles.iter().any(|c| form(&c.form));
+        if self.profiles && any(|f| matches!(f, CycleForm::ProfileEdited { .. })) {
             Some(InPlace { profiles: false, ..self })
-        } else if self.threads && edited(false) {
+        } else if self.copies && any(|f| matches!(f, CycleForm::ProfileCopied { .. })) {
+            Some(InPlace { copies: false, ..self })
+        } else if self.threads && any(|f| matches!(f, CycleForm::WordsEdited)) {
             Some(InPlace { threads: false, ..self })
         } else {
             None
@@ -341,12 +362,17 @@ impl InPlace {
     }
 
     /// Keep `why` as the reason of the cycles `next` expands.
-    fn said(self, next: InPlace, why: String, (profiles, threads): (&mut Option<String>, &mut Option<String>)) {
+    fn said(self, next: InPlace, why: String, because: &mut Because) {
         if self.profiles && !next.profiles {
-            *profiles = Some(format!("with its profile compensated in place and the cycles {why}"));
+            because.profiles = Some(format!("with its profile compensated in place and the cycles {why}"));
+        }
+        if self.copies && !next.copies {
+            because.copies = Some(format!(
+                "with the roughing on the profile as written, the finishing on a compensated copy and the cycles {why}"
+            ));
         }
         if self.threads && !next.threads {
-            *threads = Some(format!("with its words compensated in place and the cycle {why}"));
+            because.threads = Some(format!("with its words compensated in place and the cycle {why}"));
         }
     }
 }
@@ -506,11 +532,11 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         return Ok(FileResult::refused(1, messages, &name, &bytes, &[diagnostic]));
     }
     // Cycles that share a profile with a finishing cycle stay calls, their profile
-    // compensated in place; where the program so written misses the check, they are
-    // expanded instead, and the report says why.
-    let mut because_profiles: Option<String> = None;
-    let mut because_threads: Option<String> = None;
-    let mut in_place = InPlace { profiles: true, threads: true };
+    // compensated in place; where the program so written misses the check, the finishing
+    // cycle runs a compensated copy of the profile and the roughing the profile as written;
+    // where that misses it too, they are expanded, and the report says why.
+    let mut because = Because::default();
+    let mut in_place = InPlace { profiles: true, copies: true, threads: true };
     let stock = args.stock.check(&resolved).stock;
     let measure = if args.passes { Measure::Passes } else { Measure::Part };
     let (mut outcome, written) = loop {
@@ -522,7 +548,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 "compensated in place, it cannot be written: {}",
                 outcome.diagnostics.iter().find(|d| d.is_error()).map_or_else(String::new, Diagnostic::message)
             );
-            in_place.said(next, why, (&mut because_profiles, &mut because_threads));
+            in_place.said(next, why, &mut because);
             in_place = next;
             continue;
         }
@@ -636,7 +662,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                     }
                     _ => format!("kept, the program read back fails the check: {}", diagnostic.message()),
                 };
-                in_place.said(next, why, (&mut because_profiles, &mut because_threads));
+                in_place.said(next, why, &mut because);
                 in_place = next;
                 continue;
             }
@@ -661,15 +687,24 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         }
         break (outcome, written);
     };
-    for (constant, reason) in [(PROFILE_NOT_IN_PLACE, &because_profiles), (THREAD_NOT_IN_PLACE, &because_threads)] {
+    let neither = match (&because.profiles, &because.copies) {
+        (Some(a), Some(b)) => Some(format!("{a}; {b}")),
+        (a, b) => a.clone().or_else(|| b.clone()),
+    };
+    for (constant, reason) in [
+        (PROFILE_NOT_IN_PLACE, &because.profiles),
+        (PROFILE_COPIED, &because.profiles),
+        (PROFILE_NOT_COPIED, &neither),
+        (THREAD_NOT_IN_PLACE, &because.threads),
+    ] {
         let Some(reason) = reason else { continue };
         for cycle in &mut outcome.report.cycles {
-            if cycle.outcome == "expanded" && cycle.reason.as_deref() == Some(constant) {
+            if cycle.reason.as_deref() == Some(constant) {
                 cycle.reason = Some(reason.clone());
             }
         }
         for cycle in &mut outcome.cycles {
-            if let CycleForm::Expanded { reason: why } = &mut cycle.form
+            if let CycleForm::Expanded { reason: why } | CycleForm::ProfileCopied { reason: why, .. } = &mut cycle.form
                 && why == constant
             {
                 why.clone_from(reason);
@@ -679,12 +714,16 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let totals = &outcome.report.totals;
     messages.extend_from_slice(
         format!(
-            "compensate: {name}: {} block{} edited, {} cycle{} expanded; largest correction {:.4} mm; \
+            "compensate: {name}: {} block{} edited, {} cycle{} expanded{}; largest correction {:.4} mm; \
              predicted deviation (as verify measures it) RMS {:.5} -> {:.5} mm, largest {:.5} -> {:.5} mm\n",
             totals.edited_blocks,
             super::common::plural(totals.edited_blocks),
             totals.expanded_cycles,
             super::common::plural(totals.expanded_cycles),
+            match totals.profiles_copied {
+                0 => String::new(),
+                n => format!(", {n} profile{} copied for finishing", super::common::plural(n)),
+            },
             totals.max_correction_mm,
             totals.before.rms_mm,
             totals.after.rms_mm,

@@ -348,8 +348,10 @@ pub fn run_synth(args: SynthArgs) -> Result<ExitCode, CliError> {
         glitches: args.glitches,
         glitch_mm: args.glitch_mm,
     };
-    let measured = synth(&nominal, &truth, args.kind.kind(args.axis)?, &options)
-        .map_err(|e| CliError::Usage(format!("{}: {e}", display_name(&args.file))))?;
+    let measured = synth(&nominal, &truth, args.kind.kind(args.axis)?, &options).map_err(|e| match e.hint() {
+        Some(hint) => CliError::Usage(format!("{}: {e}\n  = hint: {hint}", display_name(&args.file))),
+        None => CliError::Usage(format!("{}: {e}", display_name(&args.file))),
+    })?;
     write_output(args.output.as_deref(), to_csv(&measured).as_bytes())?;
     if let Some(path) = &args.output {
         let rows = measured.rows();

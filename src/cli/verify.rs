@@ -280,8 +280,7 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
                 if part.unprobed_mm > 0.0 {
                     text.push_str(&format!(
                         "not probed: {:.3} mm of the nominal surface, at an edge of the actual part that the probe \
-                         along the normal passes, or cut by an insert's body along an arc on either part (the part \
-                         model sweeps a body along an arc's chords)\n",
+                         along the normal passes\n",
                         part.unprobed_mm
                     ));
                 }

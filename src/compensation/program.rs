@@ -39,6 +39,9 @@ pub struct CompensateOptions {
     /// Compensate a profile that a finishing cycle runs in place, keeping the cycles that
     /// share it, rather than expand them (`rewrite::CycleChoice`).
     pub profiles_in_place: bool,
+    /// Where a profile is not compensated in place, give its finishing cycle a compensated
+    /// copy and leave the roughing on the profile as written (`rewrite::CycleChoice`).
+    pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
     /// Keep every sample's paths in `Outcome::paths` (for `plot`; a long program has
@@ -168,6 +171,7 @@ pub fn compensate_program(
     let choice = rewrite::CycleChoice {
         expand_all: options.expand_cycles,
         profiles_in_place: options.profiles_in_place,
+        profiles_copied: options.profiles_copied,
         threads_in_place: options.threads_in_place,
     };
     let rewritten = rewrite::finish(program, lowered, &plans, choice, motion);

@@ -35,12 +35,20 @@ pub struct CycleReport {
     pub line: usize,
     /// The call block as written.
     pub block: String,
-    /// `kept`, `profile_edited`, `words_edited` (a thread cycle's final pass) or `expanded`.
+    /// `kept`, `profile_edited`, `words_edited` (a thread cycle's final pass),
+    /// `profile_copied` (a finishing cycle that runs a compensated copy of its profile),
+    /// `roughs_profile_as_written` (the roughing cycle beside it) or `expanded`.
     pub outcome: &'static str,
-    /// With `profile_edited`, the 1-based lines of the profile blocks edited in place.
+    /// With `profile_edited`, the 1-based lines of the profile blocks edited in place; with
+    /// `profile_copied`, those of the profile copied.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub profile_lines: Vec<usize>,
-    /// With `expanded`, why the call could not stay.
+    /// With `profile_copied`, the sequence names of the copy's first and last blocks, which
+    /// its `P` and `Q` name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub copy: Option<[String; 2]>,
+    /// With `expanded`, why the call could not stay; with `profile_copied`, why its profile
+    /// is not compensated in place.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
 }
@@ -76,6 +84,8 @@ pub struct Totals {
     pub expanded_cycles: usize,
     /// Cycle calls kept as written while their profile is compensated in place.
     pub profiles_edited: usize,
+    /// Finishing cycle calls that run a compensated copy of their profile.
+    pub profiles_copied: usize,
     pub samples: usize,
     pub max_correction_mm: f64,
     /// Iterations of the inverse at the worst sample, and its largest residual, mm.
@@ -138,8 +148,9 @@ pub fn build(input: &ReportInput<'_>) -> Report {
         cycles,
         totals: Totals {
             edited_blocks: input.edited.iter().filter(|e| !e.cycle).count(),
-            expanded_cycles: input.edited.iter().filter(|e| e.cycle).count(),
+            expanded_cycles: input.cycles.iter().filter(|c| matches!(c.form, CycleForm::Expanded { .. })).count(),
             profiles_edited,
+            profiles_copied: input.cycles.iter().filter(|c| matches!(c.form, CycleForm::ProfileCopied { .. })).count(),
             samples: input.samples,
             max_correction_mm: nm(input.max_correction_mm),
             inverse_iterations: input.inverse_iterations,
@@ -161,15 +172,21 @@ fn cycle_reports(input: &ReportInput<'_>) -> Vec<CycleReport> {
         .iter()
         .map(|c| {
             let text = String::from_utf8_lossy(program.text(program.block(c.block).span)).trim_end().to_string();
+            let mut copy = None;
             let (outcome, profile_lines, reason) = match &c.form {
                 CycleForm::Kept => ("kept", Vec::new(), None),
                 CycleForm::WordsEdited => ("words_edited", Vec::new(), None),
+                CycleForm::RoughsOriginal => ("roughs_profile_as_written", Vec::new(), None),
                 CycleForm::ProfileEdited { profile } => {
                     ("profile_edited", profile.iter().map(|&b| line(b)).collect(), None)
                 }
+                CycleForm::ProfileCopied { profile, copy: (first, last), reason } => {
+                    copy = Some([first.clone(), last.clone()]);
+                    ("profile_copied", profile.iter().map(|&b| line(b)).collect(), Some(reason.clone()))
+                }
                 CycleForm::Expanded { reason } => ("expanded", Vec::new(), Some(reason.clone())),
             };
-            CycleReport { line: line(c.block), block: text, outcome, profile_lines, reason }
+            CycleReport { line: line(c.block), block: text, outcome, profile_lines, copy, reason }
         })
         .collect()
 }

@@ -125,6 +125,22 @@ pub enum CycleForm {
     /// The call stays, its words carrying the correction of its final pass (a thread
     /// cycle: the final diameter and the end of the thread).
     WordsEdited,
+    /// A roughing call that stays as written on the profile as written: the roughing follows
+    /// the nominal profile and its allowance, while its finishing cycle runs a compensated
+    /// copy (`ProfileCopied`).
+    RoughsOriginal,
+    /// A finishing call that runs its own compensated copy of the profile `profile` (its
+    /// blocks): the blocks `copy` (their first and last sequence names), written after the
+    /// roughing call; its `P`/`Q` name them. `reason`: why the profile is not compensated in
+    /// place.
+    ProfileCopied {
+        #[serde(skip)]
+        profile: Vec<usize>,
+        #[serde(skip)]
+        copy: (String, String),
+        #[serde(skip)]
+        reason: String,
+    },
     /// The call is written out as its compensated moves.
     Expanded { reason: String },
 }
@@ -132,6 +148,14 @@ pub enum CycleForm {
 /// Why a cycle is expanded when profiles are not compensated in place (the caller that
 /// asked for it says why).
 pub const PROFILE_NOT_IN_PLACE: &str = "its moves change, and its profile is not compensated in place";
+
+/// Why a profile is copied for its finishing cycle when it is not compensated in place (the
+/// caller that asked for it says why).
+pub const PROFILE_COPIED: &str = "its profile is not compensated in place";
+
+/// Why a cycle is expanded when its profile is neither compensated in place nor copied for
+/// its finishing cycle (the caller that asked for it says why).
+pub const PROFILE_NOT_COPIED: &str = "its moves change, and its profile is neither compensated in place nor copied";
 
 /// Why a thread cycle is expanded when its words are not compensated in place.
 pub const THREAD_NOT_IN_PLACE: &str = "its moves change, and its own words are not compensated in place";
@@ -144,6 +168,9 @@ pub struct CycleChoice {
     /// Compensate a profile a finishing cycle runs in place rather than expand the cycles
     /// that share it.
     pub profiles_in_place: bool,
+    /// Where a profile is not compensated in place, give its finishing cycle a compensated
+    /// copy and leave the roughing on the profile as written, rather than expand them.
+    pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
 }
@@ -161,16 +188,25 @@ pub fn finish(
     let (mut chosen, groups) = cycles::chosen(program, lowered, plans, choice.expand_all, &mut out.diagnostics);
     let mut in_place: HashMap<usize, Vec<usize>> = HashMap::new();
     // Why a cycle that could have stayed is expanded, where it is more than the default.
-    let mut why: HashMap<usize, &'static str> = HashMap::new();
-    if choice.profiles_in_place && !choice.expand_all {
+    let mut why: HashMap<usize, String> = HashMap::new();
+    // The groups whose finishing cycle gets a copy of the profile, and why not in place.
+    let mut to_copy: Vec<(cycles::ProfileGroup, &'static str)> = Vec::new();
+    if (choice.profiles_in_place || choice.profiles_copied) && !choice.expand_all {
         for group in cycles::profile_groups(lowered, plans, &chosen, &groups) {
-            if !motion.profile_writable(&group.blocks, plans) {
-                for e in group.members.iter().filter_map(|&k| lowered.expansions.get(k)) {
-                    why.insert(
-                        e.block,
-                        "a block of its profile makes several moves that change (an automatic corner, a take-up \
-                         of the play), or also runs as a plain block: the profile cannot carry the correction",
-                    );
+            let writable = choice.profiles_in_place && motion.profile_writable(&group.blocks, plans);
+            if !writable {
+                let reason = if choice.profiles_in_place {
+                    "a block of its profile makes several moves that change (an automatic corner, a take-up of \
+                     the play), or also runs as a plain block: the profile cannot carry the correction"
+                } else {
+                    PROFILE_COPIED
+                };
+                if choice.profiles_copied {
+                    to_copy.push((group, reason));
+                } else {
+                    for e in group.members.iter().filter_map(|&k| lowered.expansions.get(k)) {
+                        why.insert(e.block, reason.to_string());
+                    }
                 }
             } else {
                 motion.write_profile(&group.blocks, plans);
@@ -184,6 +220,44 @@ pub fn finish(
                     chosen[k] = false;
                     if let Some(e) = lowered.expansions.get(k) {
                         in_place.insert(e.block, profile.clone());
+                    }
+                }
+            }
+        }
+    }
+    let mut copied: HashMap<usize, CycleForm> = HashMap::new();
+    if !to_copy.is_empty() {
+        let style = motion.writer.out.style();
+        for (group, reason) in to_copy {
+            match cycles::profile_copy(program, lowered, plans, &group, style) {
+                Ok(copy) => {
+                    let mut profile: Vec<usize> = group.blocks.iter().map(|&(b, _)| b).collect();
+                    profile.sort_unstable();
+                    profile.dedup();
+                    for &k in &group.members {
+                        chosen[k] = false;
+                    }
+                    for block in copy.blocks {
+                        out.edits.insert_after(copy.after, block);
+                    }
+                    out.edits.replace(copy.finish, vec![copy.call]);
+                    if let Some(e) = lowered.expansions.iter().find(|e| e.block == copy.finish) {
+                        out.edited.push(EditedBlock { block: copy.finish, moves: e.moves.clone(), cycle: false });
+                    }
+                    copied.insert(copy.rough, CycleForm::RoughsOriginal);
+                    copied.insert(
+                        copy.finish,
+                        CycleForm::ProfileCopied { profile, copy: copy.names, reason: reason.to_string() },
+                    );
+                }
+                Err(no_copy) => {
+                    let reason = if reason == PROFILE_COPIED {
+                        PROFILE_NOT_COPIED.to_string()
+                    } else {
+                        format!("{reason}, and no copy of it can be written for the finishing cycle: {no_copy}")
+                    };
+                    for e in group.members.iter().filter_map(|&k| lowered.expansions.get(k)) {
+                        why.insert(e.block, reason.clone());
                     }
                 }
             }
@@ -212,7 +286,8 @@ pub fn finish(
             } else {
                 why.insert(
                     e.block,
-                    "its final pass needs more than one move (a take-up of the play), which its words cannot carry",
+                    "its final pass needs more than one move (a take-up of the play), which its words cannot carry"
+                        .to_string(),
                 );
             }
         }
@@ -235,6 +310,8 @@ pub fn finish(
     for block in calls {
         let form = if let Some(profile) = in_place.remove(&block) {
             CycleForm::ProfileEdited { profile }
+        } else if let Some(form) = copied.remove(&block) {
+            form
         } else if threads.contains(&block) {
             CycleForm::WordsEdited
         } else if expanded_set.contains(&block) {
@@ -246,12 +323,14 @@ pub fn finish(
             let reason = if choice.expand_all {
                 "--expand-cycles"
             } else if let Some(reason) = why.get(&block) {
-                reason
+                reason.as_str()
             } else if threads_cut && !choice.threads_in_place {
                 THREAD_NOT_IN_PLACE
             } else if threads_cut {
                 "its moves change, and its end words do not name its final pass (a thread chamfered out, a \
                  taper or a start shift written in the block), so they cannot carry the correction"
+            } else if !choice.profiles_in_place && !choice.profiles_copied {
+                PROFILE_NOT_COPIED
             } else if !choice.profiles_in_place {
                 PROFILE_NOT_IN_PLACE
             } else {

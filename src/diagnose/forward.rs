@@ -101,6 +101,9 @@ pub enum ForwardError {
     DirectionMismatch { line: usize, found: &'static str, expected: &'static str, circle_line: usize },
     #[error("the program has no cutting moves to match CMM points to")]
     NoCuts,
+    /// A profile to make, with no point on the finished surface at the spacing asked for.
+    #[error("no point of the program's finished surface to probe at a spacing of {spacing_mm} mm: {why}")]
+    NoSurfaceToProbe { spacing_mm: f64, why: &'static str },
     #[error(
         "line {line}: the point x {x:.4} z {z:.4} is {distance:.3} mm from the nearest finished surface of the program"
     )]
@@ -150,6 +153,9 @@ impl ForwardError {
             ),
             ForwardError::DirectionMismatch { .. } => {
                 Some("the rows of a run follow the program's test circles in order; check the file's direction".into())
+            }
+            ForwardError::NoSurfaceToProbe { .. } => {
+                Some("a surface shorter than the spacing gets no point: give --spacing a smaller figure".into())
             }
             _ => None,
         }

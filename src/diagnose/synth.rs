@@ -76,8 +76,17 @@ pub fn synth(
         }
         Kind::Profile => {
             let mut surface = surface_points(nominal, options.spacing_mm);
+            let spacing_mm = options.spacing_mm;
+            if surface.is_empty() {
+                let why = "every surface the program finishes is shorter than the spacing";
+                return Err(ForwardError::NoSurfaceToProbe { spacing_mm, why });
+            }
             if let Some(part) = &nominal.part {
                 surface.retain(|&p| part.is_on_surface(p));
+                if surface.is_empty() {
+                    let why = "later cuts remove every point of the finished passes from the part";
+                    return Err(ForwardError::NoSurfaceToProbe { spacing_mm, why });
+                }
             }
             let parts = if options.parts.is_empty() { vec![None] } else { options.parts.clone() };
             let several = parts.len() > 1;

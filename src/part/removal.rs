@@ -5,7 +5,7 @@ use smallvec::SmallVec;
 
 use super::dexel::{Dexels, Edge, STOCK, Span, Spans, Taken};
 use super::stock::Stock;
-use super::sweep::{Sweep, Wedge};
+use super::sweep::Sweep;
 use super::tool::{self, Orientation, Tool};
 use crate::semantic::Machine;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
@@ -157,13 +157,9 @@ impl<'a> Removal<'a> {
             self.thread = None;
         }
         if m.is_arc() {
-            let offset = tool.centre_offset;
-            let centre = Xz::new(m.centre.x + offset.x, m.centre.z + offset.z);
+            let centre = tool.centre(m.centre);
             let ccw = m.motion == Motion::Ccw;
-            if tool.nose > 0.0 {
-                out.push(Sweep::arc(c0, c1, centre, ccw, tool.nose));
-            }
-            arc_body(tool, c0, c1, centre, ccw, &mut out);
+            out.push(Sweep::body_along_arc(tool.core.iter().copied(), tool.nose, (c0, c1, centre), ccw));
         } else {
             out.push(Sweep::rounded(tool.placed(c0).chain(tool.placed(c1)), tool.nose));
         }
@@ -173,11 +169,15 @@ impl<'a> Removal<'a> {
     /// Run move `index` of `toolpath`: a rapid only measures what it meets, every other
     /// move removes what it sweeps. `None` once the bound on work is passed.
     pub fn step(&mut self, toolpath: &Toolpath, index: usize) -> Option<Outcome> {
-        let m = &toolpath.moves[index];
+        self.step_move(toolpath.start_of(index), &toolpath.moves[index], index)
+    }
+
+    /// [`Removal::step`] for the move `m` from `start`, its cuts recorded as move `index`'s
+    /// (a piece of a move, cut as the move it is a piece of).
+    pub fn step_move(&mut self, start: Xz, m: &Move, index: usize) -> Option<Outcome> {
         if m.motion == Motion::Dwell {
             return Some(Outcome::default());
         }
-        let start = toolpath.start_of(index);
         let tool = self.tool(m, start);
         // Most moves of a long program run in air: a move whose tool's box meets no material
         // does nothing, and its sweeps are not built (a thread pass's count of leads is).
@@ -241,8 +241,7 @@ impl<'a> Removal<'a> {
 }
 
 /// A box that holds everything the tool of move `m` (from `start`) sweeps: its nose centre's
-/// path (with an arc's extremes, and the sagitta its body's chords are moved by, `arc_body`)
-/// grown by the core's extent and the nose.
+/// path (with an arc's extremes) grown by the core's extent and the nose.
 fn reach_of_move(tool: &Tool, start: Xz, m: &Move) -> (Xz, Xz) {
     let (c0, c1) = (tool.centre(start), tool.centre(m.end));
     let mut lo = Xz::new(c0.x.min(c1.x), c0.z.min(c1.z));
@@ -253,9 +252,6 @@ fn reach_of_move(tool: &Tool, start: Xz, m: &Move) -> (Xz, Xz) {
             lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
             hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
         }
-        let sagitta = c0.distance(centre) * (1.0 - (std::f64::consts::PI / 8.0).cos());
-        lo = Xz::new(lo.x - sagitta, lo.z - sagitta);
-        hi = Xz::new(hi.x + sagitta, hi.z + sagitta);
     }
     let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
     for p in &tool.core {
@@ -295,39 +291,4 @@ fn stamps(threaded: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Sto
         return (0.0, 0);
     }
     (first, (last - first) as u64 + 1)
-}
-
-/// The insert's body swept along an arc: the body at the arc's two ends, and along chords of
-/// at most 45°, each moved toward the part by its sagitta and held to the part's side of the
-/// circle the nose sweeps and to the angles it spans, so the body never reaches past the
-/// nose's own sweep (a chord's rounded end beside the nose's disk at the arc's end would
-/// reach past it by a micrometre) and leaves no film beside it.
-fn arc_body(tool: &Tool, c0: Xz, c1: Xz, centre: Xz, ccw: bool, out: &mut SmallVec<[Sweep; 6]>) {
-    let radius = c0.distance(centre);
-    let a0 = crate::geometry::angle(c0, centre);
-    let total = crate::geometry::sweep(c0, c1, centre, ccw);
-    let pieces = (total / (std::f64::consts::PI / 4.0)).ceil().max(1.0) as usize;
-    let step = total / pieces as f64 * if ccw { 1.0 } else { -1.0 };
-    // Where the body lies from the nose centre.
-    let body = tool.core.iter().fold(Xz::new(0.0, 0.0), |s, p| Xz::new(s.x + p.x, s.z + p.z));
-    let sagitta = radius * (1.0 - (step.abs() / 2.0).cos());
-    out.push(Sweep::rounded(tool.placed(c0), tool.nose));
-    out.push(Sweep::rounded(tool.placed(c1), tool.nose));
-    for k in 0..pieces {
-        let (from, to) = (a0 + step * k as f64, a0 + step * (k + 1) as f64);
-        let mid = (from + to) / 2.0;
-        let u = Xz::new(mid.sin(), mid.cos());
-        // The body outside the circle: the part is inside it.
-        let part_inside = u.x * body.x + u.z * body.z > 0.0;
-        let shift = if part_inside { 0.0 } else { sagitta };
-        let p = |a: f64| {
-            let r = radius + shift;
-            Xz::new(centre.x + r * a.sin(), centre.z + r * a.cos())
-        };
-        let (p0, p1) = (p(from), p(to));
-        let inner = Sweep::rounded(tool.placed(p0).chain(tool.placed(p1)), tool.nose);
-        let clip = if part_inside { radius - tool.nose } else { radius + tool.nose };
-        let wedge = Wedge::between(centre, from, to);
-        out.push(Sweep::Clipped { inner: Box::new(inner), centre, radius: clip, outside: part_inside, wedge });
-    }
 }

@@ -3,9 +3,10 @@
 //! Every shape the part model cuts with is one of two: a convex polygon grown by a disk
 //! (`Rounded`: a round nose alone is a point grown by its radius; a nose on its insert, a
 //! grooving insert, a threading V and a drill are polygons grown by the nose radius, and a
-//! line move sweeps the hull of the polygon at its two ends), or a disk moved along an arc
-//! (`ArcNose`: an annular sector between `R − r` and `R + r` closed by the disks at its
-//! ends). A line crosses a convex region in one interval; an arc's sweep in at most three.
+//! line move sweeps the hull of the polygon at its two ends), or such a polygon moved along
+//! an arc (`BodyAlongArc`: the polygon at the arc's ends, each vertex's disk along the arc
+//! (an annular sector between `R − r` and `R + r`) and each offset edge along the arc). A
+//! line crosses a convex region in one interval; an arc's sweep in a few.
 //! Each end of an interval is computed in f64 from the shape's own equations and carries the
 //! sweep's outward normal there, so the surface a cut leaves is known at that point to the
 //! rounding of one square root, and which piece of the sweep (a side, a disk, an arc) made
@@ -88,61 +89,60 @@ pub(crate) enum Sweep {
     /// The convex polygon `points` (in order round it, or one or two points) grown by a
     /// disk of `radius`.
     Rounded { points: SmallVec<[Xz; 8]>, radius: f64 },
-    /// A disk of `radius` (`r`) moved along the arc from `start` to `end` about `centre`.
-    ArcNose { start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64, sector: Sector },
-    /// A rounded polygon (`Rounded`) within the wedge of its chord, less the disk of `radius`
-    /// about `centre` (`outside`) or within it: the insert's body swept along a chord of an
-    /// arc, held to the arc's side of the circle its nose sweeps, so that its surface there
-    /// is the circle's, and to the angles the chord spans, so that its rounded ends do not
-    /// reach past the nose's disks at the chord's ends (the true sweep there).
-    Clipped { inner: Box<Sweep>, centre: Xz, radius: f64, outside: bool, wedge: Wedge },
+    /// A rounded convex polygon moved along an arc: an insert (its nose and the body behind
+    /// it) on an arc move (`BodyAlongArc`).
+    BodyAlongArc(Box<BodyAlongArc>),
 }
 
-/// The points about `centre` whose direction lies between two angles less than a half turn
-/// apart (the angle of a direction is `a` for `(sin a, cos a)`, as `geometry::angle`): those
-/// `p` with `(p − centre)·side ≥ 0` for both sides.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Wedge {
+/// A rounded convex polygon (`core` about the nose centre, grown by the nose `radius`) whose
+/// nose centre moves along the arc from `start` to `end` about `centre`. The region it
+/// sweeps is the union of the polygon at the arc's two ends, each vertex's disk moved along
+/// the arc (an annular sector about the centre moved by the vertex) and each offset edge
+/// moved along the arc: every point the polygon passes over lies in the polygon at the start
+/// or was crossed by its boundary on the way. A line crosses an edge moved along an arc
+/// where the edge at angle `θ` crosses it, at a parameter `t(θ)` that is a sinusoid in `θ`,
+/// over the angles where the crossing lies on the edge (`edge_along_arc`): its extremes are
+/// at the arc's ends, where the crossing reaches an end of the edge, or where the arc runs
+/// parallel to the edge, all in closed form. So the sweep is exact, as a nose's own is.
+#[derive(Debug, Clone)]
+pub(crate) struct BodyAlongArc {
+    /// The nose radius the polygon is grown by.
+    radius: f64,
     centre: Xz,
-    sides: [Xz; 2],
+    arc_radius: f64,
+    /// The angles the nose centre passes (`geometry::angle`), lower first, and their
+    /// directions `u(θ) = (sin θ, cos θ)`.
+    angles: (f64, f64),
+    angle_directions: (Xz, Xz),
+    /// The box of the nose centre's path (its ends and the arc's extremes).
+    path: (Xz, Xz),
+    /// The polygon at the arc's two ends.
+    ends: [SmallVec<[Xz; 8]>; 2],
+    /// Each vertex about the nose centre, and its disk's sector (the nose centre's, moved by
+    /// the vertex).
+    vertices: SmallVec<[(Xz, Sector); 4]>,
+    edges: SmallVec<[ArcEdge; 4]>,
 }
 
-impl Wedge {
-    /// The wedge about `centre` from angle `from` to angle `to`, either way round.
-    pub fn between(centre: Xz, from: f64, to: f64) -> Wedge {
-        let (lo, hi) = (from.min(to), from.max(to));
-        // d/da (sin a, cos a) = (cos a, −sin a) points toward growing angles.
-        Wedge { centre, sides: [Xz::new(lo.cos(), -lo.sin()), Xz::new(-hi.cos(), hi.sin())] }
-    }
+/// An offset edge of a [`BodyAlongArc`]'s polygon, about the nose centre.
+#[derive(Debug, Clone, Copy)]
+struct ArcEdge {
+    a: Xz,
+    b: Xz,
+    /// Its outward normal.
+    normal: Xz,
+    /// For the rays along Z and along X: the angle `θ` where `t(θ)` turns (mod π) and its
+    /// direction `u(θ)`; none where the edge runs along the rays.
+    turns: [Option<(f64, Xz)>; 2],
+}
 
-    /// The part of `piece` of `line` inside the wedge; a new end's normal faces out of it.
-    fn clip(&self, line: Line, piece: (Hit, Hit)) -> Option<(Hit, Hit)> {
-        let (mut lo, mut hi) = piece;
-        let origin = line.point(0.0);
-        let direction = if line.along_z { Xz::new(0.0, 1.0) } else { Xz::new(1.0, 0.0) };
-        for side in self.sides {
-            // Along the line the side's test is `alpha + beta·t ≥ 0`.
-            let alpha = (origin.x - self.centre.x) * side.x + (origin.z - self.centre.z) * side.z;
-            let beta = direction.x * side.x + direction.z * side.z;
-            let normal = Xz::new(-side.x, -side.z);
-            if beta == 0.0 {
-                if alpha < 0.0 {
-                    return None;
-                }
-            } else if beta > 0.0 {
-                let t = -alpha / beta;
-                if t > lo.t {
-                    lo = Hit { t, normal };
-                }
-            } else {
-                let t = -alpha / beta;
-                if t < hi.t {
-                    hi = Hit { t, normal };
-                }
-            }
-        }
-        (hi.t > lo.t).then_some((lo, hi))
-    }
+/// The unit vectors of a family's rays: the coordinate a ray holds fixed, and its parameter.
+fn axes(along_z: bool) -> (Xz, Xz) {
+    if along_z { (Xz::new(1.0, 0.0), Xz::new(0.0, 1.0)) } else { (Xz::new(0.0, 1.0), Xz::new(1.0, 0.0)) }
+}
+
+fn dot(p: Xz, q: Xz) -> f64 {
+    p.x * q.x + p.z * q.z
 }
 
 fn unit(v: Xz) -> Xz {
@@ -157,8 +157,66 @@ impl Sweep {
         Sweep::Rounded { points: convex_hull(points.into_iter().collect()), radius }
     }
 
+    /// A disk of `radius` moved along the arc from `start` to `end` about `centre`.
+    #[cfg(test)]
     pub fn arc(start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64) -> Sweep {
-        Sweep::ArcNose { start, end, centre, ccw, radius, sector: Sector::new(start, end, centre, ccw) }
+        Sweep::body_along_arc([Xz::new(0.0, 0.0)], radius, (start, end, centre), ccw)
+    }
+
+    /// The convex polygon `core` (about the nose centre) grown by `radius`, its nose centre
+    /// moved along the arc from `start` to `end` about `centre` ([`BodyAlongArc`]).
+    pub fn body_along_arc(
+        core: impl IntoIterator<Item = Xz>,
+        radius: f64,
+        (start, end, centre): (Xz, Xz, Xz),
+        ccw: bool,
+    ) -> Sweep {
+        let core = convex_hull(core.into_iter().collect());
+        let a0 = crate::geometry::angle(start, centre);
+        let total = crate::geometry::sweep_from(a0, start, end, centre, ccw);
+        let a1 = if ccw { a0 + total } else { a0 - total };
+        let moved = |p: Xz, v: Xz| Xz::new(p.x + v.x, p.z + v.z);
+        let vertices = core
+            .iter()
+            .map(|&v| (v, Sector::with_angles(moved(start, v), moved(end, v), moved(centre, v), ccw, a0, total)))
+            .collect();
+        let mut lo = Xz::new(start.x.min(end.x), start.z.min(end.z));
+        let mut hi = Xz::new(start.x.max(end.x), start.z.max(end.z));
+        for p in crate::geometry::arc_extremes(start, end, centre, ccw) {
+            lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
+            hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
+        }
+        let n = core.len();
+        let mut edges = SmallVec::new();
+        for i in 0..if n >= 2 { n } else { 0 } {
+            let (a, b) = (core[i], core[(i + 1) % n]);
+            let d = unit(Xz::new(b.x - a.x, b.z - a.z));
+            let normal = Xz::new(d.z, -d.x);
+            let offset = |p: Xz| Xz::new(p.x + normal.x * radius, p.z + normal.z * radius);
+            let edge = Xz::new(b.x - a.x, b.z - a.z);
+            let turns = [true, false].map(|along_z| {
+                let (fixed, along) = axes(along_z);
+                let (df, dg) = (dot(edge, fixed), dot(edge, along));
+                // t(θ) = t0 + R u(θ)·w turns where u is along w.
+                (df != 0.0).then(|| {
+                    let w = Xz::new(along.x - fixed.x * dg / df, along.z - fixed.z * dg / df);
+                    (w.x.atan2(w.z), unit(w))
+                })
+            });
+            edges.push(ArcEdge { a: offset(a), b: offset(b), normal, turns });
+        }
+        let (low, high) = (a0.min(a1), a0.max(a1));
+        Sweep::BodyAlongArc(Box::new(BodyAlongArc {
+            radius,
+            centre,
+            arc_radius: start.distance(centre),
+            angles: (low, high),
+            angle_directions: (Xz::new(low.sin(), low.cos()), Xz::new(high.sin(), high.cos())),
+            path: (lo, hi),
+            ends: [start, end].map(|at| core.iter().map(|&v| moved(at, v)).collect()),
+            vertices,
+            edges,
+        }))
     }
 
     /// The box that holds the sweep: lowest x and z, highest x and z.
@@ -173,16 +231,18 @@ impl Sweep {
                 }
                 (Xz::new(lo.x - radius, lo.z - radius), Xz::new(hi.x + radius, hi.z + radius))
             }
-            Sweep::ArcNose { start, end, centre, ccw, radius, .. } => {
-                let mut lo = Xz::new(start.x.min(end.x), start.z.min(end.z));
-                let mut hi = Xz::new(start.x.max(end.x), start.z.max(end.z));
-                for p in crate::geometry::arc_extremes(*start, *end, *centre, *ccw) {
-                    lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
-                    hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
+            Sweep::BodyAlongArc(body) => {
+                let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+                for (p, _) in &body.vertices {
+                    core_lo = Xz::new(core_lo.x.min(p.x), core_lo.z.min(p.z));
+                    core_hi = Xz::new(core_hi.x.max(p.x), core_hi.z.max(p.z));
                 }
-                (Xz::new(lo.x - radius, lo.z - radius), Xz::new(hi.x + radius, hi.z + radius))
+                let (r, (lo, hi)) = (body.radius, body.path);
+                (
+                    Xz::new(lo.x + core_lo.x - r, lo.z + core_lo.z - r),
+                    Xz::new(hi.x + core_hi.x + r, hi.z + core_hi.z + r),
+                )
             }
-            Sweep::Clipped { inner, .. } => inner.bounds(),
         }
     }
 
@@ -195,32 +255,201 @@ impl Sweep {
                     out.push(interval);
                 }
             }
-            Sweep::ArcNose { start, end, centre, radius, sector, .. } => {
-                let mut pieces: SmallVec<[(Hit, Hit); 6]> = SmallVec::new();
-                for disk in [*start, *end] {
-                    if let Some(piece) = disk_hits(line, disk, *radius) {
-                        pieces.push(piece);
-                    }
-                }
-                annular_sector(line, *centre, start.distance(*centre), *radius, sector, &mut pieces);
-                pieces.sort_by(|a, b| a.0.t.total_cmp(&b.0.t));
-                for piece in pieces {
-                    match out.last_mut() {
-                        Some(last) if piece.0.t <= last.1.t + MERGE => {
-                            if piece.1.t > last.1.t {
-                                last.1 = piece.1;
-                            }
-                        }
-                        _ => out.push(piece),
-                    }
+            Sweep::BodyAlongArc(body) => out = body.cross(line),
+        }
+        out
+    }
+}
+
+impl BodyAlongArc {
+    /// Whether `line` may meet what a piece spanning `from..=to` about the nose centre
+    /// (across the line) sweeps.
+    fn reaches(&self, line: Line, from: f64, to: f64) -> bool {
+        let (lo, hi) = self.path;
+        let (path_lo, path_hi) = if line.along_z { (lo.x, hi.x) } else { (lo.z, hi.z) };
+        line.at >= path_lo + from && line.at <= path_hi + to
+    }
+
+    /// Where `line` is inside the sweep (see [`BodyAlongArc`]).
+    fn cross(&self, line: Line) -> Crossing {
+        let r = self.radius;
+        let fixed = |p: Xz| if line.along_z { p.x } else { p.z };
+        let mut pieces: SmallVec<[(Hit, Hit); 12]> = SmallVec::new();
+        for placed in &self.ends {
+            pieces.extend(rounded_polygon(line, placed, r));
+        }
+        if r > 0.0 {
+            for (v, sector) in &self.vertices {
+                if self.reaches(line, fixed(*v) - r, fixed(*v) + r) {
+                    let centre = Xz::new(self.centre.x + v.x, self.centre.z + v.z);
+                    let mut ring: SmallVec<[(Hit, Hit); 6]> = SmallVec::new();
+                    annular_sector(line, centre, self.arc_radius, r, sector, &mut ring);
+                    pieces.extend(ring);
                 }
             }
-            Sweep::Clipped { inner, centre, radius, outside, wedge } => {
-                out = clip(line, inner.cross(line), *centre, *radius, *outside, wedge);
+        }
+        for edge in &self.edges {
+            let (fa, fb) = (fixed(edge.a), fixed(edge.b));
+            if self.reaches(line, fa.min(fb), fa.max(fb)) {
+                self.edge_along_arc(line, edge, &mut pieces);
+            }
+        }
+        pieces.sort_by(|a, b| a.0.t.total_cmp(&b.0.t));
+        let mut out = Crossing::new();
+        for piece in pieces {
+            match out.last_mut() {
+                Some(last) if piece.0.t <= last.1.t + MERGE => {
+                    if piece.1.t > last.1.t {
+                        last.1 = piece.1;
+                    }
+                }
+                _ => out.push(piece),
             }
         }
         out
     }
+
+    /// Where `line` crosses `edge` moved along the arc, pushed onto `out`. With the nose
+    /// centre at `centre + R·u(θ)`, `u(θ) = (sin θ, cos θ)`, the edge crosses the line at a
+    /// fraction `s(θ)` along it and at a parameter `t(θ)` along the line, both affine in
+    /// `u(θ)`; the crossing is on the edge where `0 ≤ s ≤ 1`. Between the angles where `s`
+    /// reaches 0 or 1 or `t` turns (`u ∥ w`, every half turn), the crossing is wholly on
+    /// the edge or off it and `t` is monotonic, so each stretch on the edge covers the
+    /// interval between its marks' least and greatest `t`. The marks are at most half a turn
+    /// apart, so the direction midway between two is their directions' sum, normalised.
+    fn edge_along_arc(&self, line: Line, edge: &ArcEdge, out: &mut SmallVec<[(Hit, Hit); 12]>) {
+        let (fixed, along) = axes(line.along_z);
+        let r = self.arc_radius;
+        let (lo, hi) = self.angles;
+        let normal = edge.normal;
+        // The edge's start when the nose centre is at the arc's centre.
+        let base = Xz::new(self.centre.x + edge.a.x, self.centre.z + edge.a.z);
+        let vector = Xz::new(edge.b.x - edge.a.x, edge.b.z - edge.a.z);
+        let (df, dg) = (dot(vector, fixed), dot(vector, along));
+        // An end where the crossing reaches an end of the edge: a vertex's path, whose disk
+        // has the edge's normal there; a corner of a polygon without a nose traces an arc,
+        // whose normal there is radial.
+        let end_normal = |u: Xz, low: bool| {
+            if self.radius > 0.0 {
+                return normal;
+            }
+            if (dot(u, along) > 0.0) == low { Xz::new(-u.x, -u.z) } else { u }
+        };
+        let Some((turn, turn_direction)) = edge.turns[usize::from(!line.along_z)] else {
+            // The edge runs along the line: it lies on it where its fixed coordinate does.
+            let v = (line.at - dot(base, fixed)) / r;
+            for (_, u) in roots(line.along_z, v, lo, hi) {
+                let p = Xz::new(base.x + r * u.x, base.z + r * u.z);
+                let (t0, t1) = (dot(p, along), dot(p, along) + dg);
+                if t0 != t1 {
+                    let (t0, t1) = (t0.min(t1), t0.max(t1));
+                    out.push((Hit { t: t0, normal: end_normal(u, true) }, Hit { t: t1, normal: end_normal(u, false) }));
+                }
+            }
+            return;
+        };
+        // s(θ) = s0 − R u(θ)·fixed / df;  t(θ) = t0 + R u(θ)·w.
+        let s0 = (line.at - dot(base, fixed)) / df;
+        let t0 = dot(base, along) + s0 * dg;
+        let w = Xz::new(along.x - fixed.x * dg / df, along.z - fixed.z * dg / df);
+        let s = |u: Xz| s0 - r * dot(u, fixed) / df;
+        let t = |u: Xz| t0 + r * dot(u, w);
+        // The marks: angle, direction, and whether the crossing is at an end of the edge.
+        let mut marks: SmallVec<[(f64, Xz, bool); 12]> = SmallVec::new();
+        marks.push((lo, self.angle_directions.0, false));
+        marks.push((hi, self.angle_directions.1, false));
+        for k in [0.0, 1.0] {
+            let v = (line.at - dot(base, fixed) - k * df) / r;
+            marks.extend(roots(line.along_z, v, lo, hi).into_iter().map(|(theta, u)| (theta, u, true)));
+        }
+        let half = std::f64::consts::PI;
+        let (first, last) = (((lo - turn) / half).ceil(), ((hi - turn) / half).floor());
+        if first.is_finite() && last.is_finite() && last >= first && last - first < 4.0 {
+            for k in first as i64..=last as i64 {
+                let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+                marks.push((turn + k as f64 * half, Xz::new(sign * turn_direction.x, sign * turn_direction.z), false));
+            }
+        }
+        marks.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let midway = |(a, ua): (f64, Xz), (b, ub): (f64, Xz)| {
+            let sum = Xz::new(ua.x + ub.x, ua.z + ub.z);
+            let length = (sum.x * sum.x + sum.z * sum.z).sqrt();
+            if length > 1e-3 {
+                Xz::new(sum.x / length, sum.z / length)
+            } else {
+                let m = 0.5 * (a + b);
+                Xz::new(m.sin(), m.cos())
+            }
+        };
+        // An end is the sweep's only where the edge faces out along the line there (else
+        // the polygon reaches past it); a segment (no nose) is both its edges.
+        let (facing_low, facing_high) = if dot(normal, along) <= 0.0 {
+            (normal, Xz::new(-normal.x, -normal.z))
+        } else {
+            (Xz::new(-normal.x, -normal.z), normal)
+        };
+        let take = |(u, at_end): (Xz, bool), stretch: &mut Option<(Hit, Hit)>| {
+            let value = t(u);
+            let (low, high) =
+                if at_end { (end_normal(u, true), end_normal(u, false)) } else { (facing_low, facing_high) };
+            match stretch {
+                None => *stretch = Some((Hit { t: value, normal: low }, Hit { t: value, normal: high })),
+                Some((first, last)) => {
+                    if value < first.t {
+                        *first = Hit { t: value, normal: low };
+                    }
+                    if value > last.t {
+                        *last = Hit { t: value, normal: high };
+                    }
+                }
+            }
+        };
+        let mut stretch: Option<(Hit, Hit)> = None;
+        for pair in marks.windows(2) {
+            let ((from, from_u, from_end), (to, to_u, to_end)) = (pair[0], pair[1]);
+            if to <= from || !(0.0..=1.0).contains(&s(midway((from, from_u), (to, to_u)))) {
+                if let Some(done) = stretch.take().filter(|d| d.1.t > d.0.t) {
+                    out.push(done);
+                }
+                continue;
+            }
+            take((from_u, from_end), &mut stretch);
+            take((to_u, to_end), &mut stretch);
+        }
+        if let Some(done) = stretch.take().filter(|d| d.1.t > d.0.t) {
+            out.push(done);
+        }
+    }
+}
+
+/// The angles `θ` from `lo` to `hi`, with their directions `u(θ) = (sin θ, cos θ)`, where
+/// the fixed coordinate of `u` (its x for the rays along Z, its z for those along X) is `v`.
+fn roots(along_z: bool, v: f64, lo: f64, hi: f64) -> SmallVec<[(f64, Xz); 4]> {
+    let mut out = SmallVec::new();
+    if !(-1.0..=1.0).contains(&v) {
+        return out;
+    }
+    let other = (1.0 - v * v).max(0.0).sqrt();
+    let pair = if along_z {
+        // sin θ = v: θ = asin v (cos ≥ 0) or π − asin v (cos ≤ 0).
+        let a = v.asin();
+        [(a, Xz::new(v, other)), (std::f64::consts::PI - a, Xz::new(v, -other))]
+    } else {
+        // cos θ = v: θ = acos v (sin ≥ 0) or −acos v (sin ≤ 0).
+        let a = v.acos();
+        [(a, Xz::new(other, v)), (-a, Xz::new(-other, v))]
+    };
+    let tau = std::f64::consts::TAU;
+    for (root, u) in pair {
+        let (first, last) = (((lo - root) / tau).ceil(), ((hi - root) / tau).floor());
+        if !(first.is_finite() && last.is_finite()) || last < first || last - first > 2.0 {
+            continue;
+        }
+        for k in first as i64..=last as i64 {
+            out.push((root + k as f64 * tau, u));
+        }
+    }
+    out
 }
 
 /// A sweep made ready for the parallel rays of one family: a rounded polygon's boundary cut
@@ -230,19 +459,7 @@ impl Sweep {
 // The chains live on the stack: a sweep is prepared once per family of each move.
 #[allow(clippy::large_enum_variant)]
 pub(crate) enum Prepared<'s> {
-    Chains {
-        along_z: bool,
-        lower: SmallVec<[Piece; 12]>,
-        upper: SmallVec<[Piece; 12]>,
-    },
-    /// A prepared rounded polygon within a wedge, less or within a disk (`Sweep::Clipped`).
-    Clipped {
-        inner: Box<Prepared<'s>>,
-        centre: Xz,
-        radius: f64,
-        outside: bool,
-        wedge: Wedge,
-    },
+    Chains { along_z: bool, lower: SmallVec<[Piece; 12]>, upper: SmallVec<[Piece; 12]> },
     General(&'s Sweep),
 }
 
@@ -281,10 +498,6 @@ impl Piece {
 impl Sweep {
     /// This sweep ready for the rays of one family.
     pub fn prepare(&self, along_z: bool) -> Prepared<'_> {
-        if let Sweep::Clipped { inner, centre, radius, outside, wedge } = self {
-            let inner = Box::new(inner.prepare(along_z));
-            return Prepared::Clipped { inner, centre: *centre, radius: *radius, outside: *outside, wedge: *wedge };
-        }
         let Sweep::Rounded { points, radius } = self else { return Prepared::General(self) };
         let (r, n) = (*radius, points.len());
         // (fixed, param) of a point, and of a vector.
@@ -377,9 +590,6 @@ impl Prepared<'_> {
     pub fn cross(&self, line: Line) -> Crossing {
         match self {
             Prepared::General(sweep) => sweep.cross(line),
-            Prepared::Clipped { inner, centre, radius, outside, wedge } => {
-                clip(line, inner.cross(line), *centre, *radius, *outside, wedge)
-            }
             Prepared::Chains { along_z, lower, upper } => {
                 let mut out = Crossing::new();
                 let find = |chain: &[Piece]| chain.iter().find(|p| p.from <= line.at && line.at <= p.to).copied();
@@ -393,41 +603,6 @@ impl Prepared<'_> {
             }
         }
     }
-}
-
-/// `pieces` of `line` within `wedge`, less the disk of `radius` about `centre` (`outside`),
-/// or within it; a disk of no radius is none.
-fn clip(line: Line, pieces: Crossing, centre: Xz, radius: f64, outside: bool, wedge: &Wedge) -> Crossing {
-    let mut out = Crossing::new();
-    let disk = (radius > 0.0).then(|| line.circle(centre, radius)).flatten();
-    let at = |t: f64| {
-        let p = line.point(t);
-        // The sweep's outward normal on the circle: toward the centre when the disk is left
-        // out, away from it when the sweep keeps within it.
-        let n = unit(Xz::new(p.x - centre.x, p.z - centre.z));
-        Hit { t, normal: if outside { Xz::new(-n.x, -n.z) } else { n } }
-    };
-    for (lo, hi) in pieces.into_iter().filter_map(|piece| wedge.clip(line, piece)) {
-        match (disk, outside) {
-            (None, true) => out.push((lo, hi)),
-            (None, false) => {}
-            (Some((d0, d1)), true) => {
-                if d0 > lo.t {
-                    out.push((lo, if d0 < hi.t { at(d0) } else { hi }));
-                }
-                if d1 < hi.t {
-                    out.push((if d1 > lo.t { at(d1) } else { lo }, hi));
-                }
-            }
-            (Some((d0, d1)), false) => {
-                let from = if d0 > lo.t { at(d0) } else { lo };
-                let to = if d1 < hi.t { at(d1) } else { hi };
-                out.push((from, to));
-            }
-        }
-    }
-    out.retain(|(lo, hi)| hi.t > lo.t);
-    out
 }
 
 /// Intervals whose ends lie closer than this (mm) are one: the pieces of one sweep meet
@@ -645,6 +820,99 @@ mod tests {
                         }
                     }
                 }
+            }
+        }
+    }
+
+    /// The distance from `p` to the convex polygon `points` (counter-clockwise) grown by
+    /// `radius`: 0 inside.
+    fn distance_to_rounded(p: Xz, points: &[Xz], radius: f64) -> f64 {
+        let n = points.len();
+        let segment = |a: Xz, b: Xz| {
+            let (dx, dz) = (b.x - a.x, b.z - a.z);
+            let length2 = dx * dx + dz * dz;
+            let s = if length2 > 0.0 { (((p.x - a.x) * dx + (p.z - a.z) * dz) / length2).clamp(0.0, 1.0) } else { 0.0 };
+            p.distance(Xz::new(a.x + dx * s, a.z + dz * s))
+        };
+        let inside = n >= 3
+            && (0..n).all(|i| {
+                let (a, b) = (points[i], points[(i + 1) % n]);
+                (b.x - a.x) * (p.z - a.z) - (b.z - a.z) * (p.x - a.x) >= 0.0
+            });
+        let edge = (0..n).map(|i| segment(points[i], points[(i + 1) % n])).fold(f64::INFINITY, f64::min);
+        if inside { 0.0 } else { (edge - radius).max(0.0) }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 128, ..Default::default() })]
+
+        /// The exact sweep of an insert along an arc against the insert placed at thousands
+        /// of points of the arc: every placement lies inside the sweep, and every point of
+        /// the sweep lies within a placement, or as near one as the placements are apart.
+        #[test]
+        fn a_body_along_an_arc_is_the_union_of_its_placements(
+            corner in 0usize..5,
+            nose in proptest::sample::select(vec![0.0, 0.4, 0.8]),
+            arc_radius in 0.5f64..8.0,
+            start_angle in -3.2f64..3.2,
+            total in 0.01f64..std::f64::consts::TAU,
+            ccw in proptest::bool::ANY,
+            along_z in proptest::bool::ANY,
+            across in 0.0f64..1.0,
+        ) {
+            let body = 6.0;
+            let core: SmallVec<[Xz; 8]> = match corner {
+                4 => SmallVec::from_slice(&[Xz::new(0.0, 0.0), Xz::new(body, 0.0)]),
+                k => {
+                    let (ax, az) = (if k % 2 == 0 { 1.0 } else { -1.0 }, if k / 2 == 0 { 1.0 } else { -1.0 });
+                    SmallVec::from_slice(&[
+                        Xz::new(0.0, 0.0),
+                        Xz::new(body * ax, 0.0),
+                        Xz::new(body * ax, body * az),
+                        Xz::new(0.0, body * az),
+                    ])
+                }
+            };
+            let centre = Xz::new(3.0, -2.0);
+            let sign = if ccw { 1.0 } else { -1.0 };
+            let on = |a: f64| crate::geometry::on_circle(centre, arc_radius, a);
+            let (start, end) = (on(start_angle), on(start_angle + sign * total));
+            let sweep = Sweep::body_along_arc(core.iter().copied(), nose, (start, end, centre), ccw);
+            let hull = convex_hull(core.clone());
+            let count = 2000;
+            let placements: Vec<SmallVec<[Xz; 8]>> = (0..=count)
+                .map(|k| {
+                    let c = on(start_angle + sign * total * k as f64 / count as f64);
+                    hull.iter().map(|v| Xz::new(c.x + v.x, c.z + v.z)).collect()
+                })
+                .collect();
+            // How far a point of the sweep may be from the nearest placement.
+            let apart = arc_radius * total / count as f64 / 2.0 + 1e-9;
+            let (lo, hi) = sweep.bounds();
+            let (from, to) = if along_z { (lo.x, hi.x) } else { (lo.z, hi.z) };
+            let line = Line { along_z, at: from + (to - from) * across };
+            let crossing = sweep.cross(line);
+            for piece in &crossing {
+                proptest::prop_assert!(piece.1.t > piece.0.t, "{crossing:?}");
+            }
+            let (t_lo, t_hi) = if along_z { (lo.z, hi.z) } else { (lo.x, hi.x) };
+            for k in 0..=250 {
+                let t = t_lo - 0.5 + (t_hi - t_lo + 1.0) * k as f64 / 250.0;
+                let p = line.point(t);
+                let nearest = placements.iter().map(|q| distance_to_rounded(p, q, nose)).fold(f64::INFINITY, f64::min);
+                let inside = crossing.iter().any(|(a, b)| a.t - 1e-9 <= t && t <= b.t + 1e-9);
+                if nearest == 0.0 {
+                    proptest::prop_assert!(inside, "{p:?} is under a placement, outside the sweep {crossing:?}");
+                }
+                if inside {
+                    proptest::prop_assert!(nearest <= apart, "{p:?} is {nearest} from every placement");
+                }
+            }
+            // Each end is on the sweep's boundary: its normal faces out along the line.
+            for (a, b) in &crossing {
+                let direction = if along_z { a.normal.z } else { a.normal.x };
+                let direction_b = if along_z { b.normal.z } else { b.normal.x };
+                proptest::prop_assert!(direction <= 1e-9 && direction_b >= -1e-9, "{crossing:?}");
             }
         }
     }

@@ -147,6 +147,7 @@ impl Compensated {
             max_shift_mm: 0.1,
             expand_cycles: false,
             profiles_in_place: in_place,
+            profiles_copied: in_place,
             threads_in_place: in_place,
             paths: false,
             block_reports: true,

@@ -93,3 +93,66 @@ fn cycles_stay_calls_and_what_is_written_verifies() {
         with_snapshots("compensate", || insta::assert_snapshot!(format!("cycles-{}", case.name), text));
     }
 }
+
+/// The copy on OSP, asked for alone (LAP accepts the contour this model compensates in
+/// place, so `compensate` keeps it there): the `G87` call names a contour of its own written
+/// right after it under a new name, as OSP programs write a finishing contour; the `G85`
+/// call and the contour it roughs print as written, and `verify` passes what is written.
+#[test]
+fn an_osp_finishing_call_runs_its_own_compensated_contour() {
+    use turnpass::compensation::fit::{FitOptions, Strategy};
+    use turnpass::compensation::{CompensateOptions, compensate_program};
+    use turnpass::dialect::{DialectChoice, GCodeSystem};
+    use turnpass::error_model::model_file::ModelSpec;
+    use turnpass::machine::{MachineSettings, ModelFile};
+    use turnpass::pipeline::Settings;
+    use turnpass::semantic::LowerOptions;
+    use turnpass::syntax::ParseOptions;
+
+    let (program, model) =
+        ("tests/cases/compensate/cycles/osp-lap-thread.nc", "tests/cases/compensate/cycles/osp-scale.toml");
+    let text = std::fs::read_to_string(repo().join(model)).unwrap();
+    let machine: MachineSettings = ModelFile::from_toml(&text).unwrap().machine;
+    let errors = ModelSpec::from_toml(&text).unwrap().build(|_| Err("no tables".into())).unwrap();
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: machine.gcode_system.unwrap_or(GCodeSystem::A),
+        machine_kind: None,
+        control: Default::default(),
+    };
+    let settings = Settings::new(options, &machine, LowerOptions::new(false));
+    let source = std::fs::read(repo().join(program)).unwrap();
+    let analysed = crate::support::analyse(&source, &settings);
+    let Ok(ready) = analysed.ready() else { panic!("{program} has errors") };
+    let increment = ready.machine.increment * ready.machine.scale();
+    let options = CompensateOptions {
+        fit: FitOptions { strategy: Strategy::Auto, tolerance_mm: increment / 2.0, step_mm: None },
+        max_shift_mm: 0.1,
+        expand_cycles: false,
+        profiles_in_place: false,
+        profiles_copied: true,
+        threads_in_place: true,
+        paths: false,
+        block_reports: true,
+    };
+    let outcome = compensate_program(ready.program(), &ready.lowered, &ready.machine, &errors, &options);
+    assert!(!outcome.refused(), "{:?}", outcome.diagnostics);
+    let written = String::from_utf8(turnpass::printer::print(ready.program(), &outcome.edits)).unwrap();
+    let lines: Vec<&str> = written.lines().collect();
+    let original = String::from_utf8(source.clone()).unwrap();
+    // The roughing call and its contour, as written.
+    for line in original.lines().skip(5).take(7) {
+        assert!(lines.contains(&line), "`{line}` is not written as it was\n{written}");
+    }
+    assert!(!lines.contains(&"G87 N0207"), "the finishing call still names the contour as written\n{written}");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("copied.nc");
+    std::fs::write(&out, &written).unwrap();
+    let (code, json, stderr) =
+        turnpass(&["verify", program, &out.to_string_lossy(), "--model", model, "--format", "json"]);
+    assert_eq!(code, 0, "verify failed what was written\n{json}{stderr}\n{written}");
+    let changed = crate::compensate::changed_lines(&original, &written);
+    let cycles = serde_json::to_string_pretty(&outcome.report.cycles).unwrap();
+    let text = format!("{program} on {model}\n\nchanged lines:\n{changed}\nreport, cycles:\n{cycles}\n");
+    with_snapshots("compensate", || insta::assert_snapshot!("cycles-osp-contour-copied", text));
+}

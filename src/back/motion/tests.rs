@@ -108,7 +108,10 @@ fn a_dwell_and_the_modal_words_of_written_blocks() {
         writer.move_block(&mut modal, &grid, false, Xz::new(20.0, -5.0), &line);
         assert_eq!(writer.take_words(), expected[1..3], "{dialect}");
         let after = ModalAfter { motion: Some(Motion::Rapid), f_word: 0.3, s_word: 1000.0 };
-        assert!(writer.restore(&mut modal, &after));
+        // A next block that writes its own motion code and F needs neither put back.
+        let given = super::GivenNext { motion: true, feed: true, speed: false };
+        assert!(!writer.restore(&mut modal.clone(), &after, given), "{dialect}");
+        assert!(writer.restore(&mut modal, &after, super::GivenNext::default()));
         assert_eq!(writer.take_words(), [code(0), number(Address::F, 3, 1)], "{dialect}");
     }
 }

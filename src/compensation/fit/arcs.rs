@@ -12,9 +12,11 @@
 //!   forced by an end point; that keeps the tangent from see-sawing from piece to piece as
 //!   it does when arcs are chained end point to end point. The move's last piece instead ends
 //!   on the last point exactly (`pinned::with_tangent_to`);
-//! * a **corner** piece starts at the current position in any direction: the circle through
-//!   it and the run's last point fitted to the points between (`pinned::through_ends`), or a
-//!   line to the next point, which always passes and guarantees progress.
+//! * a **corner** piece starts at the current position in any direction: along a programmed
+//!   arc, the circle of the programmed curvature through it and the run's last point where
+//!   that holds the points (the programmer's radius stays where it is as good as any);
+//!   else the circle through both fitted to the points between (`pinned::through_ends`), or
+//!   a line to the next point, which always passes and guarantees progress.
 //!
 //! The smooth piece is taken unless the corner piece covers a third again as many points
 //! (the path has a corner or a step there, such as a backlash take-up, which a tangent
@@ -143,6 +145,14 @@ impl Run<'_> {
             let segment = Segment::Line { end };
             let deviation = deviation::line_bulge_deviation(at, &segment, points, self.between);
             return Some(Piece { segment, tangent, deviation });
+        }
+        // The programmed arc's own curvature where it holds the points: over a run whose
+        // points lie within the tolerance of many circles (a chord of a few increments), a
+        // free fit takes whichever the rounding of the points favours (`G03 R0.010` for a
+        // `G02 R0.8`), where the programmer's radius is as good and stays theirs.
+        let nominal = self.curvature.and_then(|c| pinned::through_ends(at, end, &[], None, Some(c), false));
+        if let Some(piece) = nominal.filter(Bend::writable).and_then(|bend| self.accept(at, &bend, end, points)) {
+            return Some(piece);
         }
         let bend = pinned::through_ends(at, end, interior, None, None, false)?;
         let bend =

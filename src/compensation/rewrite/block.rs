@@ -11,7 +11,8 @@
 //! A move that becomes several segments puts the block's other words on its first block;
 //! the others carry a motion code where it changes, and the coordinates. If the last one
 //! leaves a different motion code in force than the original block did, a block with that
-//! code alone restores it for the blocks that follow.
+//! code alone restores it for the blocks that follow, unless the block the control runs
+//! next writes its own (`back::motion::GivenNext`).
 //!
 //! This module decides which words the block gets; they are written through the back end's
 //! writer (`back::motion::MotionWriter`): its codes from the dialect tables, its
@@ -20,7 +21,7 @@
 use smallvec::SmallVec;
 
 use crate::back::grid::{ArcWords, Grid, GridPoint};
-use crate::back::motion::{Codes, Kind, MotionWriter};
+use crate::back::motion::{Codes, GivenNext, Kind, MotionWriter};
 use crate::dialect::{Address, AddressKind, Dialect};
 use crate::printer::{BlockWriter, WrittenText};
 use crate::semantic::CoordinateMark;
@@ -313,7 +314,7 @@ impl BlockContext<'_, '_> {
             }
             at = (segment.end(), end);
         }
-        if kind != original_kind {
+        if kind != original_kind && !GivenNext::after(self.program, &self.codes, self.block, |_| false).motion {
             out.out.next_block();
             out.motion(original_kind);
         }

@@ -24,7 +24,7 @@ use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::expand;
 use crate::printer::{Edits, NewBlock, NewWord, ProgramStyle};
 use crate::semantic::{Expansion, Lowered};
-use crate::syntax::{CodeLetter, Program, WordKind};
+use crate::syntax::{CodeLetter, Program, WordId, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
 use super::super::fit::Segment;
@@ -188,6 +188,28 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
     let last = e.moves.start + moves.iter().rposition(|m| m.threading)?;
     let (from, to) = (lowered.toolpath.start_of(last), lowered.toolpath.moves.get(last)?.end);
     ((to.z - from.z).abs() > 2.0 * (to.x - from.x).abs()).then_some(last)
+}
+
+/// Whether after the Fanuc roughing call at `call` the program goes on after its `Q` block
+/// (`Interpreter::after_profile`): `Q` names exactly one block, and it comes after the call.
+fn jumps_past_q(program: &Program<'_>, call: usize) -> bool {
+    let block = program.block(call);
+    let crate::syntax::Statement::Cycle(id) = block.statement else { return false };
+    let Some(word) = program.command(id).param(crate::dialect::Role::ProfileEnd) else { return false };
+    let WordKind::Number { number, .. } = program.word(word).kind else { return false };
+    let q = number.to_f64();
+    let named: Vec<usize> = program
+        .blocks()
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| {
+            program
+                .sequence(b)
+                .is_some_and(|w| matches!(w.kind, WordKind::Sequence { number: Some(n) } if f64::from(n) == q))
+        })
+        .map(|(k, _)| k)
+        .collect();
+    matches!(named.as_slice(), [one] if *one > call)
 }
 
 /// The representative of `k`'s group (with path halving).
@@ -380,4 +402,173 @@ fn delete_consumed(
             edits.replace(consumed, vec![NewBlock::new(kept)]);
         }
     }
+}
+
+/// A finishing cycle's own compensated copy of the profile it shares with a roughing cycle
+/// (`profile_copy`): the blocks to write after a call, and the finishing call written again
+/// naming them.
+pub(super) struct ProfileCopy {
+    /// The roughing call, which stays on the profile as written.
+    pub rough: usize,
+    /// The call the copy goes right after.
+    pub after: usize,
+    /// The finishing call, which names the copy.
+    pub finish: usize,
+    pub blocks: Vec<NewBlock>,
+    pub call: NewBlock,
+    /// The copy's first and last sequence names.
+    pub names: (String, String),
+}
+
+/// The copy of the profile of `group` that its finishing cycle runs, compensated, where the
+/// roughing cycle is to stay on the profile as written (the compensated profile would break
+/// a rule of the roughing cycle, or cannot carry the correction block for block); why not,
+/// where it cannot be written. The copy is the finishing pass's compensated moves written as
+/// a cycle's blocks are (`back::cycle_blocks`), the profile blocks' M codes, T words and
+/// comments on the blocks of their moves, under names the program does not use.
+///
+/// * **Fanuc**: the finishing call finds its profile by searching the program for the
+///   sequence numbers its `P` and `Q` name (`semantic::cycles::finishing`), and after a
+///   roughing call whose profile follows it the program goes on after the `Q` block, so the
+///   blocks between the call and the profile never run as plain blocks
+///   (`Interpreter::consume_skipped`): the copy goes there, numbered at its first and last
+///   block, and only the finishing call's `P` and `Q` change.
+/// * **OSP**: a finishing call followed by its own contour (`G87 N0808` then `N0808 G81` …
+///   `G80`, as the real program OSP7000L writes each of its finishing calls) runs it and goes
+///   on after its `G80` (`semantic::cycles::lap_contour`): the copy goes right after the
+///   finishing call between the contour's own `G81`/`G82` and `G80` words, under a new name
+///   that only the call's name word changes to.
+pub(super) fn profile_copy(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    plans: &KeptPlans,
+    group: &ProfileGroup,
+    style: &ProgramStyle,
+) -> Result<ProfileCopy, &'static str> {
+    use crate::dialect::{Address, Dialect, Role};
+    use crate::syntax::{Number, Statement};
+    let osp = program.config().dialect == Dialect::Osp;
+    let expansions = &lowered.expansions;
+    let (finishing, roughing): (Vec<usize>, Vec<usize>) =
+        group.members.iter().partition(|&&k| expansions.get(k).is_some_and(|e| !e.traced.is_empty()));
+    let ([finish], [rough]) = (finishing.as_slice(), roughing.as_slice()) else {
+        return Err("its profile is shared by other than one roughing and one finishing cycle");
+    };
+    let (Some(finish), Some(rough)) = (expansions.get(*finish), expansions.get(*rough)) else {
+        return Err("its cycles are not found");
+    };
+    let profile_first = finish.traced.iter().map(|&(_, b)| b).min().unwrap_or(0);
+    let profile_last = finish.traced.iter().map(|&(_, b)| b).max().unwrap_or(0);
+    if !osp && (profile_first <= rough.block || !jumps_past_q(program, rough.block)) {
+        return Err("the program does not go on after the profile from the roughing call (the profile comes before \
+                    the call, or its Q names no single block), so no block after the call is skipped to hold a copy");
+    }
+    // The words of the finishing call that name its profile, to be written again: `P` and
+    // `Q` numbers, or the contour's name.
+    let call = program.block(finish.block);
+    let command = match call.statement {
+        Statement::Cycle(id) | Statement::LapCall(id) => Some(program.command(id)),
+        _ => None,
+    };
+    let role_word = |role| {
+        command.and_then(|c| c.param(role)).filter(|&id| match program.word(id).kind {
+            WordKind::Number { address: Address::P | Address::Q, .. } => !osp,
+            WordKind::Label { .. } => osp,
+            _ => false,
+        })
+    };
+    let naming: Vec<WordId> = if osp {
+        role_word(Role::ContourName).into_iter().collect()
+    } else {
+        role_word(Role::ProfileStart).into_iter().chain(role_word(Role::ProfileEnd)).collect()
+    };
+    if naming.len() != if osp { 1 } else { 2 } {
+        return Err("the finishing call does not name its profile by plain words that can be written again");
+    }
+    // An OSP contour's own first and last blocks (`G81`/`G82`, `G80`), whose words other
+    // than their names the copy writes again.
+    let marker = |block: usize| matches!(program.block(block).statement, Statement::LapMarker(_));
+    let markers = if osp {
+        let open = (0..profile_first).rev().find(|&b| marker(b));
+        let close = (profile_last + 1..program.blocks().len()).find(|&b| marker(b));
+        match (open, close) {
+            (Some(open), Some(close)) => Some((open, close)),
+            _ => return Err("the contour's G81/G82 and G80 blocks are not found"),
+        }
+    } else {
+        None
+    };
+    let first = finish.traced.first().map_or(finish.moves.start, |&(m, _)| m);
+    let end = finish.traced_end.clamp(first, finish.moves.end);
+    let (Some(moves), Some(copy_plans)) = (lowered.toolpath.moves.get(first..end), plans.get(first..end)) else {
+        return Err("its finishing pass was not planned");
+    };
+    let start = copy_plans.first().map_or(lowered.toolpath.start, |p| p.start);
+    let compensation_before =
+        first.checked_sub(1).and_then(|k| lowered.toolpath.moves.get(k)).map_or(Compensation::Off, |m| m.compensation);
+    let shift = lowered.coordinates_at(first).shift;
+    let (compensated, firsts) = compensated_moves(moves, copy_plans, compensation_before);
+    let mut blocks = match cycle_blocks(program, finish, &compensated, start, compensation_before, shift, style) {
+        CycleBlocks::Blocks(blocks) if !blocks.is_empty() => blocks,
+        _ => return Err("its finishing pass has no plain-block form"),
+    };
+    let at = |m: usize| firsts.get(m - first).copied().unwrap_or(compensated.len());
+    carry_traced(program, &mut blocks, compensated.len(), finish.traced.iter().map(|&(m, b)| (at(m), b)));
+    // Names the program does not use: numbers above its largest, in steps of ten (at least
+    // four digits on OSP, whose names are text: `N0220` and `N220` name different blocks).
+    let largest = program
+        .blocks()
+        .iter()
+        .flat_map(|b| program.words_of(b))
+        .filter_map(|w| match w.kind {
+            WordKind::Sequence { number } | WordKind::Label { number } => number,
+            _ => None,
+        })
+        .max()
+        .unwrap_or(0);
+    let mut p = (u64::from(largest) / 10 + 1) * 10;
+    if osp {
+        p = p.max(1000);
+    }
+    let q = if blocks.len() > 1 && !osp { p + 10 } else { p };
+    let digits = program.config().tables().lexical.sequence_max;
+    let max = 10u64.saturating_pow(u32::try_from(digits).unwrap_or(u32::MAX)) - 1;
+    if q > max {
+        return Err("no free sequence numbers are left above the program's largest for the copy");
+    }
+    let unnamed = |block: usize| -> Vec<NewWord> {
+        let b = program.block(block);
+        (0..program.words_of(b).len() as u32)
+            .map(|k| b.first_word + k)
+            .filter(|&id| !matches!(program.word(id).kind, WordKind::Sequence { .. }))
+            .map(NewWord::Copy)
+            .collect()
+    };
+    let names = if let Some((open, close)) = markers {
+        let name = format!("N{p}");
+        blocks.insert(0, NewBlock { sequence: Some(name.clone()), words: unnamed(open) });
+        blocks.push(NewBlock::new(unnamed(close)));
+        (name.clone(), name)
+    } else {
+        let names = (format!("N{p}"), format!("N{q}"));
+        if let Some(b) = blocks.first_mut() {
+            b.sequence = Some(names.0.clone());
+        }
+        if let Some(b) = blocks.last_mut() {
+            b.sequence = Some(names.1.clone());
+        }
+        names
+    };
+    let number = |n: u64| Number::new(n as i64, 0, false);
+    let call_words = (0..program.words_of(call).len() as u32)
+        .map(|k| call.first_word + k)
+        .map(|id| match naming.iter().position(|&w| w == id) {
+            Some(0) if osp => NewWord::Number(Address::N, number(p)),
+            Some(0) => NewWord::Number(Address::P, number(p)),
+            Some(_) => NewWord::Number(Address::Q, number(q)),
+            None => NewWord::Copy(id),
+        })
+        .collect();
+    let after = if osp { finish.block } else { rough.block };
+    Ok(ProfileCopy { rough: rough.block, after, finish: finish.block, blocks, call: NewBlock::new(call_words), names })
 }

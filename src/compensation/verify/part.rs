@@ -11,7 +11,11 @@
 //! a thread pass stamped every lead at the points the model puts the tool when the spindle
 //! has turned a whole number of times (the lead of each piece scaled by its length on the
 //! model over its length as programmed). Between two samples the model is followed as
-//! `verify`'s sampling allows (a tenth of half the least increment).
+//! `verify`'s sampling allows (a tenth of half the least increment). The part model sweeps
+//! a line or an arc exactly, whole or in pieces, so the nominal part is cut along the
+//! original's own moves and the parts differ by the model alone. Each program is cut a move
+//! at a time as its points are predicted (`PieceCut`): the measure holds the three parts,
+//! not the paths.
 //!
 //! **The probe.** Every end of an interval of material on a ray is a point of the nominal
 //! surface with its outward normal `n` and the move that cut it. The actual part's edge of
@@ -45,7 +49,6 @@ use crate::part::{Part, Stock};
 use crate::semantic::Machine;
 use crate::semantic::nose_radius::ToolTable;
 use crate::source::Span;
-use crate::toolpath::compact::CompactPath;
 use crate::toolpath::{Motion, Move, Toolpath, ValidToolpath, Xz};
 
 use super::super::deviation::{Figures, Tally};
@@ -69,9 +72,8 @@ pub struct PartDeviation {
     pub stock: Stock,
     /// The rays' spacing, mm.
     pub spacing_mm: f64,
-    /// The length of the nominal surface not probed, mm: cut by an insert's body along an arc
-    /// on either part (`BodyAlongArcs`), which the part model sweeps along chords, or at an
-    /// edge of the actual part that the probe along the normal passes.
+    /// The length of the nominal surface not probed, mm: at an edge of the actual part that
+    /// the probe along the normal passes.
     pub unprobed_mm: f64,
     /// Where a part model stopped at its bound on work (the program, the block of its own
     /// text), none when all three ran to the end: the figures then cover only what was cut.
@@ -184,27 +186,31 @@ pub fn part_deviation_watched(
             stopped: None,
         };
     };
-    // The three parts on the same rays: the spacing follows the original's moves.
+    // The three parts on the same rays: the spacing follows the original's moves. The
+    // nominal part is the original's moves cut as programmed (the part `check` finds); each
+    // actual part is its program cut in pieces between the points the model puts the tool
+    // at, a move at a time as the points are predicted, so that no path of pieces is held.
     let rays_for = original.moves.len();
     let block = |toolpath: &Toolpath, k: usize| toolpath.moves.get(k).map_or(Span::new(0, 0), |m| m.source);
     let original_side = || {
-        let points = points(&original_compact, model, sampling, Side::Original, watch);
-        let (nominal_path, origin) = pieces(original, &points, false);
-        let (nominal, nominal_stop) = cut(&nominal_path, Some(&origin), stock, machine, rays_for);
-        let (path, _) = pieces(original, &points, true);
-        let (before, before_stop) = cut(&path, Some(&origin), stock, machine, rays_for);
-        (nominal, nominal_path, (before, path), origin, nominal_stop.or(before_stop))
+        let (nominal, nominal_stop) = cut(original, stock, machine, rays_for);
+        let mut before = PieceCut::new(original, stock, machine, rays_for);
+        predicted(&original_compact, model, sampling, Side::Original, &mut |side, measured| {
+            watch(side, &measured);
+            before.push(Point::of(&measured));
+        });
+        let (before, before_stop) = before.finish();
+        (nominal, before, nominal_stop.or(before_stop))
     };
     let compensated_side = || {
-        let points = points(&compensated_compact, model, sampling, Side::Compensated, watch);
-        let (path, origin) = pieces(compensated, &points, true);
-        let (after, stop) = cut(&path, Some(&origin), stock, machine, rays_for);
-        ((after, path), origin, stop)
+        let mut after = PieceCut::new(compensated, stock, machine, rays_for);
+        predicted(&compensated_compact, model, sampling, Side::Compensated, &mut |side, measured| {
+            watch(side, &measured);
+            after.push(Point::of(&measured));
+        });
+        after.finish()
     };
-    let (
-        ((after, after_path), after_origin, after_stop),
-        (nominal, nominal_path, (before, before_path), before_origin, before_stop),
-    ) = crate::parallel::join_if(
+    let ((after, after_stop), (nominal, before, before_stop)) = crate::parallel::join_if(
         original.moves.len() >= crate::parallel::tuning().measure_moves,
         compensated_side,
         original_side,
@@ -213,11 +219,8 @@ pub fn part_deviation_watched(
         .map(|k| (Side::Original, block(original, k)))
         .or(after_stop.map(|k| (Side::Compensated, block(compensated, k))));
     let separated_at = Part::new(nominal.clone(), stock).separated_at;
-    let body = BodyAlongArcs::new(&nominal_path, machine);
-    let (body_before, body_after) =
-        (BodyAlongArcs::new(&before_path, machine), BodyAlongArcs::new(&after_path, machine));
-    let probe_before = probe((&nominal, &before_origin, &body), (&before, &before_origin, &body_before), separated_at);
-    let probe_after = probe((&nominal, &before_origin, &body), (&after, &after_origin, &body_after), separated_at);
+    let probe_before = probe(&nominal, &before, separated_at);
+    let probe_after = probe(&nominal, &after, separated_at);
     let unprobed_mm = probe_after.iter().filter(|p| p.1.is_none() && p.2 < 0.0).map(|p| -p.2).sum::<f64>();
     let (probe_before, probe_after): (Vec<_>, Vec<_>) = (
         probe_before.into_iter().filter(|p| p.2 > 0.0).collect(),
@@ -255,19 +258,12 @@ pub fn part_deviation_watched(
 }
 
 /// `toolpath` cut from `stock` on the rays a program of `rays_for` moves gets; the move
-/// (of the program `origin` maps pieces to, when given) where the model stopped at its bound.
-fn cut(
-    toolpath: &Toolpath,
-    origin: Option<&[usize]>,
-    stock: Stock,
-    machine: &Machine,
-    rays_for: usize,
-) -> (Dexels, Option<usize>) {
+/// where the model stopped at its bound.
+fn cut(toolpath: &Toolpath, stock: Stock, machine: &Machine, rays_for: usize) -> (Dexels, Option<usize>) {
     let mut removal = Removal::new(stock, machine, rays_for);
     for index in 0..toolpath.moves.len() {
         if removal.step(toolpath, index).is_none() {
-            let at = origin.map_or(index, |o| o[index]);
-            return (removal.dexels, Some(at));
+            return (removal.dexels, Some(index));
         }
     }
     (removal.dexels, None)
@@ -283,132 +279,134 @@ struct Point {
     predicted: Xz,
 }
 
-/// The points of `program` the measure cuts along (`measure::predicted`), each shown to
-/// `watch`.
-fn points(
-    program: &CompactPath,
-    model: &ErrorModel,
-    sampling: &Sampling,
-    side: Side,
-    watch: &(dyn Fn(Side, &Measured) + Sync),
-) -> Vec<Point> {
-    let mut out = Vec::with_capacity(program.len() * 2);
-    predicted(program, model, sampling, side, &mut |side, measured| {
-        watch(side, &measured);
+impl Point {
+    fn of(measured: &Measured) -> Point {
         let s = measured.sample;
-        out.push(Point { move_index: s.move_index, param: s.param, nominal: s.nominal, predicted: measured.predicted });
-    });
-    out
+        Point { move_index: s.move_index, param: s.param, nominal: s.nominal, predicted: measured.predicted }
+    }
 }
 
-/// `toolpath` cut into pieces at `points`, ending at each point as the model puts it
-/// (`on_model`) or as programmed (see the module documentation), and for each piece the index
-/// of the move of `toolpath` it is a piece of. The nominal part is cut along the same pieces
-/// as the actual one, so that the two differ by the model alone and not by how the part
-/// model sweeps an insert's body along an arc cut in pieces or whole.
-fn pieces(toolpath: &Toolpath, points: &[Point], on_model: bool) -> (Toolpath, Vec<usize>) {
-    let mut path = Toolpath { start: toolpath.start, moves: Vec::with_capacity(points.len()) };
-    let mut origin = Vec::with_capacity(points.len());
-    // The point before: where the piece starts, as programmed, its move and where along it.
-    let mut last = (toolpath.start, toolpath.start, usize::MAX, 0.0);
-    for p in points {
-        let Some(m) = toolpath.moves.get(p.move_index) else { continue };
-        let (from, from_nominal, from_move, from_param) = last;
-        let end = if on_model { p.predicted } else { p.nominal };
-        last = (end, p.nominal, p.move_index, p.param);
-        let mut piece = *m;
-        piece.end = end;
-        // A piece along its move (from its start, or from the point before on it); else the
-        // model's step at a corner, where the point does not move along the path.
-        let along = p.param > 0.0 && (from_move != p.move_index || from_param < p.param);
-        let nominal_length = from_nominal.distance(p.nominal);
-        if m.is_arc() {
-            let ccw = m.motion == Motion::Ccw;
-            let centre = match (along, on_model) {
-                (true, true) => arc_centre(from, end, m.centre).filter(|&centre| {
-                    // The piece turns as the programmed piece does (a piece of a few
-                    // nanometres has no direction to take its centre from: a line).
-                    let turns = geometry::sweep(from, end, centre, ccw);
-                    let programmed = geometry::sweep(from_nominal, p.nominal, m.centre, ccw);
-                    from.distance(end) > ARC_PIECE_MM && (turns - programmed).abs() <= ARC_TURN
-                }),
-                (true, false) => Some(m.centre).filter(|_| from_nominal.distance(p.nominal) > 0.0),
-                (false, _) => None,
-            };
-            match centre {
-                Some(centre) => {
-                    // The part model sweeps an insert's body along an arc's chords, moved
-                    // by their sagitta (`part::removal`): the arc goes in sub-arcs whose
-                    // chords are within `BODY_SAGITTA_MM` of it, so that the body cuts where
-                    // it does on the machine, whatever the samples' spacing.
-                    let radius = from.distance(centre);
-                    let sweep = geometry::sweep(from, end, centre, ccw);
-                    let count = sub_arcs(radius, sweep);
-                    let (a0, sign) = (geometry::angle(from, centre), if ccw { 1.0 } else { -1.0 });
-                    for k in 1..count {
-                        let angle = a0 + sign * sweep * k as f64 / count as f64;
-                        let sub = Move { end: geometry::on_circle(centre, radius, angle), centre, ..piece };
-                        path.moves.push(sub);
-                        origin.push(p.move_index);
-                    }
-                    piece.centre = centre;
-                }
-                None => {
-                    piece.motion = Motion::Feed;
-                    piece.centre = Xz::new(f64::NAN, f64::NAN);
-                }
+/// A program cut from the stock in pieces that end at the points the model puts the tool at
+/// (`measure::predicted`), a move at a time as its points come: a line between two
+/// predicted points, an arc (the programmed one moved) through two predicted points of an
+/// arc with the mean of their radii about the programmed centre, and a thread pass whose
+/// pieces share the lead of the whole move on the model (its length there over its length
+/// as programmed), so that a stamp falls every lead along it as it does on the move whole.
+/// Each piece's cuts are recorded as its move's.
+struct PieceCut<'a> {
+    toolpath: &'a Toolpath,
+    removal: Removal<'a>,
+    /// The point before: where the next piece starts on the model, as programmed, its move
+    /// and where along it.
+    last: (Xz, Xz, usize, f64),
+    /// The points of the move under way, and its pieces.
+    points: Vec<Point>,
+    pieces: Vec<Move>,
+    stopped: Option<usize>,
+}
+
+impl<'a> PieceCut<'a> {
+    fn new(toolpath: &'a Toolpath, stock: Stock, machine: &'a Machine, rays_for: usize) -> PieceCut<'a> {
+        PieceCut {
+            toolpath,
+            removal: Removal::new(stock, machine, rays_for),
+            last: (toolpath.start, toolpath.start, usize::MAX, 0.0),
+            points: Vec::new(),
+            pieces: Vec::new(),
+            stopped: None,
+        }
+    }
+
+    fn push(&mut self, point: Point) {
+        if self.stopped.is_some() {
+            return;
+        }
+        if self.points.last().is_some_and(|p| p.move_index != point.move_index) {
+            self.flush();
+        }
+        self.points.push(point);
+    }
+
+    /// Cut the pieces of the move under way.
+    fn flush(&mut self) {
+        let Some(index) = self.points.first().map(|p| p.move_index) else { return };
+        let start = self.last.0;
+        self.pieces.clear();
+        for k in 0..self.points.len() {
+            let point = self.points[k];
+            if let Some(piece) = piece(self.toolpath, &mut self.last, &point) {
+                self.pieces.push(piece);
             }
         }
-        if m.threading && !(nominal_length > 0.0 && along) {
-            // A step of the model at a corner: no thread is cut along it.
-            piece.threading = false;
-        }
-        path.moves.push(piece);
-        origin.push(p.move_index);
-    }
-    // The spindle turns a lead while the command moves a lead as programmed: the pieces of a
-    // threading move share the lead of the whole move on the model (its length there over
-    // its length as programmed), so that a stamp falls every lead along it, as it does on
-    // the move whole.
-    let mut k = 0;
-    while k < path.moves.len() {
-        let index = origin[k];
-        let end = k + origin[k..].iter().take_while(|&&o| o == index).count();
-        let m = &toolpath.moves[index];
+        self.points.clear();
+        let Some(m) = self.toolpath.moves.get(index) else { return };
         if m.threading {
-            let threaded = |j: usize| path.moves[j].threading;
-            let length: f64 =
-                (k..end).filter(|&j| threaded(j)).map(|j| path.start_of(j).distance(path.moves[j].end)).sum();
-            let programmed = toolpath.start_of(index).distance(m.end);
+            let (mut from, mut length) = (start, 0.0);
+            for piece in &self.pieces {
+                if piece.threading {
+                    length += from.distance(piece.end);
+                }
+                from = piece.end;
+            }
+            let programmed = self.toolpath.start_of(index).distance(m.end);
             if programmed > 0.0 && length > 0.0 {
                 let feed = m.feed * (length / programmed);
-                for piece in &mut path.moves[k..end] {
-                    piece.feed = feed;
-                }
+                self.pieces.iter_mut().for_each(|piece| piece.feed = feed);
             }
         }
-        k = end;
+        let mut from = start;
+        for piece in &self.pieces {
+            if self.removal.step_move(from, piece, index).is_none() {
+                self.stopped = Some(index);
+                return;
+            }
+            from = piece.end;
+        }
     }
-    (path, origin)
+
+    /// The part, and the move where the model stopped at its bound.
+    fn finish(mut self) -> (Dexels, Option<usize>) {
+        if self.stopped.is_none() {
+            self.flush();
+        }
+        (self.removal.dexels, self.stopped)
+    }
 }
 
-/// How far the chords an insert's body is swept along may lie from their arc, mm: the part
-/// model's exactness along the surface normal.
-const BODY_SAGITTA_MM: f64 = 1e-4;
-/// The most sub-arcs one piece of an arc is cut into (a radius of metres).
-const MAX_SUB_ARCS: usize = 4096;
-
-/// How many sub-arcs a piece of an arc of `radius` turning `sweep` radians is cut into for
-/// its chords to lie within `BODY_SAGITTA_MM` of it (`pieces`).
-fn sub_arcs(radius: f64, sweep: f64) -> usize {
-    // A NaN fails both comparisons: one piece.
-    let arc = radius > BODY_SAGITTA_MM && sweep > 0.0;
-    if !arc {
-        return 1;
+/// The piece of `toolpath` that ends at `point` as the model puts it, from the point before
+/// (`last`, which becomes `point`); none for a point of no move.
+fn piece(toolpath: &Toolpath, last: &mut (Xz, Xz, usize, f64), point: &Point) -> Option<Move> {
+    let m = toolpath.moves.get(point.move_index)?;
+    let (from, from_nominal, from_move, from_param) = *last;
+    let end = point.predicted;
+    *last = (end, point.nominal, point.move_index, point.param);
+    let mut piece = *m;
+    piece.end = end;
+    // A piece along its move (from its start, or from the point before on it); else the
+    // model's step at a corner, where the point does not move along the path.
+    let along = point.param > 0.0 && (from_move != point.move_index || from_param < point.param);
+    if m.is_arc() {
+        let ccw = m.motion == Motion::Ccw;
+        let centre = arc_centre(from, end, m.centre).filter(|&centre| {
+            // The piece turns as the programmed piece does (a piece of a few nanometres has
+            // no direction to take its centre from: a line).
+            let turns = geometry::sweep(from, end, centre, ccw);
+            let programmed = geometry::sweep(from_nominal, point.nominal, m.centre, ccw);
+            along && from.distance(end) > ARC_PIECE_MM && (turns - programmed).abs() <= ARC_TURN
+        });
+        match centre {
+            Some(centre) => piece.centre = centre,
+            None => {
+                piece.motion = Motion::Feed;
+                piece.centre = Xz::new(f64::NAN, f64::NAN);
+            }
+        }
     }
-    let step = 2.0 * (1.0 - BODY_SAGITTA_MM / radius).acos();
-    // `as` saturates; the count is held to its bound either way.
-    ((sweep / step).ceil() as usize).clamp(1, MAX_SUB_ARCS)
+    if m.threading && !(from_nominal.distance(point.nominal) > 0.0 && along) {
+        // A step of the model at a corner: no thread is cut along it.
+        piece.threading = false;
+    }
+    Some(piece)
 }
 
 /// A piece of an arc shorter than this (mm) is cut as a line: its chord gives no direction.
@@ -441,11 +439,7 @@ fn arc_centre(a: Xz, b: Xz, programmed: Xz) -> Option<Xz> {
 /// Each point of `nominal`'s surface probed on `actual`, from the family more nearly along
 /// its normal, in front of a part-off at `separated_at`: the probe, the original's move that
 /// cut the point on the nominal part, and the length of surface it stands for (mm).
-fn probe(
-    (nominal, nominal_origin, body): (&Dexels, &[usize], &BodyAlongArcs<'_>),
-    (actual, origin, actual_body): (&Dexels, &[usize], &BodyAlongArcs<'_>),
-    separated_at: Option<f64>,
-) -> Vec<(Probe, Option<usize>, f64)> {
+fn probe(nominal: &Dexels, actual: &Dexels, separated_at: Option<f64>) -> Vec<(Probe, Option<usize>, f64)> {
     let mut out = Vec::new();
     for along_z in [true, false] {
         let (rays, actual_rays) =
@@ -479,11 +473,6 @@ fn probe(
                         .iter()
                         .map(|s| if high { s.hi } else { s.lo })
                         .min_by(|a, b| (a.at - edge.at).abs().total_cmp(&(b.at - edge.at).abs()));
-                    // Where the actual surface on the ray is an insert's body swept along an
-                    // arc, the part model places it along chords (`BodyAlongArcs`):
-                    // the point is not probed, as where the nominal one is.
-                    let actual_body_cut =
-                        nearest.is_some_and(|e| e.by != STOCK && actual_body.cut(e.by as usize, line.point(e.at)));
                     let (signed_mm, cut_by) = match nearest {
                         Some(actual_edge) => {
                             let t = actual_edge.at - edge.at;
@@ -493,9 +482,7 @@ fn probe(
                             // The tangent plane of the actual surface where the ray meets it;
                             // the nominal one where the two face apart (another feature).
                             let s = if facing > 0.5 { t * along_actual / facing } else { t * along };
-                            let by = (actual_edge.by != STOCK)
-                                .then(|| origin.get(actual_edge.by as usize).copied())
-                                .flatten();
+                            let by = (actual_edge.by != STOCK).then_some(actual_edge.by as usize);
                             (s, by)
                         }
                         // No material left on the ray: all of it is gone.
@@ -509,15 +496,14 @@ fn probe(
                     // along the normal measures nothing, and is not probed.
                     let at_edge = signed_mm.abs() > NEAREST_FROM_MM
                         && nearest_surface(actual, at, signed_mm.abs().min(NEAREST_WITHIN_MM)) < signed_mm.abs() / 2.0;
-                    let nominal_by =
-                        (edge.by != STOCK).then(|| nominal_origin.get(edge.by as usize).copied()).flatten();
+                    let nominal_by = (edge.by != STOCK).then_some(edge.by as usize);
                     // A face of the stock the nominal part keeps is probed only where the
                     // actual part cut it.
                     if nominal_by.is_none() && (cut_by.is_none() && nearest.is_some()) {
                         continue;
                     }
                     let weight = nominal.spacing / along.abs();
-                    if at_edge || actual_body_cut || (edge.by != STOCK && body.cut(edge.by as usize, at)) {
+                    if at_edge {
                         // Not probed: its length is kept, negative, for the total.
                         out.push((Probe { at, signed_mm: 0.0, cut_by: None }, None, -weight));
                         continue;
@@ -528,53 +514,6 @@ fn probe(
         }
     }
     out
-}
-
-/// Which points of a part an insert's body cut along an arc: the part model sweeps a body
-/// along an arc's chords moved by their sagitta and held to the nose's circle
-/// (`part::removal`), exact near the nose and off by up to the chord's sagitta at the body's
-/// far corners, so such points are not probed (`pieces` holds the sagitta to
-/// `BODY_SAGITTA_MM`, so that the body cuts nothing it does not cut on the machine). A point
-/// on the nose's own sweep (the annulus its centre's arc sweeps, or the disk at either end)
-/// is.
-/// A tool (station, offset), its nose radius and its nose centre less its reference point.
-type NoseOf = ((u16, u16), (f64, Xz));
-
-struct BodyAlongArcs<'a> {
-    path: &'a Toolpath,
-    machine: &'a Machine,
-    /// Each tool's nose radius and nose centre offset, by station and offset.
-    tools: std::cell::RefCell<Vec<NoseOf>>,
-}
-
-impl<'a> BodyAlongArcs<'a> {
-    fn new(path: &'a Toolpath, machine: &'a Machine) -> BodyAlongArcs<'a> {
-        BodyAlongArcs { path, machine, tools: std::cell::RefCell::new(Vec::new()) }
-    }
-
-    /// Whether piece `index` of the path, an arc, cut `p` with its tool's body.
-    fn cut(&self, index: usize, p: Xz) -> bool {
-        let Some(m) = self.path.moves.get(index).filter(|m| m.is_arc()) else { return false };
-        let key = (m.tool, m.offset);
-        let found = self.tools.borrow().iter().find(|(k, _)| *k == key).map(|(_, t)| *t);
-        let (nose, offset) = found.unwrap_or_else(|| {
-            let settings = crate::part::tool::entry(self.machine, m.tool, m.offset);
-            let tool =
-                crate::part::tool::Tool::new(settings, self.machine, crate::part::tool::Orientation::Outside, 1.0);
-            self.tools.borrow_mut().push((key, (tool.nose, tool.centre_offset)));
-            (tool.nose, tool.centre_offset)
-        });
-        let shift = |q: Xz| Xz::new(q.x + offset.x, q.z + offset.z);
-        let (start, end, centre) = (shift(self.path.start_of(index)), shift(m.end), shift(m.centre));
-        let radius = start.distance(centre);
-        let tolerance = 1e-6 + 1e-9 * radius;
-        let d = p.distance(centre);
-        let on_nose = (d - (radius - nose)).abs() <= tolerance
-            || (d - (radius + nose)).abs() <= tolerance
-            || p.distance(start) <= nose + tolerance
-            || p.distance(end) <= nose + tolerance;
-        !on_nose
-    }
 }
 
 /// Probes farther than this (mm) are checked against the nearest surface of the actual part

@@ -73,9 +73,9 @@ fn an_incremental_arc_by_centre_keeps_u_w_i_k() {
     assert_eq!(text.lines().nth(6), Some("G01 W-5."));
 }
 
-#[test]
-fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
-    let ready = ready(PROGRAM);
+/// Rewrite the `G02` block (block 4) of `program` as two lines; the four lines from it on.
+fn arc_as_lines(program: &str) -> Vec<String> {
+    let ready = ready(program);
     let (program, lowered) = (ready.program(), &ready.lowered);
     let m = lowered.toolpath.moves[2];
     let start = lowered.toolpath.start_of(2);
@@ -92,8 +92,22 @@ fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back() {
     let mut edits = Edits::new();
     edits.replace_written(writer.out, vec![(4, text)]);
     let text = print_string(program, &edits);
-    let lines: Vec<&str> = text.lines().skip(4).take(4).collect();
-    assert_eq!(lines, ["G01 X44. Z-13.5", "X50. Z-15.", "G02", "G03 U10. W-5. I0 K-5."], "{text}");
+    text.lines().skip(4).take(4).map(str::to_string).collect()
+}
+
+#[test]
+fn an_arc_that_becomes_lines_loses_its_radius_and_puts_its_motion_code_back_where_the_next_block_runs_under_it() {
+    // The next block writes its own `G03`: nothing to put back before it.
+    assert_eq!(arc_as_lines(PROGRAM), ["G01 X44. Z-13.5", "X50. Z-15.", "G03 U10. W-5. I0 K-5.", "G01 W-5."]);
+    // The next block is an arc under the modal `G02`: it is put back before it.
+    let bare = PROGRAM.replace("G03 U10. W-5. I0 K-5.", "U10. W-5. R5.");
+    assert_eq!(arc_as_lines(&bare), ["G01 X44. Z-13.5", "X50. Z-15.", "G02", "U10. W-5. R5."]);
+    // A comment line between them runs nothing: the block after it decides.
+    let commented = PROGRAM.replace("G03 U10.", "(NEXT ARC)\nG03 U10.");
+    assert_eq!(arc_as_lines(&commented), ["G01 X44. Z-13.5", "X50. Z-15.", "(NEXT ARC)", "G03 U10. W-5. I0 K-5."]);
+    // A block the operator may skip gives nothing: the code is put back.
+    let skippable = PROGRAM.replace("G03 U10.", "/G03 U10.");
+    assert_eq!(arc_as_lines(&skippable), ["G01 X44. Z-13.5", "X50. Z-15.", "G02", "/G03 U10. W-5. I0 K-5."]);
 }
 
 /// A line block takes the program's arc form whatever its words (an `R` there is a corner,
