@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # What `verify` and `compensate` cost beside `check` of the same program: CPU time
 # (user + sys) and peak resident memory of each, from `/usr/bin/time -v`, on the generated
-# benchmark program, the three commands run in turn in each round (so a busy moment of the
-# machine spreads over all three), medians of the rounds, and the load average beside them.
+# benchmark program, on the finished-part measure (their default) and pass by pass
+# (`--passes`), the five commands run in turn in each round (so a busy moment of the machine
+# spreads over all), medians of the rounds, and the load average beside them.
 #
 #   benches/verify_cost.sh [MB] [ROUNDS]      (default: 50 MB, 3 rounds)
 #
@@ -56,6 +57,8 @@ for round in $(seq "$rounds"); do
     run check check "$program" --model "$model"
     run compensate compensate "$program" --model "$model" -o "$written"
     run verify verify "$program" "$written" --model "$model"
+    run compensate--passes compensate --passes "$program" --model "$model" -o "$written"
+    run verify--passes verify --passes "$program" "$written" --model "$model"
     echo "verify_cost: round $round done; load: $(uptime | sed 's/.*load average: //')"
 done
 
@@ -69,12 +72,12 @@ sort -k1,1 -k2,2n "$work/runs" | awk -v rounds="$rounds" '
     }
     END {
         base = median(cpu["check"])
-        printf "%-11s %10s %10s %12s   %s\n", "command", "CPU (s)", "x check", "peak (MB)", "CPU of each round (s)"
-        split("check verify compensate", names, " ")
-        for (k = 1; k <= 3; k++) {
+        printf "%-20s %10s %10s %12s   %s\n", "command", "CPU (s)", "x check", "peak (MB)", "CPU of each round (s)"
+        split("check verify compensate verify--passes compensate--passes", names, " ")
+        for (k = 1; k <= 5; k++) {
             name = names[k]
             c = median(cpu[name]); p = median(peak[name])
-            printf "%-11s %10.2f %10.2f %12.0f  %s\n", name, c, c / base, p / 1024, cpu[name]
+            printf "%-20s %10.2f %10.2f %12.0f  %s\n", name, c, c / base, p / 1024, cpu[name]
         }
     }
 '

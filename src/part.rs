@@ -4,8 +4,8 @@
 //! **The representation** is dexels (`dexel.rs`): rays along Z at evenly spaced radii and
 //! along X at evenly spaced Z over the stock's box, each holding its intervals of material.
 //! A move subtracts, on every ray it crosses, the exact interval where the ray is inside the
-//! region its tool sweeps (`sweep.rs`: a rounded convex polygon for a line, a nose moved
-//! along an arc, the insert's body along an arc held to the nose's circle). Every end of an
+//! region its tool sweeps (`sweep.rs`: a rounded convex polygon for a line, the same polygon
+//! moved along an arc for an arc). Every end of an
 //! interval is a point of the surface, computed in f64 from the sweep's equations, with the
 //! move that made it and the material's outward normal there (`dexel::Edge`). README's
 //! "The part" gives the measurements the choice was made on (`cargo bench --bench part`).

@@ -14,7 +14,7 @@ use std::fmt::Write as _;
 use sha2::{Digest, Sha256};
 
 use crate::compensation::deviation::Figures;
-use crate::compensation::verify::Deviation;
+use crate::compensation::verify::{Deviation, Measure};
 
 /// A program the page names.
 pub struct ProgramFile<'a> {
@@ -47,6 +47,8 @@ pub struct Page<'a> {
     /// The start minute of the run and what set it.
     pub start: String,
     pub deviation: &'a Deviation,
+    /// Which measure `deviation` is.
+    pub measure: Measure,
     pub limit_mm: f64,
     pub words_checked: usize,
     pub violations: &'a [String],
@@ -191,10 +193,20 @@ fn figures(out: &mut String, page: &Page<'_>) {
     let d = page.deviation;
     let _ = writeln!(
         out,
-        "<h2>Predicted deviation from the nominal part</h2>\n<p>Every predicted cutting point of each program \
-         measured against the nominal path of {}, as <code>turnpass verify</code> measures it, µm.</p>\n\
-         <table id=\"figures\">\n<tr><th></th><th>max</th><th>RMS</th><th>SSQ</th><th>points</th></tr>",
-        code(page.original.name)
+        "<h2>Predicted deviation from the nominal part</h2>\n<p>Measure: <strong>{}</strong> ({}), against the \
+         nominal part of {}, as <code>turnpass verify</code>{} measures it, µm.</p>\n\
+         <table id=\"figures\" data-measure=\"{}\">\n<tr><th></th><th>max</th><th>RMS</th><th>SSQ</th><th>points</th></tr>",
+        match page.measure {
+            Measure::Part => "the finished part",
+            Measure::Passes => "pass by pass",
+        },
+        page.measure.describe(),
+        code(page.original.name),
+        if page.measure == Measure::Passes { " --passes" } else { "" },
+        match page.measure {
+            Measure::Part => "part",
+            Measure::Passes => "passes",
+        },
     );
     let row = |label: &str, f: &Figures| {
         format!(
@@ -292,6 +304,7 @@ mod tests {
             compensated_with: "nothing".to_string(),
             start: "0 min".to_string(),
             deviation: &deviation,
+            measure: Measure::Part,
             limit_mm: 0.002,
             words_checked: 1,
             violations: &["lost `M30`".to_string()],
@@ -308,5 +321,9 @@ mod tests {
         assert!(!html.contains("http"), "{html}");
         assert!(html.contains("verify: 1 violation<"));
         assert!(html.contains("G01 X1.001"));
+        // The table says which measure it shows.
+        assert!(html.contains("Measure: <strong>the finished part</strong>") && html.contains("data-measure=\"part\""));
+        let passes = super::html(&Page { measure: Measure::Passes, ..page });
+        assert!(passes.contains("Measure: <strong>pass by pass</strong>") && passes.contains("verify</code> --passes"));
     }
 }

@@ -101,7 +101,7 @@ fuzz_target!(|data: &[u8]| {
     // is refused there: that is its check, not a finding.
     let read_back = pipeline::Settings { parse: printer::read_back_options(ready.program()), ..reading };
     let tools = ToolTable::from_machine(machine);
-    let Ok((_, _, lost)) = verify::check_written((ready.program(), &ready.lowered.expansions, ready.valid()), &printed, &read_back, &tools, &model)
+    let Ok(verify::Written { lost, .. }) = verify::check_written((ready.program(), &ready.lowered.expansions, ready.valid()), &printed, &read_back, &tools, (&model, verify::Measure::Part, None))
     else {
         return;
     };

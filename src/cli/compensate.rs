@@ -17,13 +17,14 @@ use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
-use turnpass::compensation::verify;
+use turnpass::compensation::verify::{self, Measure};
 use turnpass::compensation::{
     CompensateOptions, CycleForm, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
     THREAD_NOT_IN_PLACE, compensate_program,
 };
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
+use turnpass::machine::StockSettings;
 use turnpass::pipeline::Ready;
 use turnpass::printer;
 use turnpass::semantic::Machine;
@@ -31,7 +32,7 @@ use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::Span;
 
 use super::common::{
-    CliError, ReadArgs, Resolved, RunArgs, check_output, display_name, is_stdout, model_name, model_sha256,
+    CliError, ReadArgs, Resolved, RunArgs, StockArgs, check_output, display_name, is_stdout, model_name, model_sha256,
     model_source, pipeline_settings, read_program, ready_or_diagnostics, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
@@ -74,6 +75,13 @@ pub struct CompensateArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
+    /// The bar the part is cut from, for the check of what is written (as `verify --stock`).
+    #[command(flatten)]
+    pub stock: StockArgs,
+    /// Check what is written pass by pass, as `verify --passes` measures it, instead of on the
+    /// finished part (every pass, roughing and thread infeed included, held to the bound).
+    #[arg(long)]
+    pub passes: bool,
     /// Also say, for each program, where the machine settings and the model come from.
     #[arg(long, short)]
     pub verbose: bool,
@@ -283,6 +291,8 @@ struct Trial<'a, 'src> {
     model: &'a ErrorModel,
     reading: &'a turnpass::pipeline::Settings,
     tools: &'a ToolTable,
+    measure: Measure,
+    stock: Option<&'a StockSettings>,
 }
 
 impl Trial<'_, '_> {
@@ -307,9 +317,15 @@ impl Trial<'_, '_> {
                     return None;
                 }
                 let written = printer::print(&self.program.parsed.program, &outcome.edits);
-                let (figures, _, _) =
-                    verify::check_written(original, &written, self.reading, self.tools, self.model).ok()?;
-                Some((strategy.name(), figures.after.max_mm))
+                let checked = verify::check_written(
+                    original,
+                    &written,
+                    self.reading,
+                    self.tools,
+                    (self.model, self.measure, self.stock),
+                )
+                .ok()?;
+                Some((strategy.name(), checked.deviation.after.max_mm))
             })
             .min_by(|a, b| a.1.total_cmp(&b.1))
     }
@@ -526,6 +542,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // where that misses it too, they are expanded, and the report says why.
     let mut because = Because::default();
     let mut in_place = InPlace { profiles: true, copies: true, threads: true };
+    let stock = args.stock.check(&resolved).stock;
+    let measure = if args.passes { Measure::Passes } else { Measure::Part };
     let (mut outcome, written) = loop {
         let mut outcome = args.fit.compensate_cycles(&program, &model, args.report.is_some(), in_place);
         if outcome.refused()
@@ -580,9 +598,9 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             &written,
             &reading,
             &tools,
-            &model,
+            (&model, measure, stock.as_ref()),
         ) {
-            Ok((figures, feed_change, lost)) => {
+            Ok(verify::Written { deviation: figures, part, feed_change, lost }) => {
                 let totals = &mut outcome.report.totals;
                 (totals.before, totals.after) = (figures.before, figures.after);
                 totals.improvement_percent = figures.improvement_percent;
@@ -606,7 +624,10 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                         span,
                     )
                 });
+                // A part model that stopped at its bound measured only part of the part.
+                let stopped = part.as_ref().and_then(|part| part.incomplete());
                 too_far
+                    .or(stopped)
                     .or(lead_off)
                     .or_else(|| {
                         feed_change
@@ -633,16 +654,23 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         if let Some(diagnostic) = refusal {
             if let Some(next) = in_place.without(&outcome) {
                 // The roughing of a cycle kept with its profile edited, and the infeed passes of
-                // a thread kept with its words edited, are measured too: they are not
-                // compensated, only moved with the profile or the final pass.
+                // a thread kept with its words edited, are not compensated, only moved with the
+                // profile or the final pass: the finished part holds them to not gouging it.
                 let lines = turnpass::source::LineIndex::new(&bytes);
                 let line = lines.position(diagnostic.span.start).0;
                 let why = match &diagnostic.kind {
-                    DiagnosticKind::CompensationFailsCheck { deviation_mm, .. } => format!(
-                        "kept, the program read back is {deviation_mm:.5} mm off at line {line}, more than the \
-                         bound {bound} mm (the check before writing measures every pass, roughing and thread \
-                         infeed passes among them)"
-                    ),
+                    DiagnosticKind::CompensationFailsCheck { deviation_mm, .. } => match measure {
+                        Measure::Part => format!(
+                            "kept, the part the program read back cuts is {deviation_mm:.5} mm off on the surface \
+                             line {line} cuts, more than the bound {bound} mm (the check before writing measures the \
+                             finished part: a roughing or thread infeed pass counts where it gouges it)"
+                        ),
+                        Measure::Passes => format!(
+                            "kept, the program read back is {deviation_mm:.5} mm off at line {line}, more than the \
+                             bound {bound} mm (--passes: the check before writing measures every pass, roughing and \
+                             thread infeed passes among them)"
+                        ),
+                    },
                     DiagnosticKind::CompensationUnreadable { problem, .. } => {
                         format!("kept, the program read back does not run cleanly ({problem})")
                     }
@@ -654,7 +682,14 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             }
             let mut diagnostic = diagnostic;
             if let DiagnosticKind::CompensationFailsCheck { other_strategy, .. } = &mut diagnostic.kind {
-                let trial = Trial { program: &program, model: &model, reading: &reading, tools: &tools };
+                let trial = Trial {
+                    program: &program,
+                    model: &model,
+                    reading: &reading,
+                    tools: &tools,
+                    measure,
+                    stock: stock.as_ref(),
+                };
                 *other_strategy = trial.closest_strategy(&args.fit, in_place);
             }
             messages.append(&mut unreadable.messages);

@@ -16,7 +16,7 @@ use turnpass::plot::PathPoint;
 use turnpass::report::{ModelFile, Page, Plot, ProgramFile};
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, StockArgs, check_output, display_name, model_name, model_source, read_program,
+    CliError, ReadArgs, RunArgs, check_output, display_name, model_name, model_source, read_program,
     read_program_bytes, ready, ready_with_part, required_error_model, write_file,
 };
 use super::streams;
@@ -41,10 +41,6 @@ pub struct ReportArgs {
     pub read: ReadArgs,
     #[command(flatten)]
     pub run: RunArgs,
-    /// The bar under the path plot's half-section (else the model file's [stock], else the
-    /// smallest bar holding every cut's start, drawn as assumed).
-    #[command(flatten)]
-    pub stock: StockArgs,
     /// Also say where the machine settings and the model come from.
     #[arg(long, short)]
     pub verbose: bool,
@@ -64,7 +60,8 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     if args.verbose {
         messages.extend_from_slice(format!("report: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
-    let part = args.stock.check(&resolved);
+    // The bar the part measure cuts from is the one drawn under the path plot.
+    let part = args.checks.stock.check(&resolved);
     let original =
         ready_with_part(&original_name, &original_bytes, (&resolved, &args.run), part, "report", &mut messages);
     let compensated = ready(&compensated_name, &compensated_bytes, &resolved, &args.run, "report", &mut messages);
@@ -112,8 +109,9 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         id: "plot-path",
         caption: match &path {
             Ok(drawn) => format!(
-                "The nominal part at true scale; the deviation predicted on the model along the surface normal, \
-                 as programmed and compensated, magnified ×{}; under it the same in µm along the cut.",
+                "The nominal part at true scale; the deviation of the predicted path (pass by pass, every cutting \
+                 point) along the surface normal, as programmed and compensated, magnified ×{}; under it the same \
+                 in µm along the cut.",
                 drawn.magnify
             ),
             Err(_) => "The path plot".to_string(),
@@ -123,15 +121,18 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     match turnpass::plot::polar_svg(&title, toolpath, &before, &after) {
         Ok(svg) => plots.push(Plot {
             id: "plot-polar",
-            caption: "The full circle as a ball bar would trace it: radial deviation against the angle, each \
-                      direction, as programmed and compensated, with the ISO 230-4 figures."
+            caption: "The full circle as a ball bar would trace it: radial deviation of the predicted path (pass by \
+                      pass) against the angle, each direction, as programmed and compensated, with the ISO 230-4 \
+                      figures."
                 .to_string(),
             svg: Ok(svg),
         }),
         Err(turnpass::plot::PlotError::NoFullCircle) => {}
         Err(e) => plots.push(Plot { id: "plot-polar", caption: "The polar plot".to_string(), svg: Err(e.to_string()) }),
     }
-    let Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings, table } = checked;
+    let Checked {
+        provenance, start, model_sha256, figures, measure, words, limit, violations, warnings, table, ..
+    } = checked;
     if let Some((_, summary)) = &table {
         streams::err_line(format_args!("report: {summary}"));
     }
@@ -162,6 +163,7 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         compensated_with,
         start: format!("{} min ({})", start.minutes, start.from),
         deviation: &figures,
+        measure,
         limit_mm: limit,
         words_checked: words.checked,
         violations: &violations,

@@ -10,16 +10,19 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use turnpass::compensation::provenance::{Provenance, marks};
 
 use turnpass::compensation::verify::{
-    self, CutWords, Deviation, Measured, Side, WordCheck, check_feeds, check_words, deviation_each, deviation_watched,
+    self, CutWords, Deviation, Measure, Measured, PartDeviation, Side, WordCheck, check_feeds, check_words,
+    deviation_each, deviation_watched, part_deviation_watched,
 };
 use turnpass::error_model::ErrorModel;
 use turnpass::pipeline::Ready;
+use turnpass::semantic::Machine;
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::{LineIndex, escape_controls};
 use turnpass::syntax::Program;
+use turnpass::toolpath::Xz;
 
 use super::common::{
-    CliError, Format, ReadArgs, Resolved, RunArgs, display_name, model_sha256, model_source, read_program,
+    CliError, Format, ReadArgs, Resolved, RunArgs, StockArgs, display_name, model_sha256, model_source, read_program,
     read_program_bytes, ready, rendered, required_error_model, write_output,
 };
 use super::numbers::{self, within};
@@ -65,6 +68,15 @@ pub struct CheckArgs {
     /// the program on the machine with the table.
     #[arg(long, value_name = "FILE")]
     pub with_table: Option<PathBuf>,
+    /// Measure every pass against the original's nominal path, pass by pass, instead of the
+    /// finished part (a roughing pass then counts as much as the finishing one).
+    #[arg(long)]
+    pub passes: bool,
+    /// The bar the parts are cut from (the finished-part measure; `report` draws it under
+    /// the path plot: else the model file's [stock], else the smallest bar holding every
+    /// cut's start, drawn as assumed).
+    #[command(flatten)]
+    pub stock: StockArgs,
 }
 
 pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
@@ -113,12 +125,22 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
         messages.extend_from_slice(format!("verify: warning: {}\n", escape_controls(warning)).as_bytes());
     }
     streams::err(messages);
-    let Checked { provenance, start, model_sha256, figures, words, limit, violations, table, .. } = checked;
+    let Checked { provenance, start, model_sha256, figures, measure, part, words, limit, violations, table, .. } =
+        checked;
+    let machine = &original.machine;
+    let line_of = |bytes: &[u8], span: turnpass::source::Span| LineIndex::new(bytes).position(span.start).0;
+    let compensated_line = |by: Option<usize>| {
+        by.and_then(|k| compensated.valid().toolpath().moves.get(k)).map(|m| line_of(&compensated_bytes, m.source))
+    };
+    let feature_line = |block: turnpass::source::Span| {
+        (block != turnpass::source::Span::SYNTHETIC).then(|| line_of(&original_bytes, block))
+    };
     let text = match args.format {
         Format::Json => {
             let value = serde_json::json!({
                 "original": original_name,
                 "compensated": compensated_name,
+                "measure": measure,
                 "deviation": figures,
                 "start_min": start.minutes,
                 "start_min_from": start.from,
@@ -129,6 +151,58 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
                 "violations": violations,
             });
             let mut value = value;
+            if let (Some(part), Some(object)) = (&part, value.as_object_mut()) {
+                let probe = |p: &turnpass::compensation::verify::Probe| {
+                    let x = if machine.diameter_programming { 2.0 * p.at.x } else { p.at.x } / machine.scale();
+                    serde_json::json!({
+                        "x": x,
+                        "z": p.at.z / machine.scale(),
+                        "deviation_mm": p.signed_mm,
+                        "cut_by_line": compensated_line(p.cut_by),
+                    })
+                };
+                let features: Vec<serde_json::Value> = part
+                    .features
+                    .iter()
+                    .map(|f| {
+                        serde_json::json!({
+                            "line": feature_line(f.block),
+                            "figures": f.figures,
+                            "worst": probe(&f.worst),
+                        })
+                    })
+                    .collect();
+                let threads: Vec<serde_json::Value> = part
+                    .threads
+                    .iter()
+                    .map(|t| {
+                        let mut value = serde_json::json!(t);
+                        if let Some(object) = value.as_object_mut() {
+                            object.insert("line".into(), serde_json::json!(line_of(&original_bytes, t.block)));
+                            object
+                                .insert("last_line".into(), serde_json::json!(line_of(&original_bytes, t.last_block)));
+                        }
+                        value
+                    })
+                    .collect();
+                object.insert(
+                    "part".to_string(),
+                    serde_json::json!({
+                        "stock": {
+                            "diameter_mm": 2.0 * part.stock.outer,
+                            "bore_mm": 2.0 * part.stock.bore,
+                            "front_mm": part.stock.front,
+                            "back_mm": part.stock.back,
+                            "assumed": part.stock.assumed,
+                        },
+                        "ray_spacing_mm": part.spacing_mm,
+                        "unprobed_mm": part.unprobed_mm,
+                        "features": features,
+                        "deepest_gouge": part.gouge.as_ref().map(probe),
+                        "threads": threads,
+                    }),
+                );
+            }
             if let (Some((table, _)), Some(object)) = (&table, value.as_object_mut()) {
                 object.insert(
                     "control_table".to_string(),
@@ -159,6 +233,26 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
                 None => format!("{compensated_name} carries no provenance comment\n"),
             };
             text.push_str(&format!("start time: {} min ({})\n", start.minutes, start.from));
+            text.push_str(&format!(
+                "measure: {}{}\n",
+                measure.describe(),
+                match measure {
+                    Measure::Part => " (--passes: pass by pass)",
+                    Measure::Passes => " (--passes)",
+                }
+            ));
+            if let Some(part) = &part {
+                let stock = &part.stock;
+                text.push_str(&format!(
+                    "stock: bar Ø{:.3} mm{}, Z{:.3} to Z{:.3}{}; rays {:.4} mm apart\n",
+                    2.0 * stock.outer,
+                    if stock.bore > 0.0 { format!(" bored Ø{:.3} mm", 2.0 * stock.bore) } else { String::new() },
+                    stock.front,
+                    stock.back,
+                    if stock.assumed { " (assumed: the smallest bar holding every cut's start)" } else { "" },
+                    part.spacing_mm,
+                ));
+            }
             text.push_str(&format!("predicted deviation from the nominal part of {original_name}, mm:\n"));
             text.push_str(&format!("  {:<16} {:>10} {:>10} {:>10} {:>8}\n", "", "max", "RMS", "SSQ", "points"));
             text.push_str(&row("as programmed", &figures.before));
@@ -174,6 +268,68 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
                     lead.passes,
                     if lead.passes == 1 { "" } else { "es" },
                 ));
+            }
+            if let Some(part) = &part {
+                text.push_str(&format!(
+                    "the compensated part by surface feature (the line of {original_name} that cuts it), mm \
+                     (+ material left, - removed inside the nominal part):\n"
+                ));
+                text.push_str(&format!(
+                    "  {:<8} {:>10} {:>10}  {:<36} {}\n",
+                    "line", "max", "RMS", "worst at", "cut by line"
+                ));
+                for f in &part.features {
+                    let line = feature_line(f.block).map_or_else(|| "stock".to_string(), |l| l.to_string());
+                    let by = compensated_line(f.worst.cut_by).map_or_else(|| "-".to_string(), |l| l.to_string());
+                    let at = format!("{} ({:+.5})", place(machine, f.worst.at), f.worst.signed_mm);
+                    text.push_str(&format!(
+                        "  {line:<8} {:>10.5} {:>10.5}  {at:<36} {by}\n",
+                        f.figures.max_mm, f.figures.rms_mm
+                    ));
+                }
+                if part.unprobed_mm > 0.0 {
+                    text.push_str(&format!(
+                        "not probed: {:.3} mm of the nominal surface, at an edge of the actual part that the probe \
+                         along the normal passes\n",
+                        part.unprobed_mm
+                    ));
+                }
+                match &part.gouge {
+                    Some(g) => text.push_str(&format!(
+                        "deepest gouge: {:.5} mm inside the nominal part at {}{}\n",
+                        -g.signed_mm,
+                        place(machine, g.at),
+                        compensated_line(g.cut_by)
+                            .map_or_else(String::new, |l| format!(", cut by {compensated_name} line {l}"))
+                    )),
+                    None => text.push_str("deepest gouge: none (no material removed inside the nominal part)\n"),
+                }
+                for t in &part.threads {
+                    let form = |f: &Option<turnpass::compensation::verify::ThreadForm>| match f {
+                        Some(f) => format!(
+                            "pitch diameter {:.5} ({:+.5}), lead {}",
+                            f.pitch_diameter_mm,
+                            f.pitch_diameter_mm - t.nominal.pitch_diameter_mm,
+                            match (f.lead_mm, t.nominal.lead_mm) {
+                                (Some(l), Some(n)) => format!("{l:.6} ({:+.6})", l - n),
+                                (Some(l), None) => format!("{l:.6}"),
+                                _ => "not measured".to_string(),
+                            }
+                        ),
+                        None => "not measured".to_string(),
+                    };
+                    text.push_str(&format!(
+                        "thread of lines {}-{} (lead {:.6} mm, measured over {} leads), mm: nominal pitch diameter {:.5}, lead {}\n  as programmed: {}\n  compensated:   {}\n",
+                        line_of(&original_bytes, t.block),
+                        line_of(&original_bytes, t.last_block),
+                        t.programmed_lead_mm,
+                        t.leads,
+                        t.nominal.pitch_diameter_mm,
+                        t.nominal.lead_mm.map_or_else(|| "not measured".to_string(), |l| format!("{l:.6}")),
+                        form(&t.before),
+                        form(&t.after),
+                    ));
+                }
             }
             text.push_str(&format!(
                 "words: {} M, T, S, comment and block-delete words kept in order; feed and spindle words of every \
@@ -201,6 +357,10 @@ pub struct Checked {
     /// The SHA-256 of the model given, in full.
     pub model_sha256: String,
     pub figures: Deviation,
+    /// Which measure the figures are.
+    pub measure: Measure,
+    /// The finished-part measure's findings (none with `--passes`).
+    pub part: Option<PartDeviation>,
     pub words: WordCheck,
     /// The largest deviation allowed, mm.
     pub limit: f64,
@@ -348,9 +508,34 @@ pub fn checked(
         refusal.extend_from_slice(b"a move needs more samples than a measure holds: nothing is measured or written\n");
         return Err(CliError::Rejected(refusal));
     }
-    let figures = match watch {
-        Watch::Each(each) => deviation_each(original_path, compensated_path, &tools, model, &sampling, each),
-        Watch::Progress(watch) => deviation_watched(original_path, compensated_path, &tools, model, &sampling, watch),
+    let measure = if checks.passes { Measure::Passes } else { Measure::Part };
+    let (figures, part) = match (measure, watch) {
+        (Measure::Passes, Watch::Each(each)) => {
+            (deviation_each(original_path, compensated_path, &tools, model, &sampling, each), None)
+        }
+        (Measure::Passes, Watch::Progress(watch)) => {
+            (deviation_watched(original_path, compensated_path, &tools, model, &sampling, watch), None)
+        }
+        (Measure::Part, watch) => {
+            // The plots draw the predicted path: its points are measured pass by pass.
+            let progress: &(dyn Fn(Side, &Measured) + Sync) = match watch {
+                Watch::Progress(watch) => watch,
+                Watch::Each(each) => {
+                    deviation_each(original_path, compensated_path, &tools, model, &sampling, each);
+                    &|_, _| {}
+                }
+            };
+            let stock = checks.stock.check(resolved).stock;
+            let part = part_deviation_watched(
+                (original_path, compensated_path),
+                &tools,
+                model,
+                &sampling,
+                (machine, stock.as_ref()),
+                progress,
+            );
+            (part.deviation, Some(part))
+        }
     };
     let words = check_words(
         (&original.parsed.program, &original.lowered.expansions),
@@ -372,12 +557,6 @@ pub fn checked(
             missing.text
         ));
     }
-    if figures.after.max_mm > limit {
-        violations.push(format!(
-            "the predicted deviation of {compensated_name} from the nominal part reaches {:.5} mm, more than {limit:.5} mm",
-            figures.after.max_mm
-        ));
-    }
     if let Some(lead) = &figures.lead {
         if lead.passes_differ {
             violations.push(format!("{compensated_name} cuts another number of thread passes than {original_name}"));
@@ -394,7 +573,82 @@ pub fn checked(
             ));
         }
     }
-    Ok(Checked { provenance, start, model_sha256, figures, words, limit, violations, warnings, table })
+    match &part {
+        Some(part) => violations.extend(part_violations(part, (original, compensated), (original_bytes, compensated_bytes), (original_name, compensated_name), limit)),
+        None if figures.after.max_mm > limit => violations.push(format!(
+            "the predicted deviation of {compensated_name} from the nominal part reaches {:.5} mm, more than {limit:.5} mm",
+            figures.after.max_mm
+        )),
+        None => {}
+    }
+    Ok(Checked { provenance, start, model_sha256, figures, measure, part, words, limit, violations, warnings, table })
+}
+
+/// The finished-part measure's violations: a deviation past `limit` (where, on which
+/// feature, cut by which block, a gouge named so), and a measure that stopped short.
+fn part_violations(
+    part: &PartDeviation,
+    (original, compensated): (&Ready<'_>, &Ready<'_>),
+    (original_bytes, compensated_bytes): (&[u8], &[u8]),
+    (original_name, compensated_name): (&str, &str),
+    limit: f64,
+) -> Vec<String> {
+    let mut out = Vec::new();
+    let machine = &original.machine;
+    if let Some((side, block)) = part.stopped {
+        let (name, bytes) = if side == Side::Original {
+            (original_name, original_bytes)
+        } else {
+            (compensated_name, compensated_bytes)
+        };
+        let line = LineIndex::new(bytes).position(block.start).0;
+        out.push(format!(
+            "the part model stopped at its bound on work at {name} line {line}: the finished part is measured only \
+             up to there (--passes measures pass by pass)"
+        ));
+    }
+    let worst = part.features.iter().max_by(|a, b| a.worst.signed_mm.abs().total_cmp(&b.worst.signed_mm.abs()));
+    if let Some(feature) = worst.filter(|f| f.worst.signed_mm.abs() > limit) {
+        let probe = feature.worst;
+        let what = if probe.signed_mm < 0.0 {
+            "removes material inside the nominal part (a gouge)"
+        } else {
+            "leaves material outside the nominal part"
+        };
+        out.push(format!(
+            "the finished part of {compensated_name} {what} by {:.5} mm, more than {limit:.5} mm, at {} on the \
+             surface {}{}",
+            probe.signed_mm.abs(),
+            place(machine, probe.at),
+            surface_of(feature.block, original_bytes, original_name),
+            cut_by(probe.cut_by, compensated, compensated_bytes, compensated_name),
+        ));
+    }
+    out
+}
+
+/// Where a point is, as the program writes it (X a diameter where the machine is programmed
+/// in diameters), in program units.
+fn place(machine: &Machine, at: Xz) -> String {
+    let x = if machine.diameter_programming { 2.0 * at.x } else { at.x };
+    format!("X{:.4} Z{:.4}", x / machine.scale(), at.z / machine.scale())
+}
+
+/// The surface a block of the original cuts, in words.
+fn surface_of(block: turnpass::source::Span, bytes: &[u8], name: &str) -> String {
+    if block == turnpass::source::Span::SYNTHETIC {
+        "of the stock".to_string()
+    } else {
+        format!("{name} line {} cuts", LineIndex::new(bytes).position(block.start).0)
+    }
+}
+
+/// Which block of the compensated program cut a point, in words.
+fn cut_by(by: Option<usize>, compensated: &Ready<'_>, bytes: &[u8], name: &str) -> String {
+    match by.and_then(|k| compensated.valid().toolpath().moves.get(k)) {
+        Some(m) => format!(", cut there by {name} line {}", LineIndex::new(bytes).position(m.source.start).0),
+        None => String::new(),
+    }
 }
 
 /// Why the control table a program was compensated for (`made`, the first digits of its

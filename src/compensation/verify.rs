@@ -19,6 +19,7 @@
 
 use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
+use crate::machine::StockSettings;
 use crate::pipeline::Settings;
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Expansion, Machine};
@@ -36,8 +37,37 @@ mod follow;
 mod knee;
 pub mod lead;
 mod measure;
+mod part;
 #[cfg(test)]
 mod tests;
+
+pub use part::{Feature, PartDeviation, Probe, ThreadFigures, ThreadForm, part_deviation, part_deviation_watched};
+
+/// What `verify` measures: the finished part (by default, and `compensate`'s check), or the
+/// passes one by one (`--passes`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Measure {
+    /// The finished part each program cuts on the model against the original's nominal
+    /// part, probed along the nominal surface normal (`part_deviation`).
+    Part,
+    /// Every predicted cutting point of every pass against the original's nominal path
+    /// (`deviation`).
+    Passes,
+}
+
+impl Measure {
+    /// What the figures are, in words, for a table's heading.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Measure::Part => {
+                "the finished part each program cuts on the model, probed along the surface normal of the nominal \
+                 part at every point of its finished surface"
+            }
+            Measure::Passes => "every predicted cutting point of every pass, against the nominal path (pass by pass)",
+        }
+    }
+}
 
 use follow::Original;
 use lead::LeadFigures;
@@ -196,21 +226,33 @@ fn figures(before: Tally, after: Tally, worst: Option<Worst>, lead: Option<LeadF
     Deviation { before: before.rounded(), after: after.rounded(), improvement_percent, worst, lead }
 }
 
+/// What `check_written` found: the figures of the program about to be written, on the
+/// measure asked for, and the first word or feed change its read-back lost.
+#[derive(Debug, Clone)]
+pub struct Written {
+    pub deviation: Deviation,
+    /// The finished-part measure's findings (none on the pass measure).
+    pub part: Option<PartDeviation>,
+    pub feed_change: Option<FeedChange>,
+    pub lost: Option<MissingWord>,
+}
+
 /// What `compensate` checks before it writes: `written`, the program it is about to write,
 /// read back as the control reads it (through `pipeline::analyse`, with the settings the
-/// original was read with)
-/// and measured against `original`'s nominal path by `turnpass verify`'s own computation
-/// (`deviation`, `sampling`), so that the figures it reports are the ones verify finds, with
-/// verify's checks of the feed and spindle words (`check_feeds`) and of the other words of
-/// `original_program` (`check_words`: the first one lost).
+/// original was read with) and measured against `original` by `turnpass verify`'s own
+/// computation on `measure`: the finished part (`part_deviation` from `stock`, none to
+/// assume it as `verify` does) or pass by pass (`deviation_of`), with `sampling`, so that
+/// the figures it reports are the ones verify finds, with verify's checks of the feed and
+/// spindle words (`check_feeds`) and of the other words of `original_program`
+/// (`check_words`: the first one lost).
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
     (original_program, original_expansions, original): (&Program<'_>, &[Expansion], ValidToolpath<'_>),
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
-    model: &ErrorModel,
-) -> Result<(Deviation, Option<FeedChange>, Option<MissingWord>), Vec<Diagnostic>> {
+    (model, measure, stock): (&ErrorModel, Measure, Option<&StockSettings>),
+) -> Result<Written, Vec<Diagnostic>> {
     let read = match crate::pipeline::analyse(written, reading).ready() {
         Ok(read) => read,
         Err(analysed) => {
@@ -226,13 +268,24 @@ pub fn check_written(
         return Err(oversampled);
     }
     let lost = check_words((original_program, original_expansions), (read.program(), &read.lowered.expansions)).missing;
-    let feeds = check_feeds(&original, &toolpath);
-    // Its words checked, the written program is measured compact: its AST and toolpath
-    // are let go before the measure, which holds the two compact paths and its pieces.
-    let written_path = compact(toolpath, tools);
-    drop(read);
-    let original_path = compact(original, tools);
-    Ok((deviation_of(&original_path, &written_path, model, &sampling, &|_, _| {}), feeds, lost))
+    let feed_change = check_feeds(&original, &toolpath);
+    match measure {
+        Measure::Part => {
+            // The part measure cuts both programs' parts from their toolpaths (the blocks
+            // that cut each surface, the threads' passes), so the read-back is held to the end.
+            let part = part_deviation((original, toolpath), tools, model, &sampling, machine, stock);
+            Ok(Written { deviation: part.deviation, part: Some(part), feed_change, lost })
+        }
+        Measure::Passes => {
+            // Its words checked, the written program is measured compact: its AST and
+            // toolpath are let go before the measure, which holds the two compact paths.
+            let written_path = compact(toolpath, tools);
+            drop(read);
+            let original_path = compact(original, tools);
+            let deviation = deviation_of(&original_path, &written_path, model, &sampling, &|_, _| {});
+            Ok(Written { deviation, part: None, feed_change, lost })
+        }
+    }
 }
 
 /// The deviation `verify` allows by default: two least increments, mm.

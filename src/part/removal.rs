@@ -169,11 +169,15 @@ impl<'a> Removal<'a> {
     /// Run move `index` of `toolpath`: a rapid only measures what it meets, every other
     /// move removes what it sweeps. `None` once the bound on work is passed.
     pub fn step(&mut self, toolpath: &Toolpath, index: usize) -> Option<Outcome> {
-        let m = &toolpath.moves[index];
+        self.step_move(toolpath.start_of(index), &toolpath.moves[index], index)
+    }
+
+    /// [`Removal::step`] for the move `m` from `start`, its cuts recorded as move `index`'s
+    /// (a piece of a move, cut as the move it is a piece of).
+    pub fn step_move(&mut self, start: Xz, m: &Move, index: usize) -> Option<Outcome> {
         if m.motion == Motion::Dwell {
             return Some(Outcome::default());
         }
-        let start = toolpath.start_of(index);
         let tool = self.tool(m, start);
         // Most moves of a long program run in air: a move whose tool's box meets no material
         // does nothing, and its sweeps are not built (a thread pass's count of leads is).
@@ -279,8 +283,10 @@ fn stamps(threaded: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Sto
     if hi < lo {
         return (0.0, 0);
     }
-    let first = ((threaded + lo) / lead).ceil();
-    let last = ((threaded + hi) / lead).floor();
+    // A stamp at an end of the stretch, to the rounding of the sums, is on it: a pass cut in
+    // pieces (verify's predicted path) stamps where it does whole.
+    let first = ((threaded + lo) / lead - 1e-9).ceil();
+    let last = ((threaded + hi) / lead + 1e-9).floor();
     if !(first.is_finite() && last.is_finite()) || last < first {
         return (0.0, 0);
     }

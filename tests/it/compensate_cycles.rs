@@ -26,6 +26,9 @@ struct Case {
     kept: Vec<String>,
     /// Lines the written program no longer holds as they were.
     edited: Vec<String>,
+    /// Compensate and verify pass by pass (`--passes`), not on the finished part.
+    #[serde(default)]
+    passes: bool,
 }
 
 fn turnpass(args: &[&str]) -> (i32, String, String) {
@@ -48,8 +51,10 @@ fn cycles_stay_calls_and_what_is_written_verifies() {
         let out = dir.path().join(format!("{}.nc", case.name));
         let report = dir.path().join(format!("{}.json", case.name));
         let (out_text, report_text) = (out.to_string_lossy(), report.to_string_lossy());
+        let measure: &[&str] = if case.passes { &["--passes"] } else { &[] };
         let args = ["compensate", &case.program, "--model", &case.model, "-o", &out_text];
-        let (code, _, stderr) = turnpass(&[&args[..], &["--report", "json", "--report-file", &report_text]].concat());
+        let (code, _, stderr) =
+            turnpass(&[&args[..], measure, &["--report", "json", "--report-file", &report_text]].concat());
         assert_eq!(code, 0, "{}: compensate refused\n{stderr}", case.name);
         let written = std::fs::read_to_string(&out).unwrap();
         let lines: Vec<&str> = written.lines().collect();
@@ -59,8 +64,8 @@ fn cycles_stay_calls_and_what_is_written_verifies() {
         for edited in &case.edited {
             assert!(!lines.contains(&edited.as_str()), "{}: `{edited}` is not compensated\n{written}", case.name);
         }
-        let (code, json, verify_stderr) =
-            turnpass(&["verify", &case.program, &out_text, "--model", &case.model, "--format", "json"]);
+        let args = ["verify", &case.program, &out_text, "--model", &case.model, "--format", "json"];
+        let (code, json, verify_stderr) = turnpass(&[&args[..], measure].concat());
         assert_eq!(code, 0, "{}: verify failed what compensate wrote\n{json}{verify_stderr}", case.name);
         let verified: serde_json::Value = serde_json::from_str(&json).unwrap();
         let reported: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();

@@ -50,6 +50,31 @@ pub fn measure(
     each: &mut dyn FnMut(Side, Measured),
 ) -> (Tally, Option<Worst>, ThreadPoints) {
     let mut walk = Walk::new(program, original, model, sampling, side);
+    walk_all(&mut walk, sampling, each);
+    walk.finish()
+}
+
+/// Every point of `program` as `model` puts the tool there, in path order: the points
+/// `measure` measures (the knees of a take-up and the points one step in from a cutting
+/// move's ends among them), rapids and moves that do not cut included, each given to `each`
+/// with its predicted point (`Measured::predicted`; its distance is none, `closest` the
+/// predicted point itself). The part measure (`part.rs`) cuts the part along these points.
+/// The points the lead measure needs (`lead.rs`) are kept and returned.
+pub fn predicted(
+    program: &CompactPath,
+    model: &ErrorModel,
+    sampling: &Sampling,
+    side: Side,
+    each: &mut dyn FnMut(Side, Measured),
+) -> ThreadPoints {
+    let mut walk = Walk::predicting(program, model, sampling, side);
+    walk_all(&mut walk, sampling, each);
+    walk.threads
+}
+
+/// Give `walk` every sample of its program, a piece of moves at a time.
+fn walk_all(walk: &mut Walk<'_>, sampling: &Sampling, each: &mut dyn FnMut(Side, Measured)) {
+    let program = walk.program;
     let mut samples = Vec::new();
     let count = program.len();
     let mut next = 0;
@@ -71,7 +96,6 @@ pub fn measure(
             walk.sample(s, &[], each);
         }
     }
-    walk.finish()
 }
 
 /// One program's measure as it goes (see the module documentation).
@@ -81,7 +105,9 @@ pub struct Walk<'a> {
     /// How many points were measured, cutting or not (`Measured::sample_index`).
     measured: usize,
     play: Xz,
-    follower: Follower<'a>,
+    /// None where the points are only predicted, not measured against a path (`predicted`):
+    /// each is then given to `each` as predicted, cutting or not.
+    follower: Option<Follower<'a>>,
     predictor: Predictor<'a>,
     tally: Tally,
     /// The point measured before (none after a point that does not cut).
@@ -126,7 +152,27 @@ impl<'a> Walk<'a> {
             side,
             measured: 0,
             play: model.play(),
-            follower: Follower::new(original),
+            follower: Some(Follower::new(original)),
+            predictor: Predictor::new(program.start, model),
+            tally: Tally::default(),
+            previous: None,
+            worst: None,
+            threads: ThreadPoints::default(),
+            move_before: usize::MAX,
+            param_before: 0.0,
+            allowance: sampling.allowance,
+        }
+    }
+
+    /// The points of `program` on `model` predicted only, measured against no path
+    /// (`predicted`).
+    fn predicting(program: &'a CompactPath, model: &'a ErrorModel, sampling: &Sampling, side: Side) -> Walk<'a> {
+        Walk {
+            program,
+            side,
+            measured: 0,
+            play: model.play(),
+            follower: None,
             predictor: Predictor::new(program.start, model),
             tally: Tally::default(),
             previous: None,
@@ -225,13 +271,19 @@ impl<'a> Walk<'a> {
         self.threads.keep(self.program, s.move_index, s.param, p);
         let sample_index = self.measured;
         self.measured += 1;
+        let Some(follower) = self.follower.as_mut() else {
+            let measured =
+                Measured { sample: *s, sample_index, predicted: p, distance_mm: 0.0, closest: p, original_move: 0 };
+            each(self.side, measured);
+            return p;
+        };
         if !s.cutting {
             self.previous = None;
             return p;
         }
         let found = match self.side {
-            Side::Original => self.follower.measure_from(s.move_index, s.param, p),
-            Side::Compensated => self.follower.measure(s.nominal, p),
+            Side::Original => follower.measure_from(s.move_index, s.param, p),
+            Side::Compensated => follower.measure(s.nominal, p),
         };
         let Some(found) = found else {
             self.previous = None;
@@ -248,7 +300,7 @@ impl<'a> Walk<'a> {
                 original_move: found.move_index,
             },
         );
-        let signed = found.distance * self.follower.side(&found, p);
+        let signed = found.distance * follower.side(&found, p);
         let point = Point {
             signed,
             own_move: s.move_index,
@@ -289,7 +341,7 @@ impl<'a> Walk<'a> {
         self.tally.add_signed_along(signed, previous, weight);
         let d = signed.abs();
         if self.worst.is_none_or(|w| d > w.deviation_mm) {
-            let original_move = self.follower.matched_move();
+            let original_move = self.follower.as_ref().map_or(0, Follower::matched_move);
             self.worst = Some(Worst { deviation_mm: d, original_move, measured_move });
         }
     }
@@ -302,7 +354,7 @@ impl<'a> Walk<'a> {
     fn arc_pieces(&self, before: &Point, after: &Point) -> SmallVec<[f64; 8]> {
         let none = SmallVec::new();
         let (Some(own), Some(reference)) =
-            (self.program.arc(after.own_move), self.follower.path().arc(after.found_move))
+            (self.program.arc(after.own_move), self.follower.as_ref().and_then(|f| f.path().arc(after.found_move)))
         else {
             return none;
         };
