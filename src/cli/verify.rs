@@ -498,7 +498,7 @@ pub fn checked(
         refusal.extend_from_slice(b"a move needs more samples than a measure holds: nothing is measured or written\n");
         return Err(CliError::Rejected(refusal));
     }
-    let measure = if checks.passes { Measure::Passes } else { Measure::Part };
+    let mut measure = if checks.passes { Measure::Passes } else { Measure::Part };
     let (figures, part) = match (measure, watch) {
         (Measure::Passes, Watch::Each(each)) => {
             (deviation_each(original_path, compensated_path, &tools, model, &sampling, each), None)
@@ -524,7 +524,19 @@ pub fn checked(
                 (machine, stock.as_ref()),
                 progress,
             );
-            (part.deviation, Some(part))
+            if part.probed_nothing() {
+                // As `compensate`'s check does (`verify::check_written`).
+                warnings.push(
+                    "the finished part has no surface point to probe (no move cuts the bar, or none leaves a \
+                     surface the probe reaches): the passes are measured instead, as --passes measures them; give \
+                     the bar with --stock if it is another"
+                        .to_string(),
+                );
+                measure = Measure::Passes;
+                (deviation_watched(original_path, compensated_path, &tools, model, &sampling, &|_, _| {}), None)
+            } else {
+                (part.deviation, Some(part))
+            }
         }
     };
     let words = check_words(

@@ -81,6 +81,14 @@ pub struct PartDeviation {
 }
 
 impl PartDeviation {
+    /// Whether no point of a finished surface was probed on either part: a program that
+    /// cuts no bar (a ball bar's circle in the air), or a bar that leaves no surface the
+    /// probe reaches. Such a measure says nothing of the program, and `verify` and
+    /// `compensate` measure pass by pass instead.
+    pub fn probed_nothing(&self) -> bool {
+        self.deviation.before.points == 0 && self.deviation.after.points == 0
+    }
+
     /// The error of a measure that did not cover the whole part (`stopped`), on the
     /// original's block where its part model stopped (the start of the text where the
     /// compensated program's did).
