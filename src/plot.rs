@@ -12,7 +12,7 @@
 //! nominal millimetres they stand at. Under the drawing the same deviations in µm against
 //! the cutting length, before and after.
 //!
-//! **Part plot** (`part_svg`, `report` when the measure is the finished part). The same
+//! **Part plot** (`part_svg`: `plot --part`, and `report` when the measure is the part). The same
 //! drawing with the finished part in place of the paths: the nominal surface where the part
 //! measure probed it, and each actual part's signed deviation there along the nominal
 //! surface's outward normal (+ material left, drawn away from the part), magnified as the
