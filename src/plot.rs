@@ -589,3 +589,48 @@ fn iso_table(states: [&str; 2], figures: &[iso230_4::Figures; 2]) -> Vec<Vec<Str
         vec!["G about the minimum-zone centre, F about the least-squares one".to_string()],
     ]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A groove plunged by one move: its bottom and both walls come ray by ray (both walls on
+    /// each ray along Z) and leave as one run along its surface, down one wall, across the
+    /// bottom and up the other, no two points in it more than twice the spacing apart.
+    #[test]
+    fn a_grooves_walls_and_bottom_are_one_run_along_its_surface() {
+        let ready = crate::compensation::test_support::ready(
+            "G21 G99\nG97 S1000 M03\nG00 X40. Z-5.\nG01 X20. F0.1\nG00 X40.\nM30\n",
+        );
+        let toolpath = ready.valid();
+        let plunge = toolpath.moves.iter().position(|m| m.cutting).unwrap();
+        let spacing = 0.1;
+        let point = |z: f64, x: f64, normal: Xz| PartPoint {
+            at: Xz::new(x, z),
+            normal,
+            original_move: Some(plunge),
+            before_mm: Some(0.002),
+            after_mm: Some(0.0),
+        };
+        let mut points: Vec<PartPoint> =
+            (0..=30).map(|k| point(-6.5 + 0.1 * f64::from(k), 10.0, Xz::new(1.0, 0.0))).collect();
+        for k in 1..=50 {
+            let x = 10.0 + 0.1 * f64::from(k);
+            points.push(point(-6.5, x, Xz::new(0.0, 1.0)));
+            points.push(point(-3.5, x, Xz::new(0.0, -1.0)));
+        }
+        let runs = surface_runs(&toolpath, &points, spacing);
+        assert_eq!(runs.len(), 1, "{:?}", runs.iter().map(Vec::len).collect::<Vec<_>>());
+        let run = &runs[0];
+        assert_eq!(run.len(), points.len());
+        for pair in run.windows(2) {
+            assert!(pair[0].0.at.distance(pair[1].0.at) <= 2.0 * spacing + 1e-9, "{:?}", (pair[0].0.at, pair[1].0.at));
+            assert!(pair[1].1 > pair[0].1, "the length along the surface grows");
+        }
+        let ends = [run[0].0.at, run[run.len() - 1].0.at];
+        assert!(
+            ends.iter().all(|p| (p.x - 15.0).abs() < 1e-9),
+            "the run goes from a wall's top to the other's: {ends:?}"
+        );
+    }
+}
