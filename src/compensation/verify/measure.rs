@@ -142,20 +142,7 @@ impl<'a> Walk<'a> {
         sampling: &Sampling,
         side: Side,
     ) -> Walk<'a> {
-        Walk {
-            program,
-            side,
-            measured: 0,
-            play: model.play(),
-            follower: Some(Follower::new(original)),
-            predictor: Predictor::new(program.start, model),
-            tally: Tally::default(),
-            previous: None,
-            worst: None,
-            move_before: usize::MAX,
-            param_before: 0.0,
-            allowance: sampling.allowance,
-        }
+        Walk { follower: Some(Follower::new(original)), ..Walk::predicting(program, model, sampling, side) }
     }
 
     /// The points of `program` on `model` predicted only, measured against no path
