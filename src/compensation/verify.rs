@@ -40,7 +40,9 @@ mod part;
 #[cfg(test)]
 mod tests;
 
-pub use part::{Feature, PartDeviation, Probe, ThreadFigures, ThreadForm, part_deviation, part_deviation_watched};
+pub use part::{
+    Feature, PartDeviation, PartPoint, Probe, ThreadFigures, ThreadForm, part_deviation, part_deviation_watched,
+};
 
 /// What `verify` measures: the finished part (by default, and `compensate`'s check), or the
 /// passes one by one (`--passes`).
