@@ -508,10 +508,11 @@ pub fn checked(
         }
         (Measure::Part, watch) => {
             // The plots draw the predicted path: its points are measured pass by pass.
+            let mut passes = None;
             let progress: &(dyn Fn(Side, &Measured) + Sync) = match watch {
                 Watch::Progress(watch) => watch,
                 Watch::Each(each) => {
-                    deviation_each(original_path, compensated_path, &tools, model, &sampling, each);
+                    passes = Some(deviation_each(original_path, compensated_path, &tools, model, &sampling, each));
                     &|_, _| {}
                 }
             };
@@ -533,7 +534,11 @@ pub fn checked(
                         .to_string(),
                 );
                 measure = Measure::Passes;
-                (deviation_watched(original_path, compensated_path, &tools, model, &sampling, &|_, _| {}), None)
+                // The plots' points are the pass measure already: its figures are not measured again.
+                let figures = passes.unwrap_or_else(|| {
+                    deviation_watched(original_path, compensated_path, &tools, model, &sampling, &|_, _| {})
+                });
+                (figures, None)
             } else {
                 (part.deviation, Some(part))
             }
