@@ -12,6 +12,13 @@
 //! nominal millimetres they stand at. Under the drawing the same deviations in µm against
 //! the cutting length, before and after.
 //!
+//! **Part plot** (`part_svg`: `plot --part`, and `report` when the measure is the part). The same
+//! drawing with the finished part in place of the paths: the nominal surface where the part
+//! measure probed it, and each actual part's signed deviation there along the nominal
+//! surface's outward normal (+ material left, drawn away from the part), magnified as the
+//! path plot is; under it the same in µm against the length along the surface. The probes
+//! come ray by ray; `surface_runs` puts them in order along the surface.
+//!
 //! **Polar plot** (`polar.rs`, a ball-bar test: a program that goes all the way round a
 //! circle). The radial deviation of each predicted point, `|p − c| − |n − c|`, against its
 //! angle about the circle's centre, for each direction the program goes round, before and
@@ -32,6 +39,7 @@ pub mod residuals;
 mod scale;
 
 use crate::compensation::Paths;
+use crate::compensation::verify::PartPoint;
 use crate::diagnose::iso230_4;
 use crate::diagnose::measured::Direction;
 use crate::geometry;
@@ -39,7 +47,7 @@ use crate::part::Part;
 use crate::toolpath::{Motion, Toolpath, ValidToolpath, Xz};
 
 pub use path::Drawn;
-use path::{NormalDeviation, PathFigure, Section, Series};
+use path::{Along, NormalDeviation, PathFigure, Section, Series};
 use polar::{PolarFigure, PolarSeries};
 use scale::micrometres;
 
@@ -166,7 +174,234 @@ pub fn path_svg(
         series: vec![series("as programmed", palette::BEFORE, before), series("compensated", palette::AFTER, after)],
         magnify,
         section: part.map(section),
+        along: Along::Cut,
+        notes: Vec::new(),
     })
+}
+
+/// The most points of a part figure; a larger part's are taken at even intervals along
+/// each run (its ends kept).
+const PART_POINTS: usize = 20_000;
+
+/// The part figure: `part`'s half-section (the nominal part `toolpath` cuts) with the
+/// deviation of each actual part at `points` (`PartDeviation::points`, probed `spacing_mm`
+/// apart) drawn along the nominal surface's outward normal, magnified `magnify` times or
+/// as much as makes the largest plain; under it the same in µm along the surface.
+pub fn part_svg(
+    title: &str,
+    toolpath: ValidToolpath<'_>,
+    (points, spacing_mm): (&[PartPoint], f64),
+    magnify: Option<f64>,
+    part: Option<&Part>,
+) -> Result<Drawn, PlotError> {
+    let surface = surface_runs(&toolpath, points, spacing_mm);
+    if surface.iter().all(|run| run.len() < 2) {
+        return Err(PlotError::NotDrawn("a part with no probed stretch of surface"));
+    }
+    let stride = points.len().div_ceil(PART_POINTS).max(1);
+    let surface: Vec<Vec<(PartPoint, f64)>> = surface
+        .into_iter()
+        .map(|run| {
+            let last = run.len() - 1;
+            run.into_iter().enumerate().filter(|(k, _)| k % stride == 0 || *k == last).map(|(_, p)| p).collect()
+        })
+        .collect();
+    let nominal: Lines = surface
+        .iter()
+        .filter(|run| run.len() > 1)
+        .map(|run| run.iter().map(|(p, _)| (p.at.z, p.at.x)).collect())
+        .collect();
+    // Each series unbroken where its part was probed at every point of a run.
+    let runs = |deviation: fn(&PartPoint) -> Option<f64>| {
+        let mut out: Vec<Vec<NormalDeviation>> = Vec::new();
+        for run in &surface {
+            let mut open = false;
+            for (p, along_mm) in run {
+                match deviation(p) {
+                    Some(mm) => {
+                        let d = NormalDeviation { at: p.at, normal: p.normal, mm, along_mm: *along_mm };
+                        match out.last_mut() {
+                            Some(current) if open => current.push(d),
+                            _ => out.push(vec![d]),
+                        }
+                        open = true;
+                    }
+                    None => open = false,
+                }
+            }
+        }
+        out
+    };
+    let notes = vec![
+        format!(
+            "the finished part each program cuts on the model, probed at {} points of the nominal surface {:.4} mm \
+             apart,",
+            points.len(),
+            spacing_mm
+        ),
+        "along the nominal part's outward normal: + material left, − material removed inside the part".to_string(),
+    ];
+    path::draw(&PathFigure {
+        title,
+        side_unknown: false,
+        nominal_label: "nominal surface (probed)",
+        nominal,
+        rapids: Vec::new(),
+        series: vec![
+            Series { label: "as programmed", colour: palette::BEFORE, runs: runs(|p| p.before_mm) },
+            Series { label: "compensated", colour: palette::AFTER, runs: runs(|p| p.after_mm) },
+        ],
+        magnify,
+        section: part.map(section),
+        along: Along::Surface,
+        notes,
+    })
+}
+
+/// The probed points in runs along the surface, each with its length along the surface
+/// (mm, counted on from run to run). The points come ray by ray, so they are ordered by the
+/// original's move that cut them (the stock's own faces after, by their normal) and, within
+/// one, along that move (its projection on the move's path: a line's direction, an arc's
+/// angle; points level with each other across it, as on a groove's bottom, by their offset
+/// from it). A point joins the run nearest it that ends within twice the rays' spacing, else
+/// starts one: a move's two sides (a groove's walls) are two runs, not one zigzag. Runs whose
+/// ends meet (the next move's stretch of the same surface, a groove's other wall, a thread
+/// flank cut pass by pass) are then joined, so that each run is a stretch of one surface.
+fn surface_runs(toolpath: &Toolpath, points: &[PartPoint], spacing_mm: f64) -> Vec<Vec<(PartPoint, f64)>> {
+    let reach = 2.0 * spacing_mm;
+    // Along the move and across it, mm.
+    let place = |p: &PartPoint| -> (f64, f64) {
+        let Some((k, m)) = p.original_move.and_then(|k| toolpath.moves.get(k).map(|m| (k, m))) else {
+            // A face of the stock is straight: along its tangent, across along its normal.
+            return (p.normal.z * p.at.x - p.normal.x * p.at.z, p.normal.x * p.at.x + p.normal.z * p.at.z);
+        };
+        let start = toolpath.start_of(k);
+        if m.is_arc() {
+            let ccw = m.motion == Motion::Ccw;
+            let sweep = geometry::sweep(start, m.end, m.centre, ccw);
+            let turned = geometry::angle(p.at, m.centre) - geometry::angle(start, m.centre);
+            let turned = if ccw { turned } else { -turned }.rem_euclid(std::f64::consts::TAU);
+            // A point before the start (cut by the nose as it arrives) is a little short of
+            // a whole turn: it counts from the start backwards.
+            let turned =
+                if turned > (sweep + std::f64::consts::TAU) / 2.0 { turned - std::f64::consts::TAU } else { turned };
+            return (turned * start.distance(m.centre), p.at.distance(m.centre));
+        }
+        let (dz, dx) = (m.end.z - start.z, m.end.x - start.x);
+        let length = dz.hypot(dx);
+        if length.is_nan() || length <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let (vz, vx) = (p.at.z - start.z, p.at.x - start.x);
+        ((vz * dz + vx * dx) / length, (vx * dz - vz * dx) / length)
+    };
+    // The stock's faces grouped by their normal, after every move.
+    let group = |p: &PartPoint| match p.original_move {
+        Some(k) => (k, 0, 0),
+        None => (usize::MAX, (p.normal.z.round() as i64 + 1) as usize, (p.normal.x.round() as i64 + 1) as usize),
+    };
+    // Level across the move: the same place along it to a nanometre.
+    let level = |along: f64| (along * 1e6).round();
+    let mut ordered: Vec<(PartPoint, (f64, f64))> = points.iter().map(|p| (*p, place(p))).collect();
+    ordered.sort_by(|a, b| {
+        (group(&a.0).cmp(&group(&b.0))).then(level(a.1.0).total_cmp(&level(b.1.0))).then(a.1.1.total_cmp(&b.1.1))
+    });
+    // The runs, each with where its last point is along its move; the runs still open (their
+    // last point within reach of where the points have come to along the move).
+    let mut runs: Vec<(Vec<PartPoint>, f64)> = Vec::new();
+    let mut open: Vec<usize> = Vec::new();
+    let mut current = None;
+    for (p, (along, _)) in ordered {
+        if current != Some(group(&p)) {
+            open.clear();
+            current = Some(group(&p));
+        }
+        open.retain(|&r| along - runs[r].1 <= reach);
+        let nearest = open
+            .iter()
+            .map(|&r| (r, runs[r].0.last().map_or(f64::INFINITY, |q| q.at.distance(p.at))))
+            .filter(|(_, d)| *d <= reach)
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        match nearest {
+            Some((r, _)) => {
+                runs[r].0.push(p);
+                runs[r].1 = along;
+            }
+            None => {
+                runs.push((vec![p], along));
+                open.push(runs.len() - 1);
+            }
+        }
+    }
+    let joined = joined(runs.into_iter().map(|(run, _)| run).collect(), reach);
+    let mut along = 0.0;
+    joined
+        .into_iter()
+        .map(|run| {
+            let mut previous: Option<Xz> = None;
+            run.into_iter()
+                .map(|p| {
+                    along += previous.map_or(0.0, |q| q.distance(p.at));
+                    previous = Some(p.at);
+                    (p, along)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// `runs` joined where an end of one is within `reach` of an end of another (the nearest),
+/// each chain grown from its first run forward, then backward, in the order of `runs`.
+fn joined(runs: Vec<Vec<PartPoint>>, reach: f64) -> Vec<Vec<PartPoint>> {
+    use std::collections::{HashMap, VecDeque};
+    let cell = |p: Xz| ((p.z / reach).floor() as i64, (p.x / reach).floor() as i64);
+    // Each run's ends by the cell they are in: the run, and whether it is its last point.
+    let mut ends: HashMap<(i64, i64), Vec<(usize, bool)>> = HashMap::new();
+    for (r, run) in runs.iter().enumerate() {
+        if let (Some(first), Some(last)) = (run.first(), run.last()) {
+            ends.entry(cell(first.at)).or_default().push((r, false));
+            ends.entry(cell(last.at)).or_default().push((r, true));
+        }
+    }
+    let mut runs: Vec<Option<Vec<PartPoint>>> = runs.into_iter().map(Some).collect();
+    let nearest = |at: Xz, runs: &[Option<Vec<PartPoint>>]| -> Option<(usize, bool)> {
+        let (cz, cx) = cell(at);
+        let mut best: Option<(usize, bool, f64)> = None;
+        for (dz, dx) in (-1..=1).flat_map(|dz| (-1..=1).map(move |dx| (dz, dx))) {
+            for &(r, last) in ends.get(&(cz + dz, cx + dx)).into_iter().flatten() {
+                let Some(run) = &runs[r] else { continue };
+                let end = if last { run.last() } else { run.first() };
+                let Some(d) = end.map(|p| p.at.distance(at)) else { continue };
+                if d <= reach && best.is_none_or(|b| d < b.2) {
+                    best = Some((r, last, d));
+                }
+            }
+        }
+        best.map(|(r, last, _)| (r, last))
+    };
+    let mut out = Vec::new();
+    for r in 0..runs.len() {
+        let Some(first) = runs[r].take() else { continue };
+        let mut chain: VecDeque<PartPoint> = first.into();
+        while let Some((s, last)) = chain.back().and_then(|p| nearest(p.at, &runs)) {
+            let mut next = runs[s].take().unwrap_or_default();
+            if last {
+                next.reverse();
+            }
+            chain.extend(next);
+        }
+        while let Some((s, last)) = chain.front().and_then(|p| nearest(p.at, &runs)) {
+            let mut before = runs[s].take().unwrap_or_default();
+            if !last {
+                before.reverse();
+            }
+            for p in before.into_iter().rev() {
+                chain.push_front(p);
+            }
+        }
+        out.push(chain.into());
+    }
+    out
 }
 
 /// The half-section of `part`: its stock's outline and the part's.
@@ -353,4 +588,49 @@ fn iso_table(states: [&str; 2], figures: &[iso230_4::Figures; 2]) -> Vec<Vec<Str
         row("F, smallest", &|f| f.both.or(f.cw).or(f.ccw).map(|c| c.f_min_mm)),
         vec!["G about the minimum-zone centre, F about the least-squares one".to_string()],
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A groove plunged by one move: its bottom and both walls come ray by ray (both walls on
+    /// each ray along Z) and leave as one run along its surface, down one wall, across the
+    /// bottom and up the other, no two points in it more than twice the spacing apart.
+    #[test]
+    fn a_grooves_walls_and_bottom_are_one_run_along_its_surface() {
+        let ready = crate::compensation::test_support::ready(
+            "G21 G99\nG97 S1000 M03\nG00 X40. Z-5.\nG01 X20. F0.1\nG00 X40.\nM30\n",
+        );
+        let toolpath = ready.valid();
+        let plunge = toolpath.moves.iter().position(|m| m.cutting).unwrap();
+        let spacing = 0.1;
+        let point = |z: f64, x: f64, normal: Xz| PartPoint {
+            at: Xz::new(x, z),
+            normal,
+            original_move: Some(plunge),
+            before_mm: Some(0.002),
+            after_mm: Some(0.0),
+        };
+        let mut points: Vec<PartPoint> =
+            (0..=30).map(|k| point(-6.5 + 0.1 * f64::from(k), 10.0, Xz::new(1.0, 0.0))).collect();
+        for k in 1..=50 {
+            let x = 10.0 + 0.1 * f64::from(k);
+            points.push(point(-6.5, x, Xz::new(0.0, 1.0)));
+            points.push(point(-3.5, x, Xz::new(0.0, -1.0)));
+        }
+        let runs = surface_runs(&toolpath, &points, spacing);
+        assert_eq!(runs.len(), 1, "{:?}", runs.iter().map(Vec::len).collect::<Vec<_>>());
+        let run = &runs[0];
+        assert_eq!(run.len(), points.len());
+        for pair in run.windows(2) {
+            assert!(pair[0].0.at.distance(pair[1].0.at) <= 2.0 * spacing + 1e-9, "{:?}", (pair[0].0.at, pair[1].0.at));
+            assert!(pair[1].1 > pair[0].1, "the length along the surface grows");
+        }
+        let ends = [run[0].0.at, run[run.len() - 1].0.at];
+        assert!(
+            ends.iter().all(|p| (p.x - 15.0).abs() < 1e-9),
+            "the run goes from a wall's top to the other's: {ends:?}"
+        );
+    }
 }

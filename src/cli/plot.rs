@@ -1,17 +1,21 @@
 //! `turnpass plot FILE -o OUT.svg`: the program compensated in memory, and its nominal,
 //! actual and compensated paths drawn with the error magnified, or with `--polar` the
-//! radial deviation of a full-circle (ball-bar) program.
+//! radial deviation of a full-circle (ball-bar) program, or with `--part` the finished part
+//! each cuts on the model, probed as `verify` probes it.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
 
+use turnpass::compensation::verify::{self, Measure};
 use turnpass::diagnostic::{Diagnostic, Severity};
+use turnpass::printer;
+use turnpass::semantic::nose_radius::ToolTable;
 
 use super::common::{
-    CliError, ReadArgs, RunArgs, StockArgs, check_output, display_name, model_source, read_program, ready_with_part,
-    rendered, svg_path, write_file,
+    CliError, ReadArgs, RunArgs, StockArgs, check_output, display_name, model_source, pipeline_settings, read_program,
+    ready_with_part, rendered, svg_path, write_file,
 };
 use super::compensate::FitArgs;
 use super::streams;
@@ -30,6 +34,11 @@ pub struct PlotArgs {
     /// A ball-bar polar plot: radial deviation against angle, each direction.
     #[arg(long)]
     pub polar: bool,
+    /// The finished part instead of the paths: the deviation of the part the program cuts on
+    /// the model and of the part its compensation cuts, probed along the nominal surface's
+    /// outward normal as `verify` probes them, over the half-section.
+    #[arg(long, conflicts_with = "polar")]
+    pub part: bool,
     #[command(flatten)]
     pub fit: FitArgs,
     #[command(flatten)]
@@ -100,6 +109,41 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
     let [before, after] = turnpass::plot::points_of(toolpath, &outcome.paths);
     let svg = if args.polar {
         turnpass::plot::polar_svg(&name, toolpath, &before, &after).map(|svg| (svg, None))
+    } else if args.part {
+        // The compensation printed and read back, both parts cut and probed: the check
+        // `compensate` makes before writing, on the same stock.
+        let written = printer::print(&program.parsed.program, &outcome.edits);
+        let mut reading = pipeline_settings(&resolved, &args.run, true);
+        reading.parse = printer::read_back_options(&program.parsed.program);
+        let tools = ToolTable::from_machine(&program.machine);
+        let checked = verify::check_written(
+            (&program.parsed.program, &program.lowered.expansions, toolpath),
+            &written,
+            &reading,
+            &tools,
+            (&model, Measure::Part, part.stock.as_ref()),
+        );
+        let measured = match checked.map(|written| written.part) {
+            Ok(Some(measured)) => measured,
+            Ok(None) => {
+                streams::err_line(format_args!("plot: {name}: the part was not measured: nothing is drawn"));
+                return Ok(ExitCode::from(1));
+            }
+            Err(diagnostics) => {
+                let mut text = rendered(&name, &bytes, &diagnostics);
+                text.extend_from_slice(
+                    format!("plot: {name}: the compensation does not read back: nothing is drawn\n").as_bytes(),
+                );
+                streams::err(text);
+                return Ok(ExitCode::from(1));
+            }
+        };
+        if let Some(stopped) = measured.incomplete() {
+            streams::err(rendered(&name, &bytes, &[Diagnostic { severity: Severity::Warning, ..stopped }]));
+        }
+        let section = program.part.as_ref().and_then(|run| run.part.as_ref());
+        turnpass::plot::part_svg(&name, toolpath, (&measured.points, measured.spacing_mm), args.magnify, section)
+            .map(|drawn| (drawn.svg, Some(drawn.magnify)))
     } else {
         let part = program.part.as_ref().and_then(|run| run.part.as_ref());
         turnpass::plot::path_svg(&name, toolpath, (&before, &after), args.magnify, part)

@@ -31,8 +31,8 @@ pub struct ReportArgs {
     /// The HTML file to write (its name ends in `.html` or `.htm`).
     #[arg(short, long, value_name = "OUT.html", value_parser = html_path)]
     pub output: PathBuf,
-    /// Magnify the deviations of the path plot this many times (default: the round factor
-    /// that draws the largest at a thirtieth of the part).
+    /// Magnify the deviations of the path and part plots this many times (default: the round
+    /// factor that draws the largest at a thirtieth of the part).
     #[arg(long, value_parser = super::plot::magnification)]
     pub magnify: Option<f64>,
     #[command(flatten)]
@@ -118,6 +118,25 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
         },
         svg: path.map(|drawn| drawn.svg).map_err(|e| e.to_string()),
     }];
+    // The finished part, where the part measure ran: the figure of what verify judges.
+    if let Some(measured) = &checked.part {
+        let figure =
+            turnpass::plot::part_svg(&title, toolpath, (&measured.points, measured.spacing_mm), args.magnify, part);
+        plots.push(Plot {
+            id: "plot-part",
+            caption: match &figure {
+                Ok(drawn) => format!(
+                    "The finished part at true scale, on its stock: the deviation of the part each program cuts on \
+                     the model (as programmed and compensated), measured along the nominal surface's outward normal \
+                     at {} points, magnified ×{}; under it the same in µm along the surface.",
+                    measured.points.len(),
+                    drawn.magnify
+                ),
+                Err(_) => "The part plot".to_string(),
+            },
+            svg: figure.map(|drawn| drawn.svg).map_err(|e| e.to_string()),
+        });
+    }
     match turnpass::plot::polar_svg(&title, toolpath, &before, &after) {
         Ok(svg) => plots.push(Plot {
             id: "plot-polar",

@@ -508,7 +508,7 @@ pub fn checked(
         refusal.extend_from_slice(b"a move needs more samples than a measure holds: nothing is measured or written\n");
         return Err(CliError::Rejected(refusal));
     }
-    let measure = if checks.passes { Measure::Passes } else { Measure::Part };
+    let mut measure = if checks.passes { Measure::Passes } else { Measure::Part };
     let (figures, part) = match (measure, watch) {
         (Measure::Passes, Watch::Each(each)) => {
             (deviation_each(original_path, compensated_path, &tools, model, &sampling, each), None)
@@ -518,10 +518,11 @@ pub fn checked(
         }
         (Measure::Part, watch) => {
             // The plots draw the predicted path: its points are measured pass by pass.
+            let mut passes = None;
             let progress: &(dyn Fn(Side, &Measured) + Sync) = match watch {
                 Watch::Progress(watch) => watch,
                 Watch::Each(each) => {
-                    deviation_each(original_path, compensated_path, &tools, model, &sampling, each);
+                    passes = Some(deviation_each(original_path, compensated_path, &tools, model, &sampling, each));
                     &|_, _| {}
                 }
             };
@@ -534,7 +535,23 @@ pub fn checked(
                 (machine, stock.as_ref()),
                 progress,
             );
-            (part.deviation, Some(part))
+            if part.probed_nothing() {
+                // As `compensate`'s check does (`verify::check_written`).
+                warnings.push(
+                    "the finished part has no surface point to probe (no move cuts the bar, or none leaves a \
+                     surface the probe reaches): the passes are measured instead, as --passes measures them; give \
+                     the bar with --stock if it is another"
+                        .to_string(),
+                );
+                measure = Measure::Passes;
+                // The plots' points are the pass measure already: its figures are not measured again.
+                let figures = passes.unwrap_or_else(|| {
+                    deviation_watched(original_path, compensated_path, &tools, model, &sampling, &|_, _| {})
+                });
+                (figures, None)
+            } else {
+                (part.deviation, Some(part))
+            }
         }
     };
     let words = check_words(

@@ -41,7 +41,9 @@ mod part;
 #[cfg(test)]
 mod tests;
 
-pub use part::{Feature, PartDeviation, Probe, ThreadFigures, ThreadForm, part_deviation, part_deviation_watched};
+pub use part::{
+    Feature, PartDeviation, PartPoint, Probe, ThreadFigures, ThreadForm, part_deviation, part_deviation_watched,
+};
 
 /// What `verify` measures: the finished part (by default, and `compensate`'s check), or the
 /// passes one by one (`--passes`).
@@ -231,7 +233,9 @@ fn figures(before: Tally, after: Tally, worst: Option<Worst>, lead: Option<LeadF
 #[derive(Debug, Clone)]
 pub struct Written {
     pub deviation: Deviation,
-    /// The finished-part measure's findings (none on the pass measure).
+    /// The finished-part measure's findings (none on the pass measure, and none where the
+    /// part measure probed nothing and the passes were measured instead,
+    /// `PartDeviation::probed_nothing`).
     pub part: Option<PartDeviation>,
     pub feed_change: Option<FeedChange>,
     pub lost: Option<MissingWord>,
@@ -274,6 +278,11 @@ pub fn check_written(
             // The part measure cuts both programs' parts from their toolpaths (the blocks
             // that cut each surface, the threads' passes), so the read-back is held to the end.
             let part = part_deviation((original, toolpath), tools, model, &sampling, machine, stock);
+            if part.probed_nothing() {
+                let (original_path, written_path) = (compact(original, tools), compact(toolpath, tools));
+                let deviation = deviation_of(&original_path, &written_path, model, &sampling, &|_, _| {});
+                return Ok(Written { deviation, part: None, feed_change, lost });
+            }
             Ok(Written { deviation: part.deviation, part: Some(part), feed_change, lost })
         }
         Measure::Passes => {

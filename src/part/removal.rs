@@ -7,6 +7,7 @@ use super::dexel::{Dexels, Edge, STOCK, Span, Spans, Taken};
 use super::stock::Stock;
 use super::sweep::Sweep;
 use super::tool::{self, Orientation, Tool};
+use crate::machine::{ToolKind, ToolSettings};
 use crate::semantic::Machine;
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
@@ -50,7 +51,7 @@ pub struct Removal<'a> {
     pub dexels: Dexels,
     pub stock: Stock,
     machine: &'a Machine,
-    tools: Vec<((u16, u16), Tool)>,
+    tools: Vec<((u16, u16, bool), Tool)>,
     /// The thread pass under way: where its first threading move started, and the path
     /// length threaded since.
     thread: Option<f64>,
@@ -86,11 +87,17 @@ impl<'a> Removal<'a> {
     /// The shape of the tool of move `m` from `start`; a tool whose side the table does not
     /// give takes it from its first cut (`tool::Orientation`).
     fn tool(&mut self, m: &Move, start: Xz) -> Tool {
-        let key = (m.tool, m.offset);
+        // A tool the table gives without a kind is taken as a threading insert where it cuts
+        // a thread pass: each stamp leaves the insert's form, and a turning insert's core
+        // (a slot of no width for a tip along an axis and no nose) leaves none.
+        let entry = tool::entry(self.machine, m.tool, m.offset);
+        let threading = m.threading && entry.is_some_and(|t| t.kind.is_none());
+        let key = (m.tool, m.offset, threading);
         if let Some((_, tool)) = self.tools.iter().find(|(k, _)| *k == key) {
             return tool.clone();
         }
-        let settings = tool::entry(self.machine, m.tool, m.offset);
+        let as_threading = entry.map(|t| ToolSettings { kind: Some(ToolKind::Threading), ..*t });
+        let settings = if threading { as_threading.as_ref() } else { entry };
         let reach = self.stock.front - self.stock.back + 10.0;
         let orientation = if Tool::knows_its_side(settings) { Orientation::Outside } else { self.side_of(start) };
         let shape = Tool::new(settings, self.machine, orientation, reach);

@@ -14,6 +14,8 @@
 //!   rounded corners, as wide as the insert.
 //! - **Threading**: a V of the included angle, its apex at the nose centre, opening away
 //!   from the part; the reference point is the V's tip.
+//!   A tool the table gives without a `kind` is one where it cuts a thread pass
+//!   (`removal::Removal::tool`): a thread is the insert's form stamped once per lead.
 //! - **Drill**: a rectangle of the drill's diameter on its axis, reaching back along +Z (its
 //!   flutes), square at its end.
 //!

@@ -47,6 +47,36 @@ pub(crate) struct PathFigure<'a> {
     pub magnify: Option<f64>,
     /// The part model's half-section under the paths, where it ran.
     pub section: Option<Section>,
+    /// What the deviations' length runs along, for the strip under the drawing.
+    pub along: Along,
+    /// Lines said under the title, after the magnification's.
+    pub notes: Vec<String>,
+}
+
+/// What a figure's deviations are laid out along: the cut (a path, pass by pass) or the
+/// nominal surface (a finished part, probed).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Along {
+    Cut,
+    Surface,
+}
+
+impl Along {
+    fn strip_title(self) -> &'static str {
+        match self {
+            Along::Cut => "deviation along the surface normal (µm, + away from the part), along the cut",
+            Along::Surface => {
+                "deviation along the surface normal (µm, + material left, − removed inside the part), along the surface"
+            }
+        }
+    }
+
+    fn axis(self) -> &'static str {
+        match self {
+            Along::Cut => "cutting length along the nominal path (mm)",
+            Along::Surface => "length along the probed nominal surface (mm)",
+        }
+    }
 }
 
 /// The stock and the finished part the program cuts from it, in (Z, X) at true scale.
@@ -163,7 +193,21 @@ pub(crate) fn draw(figure: &PathFigure<'_>) -> Result<Drawn, PlotError> {
     }
     let plot_height = plot_height.max(MIN_HEIGHT).round();
     let main_height = plot_height as u32 + MARGIN_TOP + MARGIN_BOTTOM + X_LABELS;
-    let header_height = TITLE + LINE * (1 + u32::from(figure.side_unknown)) + 6;
+    let mut lines = vec![format!(
+        "deviation along the surface normal, magnified ×{} (+ away from the part); Z and X at the same scale, axes in \
+         nominal mm{}",
+        micrometres(magnify),
+        if figure.rapids.is_empty() { "" } else { "; rapids dashed, not magnified" }
+    )];
+    if figure.side_unknown {
+        lines.push(
+            "where the tool's side is not known (no nose-radius compensation, no tip direction), + is left of the \
+             direction of travel"
+                .to_string(),
+        );
+    }
+    lines.extend(figure.notes.iter().cloned());
+    let header_height = TITLE + LINE * lines.len() as u32 + 6;
     let mut entries = Vec::new();
     if let Some(section) = &figure.section {
         let stock = if section.stock_assumed { "stock (assumed)" } else { "stock" };
@@ -253,19 +297,6 @@ pub(crate) fn draw(figure: &PathFigure<'_>) -> Result<Drawn, PlotError> {
             }
         }
 
-        let mut lines = vec![format!(
-            "deviation along the surface normal, magnified ×{} (+ away from the part); Z and X at the same scale, \
-             axes in nominal mm{}",
-            micrometres(magnify),
-            if figure.rapids.is_empty() { "" } else { "; rapids dashed, not magnified" }
-        )];
-        if figure.side_unknown {
-            lines.push(
-                "where the tool's side is not known (no nose-radius compensation, no tip direction), + is left of \
-                        the direction of travel"
-                    .to_string(),
-            );
-        }
         header_text(&header, figure.title, &lines)?;
         legend_row(&legend, &entries)?;
         let pixels_per_um = magnify * pixels_per_mm / 1000.0;
@@ -289,7 +320,7 @@ fn strip_chart(
     let (title_area, chart_area) = area.split_vertically(26);
     title_area
         .draw(&Text::new(
-            "deviation along the surface normal (µm, + away from the part), along the cut",
+            figure.along.strip_title(),
             (i32::try_from(Y_LABELS + MARGIN_LEFT).unwrap_or(0), 6),
             ("sans-serif", 14).into_font().color(&NOMINAL),
         ))
@@ -304,7 +335,7 @@ fn strip_chart(
         .map_err(drawing)?;
     chart
         .configure_mesh()
-        .x_desc("cutting length along the nominal path (mm)")
+        .x_desc(figure.along.axis())
         .y_desc("µm")
         .y_labels(5)
         .light_line_style(GREY.mix(0.12))

@@ -8,7 +8,7 @@
 //!   bar, and under it the residual in µm along the cut.
 
 use super::palette::{AFTER, AFTER_SECOND, BEFORE, BEFORE_SECOND};
-use super::path::{self, NormalDeviation, PathFigure, Series};
+use super::path::{self, Along, NormalDeviation, PathFigure, Series};
 use super::polar::{self, PolarFigure, PolarSeries};
 use super::{PlotError, iso_table};
 use crate::diagnose::Diagnosis;
@@ -141,6 +141,8 @@ fn profile(title: &str, d: &Diagnosis) -> Result<String, PlotError> {
         ],
         magnify: None,
         section: None,
+        along: Along::Cut,
+        notes: Vec::new(),
     })?;
     Ok(drawn.svg)
 }

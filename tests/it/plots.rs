@@ -28,6 +28,13 @@ struct Case {
     round: bool,
     #[serde(default)]
     residual: bool,
+    /// Commands run first, in order, each as `args` is (`{tmp}` the case's folder).
+    #[serde(default)]
+    before: Vec<Vec<String>>,
+    /// The id of the figure to read from the HTML page `{out}` (a report), instead of `{out}`
+    /// itself as an SVG.
+    #[serde(default)]
+    figure: Option<String>,
 }
 
 /// Okabe and Ito's colours and black: the only strokes a data line may have.
@@ -171,7 +178,7 @@ fn check_path(case: &Case, svg: &Svg) {
     for label in ["Z, nominal (mm)", "X, radius, nominal (mm)", "µm"] {
         svg.text(label);
     }
-    if !case.name.starts_with("diagnose") {
+    if case.kind == "path" && !case.name.starts_with("diagnose") {
         svg.text("rapid");
         let subtitle = &svg.text_starting("deviation along the surface normal, magnified ×").text;
         assert!(subtitle.contains("rapids dashed, not magnified"), "{}: {subtitle}", case.name);
@@ -201,6 +208,41 @@ fn check_path(case: &Case, svg: &Svg) {
             );
         }
     }
+}
+
+/// A part figure: the path figure's checks, the half-section under it, the probed surface in
+/// black, and each part's deviation along the surface with the points it was probed at.
+fn check_part(case: &Case, svg: &Svg) {
+    check_path(case, svg);
+    for label in ["stock", "finished part", "nominal surface (probed)", "as programmed", "compensated"] {
+        svg.text(label);
+    }
+    assert!(!svg.texts.iter().any(|t| t.text == "rapid"), "{}: a part figure has no rapids", case.name);
+    let said = &svg.text_starting("the finished part each program cuts on the model, probed at ").text;
+    let points: usize = said
+        .strip_prefix("the finished part each program cuts on the model, probed at ")
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(0);
+    assert!(points > 100, "{}: `{said}`", case.name);
+    svg.text("length along the probed nominal surface (mm)");
+    svg.text_starting("deviation along the surface normal (µm, + material left");
+    // The nominal surface drawn in black in the main drawing, and a line of each part's
+    // colour (vermillion as programmed, blue compensated) in the drawing and in the strip.
+    let nominal = svg.lines.iter().filter(|l| l.stroke == "#000000" && l.width == "1" && l.points.len() > 10).count();
+    assert!(nominal > 0, "{}: no probed surface drawn", case.name);
+    for colour in ["#D55E00", "#0072B2"] {
+        let drawn = svg.coloured().filter(|l| l.stroke == colour).count();
+        assert!(drawn >= 2, "{}: {drawn} lines of {colour}", case.name);
+    }
+}
+
+/// The inline SVG of the figure `id` in an HTML page.
+fn figure_in(page: &str, id: &str) -> String {
+    let at = page.find(&format!("id=\"{id}\"")).unwrap_or_else(|| panic!("no figure `{id}` on the page"));
+    let start = at + page[at..].find("<svg").expect("the figure holds an SVG");
+    let end = start + page[start..].find("</svg>").expect("the SVG ends") + "</svg>".len();
+    page[start..end].to_string()
 }
 
 fn check_polar(case: &Case, svg: &Svg) {
@@ -259,11 +301,23 @@ fn plots_of_the_examples_read_at_a_glance() {
         toml::from_str(&std::fs::read_to_string(repo().join("tests/cases/plots/plots.toml")).unwrap()).unwrap();
     for case in &cases.case {
         let tmp = tempfile::tempdir().unwrap();
-        let out = tmp.path().join("plot.svg");
-        let args: Vec<String> = case.args.iter().map(|a| a.replace("{out}", &out.to_string_lossy())).collect();
-        let output = Command::new(env!("CARGO_BIN_EXE_turnpass")).args(&args).current_dir(repo()).output().unwrap();
-        assert!(output.status.success(), "{}: {}", case.name, String::from_utf8_lossy(&output.stderr));
-        let svg = read_svg(&std::fs::read_to_string(&out).unwrap());
+        let out = tmp.path().join(if case.figure.is_some() { "report.html" } else { "plot.svg" });
+        let fill = |args: &[String]| -> Vec<String> {
+            args.iter()
+                .map(|a| a.replace("{out}", &out.to_string_lossy()).replace("{tmp}", &tmp.path().to_string_lossy()))
+                .collect()
+        };
+        for args in case.before.iter().chain([&case.args]) {
+            let output =
+                Command::new(env!("CARGO_BIN_EXE_turnpass")).args(fill(args)).current_dir(repo()).output().unwrap();
+            assert!(output.status.success(), "{}: {}", case.name, String::from_utf8_lossy(&output.stderr));
+        }
+        // The case's folder is named where a program in it is (a report's title): `{tmp}`.
+        let written = std::fs::read_to_string(&out).unwrap().replace(&*tmp.path().to_string_lossy(), "{tmp}");
+        let svg = read_svg(&match &case.figure {
+            Some(id) => figure_in(&written, id),
+            None => written,
+        });
         for line in svg.lines.iter().filter(|l| l.width == "2") {
             assert!(
                 PALETTE.contains(&line.stroke.as_str()),
@@ -275,6 +329,7 @@ fn plots_of_the_examples_read_at_a_glance() {
         match case.kind.as_str() {
             "path" => check_path(case, &svg),
             "polar" => check_polar(case, &svg),
+            "part" => check_part(case, &svg),
             other => panic!("{}: unknown kind `{other}`", case.name),
         }
         with_snapshots("plots", || insta::assert_snapshot!(case.name.clone(), structure(&svg)));

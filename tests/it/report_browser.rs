@@ -1,7 +1,8 @@
 //! The report as a person sees it: headless Chromium opens the page of the bundled ball bar
 //! example (compensated, then reported) from a folder of its own, with the network left
-//! out, and must show a page that is not blank, with both plots drawn in their colours and
-//! the verdict; its DOM must hold both figures' SVG and name no address.
+//! out, and must show a page that is not blank, with the plots drawn in their colours and
+//! the verdict; its DOM must hold the three figures' SVG (the path, the finished part, the
+//! polar plot) and name no address.
 
 use std::path::Path;
 use std::process::Command;
@@ -56,10 +57,12 @@ fn the_report_renders_in_headless_chromium() {
     let output = chromium(&program, profile.path()).args(["--dump-dom", &url]).output().unwrap();
     assert!(output.status.success(), "chromium --dump-dom: {}", String::from_utf8_lossy(&output.stderr));
     let dom = String::from_utf8_lossy(&output.stdout);
-    for wanted in ["id=\"plot-path\"", "id=\"plot-polar\"", "verify: ok", "id=\"diff\"", "id=\"figures\""] {
+    for wanted in
+        ["id=\"plot-path\"", "id=\"plot-part\"", "id=\"plot-polar\"", "verify: ok", "id=\"diff\"", "id=\"figures\""]
+    {
         assert!(dom.contains(wanted), "the page as Chromium reads it has no `{wanted}`");
     }
-    assert_eq!(dom.matches("<svg").count(), 2, "two inline plots");
+    assert_eq!(dom.matches("<svg").count(), 3, "three inline plots");
     assert!(!dom.contains("http://") && !dom.contains("https://"), "the page names an address");
 
     let profile = tempfile::tempdir().unwrap();

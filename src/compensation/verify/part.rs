@@ -78,9 +78,36 @@ pub struct PartDeviation {
     /// Where a part model stopped at its bound on work (the program, the block of its own
     /// text), none when all three ran to the end: the figures then cover only what was cut.
     pub stopped: Option<(Side, Span)>,
+    /// Every probed point of the nominal surface, ray by ray (not along the surface), with
+    /// the deviation of each actual part there: what the part figure draws.
+    pub points: Vec<PartPoint>,
+}
+
+/// A point of the nominal finished surface and each actual part's deviation there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PartPoint {
+    /// The point (IR frame, mm, X a radius) and the nominal part's outward unit normal there.
+    pub at: Xz,
+    pub normal: Xz,
+    /// The original's move that cut it on the nominal part (none: a face of the stock).
+    pub original_move: Option<usize>,
+    /// The signed deviation along the normal (+ material left, − removed inside the nominal
+    /// part) of the original's part (before) and of the compensated program's (after), mm;
+    /// none where that part was not probed there (at an edge of it the probe passes, or a
+    /// face of the stock it did not cut).
+    pub before_mm: Option<f64>,
+    pub after_mm: Option<f64>,
 }
 
 impl PartDeviation {
+    /// Whether no point of a finished surface was probed on either part: a program that
+    /// cuts no bar (a ball bar's circle in the air), or a bar that leaves no surface the
+    /// probe reaches. Such a measure says nothing of the program, and `verify` and
+    /// `compensate` measure pass by pass instead.
+    pub fn probed_nothing(&self) -> bool {
+        self.deviation.before.points == 0 && self.deviation.after.points == 0
+    }
+
     /// The error of a measure that did not cover the whole part (`stopped`), on the
     /// original's block where its part model stopped (the start of the text where the
     /// compensated program's did).
@@ -97,8 +124,10 @@ impl PartDeviation {
 /// One probed point of the actual part.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Probe {
-    /// The point of the nominal surface, IR frame (mm, X a radius).
+    /// The point of the nominal surface, IR frame (mm, X a radius), and the nominal part's
+    /// outward unit normal there.
     pub at: Xz,
+    pub normal: Xz,
     /// The distance to the actual surface along the nominal normal, mm: positive where
     /// material is left, negative inside the nominal part.
     pub signed_mm: f64,
@@ -189,6 +218,7 @@ pub fn part_deviation_watched(
             spacing_mm: 0.0,
             unprobed_mm: 0.0,
             stopped: None,
+            points: Vec::new(),
         };
     };
     // The three parts on the same rays: the spacing follows the original's moves. The
@@ -232,19 +262,22 @@ pub fn part_deviation_watched(
         probe_before.into_iter().filter(|p| p.2 > 0.0).collect(),
         probe_after.into_iter().filter(|p| p.2 > 0.0).collect(),
     );
-    let tally = |probes: &[(Probe, Option<usize>, f64)]| {
+    let points = points(&probe_before, &probe_after);
+    let tally = |probes: &[Probed]| {
         let mut tally = Tally::default();
-        for (p, _, weight) in probes {
+        for (p, _, weight, _) in probes {
             tally.add_along(p.signed_mm.abs(), None, weight / SAMPLE_STEP_MM);
         }
         tally.figures()
     };
     let (before_figures, after_figures) = (tally(&probe_before), tally(&probe_after));
     let worst =
-        probe_after.iter().max_by(|a, b| a.0.signed_mm.abs().total_cmp(&b.0.signed_mm.abs())).map(|(p, by, _)| Worst {
-            deviation_mm: p.signed_mm.abs(),
-            original_move: by.unwrap_or(usize::MAX),
-            measured_move: p.cut_by.unwrap_or(usize::MAX),
+        probe_after.iter().max_by(|a, b| a.0.signed_mm.abs().total_cmp(&b.0.signed_mm.abs())).map(|(p, by, ..)| {
+            Worst {
+                deviation_mm: p.signed_mm.abs(),
+                original_move: by.unwrap_or(usize::MAX),
+                measured_move: p.cut_by.unwrap_or(usize::MAX),
+            }
         });
     let gouge = probe_after
         .iter()
@@ -262,8 +295,49 @@ pub fn part_deviation_watched(
         // The passes' leads from the same predicted points, as the pass measure gives them.
         lead: super::lead::figures((&original_compact, &before_threads), (&compensated_compact, &after_threads)),
     };
-    PartDeviation { deviation, features, gouge, threads, stock, spacing_mm: nominal.spacing, unprobed_mm, stopped }
+    PartDeviation {
+        deviation,
+        features,
+        gouge,
+        threads,
+        stock,
+        spacing_mm: nominal.spacing,
+        unprobed_mm,
+        stopped,
+        points,
+    }
 }
+
+/// The probed points of both actual parts, one per point of the nominal surface either
+/// probed, in the order the probes came (`probe` visits the nominal part's edges in one order
+/// whatever part it probes, and numbers each it considers).
+fn points(before: &[Probed], after: &[Probed]) -> Vec<PartPoint> {
+    let mut out = Vec::with_capacity(before.len().max(after.len()));
+    let (mut b, mut a) = (before.iter().peekable(), after.iter().peekable());
+    loop {
+        let next = match (b.peek(), a.peek()) {
+            (None, None) => break,
+            (Some(x), Some(y)) if x.3 == y.3 => (b.next(), a.next()),
+            (Some(x), Some(y)) if x.3 < y.3 => (b.next(), None),
+            (Some(_), None) => (b.next(), None),
+            _ => (None, a.next()),
+        };
+        let Some(&(p, by, ..)) = next.0.or(next.1) else { break };
+        out.push(PartPoint {
+            at: p.at,
+            normal: p.normal,
+            original_move: by,
+            before_mm: next.0.map(|q| q.0.signed_mm),
+            after_mm: next.1.map(|q| q.0.signed_mm),
+        });
+    }
+    out
+}
+
+/// A probe, the original's move that cut its point on the nominal part, the length of
+/// surface it stands for (mm; negative for a point not probed), and the number of the
+/// nominal edge it is (the same on every part probed).
+type Probed = (Probe, Option<usize>, f64, usize);
 
 /// `toolpath` cut from `stock` on the rays a program of `rays_for` moves gets; the move
 /// where the model stopped at its bound.
@@ -447,8 +521,9 @@ fn arc_centre(a: Xz, b: Xz, programmed: Xz) -> Option<Xz> {
 /// Each point of `nominal`'s surface probed on `actual`, from the family more nearly along
 /// its normal, in front of a part-off at `separated_at`: the probe, the original's move that
 /// cut the point on the nominal part, and the length of surface it stands for (mm).
-fn probe(nominal: &Dexels, actual: &Dexels, separated_at: Option<f64>) -> Vec<(Probe, Option<usize>, f64)> {
+fn probe(nominal: &Dexels, actual: &Dexels, separated_at: Option<f64>) -> Vec<Probed> {
     let mut out = Vec::new();
+    let mut candidate = 0;
     for along_z in [true, false] {
         let (rays, actual_rays) =
             if along_z { (&nominal.along_z, &actual.along_z) } else { (&nominal.along_x, &actual.along_x) };
@@ -477,6 +552,7 @@ fn probe(nominal: &Dexels, actual: &Dexels, separated_at: Option<f64>) -> Vec<(P
                     if separated_at.is_some_and(|z| at.z < z) {
                         continue;
                     }
+                    candidate += 1;
                     let nearest = found
                         .iter()
                         .map(|s| if high { s.hi } else { s.lo })
@@ -513,10 +589,10 @@ fn probe(nominal: &Dexels, actual: &Dexels, separated_at: Option<f64>) -> Vec<(P
                     let weight = nominal.spacing / along.abs();
                     if at_edge {
                         // Not probed: its length is kept, negative, for the total.
-                        out.push((Probe { at, signed_mm: 0.0, cut_by: None }, None, -weight));
+                        out.push((Probe { at, normal, signed_mm: 0.0, cut_by: None }, None, -weight, candidate));
                         continue;
                     }
-                    out.push((Probe { at, signed_mm, cut_by }, nominal_by, weight));
+                    out.push((Probe { at, normal, signed_mm, cut_by }, nominal_by, weight, candidate));
                 }
             }
         }
@@ -575,10 +651,10 @@ fn nearest_surface(part: &Dexels, p: Xz, within: f64) -> f64 {
 }
 
 /// The probes grouped by the block of the original that cut their point, in block order.
-fn features(original: &Toolpath, probes: &[(Probe, Option<usize>, f64)]) -> Vec<Feature> {
+fn features(original: &Toolpath, probes: &[Probed]) -> Vec<Feature> {
     let mut by_block: Vec<(Span, Tally, Probe)> = Vec::new();
     let mut index = std::collections::HashMap::new();
-    for (p, by, weight) in probes {
+    for (p, by, weight, _) in probes {
         let block = by.and_then(|k| original.moves.get(k)).map_or(Span::SYNTHETIC, |m| m.source);
         let slot = *index.entry((block.start, block.end)).or_insert_with(|| {
             by_block.push((block, Tally::default(), *p));
