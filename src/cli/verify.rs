@@ -261,8 +261,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             text.push_str(&format!("  RMS improvement: {improvement}\n"));
             if let Some(lead) = &figures.lead {
                 text.push_str(&format!(
-                    "thread lead over each pass's length (the tool after each whole spindle turn against the \
-                     programmed lead), largest error, mm: as programmed {:.5}, compensated {:.5} ({} pass{})\n",
+                    "thread lead over each pass's length (the tool after each whole spindle turn along the axis \
+                     from the helix of the programmed lead, placed to fit best), largest error, mm: as programmed {:.5}, compensated {:.5} ({} pass{})\n",
                     lead.before_mm,
                     lead.after_mm,
                     lead.passes,

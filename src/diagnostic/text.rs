@@ -787,8 +787,8 @@ impl DiagnosticKind {
                 message: format!(
                     "the compensated program, read back and predicted on the model as `turnpass verify` predicts \
                      it, would cut this thread with a lead that errs by {lead_error_mm:.5} mm over its length (the \
-                     tool after each whole spindle turn against the programmed lead), more than the {bound_mm:.5} mm \
-                     verify allows; no compensated program is written"
+                     tool after each whole spindle turn along the axis from the helix of the programmed lead, placed \
+                     to fit best), more than the {bound_mm:.5} mm verify allows; no compensated program is written"
                 )
                 .into(),
                 label: format!("lead off by {:.2} µm over the thread", lead_error_mm * 1000.0).into(),

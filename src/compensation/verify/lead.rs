@@ -4,11 +4,12 @@
 //! see (the predicted points slide along the pass, which is the path itself). Each thread
 //! pass is measured here by where the model puts the tool after each whole spindle turn
 //! from the pass's start: its advance along the thread's axis after `n` turns against `n`
-//! times the lead the original program cuts. The pass's cumulative lead error is the spread
-//! of that difference over the whole turns after the first (what a lead gauge reads over the
-//! thread's length): the first turn is the approach in front of the part, where the slide
-//! accelerates and takes up its play, and a difference the same at every turn shifts where
-//! the thread starts, not its lead.
+//! times the lead the original program cuts. The pass's cumulative lead error is the largest
+//! of that difference over the whole turns after the first, measured from the helix of the
+//! programmed lead placed to fit best (half the spread: a lead gauge's reading over the
+//! thread's length, centred): the first turn is the approach in front of the part, where
+//! the slide accelerates and takes up its play, and a difference the same at every turn
+//! shifts where the thread starts, not its lead.
 //!
 //! The predicted points are the measure's own (`measure.rs` keeps those on thread moves and
 //! the one where a pass starts), interpolated at the whole turns: the sampling follows the
@@ -79,14 +80,16 @@ pub fn figures(
         return None;
     }
     let after = passes(compensated, compensated_points);
-    // The spread of the axial error over the whole turns after the first: the first turn is
-    // the approach, where the slide accelerates and takes up its play in front of the part
-    // (a thread cycle starts there), and a constant offset moves where the thread starts,
-    // not its lead.
+    // The axial error over the whole turns after the first, against the helix of the
+    // programmed lead placed where it fits best (half the spread): the first turn is the
+    // approach, where the slide accelerates and takes up its play in front of the part (a
+    // thread cycle starts there), and a constant offset moves where the thread starts, not
+    // its lead. Centred, the figure is how far a flank lies along the axis from where the
+    // ideal thread puts it, the same kind of figure as the deviation it is bounded with.
     let error = |pass: &PassLead, lead: f64| {
         let errors = pass.advances.iter().enumerate().skip(1).map(|(n, advance)| advance - n as f64 * lead);
         let (low, high) = errors.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), e| (l.min(e), h.max(e)));
-        if high >= low { high - low } else { 0.0 }
+        if high >= low { (high - low) / 2.0 } else { 0.0 }
     };
     let before_mm = before.iter().map(|p| error(p, p.axial_lead)).fold(0.0, f64::max);
     let mut after_mm = 0.0;
