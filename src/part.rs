@@ -167,6 +167,14 @@ pub fn run(toolpath: ValidToolpath<'_>, machine: &Machine, check: &PartCheck) ->
         }
     }
     flush(block.take(), &mut diagnostics);
+    // A program that ends in a thread pass leaves its form at the pass's end.
+    if summary.stopped_at.is_none() && removal.end_thread().is_none() {
+        let last = toolpath.moves.len().saturating_sub(1);
+        let kind =
+            DiagnosticKind::PartModelStopped { rays: removal::MAX_RAY_VISITS, stamps: removal::MAX_STAMPS_PER_MOVE };
+        diagnostics.push(Diagnostic::note(kind, toolpath.moves.get(last).map_or(Span::new(0, 0), |m| m.source)));
+        summary.stopped_at = Some(last);
+    }
     if let Some((span, depth_mm, blocks)) = assumed_crashes {
         let kind = DiagnosticKind::RapidIntoStock { depth_mm, assumed: Some(blocks - 1) };
         diagnostics.push(Diagnostic::note(kind, span));

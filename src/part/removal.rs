@@ -46,15 +46,26 @@ pub struct Outcome {
     pub depth: f64,
 }
 
+/// A thread pass under way: the spindle turns since its first threading move started, the
+/// turn of its last stamp, and the insert at the pass's end so far (placed, with the move
+/// that put it there) for the stamp the pass leaves at its end. Turns, not length: each
+/// move of a pass (each piece of one on the model) runs at its own lead, and the insert is
+/// at the section's angle at every whole turn.
+struct ThreadPass {
+    turns: f64,
+    stamped: Option<f64>,
+    end: Sweep,
+    index: usize,
+}
+
 /// The stock as the moves cut it.
 pub struct Removal<'a> {
     pub dexels: Dexels,
     pub stock: Stock,
     machine: &'a Machine,
     tools: Vec<((u16, u16, bool), Tool)>,
-    /// The thread pass under way: where its first threading move started, and the path
-    /// length threaded since.
-    thread: Option<f64>,
+    /// The thread pass under way (see [`ThreadPass`]).
+    thread: Option<ThreadPass>,
     pub visits: u64,
 }
 
@@ -135,18 +146,19 @@ impl<'a> Removal<'a> {
     /// The sweeps of move `index` (`m`, from `start`) with `tool`.
     /// None when a thread pass would stamp more forms than [`MAX_STAMPS_PER_MOVE`], or more
     /// than the work left.
-    fn sweeps(&mut self, tool: &Tool, start: Xz, m: &Move) -> Option<SmallVec<[Sweep; 6]>> {
+    fn sweeps(&mut self, tool: &Tool, start: Xz, m: &Move, index: usize) -> Option<SmallVec<[Sweep; 6]>> {
         let mut out = SmallVec::new();
         let (c0, c1) = (tool.centre(start), tool.centre(m.end));
         if m.threading && m.motion == Motion::Feed {
-            let threaded = self.thread.unwrap_or(0.0);
+            let pass = self.thread.take();
+            let turns = pass.as_ref().map_or(0.0, |p| p.turns);
             let length = start.distance(m.end);
-            self.thread = Some(threaded + length);
             let lead = if m.rpm > 0.0 { m.feed / m.rpm } else { 0.0 };
-            if lead > 0.0 && length > 0.0 {
-                let (first, count) = stamps(threaded, length, lead, start, m.end, &self.stock);
+            let mut stamped = pass.and_then(|p| p.stamped);
+            if lead > 0.0 && lead.is_finite() && length > 0.0 {
+                let (first, count) = stamps(turns, length, lead, start, m.end, &self.stock);
                 let at = |k: u64| {
-                    let s = (first + k as f64) * lead - threaded;
+                    let s = (first + k as f64 - turns) * lead;
                     Xz::new(c0.x + (c1.x - c0.x) * s / length, c0.z + (c1.z - c0.z) * s / length)
                 };
                 if count > 0 {
@@ -154,14 +166,15 @@ impl<'a> Removal<'a> {
                     if count > MAX_STAMPS_PER_MOVE || self.visits + count * each > MAX_RAY_VISITS {
                         return None;
                     }
+                    stamped = Some(first + (count - 1) as f64);
                 }
                 for k in 0..count {
                     out.push(Sweep::rounded(tool.placed(at(k)), tool.nose));
                 }
+                let end = Sweep::rounded(tool.placed(c1), tool.nose);
+                self.thread = Some(ThreadPass { turns: turns + length / lead, stamped, end, index });
                 return Some(out);
             }
-        } else {
-            self.thread = None;
         }
         if m.is_arc() {
             let centre = tool.centre(m.centre);
@@ -182,6 +195,9 @@ impl<'a> Removal<'a> {
     /// [`Removal::step`] for the move `m` from `start`, its cuts recorded as move `index`'s
     /// (a piece of a move, cut as the move it is a piece of).
     pub fn step_move(&mut self, start: Xz, m: &Move, index: usize) -> Option<Outcome> {
+        if !(m.threading && m.motion == Motion::Feed) {
+            self.end_thread()?;
+        }
         if m.motion == Motion::Dwell {
             return Some(Outcome::default());
         }
@@ -191,11 +207,10 @@ impl<'a> Removal<'a> {
         if !m.threading {
             let (lo, hi) = reach_of_move(&tool, start, m);
             if !self.dexels.may_meet(lo, hi) {
-                self.thread = None;
                 return Some(Outcome::default());
             }
         }
-        let sweeps = self.sweeps(&tool, start, m)?;
+        let sweeps = self.sweeps(&tool, start, m, index)?;
         let planned: u64 = sweeps.iter().map(|s| self.dexels.rays_crossed(s)).sum();
         if self.visits + planned > MAX_RAY_VISITS {
             return None;
@@ -247,6 +262,32 @@ impl<'a> Removal<'a> {
     }
 }
 
+impl Removal<'_> {
+    /// End the thread pass under way (before the next move, or when the program ends): a
+    /// pass whose last stamp is short of its end stamps the insert's form there too. The
+    /// part is a half-section at one spindle angle, where a pass stamps its form every lead;
+    /// its groove runs on around the part to where the pass ends, at another angle. Without
+    /// the stamp at the end, a pass ending a micrometre short of a whole number of leads
+    /// would leave the bar whole where one ending on it cuts the full groove: a part that
+    /// jumps by the thread's depth for an end that moved by a micrometre, which no
+    /// measurement of the real part sees. With it, the part follows where the pass ends.
+    /// None once the bound on work is passed.
+    pub fn end_thread(&mut self) -> Option<()> {
+        let Some(pass) = self.thread.take() else { return Some(()) };
+        let short = pass.stamped.is_none_or(|at| pass.turns - at > 1e-9);
+        if !short {
+            return Some(());
+        }
+        let planned = self.dexels.rays_crossed(&pass.end);
+        if self.visits + planned > MAX_RAY_VISITS {
+            return None;
+        }
+        let taken = self.dexels.sweep_families(&pass.end, pass.index as u32, true, [true, false], None);
+        self.visits += taken.rays;
+        Some(())
+    }
+}
+
 /// A box that holds everything the tool of move `m` (from `start`) sweeps: its nose centre's
 /// path (with an arc's extremes) grown by the core's extent and the nose.
 fn reach_of_move(tool: &Tool, start: Xz, m: &Move) -> (Xz, Xz) {
@@ -269,10 +310,10 @@ fn reach_of_move(tool: &Tool, start: Xz, m: &Move) -> (Xz, Xz) {
     (Xz::new(lo.x + core_lo.x - r, lo.z + core_lo.z - r), Xz::new(hi.x + core_hi.x + r, hi.z + core_hi.z + r))
 }
 
-/// Where a thread pass stamps its form along a move: every lead from where the pass began
-/// (`threaded` before this move), as far as the stock reaches; the first stamp's number of
-/// leads from the pass's start, and how many there are.
-fn stamps(threaded: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Stock) -> (f64, u64) {
+/// Where a thread pass stamps its form along a move: at every whole spindle turn from where
+/// the pass began (`turns` before this move), as far as the stock reaches; the first
+/// stamp's turn from the pass's start, and how many there are.
+fn stamps(turns: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Stock) -> (f64, u64) {
     // Only where the stamp can meet the bar (with the insert's reach about it).
     let margin = tool::BODY_MM + (stock.outer - stock.bore);
     let (min, max) = (stock.back - margin, stock.front + margin);
@@ -292,8 +333,8 @@ fn stamps(threaded: f64, length: f64, lead: f64, start: Xz, end: Xz, stock: &Sto
     }
     // A stamp at an end of the stretch, to the rounding of the sums, is on it: a pass cut in
     // pieces (verify's predicted path) stamps where it does whole.
-    let first = ((threaded + lo) / lead - 1e-9).ceil();
-    let last = ((threaded + hi) / lead + 1e-9).floor();
+    let first = (turns + lo / lead - 1e-9).ceil();
+    let last = (turns + hi / lead + 1e-9).floor();
     if !(first.is_finite() && last.is_finite()) || last < first {
         return (0.0, 0);
     }

@@ -6,7 +6,8 @@
 //! path (the programmed tip path offset by the nose radius along the tip direction), a point
 //! the groove left lies on the insert's rounded rectangle at the plunge's bottom, a point a
 //! thread pass left lies on the rounded 60° V stamped at a whole number of leads from the
-//! pass's start. And the nose's own disk holds no material anywhere along the finishing pass, on
+//! pass's start or at the pass's end (where its groove runs out, at another spindle angle).
+//! And the nose's own disk holds no material anywhere along the finishing pass, on
 //! any ray of the part.
 
 use proptest::prelude::*;
@@ -267,15 +268,19 @@ fn check(job: &Job) -> Result<[f64; 3], TestCaseError> {
             worst[1] = worst[1].max(error);
         } else if m.threading {
             // The 60° V with a 0.1 nose, its nose centre 0.1 above the pass's X at the stamp:
-            // the nearest stamp is a whole number of leads from Z4.
+            // the stamps are a whole number of leads from Z4, and one at the pass's end, Z-10.
             let root = thread_root(job);
-            let k = ((4.0 - point.at.z) / job.thread_lead).round();
-            let apex = Xz::new(root + 0.1, 4.0 - k * job.thread_lead);
+            let k = ((4.0 - point.at.z) / job.thread_lead).round().min((14.0 / job.thread_lead).floor());
             let (s, c) = (30f64.to_radians().sin(), 30f64.to_radians().cos());
             let far = 10.0;
-            let flank =
-                |sign: f64| distance_to_segment(point.at, apex, Xz::new(apex.x + far * c, apex.z + sign * far * s));
-            let error = (flank(1.0).min(flank(-1.0)) - 0.1).abs();
+            let on_stamp = |z: f64| {
+                let apex = Xz::new(root + 0.1, z);
+                let flank =
+                    |sign: f64| distance_to_segment(point.at, apex, Xz::new(apex.x + far * c, apex.z + sign * far * s));
+                flank(1.0).min(flank(-1.0))
+            };
+            // A point between the last whole lead's stamp and the end's lies on the nearer V.
+            let error = (on_stamp(4.0 - k * job.thread_lead).min(on_stamp(-10.0)) - 0.1).abs();
             prop_assert!(error < EXACT, "thread point {point:?} (stamp {k}) is {error} off\n{text}");
             worst[2] = worst[2].max(error);
         }

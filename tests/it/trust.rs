@@ -279,7 +279,7 @@ mod generated {
         }
         let major = job.start_diameter;
         let (lead, depth) = (1.5, 0.92);
-        let thread_end = -20.0f64.min(-z.abs() / 2.0 - 5.0).max(-40.0);
+        let thread_end = (-20.0f64).min(-z.abs() / 2.0 - 5.0).max(-40.0);
         match job.thread {
             Thread::None => {}
             Thread::G76 { taper } => {

@@ -348,7 +348,9 @@ fn cut(toolpath: &Toolpath, stock: Stock, machine: &Machine, rays_for: usize) ->
             return (removal.dexels, Some(index));
         }
     }
-    (removal.dexels, None)
+    // A program that ends in a thread pass leaves its form at the pass's end.
+    let stopped = removal.end_thread().is_none().then(|| toolpath.moves.len().saturating_sub(1));
+    (removal.dexels, stopped)
 }
 
 /// A point of a program's path as `measure::predicted` gives it: its move, where along it, the
@@ -372,8 +374,9 @@ impl Point {
 /// (`measure::predicted`), a move at a time as its points come: a line between two
 /// predicted points, an arc (the programmed one moved) through two predicted points of an
 /// arc with the mean of their radii about the programmed centre, and a thread pass whose
-/// pieces share the lead of the whole move on the model (its length there over its length
-/// as programmed), so that a stamp falls every lead along it as it does on the move whole.
+/// pieces each run at the lead that takes the spindle through the turns the piece's
+/// programmed stretch takes (the piece's length on the model over its length as
+/// programmed), so that a stamp falls where the model puts the tool at each whole turn.
 /// Each piece's cuts are recorded as its move's.
 struct PieceCut<'a> {
     toolpath: &'a Toolpath,
@@ -414,15 +417,21 @@ impl<'a> PieceCut<'a> {
         let Some(index) = self.points.first().map(|p| p.move_index) else { return };
         let start = self.last.0;
         self.pieces.clear();
+        // Each piece's length as programmed, for a thread pass's lead.
+        let mut programmed = Vec::new();
         for k in 0..self.points.len() {
             let point = self.points[k];
+            let from_nominal = self.last.1;
             if let Some(piece) = piece(self.toolpath, &mut self.last, &point) {
                 self.pieces.push(piece);
+                programmed.push(from_nominal.distance(point.nominal));
             }
         }
         self.points.clear();
         let Some(m) = self.toolpath.moves.get(index) else { return };
         if m.threading {
+            // A piece with no programmed stretch (the model's step at a corner) runs at the
+            // whole move's lead on the model.
             let (mut from, mut length) = (start, 0.0);
             for piece in &self.pieces {
                 if piece.threading {
@@ -430,10 +439,16 @@ impl<'a> PieceCut<'a> {
                 }
                 from = piece.end;
             }
-            let programmed = self.toolpath.start_of(index).distance(m.end);
-            if programmed > 0.0 && length > 0.0 {
-                let feed = m.feed * (length / programmed);
-                self.pieces.iter_mut().for_each(|piece| piece.feed = feed);
+            let whole = self.toolpath.start_of(index).distance(m.end);
+            let mut from = start;
+            for (piece, &programmed) in self.pieces.iter_mut().zip(&programmed) {
+                let on_model = from.distance(piece.end);
+                from = piece.end;
+                if programmed > 1e-9 && on_model > 0.0 {
+                    piece.feed = m.feed * (on_model / programmed);
+                } else if whole > 0.0 && length > 0.0 {
+                    piece.feed = m.feed * (length / whole);
+                }
             }
         }
         let mut from = start;
@@ -450,6 +465,10 @@ impl<'a> PieceCut<'a> {
     fn finish(mut self) -> (Dexels, Option<usize>) {
         if self.stopped.is_none() {
             self.flush();
+        }
+        // A program that ends in a thread pass leaves its form at the pass's end.
+        if self.stopped.is_none() && self.removal.end_thread().is_none() {
+            self.stopped = Some(self.toolpath.moves.len().saturating_sub(1));
         }
         (self.removal.dexels, self.stopped)
     }
