@@ -31,6 +31,7 @@ pub use crate::error_model::sampling::{PathSample, sample_toolpath};
 pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};
 pub use inverse::{Compensated, InverseOptions, compensate_samples, predict};
 pub use program::{CompensateOptions, Outcome, Paths, compensate_program};
+pub use rewrite::cycles::LeadChange;
 pub use rewrite::{
     CycleForm, CycleOutcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE, THREAD_NOT_IN_PLACE,
 };

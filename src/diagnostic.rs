@@ -575,6 +575,13 @@ pub enum DiagnosticKind {
         /// it reaches, mm (`None` where none was tried or none reads back).
         other_strategy: Option<(&'static str, f64)>,
     },
+    /// `compensate`: the program it would write, read back and predicted on the model as
+    /// `verify` predicts it, cuts this thread with a lead that errs over the thread's length
+    /// by more than `verify` allows (`compensation::verify::lead`).
+    ThreadLeadFailsCheck {
+        lead_error_mm: f64,
+        bound_mm: f64,
+    },
     /// `compensate`: the program it would write cuts with other feed or spindle words than
     /// the original (a defect of turnpass, never of the program).
     CompensationChangesFeed,

@@ -260,7 +260,12 @@ fn cycle_lines(
                 let last = profile.last().map_or(0, |&b| line(b));
                 format!("kept; its profile (lines {first}-{last}) is compensated in place")
             }
-            CycleForm::WordsEdited => "kept; its words carry the final pass's correction".to_string(),
+            CycleForm::WordsEdited { lead: None } => "kept; its words carry the final pass's correction".to_string(),
+            CycleForm::WordsEdited { lead: Some(lead) } => format!(
+                "kept; its words carry the final pass's correction, and its lead `{}` is written `{}` ({:+} ppm), \
+                 for the slide to cut the programmed lead",
+                lead.from, lead.to, lead.change_ppm
+            ),
             CycleForm::RoughsOriginal => {
                 "kept; it roughs the profile as written, its finishing cycle runs a compensated copy".to_string()
             }
@@ -354,7 +359,7 @@ impl InPlace {
             Some(InPlace { profiles: false, ..self })
         } else if self.copies && any(|f| matches!(f, CycleForm::ProfileCopied { .. })) {
             Some(InPlace { copies: false, ..self })
-        } else if self.threads && any(|f| matches!(f, CycleForm::WordsEdited)) {
+        } else if self.threads && any(|f| matches!(f, CycleForm::WordsEdited { .. })) {
             Some(InPlace { threads: false, ..self })
         } else {
             None
@@ -611,10 +616,20 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                     };
                     Diagnostic::error(kind, span)
                 });
+                // On the part the flanks' deviation judges the lead (`verify::checked`).
+                let lead_off = figures.lead.filter(|lead| lead.after_mm > bound && part.is_none()).map(|lead| {
+                    let span =
+                        lead.worst_move.and_then(|m| original.moves.get(m)).map_or(Span::new(0, 0), |m| m.source);
+                    Diagnostic::error(
+                        DiagnosticKind::ThreadLeadFailsCheck { lead_error_mm: lead.after_mm, bound_mm: bound },
+                        span,
+                    )
+                });
                 // A part model that stopped at its bound measured only part of the part.
                 let stopped = part.as_ref().and_then(|part| part.incomplete());
                 too_far
                     .or(stopped)
+                    .or(lead_off)
                     .or_else(|| {
                         feed_change
                             .map(|change| Diagnostic::error(DiagnosticKind::CompensationChangesFeed, change.source))

@@ -259,6 +259,16 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
             text.push_str(&row("compensated", &figures.after));
             let improvement = turnpass::compensation::deviation::improvement_text(figures.improvement_percent);
             text.push_str(&format!("  RMS improvement: {improvement}\n"));
+            if let Some(lead) = &figures.lead {
+                text.push_str(&format!(
+                    "thread lead over each pass's length (the tool after each whole spindle turn along the axis \
+                     from the helix of the programmed lead, placed to fit best), largest error, mm: as programmed {:.5}, compensated {:.5} ({} pass{})\n",
+                    lead.before_mm,
+                    lead.after_mm,
+                    lead.passes,
+                    if lead.passes == 1 { "" } else { "es" },
+                ));
+            }
             if let Some(part) = &part {
                 text.push_str(&format!(
                     "the compensated part by surface feature (the line of {original_name} that cuts it), mm \
@@ -563,6 +573,25 @@ pub fn checked(
             "{compensated_name} lost `{}` ({original_name} line {line}), or has it out of order",
             missing.text
         ));
+    }
+    if let Some(lead) = &figures.lead {
+        if lead.passes_differ {
+            violations.push(format!("{compensated_name} cuts another number of thread passes than {original_name}"));
+        }
+        // On the part, a lead error is the flanks' deviation, which the part's figures judge
+        // (an axial shift moves a 60° flank by cos 30° of it); pass by pass the points slide
+        // along the thread and only the lead measure sees it.
+        if lead.after_mm > limit && part.is_none() {
+            let line = lead
+                .worst_move
+                .and_then(|m| original_path.moves.get(m))
+                .map_or(0, |m| LineIndex::new(original_bytes).position(m.source.start).0);
+            violations.push(format!(
+                "the predicted lead of the thread {compensated_name} cuts for line {line} of {original_name} errs by \
+                 {:.5} mm over the thread's length, more than {limit:.5} mm",
+                lead.after_mm
+            ));
+        }
     }
     match &part {
         Some(part) => violations.extend(part_violations(part, (original, compensated), (original_bytes, compensated_bytes), (original_name, compensated_name), limit)),

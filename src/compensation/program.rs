@@ -174,7 +174,7 @@ pub fn compensate_program(
         profiles_copied: options.profiles_copied,
         threads_in_place: options.threads_in_place,
     };
-    let rewritten = rewrite::finish(program, lowered, &plans, choice, motion);
+    let rewritten = rewrite::finish(program, lowered, &plans, choice, motion, model);
     diagnostics.extend(rewritten.diagnostics);
     diagnostics.sort_by_key(|d| d.span.start);
     let report = super::report::build(&ReportInput {

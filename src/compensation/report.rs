@@ -17,6 +17,7 @@ use crate::syntax::Program;
 use super::deviation::{Figures, Tally, nm};
 use super::fit::Segment;
 use super::plan::KeptPlans;
+use super::rewrite::cycles::LeadChange;
 use super::rewrite::{CycleForm, CycleOutcome, EditedBlock};
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -51,6 +52,10 @@ pub struct CycleReport {
     /// is not compensated in place.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reason: Option<String>,
+    /// With `words_edited`, the thread's lead words where they change: as written, as
+    /// written now, and the change of the lead, ppm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lead: Option<LeadChange>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -173,9 +178,13 @@ fn cycle_reports(input: &ReportInput<'_>) -> Vec<CycleReport> {
         .map(|c| {
             let text = String::from_utf8_lossy(program.text(program.block(c.block).span)).trim_end().to_string();
             let mut copy = None;
+            let mut lead = None;
             let (outcome, profile_lines, reason) = match &c.form {
                 CycleForm::Kept => ("kept", Vec::new(), None),
-                CycleForm::WordsEdited => ("words_edited", Vec::new(), None),
+                CycleForm::WordsEdited { lead: change } => {
+                    lead.clone_from(change);
+                    ("words_edited", Vec::new(), None)
+                }
                 CycleForm::RoughsOriginal => ("roughs_profile_as_written", Vec::new(), None),
                 CycleForm::ProfileEdited { profile } => {
                     ("profile_edited", profile.iter().map(|&b| line(b)).collect(), None)
@@ -186,7 +195,7 @@ fn cycle_reports(input: &ReportInput<'_>) -> Vec<CycleReport> {
                 }
                 CycleForm::Expanded { reason } => ("expanded", Vec::new(), Some(reason.clone())),
             };
-            CycleReport { line: line(c.block), block: text, outcome, profile_lines, copy, reason }
+            CycleReport { line: line(c.block), block: text, outcome, profile_lines, copy, reason, lead }
         })
         .collect()
 }

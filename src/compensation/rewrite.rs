@@ -123,8 +123,12 @@ pub enum CycleForm {
         profile: Vec<usize>,
     },
     /// The call stays, its words carrying the correction of its final pass (a thread
-    /// cycle: the final diameter and the end of the thread).
-    WordsEdited,
+    /// cycle: the final diameter and the end of the thread), and `lead`, where it changes,
+    /// the lead the slide needs to cut the programmed one (`cycles::thread_lead`).
+    WordsEdited {
+        #[serde(skip_serializing_if = "Option::is_none")]
+        lead: Option<cycles::LeadChange>,
+    },
     /// A roughing call that stays as written on the profile as written: the roughing follows
     /// the nominal profile and its allowance, while its finishing cycle runs a compensated
     /// copy (`ProfileCopied`).
@@ -183,6 +187,7 @@ pub fn finish(
     plans: &KeptPlans,
     choice: CycleChoice,
     mut motion: MotionBlocks<'_, '_>,
+    model: &crate::error_model::ErrorModel,
 ) -> Rewrite {
     let mut out = Rewrite::default();
     let (mut chosen, groups) = cycles::chosen(program, lowered, plans, choice.expand_all, &mut out.diagnostics);
@@ -264,7 +269,7 @@ pub fn finish(
         }
     }
     // A thread cycle keeps its call, the final pass's correction in its own words.
-    let mut threads: HashSet<usize> = HashSet::new();
+    let mut threads: HashMap<usize, Option<cycles::LeadChange>> = HashMap::new();
     if choice.threads_in_place && !choice.expand_all {
         for (k, e) in lowered.expansions.iter().enumerate() {
             let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
@@ -277,9 +282,14 @@ pub fn finish(
                 continue;
             }
             if motion.thread_writable(e.block, pass, plans) {
+                let lead = cycles::thread_lead(program, lowered, e, pass, model);
+                let change = lead.map(|(words, change)| {
+                    motion.leads.insert(e.block, words);
+                    change
+                });
                 motion.write_profile(&[(e.block, pass..pass + 1)], plans);
                 chosen[k] = false;
-                threads.insert(e.block);
+                threads.insert(e.block, change);
             } else if !expandable {
                 let span = program.block(e.block).span;
                 out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
@@ -312,8 +322,8 @@ pub fn finish(
             CycleForm::ProfileEdited { profile }
         } else if let Some(form) = copied.remove(&block) {
             form
-        } else if threads.contains(&block) {
-            CycleForm::WordsEdited
+        } else if let Some(lead) = threads.remove(&block) {
+            CycleForm::WordsEdited { lead }
         } else if expanded_set.contains(&block) {
             let threads_cut = first_expansion
                 .get(&block)
@@ -445,6 +455,8 @@ pub struct MotionBlocks<'a, 'src> {
     /// Blocks refused with a diagnostic already (one per block).
     refused: HashSet<usize>,
     diagnostics: Vec<Diagnostic>,
+    /// Kept thread cycles' lead words, by call block (`cycles::thread_lead`).
+    leads: HashMap<usize, cycles::LeadWords>,
 }
 
 /// What a block's first run wrote.
@@ -519,6 +531,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             differing: HashSet::new(),
             refused: HashSet::new(),
             diagnostics: Vec::new(),
+            leads: HashMap::new(),
         }
     }
 
@@ -656,6 +669,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     grid,
                     radius_arcs: self.radius_arcs,
                     tools,
+                    lead: self.leads.get(&block),
                 };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
                 match (lowered.toolpath.moves.get(single), plans.get(single - first)) {

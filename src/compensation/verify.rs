@@ -35,6 +35,7 @@ use crate::error_model::sampling::{PathSample, Sampling};
 mod arc_steps;
 mod follow;
 mod knee;
+pub mod lead;
 mod measure;
 mod part;
 #[cfg(test)]
@@ -71,6 +72,7 @@ impl Measure {
 }
 
 use follow::Original;
+use lead::LeadFigures;
 use measure::measure;
 
 /// The predicted deviation from the original's nominal path, before and after.
@@ -83,6 +85,10 @@ pub struct Deviation {
     /// Where the compensated program deviates most (none when nothing of it cuts).
     #[serde(skip)]
     pub worst: Option<Worst>,
+    /// The thread passes' leads on the model (`lead.rs`), which the distance from the path
+    /// does not see; none where the original cuts no thread.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lead: Option<LeadFigures>,
 }
 
 /// The largest deviation of a program's predicted path, and where it is.
@@ -164,12 +170,13 @@ pub fn deviation_of(
 ) -> Deviation {
     let path = Original::new(original);
     let side_by_side = original.len() >= crate::parallel::tuning().measure_moves;
-    let ((after, worst), (before, _)) = crate::parallel::join_if(
+    let ((after, worst, compensated_threads), (before, _, original_threads)) = crate::parallel::join_if(
         side_by_side,
         || measure(compensated, &path, model, sampling, Side::Compensated, &mut |side, m| watch(side, &m)),
         || measure(original, &path, model, sampling, Side::Original, &mut |side, m| watch(side, &m)),
     );
-    figures(before, after, worst)
+    let lead = lead::figures((original, &original_threads), (compensated, &compensated_threads));
+    figures(before, after, worst, lead)
 }
 
 /// Which program a measured point is of.
@@ -208,15 +215,17 @@ pub fn deviation_each(
 ) -> Deviation {
     let (original, compensated) = (compact(original, tools), compact(compensated, tools));
     let path = Original::new(&original);
-    let (before, _) = measure(&original, &path, model, sampling, Side::Original, &mut each);
-    let (after, worst) = measure(&compensated, &path, model, sampling, Side::Compensated, &mut each);
-    figures(before, after, worst)
+    let (before, _, original_threads) = measure(&original, &path, model, sampling, Side::Original, &mut each);
+    let (after, worst, compensated_threads) =
+        measure(&compensated, &path, model, sampling, Side::Compensated, &mut each);
+    let lead = lead::figures((&original, &original_threads), (&compensated, &compensated_threads));
+    figures(before, after, worst, lead)
 }
 
-fn figures(before: Tally, after: Tally, worst: Option<Worst>) -> Deviation {
+fn figures(before: Tally, after: Tally, worst: Option<Worst>, lead: Option<LeadFigures>) -> Deviation {
     let (before, after) = (before.figures(), after.figures());
     let improvement_percent = before.improvement_percent(&after);
-    Deviation { before: before.rounded(), after: after.rounded(), improvement_percent, worst }
+    Deviation { before: before.rounded(), after: after.rounded(), improvement_percent, worst, lead }
 }
 
 /// What `check_written` found: the figures of the program about to be written, on the
@@ -436,20 +445,33 @@ pub struct CutWords {
 /// order it runs them. Compensation moves end points, splits moves and writes take-ups, so
 /// moves are not matched one for one: the runs of equal words along the cutting moves, in
 /// execution order, must be the same runs. Rapids and dwells carry no feed and are skipped.
+/// A thread's lead is not compared as a word: compensation writes the lead the slide needs
+/// to cut the programmed one, and the lead measure (`lead.rs`) judges what it cuts.
 pub fn check_feeds(original: &Toolpath, compensated: &Toolpath) -> Option<FeedChange> {
+    fn same(a: &CutWords, b: &CutWords) -> bool {
+        a.threading == b.threading
+            && a.per_revolution == b.per_revolution
+            && a.speed == b.speed
+            && (a.threading || a.feed == b.feed)
+    }
     fn runs(toolpath: &Toolpath) -> Vec<(CutWords, Span)> {
         let mut runs: Vec<(CutWords, Span)> = Vec::new();
         for m in toolpath.moves.iter().filter(|m| m.cutting && m.motion != crate::toolpath::Motion::Dwell) {
             let words =
                 CutWords { feed: m.f_word, per_revolution: m.per_revolution, speed: m.s_word, threading: m.threading };
-            if runs.last().is_none_or(|(last, _)| *last != words) {
+            if runs.last().is_none_or(|(last, _)| !same(last, &words)) {
                 runs.push((words, m.source));
             }
         }
         runs
     }
     let (wanted, found) = (runs(original), runs(compensated));
-    let at = (0..wanted.len().max(found.len())).find(|&k| wanted.get(k).map(|r| r.0) != found.get(k).map(|r| r.0))?;
+    let differ = |k: usize| match (wanted.get(k), found.get(k)) {
+        (Some(a), Some(b)) => !same(&a.0, &b.0),
+        (None, None) => false,
+        _ => true,
+    };
+    let at = (0..wanted.len().max(found.len())).find(|&k| differ(k))?;
     // Past the end of the shorter list, the words its last cut runs with go on.
     let (original, compensated) = (wanted.get(at).or(wanted.last()), found.get(at).or(found.last()));
     Some(FeedChange {

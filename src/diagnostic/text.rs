@@ -782,6 +782,28 @@ impl DiagnosticKind {
                     }
                 }),
             },
+            ThreadLeadFailsCheck { lead_error_mm, bound_mm } => Words {
+                code: "thread-lead-fails-check",
+                message: format!(
+                    "the compensated program, read back and predicted on the model as `turnpass verify` predicts \
+                     it, would cut this thread with a lead that errs by {lead_error_mm:.5} mm over its length (the \
+                     tool after each whole spindle turn along the axis from the helix of the programmed lead, placed \
+                     to fit best), more than the {bound_mm:.5} mm verify allows; no compensated program is written"
+                )
+                .into(),
+                label: format!("lead off by {:.2} µm over the thread", lead_error_mm * 1000.0).into(),
+                hint: Some(
+                    format!(
+                        "a kept thread cycle's lead word is written for the slide's error along the thread, but not \
+                         where the cycle is expanded (its thread moves keep the programmed lead), where the block \
+                         has no lead word of its own (a `G92` pass under an earlier block's `F`), or where the \
+                         slide's error is not uniform along the thread; `--max-deviation {}` accepts this program \
+                         if the thread allows {lead_error_mm:.5} mm",
+                        (lead_error_mm * 1000.0 - 1e-9).ceil() / 1000.0
+                    )
+                    .into(),
+                ),
+            },
             CompensationChangesFeed => Words {
                 code: "compensation-changes-feed",
                 message: "the compensated program would cut this block with other feed or spindle words; no \

@@ -611,6 +611,8 @@ struct RawDialect {
     machine_variables: MachineVariables,
     #[serde(default)]
     increment_input: IncrementInput,
+    #[serde(default)]
+    thread_lead: ThreadLead,
     /// Keyed by the control's name (`haas`).
     #[serde(default)]
     control: BTreeMap<String, ControlRules>,
@@ -634,6 +636,30 @@ pub struct IncrementInput {
     /// revolution (`G99 F250` is 0.25 mm/rev at 0.001 mm); a feed per minute is whole units.
     #[serde(default)]
     pub feed_per_revolution_counts: bool,
+}
+
+/// The digits a thread cycle's lead word takes, and the words that write a finer lead
+/// (`[thread_lead]`): compensation writes a corrected lead with them.
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThreadLead {
+    /// The decimals of the lead word (`F`) beyond the least increment's.
+    #[serde(default)]
+    pub decimals_beyond_increment: u8,
+    /// A precise-lead word the thread cycles take instead of `F` (Fanuc-compatible `E`).
+    #[serde(default)]
+    pub precise: Option<PreciseLead>,
+    /// A word that counts the threads `F` is the length of (OSP `J`: the lead is `F/J`).
+    #[serde(default)]
+    pub count: Option<Address>,
+}
+
+/// A precise-lead word and the decimals it takes beyond the least increment's.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PreciseLead {
+    pub address: Address,
+    pub decimals_beyond_increment: u8,
 }
 
 /// The common variables the control keeps in memory: a program may read them before it
@@ -692,6 +718,7 @@ pub struct Tables {
     pub has_comma_words: bool,
     pub machine_variables: MachineVariables,
     pub increment_input: IncrementInput,
+    pub thread_lead: ThreadLead,
     /// Lower-case letters read as upper-case ones (`[control.NAME] lower_case`).
     pub lower_case: bool,
     keywords: Vec<(String, KeywordInfo)>,
@@ -973,6 +1000,7 @@ fn compile(config: DialectConfig) -> Tables {
         has_comma_words,
         machine_variables: raw.machine_variables,
         increment_input: raw.increment_input,
+        thread_lead: raw.thread_lead,
         lower_case: raw.control.get(config.control.name()).is_some_and(|rules| rules.lower_case),
         keywords,
         g_index,

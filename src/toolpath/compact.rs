@@ -64,6 +64,10 @@ pub struct CompactPath {
     pub start: Xz,
     moves: Vec<CompactMove>,
     arcs: Vec<CompactArc>,
+    /// The thread moves (`Move::threading`), each with its lead per spindle turn along the
+    /// move, mm (its feed over its spindle speed), in move order: the lead measure
+    /// (`compensation::verify::lead`) reads them; a program without threads holds none.
+    threads: Vec<(usize, f64)>,
     reach: Xz,
 }
 
@@ -74,6 +78,7 @@ impl CompactPath {
         let toolpath = toolpath.toolpath();
         let mut moves = Vec::with_capacity(toolpath.moves.len());
         let mut arcs = Vec::new();
+        let mut threads = Vec::new();
         let mut reach = Xz::new(toolpath.start.x.abs(), toolpath.start.z.abs());
         for (k, m) in toolpath.moves.iter().enumerate() {
             let start = toolpath.start_of(k);
@@ -88,6 +93,9 @@ impl CompactPath {
                 reach = super::reach_past(reach, m.end, None);
                 NO_ARC
             };
+            if m.threading && m.motion == Motion::Feed && m.rpm > 0.0 {
+                threads.push((k, m.feed / m.rpm));
+            }
             moves.push(CompactMove {
                 end: m.end,
                 t_start: m.t_start,
@@ -101,7 +109,7 @@ impl CompactPath {
                 tip: tip(m.tool, m.offset),
             });
         }
-        CompactPath { start: toolpath.start, moves, arcs, reach }
+        CompactPath { start: toolpath.start, moves, arcs, threads, reach }
     }
 
     pub fn moves(&self) -> &[CompactMove] {
@@ -122,6 +130,17 @@ impl CompactPath {
             Some(before) => self.moves.get(before).map_or(self.start, |m| m.end),
             None => self.start,
         }
+    }
+
+    /// The thread moves and their leads per turn, mm, in move order.
+    pub fn threads(&self) -> &[(usize, f64)] {
+        &self.threads
+    }
+
+    /// The lead per turn of move `index` when it is a thread move, mm.
+    pub fn thread_lead(&self, index: usize) -> Option<f64> {
+        let k = self.threads.binary_search_by_key(&index, |&(m, _)| m).ok()?;
+        self.threads.get(k).map(|&(_, lead)| lead)
     }
 
     /// The constants of move `index` when it is an arc.

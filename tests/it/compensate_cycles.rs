@@ -77,19 +77,8 @@ fn cycles_stay_calls_and_what_is_written_verifies() {
             );
         }
         let mut text = format!("{} on {}\n\n", case.program, case.model);
-        for line in stderr.lines().filter(|l| l.starts_with("compensate: ")) {
-            text.push_str(line);
-            text.push('\n');
-        }
-        let original = std::fs::read_to_string(repo().join(&case.program)).unwrap();
-        let version = env!("CARGO_PKG_VERSION");
-        let changed = crate::compensate::changed_lines(&original, &written)
-            .replace(&format!("TURNPASS {version} "), "TURNPASS {version} ");
-        text.push_str("\nchanged lines:\n");
-        text.push_str(&changed);
-        text.push_str("\nreport, cycles:\n");
-        text.push_str(&serde_json::to_string_pretty(&reported["report"]["cycles"]).unwrap());
-        text.push('\n');
+        text.push_str(&summary_and_changes(&stderr, &case.program, &written));
+        text.push_str(&report_cycles(&reported));
         with_snapshots("compensate", || insta::assert_snapshot!(format!("cycles-{}", case.name), text));
     }
 }
@@ -155,4 +144,98 @@ fn an_osp_finishing_call_runs_its_own_compensated_contour() {
     let cycles = serde_json::to_string_pretty(&outcome.report.cycles).unwrap();
     let text = format!("{program} on {model}\n\nchanged lines:\n{changed}\nreport, cycles:\n{cycles}\n");
     with_snapshots("compensate", || insta::assert_snapshot!("cycles-osp-contour-copied", text));
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LeadCases {
+    case: Vec<LeadCase>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LeadCase {
+    name: String,
+    program: String,
+    model: String,
+    /// Lines the written program holds byte-identical.
+    kept: Vec<String>,
+}
+
+/// `tests/cases/compensate/cycles/leads.toml`: on a Z slide with a scale error the thread's
+/// lead errs, and its flanks on the part lie off by more than the bound where the thread
+/// ends. `verify` of the program against itself says so; `compensate` keeps the thread cycle
+/// and writes its lead word so that the slide cuts the programmed lead, says which lead
+/// changed and by how much, and `verify` passes what it wrote, its lead error a fifth of
+/// the uncorrected one or less.
+#[test]
+fn a_scale_error_along_the_thread_is_a_lead_error_compensate_corrects() {
+    let list = std::fs::read_to_string(repo().join("tests/cases/compensate/cycles/leads.toml")).unwrap();
+    let cases: LeadCases = toml::from_str(&list).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    for case in &cases.case {
+        let (code, stdout, stderr) =
+            turnpass(&["verify", &case.program, &case.program, "--model", &case.model, "--format", "json"]);
+        assert_eq!(code, 1, "{}: verify passes a thread whose lead errs\n{stdout}{stderr}", case.name);
+        let verified: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        let limit = 0.002;
+        // On the part the flanks lie off by the lead error gathered along the thread.
+        assert!(verified["deviation"]["after"]["max_mm"].as_f64().unwrap() > limit, "{}: {verified}", case.name);
+        let lead_before = verified["deviation"]["lead"]["before_mm"].as_f64().unwrap();
+        let (_, uncorrected, _) = turnpass(&["verify", &case.program, &case.program, "--model", &case.model]);
+        let out = dir.path().join(format!("{}.nc", case.name));
+        let report = dir.path().join(format!("{}.json", case.name));
+        let (out_text, report_text) = (out.to_string_lossy(), report.to_string_lossy());
+        let args = ["compensate", &case.program, "--model", &case.model, "-o", &out_text];
+        let (code, _, compensated) =
+            turnpass(&[&args[..], &["--report", "json", "--report-file", &report_text]].concat());
+        assert_eq!(code, 0, "{}: compensate refused\n{compensated}", case.name);
+        let written = std::fs::read_to_string(&out).unwrap();
+        for kept in &case.kept {
+            assert!(written.lines().any(|l| l == kept), "{}: `{kept}` is not written as it was\n{written}", case.name);
+        }
+        let (code, json, verify_stderr) =
+            turnpass(&["verify", &case.program, &out_text, "--model", &case.model, "--format", "json"]);
+        assert_eq!(code, 0, "{}: verify failed what compensate wrote\n{json}{verify_stderr}", case.name);
+        let verified: serde_json::Value = serde_json::from_str(&json).unwrap();
+        let reported: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        let lead_after = verified["deviation"]["lead"]["after_mm"].as_f64().unwrap();
+        assert!(lead_after <= lead_before / 5.0, "{}: the lead is not corrected: {verified}", case.name);
+        let (_, corrected, _) = turnpass(&["verify", &case.program, &out_text, "--model", &case.model]);
+        let mut snapshot = format!("{} on {}\n\nverify, the program against itself:\n", case.program, case.model);
+        let lead_lines = |text: &str| -> String {
+            text.lines()
+                .filter(|l| l.starts_with("thread lead") || l.starts_with("violation"))
+                .map(|l| format!("{l}\n"))
+                .collect()
+        };
+        snapshot.push_str(&lead_lines(&uncorrected));
+        snapshot.push_str("\ncompensate:\n");
+        snapshot.push_str(&summary_and_changes(&compensated, &case.program, &written));
+        snapshot.push_str("\nverify, the written program:\n");
+        snapshot.push_str(&lead_lines(&corrected));
+        snapshot.push_str(&report_cycles(&reported));
+        with_snapshots("compensate", || insta::assert_snapshot!(format!("leads-{}", case.name), snapshot));
+    }
+}
+
+/// Compensate's summary lines in `stderr`, and the lines `written` changed of `program`.
+fn summary_and_changes(stderr: &str, program: &str, written: &str) -> String {
+    let mut text = String::new();
+    for line in stderr.lines().filter(|l| l.starts_with("compensate: ")) {
+        text.push_str(line);
+        text.push('\n');
+    }
+    let original = std::fs::read_to_string(repo().join(program)).unwrap();
+    let version = env!("CARGO_PKG_VERSION");
+    let changed = crate::compensate::changed_lines(&original, written)
+        .replace(&format!("TURNPASS {version} "), "TURNPASS {version} ");
+    text.push_str("\nchanged lines:\n");
+    text.push_str(&changed);
+    text
+}
+
+/// The report's cycles, as the snapshots show them.
+fn report_cycles(reported: &serde_json::Value) -> String {
+    format!("\nreport, cycles:\n{}\n", serde_json::to_string_pretty(&reported["report"]["cycles"]).unwrap())
 }

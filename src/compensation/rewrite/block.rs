@@ -79,6 +79,9 @@ pub(super) struct BlockContext<'a, 'src> {
     /// The program's arcs are mostly `R`/`L` (for arcs in a block that wrote none).
     pub radius_arcs: bool,
     pub tools: &'a ToolTable,
+    /// A kept thread cycle's lead words, written in place of its lead word
+    /// (`cycles::thread_lead`).
+    pub lead: Option<&'a super::cycles::LeadWords>,
 }
 
 /// The coordinate words of one segment, by slot, as counts of the increment (at most four:
@@ -257,7 +260,7 @@ impl BlockContext<'_, '_> {
         out: &mut MotionWriter<BlockWriter<'_, '_>>,
     ) -> Option<WrittenText> {
         let start = self.grid.point(plan.start);
-        if !plan.changed && start == self.grid.point(contour_start) {
+        if !plan.changed && start == self.grid.point(contour_start) && self.lead.is_none() {
             // The move is as programmed, from where the program puts it.
             return None;
         }
@@ -286,7 +289,7 @@ impl BlockContext<'_, '_> {
         let (new, end) = self.words(&form, at, first, chosen.next().flatten());
         let same_words = original.len() == new.len()
             && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
-        if lead_words.is_none() && rest.is_empty() && first_kind == original_kind && same_words {
+        if lead_words.is_none() && rest.is_empty() && first_kind == original_kind && same_words && self.lead.is_none() {
             return None;
         }
         let mark = out.out.begin();
@@ -379,7 +382,14 @@ impl BlockContext<'_, '_> {
                         code_written = true;
                     }
                 }
-                _ => out.copy(id),
+                _ => match self.lead.filter(|lead| lead.at == k) {
+                    Some(lead) => {
+                        for &(address, number) in &lead.words {
+                            out.out.number(address, number);
+                        }
+                    }
+                    None => out.copy(id),
+                },
             }
             if last_coordinate == Some(k) {
                 for &(slot, value) in new {

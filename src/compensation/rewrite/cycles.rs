@@ -572,3 +572,147 @@ pub(super) fn profile_copy(
     let after = if osp { finish.block } else { rough.block };
     Ok(ProfileCopy { rough: rough.block, after, finish: finish.block, blocks, call: NewBlock::new(call_words), names })
 }
+
+/// The lead words a kept thread cycle is written with: the block's lead word (its place
+/// among the block's words) replaced by `words` (the lead word again, a precise-lead word
+/// instead, or the lead word and a count of threads after it).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct LeadWords {
+    pub at: usize,
+    pub words: smallvec::SmallVec<[(crate::dialect::Address, crate::syntax::Number); 2]>,
+}
+
+/// A thread cycle's lead as written and as compensation writes it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct LeadChange {
+    /// The lead words as the block writes them (`F2.`, `F1.5`) and as they are written now
+    /// (`E1.9998`, `F29.997 J20`).
+    pub from: String,
+    pub to: String,
+    /// The lead the words give now against the one they gave, parts per million.
+    pub change_ppm: f64,
+}
+
+/// The lead words of the thread cycle `e`, whose final pass is move `pass`, for the slide
+/// to cut the programmed lead on `model`: the command advances by the written lead every
+/// spindle turn, so the lead written is the programmed one times the nominal travel along
+/// the thread's axis over the travel the model predicts for it (the model's mean slope over
+/// the pass, from its start to its end at the times it runs: a slide 100 ppm long gets a
+/// lead 100 ppm short). The slope is the model's, not the written end words': those are
+/// rounded to the increment, which over a short thread would be tens of ppm. Written at the digits the
+/// control takes for a lead (`[thread_lead]` in `grammar/`): the lead word's, or where
+/// rounding to them leaves more than half an increment over the thread's turns, the
+/// dialect's precise-lead word (Fanuc-compatible `E`) or the lead of several threads over
+/// their count (OSP `F` over `J`). `None` where the lead word is not a plain number of this
+/// block or the lead written does not change.
+pub(super) fn thread_lead(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    e: &Expansion,
+    pass: usize,
+    model: &crate::error_model::ErrorModel,
+) -> Option<(LeadWords, LeadChange)> {
+    use crate::dialect::Role;
+    use crate::syntax::{Number, Statement};
+    let block = program.block(e.block);
+    let (Statement::Cycle(id) | Statement::LapCall(id)) = block.statement else { return None };
+    let command = program.command(id);
+    let lead_id = command.param(Role::Lead)?;
+    let WordKind::Number { address, number } = program.word(lead_id).kind else { return None };
+    let at = usize::try_from(lead_id.checked_sub(block.first_word)?).ok()?;
+    let table = program.config().tables().thread_lead;
+    // With a count of threads (OSP `J`), the lead word is the length of that many threads.
+    let count_word = table.count.and_then(|count| {
+        command
+            .params
+            .iter()
+            .map(|p| p.word)
+            .find(|&w| matches!(program.word(w).kind, WordKind::Number { address: a, .. } if a == count))
+    });
+    let count = match count_word.map(|w| program.word(w).kind) {
+        Some(WordKind::Number { number, .. }) if number.to_f64() > 0.0 => number.to_f64(),
+        Some(_) => return None,
+        None => 1.0,
+    };
+    let m = lowered.toolpath.moves.get(pass)?;
+    let (from, to) = (lowered.toolpath.start_of(pass), m.end);
+    let along_z = (to.z - from.z).abs() >= (to.x - from.x).abs();
+    let axis = |p: Xz| if along_z { p.z } else { p.x };
+    let actual = |at: Xz, seconds: f64| {
+        let mut sample = crate::error_model::state::Sample::at_rest(at, model.start_min + seconds / 60.0);
+        let sign = |d: f64| if d < 0.0 { -1 } else { 1 };
+        sample.direction = crate::error_model::state::Signs { x: sign(to.x - from.x), z: sign(to.z - from.z) };
+        let length = from.distance(to);
+        sample.velocity = Xz::new((to.x - from.x) / length * m.feed, (to.z - from.z) / length * m.feed);
+        let d = model.displacement_without_play(&sample);
+        Xz::new(at.x + d.x, at.z + d.z)
+    };
+    let ratio = (axis(to) - axis(from)) / (axis(actual(to, m.t_end)) - axis(actual(from, m.t_start)));
+    if !(ratio.is_finite() && ratio > 0.0) {
+        return None;
+    }
+    let mark = lowered.coordinates_at(pass);
+    let grid = crate::back::grid::Grid::new(&mark);
+    let written = number.to_f64();
+    let exact = written * ratio;
+    let lead_mm = mark.frame.mm(written / count);
+    let turns = if lead_mm > 0.0 { from.distance(to) / lead_mm } else { return None };
+    let half_increment = grid.length_mm(1) / 2.0;
+    let round = |value: f64, places: u8| -> Number {
+        let mut mantissa = (value * 10f64.powi(i32::from(places))).round() as i64;
+        let mut scale = places;
+        while scale > 0 && mantissa % 10 == 0 {
+            mantissa /= 10;
+            scale -= 1;
+        }
+        Number::new(mantissa, scale, true)
+    };
+    // The lead a word gives, per turn, and how far its error runs over the thread's turns.
+    let drift = |lead: f64| mark.frame.mm((lead - exact / count).abs()) * turns;
+    // A lead written with the precise-lead word already takes that word's digits.
+    let beyond = match table.precise {
+        Some(precise) if precise.address == address => precise.decimals_beyond_increment,
+        _ => table.decimals_beyond_increment,
+    };
+    let places = grid.places.saturating_add(beyond);
+    let plain = round(exact, places);
+    let mut words: smallvec::SmallVec<[(crate::dialect::Address, Number); 2]> = smallvec::smallvec![(address, plain)];
+    let mut lead = plain.to_f64() / count;
+    if drift(lead) > half_increment {
+        if let Some(precise) = table.precise.filter(|_| count_word.is_none()) {
+            let value = round(exact, grid.places.saturating_add(precise.decimals_beyond_increment));
+            words = smallvec::smallvec![(precise.address, value)];
+            lead = value.to_f64();
+        } else if let Some(count_address) = table.count.filter(|_| count_word.is_none()) {
+            let threads = turns.floor().max(1.0);
+            let value = round(exact * threads, places);
+            words = smallvec::smallvec![(address, value), (count_address, Number::new(threads as i64, 0, false))];
+            lead = value.to_f64() / threads;
+        }
+    }
+    let old = written / count;
+    if lead == old {
+        return None;
+    }
+    let spelled = |words: &[(crate::dialect::Address, Number)]| {
+        words
+            .iter()
+            .map(|(a, n)| format!("{}{}", a.name(), crate::syntax::spelling::plain(*n)))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let from_text = {
+        let mut text = String::from_utf8_lossy(program.text(program.word(lead_id).span)).into_owned();
+        if let Some(w) = count_word {
+            text.push(' ');
+            text.push_str(&String::from_utf8_lossy(program.text(program.word(w).span)));
+        }
+        text
+    };
+    let change = LeadChange {
+        from: from_text,
+        to: spelled(&words),
+        change_ppm: ((lead / old - 1.0) * 1e6 * 10.0).round() / 10.0,
+    };
+    Some((LeadWords { at, words }, change))
+}

@@ -30,6 +30,7 @@ use super::super::program::SAMPLE_STEP_MM;
 use super::arc_steps;
 use super::follow::{Follower, Original};
 use super::knee::{self, Axis};
+use super::lead::ThreadPoints;
 use super::{Measured, Side, Worst};
 
 /// Moves sampled and measured at a time, and samples (past the first move's): memory
@@ -47,7 +48,7 @@ pub fn measure(
     sampling: &Sampling,
     side: Side,
     each: &mut dyn FnMut(Side, Measured),
-) -> (Tally, Option<Worst>) {
+) -> (Tally, Option<Worst>, ThreadPoints) {
     let mut walk = Walk::new(program, original, model, sampling, side);
     walk_all(&mut walk, sampling, each);
     walk.finish()
@@ -58,15 +59,17 @@ pub fn measure(
 /// move's ends among them), rapids and moves that do not cut included, each given to `each`
 /// with its predicted point (`Measured::predicted`; its distance is none, `closest` the
 /// predicted point itself). The part measure (`part.rs`) cuts the part along these points.
+/// The points the lead measure needs (`lead.rs`) are kept and returned.
 pub fn predicted(
     program: &CompactPath,
     model: &ErrorModel,
     sampling: &Sampling,
     side: Side,
     each: &mut dyn FnMut(Side, Measured),
-) {
+) -> ThreadPoints {
     let mut walk = Walk::predicting(program, model, sampling, side);
     walk_all(&mut walk, sampling, each);
+    walk.threads
 }
 
 /// Give `walk` every sample of its program, a piece of moves at a time.
@@ -110,6 +113,8 @@ pub struct Walk<'a> {
     /// The point measured before (none after a point that does not cut).
     previous: Option<Point>,
     worst: Option<Worst>,
+    /// The predicted points a lead measure needs (`lead.rs`).
+    threads: ThreadPoints,
     /// The last sample given, its move and its place along it.
     move_before: usize,
     param_before: f64,
@@ -158,15 +163,17 @@ impl<'a> Walk<'a> {
             tally: Tally::default(),
             previous: None,
             worst: None,
+            threads: ThreadPoints::default(),
             move_before: usize::MAX,
             param_before: 0.0,
             allowance: sampling.allowance,
         }
     }
 
-    /// The figures' running sums, and the largest deviation and where it is.
-    pub fn finish(self) -> (Tally, Option<Worst>) {
-        (self.tally, self.worst)
+    /// The figures' running sums, the largest deviation and where it is, and the points
+    /// kept for the lead measure.
+    pub fn finish(self) -> (Tally, Option<Worst>, ThreadPoints) {
+        (self.tally, self.worst, self.threads)
     }
 
     /// Predict the next sample of the program, `s` (with its terms of time `terms`, or none
@@ -247,6 +254,7 @@ impl<'a> Walk<'a> {
     /// Predict and tally one point; where the model puts the tool for it.
     fn one(&mut self, s: &PathSample, terms: &[Xz], each: &mut dyn FnMut(Side, Measured)) -> Xz {
         let p = self.predictor.predict_one(s, terms);
+        self.threads.keep(self.program, s.move_index, s.param, p);
         let sample_index = self.measured;
         self.measured += 1;
         let Some(follower) = self.follower.as_mut() else {

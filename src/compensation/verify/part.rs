@@ -201,8 +201,13 @@ pub fn part_deviation_watched(
         None => Stock::assumed(original),
     };
     let Some(stock) = stock else {
-        let deviation =
-            Deviation { before: Figures::default(), after: Figures::default(), improvement_percent: None, worst: None };
+        let deviation = Deviation {
+            before: Figures::default(),
+            after: Figures::default(),
+            improvement_percent: None,
+            worst: None,
+            lead: None,
+        };
         let stock = Stock { outer: 0.0, bore: 0.0, front: 0.0, back: 0.0, assumed: true };
         return PartDeviation {
             deviation,
@@ -225,22 +230,23 @@ pub fn part_deviation_watched(
     let original_side = || {
         let (nominal, nominal_stop) = cut(original, stock, machine, rays_for);
         let mut before = PieceCut::new(original, stock, machine, rays_for);
-        predicted(&original_compact, model, sampling, Side::Original, &mut |side, measured| {
+        let threads = predicted(&original_compact, model, sampling, Side::Original, &mut |side, measured| {
             watch(side, &measured);
             before.push(Point::of(&measured));
         });
         let (before, before_stop) = before.finish();
-        (nominal, before, nominal_stop.or(before_stop))
+        (nominal, before, nominal_stop.or(before_stop), threads)
     };
     let compensated_side = || {
         let mut after = PieceCut::new(compensated, stock, machine, rays_for);
-        predicted(&compensated_compact, model, sampling, Side::Compensated, &mut |side, measured| {
+        let threads = predicted(&compensated_compact, model, sampling, Side::Compensated, &mut |side, measured| {
             watch(side, &measured);
             after.push(Point::of(&measured));
         });
-        after.finish()
+        let (after, after_stop) = after.finish();
+        (after, after_stop, threads)
     };
-    let ((after, after_stop), (nominal, before, before_stop)) = crate::parallel::join_if(
+    let ((after, after_stop, after_threads), (nominal, before, before_stop, before_threads)) = crate::parallel::join_if(
         original.moves.len() >= crate::parallel::tuning().measure_moves,
         compensated_side,
         original_side,
@@ -286,6 +292,8 @@ pub fn part_deviation_watched(
         after: after_figures.rounded(),
         improvement_percent,
         worst: worst.map(|w| Worst { deviation_mm: super::super::deviation::nm(w.deviation_mm), ..w }),
+        // The passes' leads from the same predicted points, as the pass measure gives them.
+        lead: super::lead::figures((&original_compact, &before_threads), (&compensated_compact, &after_threads)),
     };
     PartDeviation {
         deviation,

@@ -37,8 +37,16 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
     let mark = lowered.coordinates_at(index);
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(machine);
     let codes = Codes::of(program);
-    let context =
-        BlockContext { program, codes, block, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
+    let context = BlockContext {
+        program,
+        codes,
+        block,
+        mark,
+        grid: Grid::new(&mark),
+        radius_arcs: true,
+        tools: &tools,
+        lead: None,
+    };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
@@ -85,8 +93,16 @@ fn arc_as_lines(program: &str) -> Vec<String> {
     let mark = lowered.coordinates_at(2);
     let tools = crate::semantic::nose_radius::ToolTable::from_machine(&ready.machine);
     let codes = Codes::of(program);
-    let context =
-        BlockContext { program, codes, block: 4, mark, grid: Grid::new(&mark), radius_arcs: true, tools: &tools };
+    let context = BlockContext {
+        program,
+        codes,
+        block: 4,
+        mark,
+        grid: Grid::new(&mark),
+        radius_arcs: true,
+        tools: &tools,
+        lead: None,
+    };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
