@@ -289,13 +289,7 @@ mod tests {
 
     #[test]
     fn the_page_escapes_what_the_programs_hold_and_names_no_address() {
-        let deviation = Deviation {
-            before: Figures::default(),
-            after: Figures::default(),
-            improvement_percent: None,
-            worst: None,
-            lead: None,
-        };
+        let deviation = Deviation::default();
         let page = Page {
             version: "0.1.0",
             original: ProgramFile { name: "a<b>.nc", bytes: b"O1\n(<script>)\nG01 X1.\n" },

@@ -75,8 +75,9 @@ use follow::Original;
 use lead::LeadFigures;
 use measure::measure;
 
-/// The predicted deviation from the original's nominal path, before and after.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+/// The predicted deviation from the original's nominal path, before and after (by default,
+/// nothing measured).
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct Deviation {
     pub before: Figures,
     pub after: Figures,

@@ -794,11 +794,11 @@ impl DiagnosticKind {
                 label: format!("lead off by {:.2} µm over the thread", lead_error_mm * 1000.0).into(),
                 hint: Some(
                     format!(
-                        "a kept thread cycle's lead word is written for the slide's error along the thread, but not \
-                         where the cycle is expanded (its thread moves keep the programmed lead), where the block \
-                         has no lead word of its own (a `G92` pass under an earlier block's `F`), or where the \
-                         slide's error is not uniform along the thread; `--max-deviation {}` accepts this program \
-                         if the thread allows {lead_error_mm:.5} mm",
+                        "a kept thread cycle's lead word is written for the slide's error along the thread (a \
+                         `G92` pass without a lead word of its own takes the one written on the block before), but \
+                         not where the cycle is expanded or the thread is plain `G32` blocks (their thread moves \
+                         keep the programmed lead), or where the slide's error is not uniform along the thread; \
+                         `--max-deviation {}` accepts this program if the thread allows {lead_error_mm:.5} mm",
                         (lead_error_mm * 1000.0 - 1e-9).ceil() / 1000.0
                     )
                     .into(),

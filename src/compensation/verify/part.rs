@@ -201,13 +201,7 @@ pub fn part_deviation_watched(
         None => Stock::assumed(original),
     };
     let Some(stock) = stock else {
-        let deviation = Deviation {
-            before: Figures::default(),
-            after: Figures::default(),
-            improvement_percent: None,
-            worst: None,
-            lead: None,
-        };
+        let deviation = Deviation::default();
         let stock = Stock { outer: 0.0, bore: 0.0, front: 0.0, back: 0.0, assumed: true };
         return PartDeviation {
             deviation,
