@@ -149,7 +149,8 @@ pub fn compensate_program(
     }
     // The rewrite's tables: what can be written for each move, the runs of moves each edited
     // block writes, and the rewrite itself, which reads the whole program.
-    let motion = rewrite::MotionBlocks::new(program, lowered, &tools);
+    let mut motion = rewrite::MotionBlocks::new(program, lowered, &tools);
+    motion.model = Some(model);
     let (forms, runs) = motion.move_tables();
     let context = stream::Context {
         toolpath,

@@ -282,7 +282,7 @@ pub fn finish(
                 continue;
             }
             if motion.thread_writable(e.block, pass, plans) {
-                let lead = cycles::thread_lead(program, lowered, e, pass, model);
+                let lead = cycles::thread_lead(program, lowered, e.block, pass, model);
                 let change = lead.map(|(words, change)| {
                     motion.leads.insert(e.block, words);
                     change
@@ -457,6 +457,8 @@ pub struct MotionBlocks<'a, 'src> {
     diagnostics: Vec<Diagnostic>,
     /// Kept thread cycles' lead words, by call block (`cycles::thread_lead`).
     leads: HashMap<usize, cycles::LeadWords>,
+    /// The model a thread move's lead is written for (none: leads are left as written).
+    pub model: Option<&'a crate::error_model::ErrorModel>,
 }
 
 /// What a block's first run wrote.
@@ -532,6 +534,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             refused: HashSet::new(),
             diagnostics: Vec::new(),
             leads: HashMap::new(),
+            model: None,
         }
     }
 
@@ -588,6 +591,15 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         let Some(block) = self.lookup.index_near(source.start, &mut self.near) else { return };
         if !matches!(program.block(block).statement, Statement::Motion | Statement::ThreadMove) {
             return;
+        }
+        // A thread move's lead word is written for the slide to cut the programmed lead, as
+        // a kept thread cycle's is (`cycles::thread_lead`).
+        if program.block(block).statement == Statement::ThreadMove
+            && let Some(model) = self.model
+            && let Some(pass) = run.moves.clone().find(|&k| lowered.toolpath.moves[k].threading)
+            && let Some((words, _)) = cycles::thread_lead(program, lowered, block, pass, model)
+        {
+            self.leads.insert(block, words);
         }
         let text = if self.rapid_left_alone(block, run.moves.clone()) {
             None

@@ -794,11 +794,11 @@ impl DiagnosticKind {
                 label: format!("lead off by {:.2} µm over the thread", lead_error_mm * 1000.0).into(),
                 hint: Some(
                     format!(
-                        "a kept thread cycle's lead word is written for the slide's error along the thread (a \
-                         `G92` pass without a lead word of its own takes the one written on the block before), but \
-                         not where the cycle is expanded or the thread is plain `G32` blocks (their thread moves \
-                         keep the programmed lead), or where the slide's error is not uniform along the thread; \
-                         `--max-deviation {}` accepts this program if the thread allows {lead_error_mm:.5} mm",
+                        "a kept thread cycle's and a `G32` block's lead word is written for the slide's error \
+                         along the thread (a pass without a lead word of its own takes the one written before it), \
+                         but not where a cycle is expanded (its thread moves keep the programmed lead), or where \
+                         the slide's error is not uniform along the thread; `--max-deviation {}` accepts this \
+                         program if the thread allows {lead_error_mm:.5} mm",
                         (lead_error_mm * 1000.0 - 1e-9).ceil() / 1000.0
                     )
                     .into(),

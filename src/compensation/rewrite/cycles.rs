@@ -593,7 +593,8 @@ pub struct LeadChange {
     pub change_ppm: f64,
 }
 
-/// The lead words of the thread cycle `e`, whose final pass is move `pass`, for the slide
+/// The lead words of `block`, a thread cycle whose final pass is move `pass` or a thread
+/// move (`G32`) that is move `pass`, for the slide
 /// to cut the programmed lead on `model`: the command advances by the written lead every
 /// spindle turn, so the lead written is the programmed one times the nominal travel along
 /// the thread's axis over the travel the model predicts for it (the model's mean slope over
@@ -608,21 +609,35 @@ pub struct LeadChange {
 pub(super) fn thread_lead(
     program: &Program<'_>,
     lowered: &Lowered,
-    e: &Expansion,
+    block: usize,
     pass: usize,
     model: &crate::error_model::ErrorModel,
 ) -> Option<(LeadWords, LeadChange)> {
-    use crate::dialect::Role;
+    use crate::dialect::{Address, Role};
     use crate::syntax::{Number, Statement};
-    let block = program.block(e.block);
-    let (Statement::Cycle(id) | Statement::LapCall(id)) = block.statement else { return None };
-    let command = program.command(id);
-    let lead_id = command.param(Role::Lead)?;
+    let block = program.block(block);
+    let table = program.config().tables().thread_lead;
+    // The lead word: a cycle's lead parameter, or a thread move's own `F` (or precise-lead
+    // word); a thread move without one runs at the lead written before it.
+    let (lead_id, command) = match block.statement {
+        Statement::Cycle(id) | Statement::LapCall(id) => {
+            let command = program.command(id);
+            (command.param(Role::Lead)?, Some(command))
+        }
+        Statement::ThreadMove => {
+            let precise = table.precise.map(|p| p.address);
+            let lead = block.word_ids().find(|&w| {
+                matches!(program.word(w).kind, WordKind::Number { address, .. }
+                    if address == Address::F || Some(address) == precise)
+            })?;
+            (lead, None)
+        }
+        _ => return None,
+    };
     let WordKind::Number { address, number } = program.word(lead_id).kind else { return None };
     let at = usize::try_from(lead_id.checked_sub(block.first_word)?).ok()?;
-    let table = program.config().tables().thread_lead;
     // With a count of threads (OSP `J`), the lead word is the length of that many threads.
-    let count_word = table.count.and_then(|count| {
+    let count_word = table.count.zip(command).and_then(|(count, command)| {
         command
             .params
             .iter()
