@@ -380,12 +380,12 @@ mod generated {
 
     /// The property allows a refusal; this holds refusals to a small share of the same inputs,
     /// so that the property is not met by refusing. About one job in four and a half is
-    /// refused (44 of 200 on average over seven runs, 35 to 53): about half because the
+    /// refused (46 of 200 on average over seven runs, 35 to 56): about half because the
     /// moved contour leaves the nose no room under G41/G42 (a backlash take-up jog at a
     /// concave corner, an arc refit into pieces), as the control's interference check would
     /// say, and about a third because a periodic screw error puts a thread's flanks off by
     /// more than the bound, which no constant lead corrects. Over 200 jobs (a few seconds)
-    /// the bound of a third sits about four standard deviations above the mean. Each job is
+    /// the bound of a third sits more than three standard deviations above the mean. Each job is
     /// also compensated with the check before writing pass by pass (`--passes`), and both
     /// shares are printed: the pass measure does not see a thread's flanks.
     #[test]
