@@ -52,6 +52,23 @@ fn p(v: Vector2<f64>) -> Xz {
     Xz::new(v.y, v.x)
 }
 
+/// The greatest whole number not above `x` (`f64::floor`), by truncation: the build's
+/// baseline x86-64 has no rounding instruction, so `f64::floor` is a call into a software
+/// routine, and the part model asks it for every ray range and every arc's crossing.
+/// Numbers of 2⁵² and above, infinities and NaN are their own floor.
+pub fn floor(x: f64) -> f64 {
+    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
+        return x;
+    }
+    let truncated = x as i64 as f64;
+    if truncated > x { truncated - 1.0 } else { truncated }
+}
+
+/// The least whole number not below `x` (`f64::ceil`), as [`floor`] does it.
+pub fn ceil(x: f64) -> f64 {
+    -floor(-x)
+}
+
 /// The angle of `point` about `centre` (radians, from +Z toward +X).
 pub fn angle(point: Xz, centre: Xz) -> f64 {
     (point.x - centre.x).atan2(point.z - centre.z)

@@ -155,3 +155,24 @@ proptest::proptest! {
         proptest::prop_assert_eq!(rem_turn(x).to_bits(), x.rem_euclid(TAU).to_bits());
     }
 }
+
+use proptest::prelude::Strategy as _;
+
+proptest::proptest! {
+    /// The part model's floor and ceiling agree with the standard library's everywhere,
+    /// whole numbers, halves and the ends of the range included.
+    #[test]
+    fn floor_and_ceil_agree_with_the_standard_library(
+        x in proptest::prop_oneof![
+            proptest::num::f64::ANY,
+            -1e6f64..1e6,
+            (-1_000_000i64..1_000_000).prop_map(|k| k as f64),
+            (-1_000_000i64..1_000_000).prop_map(|k| k as f64 + 0.5),
+            (-1_000_000i64..1_000_000).prop_map(|k| k as f64 * 4.5e9),
+        ]
+    ) {
+        let same = |a: f64, b: f64| a == b || (a.is_nan() && b.is_nan());
+        proptest::prop_assert!(same(floor(x), x.floor()), "floor({x}) = {} not {}", floor(x), x.floor());
+        proptest::prop_assert!(same(ceil(x), x.ceil()), "ceil({x}) = {} not {}", ceil(x), x.ceil());
+    }
+}

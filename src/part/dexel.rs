@@ -116,8 +116,8 @@ impl Dexels {
     /// The indices of the rays of a family whose line lies between `lo` and `hi`.
     fn range(&self, along_z: bool, lo: f64, hi: f64) -> std::ops::Range<usize> {
         let (origin, count) = if along_z { (self.x_lo, self.along_z.len()) } else { (self.z_lo, self.along_x.len()) };
-        let first = ((lo - origin) / self.spacing - 0.5).ceil();
-        let last = ((hi - origin) / self.spacing - 0.5).floor();
+        let first = crate::geometry::ceil((lo - origin) / self.spacing - 0.5);
+        let last = crate::geometry::floor((hi - origin) / self.spacing - 0.5);
         if !(first.is_finite() && last.is_finite()) || last < 0.0 || first >= count as f64 || last < first {
             return 0..0;
         }

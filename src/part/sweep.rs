@@ -95,11 +95,16 @@ pub(crate) enum Sweep {
 }
 
 /// A rounded convex polygon (`core` about the nose centre, grown by the nose `radius`) whose
-/// nose centre moves along the arc from `start` to `end` about `centre`. The region it
-/// sweeps is the union of the polygon at the arc's two ends, each vertex's disk moved along
-/// the arc (an annular sector about the centre moved by the vertex) and each offset edge
-/// moved along the arc: every point the polygon passes over lies in the polygon at the start
-/// or was crossed by its boundary on the way. A line crosses an edge moved along an arc
+/// nose centre moves along the arc from `start` to `end` about `centre`. The polygon only
+/// moves (it does not turn), so a point it passes over either lies in the polygon at the
+/// end or leaves it on the way through its trailing boundary, where the outward normal is
+/// against the direction of travel. The region it sweeps is therefore the union of the
+/// polygon at the arc's end, each vertex's disk moved along the arc (its disk at the arc's
+/// start and an annular sector about the centre moved by the vertex; the polygon at the end
+/// holds its disk there) and each offset edge moved along the arc, of those
+/// vertices and edges that trail somewhere on the arc: an edge that leads all the way (on
+/// a piece of an arc, about a quarter of an insert's) and a vertex between two such add
+/// nothing. A line crosses an edge moved along an arc
 /// where the edge at angle `θ` crosses it, at a parameter `t(θ)` that is a sinusoid in `θ`,
 /// over the angles where the crossing lies on the edge (`edge_along_arc`): its extremes are
 /// at the arc's ends, where the crossing reaches an end of the edge, or where the arc runs
@@ -108,6 +113,8 @@ pub(crate) enum Sweep {
 pub(crate) struct BodyAlongArc {
     /// The nose radius the polygon is grown by.
     radius: f64,
+    /// Where the nose centre starts, and the arc's centre.
+    start: Xz,
     centre: Xz,
     arc_radius: f64,
     /// The angles the nose centre passes (`geometry::angle`), lower first, and their
@@ -116,11 +123,14 @@ pub(crate) struct BodyAlongArc {
     angle_directions: (Xz, Xz),
     /// The box of the nose centre's path (its ends and the arc's extremes).
     path: (Xz, Xz),
-    /// The polygon at the arc's two ends.
-    ends: [SmallVec<[Xz; 8]>; 2],
-    /// Each vertex about the nose centre, and its disk's sector (the nose centre's, moved by
-    /// the vertex).
+    /// The box of the polygon about the nose centre.
+    core_box: (Xz, Xz),
+    /// The polygon at the arc's end.
+    end: SmallVec<[Xz; 8]>,
+    /// Each trailing vertex about the nose centre, and its disk's sector (the nose centre's,
+    /// moved by the vertex).
     vertices: SmallVec<[(Xz, Sector); 4]>,
+    /// The trailing edges.
     edges: SmallVec<[ArcEdge; 4]>,
 }
 
@@ -176,9 +186,29 @@ impl Sweep {
         let total = crate::geometry::sweep_from(a0, start, end, centre, ccw);
         let a1 = if ccw { a0 + total } else { a0 - total };
         let moved = |p: Xz, v: Xz| Xz::new(p.x + v.x, p.z + v.z);
-        let vertices = core
-            .iter()
-            .map(|&v| (v, Sector::with_angles(moved(start, v), moved(end, v), moved(centre, v), ccw, a0, total)))
+        // Whether the boundary with outward normal `n` leads all the way: the direction of
+        // travel at angle θ is ±(cos θ, −sin θ) (θ grows counter-clockwise), so `n·v` is a
+        // sinusoid in θ, positive over at most half a turn; on an arc shorter than that it
+        // is positive throughout where it is at both ends.
+        let travel = if ccw { 1.0 } else { -1.0 };
+        let ahead = |n: Xz, theta: f64| travel * (n.x * theta.cos() - n.z * theta.sin()) > 1e-12;
+        let leads = |n: Xz| total < std::f64::consts::PI - 1e-9 && ahead(n, a0) && ahead(n, a1);
+        let n = core.len();
+        let normals: SmallVec<[Xz; 8]> = (0..if n >= 2 { n } else { 0 })
+            .map(|i| {
+                let (a, b) = (core[i], core[(i + 1) % n]);
+                let d = unit(Xz::new(b.x - a.x, b.z - a.z));
+                Xz::new(d.z, -d.x)
+            })
+            .collect();
+        let leading: SmallVec<[bool; 8]> = normals.iter().map(|&normal| leads(normal)).collect();
+        let vertices = (0..n)
+            // A vertex's disk spans the normals between its two edges'.
+            .filter(|&i| n < 2 || !(leading[(i + n - 1) % n] && leading[i]))
+            .map(|i| {
+                let v = core[i];
+                (v, Sector::with_angles(moved(start, v), moved(end, v), moved(centre, v), ccw, a0, total))
+            })
             .collect();
         let mut lo = Xz::new(start.x.min(end.x), start.z.min(end.z));
         let mut hi = Xz::new(start.x.max(end.x), start.z.max(end.z));
@@ -186,12 +216,17 @@ impl Sweep {
             lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
             hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
         }
-        let n = core.len();
+        let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+        for p in &core {
+            core_lo = Xz::new(core_lo.x.min(p.x), core_lo.z.min(p.z));
+            core_hi = Xz::new(core_hi.x.max(p.x), core_hi.z.max(p.z));
+        }
         let mut edges = SmallVec::new();
-        for i in 0..if n >= 2 { n } else { 0 } {
+        for (i, &normal) in normals.iter().enumerate() {
+            if leading[i] {
+                continue;
+            }
             let (a, b) = (core[i], core[(i + 1) % n]);
-            let d = unit(Xz::new(b.x - a.x, b.z - a.z));
-            let normal = Xz::new(d.z, -d.x);
             let offset = |p: Xz| Xz::new(p.x + normal.x * radius, p.z + normal.z * radius);
             let edge = Xz::new(b.x - a.x, b.z - a.z);
             let turns = [true, false].map(|along_z| {
@@ -208,12 +243,14 @@ impl Sweep {
         let (low, high) = (a0.min(a1), a0.max(a1));
         Sweep::BodyAlongArc(Box::new(BodyAlongArc {
             radius,
+            start,
             centre,
             arc_radius: start.distance(centre),
             angles: (low, high),
             angle_directions: (Xz::new(low.sin(), low.cos()), Xz::new(high.sin(), high.cos())),
             path: (lo, hi),
-            ends: [start, end].map(|at| core.iter().map(|&v| moved(at, v)).collect()),
+            core_box: (core_lo, core_hi),
+            end: core.iter().map(|&v| moved(end, v)).collect(),
             vertices,
             edges,
         }))
@@ -232,11 +269,7 @@ impl Sweep {
                 (Xz::new(lo.x - radius, lo.z - radius), Xz::new(hi.x + radius, hi.z + radius))
             }
             Sweep::BodyAlongArc(body) => {
-                let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
-                for (p, _) in &body.vertices {
-                    core_lo = Xz::new(core_lo.x.min(p.x), core_lo.z.min(p.z));
-                    core_hi = Xz::new(core_hi.x.max(p.x), core_hi.z.max(p.z));
-                }
+                let (core_lo, core_hi) = body.core_box;
                 let (r, (lo, hi)) = (body.radius, body.path);
                 (
                     Xz::new(lo.x + core_lo.x - r, lo.z + core_lo.z - r),
@@ -246,7 +279,9 @@ impl Sweep {
         }
     }
 
-    /// Where `line` is inside the sweep.
+    /// Where `line` is inside the sweep, each piece crossed in turn: the plain reference the
+    /// tests hold [`Sweep::prepare`]'s chains to.
+    #[cfg(test)]
     pub fn cross(&self, line: Line) -> Crossing {
         let mut out = Crossing::new();
         match self {
@@ -270,17 +305,23 @@ impl BodyAlongArc {
         line.at >= path_lo + from && line.at <= path_hi + to
     }
 
-    /// Where `line` is inside the sweep (see [`BodyAlongArc`]).
+    /// Where `line` is inside the sweep (see [`BodyAlongArc`]), its end polygons crossed
+    /// piece by piece (the tests' reference).
+    #[cfg(test)]
     fn cross(&self, line: Line) -> Crossing {
+        self.cross_with_end(line, rounded_polygon(line, &self.end, self.radius))
+    }
+
+    /// [`BodyAlongArc::cross`] with where `line` crosses the polygon at the end given.
+    fn cross_with_end(&self, line: Line, end: Option<(Hit, Hit)>) -> Crossing {
         let r = self.radius;
         let fixed = |p: Xz| if line.along_z { p.x } else { p.z };
         let mut pieces: SmallVec<[(Hit, Hit); 12]> = SmallVec::new();
-        for placed in &self.ends {
-            pieces.extend(rounded_polygon(line, placed, r));
-        }
+        pieces.extend(end);
         if r > 0.0 {
             for (v, sector) in &self.vertices {
                 if self.reaches(line, fixed(*v) - r, fixed(*v) + r) {
+                    pieces.extend(disk_hits(line, Xz::new(self.start.x + v.x, self.start.z + v.z), r));
                     let centre = Xz::new(self.centre.x + v.x, self.centre.z + v.z);
                     let mut ring: SmallVec<[(Hit, Hit); 6]> = SmallVec::new();
                     annular_sector(line, centre, self.arc_radius, r, sector, &mut ring);
@@ -363,7 +404,7 @@ impl BodyAlongArc {
             marks.extend(roots(line.along_z, v, lo, hi).into_iter().map(|(theta, u)| (theta, u, true)));
         }
         let half = std::f64::consts::PI;
-        let (first, last) = (((lo - turn) / half).ceil(), ((hi - turn) / half).floor());
+        let (first, last) = (crate::geometry::ceil((lo - turn) / half), crate::geometry::floor((hi - turn) / half));
         if first.is_finite() && last.is_finite() && last >= first && last - first < 4.0 {
             for k in first as i64..=last as i64 {
                 let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
@@ -441,7 +482,7 @@ fn roots(along_z: bool, v: f64, lo: f64, hi: f64) -> SmallVec<[(f64, Xz); 4]> {
     };
     let tau = std::f64::consts::TAU;
     for (root, u) in pair {
-        let (first, last) = (((lo - root) / tau).ceil(), ((hi - root) / tau).floor());
+        let (first, last) = (crate::geometry::ceil((lo - root) / tau), crate::geometry::floor((hi - root) / tau));
         if !(first.is_finite() && last.is_finite()) || last < first || last - first > 2.0 {
             continue;
         }
@@ -459,8 +500,21 @@ fn roots(along_z: bool, v: f64, lo: f64, hi: f64) -> SmallVec<[(f64, Xz); 4]> {
 // The chains live on the stack: a sweep is prepared once per family of each move.
 #[allow(clippy::large_enum_variant)]
 pub(crate) enum Prepared<'s> {
-    Chains { along_z: bool, lower: SmallVec<[Piece; 12]>, upper: SmallVec<[Piece; 12]> },
-    General(&'s Sweep),
+    Chains(Chains),
+    /// An insert along an arc, the polygon at its end prepared (every ray that meets the
+    /// sweep asks it).
+    Arc {
+        body: &'s BodyAlongArc,
+        end: Chains,
+    },
+}
+
+/// A rounded convex polygon's boundary as its lower and upper chains along the rays of one
+/// family.
+pub(crate) struct Chains {
+    along_z: bool,
+    lower: SmallVec<[Piece; 12]>,
+    upper: SmallVec<[Piece; 12]>,
 }
 
 /// One piece of a chain: the lines `from..=to` cross it.
@@ -498,8 +552,18 @@ impl Piece {
 impl Sweep {
     /// This sweep ready for the rays of one family.
     pub fn prepare(&self, along_z: bool) -> Prepared<'_> {
-        let Sweep::Rounded { points, radius } = self else { return Prepared::General(self) };
-        let (r, n) = (*radius, points.len());
+        match self {
+            Sweep::Rounded { points, radius } => Prepared::Chains(Chains::new(points, *radius, along_z)),
+            Sweep::BodyAlongArc(body) => Prepared::Arc { body, end: Chains::new(&body.end, body.radius, along_z) },
+        }
+    }
+}
+
+impl Chains {
+    /// The lower and upper chains of the convex polygon `points` grown by `radius`, for the
+    /// rays of one family.
+    fn new(points: &[Xz], radius: f64, along_z: bool) -> Chains {
+        let (r, n) = (radius, points.len());
         // (fixed, param) of a point, and of a vector.
         let fg = |p: Xz| if along_z { (p.x, p.z) } else { (p.z, p.x) };
         let mut lower = SmallVec::new();
@@ -581,7 +645,15 @@ impl Sweep {
                 }
             }
         }
-        Prepared::Chains { along_z, lower, upper }
+        Chains { along_z, lower, upper }
+    }
+
+    /// Where `line` (of the family prepared for) is inside the polygon.
+    fn cross(&self, line: Line) -> Option<(Hit, Hit)> {
+        let find = |chain: &[Piece]| chain.iter().find(|p| p.from <= line.at && line.at <= p.to).copied();
+        let (lo, hi) = (find(&self.lower)?, find(&self.upper)?);
+        let (lo, hi) = (lo.hit(self.along_z, line.at), hi.hit(self.along_z, line.at));
+        (hi.t > lo.t).then_some((lo, hi))
     }
 }
 
@@ -589,18 +661,8 @@ impl Prepared<'_> {
     /// Where `line` (of the family prepared for) is inside the sweep.
     pub fn cross(&self, line: Line) -> Crossing {
         match self {
-            Prepared::General(sweep) => sweep.cross(line),
-            Prepared::Chains { along_z, lower, upper } => {
-                let mut out = Crossing::new();
-                let find = |chain: &[Piece]| chain.iter().find(|p| p.from <= line.at && line.at <= p.to).copied();
-                if let (Some(lo), Some(hi)) = (find(lower), find(upper)) {
-                    let (lo, hi) = (lo.hit(*along_z, line.at), hi.hit(*along_z, line.at));
-                    if hi.t > lo.t {
-                        out.push((lo, hi));
-                    }
-                }
-                out
-            }
+            Prepared::Chains(chains) => chains.cross(line).into_iter().collect(),
+            Prepared::Arc { body, end } => body.cross_with_end(line, end.cross(line)),
         }
     }
 }
@@ -624,6 +686,7 @@ fn disk_hits(line: Line, centre: Xz, radius: f64) -> Option<(Hit, Hit)> {
 
 /// Where `line` is inside the convex polygon `points` grown by `radius` (one interval: the
 /// region is convex, so it is the hull of every crossing of its boundary pieces).
+#[cfg(test)]
 fn rounded_polygon(line: Line, points: &[Xz], radius: f64) -> Option<(Hit, Hit)> {
     let mut lo: Option<Hit> = None;
     let mut hi: Option<Hit> = None;

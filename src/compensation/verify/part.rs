@@ -445,6 +445,9 @@ impl<'a> PieceCut<'a> {
                 }
             }
         }
+        if !m.threading {
+            merge_straight_runs(start, &mut self.pieces);
+        }
         let mut from = start;
         for piece in &self.pieces {
             if self.removal.step_move(from, piece, index).is_none() {
@@ -502,6 +505,64 @@ fn piece(toolpath: &Toolpath, last: &mut (Xz, Xz, usize, f64), point: &Point) ->
         piece.threading = false;
     }
     Some(piece)
+}
+
+/// How far a predicted point may lie from the straight piece that replaces the two line
+/// pieces it joins (mm): a thousandth of the nanometre the figures are given to.
+const STRAIGHT_MM: f64 = 1e-9;
+
+/// Consecutive line pieces (from `start`) whose joints lie within [`STRAIGHT_MM`] of the
+/// segment from the first one's start to the last one's end, joined into that one piece.
+/// A tool swept along a path whose every point lies within `d` of a segment, from one end
+/// of it to the other, covers the tool swept along the segment to within `d` (the
+/// Hausdorff distance of the two paths bounds that of their sweeps by a convex tool), so
+/// the part moves by less than the figures show. A move of a long program is predicted at
+/// several points that a model without a time-varying term keeps on one line (to the
+/// rounding of f64, and within a picometre with warm-up growth over the move): each piece
+/// sweeps the whole insert across the rays, so one sweep in place of several is most of
+/// the part measure's cost. A knee of a backlash take-up is not straight and stays.
+fn merge_straight_runs(start: Xz, pieces: &mut Vec<Move>) {
+    if pieces.len() < 2 {
+        return;
+    }
+    let line = |p: &Move| !p.is_arc() && !p.threading;
+    let mut out: Vec<Move> = Vec::with_capacity(pieces.len());
+    // The start of the run of line pieces the last piece of `out` ends, and its joints.
+    let mut run_start = start;
+    let mut joints: smallvec::SmallVec<[Xz; 8]> = smallvec::SmallVec::new();
+    let mut from = start;
+    for piece in pieces.drain(..) {
+        let joinable = out.last().is_some_and(|last| {
+            line(last)
+                && line(&piece)
+                && last.motion == piece.motion
+                && joints
+                    .iter()
+                    .chain(std::iter::once(&from))
+                    .all(|&p| segment_distance(p, run_start, piece.end) <= STRAIGHT_MM)
+        });
+        let end = piece.end;
+        if joinable {
+            joints.push(from);
+            if let Some(last) = out.last_mut() {
+                last.end = end;
+            }
+        } else {
+            run_start = from;
+            joints.clear();
+            out.push(piece);
+        }
+        from = end;
+    }
+    *pieces = out;
+}
+
+/// The distance from `p` to the segment from `a` to `b`.
+fn segment_distance(p: Xz, a: Xz, b: Xz) -> f64 {
+    let (dx, dz) = (b.x - a.x, b.z - a.z);
+    let length2 = dx * dx + dz * dz;
+    let s = if length2 > 0.0 { (((p.x - a.x) * dx + (p.z - a.z) * dz) / length2).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(Xz::new(a.x + s * dx, a.z + s * dz))
 }
 
 /// A piece of an arc shorter than this (mm) is cut as a line: its chord gives no direction.
