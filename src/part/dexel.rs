@@ -167,6 +167,7 @@ impl Dexels {
     ) -> Taken {
         let (lo, hi) = sweep.bounds();
         let mut taken = Taken::default();
+        let mut crossing = Crossing::new();
         for along_z in families {
             // Made when a ray first needs it: a sweep through air crosses no ray.
             let mut prepared = None;
@@ -194,7 +195,7 @@ impl Dexels {
                     if reach_hi <= first || reach_lo >= last {
                         continue;
                     }
-                    let crossing = prepared.get_or_insert_with(|| sweep.prepare(along_z)).cross(line);
+                    prepared.get_or_insert_with(|| sweep.prepare(along_z)).cross_into(line, &mut crossing);
                     if crossing.is_empty() {
                         continue;
                     }

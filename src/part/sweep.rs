@@ -125,6 +125,10 @@ pub(crate) struct BodyAlongArc {
     path: (Xz, Xz),
     /// The box of the polygon about the nose centre.
     core_box: (Xz, Xz),
+    /// The range of `u(θ)`'s x and of its z over the arc (the fixed coordinate for the rays
+    /// along Z and along X), widened by a rounding: where a ray's `v` lies outside it, no
+    /// angle of the arc puts the crossing there (`BodyAlongArc::roots`).
+    u_range: [(f64, f64); 2],
     /// The polygon at the arc's end.
     end: SmallVec<[Xz; 8]>,
     /// Each trailing vertex about the nose centre, and its disk's sector (the nose centre's,
@@ -241,6 +245,25 @@ impl Sweep {
             edges.push(ArcEdge { a: offset(a), b: offset(b), normal, turns });
         }
         let (low, high) = (a0.min(a1), a0.max(a1));
+        // The range of sin θ (x) and cos θ (z) over the arc: their values at its ends, and
+        // ±1 where it passes the angle of that extreme.
+        let passes = |at: f64| {
+            let tau = std::f64::consts::TAU;
+            crate::geometry::ceil((low - at) / tau) <= crate::geometry::floor((high - at) / tau)
+        };
+        let half_pi = std::f64::consts::FRAC_PI_2;
+        let range = |a: f64, b: f64, top: f64, bottom: f64| {
+            let (mut lo, mut hi) = (a.min(b), a.max(b));
+            if passes(top) {
+                hi = 1.0;
+            }
+            if passes(bottom) {
+                lo = -1.0;
+            }
+            (lo - 1e-9, hi + 1e-9)
+        };
+        let u_range =
+            [range(low.sin(), high.sin(), half_pi, -half_pi), range(low.cos(), high.cos(), 0.0, std::f64::consts::PI)];
         Sweep::BodyAlongArc(Box::new(BodyAlongArc {
             radius,
             start,
@@ -250,6 +273,7 @@ impl Sweep {
             angle_directions: (Xz::new(low.sin(), low.cos()), Xz::new(high.sin(), high.cos())),
             path: (lo, hi),
             core_box: (core_lo, core_hi),
+            u_range,
             end: core.iter().map(|&v| moved(end, v)).collect(),
             vertices,
             edges,
@@ -309,11 +333,13 @@ impl BodyAlongArc {
     /// piece by piece (the tests' reference).
     #[cfg(test)]
     fn cross(&self, line: Line) -> Crossing {
-        self.cross_with_end(line, rounded_polygon(line, &self.end, self.radius))
+        let mut out = Crossing::new();
+        self.cross_with_end(line, rounded_polygon(line, &self.end, self.radius), &mut out);
+        out
     }
 
     /// [`BodyAlongArc::cross`] with where `line` crosses the polygon at the end given.
-    fn cross_with_end(&self, line: Line, end: Option<(Hit, Hit)>) -> Crossing {
+    fn cross_with_end(&self, line: Line, end: Option<(Hit, Hit)>, out: &mut Crossing) {
         let r = self.radius;
         let fixed = |p: Xz| if line.along_z { p.x } else { p.z };
         let mut pieces: SmallVec<[(Hit, Hit); 12]> = SmallVec::new();
@@ -336,7 +362,7 @@ impl BodyAlongArc {
             }
         }
         pieces.sort_by(|a, b| a.0.t.total_cmp(&b.0.t));
-        let mut out = Crossing::new();
+        out.clear();
         for piece in pieces {
             match out.last_mut() {
                 Some(last) if piece.0.t <= last.1.t + MERGE => {
@@ -347,7 +373,16 @@ impl BodyAlongArc {
                 _ => out.push(piece),
             }
         }
-        out
+    }
+
+    /// [`roots`] over the arc's angles, none without solving where `v` is out of the range
+    /// the arc gives `u`'s fixed coordinate (most rays of a short arc).
+    fn roots(&self, along_z: bool, v: f64) -> SmallVec<[(f64, Xz); 4]> {
+        let (lo, hi) = self.u_range[usize::from(!along_z)];
+        if v < lo || v > hi {
+            return SmallVec::new();
+        }
+        roots(along_z, v, self.angles.0, self.angles.1)
     }
 
     /// Where `line` crosses `edge` moved along the arc, pushed onto `out`. With the nose
@@ -379,7 +414,7 @@ impl BodyAlongArc {
         let Some((turn, turn_direction)) = edge.turns[usize::from(!line.along_z)] else {
             // The edge runs along the line: it lies on it where its fixed coordinate does.
             let v = (line.at - dot(base, fixed)) / r;
-            for (_, u) in roots(line.along_z, v, lo, hi) {
+            for (_, u) in self.roots(line.along_z, v) {
                 let p = Xz::new(base.x + r * u.x, base.z + r * u.z);
                 let (t0, t1) = (dot(p, along), dot(p, along) + dg);
                 if t0 != t1 {
@@ -401,7 +436,7 @@ impl BodyAlongArc {
         marks.push((hi, self.angle_directions.1, false));
         for k in [0.0, 1.0] {
             let v = (line.at - dot(base, fixed) - k * df) / r;
-            marks.extend(roots(line.along_z, v, lo, hi).into_iter().map(|(theta, u)| (theta, u, true)));
+            marks.extend(self.roots(line.along_z, v).into_iter().map(|(theta, u)| (theta, u, true)));
         }
         let half = std::f64::consts::PI;
         let (first, last) = (crate::geometry::ceil((lo - turn) / half), crate::geometry::floor((hi - turn) / half));
@@ -659,10 +694,21 @@ impl Chains {
 
 impl Prepared<'_> {
     /// Where `line` (of the family prepared for) is inside the sweep.
+    #[cfg(test)]
     pub fn cross(&self, line: Line) -> Crossing {
+        let mut out = Crossing::new();
+        self.cross_into(line, &mut out);
+        out
+    }
+
+    /// [`Prepared::cross`] into `out`, which a caller asking ray after ray keeps.
+    pub fn cross_into(&self, line: Line, out: &mut Crossing) {
         match self {
-            Prepared::Chains(chains) => chains.cross(line).into_iter().collect(),
-            Prepared::Arc { body, end } => body.cross_with_end(line, end.cross(line)),
+            Prepared::Chains(chains) => {
+                out.clear();
+                out.extend(chains.cross(line));
+            }
+            Prepared::Arc { body, end } => body.cross_with_end(line, end.cross(line), out),
         }
     }
 }
