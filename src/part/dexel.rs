@@ -195,7 +195,11 @@ impl Dexels {
                     if reach_hi <= first || reach_lo >= last {
                         continue;
                     }
-                    prepared.get_or_insert_with(|| sweep.prepare(along_z)).cross_into(line, &mut crossing);
+                    let prepared = prepared.get_or_insert_with(|| sweep.prepare(along_z));
+                    if prepared.misses(line, |lo, hi| spans.iter().any(|s| s.hi.at > lo && s.lo.at < hi)) {
+                        continue;
+                    }
+                    prepared.cross_into(line, &mut crossing);
                     if crossing.is_empty() {
                         continue;
                     }

@@ -131,6 +131,11 @@ pub(crate) struct BodyAlongArc {
     u_range: [(f64, f64); 2],
     /// The polygon at the arc's end.
     end: SmallVec<[Xz; 8]>,
+    /// A convex polygon that holds the whole sweep (grown by the nose radius), on an arc of
+    /// at most a quarter turn: the polygon placed at the arc's ends and where its end
+    /// tangents meet, since the arc lies in that triangle. A ray whose material lies
+    /// outside it is not crossed exactly.
+    bound: Option<SmallVec<[Xz; 8]>>,
     /// Each trailing vertex about the nose centre, and its disk's sector (the nose centre's,
     /// moved by the vertex).
     vertices: SmallVec<[(Xz, Sector); 4]>,
@@ -264,6 +269,15 @@ impl Sweep {
         };
         let u_range =
             [range(low.sin(), high.sin(), half_pi, -half_pi), range(low.cos(), high.cos(), 0.0, std::f64::consts::PI)];
+        let bound = (total <= std::f64::consts::FRAC_PI_2).then(|| {
+            let middle = if ccw { a0 + total / 2.0 } else { a0 - total / 2.0 };
+            let apex = crate::geometry::on_circle(centre, start.distance(centre) / (total / 2.0).cos(), middle);
+            let mut points: SmallVec<[Xz; 8]> = SmallVec::new();
+            for at in [start, end, apex] {
+                points.extend(core.iter().map(|&v| moved(at, v)));
+            }
+            convex_hull(points)
+        });
         Sweep::BodyAlongArc(Box::new(BodyAlongArc {
             radius,
             start,
@@ -274,6 +288,7 @@ impl Sweep {
             path: (lo, hi),
             core_box: (core_lo, core_hi),
             u_range,
+            bound,
             end: core.iter().map(|&v| moved(end, v)).collect(),
             vertices,
             edges,
@@ -536,11 +551,12 @@ fn roots(along_z: bool, v: f64, lo: f64, hi: f64) -> SmallVec<[(f64, Xz); 4]> {
 #[allow(clippy::large_enum_variant)]
 pub(crate) enum Prepared<'s> {
     Chains(Chains),
-    /// An insert along an arc, the polygon at its end prepared (every ray that meets the
-    /// sweep asks it).
+    /// An insert along an arc, the polygon at its end and its bound prepared (every ray
+    /// that meets the sweep asks them).
     Arc {
         body: &'s BodyAlongArc,
         end: Chains,
+        bound: Option<Chains>,
     },
 }
 
@@ -589,7 +605,11 @@ impl Sweep {
     pub fn prepare(&self, along_z: bool) -> Prepared<'_> {
         match self {
             Sweep::Rounded { points, radius } => Prepared::Chains(Chains::new(points, *radius, along_z)),
-            Sweep::BodyAlongArc(body) => Prepared::Arc { body, end: Chains::new(&body.end, body.radius, along_z) },
+            Sweep::BodyAlongArc(body) => Prepared::Arc {
+                body,
+                end: Chains::new(&body.end, body.radius, along_z),
+                bound: body.bound.as_ref().map(|points| Chains::new(points, body.radius + 1e-9, along_z)),
+            },
         }
     }
 }
@@ -701,6 +721,14 @@ impl Prepared<'_> {
         out
     }
 
+    /// Whether `line` crosses the sweep nowhere `within` says there is material: a test
+    /// that passes over rays an arc's sweep cannot reach without crossing it exactly (the
+    /// bound holds the sweep; it is grown by a rounding, across the rays and along them).
+    pub fn misses(&self, line: Line, within: impl Fn(f64, f64) -> bool) -> bool {
+        let Prepared::Arc { bound: Some(bound), .. } = self else { return false };
+        bound.cross(line).is_none_or(|(lo, hi)| !within(lo.t - 1e-9, hi.t + 1e-9))
+    }
+
     /// [`Prepared::cross`] into `out`, which a caller asking ray after ray keeps.
     pub fn cross_into(&self, line: Line, out: &mut Crossing) {
         match self {
@@ -708,7 +736,7 @@ impl Prepared<'_> {
                 out.clear();
                 out.extend(chains.cross(line));
             }
-            Prepared::Arc { body, end } => body.cross_with_end(line, end.cross(line), out),
+            Prepared::Arc { body, end, .. } => body.cross_with_end(line, end.cross(line), out),
         }
     }
 }
@@ -837,11 +865,11 @@ pub(crate) fn convex_hull(mut points: SmallVec<[Xz; 8]>) -> SmallVec<[Xz; 8]> {
     }
     let cross = |o: Xz, a: Xz, b: Xz| (a.x - o.x) * (b.z - o.z) - (a.z - o.z) * (b.x - o.x);
     let mut hull: SmallVec<[Xz; 8]> = SmallVec::new();
+    let n = points.len();
     for pass in 0..2 {
         let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &Xz>> =
-            if pass == 0 { Box::new(points.iter()) } else { Box::new(points.iter().rev()) };
-        for &p in iter {
+        for k in 0..n {
+            let p = points[if pass == 0 { k } else { n - 1 - k }];
             while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 1e-15 {
                 hull.pop();
             }
