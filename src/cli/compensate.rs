@@ -306,7 +306,8 @@ impl Trial<'_, '_> {
         if self.program.valid().moves.len() > Self::MAX_MOVES {
             return None;
         }
-        let original = (&self.program.parsed.program, &self.program.lowered.expansions[..], self.program.valid());
+        let words = verify::Words::of(&self.program.parsed.program, &self.program.lowered.expansions);
+        let original = verify::Held::from_toolpath(words, self.program.valid(), self.tools);
         Strategy::ALL
             .into_iter()
             .filter(|&strategy| strategy != fit.strategy && (fit.step.is_none() || strategy == Strategy::Densify))
@@ -318,7 +319,7 @@ impl Trial<'_, '_> {
                 }
                 let written = printer::print(&self.program.parsed.program, &outcome.edits);
                 let checked = verify::check_written(
-                    original,
+                    &original,
                     &written,
                     self.reading,
                     self.tools,
@@ -593,13 +594,10 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         let original = program.valid();
         let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
         let mut unreadable = FileResult::failed(1, Vec::new());
-        let refusal = match verify::check_written(
-            (&program.parsed.program, &program.lowered.expansions, original),
-            &written,
-            &reading,
-            &tools,
-            (&model, measure, stock.as_ref()),
-        ) {
+        let words = verify::Words::of(&program.parsed.program, &program.lowered.expansions);
+        let held = verify::Held::from_toolpath(words, original, &tools);
+        let refusal = match verify::check_written(&held, &written, &reading, &tools, (&model, measure, stock.as_ref()))
+        {
             Ok(verify::Written { deviation: figures, part, feed_change, lost }) => {
                 let totals = &mut outcome.report.totals;
                 (totals.before, totals.after) = (figures.before, figures.after);

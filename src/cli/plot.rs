@@ -116,13 +116,10 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
         let mut reading = pipeline_settings(&resolved, &args.run, true);
         reading.parse = printer::read_back_options(&program.parsed.program);
         let tools = ToolTable::from_machine(&program.machine);
-        let checked = verify::check_written(
-            (&program.parsed.program, &program.lowered.expansions, toolpath),
-            &written,
-            &reading,
-            &tools,
-            (&model, Measure::Part, part.stock.as_ref()),
-        );
+        let words = verify::Words::of(&program.parsed.program, &program.lowered.expansions);
+        let original = verify::Held::from_toolpath(words, toolpath, &tools);
+        let checked =
+            verify::check_written(&original, &written, &reading, &tools, (&model, Measure::Part, part.stock.as_ref()));
         let measured = match checked.map(|written| written.part) {
             Ok(Some(measured)) => measured,
             Ok(None) => {

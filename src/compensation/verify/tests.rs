@@ -216,7 +216,7 @@ fn a_provenance_comment_is_not_a_word_to_keep() {
     let (plain, marked) =
         (crate::syntax::parse(plain.as_bytes(), &options), crate::syntax::parse(marked.as_bytes(), &options));
     for (original, compensated) in [(&marked, &plain), (&plain, &marked)] {
-        let check = check_words((&original.program, &[]), (&compensated.program, &[]));
+        let check = check_words(&Words::of(&original.program, &[]), &Words::of(&compensated.program, &[]));
         assert_eq!(check.missing, None);
         // O1004, (FACE), T0101, (TOOL), M08, M30.
         assert_eq!(check.checked, 6);
@@ -271,7 +271,7 @@ fn sampling_from_the_model_measures_as_dense_sampling_does() {
     for (name, effects) in [("screw", screw), ("mixed", mixed)] {
         let model = ErrorModel { tables: None, effects, start_min: 0.0, control: None };
         let figures = |sampling: &Sampling| deviation(toolpath, toolpath, &tools, &model, sampling).before;
-        let sparse = figures(&sampling(&model, increment, &[&toolpath]));
+        let sparse = figures(&sampling(&model, increment, &[&super::compact(toolpath, &tools)]));
         let dense = figures(&Sampling::every_mm(0.005));
         assert!(dense.max_mm > 0.003, "{name}: {dense:?}");
         assert!((sparse.max_mm - dense.max_mm).abs() <= promise, "{name}: sparse {sparse:?}\ndense {dense:?}");
