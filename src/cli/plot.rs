@@ -118,8 +118,13 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
         let tools = ToolTable::from_machine(&program.machine);
         let words = verify::Words::of(&program.parsed.program, &program.lowered.expansions);
         let original = verify::Held::from_toolpath(words, toolpath, &tools);
-        let checked =
-            verify::check_written(&original, &written, &reading, &tools, (&model, Measure::Part, part.stock.as_ref()));
+        let checked = verify::check_written(
+            || Ok(original),
+            &written,
+            &reading,
+            &tools,
+            (&model, Measure::Part, part.stock.as_ref()),
+        );
         let measured = match checked.map(|written| written.part) {
             Ok(Some(measured)) => measured,
             Ok(None) => {

@@ -239,6 +239,8 @@ pub struct Written {
     pub part: Option<PartDeviation>,
     pub feed_change: Option<FeedChange>,
     pub lost: Option<MissingWord>,
+    /// The original as it was measured (its moves' blocks place what the figures find).
+    pub original: Held,
 }
 
 /// What `compensate` checks before it writes: `written`, the program it is about to write,
@@ -248,10 +250,12 @@ pub struct Written {
 /// assume it as `verify` does) or pass by pass (`deviation_of`), with `sampling`, so that
 /// the figures it reports are the ones verify finds, with verify's checks of the feed and
 /// spindle words (`check_feeds`) and of the other words of the original (`check_words`:
-/// the first one lost).
+/// the first one lost). The original is held (`original`) only once the read-back is held:
+/// a long program's caller lets the original's AST and moves go before the read-back and
+/// holds it again here, so that no two programs are analysed at once.
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
-    original: &Held,
+    original: impl FnOnce() -> Result<Held, Vec<Diagnostic>>,
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
@@ -267,6 +271,7 @@ pub fn check_written(
     // Its words taken, the read-back's AST goes, then its full moves once compact: the
     // measure holds the two compact paths.
     let written = Held::of(read, tools);
+    let original = original()?;
     let machine = &reading.machine;
     let sampling = sampling(model, machine.increment * machine.scale(), &[&original.path, &written.path]);
     let oversampled = oversampled(&written.path, &sampling);
@@ -281,13 +286,13 @@ pub fn check_written(
             let part = part_deviation((original_path, written_path), model, &sampling, machine, stock);
             if part.probed_nothing() {
                 let deviation = deviation_of(original_path, written_path, model, &sampling, &|_, _| {});
-                return Ok(Written { deviation, part: None, feed_change, lost });
+                return Ok(Written { deviation, part: None, feed_change, lost, original });
             }
-            Ok(Written { deviation: part.deviation, part: Some(part), feed_change, lost })
+            Ok(Written { deviation: part.deviation, part: Some(part), feed_change, lost, original })
         }
         Measure::Passes => {
             let deviation = deviation_of(original_path, written_path, model, &sampling, &|_, _| {});
-            Ok(Written { deviation, part: None, feed_change, lost })
+            Ok(Written { deviation, part: None, feed_change, lost, original })
         }
     }
 }
