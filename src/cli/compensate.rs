@@ -236,11 +236,30 @@ impl FitArgs {
     }
 }
 
+/// The blocks of `program` that `cycle_lines` names for `cycles` (each call and the ends of
+/// its profile), with their spans: what it needs of the AST, taken before the AST goes.
+fn cycle_blocks(
+    program: &turnpass::syntax::Program<'_>,
+    cycles: &[turnpass::compensation::CycleOutcome],
+) -> Vec<(usize, Span)> {
+    let mut blocks: Vec<usize> = Vec::new();
+    for cycle in cycles {
+        blocks.push(cycle.block);
+        if let CycleForm::ProfileEdited { profile } | CycleForm::ProfileCopied { profile, .. } = &cycle.form {
+            blocks.extend(profile.first().into_iter().chain(profile.last()));
+        }
+    }
+    blocks.sort_unstable();
+    blocks.dedup();
+    blocks.into_iter().filter(|&b| b < program.blocks().len()).map(|b| (b, program.block(b).span)).collect()
+}
+
 /// One line per cycle call whose moves change: kept with its profile compensated in place
-/// (the profile's lines), or expanded (and why).
+/// (the profile's lines), or expanded (and why); `blocks` holds the spans of the blocks it
+/// names (`cycle_blocks`) in the text `bytes`.
 fn cycle_lines(
     name: &str,
-    program: &turnpass::syntax::Program<'_>,
+    blocks: &[(usize, Span)],
     bytes: &[u8],
     cycles: &[turnpass::compensation::CycleOutcome],
 ) -> Vec<u8> {
@@ -249,10 +268,11 @@ fn cycle_lines(
         return out;
     }
     let lines = turnpass::source::LineIndex::new(bytes);
-    let line = |block: usize| lines.position(program.block(block).span.start).0;
+    let span = |block: usize| blocks.binary_search_by_key(&block, |&(b, _)| b).map_or(Span::new(0, 0), |k| blocks[k].1);
+    let line = |block: usize| lines.position(span(block).start).0;
     for cycle in cycles {
         let call = line(cycle.block);
-        let text = String::from_utf8_lossy(program.text(program.block(cycle.block).span)).trim_end().to_string();
+        let text = String::from_utf8_lossy(span(cycle.block).text(bytes)).trim_end().to_string();
         let said = match &cycle.form {
             CycleForm::Kept => continue,
             CycleForm::ProfileEdited { profile } => {
@@ -306,7 +326,8 @@ impl Trial<'_, '_> {
         if self.program.valid().moves.len() > Self::MAX_MOVES {
             return None;
         }
-        let original = (&self.program.parsed.program, &self.program.lowered.expansions[..], self.program.valid());
+        let words = verify::Words::of(&self.program.parsed.program, &self.program.lowered.expansions);
+        let original = verify::Held::from_toolpath(words, self.program.valid(), self.tools);
         Strategy::ALL
             .into_iter()
             .filter(|&strategy| strategy != fit.strategy && (fit.step.is_none() || strategy == Strategy::Densify))
@@ -318,7 +339,7 @@ impl Trial<'_, '_> {
                 }
                 let written = printer::print(&self.program.parsed.program, &outcome.edits);
                 let checked = verify::check_written(
-                    original,
+                    || Ok(original.clone()),
                     &written,
                     self.reading,
                     self.tools,
@@ -544,7 +565,21 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     let mut in_place = InPlace { profiles: true, copies: true, threads: true };
     let stock = args.stock.check(&resolved).stock;
     let measure = if args.passes { Measure::Passes } else { Measure::Part };
-    let (mut outcome, written) = loop {
+    // The original is analysed again where it is needed after its AST and moves went
+    // (before the read-back of what is about to be written): its text and settings are the
+    // same, and so is what it reads as.
+    let again =
+        || ready_or_diagnostics(&name, &bytes, &resolved, &args.run, "compensate", &mut Vec::new()).map_err(|(_, d)| d);
+    let machine = program.machine.clone();
+    let mut kept = Some(program);
+    let (mut outcome, written, cycle_blocks) = loop {
+        let program = match kept.take().map_or_else(&again, Ok) {
+            Ok(program) => program,
+            Err(diagnostics) => {
+                messages.extend(rendered(&name, &bytes, &diagnostics));
+                return Ok(FileResult::refused(1, messages, &name, &bytes, &diagnostics));
+            }
+        };
         let mut outcome = args.fit.compensate_cycles(&program, &model, args.report.is_some(), in_place);
         if outcome.refused()
             && let Some(next) = in_place.without(&outcome)
@@ -555,6 +590,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             );
             in_place.said(next, why, &mut because);
             in_place = next;
+            kept = Some(program);
             continue;
         }
         messages.extend(rendered(&name, &bytes, &outcome.diagnostics));
@@ -589,24 +625,29 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         // dialect may have been in the blocks an edit replaced.
         let mut reading = pipeline_settings(&resolved, &args.run, true);
         reading.parse = printer::read_back_options(&program.parsed.program);
-        let tools = ToolTable::from_machine(&program.machine);
-        let original = program.valid();
-        let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&program.machine));
+        let tools = ToolTable::from_machine(&machine);
+        let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
         let mut unreadable = FileResult::failed(1, Vec::new());
+        // The original's AST and moves go before the read-back, which holds a second program;
+        // the check holds the original again once the read-back is held (`check_written`).
+        let blocks = cycle_blocks(&program.parsed.program, &outcome.cycles);
+        let moves = program.valid().moves.len();
+        drop(program);
         let refusal = match verify::check_written(
-            (&program.parsed.program, &program.lowered.expansions, original),
+            || again().map(|program| verify::Held::of(program, &tools)),
             &written,
             &reading,
             &tools,
             (&model, measure, stock.as_ref()),
         ) {
-            Ok(verify::Written { deviation: figures, part, feed_change, lost }) => {
+            Ok(verify::Written { deviation: figures, part, feed_change, lost, original }) => {
+                let block = |k: usize| if k < original.path.len() { original.path.source(k) } else { Span::new(0, 0) };
                 let totals = &mut outcome.report.totals;
                 (totals.before, totals.after) = (figures.before, figures.after);
                 totals.improvement_percent = figures.improvement_percent;
                 let too_far = figures.worst.filter(|_| figures.after.max_mm > bound).map(|worst| {
-                    let span = original.moves.get(worst.original_move).map_or(Span::new(0, 0), |m| m.source);
-                    let tolerance_mm = args.fit.options(&program.machine).fit.tolerance_mm;
+                    let span = block(worst.original_move);
+                    let tolerance_mm = args.fit.options(&machine).fit.tolerance_mm;
                     let deviation_mm = worst.deviation_mm;
                     let kind = DiagnosticKind::CompensationFailsCheck {
                         deviation_mm,
@@ -618,8 +659,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 });
                 // On the part the flanks' deviation judges the lead (`verify::checked`).
                 let lead_off = figures.lead.filter(|lead| lead.after_mm > bound && part.is_none()).map(|lead| {
-                    let span =
-                        lead.worst_move.and_then(|m| original.moves.get(m)).map_or(Span::new(0, 0), |m| m.source);
+                    let span = lead.worst_move.map_or(Span::new(0, 0), block);
                     Diagnostic::error(
                         DiagnosticKind::ThreadLeadFailsCheck { lead_error_mm: lead.after_mm, bound_mm: bound },
                         span,
@@ -682,7 +722,10 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 continue;
             }
             let mut diagnostic = diagnostic;
-            if let DiagnosticKind::CompensationFailsCheck { other_strategy, .. } = &mut diagnostic.kind {
+            if let DiagnosticKind::CompensationFailsCheck { other_strategy, .. } = &mut diagnostic.kind
+                && moves <= Trial::MAX_MOVES
+                && let Ok(program) = again()
+            {
                 let trial = Trial {
                     program: &program,
                     model: &model,
@@ -700,7 +743,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             unreadable.add_errors(&name, &bytes, &[diagnostic]);
             return Ok(unreadable);
         }
-        break (outcome, written);
+        break (outcome, written, blocks);
     };
     let neither = match (&because.profiles, &because.copies) {
         (Some(a), Some(b)) => Some(format!("{a}; {b}")),
@@ -747,8 +790,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         )
         .as_bytes(),
     );
-    messages.extend(cycle_lines(&name, &program.parsed.program, &bytes, &outcome.cycles));
-    let tolerance = args.fit.options(&program.machine).fit.tolerance_mm;
+    messages.extend(cycle_lines(&name, &cycle_blocks, &bytes, &outcome.cycles));
+    let tolerance = args.fit.options(&machine).fit.tolerance_mm;
     if totals.inverse_residual_mm > tolerance {
         // The figures above are what the written program does; the tolerance asked for is
         // what the inverse could not reach.

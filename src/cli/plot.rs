@@ -116,8 +116,10 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
         let mut reading = pipeline_settings(&resolved, &args.run, true);
         reading.parse = printer::read_back_options(&program.parsed.program);
         let tools = ToolTable::from_machine(&program.machine);
+        let words = verify::Words::of(&program.parsed.program, &program.lowered.expansions);
+        let original = verify::Held::from_toolpath(words, toolpath, &tools);
         let checked = verify::check_written(
-            (&program.parsed.program, &program.lowered.expansions, toolpath),
+            || Ok(original),
             &written,
             &reading,
             &tools,

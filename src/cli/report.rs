@@ -20,7 +20,7 @@ use super::common::{
     read_program_bytes, ready, ready_with_part, required_error_model, write_file,
 };
 use super::streams;
-use super::verify::{CheckArgs, Checked, Watch, checked};
+use super::verify::{CheckArgs, Checkable, Checked, Watch, checked};
 
 #[derive(Args)]
 pub struct ReportArgs {
@@ -79,8 +79,9 @@ pub fn report(args: ReportArgs) -> Result<ExitCode, CliError> {
     let stride = stride_for(&toolpath);
     let toolpaths = [original.valid(), compensated.valid()];
     let mut points = [Collector::new(stride), Collector::new(stride)];
+    let checkable = (Checkable::of_kept(&original), Checkable::of_kept(&compensated));
     let checked = checked(
-        (&original, &compensated),
+        (&checkable.0, &checkable.1),
         (&original_name, &compensated_name, &original_bytes, &compensated_bytes),
         &resolved,
         &mut model,

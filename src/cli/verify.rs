@@ -10,15 +10,14 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use turnpass::compensation::provenance::{Provenance, marks};
 
 use turnpass::compensation::verify::{
-    self, CutWords, Deviation, Measure, Measured, PartDeviation, Side, WordCheck, check_feeds, check_words,
-    deviation_each, deviation_watched, part_deviation_watched,
+    self, CutWords, Deviation, Held, Measure, Measured, PartDeviation, Side, WordCheck, check_feeds, check_words,
+    deviation_each, deviation_of, part_deviation_watched,
 };
 use turnpass::error_model::ErrorModel;
 use turnpass::pipeline::Ready;
 use turnpass::semantic::Machine;
 use turnpass::semantic::nose_radius::ToolTable;
 use turnpass::source::{LineIndex, escape_controls};
-use turnpass::syntax::Program;
 use turnpass::toolpath::Xz;
 
 use super::common::{
@@ -89,8 +88,21 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     if args.verbose {
         messages.extend_from_slice(format!("verify: {}\n", model_source(&args.read, &resolved)).as_bytes());
     }
-    let original = ready(&original_name, &original_bytes, &resolved, &args.run, "verify", &mut messages);
-    let compensated = ready(&compensated_name, &compensated_bytes, &resolved, &args.run, "verify", &mut messages);
+    // Each program is held for the checks as soon as it is ready, its AST and full moves let
+    // go; the longer text first, so that the peak is the longer program analysed, not both.
+    let hold = |name: &str, bytes: &[u8], said: &mut Vec<u8>| {
+        ready(name, bytes, &resolved, &args.run, "verify", said).map(Checkable::of)
+    };
+    let (mut original_said, mut compensated_said) = (Vec::new(), Vec::new());
+    let (original, compensated) = if compensated_bytes.len() > original_bytes.len() {
+        let compensated = hold(&compensated_name, &compensated_bytes, &mut compensated_said);
+        (hold(&original_name, &original_bytes, &mut original_said), compensated)
+    } else {
+        let original = hold(&original_name, &original_bytes, &mut original_said);
+        (original, hold(&compensated_name, &compensated_bytes, &mut compensated_said))
+    };
+    messages.append(&mut original_said);
+    messages.append(&mut compensated_said);
     let (original, compensated) = match (original, compensated) {
         (Ok(o), Ok(c)) => (o, c),
         (o, c) => {
@@ -130,7 +142,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     let machine = &original.machine;
     let line_of = |bytes: &[u8], span: turnpass::source::Span| LineIndex::new(bytes).position(span.start).0;
     let compensated_line = |by: Option<usize>| {
-        by.and_then(|k| compensated.valid().toolpath().moves.get(k)).map(|m| line_of(&compensated_bytes, m.source))
+        by.filter(|&k| k < compensated.held.path.len())
+            .map(|k| line_of(&compensated_bytes, compensated.held.path.source(k)))
     };
     let feature_line = |block: turnpass::source::Span| {
         (block != turnpass::source::Span::SYNTHETIC).then(|| line_of(&original_bytes, block))
@@ -388,10 +401,10 @@ struct Progress {
 }
 
 impl Progress {
-    fn new(shown: bool, programs: [&Ready<'_>; 2]) -> Progress {
+    fn new(shown: bool, programs: [&Checkable; 2]) -> Progress {
         Progress {
             shown,
-            moves: programs.map(|p| p.valid().toolpath().moves.len().max(1)),
+            moves: programs.map(|p| p.held.path.len().max(1)),
             reached: [AtomicUsize::new(0), AtomicUsize::new(0)],
             percent: AtomicUsize::new(0),
         }
@@ -422,7 +435,7 @@ impl Progress {
 /// more samples than a measure holds (`verify::oversampled`, the bound `compensate` and
 /// `plot` refuse by) is refused before any is measured: exit 1, its diagnostics rendered.
 pub fn checked(
-    (original, compensated): (&Ready<'_>, &Ready<'_>),
+    (original, compensated): (&Checkable, &Checkable),
     (original_name, compensated_name, original_bytes, compensated_bytes): (&str, &str, &[u8], &[u8]),
     resolved: &Resolved,
     model: &mut ErrorModel,
@@ -430,7 +443,7 @@ pub fn checked(
     watch: Watch<'_>,
 ) -> Result<Checked, CliError> {
     let model_sha256 = model_sha256(resolved)?;
-    let provenance = compensated_with(&original.parsed.program, &compensated.parsed.program);
+    let provenance = compensated_with(&original.marks, &compensated.marks);
     let mut warnings = Vec::new();
     let table = match &checks.with_table {
         Some(path) => {
@@ -450,7 +463,7 @@ pub fn checked(
     model.start_min = start.minutes;
     let mut violations = Vec::new();
     let mut warn = |text: String| warnings.push(text);
-    if !marks(&original.parsed.program).is_empty() && provenance.is_none() {
+    if !original.marks.is_empty() && provenance.is_none() {
         warn(format!(
             "{original_name} carries a provenance comment: it is a compensated program, not the nominal one \
              (give the nominal program first, the compensated one second)"
@@ -494,15 +507,14 @@ pub fn checked(
         )),
         None => {}
     }
-    let tools = ToolTable::from_machine(&original.machine);
     let machine = &original.machine;
-    let (original_path, compensated_path) = (original.valid(), compensated.valid());
-    let sampling = verify::sampling(model, machine.increment * machine.scale(), &[&original_path, &compensated_path]);
+    let (original_path, compensated_path) = (&original.held.path, &compensated.held.path);
+    let sampling = verify::sampling(model, machine.increment * machine.scale(), &[original_path, compensated_path]);
     let mut refusal = Vec::new();
     for (name, bytes, path) in
         [(original_name, original_bytes, original_path), (compensated_name, compensated_bytes, compensated_path)]
     {
-        refusal.extend(rendered(name, bytes, &verify::oversampled(&path, &sampling)));
+        refusal.extend(rendered(name, bytes, &verify::oversampled(path, &sampling)));
     }
     if !refusal.is_empty() {
         refusal.extend_from_slice(b"a move needs more samples than a measure holds: nothing is measured or written\n");
@@ -511,10 +523,10 @@ pub fn checked(
     let mut measure = if checks.passes { Measure::Passes } else { Measure::Part };
     let (figures, part) = match (measure, watch) {
         (Measure::Passes, Watch::Each(each)) => {
-            (deviation_each(original_path, compensated_path, &tools, model, &sampling, each), None)
+            (deviation_each(original_path, compensated_path, model, &sampling, each), None)
         }
         (Measure::Passes, Watch::Progress(watch)) => {
-            (deviation_watched(original_path, compensated_path, &tools, model, &sampling, watch), None)
+            (deviation_of(original_path, compensated_path, model, &sampling, watch), None)
         }
         (Measure::Part, watch) => {
             // The plots draw the predicted path: its points are measured pass by pass.
@@ -522,14 +534,13 @@ pub fn checked(
             let progress: &(dyn Fn(Side, &Measured) + Sync) = match watch {
                 Watch::Progress(watch) => watch,
                 Watch::Each(each) => {
-                    passes = Some(deviation_each(original_path, compensated_path, &tools, model, &sampling, each));
+                    passes = Some(deviation_each(original_path, compensated_path, model, &sampling, each));
                     &|_, _| {}
                 }
             };
             let stock = checks.stock.check(resolved).stock;
             let part = part_deviation_watched(
                 (original_path, compensated_path),
-                &tools,
                 model,
                 &sampling,
                 (machine, stock.as_ref()),
@@ -545,20 +556,16 @@ pub fn checked(
                 );
                 measure = Measure::Passes;
                 // The plots' points are the pass measure already: its figures are not measured again.
-                let figures = passes.unwrap_or_else(|| {
-                    deviation_watched(original_path, compensated_path, &tools, model, &sampling, &|_, _| {})
-                });
+                let figures = passes
+                    .unwrap_or_else(|| deviation_of(original_path, compensated_path, model, &sampling, &|_, _| {}));
                 (figures, None)
             } else {
                 (part.deviation, Some(part))
             }
         }
     };
-    let words = check_words(
-        (&original.parsed.program, &original.lowered.expansions),
-        (&compensated.parsed.program, &compensated.lowered.expansions),
-    );
-    if let Some(change) = check_feeds(&original_path, &compensated_path) {
+    let words = check_words(&original.held.words, &compensated.held.words);
+    if let Some(change) = check_feeds(&original.held.feeds, &compensated.held.feeds) {
         let line = LineIndex::new(original_bytes).position(change.source.start).0;
         violations.push(format!(
             "{compensated_name} cuts with {} where {original_name} cuts with {} (its line {line} on)",
@@ -584,8 +591,8 @@ pub fn checked(
         if lead.after_mm > limit && part.is_none() {
             let line = lead
                 .worst_move
-                .and_then(|m| original_path.moves.get(m))
-                .map_or(0, |m| LineIndex::new(original_bytes).position(m.source.start).0);
+                .filter(|&m| m < original_path.len())
+                .map_or(0, |m| LineIndex::new(original_bytes).position(original_path.source(m).start).0);
             violations.push(format!(
                 "the predicted lead of the thread {compensated_name} cuts for line {line} of {original_name} errs by \
                  {:.5} mm over the thread's length, more than {limit:.5} mm",
@@ -608,7 +615,7 @@ pub fn checked(
 /// feature, cut by which block, a gouge named so), and a measure that stopped short.
 fn part_violations(
     part: &PartDeviation,
-    (original, compensated): (&Ready<'_>, &Ready<'_>),
+    (original, compensated): (&Checkable, &Checkable),
     (original_bytes, compensated_bytes): (&[u8], &[u8]),
     (original_name, compensated_name): (&str, &str),
     limit: f64,
@@ -664,9 +671,10 @@ fn surface_of(block: turnpass::source::Span, bytes: &[u8], name: &str) -> String
 }
 
 /// Which block of the compensated program cut a point, in words.
-fn cut_by(by: Option<usize>, compensated: &Ready<'_>, bytes: &[u8], name: &str) -> String {
-    match by.and_then(|k| compensated.valid().toolpath().moves.get(k)) {
-        Some(m) => format!(", cut there by {name} line {}", LineIndex::new(bytes).position(m.source.start).0),
+fn cut_by(by: Option<usize>, compensated: &Checkable, bytes: &[u8], name: &str) -> String {
+    let path = &compensated.held.path;
+    match by.filter(|&k| k < path.len()) {
+        Some(k) => format!(", cut there by {name} line {}", LineIndex::new(bytes).position(path.source(k).start).0),
         None => String::new(),
     }
 }
@@ -720,18 +728,51 @@ pub struct Start {
 /// What `compensated` says it was compensated with: its first provenance comment that is
 /// not one of `original`'s (an original compensated with `--force` keeps its own, and the
 /// new one may read the same, so they are matched one for one).
-fn compensated_with(original: &Program<'_>, compensated: &Program<'_>) -> Option<Result<Provenance, String>> {
-    let mut theirs: Vec<&[u8]> = marks(original).iter().map(|mark| original.text(mark.span)).collect();
-    let ours = marks(compensated);
-    let new = ours.into_iter().find(|mark| {
-        let text = compensated.text(mark.span);
-        match theirs.iter().position(|t| *t == text) {
-            Some(at) => {
-                theirs.swap_remove(at);
-                false
-            }
-            None => true,
+fn compensated_with(original: &Marks, compensated: &Marks) -> Option<Result<Provenance, String>> {
+    let mut theirs: Vec<&[u8]> = original.iter().map(|(text, _)| text.as_slice()).collect();
+    let new = compensated.iter().find(|(text, _)| match theirs.iter().position(|t| *t == text.as_slice()) {
+        Some(at) => {
+            theirs.swap_remove(at);
+            false
         }
+        None => true,
     });
-    new.map(|mark| mark.provenance)
+    new.map(|(_, provenance)| provenance.clone())
+}
+
+/// A program's provenance comments: each one's text and what it says.
+type Marks = Vec<(Vec<u8>, Result<Provenance, String>)>;
+
+/// A program as `checked` reads it: held (`verify::Held`: compact, its words and feeds
+/// taken), with its provenance comments and the machine it runs on.
+pub struct Checkable {
+    pub held: Held,
+    marks: Marks,
+    pub machine: Machine,
+}
+
+impl Checkable {
+    /// `program` held, its AST and full moves let go.
+    pub fn of(program: Ready<'_>) -> Checkable {
+        let marks = marks_of(&program.parsed.program);
+        let machine = program.machine.clone();
+        let tools = ToolTable::from_machine(&machine);
+        Checkable { held: Held::of(program, &tools), marks, machine }
+    }
+
+    /// `program` held as `of` holds it, keeping `program` (for a command that draws it).
+    pub fn of_kept(program: &Ready<'_>) -> Checkable {
+        let tools = ToolTable::from_machine(&program.machine);
+        let words = verify::Words::of(&program.parsed.program, &program.lowered.expansions);
+        Checkable {
+            held: Held::from_toolpath(words, program.valid(), &tools),
+            marks: marks_of(&program.parsed.program),
+            machine: program.machine.clone(),
+        }
+    }
+}
+
+/// The provenance comments of `program`.
+fn marks_of(program: &turnpass::syntax::Program<'_>) -> Marks {
+    marks(program).into_iter().map(|mark| (program.text(mark.span).to_vec(), mark.provenance)).collect()
 }

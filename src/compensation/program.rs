@@ -14,6 +14,7 @@ use crate::error_model::ErrorModel;
 use crate::printer::Edits;
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Lowered, Machine};
+use crate::source::Span;
 use crate::syntax::Program;
 use crate::toolpath::{Validated, Xz};
 
@@ -229,16 +230,33 @@ fn overlong_paths(toolpath: &crate::toolpath::Toolpath, sampling: &Sampling) -> 
 /// The moves that need more than `MAX_SAMPLES_PER_MOVE` samples, one error on each block that
 /// makes some (`verify` refuses them too: `verify::oversampled`).
 pub(crate) fn oversampled_moves(toolpath: &crate::toolpath::Toolpath, sampling: &Sampling) -> Vec<Diagnostic> {
+    let needed = |index| crate::error_model::sampling::samples_needed(toolpath, index, sampling);
+    oversampled_of(toolpath.moves.len(), needed, |index| toolpath.moves[index].source)
+}
+
+/// `oversampled_moves` of a program held compact.
+pub(crate) fn oversampled_compact(
+    path: &crate::toolpath::compact::CompactPath,
+    sampling: &Sampling,
+) -> Vec<Diagnostic> {
+    let needed = |index| crate::error_model::sampling::samples_needed_compact(path, index, sampling);
+    oversampled_of(path.len(), needed, |index| path.source(index))
+}
+
+/// The errors of `oversampled_moves` for `moves` moves, each needing `needed` samples, of
+/// the block `source`.
+fn oversampled_of(moves: usize, needed: impl Fn(usize) -> usize, source: impl Fn(usize) -> Span) -> Vec<Diagnostic> {
     let mut out: Vec<Diagnostic> = Vec::new();
-    for (index, m) in toolpath.moves.iter().enumerate() {
-        let samples = crate::error_model::sampling::samples_needed(toolpath, index, sampling);
-        if samples > crate::error_model::sampling::MAX_SAMPLES_PER_MOVE && out.last().is_none_or(|d| d.span != m.source)
+    for index in 0..moves {
+        let samples = needed(index);
+        if samples > crate::error_model::sampling::MAX_SAMPLES_PER_MOVE
+            && out.last().is_none_or(|d| d.span != source(index))
         {
             let kind = DiagnosticKind::MoveNeedsTooManySamples {
                 samples,
                 max: crate::error_model::sampling::MAX_SAMPLES_PER_MOVE,
             };
-            out.push(Diagnostic::error(kind, m.source));
+            out.push(Diagnostic::error(kind, source(index)));
         }
     }
     out

@@ -108,10 +108,11 @@ pub struct Worst {
 /// tables, arcs at least every eighth of a turn and at their extremes), for the chord
 /// between samples to follow the model within a tenth of half the least increment
 /// (`increment_mm`), whatever tolerance the program was compensated to, over the farthest
-/// any of `toolpaths` goes from the origin (`Toolpath::reach`). An arc's steps are then cut
-/// as finely as the distance measured along it needs (`verify/arc_steps.rs`).
-pub fn sampling(model: &ErrorModel, increment_mm: f64, toolpaths: &[&Toolpath]) -> Sampling {
-    let reach = toolpaths.iter().map(|t| t.reach()).fold(Xz::new(0.0, 0.0), |a, b| Xz::new(a.x.max(b.x), a.z.max(b.z)));
+/// any of `paths` goes from the origin (`CompactPath::reach`, the toolpath's). An arc's
+/// steps are then cut as finely as the distance measured along it needs
+/// (`verify/arc_steps.rs`).
+pub fn sampling(model: &ErrorModel, increment_mm: f64, paths: &[&CompactPath]) -> Sampling {
+    let reach = paths.iter().map(|t| t.reach()).fold(Xz::new(0.0, 0.0), |a, b| Xz::new(a.x.max(b.x), a.z.max(b.z)));
     let fit = FitOptions { strategy: Strategy::Auto, tolerance_mm: increment_mm / 2.0, step_mm: None };
     // The written program takes up its play where it does; verify follows it as written.
     let play = Xz::new(0.0, 0.0);
@@ -128,8 +129,8 @@ pub fn compact(toolpath: ValidToolpath<'_>, tools: &ToolTable) -> CompactPath {
 /// (`error_model::sampling::MAX_SAMPLES_PER_MOVE`), one error on each block that makes
 /// some: `verify` and `report` refuse them before any is measured, as `compensate` and
 /// `plot` refuse them before any is compensated.
-pub fn oversampled(toolpath: &Toolpath, sampling: &Sampling) -> Vec<Diagnostic> {
-    super::program::oversampled_moves(toolpath, sampling)
+pub fn oversampled(path: &CompactPath, sampling: &Sampling) -> Vec<Diagnostic> {
+    super::program::oversampled_compact(path, sampling)
 }
 
 /// Predict both programs through `model`, sampled as `sampling` allows, and measure them
@@ -207,19 +208,17 @@ pub struct Measured {
 /// then the compensated program's, each in path order): `deviation` and `report` measure
 /// with this one computation, so the page's figures are `verify`'s.
 pub fn deviation_each(
-    original: ValidToolpath<'_>,
-    compensated: ValidToolpath<'_>,
-    tools: &ToolTable,
+    original: &CompactPath,
+    compensated: &CompactPath,
     model: &ErrorModel,
     sampling: &Sampling,
     mut each: impl FnMut(Side, Measured),
 ) -> Deviation {
-    let (original, compensated) = (compact(original, tools), compact(compensated, tools));
-    let path = Original::new(&original);
-    let (before, _, original_threads) = measure(&original, &path, model, sampling, Side::Original, &mut each);
+    let path = Original::new(original);
+    let (before, _, original_threads) = measure(original, &path, model, sampling, Side::Original, &mut each);
     let (after, worst, compensated_threads) =
-        measure(&compensated, &path, model, sampling, Side::Compensated, &mut each);
-    let lead = lead::figures((&original, &original_threads), (&compensated, &compensated_threads));
+        measure(compensated, &path, model, sampling, Side::Compensated, &mut each);
+    let lead = lead::figures((original, &original_threads), (compensated, &compensated_threads));
     figures(before, after, worst, lead)
 }
 
@@ -240,6 +239,8 @@ pub struct Written {
     pub part: Option<PartDeviation>,
     pub feed_change: Option<FeedChange>,
     pub lost: Option<MissingWord>,
+    /// The original as it was measured (its moves' blocks place what the figures find).
+    pub original: Held,
 }
 
 /// What `compensate` checks before it writes: `written`, the program it is about to write,
@@ -248,11 +249,13 @@ pub struct Written {
 /// computation on `measure`: the finished part (`part_deviation` from `stock`, none to
 /// assume it as `verify` does) or pass by pass (`deviation_of`), with `sampling`, so that
 /// the figures it reports are the ones verify finds, with verify's checks of the feed and
-/// spindle words (`check_feeds`) and of the other words of `original_program`
-/// (`check_words`: the first one lost).
+/// spindle words (`check_feeds`) and of the other words of the original (`check_words`:
+/// the first one lost). The original is held (`original`) only once the read-back is held:
+/// a long program's caller lets the original's AST and moves go before the read-back and
+/// holds it again here, so that no two programs are analysed at once.
 /// `Err` holds what did not read back: a defect of turnpass, never of the program.
 pub fn check_written(
-    (original_program, original_expansions, original): (&Program<'_>, &[Expansion], ValidToolpath<'_>),
+    original: impl FnOnce() -> Result<Held, Vec<Diagnostic>>,
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
@@ -265,36 +268,61 @@ pub fn check_written(
             return Err(if errors.is_empty() { analysed.diagnostics } else { errors });
         }
     };
-    let toolpath = read.valid();
+    // Its words taken, the read-back's AST goes, then its full moves once compact: the
+    // measure holds the two compact paths.
+    let written = Held::of(read, tools);
+    let original = original()?;
     let machine = &reading.machine;
-    let sampling = sampling(model, machine.increment * machine.scale(), &[&original, &toolpath]);
-    let oversampled = oversampled(&toolpath, &sampling);
+    let sampling = sampling(model, machine.increment * machine.scale(), &[&original.path, &written.path]);
+    let oversampled = oversampled(&written.path, &sampling);
     if !oversampled.is_empty() {
         return Err(oversampled);
     }
-    let lost = check_words((original_program, original_expansions), (read.program(), &read.lowered.expansions)).missing;
-    let feed_change = check_feeds(&original, &toolpath);
+    let lost = check_words(&original.words, &written.words).missing;
+    let feed_change = check_feeds(&original.feeds, &written.feeds);
+    let (original_path, written_path) = (&original.path, &written.path);
     match measure {
         Measure::Part => {
-            // The part measure cuts both programs' parts from their toolpaths (the blocks
-            // that cut each surface, the threads' passes), so the read-back is held to the end.
-            let part = part_deviation((original, toolpath), tools, model, &sampling, machine, stock);
+            let part = part_deviation((original_path, written_path), model, &sampling, machine, stock);
             if part.probed_nothing() {
-                let (original_path, written_path) = (compact(original, tools), compact(toolpath, tools));
-                let deviation = deviation_of(&original_path, &written_path, model, &sampling, &|_, _| {});
-                return Ok(Written { deviation, part: None, feed_change, lost });
+                let deviation = deviation_of(original_path, written_path, model, &sampling, &|_, _| {});
+                return Ok(Written { deviation, part: None, feed_change, lost, original });
             }
-            Ok(Written { deviation: part.deviation, part: Some(part), feed_change, lost })
+            Ok(Written { deviation: part.deviation, part: Some(part), feed_change, lost, original })
         }
         Measure::Passes => {
-            // Its words checked, the written program is measured compact: its AST and
-            // toolpath are let go before the measure, which holds the two compact paths.
-            let written_path = compact(toolpath, tools);
-            drop(read);
-            let original_path = compact(original, tools);
-            let deviation = deviation_of(&original_path, &written_path, model, &sampling, &|_, _| {});
-            Ok(Written { deviation, part: None, feed_change, lost })
+            let deviation = deviation_of(original_path, written_path, model, &sampling, &|_, _| {});
+            Ok(Written { deviation, part: None, feed_change, lost, original })
         }
+    }
+}
+
+/// A program as `verify`'s checks hold it: its compact path (`compact`, each move with its
+/// block), the words that must survive (`check_words`) and the runs of feed and spindle
+/// words of its cuts (`check_feeds`). A long program's AST and full moves are let go once
+/// these are taken, before the measure: `verify` and `compensate`'s check then hold each
+/// program's text, or the lines of it, and these.
+#[derive(Debug, Clone)]
+pub struct Held {
+    pub path: CompactPath,
+    pub words: Words,
+    pub feeds: FeedRuns,
+}
+
+impl Held {
+    /// `program` held (its tools' tips from `tools`): its words taken, its AST let go, then its
+    /// moves made compact and let go, so that no two of the three are held at once.
+    pub fn of(program: crate::pipeline::Ready<'_>, tools: &ToolTable) -> Held {
+        let crate::pipeline::Ready { parsed, lowered, .. } = program;
+        let words = Words::of(&parsed.program, &lowered.expansions);
+        drop(parsed);
+        Held::from_toolpath(words, lowered.valid(), tools)
+    }
+
+    /// A program whose `words` are taken, its toolpath held compact.
+    pub fn from_toolpath(words: Words, toolpath: ValidToolpath<'_>, tools: &ToolTable) -> Held {
+        let feeds = feed_runs(&toolpath);
+        Held { path: compact(toolpath, tools), words, feeds }
     }
 }
 
@@ -318,15 +346,40 @@ pub struct WordCheck {
     pub missing: Option<MissingWord>,
 }
 
-/// A word that must survive, in a form that compares across programs.
-#[derive(Debug, Clone, PartialEq)]
+/// A word that must survive, in a form that compares across programs: an M code by its
+/// number, any other by its text.
+#[derive(Debug, Clone, Copy, PartialEq)]
 enum Kept {
     M(u16, u16),
-    Text(Vec<u8>),
+    Text,
 }
 
-/// The words that must survive, and the speed changes, each with its span.
-type KeptWords = (Vec<(Kept, Span)>, Vec<(f64, Span)>);
+/// A word that must survive, with its span and its text as written.
+#[derive(Debug, Clone, PartialEq)]
+struct Word {
+    kept: Kept,
+    span: Span,
+    text: Box<[u8]>,
+}
+
+impl Word {
+    fn same(&self, other: &Word) -> bool {
+        match (self.kept, other.kept) {
+            (Kept::M(a, b), Kept::M(c, d)) => (a, b) == (c, d),
+            (Kept::Text, Kept::Text) => self.text == other.text,
+            _ => false,
+        }
+    }
+}
+
+/// The words of a program that must survive in order, and its speed changes, each with its
+/// span and text (`check_words`), taken from its AST (`Words::of`) so that the AST need not
+/// be held for the check.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Words {
+    words: Vec<Word>,
+    speeds: Vec<(f64, Word)>,
+}
 
 /// The blocks of `program` in the order their words run: each in its place, but for a block a
 /// cycle consumes (a profile between P and Q, which the roughing cycle reads and the program
@@ -359,66 +412,69 @@ fn run_order(program: &Program<'_>, expansions: &[Expansion]) -> Vec<usize> {
     order
 }
 
-fn kept_words(program: &Program<'_>, expansions: &[Expansion]) -> KeptWords {
-    let mut words = Vec::new();
-    let mut speeds: Vec<(f64, Span)> = Vec::new();
-    for block in run_order(program, expansions) {
-        let block = program.block(block);
-        for word in program.words_of(block) {
-            let kept = match word.kind {
-                WordKind::Code { letter: CodeLetter::M, code } => Some(Kept::M(code.major(), code.minor())),
-                // A provenance comment is `compensate`'s, not the program's.
-                WordKind::Comment(_) if super::provenance::is_mark(program.text(word.span)) => None,
-                WordKind::Comment(_) | WordKind::BlockDelete { .. } | WordKind::ProgramName | WordKind::Header => {
-                    Some(Kept::Text(program.text(word.span).to_vec()))
-                }
-                WordKind::Number { address, .. } | WordKind::Expr { address, .. }
-                    if address == crate::dialect::Address::T =>
-                {
-                    Some(Kept::Text(program.text(word.span).to_vec()))
-                }
-                WordKind::Number { address, number } if address == crate::dialect::Address::S => {
-                    let value = number.to_f64();
-                    if speeds.last().is_none_or(|(s, _)| *s != value) {
-                        speeds.push((value, word.span));
+impl Words {
+    /// The words of `program` that must survive, in the order they run with the cycles its
+    /// lowering expanded (`expansions`, see [`run_order`]).
+    pub fn of(program: &Program<'_>, expansions: &[Expansion]) -> Words {
+        let mut words = Vec::new();
+        let mut speeds: Vec<(f64, Word)> = Vec::new();
+        let word = |kept: Kept, span: Span| Word { kept, span, text: program.text(span).into() };
+        for block in run_order(program, expansions) {
+            let block = program.block(block);
+            for w in program.words_of(block) {
+                let kept = match w.kind {
+                    WordKind::Code { letter: CodeLetter::M, code } => Some(Kept::M(code.major(), code.minor())),
+                    // A provenance comment is `compensate`'s, not the program's.
+                    WordKind::Comment(_) if super::provenance::is_mark(program.text(w.span)) => None,
+                    WordKind::Comment(_) | WordKind::BlockDelete { .. } | WordKind::ProgramName | WordKind::Header => {
+                        Some(Kept::Text)
                     }
-                    None
+                    WordKind::Number { address, .. } | WordKind::Expr { address, .. }
+                        if address == crate::dialect::Address::T =>
+                    {
+                        Some(Kept::Text)
+                    }
+                    WordKind::Number { address, number } if address == crate::dialect::Address::S => {
+                        let value = number.to_f64();
+                        if speeds.last().is_none_or(|(s, _)| *s != value) {
+                            speeds.push((value, word(Kept::Text, w.span)));
+                        }
+                        None
+                    }
+                    _ => None,
+                };
+                if let Some(kept) = kept {
+                    words.push(word(kept, w.span));
                 }
-                _ => None,
-            };
-            if let Some(kept) = kept {
-                words.push((kept, word.span));
             }
         }
+        Words { words, speeds }
     }
-    (words, speeds)
 }
 
 /// Check that `compensated` keeps the non-motion words of `original` in the order they run
-/// (each program with the cycles its lowering expanded, see [`run_order`]).
-pub fn check_words(
-    (original, original_expansions): (&Program<'_>, &[Expansion]),
-    (compensated, compensated_expansions): (&Program<'_>, &[Expansion]),
-) -> WordCheck {
-    let (words, speeds) = kept_words(original, original_expansions);
-    let (new_words, new_speeds) = kept_words(compensated, compensated_expansions);
-    let checked = words.len() + speeds.len();
-    let missing = first_missing(&words, &new_words, |a, b| a == b)
-        .map(|span| MissingWord { text: String::from_utf8_lossy(original.text(span)).into_owned(), span })
-        .or_else(|| {
-            first_missing(&speeds, &new_speeds, |a, b| a == b)
-                .map(|span| MissingWord { text: String::from_utf8_lossy(original.text(span)).into_owned(), span })
-        });
+/// (each program's words as [`Words::of`] takes them).
+pub fn check_words(original: &Words, compensated: &Words) -> WordCheck {
+    let checked = original.words.len() + original.speeds.len();
+    let missing = |word: &Word| MissingWord { text: String::from_utf8_lossy(&word.text).into_owned(), span: word.span };
+    let missing = first_missing(&original.words, &compensated.words, |w| w, Word::same)
+        .map(missing)
+        .or_else(|| first_missing(&original.speeds, &compensated.speeds, |(_, w)| w, |a, b| a.0 == b.0).map(missing));
     WordCheck { checked, missing }
 }
 
-/// The first item of `wanted` that is not found, in order, in `found`.
-fn first_missing<T>(wanted: &[(T, Span)], found: &[(T, Span)], same: impl Fn(&T, &T) -> bool) -> Option<Span> {
+/// The first item of `wanted` that is not found, in order, in `found` (its word, `word`).
+fn first_missing<'a, T>(
+    wanted: &'a [T],
+    found: &[T],
+    word: impl Fn(&'a T) -> &'a Word,
+    same: impl Fn(&T, &T) -> bool,
+) -> Option<&'a Word> {
     let mut k = 0;
-    for (item, span) in wanted {
-        match found[k..].iter().position(|(f, _)| same(item, f)) {
+    for item in wanted {
+        match found[k..].iter().position(|f| same(item, f)) {
             Some(at) => k += at + 1,
-            None => return Some(*span),
+            None => return Some(word(item)),
         }
     }
     None
@@ -442,33 +498,42 @@ pub struct CutWords {
     pub threading: bool,
 }
 
+/// The runs of equal feed and spindle words along a program's cutting moves, in execution
+/// order, each with the block of its first move (`feed_runs`).
+pub type FeedRuns = Vec<(CutWords, Span)>;
+
+/// Whether two cuts run with the same words (a thread's lead is not compared, see
+/// `check_feeds`).
+fn same_cut(a: &CutWords, b: &CutWords) -> bool {
+    a.threading == b.threading
+        && a.per_revolution == b.per_revolution
+        && a.speed == b.speed
+        && (a.threading || a.feed == b.feed)
+}
+
+/// The runs of equal feed and spindle words along the cutting moves of `toolpath`, in
+/// execution order; rapids and dwells carry no feed and are skipped.
+pub fn feed_runs(toolpath: &Toolpath) -> FeedRuns {
+    let mut runs: FeedRuns = Vec::new();
+    for m in toolpath.moves.iter().filter(|m| m.cutting && m.motion != crate::toolpath::Motion::Dwell) {
+        let words =
+            CutWords { feed: m.f_word, per_revolution: m.per_revolution, speed: m.s_word, threading: m.threading };
+        if runs.last().is_none_or(|(last, _)| !same_cut(last, &words)) {
+            runs.push((words, m.source));
+        }
+    }
+    runs
+}
+
 /// Check that `compensated` cuts with the feed and spindle words `original` cuts with, in the
-/// order it runs them. Compensation moves end points, splits moves and writes take-ups, so
-/// moves are not matched one for one: the runs of equal words along the cutting moves, in
-/// execution order, must be the same runs. Rapids and dwells carry no feed and are skipped.
+/// order it runs them (each program's runs as `feed_runs` finds them). Compensation moves
+/// end points, splits moves and writes take-ups, so moves are not matched one for one: the
+/// runs of equal words along the cutting moves, in execution order, must be the same runs.
 /// A thread's lead is not compared as a word: compensation writes the lead the slide needs
 /// to cut the programmed one, and the lead measure (`lead.rs`) judges what it cuts.
-pub fn check_feeds(original: &Toolpath, compensated: &Toolpath) -> Option<FeedChange> {
-    fn same(a: &CutWords, b: &CutWords) -> bool {
-        a.threading == b.threading
-            && a.per_revolution == b.per_revolution
-            && a.speed == b.speed
-            && (a.threading || a.feed == b.feed)
-    }
-    fn runs(toolpath: &Toolpath) -> Vec<(CutWords, Span)> {
-        let mut runs: Vec<(CutWords, Span)> = Vec::new();
-        for m in toolpath.moves.iter().filter(|m| m.cutting && m.motion != crate::toolpath::Motion::Dwell) {
-            let words =
-                CutWords { feed: m.f_word, per_revolution: m.per_revolution, speed: m.s_word, threading: m.threading };
-            if runs.last().is_none_or(|(last, _)| !same(last, &words)) {
-                runs.push((words, m.source));
-            }
-        }
-        runs
-    }
-    let (wanted, found) = (runs(original), runs(compensated));
+pub fn check_feeds(wanted: &[(CutWords, Span)], found: &[(CutWords, Span)]) -> Option<FeedChange> {
     let differ = |k: usize| match (wanted.get(k), found.get(k)) {
-        (Some(a), Some(b)) => !same(&a.0, &b.0),
+        (Some(a), Some(b)) => !same_cut(&a.0, &b.0),
         (None, None) => false,
         _ => true,
     };

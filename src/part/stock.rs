@@ -34,15 +34,20 @@ impl Stock {
     /// that cuts), reaching along Z as far as the cuts do; none for a program that cuts
     /// nothing.
     pub fn assumed(toolpath: &Toolpath) -> Option<Stock> {
+        Stock::assumed_from(toolpath.moves.iter().enumerate().filter_map(|(index, m)| {
+            let cuts = m.cutting && !matches!(m.motion, Motion::Rapid | Motion::Dwell);
+            cuts.then(|| (toolpath.start_of(index), m.end))
+        }))
+    }
+
+    /// `assumed` from the start and end of each cutting move, in any order (a compact path
+    /// gives them as a toolpath does).
+    pub fn assumed_from(cuts: impl IntoIterator<Item = (Xz, Xz)>) -> Option<Stock> {
         let (mut outer, mut front, mut back) = (0.0f64, f64::NEG_INFINITY, f64::INFINITY);
-        for (index, m) in toolpath.moves.iter().enumerate() {
-            if !m.cutting || matches!(m.motion, Motion::Rapid | Motion::Dwell) {
-                continue;
-            }
-            let start = toolpath.start_of(index);
+        for (start, end) in cuts {
             outer = outer.max(start.x);
             front = front.max(start.z);
-            back = back.min(start.z).min(m.end.z);
+            back = back.min(start.z).min(end.z);
         }
         (front.is_finite() && outer > 0.0 && front > back).then_some(Stock {
             outer,

@@ -1,16 +1,19 @@
 //! A validated toolpath as the measures read it: each move's geometry, its times and feed,
-//! and what its samples carry (the tool, its tip, the side of the part), without the
-//! contour, the words, the spindle and the source that a `Move` also holds; an arc's centre,
-//! radius and angles beside the moves, measured once. A long program's measure then holds
-//! neither its AST nor its full moves (`compensation::verify`): 56 bytes a move instead of
-//! 136.
+//! and what its samples carry (the tool and its offset, its tip, the side of the part), with
+//! its block beside it, without the contour, the words and the cycle that a `Move` also
+//! holds; an arc's centre, radius and angles beside the moves, measured once, and a thread
+//! move's spindle speed. A long program's measure, and the part model that cuts its part
+//! (`compensation::verify::part`, through [`CompactPath::as_move`]), then hold neither its
+//! AST nor its full moves (`compensation::verify`): 64 bytes a move instead of 128.
 //!
 //! It is made only from a `ValidToolpath`, so what holds of a validated toolpath (finite,
 //! arcs on their circle, times running on) holds of it.
 
 use crate::geometry;
 
-use super::{Compensation, Motion, ValidToolpath, Xz};
+use crate::source::Span;
+
+use super::{Compensation, Motion, Move, ValidToolpath, Xz};
 
 /// One move (`CompactPath`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,6 +27,8 @@ pub struct CompactMove {
     /// Where the arc's constants are in `CompactPath::arcs` (`NO_ARC`: no arc).
     arc: usize,
     pub tool: u16,
+    /// The tool offset number in effect (the part model's insert).
+    pub offset: u16,
     pub motion: Motion,
     pub compensation: Compensation,
     pub cutting: bool,
@@ -68,6 +73,11 @@ pub struct CompactPath {
     /// move, mm (its feed over its spindle speed), in move order: the lead measure
     /// (`compensation::verify::lead`) reads them; a program without threads holds none.
     threads: Vec<(usize, f64)>,
+    /// Every move with `Move::threading` set, with its spindle speed (rpm), in move order:
+    /// the part model cuts a thread's form from them (`as_move`).
+    threading: Vec<(usize, f64)>,
+    /// The block each move comes from (`Move::source`).
+    sources: Vec<Span>,
     reach: Xz,
 }
 
@@ -77,8 +87,10 @@ impl CompactPath {
     pub fn new(toolpath: ValidToolpath<'_>, tip: impl Fn(u16, u16) -> u8) -> CompactPath {
         let toolpath = toolpath.toolpath();
         let mut moves = Vec::with_capacity(toolpath.moves.len());
+        let mut sources = Vec::with_capacity(toolpath.moves.len());
         let mut arcs = Vec::new();
         let mut threads = Vec::new();
+        let mut threading = Vec::new();
         let mut reach = Xz::new(toolpath.start.x.abs(), toolpath.start.z.abs());
         for (k, m) in toolpath.moves.iter().enumerate() {
             let start = toolpath.start_of(k);
@@ -96,6 +108,10 @@ impl CompactPath {
             if m.threading && m.motion == Motion::Feed && m.rpm > 0.0 {
                 threads.push((k, m.feed / m.rpm));
             }
+            if m.threading {
+                threading.push((k, m.rpm));
+            }
+            sources.push(m.source);
             moves.push(CompactMove {
                 end: m.end,
                 t_start: m.t_start,
@@ -103,13 +119,49 @@ impl CompactPath {
                 feed: m.feed,
                 arc,
                 tool: m.tool,
+                offset: m.offset,
                 motion: m.motion,
                 compensation: m.compensation,
                 cutting: m.cutting,
                 tip: tip(m.tool, m.offset),
             });
         }
-        CompactPath { start: toolpath.start, moves, arcs, threads, reach }
+        CompactPath { start: toolpath.start, moves, arcs, threads, threading, sources, reach }
+    }
+
+    /// Move `index` as the part model reads it (`part::removal`): its geometry, times, feed,
+    /// tool and offset, thread and spindle speed (a thread move's; 0 for any other move,
+    /// whose speed nothing that reads this uses) and block as the toolpath holds them. What
+    /// the compact path does not hold reads as no word: the contour point as the end, the F
+    /// and S words as NaN, feed per minute, and no cycle.
+    pub fn as_move(&self, index: usize) -> Option<Move> {
+        let m = self.moves.get(index)?;
+        let rpm = self.threading.binary_search_by_key(&index, |&(k, _)| k).ok().map(|k| self.threading[k].1);
+        Some(Move {
+            motion: m.motion,
+            compensation: m.compensation,
+            cutting: m.cutting,
+            threading: rpm.is_some(),
+            per_revolution: false,
+            tool: m.tool,
+            offset: m.offset,
+            end: m.end,
+            centre: self.centre(index),
+            contour: m.end,
+            feed: m.feed,
+            f_word: f64::NAN,
+            s_word: f64::NAN,
+            rpm: rpm.unwrap_or(0.0),
+            t_start: m.t_start,
+            t_end: m.t_end,
+            source: self.source(index),
+            cycle: Span::SYNTHETIC,
+        })
+    }
+
+    /// The block move `index` comes from (`Span::SYNTHETIC` past the end).
+    pub fn source(&self, index: usize) -> Span {
+        self.sources.get(index).copied().unwrap_or(Span::SYNTHETIC)
     }
 
     pub fn moves(&self) -> &[CompactMove] {

@@ -240,9 +240,10 @@ fn untouched_blocks_print_byte_identical_and_edited_blocks_change_only_their_mot
             assert!(written.contains(&words), "{path}: block {} lost some of {words:?}", e.block);
         }
         // And nothing that is not motion went missing anywhere.
-        let check = turnpass::compensation::verify::check_words(
-            (&parsed.program, &lowered.expansions),
-            (&reparsed.program, &case.ready(&output).lowered.expansions),
+        use turnpass::compensation::verify::{Words, check_words};
+        let check = check_words(
+            &Words::of(&parsed.program, &lowered.expansions),
+            &Words::of(&reparsed.program, &case.ready(&output).lowered.expansions),
         );
         assert_eq!(check.missing, None, "{path}");
     }

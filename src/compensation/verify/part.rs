@@ -47,13 +47,13 @@ use crate::part::dexel::{Dexels, STOCK, Spans};
 use crate::part::removal::Removal;
 use crate::part::{Part, Stock};
 use crate::semantic::Machine;
-use crate::semantic::nose_radius::ToolTable;
 use crate::source::Span;
-use crate::toolpath::{Motion, Move, Toolpath, ValidToolpath, Xz};
+use crate::toolpath::compact::CompactPath;
+use crate::toolpath::{Motion, Move, Xz};
 
 use super::super::deviation::{Figures, Tally};
 use super::measure::predicted;
-use super::{Deviation, Measured, Side, Worst, compact};
+use super::{Deviation, Measured, Side, Worst};
 
 /// What the part measure found (`part_deviation`).
 #[derive(Debug, Clone, PartialEq)]
@@ -169,36 +169,39 @@ pub struct ThreadForm {
 }
 
 /// The part measure of `compensated` against `original` on `model` (see the module
-/// documentation), sampled as `sampling` allows, on `machine`'s tools from `stock` (none:
-/// the bar `part::Stock::assumed` takes for the original).
+/// documentation), both held compact (`verify::compact`), sampled as `sampling` allows, on
+/// `machine`'s tools from `stock` (none: the bar `part::Stock::assumed` takes for the
+/// original).
 pub fn part_deviation(
-    programs: (ValidToolpath<'_>, ValidToolpath<'_>),
-    tools: &ToolTable,
+    programs: (&CompactPath, &CompactPath),
     model: &ErrorModel,
     sampling: &Sampling,
     machine: &Machine,
     stock: Option<&StockSettings>,
 ) -> PartDeviation {
-    part_deviation_watched(programs, tools, model, sampling, (machine, stock), &|_, _| {})
+    part_deviation_watched(programs, model, sampling, (machine, stock), &|_, _| {})
 }
 
 /// `part_deviation`, every predicted point shown to `watch` as the two programs are
 /// predicted (`Measured::predicted` only): how far the measure has come, for a progress bar.
 pub fn part_deviation_watched(
-    (original, compensated): (ValidToolpath<'_>, ValidToolpath<'_>),
-    tools: &ToolTable,
+    (original, compensated): (&CompactPath, &CompactPath),
     model: &ErrorModel,
     sampling: &Sampling,
     (machine, stock): (&Machine, Option<&StockSettings>),
     watch: &(dyn Fn(Side, &Measured) + Sync),
 ) -> PartDeviation {
     // The points the model puts the tool at are predicted along the compact paths, as the
-    // pass measure predicts them; the parts are cut along the full toolpaths' pieces.
-    let (original_compact, compensated_compact) = (compact(original, tools), compact(compensated, tools));
-    let (original, compensated) = (original.toolpath(), compensated.toolpath());
+    // pass measure predicts them, and the parts are cut along their moves' pieces
+    // (`CompactPath::as_move`).
+    let (original_compact, compensated_compact) = (original, compensated);
     let stock = match stock {
         Some(settings) => Some(Stock::from_settings(settings, machine)),
-        None => Stock::assumed(original),
+        None => Stock::assumed_from((0..original.len()).filter_map(|index| {
+            let m = original.moves()[index];
+            let cuts = m.cutting && !matches!(m.motion, Motion::Rapid | Motion::Dwell);
+            cuts.then(|| (original.start_of(index), m.end))
+        })),
     };
     let Some(stock) = stock else {
         let deviation = Deviation::default();
@@ -219,12 +222,13 @@ pub fn part_deviation_watched(
     // nominal part is the original's moves cut as programmed (the part `check` finds); each
     // actual part is its program cut in pieces between the points the model puts the tool
     // at, a move at a time as the points are predicted, so that no path of pieces is held.
-    let rays_for = original.moves.len();
-    let block = |toolpath: &Toolpath, k: usize| toolpath.moves.get(k).map_or(Span::new(0, 0), |m| m.source);
+    let rays_for = original.len();
+    let block =
+        |toolpath: &CompactPath, k: usize| if k < toolpath.len() { toolpath.source(k) } else { Span::new(0, 0) };
     let original_side = || {
         let (nominal, nominal_stop) = cut(original, stock, machine, rays_for);
         let mut before = PieceCut::new(original, stock, machine, rays_for);
-        let threads = predicted(&original_compact, model, sampling, Side::Original, &mut |side, measured| {
+        let threads = predicted(original_compact, model, sampling, Side::Original, &mut |side, measured| {
             watch(side, &measured);
             before.push(Point::of(&measured));
         });
@@ -233,7 +237,7 @@ pub fn part_deviation_watched(
     };
     let compensated_side = || {
         let mut after = PieceCut::new(compensated, stock, machine, rays_for);
-        let threads = predicted(&compensated_compact, model, sampling, Side::Compensated, &mut |side, measured| {
+        let threads = predicted(compensated_compact, model, sampling, Side::Compensated, &mut |side, measured| {
             watch(side, &measured);
             after.push(Point::of(&measured));
         });
@@ -241,7 +245,7 @@ pub fn part_deviation_watched(
         (after, after_stop, threads)
     };
     let ((after, after_stop, after_threads), (nominal, before, before_stop, before_threads)) = crate::parallel::join_if(
-        original.moves.len() >= crate::parallel::tuning().measure_moves,
+        original.len() >= crate::parallel::tuning().measure_moves,
         compensated_side,
         original_side,
     );
@@ -287,7 +291,7 @@ pub fn part_deviation_watched(
         improvement_percent,
         worst: worst.map(|w| Worst { deviation_mm: super::super::deviation::nm(w.deviation_mm), ..w }),
         // The passes' leads from the same predicted points, as the pass measure gives them.
-        lead: super::lead::figures((&original_compact, &before_threads), (&compensated_compact, &after_threads)),
+        lead: super::lead::figures((original_compact, &before_threads), (compensated_compact, &after_threads)),
     };
     PartDeviation {
         deviation,
@@ -335,15 +339,16 @@ type Probed = (Probe, Option<usize>, f64, usize);
 
 /// `toolpath` cut from `stock` on the rays a program of `rays_for` moves gets; the move
 /// where the model stopped at its bound.
-fn cut(toolpath: &Toolpath, stock: Stock, machine: &Machine, rays_for: usize) -> (Dexels, Option<usize>) {
+fn cut(toolpath: &CompactPath, stock: Stock, machine: &Machine, rays_for: usize) -> (Dexels, Option<usize>) {
     let mut removal = Removal::new(stock, machine, rays_for);
-    for index in 0..toolpath.moves.len() {
-        if removal.step(toolpath, index).is_none() {
+    for index in 0..toolpath.len() {
+        let stepped = toolpath.as_move(index).and_then(|m| removal.step_move(toolpath.start_of(index), &m, index));
+        if stepped.is_none() {
             return (removal.dexels, Some(index));
         }
     }
     // A program that ends in a thread pass leaves its form at the pass's end.
-    let stopped = removal.end_thread().is_none().then(|| toolpath.moves.len().saturating_sub(1));
+    let stopped = removal.end_thread().is_none().then(|| toolpath.len().saturating_sub(1));
     (removal.dexels, stopped)
 }
 
@@ -373,7 +378,7 @@ impl Point {
 /// programmed), so that a stamp falls where the model puts the tool at each whole turn.
 /// Each piece's cuts are recorded as its move's.
 struct PieceCut<'a> {
-    toolpath: &'a Toolpath,
+    toolpath: &'a CompactPath,
     removal: Removal<'a>,
     /// The point before: where the next piece starts on the model, as programmed, its move
     /// and where along it.
@@ -385,7 +390,7 @@ struct PieceCut<'a> {
 }
 
 impl<'a> PieceCut<'a> {
-    fn new(toolpath: &'a Toolpath, stock: Stock, machine: &'a Machine, rays_for: usize) -> PieceCut<'a> {
+    fn new(toolpath: &'a CompactPath, stock: Stock, machine: &'a Machine, rays_for: usize) -> PieceCut<'a> {
         PieceCut {
             toolpath,
             removal: Removal::new(stock, machine, rays_for),
@@ -422,7 +427,7 @@ impl<'a> PieceCut<'a> {
             }
         }
         self.points.clear();
-        let Some(m) = self.toolpath.moves.get(index) else { return };
+        let Some(m) = self.toolpath.as_move(index) else { return };
         if m.threading {
             // A piece with no programmed stretch (the model's step at a corner) runs at the
             // whole move's lead on the model.
@@ -465,7 +470,7 @@ impl<'a> PieceCut<'a> {
         }
         // A program that ends in a thread pass leaves its form at the pass's end.
         if self.stopped.is_none() && self.removal.end_thread().is_none() {
-            self.stopped = Some(self.toolpath.moves.len().saturating_sub(1));
+            self.stopped = Some(self.toolpath.len().saturating_sub(1));
         }
         (self.removal.dexels, self.stopped)
     }
@@ -473,12 +478,12 @@ impl<'a> PieceCut<'a> {
 
 /// The piece of `toolpath` that ends at `point` as the model puts it, from the point before
 /// (`last`, which becomes `point`); none for a point of no move.
-fn piece(toolpath: &Toolpath, last: &mut (Xz, Xz, usize, f64), point: &Point) -> Option<Move> {
-    let m = toolpath.moves.get(point.move_index)?;
+fn piece(toolpath: &CompactPath, last: &mut (Xz, Xz, usize, f64), point: &Point) -> Option<Move> {
+    let m = toolpath.as_move(point.move_index)?;
     let (from, from_nominal, from_move, from_param) = *last;
     let end = point.predicted;
     *last = (end, point.nominal, point.move_index, point.param);
-    let mut piece = *m;
+    let mut piece = m;
     piece.end = end;
     // A piece along its move (from its start, or from the point before on it); else the
     // model's step at a corner, where the point does not move along the path.
@@ -725,11 +730,11 @@ fn nearest_surface(part: &Dexels, p: Xz, within: f64) -> f64 {
 }
 
 /// The probes grouped by the block of the original that cut their point, in block order.
-fn features(original: &Toolpath, probes: &[Probed]) -> Vec<Feature> {
+fn features(original: &CompactPath, probes: &[Probed]) -> Vec<Feature> {
     let mut by_block: Vec<(Span, Tally, Probe)> = Vec::new();
     let mut index = std::collections::HashMap::new();
     for (p, by, weight, _) in probes {
-        let block = by.and_then(|k| original.moves.get(k)).map_or(Span::SYNTHETIC, |m| m.source);
+        let block = by.map_or(Span::SYNTHETIC, |k| original.source(k));
         let slot = *index.entry((block.start, block.end)).or_insert_with(|| {
             by_block.push((block, Tally::default(), *p));
             by_block.len() - 1
@@ -750,11 +755,17 @@ fn features(original: &Toolpath, probes: &[Probed]) -> Vec<Feature> {
 /// The threads of `original` measured on each part: a thread is a run of threading moves of
 /// one tool and one lead, whatever moves between them do not cut (a thread cycle's passes, or
 /// a pass per block).
-fn threads(original: &Toolpath, nominal: &Dexels, before: &Dexels, after: &Dexels, stock: Stock) -> Vec<ThreadFigures> {
+fn threads(
+    original: &CompactPath,
+    nominal: &Dexels,
+    before: &Dexels,
+    after: &Dexels,
+    stock: Stock,
+) -> Vec<ThreadFigures> {
     // Each thread: its first and last block, tool, lead, and the box of its passes.
     let mut blocks: Vec<(Span, Span, u16, f64, Xz, Xz)> = Vec::new();
     let mut open = false;
-    for (index, m) in original.moves.iter().enumerate() {
+    for (index, m) in (0..original.len()).filter_map(|index| Some((index, original.as_move(index)?))) {
         if !(m.threading && m.motion == Motion::Feed) || m.rpm <= 0.0 {
             // A cut of another kind ends the thread; moves in the air do not.
             open &= !m.cutting || m.motion == Motion::Rapid || m.motion == Motion::Dwell;

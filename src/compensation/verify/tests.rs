@@ -216,7 +216,7 @@ fn a_provenance_comment_is_not_a_word_to_keep() {
     let (plain, marked) =
         (crate::syntax::parse(plain.as_bytes(), &options), crate::syntax::parse(marked.as_bytes(), &options));
     for (original, compensated) in [(&marked, &plain), (&plain, &marked)] {
-        let check = check_words((&original.program, &[]), (&compensated.program, &[]));
+        let check = check_words(&Words::of(&original.program, &[]), &Words::of(&compensated.program, &[]));
         assert_eq!(check.missing, None);
         // O1004, (FACE), T0101, (TOOL), M08, M30.
         assert_eq!(check.checked, 6);
@@ -271,7 +271,7 @@ fn sampling_from_the_model_measures_as_dense_sampling_does() {
     for (name, effects) in [("screw", screw), ("mixed", mixed)] {
         let model = ErrorModel { tables: None, effects, start_min: 0.0, control: None };
         let figures = |sampling: &Sampling| deviation(toolpath, toolpath, &tools, &model, sampling).before;
-        let sparse = figures(&sampling(&model, increment, &[&toolpath]));
+        let sparse = figures(&sampling(&model, increment, &[&super::compact(toolpath, &tools)]));
         let dense = figures(&Sampling::every_mm(0.005));
         assert!(dense.max_mm > 0.003, "{name}: {dense:?}");
         assert!((sparse.max_mm - dense.max_mm).abs() <= promise, "{name}: sparse {sparse:?}\ndense {dense:?}");
@@ -281,4 +281,53 @@ fn sampling_from_the_model_measures_as_dense_sampling_does() {
             assert!((coarse.max_mm - dense.max_mm).abs() > 2.0 * promise, "{name}: coarse {coarse:?}\ndense {dense:?}");
         }
     }
+}
+
+/// The part measure cuts a program's parts from its compact path (`CompactPath::as_move`):
+/// every move reads back there as the toolpath holds it in every field the part model and
+/// the part measure read, so the parts are the ones the full moves cut.
+#[test]
+fn a_compact_move_is_the_full_move_to_the_part_model() {
+    let program = "\
+G21 G99
+G97 S800 M03
+T0101
+G00 X40. Z2.
+G01 X30. Z0. F0.2
+G02 X34. Z-2. R2.
+G01 Z-20.
+G03 X40. Z-23. R3.
+G04 X0.5
+T0303
+G00 X32. Z5.
+G32 Z-15. F1.5
+G00 X40.
+G92 X29. Z-15. F1.5
+X28.5
+G00 X60. Z50.
+M30
+";
+    let (lowered, machine) = lower_program(program);
+    let toolpath = lowered.valid().toolpath();
+    let path = super::compact(lowered.valid(), &ToolTable::from_machine(&machine));
+    assert_eq!(path.len(), toolpath.moves.len());
+    assert!(toolpath.moves.iter().any(|m| m.threading) && toolpath.moves.iter().any(|m| m.is_arc()));
+    for (k, full) in toolpath.moves.iter().enumerate() {
+        let m = path.as_move(k).expect("a move of the path");
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+        assert_eq!(
+            (m.motion, m.compensation, m.cutting, m.threading),
+            (full.motion, full.compensation, full.cutting, full.threading),
+            "move {k}"
+        );
+        assert_eq!((m.tool, m.offset, m.source), (full.tool, full.offset, full.source), "move {k}");
+        assert_eq!(path.start_of(k), toolpath.start_of(k), "move {k}");
+        assert!(same(m.end.x, full.end.x) && same(m.end.z, full.end.z), "move {k}");
+        assert!(same(m.centre.x, full.centre.x) && same(m.centre.z, full.centre.z), "move {k}: {m:?}\n{full:?}");
+        assert!(same(m.feed, full.feed) && same(m.t_start, full.t_start) && same(m.t_end, full.t_end), "move {k}");
+        if full.threading {
+            assert!(same(m.rpm, full.rpm), "move {k}: rpm {} against {}", m.rpm, full.rpm);
+        }
+    }
+    assert_eq!(path.as_move(path.len()), None);
 }
