@@ -2,8 +2,8 @@
 //!
 //! The AST of a large program and the toolpath of a cycle-heavy one are hundreds of MB
 //! written once, front to back. With 4 KiB pages the kernel takes tens of thousands of
-//! faults to hand that memory over (a quarter of the parse time before this), so both ask
-//! for huge pages where the system allows it.
+//! faults to hand that memory over, a large share of the parse time, so both ask for huge
+//! pages where the system allows it.
 
 /// A vector with room for `capacity` items whose memory, when it is large, is backed by
 /// transparent huge pages where the system allows it (Linux `madvise`). Growing it later

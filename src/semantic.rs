@@ -50,8 +50,8 @@ pub struct LowerOptions {
     pub max_executed_blocks: u64,
     /// … or after this many moves, or [`MOVES_PER_BLOCK`] for every block of the program
     /// when that is more (a loop of cycles fills memory long before it has run many
-    /// blocks). The moves are what a run holds: at 136 bytes a move, the bound keeps a
-    /// small program that runs away to about 300 MB, and a large one in proportion to its text.
+    /// blocks). The moves are what a run holds: at 128 bytes a move, the bound keeps a
+    /// small program that runs away to about 260 MB, and a large one in proportion to its text.
     pub max_moves: usize,
     /// Apply nose-radius compensation (`expand` turns it off: the blocks it prints stay
     /// under the program's own `G41`/`G42`).

@@ -179,7 +179,7 @@ impl<'a> Removal<'a> {
         if m.is_arc() {
             let centre = tool.centre(m.centre);
             let ccw = m.motion == Motion::Ccw;
-            out.push(Sweep::body_along_arc(tool.core.iter().copied(), tool.nose, (c0, c1, centre), ccw));
+            out.push(Sweep::body_along_arc(&tool.insert, (c0, c1, centre), ccw));
         } else {
             out.push(Sweep::rounded(tool.placed(c0).chain(tool.placed(c1)), tool.nose));
         }

@@ -143,8 +143,52 @@ pub(crate) struct BodyAlongArc {
     edges: SmallVec<[ArcEdge; 4]>,
 }
 
+/// A tool's cutting shape as the sweeps take it: a convex polygon about the nose centre
+/// (counter-clockwise) grown by the nose radius, with its box and each offset edge's facts
+/// for a sweep along an arc, made once per tool (each arc move's sweep reads them).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Insert {
+    core: SmallVec<[Xz; 8]>,
+    radius: f64,
+    core_box: (Xz, Xz),
+    /// Edge `i` runs from vertex `i` to the next.
+    edges: SmallVec<[ArcEdge; 4]>,
+}
+
+impl Insert {
+    /// The hull of `core` grown by `radius`.
+    pub fn new(core: impl IntoIterator<Item = Xz>, radius: f64) -> Insert {
+        let core = convex_hull(core.into_iter().collect());
+        let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
+        for p in &core {
+            core_lo = Xz::new(core_lo.x.min(p.x), core_lo.z.min(p.z));
+            core_hi = Xz::new(core_hi.x.max(p.x), core_hi.z.max(p.z));
+        }
+        let n = core.len();
+        let mut edges = SmallVec::new();
+        for i in 0..if n >= 2 { n } else { 0 } {
+            let (a, b) = (core[i], core[(i + 1) % n]);
+            let d = unit(Xz::new(b.x - a.x, b.z - a.z));
+            let normal = Xz::new(d.z, -d.x);
+            let offset = |p: Xz| Xz::new(p.x + normal.x * radius, p.z + normal.z * radius);
+            let edge = Xz::new(b.x - a.x, b.z - a.z);
+            let turns = [true, false].map(|along_z| {
+                let (fixed, along) = axes(along_z);
+                let (df, dg) = (dot(edge, fixed), dot(edge, along));
+                // t(θ) = t0 + R u(θ)·w turns where u is along w.
+                (df != 0.0).then(|| {
+                    let w = Xz::new(along.x - fixed.x * dg / df, along.z - fixed.z * dg / df);
+                    (w.x.atan2(w.z), unit(w))
+                })
+            });
+            edges.push(ArcEdge { a: offset(a), b: offset(b), normal, turns });
+        }
+        Insert { core, radius, core_box: (core_lo, core_hi), edges }
+    }
+}
+
 /// An offset edge of a [`BodyAlongArc`]'s polygon, about the nose centre.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct ArcEdge {
     a: Xz,
     b: Xz,
@@ -179,18 +223,13 @@ impl Sweep {
     /// A disk of `radius` moved along the arc from `start` to `end` about `centre`.
     #[cfg(test)]
     pub fn arc(start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64) -> Sweep {
-        Sweep::body_along_arc([Xz::new(0.0, 0.0)], radius, (start, end, centre), ccw)
+        Sweep::body_along_arc(&Insert::new([Xz::new(0.0, 0.0)], radius), (start, end, centre), ccw)
     }
 
-    /// The convex polygon `core` (about the nose centre) grown by `radius`, its nose centre
-    /// moved along the arc from `start` to `end` about `centre` ([`BodyAlongArc`]).
-    pub fn body_along_arc(
-        core: impl IntoIterator<Item = Xz>,
-        radius: f64,
-        (start, end, centre): (Xz, Xz, Xz),
-        ccw: bool,
-    ) -> Sweep {
-        let core = convex_hull(core.into_iter().collect());
+    /// `insert` (a rounded convex polygon about the nose centre), its nose centre moved
+    /// along the arc from `start` to `end` about `centre` ([`BodyAlongArc`]).
+    pub fn body_along_arc(insert: &Insert, (start, end, centre): (Xz, Xz, Xz), ccw: bool) -> Sweep {
+        let (core, radius) = (&insert.core, insert.radius);
         let a0 = crate::geometry::angle(start, centre);
         let total = crate::geometry::sweep_from(a0, start, end, centre, ccw);
         let a1 = if ccw { a0 + total } else { a0 - total };
@@ -200,17 +239,11 @@ impl Sweep {
         // sinusoid in θ, positive over at most half a turn; on an arc shorter than that it
         // is positive throughout where it is at both ends.
         let travel = if ccw { 1.0 } else { -1.0 };
-        let ahead = |n: Xz, theta: f64| travel * (n.x * theta.cos() - n.z * theta.sin()) > 1e-12;
-        let leads = |n: Xz| total < std::f64::consts::PI - 1e-9 && ahead(n, a0) && ahead(n, a1);
+        let (c0, s0, c1, s1) = (a0.cos(), a0.sin(), a1.cos(), a1.sin());
+        let short = total < std::f64::consts::PI - 1e-9;
+        let leads = |n: Xz| short && travel * (n.x * c0 - n.z * s0) > 1e-12 && travel * (n.x * c1 - n.z * s1) > 1e-12;
         let n = core.len();
-        let normals: SmallVec<[Xz; 8]> = (0..if n >= 2 { n } else { 0 })
-            .map(|i| {
-                let (a, b) = (core[i], core[(i + 1) % n]);
-                let d = unit(Xz::new(b.x - a.x, b.z - a.z));
-                Xz::new(d.z, -d.x)
-            })
-            .collect();
-        let leading: SmallVec<[bool; 8]> = normals.iter().map(|&normal| leads(normal)).collect();
+        let leading: SmallVec<[bool; 8]> = insert.edges.iter().map(|edge| leads(edge.normal)).collect();
         let vertices = (0..n)
             // A vertex's disk spans the normals between its two edges'.
             .filter(|&i| n < 2 || !(leading[(i + n - 1) % n] && leading[i]))
@@ -225,30 +258,7 @@ impl Sweep {
             lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
             hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
         }
-        let (mut core_lo, mut core_hi) = (Xz::new(0.0, 0.0), Xz::new(0.0, 0.0));
-        for p in &core {
-            core_lo = Xz::new(core_lo.x.min(p.x), core_lo.z.min(p.z));
-            core_hi = Xz::new(core_hi.x.max(p.x), core_hi.z.max(p.z));
-        }
-        let mut edges = SmallVec::new();
-        for (i, &normal) in normals.iter().enumerate() {
-            if leading[i] {
-                continue;
-            }
-            let (a, b) = (core[i], core[(i + 1) % n]);
-            let offset = |p: Xz| Xz::new(p.x + normal.x * radius, p.z + normal.z * radius);
-            let edge = Xz::new(b.x - a.x, b.z - a.z);
-            let turns = [true, false].map(|along_z| {
-                let (fixed, along) = axes(along_z);
-                let (df, dg) = (dot(edge, fixed), dot(edge, along));
-                // t(θ) = t0 + R u(θ)·w turns where u is along w.
-                (df != 0.0).then(|| {
-                    let w = Xz::new(along.x - fixed.x * dg / df, along.z - fixed.z * dg / df);
-                    (w.x.atan2(w.z), unit(w))
-                })
-            });
-            edges.push(ArcEdge { a: offset(a), b: offset(b), normal, turns });
-        }
+        let edges = insert.edges.iter().zip(&leading).filter(|(_, leads)| !**leads).map(|(edge, _)| *edge).collect();
         let (low, high) = (a0.min(a1), a0.max(a1));
         // The range of sin θ (x) and cos θ (z) over the arc: their values at its ends, and
         // ±1 where it passes the angle of that extreme.
@@ -286,7 +296,7 @@ impl Sweep {
             angles: (low, high),
             angle_directions: (Xz::new(low.sin(), low.cos()), Xz::new(high.sin(), high.cos())),
             path: (lo, hi),
-            core_box: (core_lo, core_hi),
+            core_box: insert.core_box,
             u_range,
             bound,
             end: core.iter().map(|&v| moved(end, v)).collect(),
@@ -1014,7 +1024,7 @@ mod tests {
             let sign = if ccw { 1.0 } else { -1.0 };
             let on = |a: f64| crate::geometry::on_circle(centre, arc_radius, a);
             let (start, end) = (on(start_angle), on(start_angle + sign * total));
-            let sweep = Sweep::body_along_arc(core.iter().copied(), nose, (start, end, centre), ccw);
+            let sweep = Sweep::body_along_arc(&Insert::new(core.iter().copied(), nose), (start, end, centre), ccw);
             let hull = convex_hull(core.clone());
             let count = 2000;
             let placements: Vec<SmallVec<[Xz; 8]>> = (0..=count)

@@ -25,6 +25,7 @@
 
 use smallvec::SmallVec;
 
+use super::sweep::Insert;
 use crate::machine::{ToolKind, ToolSettings};
 use crate::semantic::Machine;
 use crate::semantic::nose_radius::tip_vector;
@@ -55,6 +56,8 @@ pub struct Tool {
     pub max_depth: Option<f64>,
     /// Whether its orientation came from the table (else it was inferred).
     pub oriented: bool,
+    /// The core grown by the nose, as an arc move sweeps it.
+    pub(crate) insert: Insert,
 }
 
 /// The table's entry of a tool, as `simulate`'s summary finds it.
@@ -136,7 +139,9 @@ impl Tool {
                 core.extend([Xz::new(-half, 0.0), Xz::new(half, 0.0), Xz::new(half, back), Xz::new(-half, back)]);
             }
         }
-        Tool { kind, nose: if kind == ToolKind::Drill { 0.0 } else { nose }, centre_offset, core, max_depth, oriented }
+        let nose = if kind == ToolKind::Drill { 0.0 } else { nose };
+        let insert = Insert::new(core.iter().copied(), nose);
+        Tool { kind, nose, centre_offset, core, max_depth, oriented, insert }
     }
 
     /// The nose centre when the reference point is at `reference`.
