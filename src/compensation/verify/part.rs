@@ -38,6 +38,7 @@
 //! the rays along Z, interpolated between the two rays about it: exact on straight flanks)
 //! and its lead (the slope of its grooves' centres on the ray nearest the pitch line).
 
+use crate::compensation::fit::distance_to_chord;
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::error_model::ErrorModel;
 use crate::error_model::sampling::{SAMPLE_STEP_MM, Sampling};
@@ -521,11 +522,11 @@ const STRAIGHT_MM: f64 = 1e-9;
 /// A tool swept along a path whose every point lies within `d` of a segment, from one end
 /// of it to the other, covers the tool swept along the segment to within `d` (the
 /// Hausdorff distance of the two paths bounds that of their sweeps by a convex tool), so
-/// the part moves by less than the figures show. A move of a long program is predicted at
-/// several points that a model without a time-varying term keeps on one line (to the
-/// rounding of f64, and within a picometre with warm-up growth over the move): each piece
-/// sweeps the whole insert across the rays, so one sweep in place of several is most of
-/// the part measure's cost. A knee of a backlash take-up is not straight and stays.
+/// the part moves by less than the figures show. A line move is predicted at several
+/// points, which a model of position-dependent terms keeps on one line to the rounding of
+/// f64, and each piece sweeps the whole insert across the rays: one sweep in place of
+/// several spares most of that work. A knee of a backlash take-up is not straight, nor is
+/// a move that warm-up growth bends by more than the bound, and those stay in pieces.
 fn merge_straight_runs(start: Xz, pieces: &mut Vec<Move>) {
     if pieces.len() < 2 {
         return;
@@ -544,7 +545,7 @@ fn merge_straight_runs(start: Xz, pieces: &mut Vec<Move>) {
                 && joints
                     .iter()
                     .chain(std::iter::once(&from))
-                    .all(|&p| segment_distance(p, run_start, piece.end) <= STRAIGHT_MM)
+                    .all(|&p| distance_to_chord(p, run_start, piece.end) <= STRAIGHT_MM)
         });
         let end = piece.end;
         if joinable {
@@ -560,14 +561,6 @@ fn merge_straight_runs(start: Xz, pieces: &mut Vec<Move>) {
         from = end;
     }
     *pieces = out;
-}
-
-/// The distance from `p` to the segment from `a` to `b`.
-fn segment_distance(p: Xz, a: Xz, b: Xz) -> f64 {
-    let (dx, dz) = (b.x - a.x, b.z - a.z);
-    let length2 = dx * dx + dz * dz;
-    let s = if length2 > 0.0 { (((p.x - a.x) * dx + (p.z - a.z) * dz) / length2).clamp(0.0, 1.0) } else { 0.0 };
-    p.distance(Xz::new(a.x + s * dx, a.z + s * dz))
 }
 
 /// A piece of an arc shorter than this (mm) is cut as a line: its chord gives no direction.
