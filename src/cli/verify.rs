@@ -140,14 +140,20 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
     let Checked { provenance, start, model_sha256, figures, measure, part, words, limit, violations, table, .. } =
         checked;
     let machine = &original.machine;
-    let line_of = |bytes: &[u8], span: turnpass::source::Span| LineIndex::new(bytes).position(span.start).0;
+    // Each text's lines are indexed once, when a line is first asked for: a report names a
+    // line for every feature, and a long program's index takes a pass over its text.
+    let (original_lines, compensated_lines) = (std::cell::OnceCell::new(), std::cell::OnceCell::new());
+    let original_line = |span: turnpass::source::Span| {
+        original_lines.get_or_init(|| LineIndex::new(&original_bytes)).position(span.start).0
+    };
     let compensated_line = |by: Option<usize>| {
-        by.filter(|&k| k < compensated.held.path.len())
-            .map(|k| line_of(&compensated_bytes, compensated.held.path.source(k)))
+        by.filter(|&k| k < compensated.held.path.len()).map(|k| {
+            let lines = compensated_lines.get_or_init(|| LineIndex::new(&compensated_bytes));
+            lines.position(compensated.held.path.source(k).start).0
+        })
     };
-    let feature_line = |block: turnpass::source::Span| {
-        (block != turnpass::source::Span::SYNTHETIC).then(|| line_of(&original_bytes, block))
-    };
+    let feature_line =
+        |block: turnpass::source::Span| (block != turnpass::source::Span::SYNTHETIC).then(|| original_line(block));
     let text = match args.format {
         Format::Json => {
             let value = serde_json::json!({
@@ -191,9 +197,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
                     .map(|t| {
                         let mut value = serde_json::json!(t);
                         if let Some(object) = value.as_object_mut() {
-                            object.insert("line".into(), serde_json::json!(line_of(&original_bytes, t.block)));
-                            object
-                                .insert("last_line".into(), serde_json::json!(line_of(&original_bytes, t.last_block)));
+                            object.insert("line".into(), serde_json::json!(original_line(t.block)));
+                            object.insert("last_line".into(), serde_json::json!(original_line(t.last_block)));
                         }
                         value
                     })
@@ -333,8 +338,8 @@ pub fn verify(args: VerifyArgs) -> Result<ExitCode, CliError> {
                     };
                     text.push_str(&format!(
                         "thread of lines {}-{} (lead {:.6} mm, measured over {} leads), mm: nominal pitch diameter {:.5}, lead {}\n  as programmed: {}\n  compensated:   {}\n",
-                        line_of(&original_bytes, t.block),
-                        line_of(&original_bytes, t.last_block),
+                        original_line(t.block),
+                        original_line(t.last_block),
                         t.programmed_lead_mm,
                         t.leads,
                         t.nominal.pitch_diameter_mm,

@@ -1,6 +1,8 @@
 //! The material each move removes, in program order: the in-process stock after every move,
 //! what each took, and the crashes and deep cuts on the way.
 
+use std::rc::Rc;
+
 use smallvec::SmallVec;
 
 use super::dexel::{Dexels, Edge, STOCK, Span, Spans, Taken};
@@ -63,7 +65,8 @@ pub struct Removal<'a> {
     pub dexels: Dexels,
     pub stock: Stock,
     machine: &'a Machine,
-    tools: Vec<((u16, u16, bool), Tool)>,
+    /// Each tool's shape, made once: a long program steps through millions of moves.
+    tools: Vec<((u16, u16, bool), Rc<Tool>)>,
     /// The thread pass under way (see [`ThreadPass`]).
     thread: Option<ThreadPass>,
     pub visits: u64,
@@ -97,7 +100,7 @@ impl<'a> Removal<'a> {
 
     /// The shape of the tool of move `m` from `start`; a tool whose side the table does not
     /// give takes it from its first cut (`tool::Orientation`).
-    fn tool(&mut self, m: &Move, start: Xz) -> Tool {
+    fn tool(&mut self, m: &Move, start: Xz) -> Rc<Tool> {
         // A tool the table gives without a kind is taken as a threading insert where it cuts
         // a thread pass: each stamp leaves the insert's form, and a turning insert's core
         // (a slot of no width for a tip along an axis and no nose) leaves none.
@@ -105,16 +108,16 @@ impl<'a> Removal<'a> {
         let threading = m.threading && entry.is_some_and(|t| t.kind.is_none());
         let key = (m.tool, m.offset, threading);
         if let Some((_, tool)) = self.tools.iter().find(|(k, _)| *k == key) {
-            return tool.clone();
+            return Rc::clone(tool);
         }
         let as_threading = entry.map(|t| ToolSettings { kind: Some(ToolKind::Threading), ..*t });
         let settings = if threading { as_threading.as_ref() } else { entry };
         let reach = self.stock.front - self.stock.back + 10.0;
         let orientation = if Tool::knows_its_side(settings) { Orientation::Outside } else { self.side_of(start) };
-        let shape = Tool::new(settings, self.machine, orientation, reach);
+        let shape = Rc::new(Tool::new(settings, self.machine, orientation, reach));
         // A rapid before the first cut does not decide an unknown side.
         if m.motion != Motion::Rapid || Tool::knows_its_side(settings) {
-            self.tools.push((key, shape.clone()));
+            self.tools.push((key, Rc::clone(&shape)));
         }
         shape
     }
@@ -190,6 +193,16 @@ impl<'a> Removal<'a> {
     /// move removes what it sweeps. `None` once the bound on work is passed.
     pub fn step(&mut self, toolpath: &Toolpath, index: usize) -> Option<Outcome> {
         self.step_move(toolpath.start_of(index), &toolpath.moves[index], index)
+    }
+
+    /// [`Removal::step_move`] where only the part left is asked for, not what each move met:
+    /// a rapid removes nothing (it only measures, for the crash checks), so it only ends the
+    /// thread pass under way. `None` once the bound on work is passed.
+    pub fn shape_move(&mut self, start: Xz, m: &Move, index: usize) -> Option<()> {
+        if m.motion == Motion::Rapid {
+            return self.end_thread();
+        }
+        self.step_move(start, m, index).map(|_| ())
     }
 
     /// [`Removal::step`] for the move `m` from `start`, its cuts recorded as move `index`'s

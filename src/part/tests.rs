@@ -93,3 +93,48 @@ fn a_thread_stamps_its_form_once_per_lead() {
         assert!(part.contains(Xz::new(24.9, z + 1.0)), "crest at {}", z + 1.0);
     }
 }
+
+#[test]
+fn a_part_shaped_without_measuring_rapids_is_the_part_stepped_with_them() {
+    // A rapid into the bar (which measures and removes nothing), cuts, and two thread passes
+    // with rapids between: the rapids end the first pass, so the second stamps from its own
+    // start, not on from the first's turns.
+    let mut thread = tool(2, 0.1, 8);
+    thread.kind = Some(crate::machine::ToolKind::Threading);
+    let program = "O1\nT0101\nG99 G97 S1000 M03\nG00 X52. Z2.\nG00 X46. Z-10.\nG00 X52.\nZ2.\n\
+                   G01 X44. F0.2\nG01 Z-30.\nG00 X52.\nZ2.\nT0202\nG97 S500\nG00 X52. Z4.\nX42.6\n\
+                   G32 Z-20.7 F2.\nG00 X52.\nZ4.3\nX42.2\nG32 Z-20.7 F2.\nG00 X52.\nZ4.\nM30\n";
+    let options = ParseOptions {
+        dialect: DialectChoice::Auto,
+        gcode_system: GCodeSystem::A,
+        machine_kind: None,
+        control: Default::default(),
+    };
+    let settings = MachineSettings {
+        home: Some(AxisPair { x: 200.0, z: 50.0 }),
+        tool: vec![tool(1, 0.8, 3), thread],
+        ..Default::default()
+    };
+    let settings = Settings::new(options, &settings, LowerOptions::new(false));
+    let analysed = analyse(program.as_bytes(), &settings);
+    let crate::pipeline::Lowering::Valid(lowered) = &analysed.lowering else { panic!("{:?}", analysed.diagnostics) };
+    let toolpath = &lowered.toolpath;
+    let stock = Stock::from_settings(&BAR, &analysed.machine);
+    let (mut stepped, mut shaped) = (
+        removal::Removal::new(stock, &analysed.machine, toolpath.moves.len()),
+        removal::Removal::new(stock, &analysed.machine, toolpath.moves.len()),
+    );
+    let mut rapids_met = 0.0;
+    for (index, m) in toolpath.moves.iter().enumerate() {
+        let outcome = stepped.step_move(toolpath.start_of(index), m, index).expect("within the bound");
+        if m.motion == crate::toolpath::Motion::Rapid {
+            rapids_met += outcome.met;
+        }
+        shaped.shape_move(toolpath.start_of(index), m, index).expect("within the bound");
+    }
+    assert!(rapids_met > 0.0, "a rapid meets the bar");
+    stepped.end_thread().expect("within the bound");
+    shaped.end_thread().expect("within the bound");
+    assert_eq!(stepped.dexels.along_z, shaped.dexels.along_z);
+    assert_eq!(stepped.dexels.along_x, shaped.dexels.along_x);
+}

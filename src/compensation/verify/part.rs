@@ -343,7 +343,7 @@ type Probed = (Probe, Option<usize>, f64, usize);
 fn cut(toolpath: &CompactPath, stock: Stock, machine: &Machine, rays_for: usize) -> (Dexels, Option<usize>) {
     let mut removal = Removal::new(stock, machine, rays_for);
     for index in 0..toolpath.len() {
-        let stepped = toolpath.as_move(index).and_then(|m| removal.step_move(toolpath.start_of(index), &m, index));
+        let stepped = toolpath.as_move(index).and_then(|m| removal.shape_move(toolpath.start_of(index), &m, index));
         if stepped.is_none() {
             return (removal.dexels, Some(index));
         }
@@ -456,7 +456,7 @@ impl<'a> PieceCut<'a> {
         }
         let mut from = start;
         for piece in &self.pieces {
-            if self.removal.step_move(from, piece, index).is_none() {
+            if self.removal.shape_move(from, piece, index).is_none() {
                 self.stopped = Some(index);
                 return;
             }
