@@ -14,6 +14,7 @@
 use std::f64::consts::{PI, TAU};
 
 use nalgebra::{Matrix2, Vector2};
+use smallvec::SmallVec;
 
 /// A point in the toolpath frame: `x` is the radius, `z` the axial position, both in mm.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -113,15 +114,21 @@ pub fn arc_length(start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
     start.distance(centre) * sweep(start, end, centre, ccw)
 }
 
-/// The points where an arc is furthest along ±X and ±Z (inside its sweep), for limit checks.
-pub fn arc_extremes(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Vec<Xz> {
-    let radius = start.distance(centre);
+/// The points where an arc is furthest along ±X and ±Z (inside its sweep), for limit checks
+/// and bounding boxes.
+pub fn arc_extremes(start: Xz, end: Xz, centre: Xz, ccw: bool) -> SmallVec<[Xz; 4]> {
     let a0 = angle(start, centre);
-    let total = sweep(start, end, centre, ccw);
-    let mut out = Vec::new();
+    let total = sweep_from(a0, start, end, centre, ccw);
+    arc_extremes_from(centre, start.distance(centre), a0, total, ccw)
+}
+
+/// [`arc_extremes`] of the arc of `radius` about `centre` from the angle `a0`, turning by
+/// `total` (`sweep`), which callers that need them too have measured already.
+pub fn arc_extremes_from(centre: Xz, radius: f64, a0: f64, total: f64, ccw: bool) -> SmallVec<[Xz; 4]> {
+    let mut out = SmallVec::new();
     for k in 0..4 {
         let target = k as f64 * PI / 2.0;
-        let delta = if ccw { (target - a0).rem_euclid(TAU) } else { (a0 - target).rem_euclid(TAU) };
+        let delta = if ccw { rem_turn(target - a0) } else { rem_turn(a0 - target) };
         if delta > 0.0 && delta < total {
             out.push(on_circle(centre, radius, target));
         }

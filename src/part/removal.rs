@@ -7,7 +7,7 @@ use smallvec::SmallVec;
 
 use super::dexel::{Dexels, Edge, STOCK, Span, Spans, Taken};
 use super::stock::Stock;
-use super::sweep::Sweep;
+use super::sweep::{self, Sweep};
 use super::tool::{self, Orientation, Tool};
 use crate::machine::{ToolKind, ToolSettings};
 use crate::semantic::Machine;
@@ -149,7 +149,14 @@ impl<'a> Removal<'a> {
     /// The sweeps of move `index` (`m`, from `start`) with `tool`.
     /// None when a thread pass would stamp more forms than [`MAX_STAMPS_PER_MOVE`], or more
     /// than the work left.
-    fn sweeps(&mut self, tool: &Tool, start: Xz, m: &Move, index: usize) -> Option<SmallVec<[Sweep; 6]>> {
+    fn sweeps(
+        &mut self,
+        tool: &Tool,
+        start: Xz,
+        m: &Move,
+        index: usize,
+        turn: Option<(f64, f64)>,
+    ) -> Option<SmallVec<[Sweep; 6]>> {
         let mut out = SmallVec::new();
         let (c0, c1) = (tool.centre(start), tool.centre(m.end));
         if m.threading && m.motion == Motion::Feed {
@@ -179,10 +186,10 @@ impl<'a> Removal<'a> {
                 return Some(out);
             }
         }
-        if m.is_arc() {
+        if let Some(turn) = turn {
             let centre = tool.centre(m.centre);
             let ccw = m.motion == Motion::Ccw;
-            out.push(Sweep::body_along_arc(&tool.insert, (c0, c1, centre), ccw));
+            out.push(Sweep::body_along_arc(&tool.insert, (c0, c1, centre), ccw, turn));
         } else {
             out.push(Sweep::rounded(tool.placed(c0).chain(tool.placed(c1)), tool.nose));
         }
@@ -215,15 +222,19 @@ impl<'a> Removal<'a> {
             return Some(Outcome::default());
         }
         let tool = self.tool(m, start);
+        // An arc's nose centre's angles, for its box and its sweep.
+        let turn = m.is_arc().then(|| {
+            sweep::turn(tool.centre(start), tool.centre(m.end), tool.centre(m.centre), m.motion == Motion::Ccw)
+        });
         // Most moves of a long program run in air: a move whose tool's box meets no material
         // does nothing, and its sweeps are not built (a thread pass's count of leads is).
         if !m.threading {
-            let (lo, hi) = reach_of_move(&tool, start, m);
+            let (lo, hi) = reach_of_move(&tool, start, m, turn);
             if !self.dexels.may_meet(lo, hi) {
                 return Some(Outcome::default());
             }
         }
-        let sweeps = self.sweeps(&tool, start, m, index)?;
+        let sweeps = self.sweeps(&tool, start, m, index, turn)?;
         let planned: u64 = sweeps.iter().map(|s| self.dexels.rays_crossed(s)).sum();
         if self.visits + planned > MAX_RAY_VISITS {
             return None;
@@ -302,14 +313,15 @@ impl Removal<'_> {
 }
 
 /// A box that holds everything the tool of move `m` (from `start`) sweeps: its nose centre's
-/// path (with an arc's extremes) grown by the core's extent and the nose.
-fn reach_of_move(tool: &Tool, start: Xz, m: &Move) -> (Xz, Xz) {
+/// path (with an arc's extremes, from its `turn`) grown by the core's extent and the nose.
+fn reach_of_move(tool: &Tool, start: Xz, m: &Move, turn: Option<(f64, f64)>) -> (Xz, Xz) {
     let (c0, c1) = (tool.centre(start), tool.centre(m.end));
     let mut lo = Xz::new(c0.x.min(c1.x), c0.z.min(c1.z));
     let mut hi = Xz::new(c0.x.max(c1.x), c0.z.max(c1.z));
-    if m.is_arc() {
+    if let Some((a0, total)) = turn {
         let centre = tool.centre(m.centre);
-        for p in crate::geometry::arc_extremes(c0, c1, centre, m.motion == Motion::Ccw) {
+        let ccw = m.motion == Motion::Ccw;
+        for p in crate::geometry::arc_extremes_from(centre, c0.distance(centre), a0, total, ccw) {
             lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
             hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
         }

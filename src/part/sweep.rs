@@ -199,6 +199,13 @@ struct ArcEdge {
     turns: [Option<(f64, Xz)>; 2],
 }
 
+/// The start angle of the arc from `start` to `end` about `centre` and the angle it turns
+/// through, as [`Sweep::body_along_arc`] takes them.
+pub(crate) fn turn(start: Xz, end: Xz, centre: Xz, ccw: bool) -> (f64, f64) {
+    let a0 = crate::geometry::angle(start, centre);
+    (a0, crate::geometry::sweep_from(a0, start, end, centre, ccw))
+}
+
 /// The unit vectors of a family's rays: the coordinate a ray holds fixed, and its parameter.
 fn axes(along_z: bool) -> (Xz, Xz) {
     if along_z { (Xz::new(1.0, 0.0), Xz::new(0.0, 1.0)) } else { (Xz::new(0.0, 1.0), Xz::new(1.0, 0.0)) }
@@ -223,15 +230,21 @@ impl Sweep {
     /// A disk of `radius` moved along the arc from `start` to `end` about `centre`.
     #[cfg(test)]
     pub fn arc(start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64) -> Sweep {
-        Sweep::body_along_arc(&Insert::new([Xz::new(0.0, 0.0)], radius), (start, end, centre), ccw)
+        let insert = Insert::new([Xz::new(0.0, 0.0)], radius);
+        Sweep::body_along_arc(&insert, (start, end, centre), ccw, turn(start, end, centre, ccw))
     }
 
     /// `insert` (a rounded convex polygon about the nose centre), its nose centre moved
-    /// along the arc from `start` to `end` about `centre` ([`BodyAlongArc`]).
-    pub fn body_along_arc(insert: &Insert, (start, end, centre): (Xz, Xz, Xz), ccw: bool) -> Sweep {
+    /// along the arc from `start` to `end` about `centre` ([`BodyAlongArc`]); `turn` is the
+    /// arc's start angle and the angle it turns through (`geometry::angle`,
+    /// `geometry::sweep_from`), which the caller has measured for its own box.
+    pub fn body_along_arc(
+        insert: &Insert,
+        (start, end, centre): (Xz, Xz, Xz),
+        ccw: bool,
+        (a0, total): (f64, f64),
+    ) -> Sweep {
         let (core, radius) = (&insert.core, insert.radius);
-        let a0 = crate::geometry::angle(start, centre);
-        let total = crate::geometry::sweep_from(a0, start, end, centre, ccw);
         let a1 = if ccw { a0 + total } else { a0 - total };
         let moved = |p: Xz, v: Xz| Xz::new(p.x + v.x, p.z + v.z);
         // Whether the boundary with outward normal `n` leads all the way: the direction of
@@ -254,7 +267,7 @@ impl Sweep {
             .collect();
         let mut lo = Xz::new(start.x.min(end.x), start.z.min(end.z));
         let mut hi = Xz::new(start.x.max(end.x), start.z.max(end.z));
-        for p in crate::geometry::arc_extremes(start, end, centre, ccw) {
+        for p in crate::geometry::arc_extremes_from(centre, start.distance(centre), a0, total, ccw) {
             lo = Xz::new(lo.x.min(p.x), lo.z.min(p.z));
             hi = Xz::new(hi.x.max(p.x), hi.z.max(p.z));
         }
@@ -1024,7 +1037,8 @@ mod tests {
             let sign = if ccw { 1.0 } else { -1.0 };
             let on = |a: f64| crate::geometry::on_circle(centre, arc_radius, a);
             let (start, end) = (on(start_angle), on(start_angle + sign * total));
-            let sweep = Sweep::body_along_arc(&Insert::new(core.iter().copied(), nose), (start, end, centre), ccw);
+            let insert = Insert::new(core.iter().copied(), nose);
+            let sweep = Sweep::body_along_arc(&insert, (start, end, centre), ccw, turn(start, end, centre, ccw));
             let hull = convex_hull(core.clone());
             let count = 2000;
             let placements: Vec<SmallVec<[Xz; 8]>> = (0..=count)
