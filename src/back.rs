@@ -6,6 +6,8 @@
 //!   (`Codes`), every coordinate from the grid, the modal state of blocks written afresh.
 //! - `cycle.rs` writes a cycle's moves as explicit blocks, and `thread_pass.rs` a thread
 //!   pass as a single-pass cycle block where the control has no thread move.
+//! - `thread_lead.rs` writes a thread's lead at the digits the control takes, with the word
+//!   that holds it: for a kept cycle's lead word as for a written cycle's thread moves.
 //!
 //! The back end decides nothing about which blocks change: `expand` chooses the cycle calls
 //! to replace, and compensation (`compensation/rewrite.rs`) the cycles to expand and the
@@ -16,5 +18,6 @@
 mod cycle;
 pub(crate) mod grid;
 pub(crate) mod motion;
+pub(crate) mod thread_lead;
 
 pub(crate) use cycle::{CycleBlocks, carried_words, carry_traced, cycle_blocks};

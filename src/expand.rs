@@ -38,7 +38,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Validated<Lowered>) -> (
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(expansion.moves.start).shift;
-        match cycle_blocks(program, expansion, moves, start, compensation_before, shift, &style) {
+        match cycle_blocks(program, expansion, (moves, &[]), start, compensation_before, shift, &style) {
             CycleBlocks::Keep => {}
             CycleBlocks::Blocks(mut blocks) => {
                 let first = expansion.moves.start;

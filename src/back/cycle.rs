@@ -10,11 +10,12 @@ mod thread_pass;
 use crate::dialect::Address;
 use crate::printer::{NewBlock, NewWord, ProgramStyle};
 use crate::semantic::Expansion;
-use crate::syntax::{CodeLetter, Program, WordKind};
+use crate::syntax::{CodeLetter, Number, Program, WordKind};
 use crate::toolpath::{Compensation, Move, Xz};
 
 use super::grid::Grid;
 use super::motion::{Codes, GivenNext, Modal, MotionWriter};
+use super::thread_lead::WrittenLead;
 
 /// What a cycle call becomes.
 pub(crate) enum CycleBlocks {
@@ -35,11 +36,14 @@ pub(crate) const THREAD_MOVES: &str = "its thread moves have no plain-block form
 /// `shift` (`G50 X Z`), in the program's `style` (`ProgramStyle::infer`, read once per
 /// program: it reads every block). `expand` passes the cycle's own moves, the compensation
 /// pass its compensated ones. The block written for `moves[k]` is the `k`-th, so that
-/// [`carry_traced`] can put a profile block's words on the block of its move.
+/// [`carry_traced`] can put a profile block's words on the block of its move. `leads`, where
+/// it has an entry for a thread move of `moves` (same index), is the lead that move is
+/// written with (compensation's, for the slide to cut the programmed lead); otherwise a
+/// thread move's lead is its F.
 pub(crate) fn cycle_blocks(
     program: &Program<'_>,
     expansion: &Expansion,
-    moves: &[Move],
+    (moves, leads): (&[Move], &[Option<WrittenLead>]),
     start: Xz,
     compensation_before: Compensation,
     shift: Xz,
@@ -61,8 +65,10 @@ pub(crate) fn cycle_blocks(
     let mut start = start;
     let mut blocks: Vec<NewBlock> = moves
         .iter()
-        .map(|m| {
-            let block = cycle.block(start, m);
+        .enumerate()
+        .map(|(k, m)| {
+            let lead = leads.get(k).and_then(Option::as_ref).map(|lead| &lead.words[..]);
+            let block = cycle.block(start, m, lead);
             start = m.contour;
             block
         })
@@ -122,9 +128,10 @@ pub(super) struct CycleWriter<'s> {
 }
 
 impl CycleWriter<'_> {
-    /// The block of move `m` from `start`.
-    pub(super) fn block(&mut self, start: Xz, m: &Move) -> NewBlock {
-        self.writer.move_block(&mut self.modal, &self.grid, self.style.radius_arcs, start, m);
+    /// The block of move `m` from `start`, a thread move's lead written with `lead` where
+    /// given.
+    pub(super) fn block(&mut self, start: Xz, m: &Move, lead: Option<&[(Address, Number)]>) -> NewBlock {
+        self.writer.move_block(&mut self.modal, &self.grid, self.style.radius_arcs, (start, m), lead);
         NewBlock::new(self.writer.take_words())
     }
 }

@@ -256,8 +256,16 @@ impl<W: WordSink> MotionWriter<W> {
     /// `grid`, as one block after the blocks `modal` describes: the compensation code and
     /// the motion code where they change (an arc's always), absolute `X Z`, an arc's words in
     /// the radius form where `radius_arcs` prefers it and it holds the arc (`Grid::arc_words`),
-    /// F and S where they change. A dwell is its own block (`dwell`).
-    pub(crate) fn move_block(&mut self, modal: &mut Modal, grid: &Grid, radius_arcs: bool, start: Xz, m: &Move) {
+    /// F and S where they change. A dwell is its own block (`dwell`). A thread move with
+    /// `lead` is written with those lead words (`back::thread_lead`) instead of its F.
+    pub(crate) fn move_block(
+        &mut self,
+        modal: &mut Modal,
+        grid: &Grid,
+        radius_arcs: bool,
+        (start, m): (Xz, &Move),
+        lead: Option<&[(Address, Number)]>,
+    ) {
         if m.motion == Motion::Dwell {
             self.dwell(m.t_end - m.t_start);
             return;
@@ -291,13 +299,34 @@ impl<W: WordSink> MotionWriter<W> {
                 }
             }
         }
-        if m.motion != Motion::Rapid && modal.feed != Some(m.f_word) && m.f_word > 0.0 {
-            self.out.number(Address::F, feed_number(m.f_word));
-            modal.feed = Some(m.f_word);
+        match lead.filter(|_| m.threading) {
+            Some(words) => self.lead(modal, words),
+            None if m.motion != Motion::Rapid && modal.feed != Some(m.f_word) && m.f_word > 0.0 => {
+                self.out.number(Address::F, feed_number(m.f_word));
+                modal.feed = Some(m.f_word);
+            }
+            None => {}
         }
         if m.s_word > 0.0 && modal.speed != Some(m.s_word) {
             self.out.number(Address::S, feed_number(m.s_word));
             modal.speed = Some(m.s_word);
+        }
+    }
+
+    /// A thread move's lead `words`. An `F` lead is the modal F, written where it changes; any
+    /// other lead word (the precise `E`) is written on every thread move, as the thread move
+    /// reads it from its own block only and otherwise runs at the modal F
+    /// (`semantic/motion.rs`).
+    fn lead(&mut self, modal: &mut Modal, words: &[(Address, Number)]) {
+        match words {
+            [(Address::F, number)] => {
+                let value = number.to_f64();
+                if modal.feed != Some(value) {
+                    self.out.number(Address::F, *number);
+                    modal.feed = Some(value);
+                }
+            }
+            _ => words.iter().for_each(|&(address, number)| self.out.number(address, number)),
         }
     }
 

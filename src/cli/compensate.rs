@@ -281,11 +281,9 @@ fn cycle_lines(
                 format!("kept; its profile (lines {first}-{last}) is compensated in place")
             }
             CycleForm::WordsEdited { lead: None } => "kept; its words carry the final pass's correction".to_string(),
-            CycleForm::WordsEdited { lead: Some(lead) } => format!(
-                "kept; its words carry the final pass's correction, and its lead `{}` is written `{}` ({:+} ppm), \
-                 for the slide to cut the programmed lead",
-                lead.from, lead.to, lead.change_ppm
-            ),
+            CycleForm::WordsEdited { lead: Some(lead) } => {
+                format!("kept; its words carry the final pass's correction, and its lead {}", lead_said(lead))
+            }
             CycleForm::RoughsOriginal => {
                 "kept; it roughs the profile as written, its finishing cycle runs a compensated copy".to_string()
             }
@@ -298,11 +296,29 @@ fn cycle_lines(
                      now names; the roughing keeps the profile as written ({reason})"
                 )
             }
-            CycleForm::Expanded { reason } => format!("expanded: {reason}"),
+            CycleForm::Expanded { reason, lead: None } => format!("expanded: {reason}"),
+            CycleForm::Expanded { reason, lead: Some(lead) } => {
+                format!("expanded: {reason}; its thread moves' lead {}", lead_said(lead))
+            }
         };
         out.extend_from_slice(format!("compensate: {name}: line {call} `{text}`: {said}\n").as_bytes());
     }
     out
+}
+
+/// A thread lead written for the slide to cut the programmed one, and where no word of the
+/// dialect holds it, how far the lead written runs off over the thread.
+fn lead_said(lead: &turnpass::compensation::LeadChange) -> String {
+    let mut said = format!(
+        "`{}` is written `{}` ({:+} ppm), for the slide to cut the programmed lead",
+        lead.from, lead.to, lead.change_ppm
+    );
+    if let Some(mm) = lead.unheld_mm {
+        said.push_str(&format!(
+            ", short of it by {mm:.4} mm over the thread: no lead word of this dialect takes the digits it needs"
+        ));
+    }
+    said
 }
 
 /// What a refused program is compensated again with, to find what would meet the bound.
@@ -762,7 +778,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             }
         }
         for cycle in &mut outcome.cycles {
-            if let CycleForm::Expanded { reason: why } | CycleForm::ProfileCopied { reason: why, .. } = &mut cycle.form
+            if let CycleForm::Expanded { reason: why, .. } | CycleForm::ProfileCopied { reason: why, .. } =
+                &mut cycle.form
                 && why == constant
             {
                 why.clone_from(reason);

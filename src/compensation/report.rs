@@ -193,7 +193,10 @@ fn cycle_reports(input: &ReportInput<'_>) -> Vec<CycleReport> {
                     copy = Some([first.clone(), last.clone()]);
                     ("profile_copied", profile.iter().map(|&b| line(b)).collect(), Some(reason.clone()))
                 }
-                CycleForm::Expanded { reason } => ("expanded", Vec::new(), Some(reason.clone())),
+                CycleForm::Expanded { reason, lead: change } => {
+                    lead.clone_from(change);
+                    ("expanded", Vec::new(), Some(reason.clone()))
+                }
             };
             CycleReport { line: line(c.block), block: text, outcome, profile_lines, copy, reason, lead }
         })

@@ -145,8 +145,14 @@ pub enum CycleForm {
         #[serde(skip)]
         reason: String,
     },
-    /// The call is written out as its compensated moves.
-    Expanded { reason: String },
+    /// The call is written out as its compensated moves; `lead`, where it changes, the lead
+    /// its thread moves are written with for the slide to cut the programmed one (the final
+    /// pass's, `cycles::expanded_leads`).
+    Expanded {
+        reason: String,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        lead: Option<cycles::LeadChange>,
+    },
 }
 
 /// Why a cycle is expanded when profiles are not compensated in place (the caller that
@@ -303,7 +309,8 @@ pub fn finish(
         }
     }
     let style = motion.writer.out.style();
-    let expanded = cycles::write(program, lowered, plans, &chosen, style, &mut out.edits, &mut out.diagnostics);
+    let (expanded, mut expanded_leads) =
+        cycles::write(program, lowered, (plans, model), &chosen, style, &mut out.edits, &mut out.diagnostics);
     // The first expansion of each call block (a call that runs several times has several).
     let mut first_expansion: HashMap<usize, usize> = HashMap::new();
     for (k, e) in lowered.expansions.iter().enumerate() {
@@ -347,7 +354,7 @@ pub fn finish(
                 "its moves change, and no finishing cycle runs a profile of it (a single cycle, a roughing cycle \
                  with no finishing cycle, a finishing cycle whose own moves cut)"
             };
-            CycleForm::Expanded { reason: reason.to_string() }
+            CycleForm::Expanded { reason: reason.to_string(), lead: expanded_leads.remove(&block) }
         } else {
             CycleForm::Kept
         };

@@ -160,14 +160,22 @@ struct LeadCase {
     model: String,
     /// Lines the written program holds byte-identical.
     kept: Vec<String>,
+    /// More arguments of `compensate` (`--expand-cycles`).
+    #[serde(default)]
+    args: Vec<String>,
+    /// Where the thread cycle is written out as thread moves: the lead word every written
+    /// thread move (`G32`) carries, which the report gives as the cycle's lead.
+    #[serde(default)]
+    expanded_lead: Option<String>,
 }
 
 /// `tests/cases/compensate/cycles/leads.toml`: on a Z slide with a scale error the thread's
 /// lead errs, and its flanks on the part lie off by more than the bound where the thread
 /// ends. `verify` of the program against itself says so; `compensate` keeps the thread cycle
-/// and writes its lead word so that the slide cuts the programmed lead, says which lead
-/// changed and by how much, and `verify` passes what it wrote, its lead error a fifth of
-/// the uncorrected one or less.
+/// and writes its lead word so that the slide cuts the programmed lead (or, where it writes
+/// the cycle out, the lead word of every thread move it writes), says which lead changed and
+/// by how much, and `verify` passes what it wrote, its lead error a fifth of the uncorrected
+/// one or less.
 #[test]
 fn a_scale_error_along_the_thread_is_a_lead_error_compensate_corrects() {
     let list = std::fs::read_to_string(repo().join("tests/cases/compensate/cycles/leads.toml")).unwrap();
@@ -186,9 +194,10 @@ fn a_scale_error_along_the_thread_is_a_lead_error_compensate_corrects() {
         let out = dir.path().join(format!("{}.nc", case.name));
         let report = dir.path().join(format!("{}.json", case.name));
         let (out_text, report_text) = (out.to_string_lossy(), report.to_string_lossy());
-        let args = ["compensate", &case.program, "--model", &case.model, "-o", &out_text];
-        let (code, _, compensated) =
-            turnpass(&[&args[..], &["--report", "json", "--report-file", &report_text]].concat());
+        let mut args = vec!["compensate", &case.program, "--model", &case.model, "-o", &out_text];
+        args.extend(["--report", "json", "--report-file", &report_text]);
+        args.extend(case.args.iter().map(String::as_str));
+        let (code, _, compensated) = turnpass(&args);
         assert_eq!(code, 0, "{}: compensate refused\n{compensated}", case.name);
         let written = std::fs::read_to_string(&out).unwrap();
         for kept in &case.kept {
@@ -199,6 +208,16 @@ fn a_scale_error_along_the_thread_is_a_lead_error_compensate_corrects() {
         assert_eq!(code, 0, "{}: verify failed what compensate wrote\n{json}{verify_stderr}", case.name);
         let verified: serde_json::Value = serde_json::from_str(&json).unwrap();
         let reported: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        if let Some(word) = &case.expanded_lead {
+            let cycle = &reported["report"]["cycles"][0];
+            assert_eq!(cycle["outcome"], "expanded", "{}: {cycle}", case.name);
+            assert_eq!(cycle["lead"]["to"].as_str(), Some(word.as_str()), "{}: {cycle}", case.name);
+            let thread_moves: Vec<&str> = written.lines().filter(|l| l.split(' ').any(|w| w == "G32")).collect();
+            assert!(!thread_moves.is_empty(), "{}: no thread move written\n{written}", case.name);
+            for line in thread_moves {
+                assert!(line.split(' ').any(|w| w == word), "{}: `{line}` is not cut at {word}\n{written}", case.name);
+            }
+        }
         let lead_after = verified["deviation"]["lead"]["after_mm"].as_f64().unwrap();
         assert!(lead_after <= lead_before / 5.0, "{}: the lead is not corrected: {verified}", case.name);
         let (_, corrected, _) = turnpass(&["verify", &case.program, &out_text, "--model", &case.model]);

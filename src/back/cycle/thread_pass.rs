@@ -93,7 +93,7 @@ pub(super) fn write(
         let m = &moves[i];
         let begins_pass = m.motion == Motion::Rapid && moves.get(i + 1).is_some_and(|n| n.threading);
         if !m.threading && !begins_pass {
-            blocks.push(cycle.block(at, m));
+            blocks.push(cycle.block(at, m, None));
             at = m.contour;
             i += 1;
             continue;

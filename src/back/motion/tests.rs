@@ -98,14 +98,14 @@ fn a_dwell_and_the_modal_words_of_written_blocks() {
         let dwell = Move { motion: Motion::Dwell, ..line };
         let number = |address, mantissa, scale| NewWord::Number(address, Number::new(mantissa, scale, true));
         let code = |code| NewWord::Code(CodeLetter::G, Code::whole(code));
-        writer.move_block(&mut modal, &grid, false, Xz::new(25.0, 0.0), &line);
+        writer.move_block(&mut modal, &grid, false, (Xz::new(25.0, 0.0), &line), None);
         let expected =
             [code(1), number(Address::X, 40_000, 3), number(Address::Z, -5_000, 3), number(Address::F, 2, 1)];
         assert_eq!(writer.take_words(), expected, "{dialect}");
-        writer.move_block(&mut modal, &grid, false, Xz::new(20.0, -5.0), &dwell);
+        writer.move_block(&mut modal, &grid, false, (Xz::new(20.0, -5.0), &dwell), None);
         assert_eq!(writer.take_words(), [code(4), number(seconds, 1_500, 3)], "{dialect}");
         // The same move again: no code, F or S to write.
-        writer.move_block(&mut modal, &grid, false, Xz::new(20.0, -5.0), &line);
+        writer.move_block(&mut modal, &grid, false, (Xz::new(20.0, -5.0), &line), None);
         assert_eq!(writer.take_words(), expected[1..3], "{dialect}");
         let after = ModalAfter { motion: Some(Motion::Rapid), f_word: 0.3, s_word: 1000.0 };
         // A next block that writes its own motion code and F needs neither put back.

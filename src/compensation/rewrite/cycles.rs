@@ -19,6 +19,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::ops::Range;
 
 use crate::back::motion::Codes;
+use crate::back::thread_lead::{ProgrammedLead, WrittenLead, spelled, written_lead};
 use crate::back::{CycleBlocks, carried_words, carry_traced, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::expand;
@@ -252,15 +253,17 @@ fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Co
 }
 
 /// Write the chosen cycles into `edits`; problems go to `diagnostics`.
+/// With the written call blocks, the lead changes of those whose thread moves are written
+/// with a corrected lead (`expanded_leads`), by call block.
 pub(super) fn write(
     program: &Program<'_>,
     lowered: &Lowered,
-    plans: &KeptPlans,
+    (plans, model): (&KeptPlans, &crate::error_model::ErrorModel),
     chosen: &[bool],
     style: &ProgramStyle,
     edits: &mut Edits,
     diagnostics: &mut Vec<Diagnostic>,
-) -> Vec<usize> {
+) -> (Vec<usize>, HashMap<usize, LeadChange>) {
     let calls: HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
     // The profile blocks whose words a written cycle carries (`back::carry_traced`).
     let traced: HashSet<usize> = lowered
@@ -275,6 +278,7 @@ pub(super) fn write(
     let mut by_block: BTreeMap<usize, Vec<NewBlock>> = BTreeMap::new();
     let mut refused = HashSet::new();
     let mut written = Vec::new();
+    let mut lead_changes = HashMap::new();
     for (expansion, _) in lowered.expansions.iter().zip(chosen).filter(|(_, chosen)| **chosen) {
         let range = expansion.moves.clone();
         let (Some(moves), Some(cycle_plans)) = (lowered.toolpath.moves.get(range.clone()), plans.get(range.clone()))
@@ -289,23 +293,25 @@ pub(super) fn write(
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(range.start).shift;
         let (compensated, firsts) = compensated_moves(moves, cycle_plans, compensation_before);
-        let blocks = match cycle_blocks(program, expansion, &compensated, start, compensation_before, shift, style) {
-            CycleBlocks::Blocks(mut blocks) => {
-                let at = |m: usize| firsts.get(m - range.start).copied().unwrap_or(compensated.len());
-                carry_traced(
-                    program,
-                    &mut blocks,
-                    compensated.len(),
-                    expansion.traced.iter().map(|&(m, b)| (at(m), b)),
-                );
-                with_call_words(program, expansion.block, blocks)
-            }
-            CycleBlocks::Keep | CycleBlocks::NotExpandable(_) => {
-                let span = program.block(expansion.block).span;
-                diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
-                continue;
-            }
-        };
+        let (leads, lead_change) = expanded_leads(program, lowered, expansion, (&firsts, compensated.len()), model);
+        let blocks =
+            match cycle_blocks(program, expansion, (&compensated, &leads), start, compensation_before, shift, style) {
+                CycleBlocks::Blocks(mut blocks) => {
+                    let at = |m: usize| firsts.get(m - range.start).copied().unwrap_or(compensated.len());
+                    carry_traced(
+                        program,
+                        &mut blocks,
+                        compensated.len(),
+                        expansion.traced.iter().map(|&(m, b)| (at(m), b)),
+                    );
+                    with_call_words(program, expansion.block, blocks)
+                }
+                CycleBlocks::Keep | CycleBlocks::NotExpandable(_) => {
+                    let span = program.block(expansion.block).span;
+                    diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+                    continue;
+                }
+            };
         match by_block.get(&expansion.block) {
             Some(previous) if *previous != blocks => {
                 if refused.insert(expansion.block) {
@@ -322,6 +328,9 @@ pub(super) fn write(
             None => {
                 by_block.insert(expansion.block, blocks);
                 written.push(expansion.block);
+                if let Some(change) = lead_change {
+                    lead_changes.insert(expansion.block, change);
+                }
                 delete_consumed(program, expansion, (&calls, &traced), edits, diagnostics);
             }
         }
@@ -329,7 +338,69 @@ pub(super) fn write(
     for (block, blocks) in by_block {
         edits.replace(block, blocks);
     }
-    written
+    (written, lead_changes)
+}
+
+/// The leads the thread moves of a cycle written out take for the slide to cut the
+/// programmed lead on `model`, per compensated move (`firsts`: the first compensated move of
+/// each of the cycle's moves, of `count` in all), and the change of the final pass's lead
+/// for the report; `None` for a move whose lead stays as the move gives it. Each pass's lead
+/// is its first thread move's (`lead_ratio`, written by `back::thread_lead` as a kept cycle's
+/// is, the programmed lead the move's F); the thread moves after it in the pass (a chamfer
+/// out) go on with it, as the pass cuts one helix.
+fn expanded_leads(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    expansion: &Expansion,
+    (firsts, count): (&[usize], usize),
+    model: &crate::error_model::ErrorModel,
+) -> (Vec<Option<WrittenLead>>, Option<LeadChange>) {
+    let table = program.config().tables().thread_lead;
+    let range = expansion.moves.clone();
+    let mut leads: Vec<Option<WrittenLead>> = vec![None; count];
+    let mut pass: Option<WrittenLead> = None;
+    let mut last: Option<(f64, WrittenLead)> = None;
+    for k in range.clone() {
+        let Some(m) = lowered.toolpath.moves.get(k) else { break };
+        if !m.threading {
+            pass = None;
+            continue;
+        }
+        let begins_pass = k == range.start || lowered.toolpath.moves.get(k - 1).is_some_and(|before| !before.threading);
+        if begins_pass {
+            let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(k));
+            let programmed = ProgrammedLead { address: crate::dialect::Address::F, written: m.f_word, count: None };
+            let thread_mm = lowered.toolpath.start_of(k).distance(m.end);
+            pass = lead_ratio(lowered, k, model)
+                .and_then(|ratio| written_lead(&table, &grid, programmed, m.f_word * ratio, thread_mm))
+                .filter(|lead| lead.lead != m.f_word || lead.unheld_mm.is_some());
+            last = pass.clone().map(|lead| (m.f_word, lead));
+        }
+        let offset = k - range.start;
+        let end = firsts.get(offset + 1).copied().unwrap_or(count);
+        for slot in leads.iter_mut().take(end).skip(firsts.get(offset).copied().unwrap_or(count)) {
+            slot.clone_from(&pass);
+        }
+    }
+    let change = last.map(|(old, lead)| {
+        let from = match program.block(expansion.block).statement {
+            crate::syntax::Statement::Cycle(id) | crate::syntax::Statement::LapCall(id) => {
+                program.command(id).param(crate::dialect::Role::Lead)
+            }
+            _ => None,
+        };
+        let from = match from {
+            Some(id) => String::from_utf8_lossy(program.text(program.word(id).span)).into_owned(),
+            None => spelled(&[(crate::dialect::Address::F, crate::back::motion::feed_number(old))]),
+        };
+        LeadChange {
+            from,
+            to: spelled(&lead.words),
+            change_ppm: ((lead.lead / old - 1.0) * 1e6 * 10.0).round() / 10.0,
+            unheld_mm: lead.unheld_mm,
+        }
+    });
+    (leads, change)
 }
 
 /// The call block's sequence name, comments and M codes on the first written block, and
@@ -508,7 +579,8 @@ pub(super) fn profile_copy(
         first.checked_sub(1).and_then(|k| lowered.toolpath.moves.get(k)).map_or(Compensation::Off, |m| m.compensation);
     let shift = lowered.coordinates_at(first).shift;
     let (compensated, firsts) = compensated_moves(moves, copy_plans, compensation_before);
-    let mut blocks = match cycle_blocks(program, finish, &compensated, start, compensation_before, shift, style) {
+    let mut blocks = match cycle_blocks(program, finish, (&compensated, &[]), start, compensation_before, shift, style)
+    {
         CycleBlocks::Blocks(blocks) if !blocks.is_empty() => blocks,
         _ => return Err("its finishing pass has no plain-block form"),
     };
@@ -591,21 +663,18 @@ pub struct LeadChange {
     pub to: String,
     /// The lead the words give now against the one they gave, parts per million.
     pub change_ppm: f64,
+    /// Where no word of the dialect holds the lead the slide needs: how far the lead written
+    /// runs from it over the thread, mm (`back::thread_lead`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unheld_mm: Option<f64>,
 }
 
 /// The lead words of `block`, a thread cycle whose final pass is move `pass` or a thread
-/// move (`G32`) that is move `pass`, for the slide
-/// to cut the programmed lead on `model`: the command advances by the written lead every
-/// spindle turn, so the lead written is the programmed one times the nominal travel along
-/// the thread's axis over the travel the model predicts for it (the model's mean slope over
-/// the pass, from its start to its end at the times it runs: a slide 100 ppm long gets a
-/// lead 100 ppm short). The slope is the model's, not the written end words': those are
-/// rounded to the increment, which over a short thread would be tens of ppm. Written at the digits the
-/// control takes for a lead (`[thread_lead]` in `grammar/`): the lead word's, or where
-/// rounding to them leaves more than half an increment over the thread's turns, the
-/// dialect's precise-lead word (Fanuc-compatible `E`) or the lead of several threads over
-/// their count (OSP `F` over `J`). `None` where the lead word is not a plain number of this
-/// block or the lead written does not change.
+/// move (`G32`) that is move `pass`, for the slide to cut the programmed lead on `model`:
+/// the command advances by the written lead every spindle turn, so the lead written is the
+/// programmed one times `lead_ratio`. Written by `back::thread_lead` at the digits the
+/// control takes for a lead, with the word that holds it. `None` where the lead word is not
+/// a plain number of this block or the lead written does not change.
 pub(super) fn thread_lead(
     program: &Program<'_>,
     lowered: &Lowered,
@@ -614,7 +683,7 @@ pub(super) fn thread_lead(
     model: &crate::error_model::ErrorModel,
 ) -> Option<(LeadWords, LeadChange)> {
     use crate::dialect::{Address, Role};
-    use crate::syntax::{Number, Statement};
+    use crate::syntax::Statement;
     let block = program.block(block);
     let table = program.config().tables().thread_lead;
     // The lead word: a cycle's lead parameter, or a thread move's own `F` (or precise-lead
@@ -649,6 +718,42 @@ pub(super) fn thread_lead(
         Some(_) => return None,
         None => 1.0,
     };
+    let ratio = lead_ratio(lowered, pass, model)?;
+    let mark = lowered.coordinates_at(pass);
+    let grid = crate::back::grid::Grid::new(&mark);
+    let written = number.to_f64();
+    let programmed = ProgrammedLead { address, written, count: count_word.map(|_| count) };
+    let thread_mm = lowered.toolpath.start_of(pass).distance(lowered.toolpath.moves.get(pass)?.end);
+    let lead = written_lead(&table, &grid, programmed, written / count * ratio, thread_mm)?;
+    let (words, unheld_mm, lead) = (lead.words, lead.unheld_mm, lead.lead);
+    let old = written / count;
+    if lead == old && unheld_mm.is_none() {
+        return None;
+    }
+    let from_text = {
+        let mut text = String::from_utf8_lossy(program.text(program.word(lead_id).span)).into_owned();
+        if let Some(w) = count_word {
+            text.push(' ');
+            text.push_str(&String::from_utf8_lossy(program.text(program.word(w).span)));
+        }
+        text
+    };
+    let change = LeadChange {
+        from: from_text,
+        to: spelled(&words),
+        change_ppm: ((lead / old - 1.0) * 1e6 * 10.0).round() / 10.0,
+        unheld_mm,
+    };
+    Some((LeadWords { at, words }, change))
+}
+
+/// The programmed lead of thread move `pass` over the lead the slide needs to cut it on
+/// `model`: the nominal travel along the thread's axis over the travel the model predicts
+/// for it (the model's mean slope over the pass, from its start to its end at the times it
+/// runs: a slide 100 ppm long gets a lead 100 ppm short). The slope is the model's, not the
+/// written end words': those are rounded to the increment, which over a short thread would
+/// be tens of ppm.
+pub(super) fn lead_ratio(lowered: &Lowered, pass: usize, model: &crate::error_model::ErrorModel) -> Option<f64> {
     let m = lowered.toolpath.moves.get(pass)?;
     let (from, to) = (lowered.toolpath.start_of(pass), m.end);
     let along_z = (to.z - from.z).abs() >= (to.x - from.x).abs();
@@ -663,71 +768,5 @@ pub(super) fn thread_lead(
         Xz::new(at.x + d.x, at.z + d.z)
     };
     let ratio = (axis(to) - axis(from)) / (axis(actual(to, m.t_end)) - axis(actual(from, m.t_start)));
-    if !(ratio.is_finite() && ratio > 0.0) {
-        return None;
-    }
-    let mark = lowered.coordinates_at(pass);
-    let grid = crate::back::grid::Grid::new(&mark);
-    let written = number.to_f64();
-    let exact = written * ratio;
-    let lead_mm = mark.frame.mm(written / count);
-    let turns = if lead_mm > 0.0 { from.distance(to) / lead_mm } else { return None };
-    let half_increment = grid.length_mm(1) / 2.0;
-    let round = |value: f64, places: u8| -> Number {
-        let mut mantissa = (value * 10f64.powi(i32::from(places))).round() as i64;
-        let mut scale = places;
-        while scale > 0 && mantissa % 10 == 0 {
-            mantissa /= 10;
-            scale -= 1;
-        }
-        Number::new(mantissa, scale, true)
-    };
-    // The lead a word gives, per turn, and how far its error runs over the thread's turns.
-    let drift = |lead: f64| mark.frame.mm((lead - exact / count).abs()) * turns;
-    // A lead written with the precise-lead word already takes that word's digits.
-    let beyond = match table.precise {
-        Some(precise) if precise.address == address => precise.decimals_beyond_increment,
-        _ => table.decimals_beyond_increment,
-    };
-    let places = grid.places.saturating_add(beyond);
-    let plain = round(exact, places);
-    let mut words: smallvec::SmallVec<[(crate::dialect::Address, Number); 2]> = smallvec::smallvec![(address, plain)];
-    let mut lead = plain.to_f64() / count;
-    if drift(lead) > half_increment {
-        if let Some(precise) = table.precise.filter(|_| count_word.is_none()) {
-            let value = round(exact, grid.places.saturating_add(precise.decimals_beyond_increment));
-            words = smallvec::smallvec![(precise.address, value)];
-            lead = value.to_f64();
-        } else if let Some(count_address) = table.count.filter(|_| count_word.is_none()) {
-            let threads = turns.floor().max(1.0);
-            let value = round(exact * threads, places);
-            words = smallvec::smallvec![(address, value), (count_address, Number::new(threads as i64, 0, false))];
-            lead = value.to_f64() / threads;
-        }
-    }
-    let old = written / count;
-    if lead == old {
-        return None;
-    }
-    let spelled = |words: &[(crate::dialect::Address, Number)]| {
-        words
-            .iter()
-            .map(|(a, n)| format!("{}{}", a.name(), crate::syntax::spelling::plain(*n)))
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
-    let from_text = {
-        let mut text = String::from_utf8_lossy(program.text(program.word(lead_id).span)).into_owned();
-        if let Some(w) = count_word {
-            text.push(' ');
-            text.push_str(&String::from_utf8_lossy(program.text(program.word(w).span)));
-        }
-        text
-    };
-    let change = LeadChange {
-        from: from_text,
-        to: spelled(&words),
-        change_ppm: ((lead / old - 1.0) * 1e6 * 10.0).round() / 10.0,
-    };
-    Some((LeadWords { at, words }, change))
+    Some(ratio).filter(|r| r.is_finite() && *r > 0.0)
 }
