@@ -59,7 +59,12 @@ pub(crate) fn cycle_blocks(
     let grid = Grid::of(expansion.frame, shift);
     let mut cycle = CycleWriter { writer: MotionWriter::new(codes, Vec::new()), modal, grid, style };
     if !codes.has_thread_move() && moves.iter().any(|m| m.threading) {
-        // No thread move in this dialect: passes become single-pass cycle blocks.
+        // No thread move in this dialect: passes become single-pass cycle blocks, which copy
+        // the call's lead or write the moves' F; a lead given for them is not written, so
+        // the cycle is left as it is rather than cut at a lead other than the one asked.
+        if leads.iter().any(Option::is_some) {
+            return CycleBlocks::NotExpandable(THREAD_MOVES);
+        }
         return thread_pass::write(program, expansion, moves, start, &mut cycle);
     }
     let mut start = start;
