@@ -67,6 +67,9 @@ pub struct Removal<'a> {
     machine: &'a Machine,
     /// Each tool's shape, made once: a long program steps through millions of moves.
     tools: Vec<((u16, u16, bool), Rc<Tool>)>,
+    /// The shape the last move's tool, offset and threading took (one of `tools`): most
+    /// moves run with the tool of the move before.
+    last_tool: Option<((u16, u16, bool), Rc<Tool>)>,
     /// The thread pass under way (see [`ThreadPass`]).
     thread: Option<ThreadPass>,
     pub visits: u64,
@@ -95,7 +98,7 @@ impl<'a> Removal<'a> {
             }
             spans
         });
-        Removal { dexels, stock, machine, tools: Vec::new(), thread: None, visits: 0 }
+        Removal { dexels, stock, machine, tools: Vec::new(), last_tool: None, thread: None, visits: 0 }
     }
 
     /// The shape of the tool of move `m` from `start`; a tool whose side the table does not
@@ -104,10 +107,15 @@ impl<'a> Removal<'a> {
         // A tool the table gives without a kind is taken as a threading insert where it cuts
         // a thread pass: each stamp leaves the insert's form, and a turning insert's core
         // (a slot of no width for a tip along an axis and no nose) leaves none.
+        let asked = (m.tool, m.offset, m.threading);
+        if let Some((_, tool)) = self.last_tool.as_ref().filter(|(k, _)| *k == asked) {
+            return Rc::clone(tool);
+        }
         let entry = tool::entry(self.machine, m.tool, m.offset);
         let threading = m.threading && entry.is_some_and(|t| t.kind.is_none());
         let key = (m.tool, m.offset, threading);
         if let Some((_, tool)) = self.tools.iter().find(|(k, _)| *k == key) {
+            self.last_tool = Some((asked, Rc::clone(tool)));
             return Rc::clone(tool);
         }
         let as_threading = entry.map(|t| ToolSettings { kind: Some(ToolKind::Threading), ..*t });
@@ -118,6 +126,7 @@ impl<'a> Removal<'a> {
         // A rapid before the first cut does not decide an unknown side.
         if m.motion != Motion::Rapid || Tool::knows_its_side(settings) {
             self.tools.push((key, Rc::clone(&shape)));
+            self.last_tool = Some((asked, Rc::clone(&shape)));
         }
         shape
     }

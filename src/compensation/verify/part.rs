@@ -415,6 +415,22 @@ impl<'a> PieceCut<'a> {
     /// Cut the pieces of the move under way.
     fn flush(&mut self) {
         let Some(index) = self.points.first().map(|p| p.move_index) else { return };
+        let Some(m) = self.toolpath.as_move(index) else {
+            self.points.clear();
+            return;
+        };
+        if m.motion == Motion::Rapid {
+            // A rapid removes nothing (`Removal::shape_move`): it ends the thread pass under
+            // way, and the next piece starts at its last point.
+            if let Some(p) = self.points.last() {
+                self.last = (p.predicted, p.nominal, p.move_index, p.param);
+            }
+            self.points.clear();
+            if self.removal.end_thread().is_none() {
+                self.stopped = Some(index);
+            }
+            return;
+        }
         let start = self.last.0;
         self.pieces.clear();
         // Each piece's length as programmed, for a thread pass's lead.
@@ -424,11 +440,12 @@ impl<'a> PieceCut<'a> {
             let from_nominal = self.last.1;
             if let Some(piece) = piece(self.toolpath, &mut self.last, &point) {
                 self.pieces.push(piece);
-                programmed.push(from_nominal.distance(point.nominal));
+                if m.threading {
+                    programmed.push(from_nominal.distance(point.nominal));
+                }
             }
         }
         self.points.clear();
-        let Some(m) = self.toolpath.as_move(index) else { return };
         if m.threading {
             // A piece with no programmed stretch (the model's step at a corner) runs at the
             // whole move's lead on the model.
