@@ -657,6 +657,8 @@ pub enum DiagnosticKind {
     },
     /// A thread lead of zero or less.
     ThreadLeadNotPositive,
+    /// A thread cycle whose thread has no length along its axis.
+    ThreadOfNoLength,
     /// `G76 P(m)(r)(a)` digits, or a Haas `P`/`A`, outside what the control takes.
     ThreadParametersInvalid {
         word: String,

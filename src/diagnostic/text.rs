@@ -991,6 +991,16 @@ impl DiagnosticKind {
                 label: "lead".into(),
                 hint: Some("give the lead as a positive `F` (or `E`)".into()),
             },
+            ThreadOfNoLength => Words {
+                code: "thread-of-no-length",
+                message: "the thread has no length along its axis: each pass plunges to its depth and backs out \
+                 at the thread's feed, and no thread is cut"
+                    .into(),
+                label: "thread of no length".into(),
+                hint: Some("give the thread's end along its axis (`Z` or `W` for a thread along Z, `X` or `U` \
+                 on a face)"
+                    .into()),
+            },
             ThreadParametersInvalid { word } => Words {
                 code: "thread-parameters-invalid",
                 message: format!("`{word}` is not a threading parameter this control takes").into(),

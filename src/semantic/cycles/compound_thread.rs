@@ -46,6 +46,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let frame = interp.modal.frame;
     let end = interp.cycle_end(command, from);
     let length = (axes.along(end) - axes.along(from)).abs();
+    thread_pass::warn_if_no_length(interp, length, span);
     let taper = thread_pass::taper(interp, command, length);
     let (modal, lead_mm) = thread_pass::thread_modal(interp, command);
     let change = thread_pass::lead_change(interp, command);

@@ -229,6 +229,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let axes = interp.axis_target(&words);
     let target = axes.target.unwrap_or(start);
     let end = Xz::new(if axes.x_given { target.x } else { start.x }, if axes.z_given { target.z } else { start.z });
+    super::thread_pass::warn_if_no_length(interp, (end.z - start.z).abs(), span);
     let thread = Thread {
         start,
         end,

@@ -111,6 +111,9 @@ fn cut(interp: &mut Interpreter<'_, '_>, index: usize, function: GFunction, star
     if interp.known_position(span).is_none() {
         return;
     }
+    if function == GFunction::ThreadCycle {
+        super::thread_pass::warn_if_no_length(interp, (end.z - start.z).abs(), span);
+    }
     let modal = interp.modal.clone();
     let e = &mut interp.emitter;
     match function {

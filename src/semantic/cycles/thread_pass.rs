@@ -13,7 +13,9 @@
 //! `depth` the infeed axis. The shape is a pure function of the pass, so that `expand` can
 //! check that a cycle's moves are exactly such passes before it writes them as `G33` blocks.
 
+use crate::diagnostic::DiagnosticKind;
 use crate::dialect::Role;
+use crate::source::Span;
 use crate::syntax::Command;
 use crate::toolpath::Xz;
 
@@ -134,6 +136,15 @@ pub(in crate::semantic) fn thread_modal(interp: &mut Interpreter<'_, '_>, comman
     }
     let lead_mm = modal.frame.feed_mm(modal.feed);
     (modal, lead_mm)
+}
+
+/// A warning where a thread cycle's thread is `length` mm long along its axis and that is
+/// no length: the passes still plunge and back out (the moves the cycle makes), but a
+/// forgotten `Z`/`W` is the likelier reading than a thread meant to cut nothing.
+pub(in crate::semantic) fn warn_if_no_length(interp: &mut Interpreter<'_, '_>, length: f64, span: Span) {
+    if length <= NO_MOVE_MM {
+        interp.warning(DiagnosticKind::ThreadOfNoLength, span);
+    }
 }
 
 /// The taper of a thread `length` mm long, mm across it: `I` as written, else from the taper

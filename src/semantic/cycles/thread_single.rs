@@ -39,6 +39,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let shift = interp.param(command, Role::StartShift).map_or(0.0, |k| frame.mm(k));
     let start_along = axes.along(from) + shift;
     let length = (axes.along(end) - start_along).abs();
+    thread_pass::warn_if_no_length(interp, length, span);
     let taper = thread_pass::taper(interp, command, length);
     let (modal, lead_mm) = thread_pass::thread_modal(interp, command);
     let change = thread_pass::lead_change(interp, command);
