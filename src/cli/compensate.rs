@@ -786,6 +786,29 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             }
         }
     }
+    // Edits that the check predicts leave the part worse than the program as it came, by its
+    // largest and its RMS deviation alike (corrections the control's increments round the
+    // wrong way), are not worth writing: the program goes out as it came, and says why.
+    let (before, after) = (outcome.report.totals.before, outcome.report.totals.after);
+    if after.max_mm > before.max_mm && after.rms_mm > before.rms_mm {
+        messages.extend_from_slice(
+            format!(
+                "compensate: {name}: written unchanged: its edits would leave the predicted part worse than the \
+                 program as written (RMS {:.5} -> {:.5} mm, largest {:.5} -> {:.5} mm); predicted deviation (as \
+                 verify measures it) RMS {:.5} mm, largest {:.5} mm\n",
+                before.rms_mm, after.rms_mm, before.max_mm, after.max_mm, before.rms_mm, before.max_mm,
+            )
+            .as_bytes(),
+        );
+        let report = args.report.map(|_| {
+            serde_json::json!({
+                "file": name,
+                "report": outcome.report.unchanged(),
+                "written_unchanged": { "before": before, "after_edits": after },
+            })
+        });
+        return Ok(FileResult { code: 0, messages, output: Some(bytes.to_vec()), report, errors: Vec::new() });
+    }
     let totals = &outcome.report.totals;
     messages.extend_from_slice(
         format!(

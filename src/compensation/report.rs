@@ -28,6 +28,37 @@ pub struct Report {
     pub totals: Totals,
 }
 
+impl Report {
+    /// The report of the program written as it came: no block edited, every cycle kept, the
+    /// deviation after as it was before.
+    pub fn unchanged(&self) -> Report {
+        let cycles = self
+            .cycles
+            .iter()
+            .map(|c| CycleReport {
+                outcome: "kept",
+                profile_lines: Vec::new(),
+                copy: None,
+                reason: None,
+                lead: None,
+                ..c.clone()
+            })
+            .collect();
+        let before = self.totals.before;
+        let totals = Totals {
+            edited_blocks: 0,
+            expanded_cycles: 0,
+            profiles_edited: 0,
+            profiles_copied: 0,
+            max_correction_mm: 0.0,
+            after: before,
+            improvement_percent: before.improvement_percent(&before),
+            ..self.totals
+        };
+        Report { blocks: Vec::new(), cycles, totals }
+    }
+}
+
 /// A cycle call: kept as written, kept with its profile compensated in place, or expanded
 /// (and why).
 #[derive(Debug, Clone, PartialEq, Serialize)]
