@@ -99,6 +99,13 @@ pub fn sweep_from(a0: f64, start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
     sweep_from_angles(start, end, a0, angle(end, centre), ccw)
 }
 
+/// The angle of `start` about `centre` ([`angle`]) and the angle the arc from `start` to
+/// `end` turns through ([`sweep`]), measured together for the callers that need both.
+pub fn turn(start: Xz, end: Xz, centre: Xz, ccw: bool) -> (f64, f64) {
+    let a0 = angle(start, centre);
+    (a0, sweep_from(a0, start, end, centre, ccw))
+}
+
 /// [`sweep`] when the angles of `start` (`a0`) and `end` (`a1`) about the centre are known.
 pub fn sweep_from_angles(start: Xz, end: Xz, a0: f64, a1: f64, ccw: bool) -> f64 {
     let raw = if ccw { a1 - a0 } else { a0 - a1 };
@@ -117,8 +124,7 @@ pub fn arc_length(start: Xz, end: Xz, centre: Xz, ccw: bool) -> f64 {
 /// The points where an arc is furthest along ±X and ±Z (inside its sweep), for limit checks
 /// and bounding boxes.
 pub fn arc_extremes(start: Xz, end: Xz, centre: Xz, ccw: bool) -> SmallVec<[Xz; 4]> {
-    let a0 = angle(start, centre);
-    let total = sweep_from(a0, start, end, centre, ccw);
+    let (a0, total) = turn(start, end, centre, ccw);
     arc_extremes_from(centre, start.distance(centre), a0, total, ccw)
 }
 
@@ -260,9 +266,7 @@ pub struct Sector {
 impl Sector {
     /// A sector whose angles are measured now, for one asked about many points.
     pub fn new(start: Xz, end: Xz, centre: Xz, ccw: bool) -> Sector {
-        let start_angle = angle(start, centre);
-        let total = sweep_from(start_angle, start, end, centre, ccw);
-        Sector { angles: Some((start_angle, total)), ..Sector::unmeasured(start, end, centre, ccw) }
+        Sector { angles: Some(turn(start, end, centre, ccw)), ..Sector::unmeasured(start, end, centre, ccw) }
     }
 
     /// A sector whose start angle and sweep were measured already (as `new` measures them,
@@ -280,10 +284,7 @@ impl Sector {
 
     /// The start's angle about the centre and the sweep, as measured up front or now.
     fn angles(&self) -> (f64, f64) {
-        self.angles.unwrap_or_else(|| {
-            let start_angle = angle(self.start, self.centre);
-            (start_angle, sweep_from(start_angle, self.start, self.end, self.centre, self.ccw))
-        })
+        self.angles.unwrap_or_else(|| turn(self.start, self.end, self.centre, self.ccw))
     }
 
     /// The angle the sector sweeps, radians ([`sweep`]).

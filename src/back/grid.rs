@@ -381,10 +381,7 @@ impl ArcSpan {
     }
 
     fn angles(&self) -> (f64, f64) {
-        *self.angles.get_or_init(|| {
-            let a0 = geometry::angle(self.start, self.centre);
-            (a0, geometry::sweep_from(a0, self.start, self.end, self.centre, self.ccw))
-        })
+        *self.angles.get_or_init(|| geometry::turn(self.start, self.end, self.centre, self.ccw))
     }
 
     fn sweep(&self) -> f64 {

@@ -299,10 +299,7 @@ pub fn sample_view(
         Motion::Cw | Motion::Ccw => {
             let ccw = m.motion == Motion::Ccw;
             let radius = start.distance(m.centre);
-            let (a0, sweep) = angles.unwrap_or_else(|| {
-                let a0 = geometry::angle(start, m.centre);
-                (a0, geometry::sweep_from(a0, start, m.end, m.centre, ccw))
-            });
+            let (a0, sweep) = angles.unwrap_or_else(|| geometry::turn(start, m.end, m.centre, ccw));
             let sign = if ccw { 1.0 } else { -1.0 };
             if m.cutting && sampling.arc.steps_at_corners() {
                 let tangent = Xz::new(sign * a0.cos(), -sign * a0.sin());
@@ -381,10 +378,7 @@ pub fn sample_view_at(m: &MoveView, index: usize, angles: Option<(f64, f64)>, t:
         ),
         Motion::Cw | Motion::Ccw => {
             let ccw = m.motion == Motion::Ccw;
-            let (a0, sweep) = angles.unwrap_or_else(|| {
-                let a0 = geometry::angle(start, m.centre);
-                (a0, geometry::sweep_from(a0, start, m.end, m.centre, ccw))
-            });
+            let (a0, sweep) = angles.unwrap_or_else(|| geometry::turn(start, m.end, m.centre, ccw));
             let sign = if ccw { 1.0 } else { -1.0 };
             let angle = a0 + sign * sweep * t;
             let p = geometry::on_circle(m.centre, start.distance(m.centre), angle);

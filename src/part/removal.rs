@@ -7,7 +7,7 @@ use smallvec::SmallVec;
 
 use super::dexel::{Dexels, Edge, STOCK, Span, Spans, Taken};
 use super::stock::Stock;
-use super::sweep::{self, Sweep};
+use super::sweep::Sweep;
 use super::tool::{self, Orientation, Tool};
 use crate::machine::{ToolKind, ToolSettings};
 use crate::semantic::Machine;
@@ -233,7 +233,12 @@ impl<'a> Removal<'a> {
         let tool = self.tool(m, start);
         // An arc's nose centre's angles, for its box and its sweep.
         let turn = m.is_arc().then(|| {
-            sweep::turn(tool.centre(start), tool.centre(m.end), tool.centre(m.centre), m.motion == Motion::Ccw)
+            crate::geometry::turn(
+                tool.centre(start),
+                tool.centre(m.end),
+                tool.centre(m.centre),
+                m.motion == Motion::Ccw,
+            )
         });
         // Most moves of a long program run in air: a move whose tool's box meets no material
         // does nothing, and its sweeps are not built (a thread pass's count of leads is).

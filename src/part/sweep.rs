@@ -199,13 +199,6 @@ struct ArcEdge {
     turns: [Option<(f64, Xz)>; 2],
 }
 
-/// The start angle of the arc from `start` to `end` about `centre` and the angle it turns
-/// through, as [`Sweep::body_along_arc`] takes them.
-pub(crate) fn turn(start: Xz, end: Xz, centre: Xz, ccw: bool) -> (f64, f64) {
-    let a0 = crate::geometry::angle(start, centre);
-    (a0, crate::geometry::sweep_from(a0, start, end, centre, ccw))
-}
-
 /// The unit vectors of a family's rays: the coordinate a ray holds fixed, and its parameter.
 fn axes(along_z: bool) -> (Xz, Xz) {
     if along_z { (Xz::new(1.0, 0.0), Xz::new(0.0, 1.0)) } else { (Xz::new(0.0, 1.0), Xz::new(1.0, 0.0)) }
@@ -231,13 +224,13 @@ impl Sweep {
     #[cfg(test)]
     pub fn arc(start: Xz, end: Xz, centre: Xz, ccw: bool, radius: f64) -> Sweep {
         let insert = Insert::new([Xz::new(0.0, 0.0)], radius);
-        Sweep::body_along_arc(&insert, (start, end, centre), ccw, turn(start, end, centre, ccw))
+        Sweep::body_along_arc(&insert, (start, end, centre), ccw, crate::geometry::turn(start, end, centre, ccw))
     }
 
     /// `insert` (a rounded convex polygon about the nose centre), its nose centre moved
     /// along the arc from `start` to `end` about `centre` ([`BodyAlongArc`]); `turn` is the
     /// arc's start angle and the angle it turns through (`geometry::angle`,
-    /// `geometry::sweep_from`), which the caller has measured for its own box.
+    /// `geometry::turn`), which the caller has measured for its own box.
     pub fn body_along_arc(
         insert: &Insert,
         (start, end, centre): (Xz, Xz, Xz),
@@ -1038,7 +1031,7 @@ mod tests {
             let on = |a: f64| crate::geometry::on_circle(centre, arc_radius, a);
             let (start, end) = (on(start_angle), on(start_angle + sign * total));
             let insert = Insert::new(core.iter().copied(), nose);
-            let sweep = Sweep::body_along_arc(&insert, (start, end, centre), ccw, turn(start, end, centre, ccw));
+            let sweep = Sweep::body_along_arc(&insert, (start, end, centre), ccw, crate::geometry::turn(start, end, centre, ccw));
             let hull = convex_hull(core.clone());
             let count = 2000;
             let placements: Vec<SmallVec<[Xz; 8]>> = (0..=count)

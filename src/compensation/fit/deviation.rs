@@ -96,10 +96,7 @@ impl ArcGauge {
 
     /// The start's angle and the sweep (`geometry::sweep`).
     fn angles(&self) -> (f64, f64) {
-        *self.angles.get_or_init(|| {
-            let a0 = geometry::angle(self.from, self.centre);
-            (a0, geometry::sweep_from(a0, self.from, self.end, self.centre, self.ccw))
-        })
+        *self.angles.get_or_init(|| geometry::turn(self.from, self.end, self.centre, self.ccw))
     }
 
     fn distance(&self, p: Xz) -> f64 {

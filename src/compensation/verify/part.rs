@@ -420,13 +420,14 @@ impl<'a> PieceCut<'a> {
             return;
         };
         if m.motion == Motion::Rapid {
-            // A rapid removes nothing (`Removal::shape_move`): it ends the thread pass under
-            // way, and the next piece starts at its last point.
+            // A rapid removes nothing (`Removal::shape_move`): it is stepped whole, without
+            // its pieces, and the next piece starts at its last point.
+            let start = self.last.0;
             if let Some(p) = self.points.last() {
                 self.last = (p.predicted, p.nominal, p.move_index, p.param);
             }
             self.points.clear();
-            if self.removal.end_thread().is_none() {
+            if self.removal.shape_move(start, &m, index).is_none() {
                 self.stopped = Some(index);
             }
             return;
