@@ -24,7 +24,7 @@ use std::time::Instant;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use turnpass::compensation::fit::{FitOptions, Strategy};
-use turnpass::compensation::{CompensateOptions, compensate_program};
+use turnpass::compensation::{CompensateOptions, Judged, compensate_program};
 use turnpass::dialect::{Dialect, DialectChoice, GCodeSystem, MachineKind};
 use turnpass::error_model::model_file::ModelSpec;
 use turnpass::machine::ModelFile;
@@ -191,7 +191,14 @@ fn end_to_end(c: &mut Criterion) {
     group.bench_function("library_1mb", |b| {
         b.iter(|| {
             let program = support::ready(black_box(&bytes), &settings);
-            let outcome = compensate_program(program.program(), &program.lowered, &program.machine, &model, &options);
+            let outcome = compensate_program(
+                program.program(),
+                &program.lowered,
+                &program.machine,
+                &model,
+                &options,
+                Judged::EveryFeed,
+            );
             print(program.program(), &outcome.edits)
         })
     });

@@ -31,7 +31,7 @@ use arbitrary::{Arbitrary, Unstructured};
 use libfuzzer_sys::fuzz_target;
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::verify;
-use turnpass::compensation::{CompensateOptions, compensate_program};
+use turnpass::compensation::{CompensateOptions, Judged, compensate_program};
 use turnpass::dialect::{DialectChoice, GCodeSystem};
 use turnpass::error_model::model_file::ModelSpec;
 use turnpass::pipeline;
@@ -89,7 +89,7 @@ fuzz_target!(|data: &[u8]| {
         paths: false,
         block_reports: true,
     };
-    let outcome = compensate_program(ready.program(), &ready.lowered, machine, &model, &compensate_options);
+    let outcome = compensate_program(ready.program(), &ready.lowered, machine, &model, &compensate_options, Judged::EveryFeed);
     if outcome.refused() {
         return;
     }

@@ -19,7 +19,7 @@ use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::verify::{self, Measure};
 use turnpass::compensation::{
-    CompensateOptions, CycleForm, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
+    CompensateOptions, CycleForm, Judged, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
     THREAD_NOT_IN_PLACE, compensate_program,
 };
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
@@ -211,12 +211,19 @@ impl FitArgs {
     /// `plot`), `block_reports` reports every edited block (for `--report json`).
     pub fn compensate(&self, program: &Ready<'_>, model: &ErrorModel, paths: bool, block_reports: bool) -> Outcome {
         let options = CompensateOptions { paths, block_reports, ..self.options(&program.machine) };
-        compensate_program(&program.parsed.program, &program.lowered, &program.machine, model, &options)
+        compensate_program(
+            &program.parsed.program,
+            &program.lowered,
+            &program.machine,
+            model,
+            &options,
+            Judged::EveryFeed,
+        )
     }
 
-    /// `compensate` for writing: every edited block reported with `block_reports`, and the
-    /// profiles of cycles and the words of thread cycles compensated in place, or not
-    /// (`in_place`).
+    /// `compensate` for writing: every edited block reported with `block_reports`, the
+    /// profiles of cycles and the words of thread cycles compensated in place, or not, and
+    /// the rapids that need no correction left as written, or not (`in_place`).
     fn compensate_cycles(
         &self,
         program: &Ready<'_>,
@@ -232,7 +239,8 @@ impl FitArgs {
             threads_in_place: in_place.threads,
             ..self.options(&program.machine)
         };
-        compensate_program(&program.parsed.program, &program.lowered, &program.machine, model, &options)
+        let judged = if in_place.air { Judged::EveryFeed } else { Judged::Every };
+        compensate_program(&program.parsed.program, &program.lowered, &program.machine, model, &options, judged)
     }
 }
 
@@ -376,6 +384,8 @@ struct InPlace {
     profiles: bool,
     copies: bool,
     threads: bool,
+    /// The rapids that need no correction left as written (`plan::Judged`).
+    air: bool,
 }
 
 /// Why the check before writing turned down each way of keeping cycles that was tried.
@@ -389,7 +399,8 @@ struct Because {
 impl InPlace {
     /// What to try after `outcome` (compensated so) missed the check: the profiles copied
     /// for their finishing cycles if it edited one in place, else expanded if it copied one,
-    /// else the threads expanded if it edited one; `None` when nothing is left to expand.
+    /// else the threads expanded if it edited one, else the rapids it left as written
+    /// corrected; `None` when nothing is left to try.
     fn without(self, outcome: &Outcome) -> Option<InPlace> {
         let any = |form: fn(&CycleForm) -> bool| outcome.cycles.iter().any(|c| form(&c.form));
         if self.profiles && any(|f| matches!(f, CycleForm::ProfileEdited { .. })) {
@@ -398,6 +409,10 @@ impl InPlace {
             Some(InPlace { copies: false, ..self })
         } else if self.threads && any(|f| matches!(f, CycleForm::WordsEdited { .. })) {
             Some(InPlace { threads: false, ..self })
+        } else if self.air && outcome.left_alone > 0 {
+            // The rapids left as written are corrected last: the model's play may still need
+            // an end in the air corrected.
+            Some(InPlace { air: false, ..self })
         } else {
             None
         }
@@ -578,9 +593,10 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // cycle runs a compensated copy of the profile and the roughing the profile as written;
     // where that misses it too, they are expanded, and the report says why.
     let mut because = Because::default();
-    let mut in_place = InPlace { profiles: true, copies: true, threads: true };
+    let mut in_place = InPlace { profiles: true, copies: true, threads: true, air: true };
     let stock = args.stock.check(&resolved).stock;
     let measure = if args.passes { Measure::Passes } else { Measure::Part };
+    let tools = ToolTable::from_machine(&program.machine);
     // The original is analysed again where it is needed after its AST and moves went
     // (before the read-back of what is about to be written): its text and settings are the
     // same, and so is what it reads as.
@@ -641,7 +657,6 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         // dialect may have been in the blocks an edit replaced.
         let mut reading = pipeline_settings(&resolved, &args.run, true);
         reading.parse = printer::read_back_options(&program.parsed.program);
-        let tools = ToolTable::from_machine(&machine);
         let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
         let mut unreadable = FileResult::failed(1, Vec::new());
         // The original's AST and moves go before the read-back, which holds a second program;

@@ -91,6 +91,9 @@ pub struct PlanInput<'a> {
     /// Whether each move's arcs prefer the radius form (`rewrite::MoveForms::radius`).
     pub radius: &'a [bool],
     pub tools: &'a ToolTable,
+    /// What the check before writing judges: rapids it does not are left as written
+    /// (`air.rs`).
+    pub judged: Judged,
 }
 
 /// Plan every move.
@@ -102,7 +105,10 @@ pub fn plan_moves(input: &PlanInput<'_>, grid_of: impl Fn(usize) -> Grid, option
 }
 
 /// Plan the moves `moves`, the first written from `at` (the end of the previous move's
-/// plan), appending to `plans`; returns where the last ends. `input.ranges` must give the
+/// plan), appending to `plans`, and leave as written the moves that need no correction
+/// (`air::leave_alone`); returns where the last ends and how many were left. A move left as
+/// written is decided by the move after it, so one at the end of `moves` is left only at the
+/// end of the program. `input.ranges` must give the
 /// samples of these moves (a program planned in pieces plans as it does whole, given each
 /// piece's samples and the one before them, which `jumps` compares the first with).
 pub fn plan_range(
@@ -112,9 +118,10 @@ pub fn plan_range(
     grid_of: impl Fn(usize) -> Grid,
     options: &PlanOptions,
     plans: &mut Vec<MovePlan>,
-) -> Xz {
+) -> (Xz, usize) {
     let toolpath = input.toolpath;
     let first = moves.start;
+    let base = plans.len();
     let mut points: Vec<Xz> = Vec::new();
     for (index, m) in toolpath.moves.get(moves).unwrap_or_default().iter().enumerate() {
         let index = first + index;
@@ -154,7 +161,9 @@ pub fn plan_range(
         at = plan.end();
         plans.push(plan);
     }
-    at
+    let planned = plans.get_mut(base..).unwrap_or_default();
+    let left = air::leave_alone(planned, first, toolpath, input.writable, input.judged);
+    (plans.last().map_or(at, MovePlan::end), left)
 }
 
 /// The plan with its arcs made writable on `grid`: an arc that no words can write (its
@@ -395,7 +404,9 @@ fn written_points(
     jumps
 }
 
+mod air;
 mod kept;
+pub use air::Judged;
 pub use kept::KeptPlans;
 
 #[cfg(test)]

@@ -20,7 +20,7 @@ use crate::toolpath::{Validated, Xz};
 
 use super::deviation::LocalPath;
 use super::fit::FitOptions;
-use super::plan::PlanOptions;
+use super::plan::{Judged, PlanOptions};
 use super::report::{Report, ReportInput};
 use super::rewrite;
 use crate::error_model::sampling::{PathSample, Sampling};
@@ -66,6 +66,8 @@ pub struct Outcome {
     pub edited: Vec<rewrite::EditedBlock>,
     /// What became of each cycle call.
     pub cycles: Vec<rewrite::CycleOutcome>,
+    /// The rapids left as written (`plan::Judged`).
+    pub left_alone: usize,
 }
 
 /// The paths of the compensation, one point per sample, for plotting.
@@ -105,13 +107,15 @@ pub fn sampling(fit: &FitOptions, model: &ErrorModel, reach: Xz) -> Sampling {
 }
 
 /// Compensate `program` (lowered with nose-radius compensation into `lowered`, its
-/// toolpath validated) on `machine` with `model`.
+/// toolpath validated) on `machine` with `model`, leaving as written the rapids `judged`
+/// does not judge (`plan::Judged`).
 pub fn compensate_program(
     program: &Program<'_>,
     lowered: &Validated<Lowered>,
     machine: &Machine,
     model: &ErrorModel,
     options: &CompensateOptions,
+    judged: Judged,
 ) -> Outcome {
     let toolpath = lowered.valid().toolpath();
     let lowered: &Lowered = lowered;
@@ -146,6 +150,7 @@ pub fn compensate_program(
             paths: Paths::default(),
             edited: Vec::new(),
             cycles: Vec::new(),
+            left_alone: 0,
         };
     }
     // The rewrite's tables: what can be written for each move, the runs of moves each edited
@@ -166,8 +171,9 @@ pub fn compensate_program(
         path,
         plan_options: PlanOptions { fit: options.fit, play: model.play() },
         runs,
+        judged,
     };
-    let stream::Streamed { plans, mut diagnostics, figures, totals, paths, needs, motion } =
+    let stream::Streamed { plans, mut diagnostics, figures, totals, paths, needs, motion, left_alone } =
         stream::run(&context, motion);
     diagnostics.extend(unwritable_cycles(program, lowered, &needs, &context.writable));
     let choice = rewrite::CycleChoice {
@@ -193,7 +199,15 @@ pub fn compensate_program(
         inverse_residual_mm: totals.inverse_residual_mm,
         block_reports: options.block_reports,
     });
-    Outcome { edits: rewritten.edits, diagnostics, report, paths, edited: rewritten.edited, cycles: rewritten.cycles }
+    Outcome {
+        edits: rewritten.edits,
+        diagnostics,
+        report,
+        paths,
+        edited: rewritten.edited,
+        cycles: rewritten.cycles,
+        left_alone,
+    }
 }
 
 /// A warning on each cycle that cannot be written back while its points need a

@@ -34,14 +34,12 @@ use std::ops::Range;
 use crate::back::grid::Grid;
 use crate::back::motion::{Codes, MotionWriter};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::dialect::Address;
 use crate::printer::style::{BlockArcWords, StyleTally};
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
 use crate::source::Span;
 use crate::syntax::{Program, Statement};
-use crate::toolpath::Motion;
 
 use super::plan::{KeptPlans, MovePlan};
 use super::written;
@@ -608,50 +606,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         {
             self.leads.insert(block, words);
         }
-        let text = if self.rapid_left_alone(block, run.moves.clone()) {
-            None
-        } else {
-            self.block_text(block, run.moves.clone(), plans)
-        };
+        let text = self.block_text(block, run.moves.clone(), plans);
         self.settle(block, run.moves.clone(), text);
-    }
-
-    /// Whether the run `moves` of `block` is a rapid that stays as written: one rapid in
-    /// absolute words, followed by nothing or by another plain rapid in absolute words. Its
-    /// end cuts nothing and starts no cut (the next rapid is written from the point the
-    /// model puts it, whatever the point before it), so moving it would only change a
-    /// block the programmer wrote. A rapid before a cut, or before a cycle (whose start
-    /// point the cycle's passes are computed from), is compensated.
-    fn rapid_left_alone(&self, block: usize, moves: Range<usize>) -> bool {
-        let path = &self.lowered.toolpath.moves;
-        let is_plain_rapid = |k: usize| {
-            path.get(k).is_some_and(|m| m.motion == Motion::Rapid && !m.threading && m.cycle == Span::SYNTHETIC)
-        };
-        let k = moves.start;
-        if moves.len() != 1 || !is_plain_rapid(k) || !self.absolute(block, k) {
-            return false;
-        }
-        let next = moves.end;
-        match path.get(next) {
-            None => true,
-            Some(m) => {
-                is_plain_rapid(next) && self.lookup.index(m.source.start).is_some_and(|b| self.absolute(b, next))
-            }
-        }
-    }
-
-    /// Whether `block`, running move `k`, writes its coordinates as absolute ones.
-    fn absolute(&self, block: usize, k: usize) -> bool {
-        let incremental = |word: &crate::syntax::Word| {
-            matches!(
-                word.kind,
-                crate::syntax::WordKind::Number { address: Address::U | Address::W, .. }
-                    | crate::syntax::WordKind::Expr { address: Address::U | Address::W, .. }
-            )
-        };
-        self.lowered.coordinates_at(k).absolute
-            && (self.program.config().dialect != crate::dialect::Dialect::Fanuc
-                || !self.program.words_of(self.program.block(block)).iter().any(incremental))
     }
 
     /// The moves `moves` of `block` that write a segment (not dwells or corners the control

@@ -7,7 +7,7 @@ use std::io::Write as _;
 use std::process::{Command, Stdio};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
-use turnpass::compensation::{CompensateOptions, Outcome, compensate_program};
+use turnpass::compensation::{CompensateOptions, Judged, Outcome, compensate_program};
 use turnpass::dialect::{Address, DialectChoice, GCodeSystem};
 use turnpass::error_model::ErrorModel;
 use turnpass::error_model::model_file::ModelSpec;
@@ -152,12 +152,19 @@ impl Compensated {
             paths: false,
             block_reports: true,
         };
-        let outcome = compensate_program(ready.program(), &ready.lowered, &ready.machine, model, &options(true));
+        let outcome = compensate_program(
+            ready.program(),
+            &ready.lowered,
+            &ready.machine,
+            model,
+            &options(true),
+            Judged::EveryFeed,
+        );
         let output = printer::print(ready.program(), &outcome.edits);
         if outcome.refused() || analyse(&output, &self.settings).ready().is_ok() {
             return outcome;
         }
-        compensate_program(ready.program(), &ready.lowered, &ready.machine, model, &options(false))
+        compensate_program(ready.program(), &ready.lowered, &ready.machine, model, &options(false), Judged::EveryFeed)
     }
 
     fn fit(&self) -> FitOptions {

@@ -90,7 +90,7 @@ fn cycles_stay_calls_and_what_is_written_verifies() {
 #[test]
 fn an_osp_finishing_call_runs_its_own_compensated_contour() {
     use turnpass::compensation::fit::{FitOptions, Strategy};
-    use turnpass::compensation::{CompensateOptions, compensate_program};
+    use turnpass::compensation::{CompensateOptions, Judged, compensate_program};
     use turnpass::dialect::{DialectChoice, GCodeSystem};
     use turnpass::error_model::model_file::ModelSpec;
     use turnpass::machine::{MachineSettings, ModelFile};
@@ -124,7 +124,8 @@ fn an_osp_finishing_call_runs_its_own_compensated_contour() {
         paths: false,
         block_reports: true,
     };
-    let outcome = compensate_program(ready.program(), &ready.lowered, &ready.machine, &errors, &options);
+    let outcome =
+        compensate_program(ready.program(), &ready.lowered, &ready.machine, &errors, &options, Judged::EveryFeed);
     assert!(!outcome.refused(), "{:?}", outcome.diagnostics);
     let written = String::from_utf8(turnpass::printer::print(ready.program(), &outcome.edits)).unwrap();
     let lines: Vec<&str> = written.lines().collect();

@@ -24,6 +24,11 @@ M30
 ";
 
 fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
+    plans_judged(effects, Judged::Every)
+}
+
+/// `plans`, leaving as written what `judged` does not judge.
+fn plans_judged(effects: Vec<Effect>, judged: Judged) -> (Lowered, Vec<MovePlan>) {
     let (lowered, machine) = lower_program(PROGRAM);
     let tools = ToolTable::from_machine(&machine);
     let path = &lowered.toolpath;
@@ -46,6 +51,7 @@ fn plans(effects: Vec<Effect>) -> (Lowered, Vec<MovePlan>) {
         writable: &writable,
         radius: &radius,
         tools: &tools,
+        judged,
     };
     let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(0));
     let plans = plan_moves(&input, |_| grid, &PlanOptions { fit, play: model.play() });
@@ -77,6 +83,24 @@ fn a_constant_offset_moves_every_end_and_each_line_stays_one_line() {
     for pair in plans.windows(2) {
         assert_eq!(pair[1].start, pair[0].end());
     }
+}
+
+/// The constant offset of `a_constant_offset_moves_every_end_and_each_line_stays_one_line`.
+fn offset() -> Vec<Effect> {
+    vec![Effect::ToolOffsetX(ToolOffsetX { d: 0.01, axis: X }), Effect::ToolOffsetZ(ToolOffsetZ { d: -0.005, axis: Z })]
+}
+
+#[test]
+fn the_last_rapid_ends_where_it_is_programmed_and_every_feed_stays_corrected() {
+    let (judged, plans) = plans_judged(offset(), Judged::EveryFeed);
+    let (_, corrected) = plans_judged(offset(), Judged::Every);
+    let moves = &judged.toolpath.moves;
+    let last = moves.len() - 1;
+    assert_eq!(moves[last].motion, Motion::Rapid);
+    assert!(!plans[last].changed);
+    assert_eq!(plans[last].end(), moves[last].contour);
+    // The first rapid starts the cut at the corrected point, and every feed is as corrected.
+    assert_eq!(plans[..last], corrected[..last]);
 }
 
 #[test]

@@ -36,7 +36,7 @@ use crate::toolpath::{Limits, Toolpath, Xz};
 
 use super::super::deviation::{LocalPath, Tally};
 use super::super::inverse::{Inverse, InverseOptions, Predictor, time_terms};
-use super::super::plan::{KeptPlans, MovePlan, PlanInput, PlanOptions, plan_range};
+use super::super::plan::{Judged, KeptPlans, MovePlan, PlanInput, PlanOptions, plan_range};
 use super::super::report::RunFigures;
 use super::super::rewrite::{MotionBlocks, MoveRun};
 use super::super::{quantised, safety};
@@ -66,6 +66,8 @@ pub struct Context<'a> {
     pub plan_options: PlanOptions,
     /// The runs of moves (`rewrite::MotionBlocks::move_tables`).
     pub runs: Vec<MoveRun>,
+    /// `PlanInput::judged`.
+    pub judged: Judged,
 }
 
 impl Context<'_> {
@@ -90,6 +92,7 @@ impl Context<'_> {
             writable: &self.writable,
             radius: &self.radius,
             tools: self.tools,
+            judged: self.judged,
         }
     }
 }
@@ -118,6 +121,8 @@ pub struct Streamed<'a, 'src> {
     /// Per move: some sample's correction exceeds the tolerance.
     pub needs: Vec<bool>,
     pub motion: MotionBlocks<'a, 'src>,
+    /// The rapids left as written (`plan::air`).
+    pub left_alone: usize,
 }
 
 /// What the round stage leaves.
@@ -196,11 +201,11 @@ pub fn run<'a, 'src>(context: &Context<'src>, mut motion: MotionBlocks<'a, 'src>
         let rounder = scope.spawn(move || round(context, &rounding, &to_rewrite));
         let plans = rewrite(context, &mut motion, &rewriting, &to_reuse);
         let (iterations, residual) = solver.join();
-        planner.join();
+        let left_alone = planner.join();
         let Measured { diagnostics, figures, mut totals, paths, needs } = rounder.join();
         totals.inverse_iterations = iterations;
         totals.inverse_residual_mm = residual;
-        Streamed { plans, diagnostics, figures, totals, paths, needs, motion }
+        Streamed { plans, diagnostics, figures, totals, paths, needs, motion, left_alone }
     })
 }
 
@@ -272,21 +277,26 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
     (inverse.iterations, inverse.max_residual_mm())
 }
 
-/// Stage 2: plan the moves.
-fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_round: &SyncSender<Piece>) {
+/// Stage 2: plan the moves; returns how many were left as written.
+fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_round: &SyncSender<Piece>) -> usize {
     let toolpath = context.toolpath;
     let mut ranges = vec![0..0; toolpath.moves.len()];
     let mut at = toolpath.start;
+    let mut left_alone = 0;
     while let Ok(mut piece) = planning.recv() {
         piece.spread_ranges(&mut ranges);
         let mut plans = std::mem::take(&mut piece.plans);
         let input = context.plan_input(&piece.samples, (&piece.commanded, &piece.take_ups), &ranges);
-        at = plan_range(&input, piece.moves.clone(), at, |k| context.grid(k), &context.plan_options, &mut plans);
+        let left;
+        (at, left) =
+            plan_range(&input, piece.moves.clone(), at, |k| context.grid(k), &context.plan_options, &mut plans);
+        left_alone += left;
         piece.plans = plans;
         if to_round.send(piece).is_err() {
             break;
         }
     }
+    left_alone
 }
 
 /// Stage 3: round, predict as rounded, measure, check, tally.
