@@ -152,6 +152,7 @@ pub fn compensate_program(
     // block writes, and the rewrite itself, which reads the whole program.
     let mut motion = rewrite::MotionBlocks::new(program, lowered, &tools);
     motion.model = Some(model);
+    motion.thread_tolerance_mm = Some(options.fit.tolerance_mm);
     let (forms, runs) = motion.move_tables();
     let context = stream::Context {
         toolpath,

@@ -27,6 +27,7 @@
 
 mod block;
 pub(crate) mod cycles;
+pub(crate) mod thread_pieces;
 
 use std::collections::{HashMap, HashSet};
 use std::ops::Range;
@@ -309,8 +310,9 @@ pub fn finish(
         }
     }
     let style = motion.writer.out.style();
+    let pieces = motion.piece_settings();
     let (expanded, mut expanded_leads) =
-        cycles::write(program, lowered, (plans, model), &chosen, style, &mut out.edits, &mut out.diagnostics);
+        cycles::write(program, lowered, (plans, model, pieces), &chosen, style, &mut out.edits, &mut out.diagnostics);
     // The first expansion of each call block (a call that runs several times has several).
     let mut first_expansion: HashMap<usize, usize> = HashMap::new();
     for (k, e) in lowered.expansions.iter().enumerate() {
@@ -354,7 +356,16 @@ pub fn finish(
                 "its moves change, and no finishing cycle runs a profile of it (a single cycle, a roughing cycle \
                  with no finishing cycle, a finishing cycle whose own moves cut)"
             };
-            CycleForm::Expanded { reason: reason.to_string(), lead: expanded_leads.remove(&block) }
+            let lead = expanded_leads.remove(&block);
+            let reason = match lead.as_ref().and_then(|lead| lead.pieces) {
+                Some(pieces) => format!(
+                    "{reason}; the lead error is not uniform along the thread, which one lead word cannot \
+                     carry: the passes that shape the finished thread are written as consecutive thread blocks, \
+                     each with its own lead ({pieces} for the final pass)"
+                ),
+                None => reason.to_string(),
+            };
+            CycleForm::Expanded { reason, lead }
         } else {
             CycleForm::Kept
         };
@@ -466,6 +477,16 @@ pub struct MotionBlocks<'a, 'src> {
     leads: HashMap<usize, cycles::LeadWords>,
     /// The model a thread move's lead is written for (none: leads are left as written).
     pub model: Option<&'a crate::error_model::ErrorModel>,
+    /// The tolerance a finishing thread pass's helix is held to where it is written as
+    /// thread blocks of their own leads (`thread_pieces`; none: one lead per pass).
+    pub thread_tolerance_mm: Option<f64>,
+    /// Per move, whether it is a thread move of a finishing pass (`thread_pieces::finishing_passes`).
+    finishing: Vec<bool>,
+    /// The lead words of the pieces after the first of a thread move written as pieces, by
+    /// block (the first piece's are in `leads`).
+    piece_leads: HashMap<usize, Vec<block::LeadWordList>>,
+    /// The rapid the run given last left as written (`rapid_left_alone`), if it did.
+    left_alone: Option<usize>,
 }
 
 /// What a block's first run wrote.
@@ -542,7 +563,20 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             diagnostics: Vec::new(),
             leads: HashMap::new(),
             model: None,
+            thread_tolerance_mm: None,
+            finishing: thread_pieces::finishing_passes(&lowered.toolpath),
+            piece_leads: HashMap::new(),
+            left_alone: None,
         }
+    }
+
+    /// What cutting a finishing thread pass into pieces needs, where it is asked for.
+    fn piece_settings(&self) -> Option<thread_pieces::PieceSettings<'_>> {
+        Some(thread_pieces::PieceSettings {
+            model: self.model?,
+            tolerance_mm: self.thread_tolerance_mm?,
+            finishing: &self.finishing,
+        })
     }
 
     /// What can be written for each move (`MoveForms`), and the runs of moves
@@ -600,15 +634,59 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             return;
         }
         // A thread move's lead word is written for the slide to cut the programmed lead, as
-        // a kept thread cycle's is (`cycles::thread_lead`).
+        // a kept thread cycle's is (`cycles::thread_lead`); a finishing pass whose lead error
+        // is not uniform along it, as thread blocks each with its own (`thread_pieces`).
+        // After a rapid left as written (`rapid_left_alone`), the run starts where that
+        // rapid's words put the tool, not where its plan would have: its words are written
+        // from there.
+        let mut own_plans: Option<Vec<MovePlan>> = None;
+        if let Some(rapid) = self.left_alone.take().filter(|&k| k + 1 == run.moves.start)
+            && let Some(m) = lowered.toolpath.moves.get(rapid)
+            && plans.first().is_some_and(|plan| plan.start != m.contour)
+        {
+            let mut own = plans.to_vec();
+            own[0].start = m.contour;
+            own_plans = Some(own);
+        }
         if program.block(block).statement == Statement::ThreadMove
             && let Some(model) = self.model
             && let Some(pass) = run.moves.clone().find(|&k| lowered.toolpath.moves[k].threading)
-            && let Some((words, _)) = cycles::thread_lead(program, lowered, block, pass, model)
         {
-            self.leads.insert(block, words);
+            let cut = self.piece_settings().zip(cycles::thread_move_lead(program, block)).and_then(
+                |(settings, (at, programmed))| {
+                    let plan = own_plans.as_deref().unwrap_or(plans).get(pass - run.moves.start)?;
+                    let grid = Grid::new(&lowered.coordinates_at(pass));
+                    let table = program.config().tables().thread_lead;
+                    let cut =
+                        thread_pieces::pieces(&lowered.toolpath, (pass, plan), settings, &table, &grid, programmed)?;
+                    Some((at, cut))
+                },
+            );
+            if let Some((at, cut)) = cut {
+                // A piece at the `F` lead of the one before it writes none: `F` is modal (a
+                // precise `E` is read from its own block only, `back::motion`).
+                let mut in_force = block::LeadWordList::new();
+                let mut words = cut.leads.iter().map(|lead| {
+                    if lead.words == in_force && matches!(lead.words.as_slice(), [(Address::F, _)]) {
+                        block::LeadWordList::new()
+                    } else {
+                        in_force.clone_from(&lead.words);
+                        lead.words.clone()
+                    }
+                });
+                if let Some(first) = words.next() {
+                    self.leads.insert(block, cycles::LeadWords { at, words: first });
+                }
+                self.piece_leads.insert(block, words.collect());
+                let own = own_plans.get_or_insert_with(|| plans.to_vec());
+                own[pass - run.moves.start] = cut.plan;
+            } else if let Some((words, _)) = cycles::thread_lead(program, lowered, block, pass, model) {
+                self.leads.insert(block, words);
+            }
         }
+        let plans = own_plans.as_deref().unwrap_or(plans);
         let text = if self.rapid_left_alone(block, run.moves.clone()) {
+            self.left_alone = Some(run.moves.start);
             None
         } else {
             self.block_text(block, run.moves.clone(), plans)
@@ -689,6 +767,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     radius_arcs: self.radius_arcs,
                     tools,
                     lead: self.leads.get(&block),
+                    piece_leads: self.piece_leads.get(&block).map_or(&[], Vec::as_slice),
                 };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
                 match (lowered.toolpath.moves.get(single), plans.get(single - first)) {

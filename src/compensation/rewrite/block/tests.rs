@@ -46,6 +46,7 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
         radius_arcs: true,
         tools: &tools,
         lead: None,
+        piece_leads: &[],
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
@@ -102,6 +103,7 @@ fn arc_as_lines(program: &str) -> Vec<String> {
         radius_arcs: true,
         tools: &tools,
         lead: None,
+        piece_leads: &[],
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
