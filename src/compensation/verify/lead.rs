@@ -159,7 +159,13 @@ fn pass(program: &CompactPath, moves: &[(usize, f64)], points: &[(usize, f64, Xz
         let len = a.distance(b);
         let along = (b.x - a.x) * direction.x + (b.z - a.z) * direction.z;
         let across = (b.x - a.x) * direction.z - (b.z - a.z) * direction.x;
-        if len.is_nan() || len <= 0.0 || along <= 0.0 || across.abs() > ALONG_THE_LINE * len || lead.is_nan() || lead <= 0.0 {
+        if len.is_nan()
+            || len <= 0.0
+            || along <= 0.0
+            || across.abs() > ALONG_THE_LINE * len
+            || lead.is_nan()
+            || lead <= 0.0
+        {
             break;
         }
         stretch.push((m, len, lead));
