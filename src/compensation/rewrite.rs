@@ -570,6 +570,12 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         }
     }
 
+    /// Cut every thread pass into pieces where its lead error is not uniform along it, not
+    /// only those that shape the finished thread.
+    pub fn every_thread_pass(&mut self) {
+        self.finishing.fill(true);
+    }
+
     /// What cutting a finishing thread pass into pieces needs, where it is asked for.
     fn piece_settings(&self) -> Option<thread_pieces::PieceSettings<'_>> {
         Some(thread_pieces::PieceSettings {

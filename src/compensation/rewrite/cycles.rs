@@ -307,6 +307,18 @@ pub(super) fn write(
             {
                 own_plans.get_or_insert_with(|| cycle_plans.to_vec())[k - range.start] = cut.plan;
                 piece_leads.insert(k, cut.leads);
+            } else if k > range.start && piece_leads.contains_key(&(k - 1)) {
+                // A thread move after pieces (a chamfer out of the thread) goes on from where
+                // the last piece meets the helix: its lead takes the spindle through the
+                // turns of the programmed move over the move written.
+                let nominal = lowered.toolpath.start_of(k).distance(m.end);
+                let written = plan.start.distance(plan.end());
+                let lead = (nominal > 0.0)
+                    .then(|| written_lead(&table, &grid, programmed, m.f_word * written / nominal, written))
+                    .flatten();
+                if let Some(lead) = lead {
+                    piece_leads.insert(k, vec![lead]);
+                }
             }
         }
         let cycle_plans = own_plans.as_deref().unwrap_or(cycle_plans);
@@ -388,17 +400,20 @@ fn expanded_leads(
             continue;
         }
         let offset = k - range.start;
+        let begins_pass = k == range.start || lowered.toolpath.moves.get(k - 1).is_some_and(|before| !before.threading);
         if let Some(cut) = pieces.get(&k) {
-            // One lead per piece; the thread moves after it in the pass go on with the last.
+            // One lead per piece (a chamfer out after pieces has one of its own); the thread
+            // moves after it in the pass go on with the last.
             let first = firsts.get(offset).copied().unwrap_or(count);
             for (slot, lead) in leads.iter_mut().skip(first).zip(cut) {
                 *slot = Some(lead.clone());
             }
             pass = cut.last().cloned();
-            last_pieces = Some((m.f_word, cut));
+            if begins_pass {
+                last_pieces = Some((m.f_word, cut));
+            }
             continue;
         }
-        let begins_pass = k == range.start || lowered.toolpath.moves.get(k - 1).is_some_and(|before| !before.threading);
         if begins_pass {
             let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(k));
             let programmed = ProgrammedLead { address: crate::dialect::Address::F, written: m.f_word, count: None };
