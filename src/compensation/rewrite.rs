@@ -487,6 +487,9 @@ pub struct MotionBlocks<'a, 'src> {
     piece_leads: HashMap<usize, Vec<block::LeadWordList>>,
     /// The rapid the run given last left as written (`rapid_left_alone`), if it did.
     left_alone: Option<usize>,
+    /// Thread move blocks written as pieces after which the block's own `F` is written again
+    /// (`BlockContext::restore_lead`).
+    restore_lead: HashSet<usize>,
 }
 
 /// What a block's first run wrote.
@@ -567,7 +570,26 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             finishing: thread_pieces::finishing_passes(&lowered.toolpath),
             piece_leads: HashMap::new(),
             left_alone: None,
+            restore_lead: HashSet::new(),
         }
+    }
+
+    /// Whether the first cut from move `from` on runs at the modal F: its block writes no
+    /// feed or lead word of its own.
+    fn modal_feed_read_after(&self, from: usize) -> bool {
+        let moves = &self.lowered.toolpath.moves;
+        let Some(m) = moves.iter().skip(from).find(|m| m.cutting && !matches!(m.motion, Motion::Rapid | Motion::Dwell))
+        else {
+            return false;
+        };
+        let Some(block) = self.lookup.index(m.source.start) else { return true };
+        let precise = self.program.config().tables().thread_lead.precise.map(|p| p.address);
+        !self.program.words_of(self.program.block(block)).iter().any(|w| match w.kind {
+            crate::syntax::WordKind::Number { address, .. } | crate::syntax::WordKind::Expr { address, .. } => {
+                address == Address::F || (m.threading && Some(address) == precise)
+            }
+            _ => false,
+        })
     }
 
     /// Cut every thread pass into pieces where its lead error is not uniform along it, not
@@ -665,10 +687,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     let table = program.config().tables().thread_lead;
                     let cut =
                         thread_pieces::pieces(&lowered.toolpath, (pass, plan), settings, &table, &grid, programmed)?;
-                    Some((at, cut))
+                    Some((at, programmed, cut))
                 },
             );
-            if let Some((at, cut)) = cut {
+            if let Some((at, programmed, cut)) = cut {
                 // A piece at the `F` lead of the one before it writes none: `F` is modal (a
                 // precise `E` is read from its own block only, `back::motion`).
                 let mut in_force = block::LeadWordList::new();
@@ -684,6 +706,18 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     self.leads.insert(block, cycles::LeadWords { at, words: first });
                 }
                 self.piece_leads.insert(block, words.collect());
+                // The block's `F` is the modal F of the blocks after it: where the pieces leave
+                // another in force and a later cut runs at it, the block's `F` is put back.
+                let in_force_after = cut.leads.iter().rev().find_map(|lead| match lead.words.as_slice() {
+                    [(Address::F, number)] => Some(number.to_f64()),
+                    _ => None,
+                });
+                if programmed.address == Address::F
+                    && in_force_after != Some(programmed.written)
+                    && self.modal_feed_read_after(run.moves.end)
+                {
+                    self.restore_lead.insert(block);
+                }
                 let own = own_plans.get_or_insert_with(|| plans.to_vec());
                 own[pass - run.moves.start] = cut.plan;
             } else if let Some((words, _)) = cycles::thread_lead(program, lowered, block, pass, model) {
@@ -774,6 +808,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     tools,
                     lead: self.leads.get(&block),
                     piece_leads: self.piece_leads.get(&block).map_or(&[], Vec::as_slice),
+                    restore_lead: self.restore_lead.contains(&block),
                 };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
                 match (lowered.toolpath.moves.get(single), plans.get(single - first)) {

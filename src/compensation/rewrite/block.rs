@@ -85,6 +85,9 @@ pub(super) struct BlockContext<'a, 'src> {
     /// The lead words of each segment after the first, for a thread move written as thread
     /// blocks each with its own lead (`thread_pieces`); empty for any other.
     pub piece_leads: &'a [LeadWordList],
+    /// After the pieces, the block's own lead word is written again on a block of its own:
+    /// the pieces leave another `F` in force, and a later cut runs at the block's.
+    pub restore_lead: bool,
 }
 
 /// The words one lead is written with (`back::thread_lead::WrittenLead::words`).
@@ -325,6 +328,12 @@ impl BlockContext<'_, '_> {
                 out.out.number(address, number);
             }
             at = (segment.end(), end);
+        }
+        if self.restore_lead
+            && let Some(lead) = self.lead
+        {
+            out.out.next_block();
+            out.copy(self.program.block(self.block).first_word + lead.at as u32);
         }
         if kind != original_kind && !GivenNext::after(self.program, &self.codes, self.block, |_| false).motion {
             out.out.next_block();

@@ -6,19 +6,22 @@
 //! The control advances the command by the written lead every spindle turn. Along a piece
 //! from command `c₀` to `c₁` written with one lead, the spindle's turn is a straight function
 //! of the command; the tool is at `a(c)` along the thread's axis (the command moved by the
-//! model). The programmed helix puts the tool `L` further every turn (`L` the programmed
-//! lead along the axis), so with each piece's lead set for the turns from the thread's start
-//! to the piece's end to be `(a(c₁) − a(c₀))/L`, the tool's helix meets the programmed one at
-//! every piece's end, and between them it departs from it by how far `a` departs from its
-//! chord over the piece. That is bounded at samples `h` apart along the command by the
+//! model). The programmed helix puts the tool `L` further every turn from the pass's nominal
+//! start `z₀` (`L` the programmed lead along the axis), so with each piece's lead set for the
+//! turns from the pass's start to the piece's end to be `(a(c₁) − z₀)/L`, the tool's helix
+//! meets the programmed one at every piece's end (the first piece takes up how far the model
+//! puts the tool from `z₀` at the start, in the approach), and between them it departs from
+//! it by how far `a` departs from its chord over the piece. That is bounded at samples `h`
+//! apart along the command by the
 //! largest departure at the samples plus how far `a` departs from the straight line between
 //! two samples, at most `c·h²/8` with `c` the model's curvature bound
 //! (`ErrorModel::spacing`, which samples the path to `ALLOWANCE_SHARE` of the tolerance):
 //! the pieces are cut at samples so that the departure at the samples stays within the rest
 //! of the tolerance, each as long as it can be (fewest pieces, greedily). Each lead is
-//! written by `back::thread_lead` at the digits that hold it, and each piece's lead is set
-//! from the turns the pieces before it give as written, so that the rounding of one lead
-//! does not gather along the thread.
+//! written by `back::thread_lead` at the digits that hold it (its rounding runs off by at
+//! most half an increment over the piece), and each piece's lead is set from the turns the
+//! pieces before it give as written, so that the rounding of one lead does not gather along
+//! the thread: the helix holds within the tolerance and half an increment.
 //!
 //! Only the passes that shape the finished thread get pieces (`finishing_passes`: the last
 //! pass of a thread, those at its depth, and those of a flank infeed, one of whose flanks
@@ -276,4 +279,97 @@ pub(crate) fn pieces(
         words: SmallVec::new(),
     };
     Some(ThreadPieces { plan, leads })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error_model::effects::{CyclicZ, Effect, ScaleZ, Z};
+
+    const PROGRAM: &str = "G21 G99\nT0303\nG97 S700 M03\nG00 X26. Z6.\nX21.546\nG32 Z-30. F2.\nG00 X26.\nM30\n";
+
+    /// The thread move of `PROGRAM` cut on `model` at the default tolerance (half the
+    /// increment), from its nominal start.
+    fn cut(model: &ErrorModel) -> (Option<ThreadPieces>, Xz, f64) {
+        let ready = crate::compensation::test_support::ready(PROGRAM);
+        let lowered: &crate::semantic::Lowered = &ready.lowered;
+        let toolpath = &lowered.toolpath;
+        let k = toolpath.moves.iter().position(|m| m.threading).unwrap();
+        let start = toolpath.start_of(k);
+        let plan = MovePlan {
+            start,
+            segments: smallvec::smallvec![Segment::Line { end: toolpath.moves[k].contour }],
+            changed: false,
+            jumps: 0,
+            lead_in: false,
+            words: SmallVec::new(),
+        };
+        let grid = Grid::new(&lowered.coordinates_at(k));
+        let table = ready.program().config().tables().thread_lead;
+        let finishing = finishing_passes(toolpath);
+        let settings = PieceSettings { model, tolerance_mm: 0.0005, finishing: &finishing };
+        let programmed = ProgrammedLead { address: crate::dialect::Address::F, written: 2.0, count: None };
+        (pieces(toolpath, (k, &plan), settings, &table, &grid, programmed), start, grid.length_mm(1) / 2.0)
+    }
+
+    #[test]
+    fn a_periodic_screw_error_is_cut_into_pieces_that_hold_the_helix_within_the_tolerance() {
+        let cyclic = CyclicZ { amp: 0.003, pitch: 7.5, phase: 0.5, axis: Z };
+        let model = ErrorModel { effects: vec![Effect::CyclicZ(cyclic)], ..ErrorModel::default() };
+        let (cut, start, half_increment) = cut(&model);
+        let cut = cut.expect("a lead error that changes along the thread is cut into pieces");
+        assert!(cut.plan.segments.len() >= 2 && cut.plan.segments.len() == cut.leads.len());
+        // Independently of how the pieces were found: walk them at their written leads, and
+        // compare where the model puts the tool after each spindle turn with the programmed
+        // helix from the nominal start. From the first piece's end on (the first takes up the
+        // start's offset, in the approach) it holds within the tolerance and the leads'
+        // rounding (half an increment).
+        let (mut from, mut turns, mut worst) = (start, 0.0, 0.0f64);
+        for (n, (segment, lead)) in cut.plan.segments.iter().zip(&cut.leads).enumerate() {
+            let to = segment.end();
+            let length = from.distance(to);
+            for step in 0..=100 {
+                let t = f64::from(step) / 100.0;
+                let c = Xz::new(from.x + (to.x - from.x) * t, from.z + (to.z - from.z) * t);
+                let actual = c.z + cyclic.amp * (std::f64::consts::TAU * c.z / cyclic.pitch + cyclic.phase).sin();
+                let helix = start.z - 2.0 * (turns + length * t / lead.lead);
+                if n > 0 {
+                    worst = worst.max((actual - helix).abs());
+                }
+            }
+            turns += length / lead.lead;
+            from = to;
+        }
+        assert!(worst <= 0.0005 + half_increment, "the helix departs by {worst} mm");
+        // Without pieces the same lead error gathers to micrometres along the thread.
+        let uncut = (0..=3600)
+            .map(|k| -30.0 + 36.0 * f64::from(k) / 3600.0)
+            .map(|z: f64| cyclic.amp * (std::f64::consts::TAU * z / cyclic.pitch + cyclic.phase).sin())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)));
+        assert!(uncut.1 - uncut.0 > 0.005, "{uncut:?}");
+    }
+
+    #[test]
+    fn a_uniform_lead_error_keeps_one_lead() {
+        let model =
+            ErrorModel { effects: vec![Effect::ScaleZ(ScaleZ { ppm: 100.0, axis: Z })], ..ErrorModel::default() };
+        assert_eq!(cut(&model).0, None);
+    }
+
+    #[test]
+    fn the_infeed_passes_straight_across_the_axis_are_not_finishing_passes() {
+        let program = "G21 G99\nT0303\nG97 S700 M03\nG00 X26. Z6.\nX23.\nG32 Z-30. F2.\nG00 X26.\nZ6.\n\
+                       X21.546\nG32 Z-30. F2.\nG00 X26.\nZ6.\nX21.546\nG32 Z-30. F2.\nG00 X26.\nM30\n";
+        let ready = crate::compensation::test_support::ready(program);
+        let toolpath = &ready.lowered.toolpath;
+        let threads: Vec<bool> = toolpath
+            .moves
+            .iter()
+            .zip(finishing_passes(toolpath))
+            .filter(|(m, _)| m.threading)
+            .map(|(_, f)| f)
+            .collect();
+        // The first pass is shallower; the last and the spring pass at its depth shape the thread.
+        assert_eq!(threads, [false, true, true]);
+    }
 }

@@ -47,6 +47,7 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
         tools: &tools,
         lead: None,
         piece_leads: &[],
+        restore_lead: false,
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
@@ -104,6 +105,7 @@ fn arc_as_lines(program: &str) -> Vec<String> {
         tools: &tools,
         lead: None,
         piece_leads: &[],
+        restore_lead: false,
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
