@@ -182,6 +182,7 @@ fn end_to_end(c: &mut Criterion) {
         profiles_in_place: true,
         profiles_copied: true,
         threads_in_place: true,
+        thread_pieces_every_pass: false,
         paths: false,
         block_reports: false,
     };

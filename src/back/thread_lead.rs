@@ -137,8 +137,10 @@ mod tests {
             decimals_beyond_increment: 0,
             precise: Some(PreciseLead { address: Address::E, decimals_beyond_increment: 2 }),
             count: None,
+            continuous: true,
         };
-        let osp = ThreadLead { decimals_beyond_increment: 0, precise: None, count: Some(Address::J) };
+        let osp =
+            ThreadLead { decimals_beyond_increment: 0, precise: None, count: Some(Address::J), continuous: false };
         let neither = ThreadLead::default();
         let programmed = ProgrammedLead { address: Address::F, written: 2.0, count: None };
         // 100 ppm short over a 34 mm thread: 3.4 µm, more than half the 1 µm increment.

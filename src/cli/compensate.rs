@@ -177,6 +177,7 @@ impl FitArgs {
             profiles_in_place: true,
             profiles_copied: true,
             threads_in_place: true,
+            thread_pieces_every_pass: false,
             paths: false,
             block_reports: true,
         }
@@ -223,17 +224,19 @@ impl FitArgs {
 
     /// `compensate` for writing: every edited block reported with `block_reports`, the
     /// profiles of cycles and the words of thread cycles compensated in place, or not, and
-    /// the rapids that need no correction left as written, or not (`in_place`).
+    /// the rapids that need no correction left as written, or not (`in_place`); every thread
+    /// pass held to the bound where the check is `measure`d pass by pass.
     fn compensate_cycles(
         &self,
         program: &Ready<'_>,
         model: &ErrorModel,
-        block_reports: bool,
+        (block_reports, measure): (bool, Measure),
         in_place: InPlace,
     ) -> Outcome {
         let options = CompensateOptions {
             paths: false,
             block_reports,
+            thread_pieces_every_pass: measure == Measure::Passes,
             profiles_in_place: in_place.profiles,
             profiles_copied: in_place.copies,
             threads_in_place: in_place.threads,
@@ -357,7 +360,7 @@ impl Trial<'_, '_> {
             .filter(|&strategy| strategy != fit.strategy && (fit.step.is_none() || strategy == Strategy::Densify))
             .filter_map(|strategy| {
                 let other = FitArgs { strategy, ..fit.clone() };
-                let outcome = other.compensate_cycles(self.program, self.model, false, in_place);
+                let outcome = other.compensate_cycles(self.program, self.model, (false, self.measure), in_place);
                 if outcome.refused() {
                     return None;
                 }
@@ -612,7 +615,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 return Ok(FileResult::refused(1, messages, &name, &bytes, &diagnostics));
             }
         };
-        let mut outcome = args.fit.compensate_cycles(&program, &model, args.report.is_some(), in_place);
+        let mut outcome = args.fit.compensate_cycles(&program, &model, (args.report.is_some(), measure), in_place);
         if outcome.refused()
             && let Some(next) = in_place.without(&outcome)
         {

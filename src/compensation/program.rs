@@ -45,6 +45,10 @@ pub struct CompensateOptions {
     pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
+    /// Write every thread pass whose lead error is not uniform along it as thread blocks of
+    /// their own leads, not only the passes that shape the finished thread
+    /// (`rewrite::thread_pieces`): `--passes` checks every pass.
+    pub thread_pieces_every_pass: bool,
     /// Keep every sample's paths in `Outcome::paths` (for `plot`; a long program has
     /// millions of samples).
     pub paths: bool,
@@ -157,6 +161,10 @@ pub fn compensate_program(
     // block writes, and the rewrite itself, which reads the whole program.
     let mut motion = rewrite::MotionBlocks::new(program, lowered, &tools);
     motion.model = Some(model);
+    motion.thread_tolerance_mm = Some(options.fit.tolerance_mm);
+    if options.thread_pieces_every_pass {
+        motion.every_thread_pass();
+    }
     let (forms, runs) = motion.move_tables();
     let context = stream::Context {
         toolpath,

@@ -27,6 +27,7 @@
 
 mod block;
 pub(crate) mod cycles;
+pub(crate) mod thread_pieces;
 
 use std::collections::{HashMap, HashSet};
 use std::ops::Range;
@@ -34,12 +35,14 @@ use std::ops::Range;
 use crate::back::grid::Grid;
 use crate::back::motion::{Codes, MotionWriter};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
+use crate::dialect::Address;
 use crate::printer::style::{BlockArcWords, StyleTally};
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
 use crate::source::Span;
 use crate::syntax::{Program, Statement};
+use crate::toolpath::Motion;
 
 use super::plan::{KeptPlans, MovePlan};
 use super::written;
@@ -307,8 +310,9 @@ pub fn finish(
         }
     }
     let style = motion.writer.out.style();
+    let pieces = motion.piece_settings();
     let (expanded, mut expanded_leads) =
-        cycles::write(program, lowered, (plans, model), &chosen, style, &mut out.edits, &mut out.diagnostics);
+        cycles::write(program, lowered, (plans, model, pieces), &chosen, style, &mut out.edits, &mut out.diagnostics);
     // The first expansion of each call block (a call that runs several times has several).
     let mut first_expansion: HashMap<usize, usize> = HashMap::new();
     for (k, e) in lowered.expansions.iter().enumerate() {
@@ -352,7 +356,16 @@ pub fn finish(
                 "its moves change, and no finishing cycle runs a profile of it (a single cycle, a roughing cycle \
                  with no finishing cycle, a finishing cycle whose own moves cut)"
             };
-            CycleForm::Expanded { reason: reason.to_string(), lead: expanded_leads.remove(&block) }
+            let lead = expanded_leads.remove(&block);
+            let reason = match lead.as_ref().and_then(|lead| lead.pieces) {
+                Some(pieces) => format!(
+                    "{reason}; the lead error is not uniform along the thread, which one lead word cannot \
+                     carry: the passes that shape the finished thread are written as consecutive thread blocks, \
+                     each with its own lead ({pieces} for the final pass)"
+                ),
+                None => reason.to_string(),
+            };
+            CycleForm::Expanded { reason, lead }
         } else {
             CycleForm::Kept
         };
@@ -464,6 +477,17 @@ pub struct MotionBlocks<'a, 'src> {
     leads: HashMap<usize, cycles::LeadWords>,
     /// The model a thread move's lead is written for (none: leads are left as written).
     pub model: Option<&'a crate::error_model::ErrorModel>,
+    /// The tolerance a finishing thread pass's helix is held to where it is written as
+    /// thread blocks of their own leads (`thread_pieces`; none: one lead per pass).
+    pub thread_tolerance_mm: Option<f64>,
+    /// Per move, whether it is a thread move of a finishing pass (`thread_pieces::finishing_passes`).
+    finishing: Vec<bool>,
+    /// The lead words of the pieces after the first of a thread move written as pieces, by
+    /// block (the first piece's are in `leads`).
+    piece_leads: HashMap<usize, Vec<block::LeadWordList>>,
+    /// Thread move blocks written as pieces after which the block's own `F` is written again
+    /// (`BlockContext::restore_lead`).
+    restore_lead: HashSet<usize>,
 }
 
 /// What a block's first run wrote.
@@ -540,7 +564,44 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             diagnostics: Vec::new(),
             leads: HashMap::new(),
             model: None,
+            thread_tolerance_mm: None,
+            finishing: thread_pieces::finishing_passes(&lowered.toolpath),
+            piece_leads: HashMap::new(),
+            restore_lead: HashSet::new(),
         }
+    }
+
+    /// Whether the first cut from move `from` on runs at the modal F: its block writes no
+    /// feed or lead word of its own.
+    fn modal_feed_read_after(&self, from: usize) -> bool {
+        let moves = &self.lowered.toolpath.moves;
+        let Some(m) = moves.iter().skip(from).find(|m| m.cutting && !matches!(m.motion, Motion::Rapid | Motion::Dwell))
+        else {
+            return false;
+        };
+        let Some(block) = self.lookup.index(m.source.start) else { return true };
+        let precise = self.program.config().tables().thread_lead.precise.map(|p| p.address);
+        !self.program.words_of(self.program.block(block)).iter().any(|w| match w.kind {
+            crate::syntax::WordKind::Number { address, .. } | crate::syntax::WordKind::Expr { address, .. } => {
+                address == Address::F || (m.threading && Some(address) == precise)
+            }
+            _ => false,
+        })
+    }
+
+    /// Cut every thread pass into pieces where its lead error is not uniform along it, not
+    /// only those that shape the finished thread.
+    pub fn every_thread_pass(&mut self) {
+        self.finishing.fill(true);
+    }
+
+    /// What cutting a finishing thread pass into pieces needs, where it is asked for.
+    fn piece_settings(&self) -> Option<thread_pieces::PieceSettings<'_>> {
+        Some(thread_pieces::PieceSettings {
+            model: self.model?,
+            tolerance_mm: self.thread_tolerance_mm?,
+            finishing: &self.finishing,
+        })
     }
 
     /// What can be written for each move (`MoveForms`), and the runs of moves
@@ -598,14 +659,58 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             return;
         }
         // A thread move's lead word is written for the slide to cut the programmed lead, as
-        // a kept thread cycle's is (`cycles::thread_lead`).
+        // a kept thread cycle's is (`cycles::thread_lead`); a finishing pass whose lead error
+        // is not uniform along it, as thread blocks each with its own (`thread_pieces`).
+        let mut own_plans: Option<Vec<MovePlan>> = None;
         if program.block(block).statement == Statement::ThreadMove
             && let Some(model) = self.model
             && let Some(pass) = run.moves.clone().find(|&k| lowered.toolpath.moves[k].threading)
-            && let Some((words, _)) = cycles::thread_lead(program, lowered, block, pass, model)
         {
-            self.leads.insert(block, words);
+            let cut = self.piece_settings().zip(cycles::thread_move_lead(program, block)).and_then(
+                |(settings, (at, programmed))| {
+                    let plan = own_plans.as_deref().unwrap_or(plans).get(pass - run.moves.start)?;
+                    let grid = Grid::new(&lowered.coordinates_at(pass));
+                    let table = program.config().tables().thread_lead;
+                    let cut =
+                        thread_pieces::pieces(&lowered.toolpath, (pass, plan), settings, &table, &grid, programmed)?;
+                    Some((at, programmed, cut))
+                },
+            );
+            if let Some((at, programmed, cut)) = cut {
+                // A piece at the `F` lead of the one before it writes none: `F` is modal (a
+                // precise `E` is read from its own block only, `back::motion`).
+                let mut in_force = block::LeadWordList::new();
+                let mut words = cut.leads.iter().map(|lead| {
+                    if lead.words == in_force && matches!(lead.words.as_slice(), [(Address::F, _)]) {
+                        block::LeadWordList::new()
+                    } else {
+                        in_force.clone_from(&lead.words);
+                        lead.words.clone()
+                    }
+                });
+                if let Some(first) = words.next() {
+                    self.leads.insert(block, cycles::LeadWords { at, words: first });
+                }
+                self.piece_leads.insert(block, words.collect());
+                // The block's `F` is the modal F of the blocks after it: where the pieces leave
+                // another in force and a later cut runs at it, the block's `F` is put back.
+                let in_force_after = cut.leads.iter().rev().find_map(|lead| match lead.words.as_slice() {
+                    [(Address::F, number)] => Some(number.to_f64()),
+                    _ => None,
+                });
+                if programmed.address == Address::F
+                    && in_force_after != Some(programmed.written)
+                    && self.modal_feed_read_after(run.moves.end)
+                {
+                    self.restore_lead.insert(block);
+                }
+                let own = own_plans.get_or_insert_with(|| plans.to_vec());
+                own[pass - run.moves.start] = cut.plan;
+            } else if let Some((words, _)) = cycles::thread_lead(program, lowered, block, pass, model) {
+                self.leads.insert(block, words);
+            }
         }
+        let plans = own_plans.as_deref().unwrap_or(plans);
         let text = self.block_text(block, run.moves.clone(), plans);
         self.settle(block, run.moves.clone(), text);
     }
@@ -645,6 +750,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     radius_arcs: self.radius_arcs,
                     tools,
                     lead: self.leads.get(&block),
+                    piece_leads: self.piece_leads.get(&block).map_or(&[], Vec::as_slice),
+                    restore_lead: self.restore_lead.contains(&block),
                 };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
                 match (lowered.toolpath.moves.get(single), plans.get(single - first)) {

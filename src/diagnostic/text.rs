@@ -794,11 +794,13 @@ impl DiagnosticKind {
                 label: format!("lead off by {:.2} µm over the thread", lead_error_mm * 1000.0).into(),
                 hint: Some(
                     format!(
-                        "a kept thread cycle's and a `G32` block's lead word is written for the slide's error \
-                         along the thread (a pass without a lead word of its own takes the one written before it), \
-                         but not where a cycle is expanded (its thread moves keep the programmed lead), or where \
-                         the slide's error is not uniform along the thread; `--max-deviation {}` accepts this \
-                         program if the thread allows {lead_error_mm:.5} mm",
+                        "each thread pass's lead is written for the slide's error along it: a kept thread \
+                         cycle's lead word, a `G32` block's, an expanded cycle's thread moves' (a pass without a \
+                         lead word of its own takes the one written before it); where the error is not uniform \
+                         along the thread, a pass is written as consecutive thread blocks each with its own lead \
+                         (Fanuc-compatible controls; a kept cycle cannot carry it, and OSP has no thread move to \
+                         write), with --passes every pass, else only the passes that shape the finished thread; \
+                         `--max-deviation {}` accepts this program if the thread allows {lead_error_mm:.5} mm",
                         (lead_error_mm * 1000.0 - 1e-9).ceil() / 1000.0
                     )
                     .into(),

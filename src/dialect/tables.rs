@@ -652,6 +652,10 @@ pub struct ThreadLead {
     /// A word that counts the threads `F` is the length of (OSP `J`: the lead is `F/J`).
     #[serde(default)]
     pub count: Option<Address>,
+    /// Consecutive thread moves keep the spindle synchronisation from block to block, each at
+    /// its own lead (continuous thread cutting): a thread pass may be written as several.
+    #[serde(default)]
+    pub continuous: bool,
 }
 
 /// A precise-lead word and the decimals it takes beyond the least increment's.

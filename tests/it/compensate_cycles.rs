@@ -121,6 +121,7 @@ fn an_osp_finishing_call_runs_its_own_compensated_contour() {
         profiles_in_place: false,
         profiles_copied: true,
         threads_in_place: true,
+        thread_pieces_every_pass: false,
         paths: false,
         block_reports: true,
     };
@@ -258,4 +259,93 @@ fn summary_and_changes(stderr: &str, program: &str, written: &str) -> String {
 /// The report's cycles, as the snapshots show them.
 fn report_cycles(reported: &serde_json::Value) -> String {
     format!("\nreport, cycles:\n{}\n", serde_json::to_string_pretty(&reported["report"]["cycles"]).unwrap())
+}
+
+#[derive(serde::Deserialize)]
+struct CyclicLeadCases {
+    case: Vec<CyclicLeadCase>,
+}
+
+#[derive(serde::Deserialize)]
+struct CyclicLeadCase {
+    name: String,
+    program: String,
+    model: String,
+    kept: Vec<String>,
+    /// The thread cycle is written out (and the report says the lead error is why).
+    #[serde(default)]
+    expanded: bool,
+}
+
+/// `tests/cases/compensate/cycles/cyclic-leads.toml`: a periodic screw error along Z is a
+/// lead error that changes along the thread. `verify` of the program against itself fails
+/// it on the part; `compensate` writes the passes that shape the finished thread as
+/// consecutive thread blocks (a `G32` followed by blocks of its own run, each with a lead
+/// word of its own where its lead changes), says so for an expanded cycle, and `verify`
+/// passes what it wrote.
+#[test]
+fn a_periodic_screw_error_is_written_as_thread_blocks_of_their_own_leads() {
+    let list = std::fs::read_to_string(repo().join("tests/cases/compensate/cycles/cyclic-leads.toml")).unwrap();
+    let cases: CyclicLeadCases = toml::from_str(&list).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    for case in &cases.case {
+        let (code, stdout, stderr) =
+            turnpass(&["verify", &case.program, &case.program, "--model", &case.model, "--format", "json"]);
+        assert_eq!(code, 1, "{}: verify passes a thread whose lead errs\n{stdout}{stderr}", case.name);
+        let verified: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        assert!(verified["deviation"]["after"]["max_mm"].as_f64().unwrap() > 0.002, "{}: {verified}", case.name);
+        let (_, uncorrected, _) = turnpass(&["verify", &case.program, &case.program, "--model", &case.model]);
+        let out = dir.path().join(format!("{}.nc", case.name));
+        let report = dir.path().join(format!("{}.json", case.name));
+        let (out_text, report_text) = (out.to_string_lossy(), report.to_string_lossy());
+        let args = ["compensate", &case.program, "--model", &case.model, "-o", &out_text];
+        let (code, _, compensated) =
+            turnpass(&[&args[..], &["--report", "json", "--report-file", &report_text]].concat());
+        assert_eq!(code, 0, "{}: compensate refused\n{compensated}", case.name);
+        let written = std::fs::read_to_string(&out).unwrap();
+        for kept in &case.kept {
+            assert!(written.lines().any(|l| l == kept), "{}: `{kept}` is not written as it was\n{written}", case.name);
+        }
+        // The final pass: the last `G32` block and the blocks of its run after it.
+        let lines: Vec<&str> = written.lines().collect();
+        let last = lines.iter().rposition(|l| l.split(' ').any(|w| w == "G32")).unwrap();
+        let run = lines[last + 1..].iter().take_while(|l| !l.split(' ').any(|w| w.starts_with('G'))).count();
+        assert!(run >= 2, "{}: the final pass is not written as thread blocks\n{written}", case.name);
+        let (code, json, verify_stderr) =
+            turnpass(&["verify", &case.program, &out_text, "--model", &case.model, "--format", "json"]);
+        assert_eq!(code, 0, "{}: verify failed what compensate wrote\n{json}{verify_stderr}", case.name);
+        let reported: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        if case.expanded {
+            let cycle = &reported["report"]["cycles"][0];
+            assert_eq!(cycle["outcome"], "expanded", "{}: {cycle}", case.name);
+            assert!(
+                cycle["reason"].as_str().unwrap().contains("not uniform along the thread"),
+                "{}: {cycle}",
+                case.name
+            );
+            assert!(cycle["lead"]["pieces"].as_u64().unwrap() >= 2, "{}: {cycle}", case.name);
+        }
+        let (_, corrected, _) = turnpass(&["verify", &case.program, &out_text, "--model", &case.model]);
+        let part_lines = |text: &str| -> String {
+            text.lines()
+                .filter(|l| {
+                    l.starts_with("  as programmed")
+                        || l.starts_with("  compensated")
+                        || l.starts_with("thread lead")
+                        || l.starts_with("deepest")
+                        || l.starts_with("violation")
+                        || l == &"ok"
+                })
+                .map(|l| format!("{l}\n"))
+                .collect()
+        };
+        let mut snapshot = format!("{} on {}\n\nverify, the program against itself:\n", case.program, case.model);
+        snapshot.push_str(&part_lines(&uncorrected));
+        snapshot.push_str("\ncompensate:\n");
+        snapshot.push_str(&summary_and_changes(&compensated, &case.program, &written));
+        snapshot.push_str("\nverify, the written program:\n");
+        snapshot.push_str(&part_lines(&corrected).replace(out_text.as_ref(), "{written}"));
+        snapshot.push_str(&report_cycles(&reported));
+        with_snapshots("compensate", || insta::assert_snapshot!(format!("cyclic-leads-{}", case.name), snapshot));
+    }
 }

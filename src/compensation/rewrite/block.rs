@@ -82,7 +82,16 @@ pub(super) struct BlockContext<'a, 'src> {
     /// A kept thread cycle's lead words, written in place of its lead word
     /// (`cycles::thread_lead`).
     pub lead: Option<&'a super::cycles::LeadWords>,
+    /// The lead words of each segment after the first, for a thread move written as thread
+    /// blocks each with its own lead (`thread_pieces`); empty for any other.
+    pub piece_leads: &'a [LeadWordList],
+    /// After the pieces, the block's own lead word is written again on a block of its own:
+    /// the pieces leave another `F` in force, and a later cut runs at the block's.
+    pub restore_lead: bool,
 }
+
+/// The words one lead is written with (`back::thread_lead::WrittenLead::words`).
+pub(super) type LeadWordList = SmallVec<[(Address, crate::syntax::Number); 2]>;
 
 /// The coordinate words of one segment, by slot, as counts of the increment (at most four:
 /// `X Z`, and `R` or `I K`).
@@ -304,7 +313,7 @@ impl BlockContext<'_, '_> {
         self.first_block(&form, &coordinates, &new, &original, code_changes.then_some(first_kind), out);
         let mut kind = first_kind;
         at = (first.end(), end);
-        for segment in rest {
+        for (n, segment) in rest.iter().enumerate() {
             out.out.next_block();
             let segment_kind = segment_kind(segment, original_kind);
             if segment_kind != kind {
@@ -315,7 +324,16 @@ impl BlockContext<'_, '_> {
             for (slot, value) in words {
                 self.write_coordinate(&form, slot, value, out);
             }
+            for &(address, number) in self.piece_leads.get(n).into_iter().flatten() {
+                out.out.number(address, number);
+            }
             at = (segment.end(), end);
+        }
+        if self.restore_lead
+            && let Some(lead) = self.lead
+        {
+            out.out.next_block();
+            out.copy(self.program.block(self.block).first_word + lead.at as u32);
         }
         if kind != original_kind && !GivenNext::after(self.program, &self.codes, self.block, |_| false).motion {
             out.out.next_block();

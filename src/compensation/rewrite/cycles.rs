@@ -30,6 +30,7 @@ use crate::toolpath::{Compensation, Motion, Move, Xz};
 
 use super::super::fit::Segment;
 use super::super::plan::{KeptPlans, MovePlan};
+use super::thread_pieces::{self, PieceSettings};
 
 /// Whether the moves of `expansion` can be written back: on a control with no thread move
 /// (OSP) a cycle's thread passes are written only as the cycle's own single-pass blocks,
@@ -258,7 +259,7 @@ fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Co
 pub(super) fn write(
     program: &Program<'_>,
     lowered: &Lowered,
-    (plans, model): (&KeptPlans, &crate::error_model::ErrorModel),
+    (plans, model, pieces): (&KeptPlans, &crate::error_model::ErrorModel, Option<PieceSettings<'_>>),
     chosen: &[bool],
     style: &ProgramStyle,
     edits: &mut Edits,
@@ -292,8 +293,38 @@ pub(super) fn write(
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(range.start).shift;
+        // A finishing pass whose lead error is not uniform along it runs as thread blocks of
+        // their own leads (`thread_pieces`).
+        let mut own_plans = None;
+        let mut piece_leads: HashMap<usize, Vec<WrittenLead>> = HashMap::new();
+        let table = program.config().tables().thread_lead;
+        for (k, m) in range.clone().zip(moves).filter(|(_, m)| m.threading) {
+            let Some(settings) = pieces else { break };
+            let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(k));
+            let programmed = ProgrammedLead { address: crate::dialect::Address::F, written: m.f_word, count: None };
+            let Some(plan) = cycle_plans.get(k - range.start) else { continue };
+            if let Some(cut) = thread_pieces::pieces(&lowered.toolpath, (k, plan), settings, &table, &grid, programmed)
+            {
+                own_plans.get_or_insert_with(|| cycle_plans.to_vec())[k - range.start] = cut.plan;
+                piece_leads.insert(k, cut.leads);
+            } else if k > range.start && piece_leads.contains_key(&(k - 1)) {
+                // A thread move after pieces (a chamfer out of the thread) goes on from where
+                // the last piece meets the helix: its lead takes the spindle through the
+                // turns of the programmed move over the move written.
+                let nominal = lowered.toolpath.start_of(k).distance(m.end);
+                let written = plan.start.distance(plan.end());
+                let lead = (nominal > 0.0)
+                    .then(|| written_lead(&table, &grid, programmed, m.f_word * written / nominal, written))
+                    .flatten();
+                if let Some(lead) = lead {
+                    piece_leads.insert(k, vec![lead]);
+                }
+            }
+        }
+        let cycle_plans = own_plans.as_deref().unwrap_or(cycle_plans);
         let (compensated, firsts) = compensated_moves(moves, cycle_plans, compensation_before);
-        let (leads, lead_change) = expanded_leads(program, lowered, expansion, (&firsts, compensated.len()), model);
+        let (leads, lead_change) =
+            expanded_leads(program, lowered, expansion, (&firsts, compensated.len()), model, &piece_leads);
         let blocks =
             match cycle_blocks(program, expansion, (&compensated, &leads), start, compensation_before, shift, style) {
                 CycleBlocks::Blocks(mut blocks) => {
@@ -354,19 +385,35 @@ fn expanded_leads(
     expansion: &Expansion,
     (firsts, count): (&[usize], usize),
     model: &crate::error_model::ErrorModel,
+    pieces: &HashMap<usize, Vec<WrittenLead>>,
 ) -> (Vec<Option<WrittenLead>>, Option<LeadChange>) {
     let table = program.config().tables().thread_lead;
     let range = expansion.moves.clone();
     let mut leads: Vec<Option<WrittenLead>> = vec![None; count];
     let mut pass: Option<WrittenLead> = None;
     let mut last: Option<(f64, WrittenLead)> = None;
+    let mut last_pieces: Option<(f64, &[WrittenLead])> = None;
     for k in range.clone() {
         let Some(m) = lowered.toolpath.moves.get(k) else { break };
         if !m.threading {
             pass = None;
             continue;
         }
+        let offset = k - range.start;
         let begins_pass = k == range.start || lowered.toolpath.moves.get(k - 1).is_some_and(|before| !before.threading);
+        if let Some(cut) = pieces.get(&k) {
+            // One lead per piece (a chamfer out after pieces has one of its own); the thread
+            // moves after it in the pass go on with the last.
+            let first = firsts.get(offset).copied().unwrap_or(count);
+            for (slot, lead) in leads.iter_mut().skip(first).zip(cut) {
+                *slot = Some(lead.clone());
+            }
+            pass = cut.last().cloned();
+            if begins_pass {
+                last_pieces = Some((m.f_word, cut));
+            }
+            continue;
+        }
         if begins_pass {
             let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(k));
             let programmed = ProgrammedLead { address: crate::dialect::Address::F, written: m.f_word, count: None };
@@ -376,31 +423,40 @@ fn expanded_leads(
                 .filter(|lead| lead.lead != m.f_word || lead.unheld_mm.is_some());
             last = pass.clone().map(|lead| (m.f_word, lead));
         }
-        let offset = k - range.start;
         let end = firsts.get(offset + 1).copied().unwrap_or(count);
         for slot in leads.iter_mut().take(end).skip(firsts.get(offset).copied().unwrap_or(count)) {
             slot.clone_from(&pass);
         }
     }
-    let change = last.map(|(old, lead)| {
+    let from = |old: f64| {
         let from = match program.block(expansion.block).statement {
             crate::syntax::Statement::Cycle(id) | crate::syntax::Statement::LapCall(id) => {
                 program.command(id).param(crate::dialect::Role::Lead)
             }
             _ => None,
         };
-        let from = match from {
+        match from {
             Some(id) => String::from_utf8_lossy(program.text(program.word(id).span)).into_owned(),
             None => spelled(&[(crate::dialect::Address::F, crate::back::motion::feed_number(old))]),
-        };
-        LeadChange {
-            from,
-            to: spelled(&lead.words),
-            change_ppm: ((lead.lead / old - 1.0) * 1e6 * 10.0).round() / 10.0,
-            unheld_mm: lead.unheld_mm,
         }
-    });
+    };
+    // The final pass's lead: its pieces' where it is cut into pieces.
+    let change = match last_pieces {
+        Some((old, cut)) => LeadChange::of_pieces(from(old), old, cut),
+        None => last.map(|(old, lead)| LeadChange {
+            from: from(old),
+            to: spelled(&lead.words),
+            change_ppm: ppm(lead.lead, old),
+            unheld_mm: lead.unheld_mm,
+            pieces: None,
+        }),
+    };
     (leads, change)
+}
+
+/// The change of `lead` against `old`, parts per million to a tenth.
+fn ppm(lead: f64, old: f64) -> f64 {
+    ((lead / old - 1.0) * 1e6 * 10.0).round() / 10.0
 }
 
 /// The call block's sequence name, comments and M codes on the first written block, and
@@ -667,6 +723,51 @@ pub struct LeadChange {
     /// runs from it over the thread, mm (`back::thread_lead`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub unheld_mm: Option<f64>,
+    /// Where the lead error is not uniform along the final pass: how many consecutive thread
+    /// blocks it is written as, each with its own lead (`thread_pieces`); `to` then gives the
+    /// least and the largest of their leads, and `change_ppm` the change farthest from none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pieces: Option<usize>,
+}
+
+impl LeadChange {
+    /// The change of a pass written as the pieces `cut` (leads), from the lead word `from`
+    /// that gives `old`; `None` for no pieces.
+    pub(super) fn of_pieces(from: String, old: f64, cut: &[WrittenLead]) -> Option<LeadChange> {
+        let least = cut.iter().min_by(|a, b| a.lead.total_cmp(&b.lead))?;
+        let largest = cut.iter().max_by(|a, b| a.lead.total_cmp(&b.lead))?;
+        let farthest = if (largest.lead - old).abs() > (least.lead - old).abs() { largest } else { least };
+        let unheld = cut
+            .iter()
+            .filter_map(|lead| lead.unheld_mm)
+            .fold(None, |most: Option<f64>, mm| Some(most.map_or(mm, |m| m.max(mm))));
+        Some(LeadChange {
+            from,
+            to: format!("{}…{}", spelled(&least.words), spelled(&largest.words)),
+            change_ppm: ppm(farthest.lead, old),
+            unheld_mm: unheld,
+            pieces: Some(cut.len()),
+        })
+    }
+}
+
+/// The lead word of the thread move `block` (`G32`): its own `F` or precise-lead word, its
+/// place among the block's words and the lead it writes; `None` where the block writes none
+/// (it runs at the lead written before it) or writes it as other than a plain number.
+pub(super) fn thread_move_lead(program: &Program<'_>, block: usize) -> Option<(usize, ProgrammedLead)> {
+    use crate::dialect::Address;
+    let block = program.block(block);
+    if block.statement != crate::syntax::Statement::ThreadMove {
+        return None;
+    }
+    let precise = program.config().tables().thread_lead.precise.map(|p| p.address);
+    let id = block.word_ids().find(|&w| {
+        matches!(program.word(w).kind, WordKind::Number { address, .. }
+            if address == Address::F || Some(address) == precise)
+    })?;
+    let WordKind::Number { address, number } = program.word(id).kind else { return None };
+    let at = usize::try_from(id.checked_sub(block.first_word)?).ok()?;
+    Some((at, ProgrammedLead { address, written: number.to_f64(), count: None }))
 }
 
 /// The lead words of `block`, a thread cycle whose final pass is move `pass` or a thread
@@ -738,12 +839,8 @@ pub(super) fn thread_lead(
         }
         text
     };
-    let change = LeadChange {
-        from: from_text,
-        to: spelled(&words),
-        change_ppm: ((lead / old - 1.0) * 1e6 * 10.0).round() / 10.0,
-        unheld_mm,
-    };
+    let change =
+        LeadChange { from: from_text, to: spelled(&words), change_ppm: ppm(lead, old), unheld_mm, pieces: None };
     Some((LeadWords { at, words }, change))
 }
 
@@ -758,15 +855,7 @@ pub(super) fn lead_ratio(lowered: &Lowered, pass: usize, model: &crate::error_mo
     let (from, to) = (lowered.toolpath.start_of(pass), m.end);
     let along_z = (to.z - from.z).abs() >= (to.x - from.x).abs();
     let axis = |p: Xz| if along_z { p.z } else { p.x };
-    let actual = |at: Xz, seconds: f64| {
-        let mut sample = crate::error_model::state::Sample::at_rest(at, model.start_min + seconds / 60.0);
-        let sign = |d: f64| if d < 0.0 { -1 } else { 1 };
-        sample.direction = crate::error_model::state::Signs { x: sign(to.x - from.x), z: sign(to.z - from.z) };
-        let length = from.distance(to);
-        sample.velocity = Xz::new((to.x - from.x) / length * m.feed, (to.z - from.z) / length * m.feed);
-        let d = model.displacement_without_play(&sample);
-        Xz::new(at.x + d.x, at.z + d.z)
-    };
+    let actual = |at: Xz, seconds: f64| super::thread_pieces::actual_on(model, m, from, at, seconds);
     let ratio = (axis(to) - axis(from)) / (axis(actual(to, m.t_end)) - axis(actual(from, m.t_start)));
     Some(ratio).filter(|r| r.is_finite() && *r > 0.0)
 }

@@ -15,8 +15,9 @@
 //! the one where a pass starts), interpolated at the whole turns: the sampling follows the
 //! model between samples within its allowance. The measured stretch of a pass is its first
 //! thread move and the ones after it that go on along its line (a chamfer out of the
-//! thread, which turns off it, is not the thread's lead). The passes of the two programs
-//! are paired in order.
+//! thread, which turns off it, is not the thread's lead); each move takes the spindle
+//! through its length over its own lead, so a pass written as thread blocks of their own
+//! leads is measured at its whole turns. The passes of the two programs are paired in order.
 
 use crate::toolpath::Xz;
 use crate::toolpath::compact::CompactPath;
@@ -149,30 +150,39 @@ fn pass(program: &CompactPath, moves: &[(usize, f64)], points: &[(usize, f64, Xz
     let sign = (axis(end) - axis(start)).signum();
     let direction = Xz::new((end.x - start.x) / length, (end.z - start.z) / length);
     // The measured stretch: the first move and those that go on along its line (not a
-    // chamfer out of the thread), and their lengths.
-    let mut stretch: Vec<(usize, f64)> = Vec::new();
-    for &(m, _) in moves {
+    // chamfer out of the thread), their lengths and leads. A pass written as consecutive
+    // thread blocks of their own leads (`compensation::rewrite::thread_pieces`) goes on along
+    // the line to the grid's rounding of its joints.
+    let mut stretch: Vec<(usize, f64, f64)> = Vec::new();
+    for &(m, lead) in moves {
         let (a, b) = (program.start_of(m), program.moves().get(m)?.end);
         let len = a.distance(b);
         let along = (b.x - a.x) * direction.x + (b.z - a.z) * direction.z;
         let across = (b.x - a.x) * direction.z - (b.z - a.z) * direction.x;
-        if len.is_nan() || len <= 0.0 || along <= 0.0 || across.abs() > 1e-6 * len {
+        if len.is_nan()
+            || len <= 0.0
+            || along <= 0.0
+            || across.abs() > ALONG_THE_LINE * len
+            || lead.is_nan()
+            || lead <= 0.0
+        {
             break;
         }
-        stretch.push((m, len));
+        stretch.push((m, len, lead));
     }
-    // The predicted points along the stretch, by the path length from its start.
+    // The predicted points along the stretch, by the spindle turns from its start: each
+    // move's length over its own lead.
     let mut along: Vec<(f64, Xz)> = Vec::new();
     let mut before = 0.0;
-    for &(m, len) in &stretch {
+    for &(m, len, lead) in &stretch {
         for &(index, param, p) in points {
             if index + 1 == m && param >= 1.0 && along.is_empty() {
                 along.push((before, p));
             } else if index == m {
-                along.push((before + param * len, p));
+                along.push((before + param * len / lead, p));
             }
         }
-        before += len;
+        before += len / lead;
     }
     let &(s0, p0) = along.first()?;
     if s0 > 1e-9 {
@@ -180,11 +190,11 @@ fn pass(program: &CompactPath, moves: &[(usize, f64)], points: &[(usize, f64, Xz
         return None;
     }
     let axial_lead = lead * sign * (axis(end) - axis(start)).abs() / length;
-    let turns = (before / lead + 1e-9).floor() as usize;
+    let turns = (before + 1e-9).floor() as usize;
     let mut advances = Vec::with_capacity(turns + 1);
     let mut j = 0;
     for n in 0..=turns {
-        let s = n as f64 * lead;
+        let s = n as f64;
         while j + 1 < along.len() && along[j + 1].0 < s {
             j += 1;
         }
@@ -200,3 +210,9 @@ fn pass(program: &CompactPath, moves: &[(usize, f64)], points: &[(usize, f64, Xz
     }
     Some(PassLead { first_move: first, axial_lead, advances })
 }
+
+/// How far across the first move's line a thread move after it may run, per length, and
+/// still go on along it: the grid's rounding of a joint of thread blocks (half an
+/// increment over a piece of a few tenths of a millimetre) is within it, a chamfer out of
+/// the thread (tens of degrees) far outside it.
+const ALONG_THE_LINE: f64 = 0.01;

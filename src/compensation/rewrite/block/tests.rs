@@ -46,6 +46,8 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
         radius_arcs: true,
         tools: &tools,
         lead: None,
+        piece_leads: &[],
+        restore_lead: false,
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
@@ -102,6 +104,8 @@ fn arc_as_lines(program: &str) -> Vec<String> {
         radius_arcs: true,
         tools: &tools,
         lead: None,
+        piece_leads: &[],
+        restore_lead: false,
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
