@@ -116,8 +116,10 @@ pub fn plan_range(
     let toolpath = input.toolpath;
     let first = moves.start;
     let mut points: Vec<Xz> = Vec::new();
+    let mut jogs = SmallVec::<[Xz; 2]>::new();
     for (index, m) in toolpath.moves.get(moves).unwrap_or_default().iter().enumerate() {
         let index = first + index;
+        jogs.clear();
         let contour_start = written::contour_start(toolpath, index);
         let range = input.ranges.get(index).cloned().unwrap_or(0..0);
         let grid = grid_of(index);
@@ -136,6 +138,7 @@ pub fn plan_range(
             // One buffer for every move's points: most moves have one or a few.
             points.clear();
             let jumps = written_points(input, m, contour_start, range.clone(), options.play, &mut points);
+            jogs.extend(jumps.iter().map(|&(_, jump)| jump));
             let switches = index > 0
                 && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
                     != Some(m.compensation);
@@ -151,6 +154,8 @@ pub fn plan_range(
         if plan.changed {
             settle_arcs(&mut plan, &grid, input.radius.get(index).copied().unwrap_or(false));
         }
+        let earlier = plans.len() - (index - first);
+        nose_room::make_room_at(input, index, &mut plans[earlier..], first, &mut plan, &jogs);
         at = plan.end();
         plans.push(plan);
     }
@@ -396,6 +401,7 @@ fn written_points(
 }
 
 mod kept;
+mod nose_room;
 pub use kept::KeptPlans;
 
 #[cfg(test)]
