@@ -13,7 +13,9 @@
 //! there. A jump is what the inverse records where it reversed an axis: the command's
 //! travel inside the play before the slide moves (`Tracker::take_up`). A correction that
 //! drifts along a move without reversing its slide (squareness along a long turn) is no
-//! jump, however far apart its samples: it is written into the move itself.
+//! jump, however far apart its samples: it is written into the move itself. Under
+//! nose-radius compensation a jump at a concave corner is shorter than the control's
+//! cut-back there, and `nose_room.rs` takes it into its neighbours.
 //!
 //! Rapids are sampled only at their end and written as one move to the corrected end;
 //! thread moves stay one move (a thread cannot be cut in pieces), to their corrected end;
@@ -155,7 +157,9 @@ pub fn plan_range(
             settle_arcs(&mut plan, &grid, input.radius.get(index).copied().unwrap_or(false));
         }
         let earlier = plans.len() - (index - first);
-        nose_room::make_room_at(input, index, &mut plans[earlier..], first, &mut plan, &jogs);
+        if nose_room::make_room_at(input, index, &mut plans[earlier..], first, &mut plan, &jogs) {
+            settle_arcs(&mut plan, &grid, input.radius.get(index).copied().unwrap_or(false));
+        }
         at = plan.end();
         plans.push(plan);
     }
