@@ -607,6 +607,11 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         || ready_or_diagnostics(&name, &bytes, &resolved, &args.run, "compensate", &mut Vec::new()).map_err(|(_, d)| d);
     let machine = program.machine.clone();
     let mut kept = Some(program);
+    // `--strategy auto` writes each move in its cheapest form; where those forms leave the
+    // nose no room under G41/G42, the program is written in the other form that reads back
+    // and meets the bound with the least deviation (`fell_back`).
+    let mut fit = args.fit.clone();
+    let mut fell_back: Option<String> = None;
     let (mut outcome, written, cycle_blocks) = loop {
         let program = match kept.take().map_or_else(&again, Ok) {
             Ok(program) => program,
@@ -615,7 +620,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 return Ok(FileResult::refused(1, messages, &name, &bytes, &diagnostics));
             }
         };
-        let mut outcome = args.fit.compensate_cycles(&program, &model, (args.report.is_some(), measure), in_place);
+        let mut outcome = fit.compensate_cycles(&program, &model, (args.report.is_some(), measure), in_place);
         if outcome.refused()
             && let Some(next) = in_place.without(&outcome)
         {
@@ -639,7 +644,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             model_sha256: model_sha256(&resolved)?,
             table_sha256: table.as_ref().map(|(table, _)| table.sha256.clone()),
             tolerance_mm: args.fit.options(&program.machine).fit.tolerance_mm,
-            strategy: args.fit.strategy,
+            strategy: fit.strategy,
             step_mm: args.fit.step,
             start_min: model.start_min,
             // Where the text alone would read as the other dialect, the comment names it.
@@ -755,6 +760,33 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 in_place = next;
                 continue;
             }
+            if let DiagnosticKind::CompensationUnreadable { problem, nose_has_no_room: true } = &diagnostic.kind
+                && fit.strategy == Strategy::Auto
+                && fell_back.is_none()
+                && moves <= Trial::MAX_MOVES
+                && let Ok(program) = again()
+            {
+                let trial = Trial {
+                    program: &program,
+                    model: &model,
+                    reading: &reading,
+                    tools: &tools,
+                    measure,
+                    stock: stock.as_ref(),
+                };
+                if let Some((other, _)) =
+                    trial.closest_strategy(&fit, in_place).filter(|&(_, deviation)| deviation <= bound)
+                    && let Some(strategy) = Strategy::from_name(other)
+                {
+                    fell_back = Some(format!(
+                        "compensate: {name}: --strategy auto: its cheapest forms leave the nose no room under \
+                         G41/G42 ({problem}); written in the `{other}` form, which the nose can follow\n"
+                    ));
+                    fit.strategy = strategy;
+                    kept = Some(program);
+                    continue;
+                }
+            }
             let mut diagnostic = diagnostic;
             if let DiagnosticKind::CompensationFailsCheck { other_strategy, .. } = &mut diagnostic.kind
                 && moves <= Trial::MAX_MOVES
@@ -768,7 +800,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                     measure,
                     stock: stock.as_ref(),
                 };
-                *other_strategy = trial.closest_strategy(&args.fit, in_place);
+                *other_strategy = trial.closest_strategy(&fit, in_place);
             }
             messages.append(&mut unreadable.messages);
             messages.extend(rendered(&name, &bytes, std::slice::from_ref(&diagnostic)));
@@ -779,6 +811,9 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         }
         break (outcome, written, blocks);
     };
+    if let Some(said) = fell_back {
+        messages.extend_from_slice(said.as_bytes());
+    }
     let neither = match (&because.profiles, &because.copies) {
         (Some(a), Some(b)) => Some(format!("{a}; {b}")),
         (a, b) => a.clone().or_else(|| b.clone()),

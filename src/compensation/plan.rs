@@ -13,7 +13,9 @@
 //! there. A jump is what the inverse records where it reversed an axis: the command's
 //! travel inside the play before the slide moves (`Tracker::take_up`). A correction that
 //! drifts along a move without reversing its slide (squareness along a long turn) is no
-//! jump, however far apart its samples: it is written into the move itself.
+//! jump, however far apart its samples: it is written into the move itself. Under
+//! nose-radius compensation a jump at a concave corner is shorter than the control's
+//! cut-back there, and `nose_room.rs` takes it into its neighbours.
 //!
 //! Rapids are sampled only at their end and written as one move to the corrected end;
 //! thread moves stay one move (a thread cannot be cut in pieces), to their corrected end;
@@ -123,8 +125,10 @@ pub fn plan_range(
     let first = moves.start;
     let base = plans.len();
     let mut points: Vec<Xz> = Vec::new();
+    let mut jogs = SmallVec::<[Xz; 2]>::new();
     for (index, m) in toolpath.moves.get(moves).unwrap_or_default().iter().enumerate() {
         let index = first + index;
+        jogs.clear();
         let contour_start = written::contour_start(toolpath, index);
         let range = input.ranges.get(index).cloned().unwrap_or(0..0);
         let grid = grid_of(index);
@@ -143,6 +147,7 @@ pub fn plan_range(
             // One buffer for every move's points: most moves have one or a few.
             points.clear();
             let jumps = written_points(input, m, contour_start, range.clone(), options.play, &mut points);
+            jogs.extend(jumps.iter().map(|&(_, jump)| jump));
             let switches = index > 0
                 && index.checked_sub(1).and_then(|k| toolpath.moves.get(k)).map(|p| p.compensation)
                     != Some(m.compensation);
@@ -156,6 +161,10 @@ pub fn plan_range(
             }
         };
         if plan.changed {
+            settle_arcs(&mut plan, &grid, input.radius.get(index).copied().unwrap_or(false));
+        }
+        let earlier = plans.len() - (index - first);
+        if nose_room::make_room_at(input, index, &mut plans[earlier..], first, &mut plan, &jogs) {
             settle_arcs(&mut plan, &grid, input.radius.get(index).copied().unwrap_or(false));
         }
         at = plan.end();
@@ -406,6 +415,7 @@ fn written_points(
 
 mod air;
 mod kept;
+mod nose_room;
 pub use air::Judged;
 pub use kept::KeptPlans;
 
