@@ -384,13 +384,15 @@ mod generated {
     }
 
     /// The property allows a refusal; this holds refusals to a small share of the same inputs,
-    /// so that the property is not met by refusing. About one job in four and a half is
-    /// refused (46 of 200 on average over seven runs, 35 to 56): about half because the
-    /// moved contour leaves the nose no room under G41/G42 (a backlash take-up jog at a
-    /// concave corner, an arc refit into pieces), as the control's interference check would
-    /// say, and about a third because a periodic screw error puts a thread's flanks off by
-    /// more than the bound, which no constant lead corrects. Over 200 jobs (a few seconds)
-    /// the bound of a third sits more than three standard deviations above the mean. Each job is
+    /// so that the property is not met by refusing. About one job in nine is refused on the
+    /// finished part (22 and 23 of 200 in two runs) and one in seven pass by pass (28 and 31):
+    /// a thread on a periodic screw error is cut as thread blocks of their own leads, and an
+    /// element of compensation's own the nose cannot follow under G41/G42 is joined into its
+    /// neighbours. Among what is left: take-up steps between arcs the tool runs inside of
+    /// (the control's interference check would refuse those too), and backlash or
+    /// squareness the check before writing finds over the bound. Over 200 jobs (a few
+    /// seconds) the bound of a quarter sits about four standard deviations above the pass
+    /// measure's share. Each job is
     /// also compensated with the check before writing pass by pass (`--passes`), and both
     /// shares are printed: the pass measure does not see a thread's flanks.
     #[test]
@@ -425,7 +427,7 @@ mod generated {
         eprintln!(
             "compensate refused {refused} of {runs} generated jobs on the finished part, {refused_passes} pass by pass"
         );
-        assert!(refused * 3 <= runs, "compensate refused {refused} of {runs} generated jobs");
-        assert!(refused_passes * 3 <= runs, "compensate --passes refused {refused_passes} of {runs} generated jobs");
+        assert!(refused * 4 <= runs, "compensate refused {refused} of {runs} generated jobs");
+        assert!(refused_passes * 4 <= runs, "compensate --passes refused {refused_passes} of {runs} generated jobs");
     }
 }
