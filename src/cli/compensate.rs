@@ -333,8 +333,7 @@ fn lead_said(lead: &turnpass::compensation::LeadChange) -> String {
 }
 
 /// What a refused program is compensated again with, to find what would meet the bound.
-struct Trial<'a, 'src> {
-    program: &'a Ready<'src>,
+struct Trial<'a> {
     model: &'a ErrorModel,
     reading: &'a turnpass::pipeline::Settings,
     tools: &'a ToolTable,
@@ -342,29 +341,29 @@ struct Trial<'a, 'src> {
     stock: Option<&'a StockSettings>,
 }
 
-impl Trial<'_, '_> {
+impl Trial<'_> {
     /// Programs of more moves than this are not compensated again with every strategy.
     const MAX_MOVES: usize = 100_000;
 
     /// The other strategy whose compensated program, read back and measured as the check
     /// before writing measures it, deviates least, with that deviation, mm; `None` for a
     /// long program (`MAX_MOVES`) or where no other strategy's program reads back.
-    fn closest_strategy(&self, fit: &FitArgs, in_place: InPlace) -> Option<(&'static str, f64)> {
-        if self.program.valid().moves.len() > Self::MAX_MOVES {
+    fn closest_strategy(&self, program: &Ready<'_>, fit: &FitArgs, in_place: InPlace) -> Option<(&'static str, f64)> {
+        if program.valid().moves.len() > Self::MAX_MOVES {
             return None;
         }
-        let words = verify::Words::of(&self.program.parsed.program, &self.program.lowered.expansions);
-        let original = verify::Held::from_toolpath(words, self.program.valid(), self.tools);
+        let words = verify::Words::of(&program.parsed.program, &program.lowered.expansions);
+        let original = verify::Held::from_toolpath(words, program.valid(), self.tools);
         Strategy::ALL
             .into_iter()
             .filter(|&strategy| strategy != fit.strategy && (fit.step.is_none() || strategy == Strategy::Densify))
             .filter_map(|strategy| {
                 let other = FitArgs { strategy, ..fit.clone() };
-                let outcome = other.compensate_cycles(self.program, self.model, (false, self.measure), in_place);
+                let outcome = other.compensate_cycles(program, self.model, (false, self.measure), in_place);
                 if outcome.refused() {
                     return None;
                 }
-                let written = printer::print(&self.program.parsed.program, &outcome.edits);
+                let written = printer::print(&program.parsed.program, &outcome.edits);
                 let checked = verify::check_written(
                     || Ok(original.clone()),
                     &written,
@@ -665,6 +664,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         // dialect may have been in the blocks an edit replaced.
         let mut reading = pipeline_settings(&resolved, &args.run, true);
         reading.parse = printer::read_back_options(&program.parsed.program);
+        let trial = Trial { model: &model, reading: &reading, tools: &tools, measure, stock: stock.as_ref() };
         let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
         let mut unreadable = FileResult::failed(1, Vec::new());
         // The original's AST and moves go before the read-back, which holds a second program;
@@ -765,42 +765,24 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 && fell_back.is_none()
                 && moves <= Trial::MAX_MOVES
                 && let Ok(program) = again()
+                && let Some((other, _)) =
+                    trial.closest_strategy(&program, &fit, in_place).filter(|&(_, deviation)| deviation <= bound)
+                && let Some(strategy) = Strategy::from_name(other)
             {
-                let trial = Trial {
-                    program: &program,
-                    model: &model,
-                    reading: &reading,
-                    tools: &tools,
-                    measure,
-                    stock: stock.as_ref(),
-                };
-                if let Some((other, _)) =
-                    trial.closest_strategy(&fit, in_place).filter(|&(_, deviation)| deviation <= bound)
-                    && let Some(strategy) = Strategy::from_name(other)
-                {
-                    fell_back = Some(format!(
-                        "compensate: {name}: --strategy auto: its cheapest forms leave the nose no room under \
-                         G41/G42 ({problem}); written in the `{other}` form, which the nose can follow\n"
-                    ));
-                    fit.strategy = strategy;
-                    kept = Some(program);
-                    continue;
-                }
+                fell_back = Some(format!(
+                    "compensate: {name}: --strategy auto: its cheapest forms leave the nose no room under \
+                     G41/G42 ({problem}); written in the `{other}` form, which the nose can follow\n"
+                ));
+                fit.strategy = strategy;
+                kept = Some(program);
+                continue;
             }
             let mut diagnostic = diagnostic;
             if let DiagnosticKind::CompensationFailsCheck { other_strategy, .. } = &mut diagnostic.kind
                 && moves <= Trial::MAX_MOVES
                 && let Ok(program) = again()
             {
-                let trial = Trial {
-                    program: &program,
-                    model: &model,
-                    reading: &reading,
-                    tools: &tools,
-                    measure,
-                    stock: stock.as_ref(),
-                };
-                *other_strategy = trial.closest_strategy(&fit, in_place);
+                *other_strategy = trial.closest_strategy(&program, &fit, in_place);
             }
             messages.append(&mut unreadable.messages);
             messages.extend(rendered(&name, &bytes, std::slice::from_ref(&diagnostic)));

@@ -213,7 +213,8 @@ pub(crate) fn pieces(
     // Each piece as long as the departure at its samples stays within the tolerance less the
     // allowance between samples.
     let within = tolerance_mm - allowance;
-    let departs = |i: usize, j: usize| {
+    // Whether a sample between samples `i` and `j` lies farther than `within` from their chord.
+    let departs = |samples: &[(Xz, f64)], i: usize, j: usize| {
         let ((ci, ai), (cj, aj)) = (samples[i], samples[j]);
         let span = axis(cj) - axis(ci);
         samples[i + 1..j].iter().any(|&(c, a)| {
@@ -221,7 +222,7 @@ pub(crate) fn pieces(
             (a - chord).abs() > within
         })
     };
-    if !departs(0, samples.len() - 1) {
+    if !departs(&samples, 0, samples.len() - 1) {
         // One lead holds the helix.
         return None;
     }
@@ -232,19 +233,11 @@ pub(crate) fn pieces(
     // runs along the thread (slide − command is −play/2 running in +).
     let play = if along_z { model.play().z } else { model.play().x };
     samples[0].1 = axis(nominal_from) + sign * play / 2.0;
-    let departs = |i: usize, j: usize| {
-        let ((ci, ai), (cj, aj)) = (samples[i], samples[j]);
-        let span = axis(cj) - axis(ci);
-        samples[i + 1..j].iter().any(|&(c, a)| {
-            let chord = ai + (aj - ai) * (axis(c) - axis(ci)) / span;
-            (a - chord).abs() > within
-        })
-    };
     let mut ends = vec![0usize];
     let mut i = 0;
     while i + 1 < samples.len() {
         let mut j = i + 1;
-        while j + 1 < samples.len() && !departs(i, j + 1) {
+        while j + 1 < samples.len() && !departs(&samples, i, j + 1) {
             j += 1;
         }
         ends.push(j);
