@@ -104,7 +104,7 @@ pub(super) fn make_room_at(
 /// meet, and make a step of `plan` between two of its arcs that the control would use up
 /// the line tangent to one of them (`bridged`). `side` is +1 for `G41`, −1 for `G42`;
 /// `jogs` are the steps `plan` writes as moves of their own (a backlash take-up), so that a
-/// step done away with is no longer counted. Returns whether an arc of `plan` moved.
+/// step done away with is not counted. Returns whether an arc of `plan` moved.
 pub(super) fn make_room(before: Option<Before<'_>>, plan: &mut MovePlan, radius: f64, side: f64, jogs: &[Xz]) -> bool {
     if radius <= 0.0 || plan.lead_in {
         return false;
