@@ -86,10 +86,12 @@ fuzz_target!(|data: &[u8]| {
         profiles_in_place: true,
         profiles_copied: true,
         threads_in_place: true,
+        thread_pieces_every_pass: false,
         paths: false,
         block_reports: true,
     };
-    let outcome = compensate_program(ready.program(), &ready.lowered, machine, &model, &compensate_options, Judged::EveryFeed);
+    let outcome =
+        compensate_program(ready.program(), &ready.lowered, machine, &model, &compensate_options, Judged::EveryFeed);
     if outcome.refused() {
         return;
     }
@@ -101,7 +103,12 @@ fuzz_target!(|data: &[u8]| {
     // is refused there: that is its check, not a finding.
     let read_back = pipeline::Settings { parse: printer::read_back_options(ready.program()), ..reading };
     let tools = ToolTable::from_machine(machine);
-    let Ok(verify::Written { lost, .. }) = verify::check_written((ready.program(), &ready.lowered.expansions, ready.valid()), &printed, &read_back, &tools, (&model, verify::Measure::Part, None))
+    let original = || {
+        let words = verify::Words::of(ready.program(), &ready.lowered.expansions);
+        Ok(verify::Held::from_toolpath(words, ready.valid(), &tools))
+    };
+    let measure = (&model, verify::Measure::Part, None);
+    let Ok(verify::Written { lost, .. }) = verify::check_written(original, &printed, &read_back, &tools, measure)
     else {
         return;
     };
