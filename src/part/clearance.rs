@@ -11,8 +11,11 @@
 //! which move the rays credit with a stretch of surface: a roughing pass that a later pass
 //! cuts away stays clear wherever the finishing pass leaves its allowance.
 //!
-//! Arcs and thread passes are not tested: compensation leaves only straight moves as
-//! written (`compensation/plan/air.rs`).
+//! Only a tool whose side the tool table gives (its tip direction) is tested: the part model
+//! guesses the side of one it does not give from its first cut, and a boring bar taken for
+//! a turning tool leaves a finished part where its first pass runs, so that the pass that
+//! really finishes the bore would seem clear of it. Arcs and thread passes are not tested:
+//! compensation leaves only straight moves as written (`compensation/plan/air.rs`).
 
 use crate::machine::StockSettings;
 use crate::semantic::Machine;
@@ -51,11 +54,6 @@ impl Clearance {
         self.clear.get(index).copied().unwrap_or(false)
     }
 
-    /// How many moves keep clear.
-    pub fn count(&self) -> usize {
-        self.clear.iter().filter(|&&c| c).count()
-    }
-
     /// The finished part the clearance is measured from.
     pub fn finished(&self) -> &Finished {
         &self.finished
@@ -89,6 +87,9 @@ pub fn clearance(toolpath: ValidToolpath<'_>, machine: &Machine, stock: Option<&
         }
         let start = toolpath.start_of(index);
         let tool = removal.tool(m, start);
+        if !tool.oriented {
+            continue;
+        }
         let (c0, c1) = (tool.centre(start), tool.centre(m.end));
         let sweep = Sweep::rounded(tool.placed(c0).chain(tool.placed(c1)), tool.nose + grow);
         let (lo, hi) = sweep.bounds();
@@ -112,20 +113,41 @@ pub fn clearance(toolpath: ValidToolpath<'_>, machine: &Machine, stock: Option<&
 mod tests {
     use super::*;
     use crate::dialect::{DialectChoice, GCodeSystem};
-    use crate::machine::{AxisPair, MachineSettings};
+    use crate::machine::{AxisPair, MachineSettings, ToolSettings};
     use crate::pipeline::{Settings, analyse};
     use crate::semantic::LowerOptions;
     use crate::syntax::ParseOptions;
     use crate::toolpath::Xz;
 
     fn clear_moves(source: &str) -> Vec<(usize, Xz)> {
+        clear_moves_with(source, Some(3))
+    }
+
+    /// The clear moves of `source` with tool 1 of nose radius 0.4 and tip direction `tip`
+    /// (none: the table does not give one).
+    fn clear_moves_with(source: &str, tip: Option<u8>) -> Vec<(usize, Xz)> {
+        let tool = ToolSettings {
+            station: 1,
+            offset: None,
+            x: 0.0,
+            z: 0.0,
+            nose_radius: 0.4,
+            tip: tip.unwrap_or(0),
+            minor_edge_angle: None,
+            kind: None,
+            angle: None,
+            diameter: None,
+            width: None,
+            max_depth: None,
+        };
         let options = ParseOptions {
             dialect: DialectChoice::Auto,
             gcode_system: GCodeSystem::A,
             machine_kind: None,
             control: Default::default(),
         };
-        let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), ..Default::default() };
+        let settings =
+            MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), tool: vec![tool], ..Default::default() };
         let analysed = analyse(source.as_bytes(), &Settings::new(options, &settings, LowerOptions::new(false)));
         let program = match analysed.ready() {
             Ok(program) => program,
@@ -161,5 +183,15 @@ mod tests {
              G00 X40. Z2.\nG01 Z-30. F0.1\nG01 X48.\nG00 X60. Z50.\nM30\n",
         );
         assert!(!clear.iter().any(|&(_, end)| end == Xz::new(20.05, -29.8)), "{clear:?}");
+    }
+
+    #[test]
+    fn a_tool_whose_side_the_table_does_not_give_keeps_clear_of_nothing() {
+        // The part model guesses its side from its first cut, which a boring bar facing out
+        // from its bore gets wrong: none of its moves is taken as clear.
+        let program = "G18 G21 G40 G99\nT0101\nG97 S500 M03\nG00 X46. Z2.\nG01 X44. Z0.5 F0.3\nG01 Z-29.8\n\
+                       G01 X46.\nG00 Z2.\nG00 X40. Z2.\nG01 Z-30. F0.1\nG01 X48.\nG00 X60. Z50.\nM30\n";
+        assert!(!clear_moves_with(program, Some(3)).is_empty());
+        assert_eq!(clear_moves_with(program, None), Vec::new());
     }
 }
