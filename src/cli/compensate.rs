@@ -906,6 +906,18 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         .as_bytes(),
     );
     messages.extend(cycle_lines(&name, &cycle_blocks, &bytes, &outcome.cycles));
+    if let feeds @ 1.. = outcome.left_alone.feeds {
+        // Why a roughing pass by hand reads as the programmer wrote it.
+        messages.extend_from_slice(
+            format!(
+                "compensate: {name}: {feeds} feed move{} left as written: the whole tool keeps {} mm clear of the \
+                 finished part there (roughing that leaves its allowance, moves in the air)\n",
+                super::common::plural(feeds),
+                turnpass::part::clearance::CLEARANCE_MM,
+            )
+            .as_bytes(),
+        );
+    }
     let tolerance = args.fit.options(&machine).fit.tolerance_mm;
     if totals.inverse_residual_mm > tolerance {
         // The figures above are what the written program does; the tolerance asked for is
