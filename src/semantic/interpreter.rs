@@ -418,6 +418,12 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 mark.from_move = moved.range(mark.from_move..mark.from_move).start;
             }
         }
+        let blocks = self.program.blocks();
+        let block_of = |start: u32| blocks.binary_search_by_key(&start, |b| b.span.start).ok();
+        for expansion in &mut self.expansions {
+            expansion.feed_read_after =
+                super::modal_feed_read(self.program, &toolpath.moves, expansion.moves.end, block_of);
+        }
         crate::diagnostic::merge_repeats(&mut self.diagnostics);
         self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
         // A system variable read as 0 is said once, where the program first reads it.

@@ -218,6 +218,7 @@ impl Interpreter<'_, '_> {
                 after: super::ModalAfter::of(&self.modal),
                 kept: None,
                 note: None,
+                feed_read_after: true,
             });
         }
         Flow::Next
@@ -386,6 +387,7 @@ impl Interpreter<'_, '_> {
                 after: super::ModalAfter::of(&corner.modal),
                 kept: None,
                 note: None,
+                feed_read_after: true,
             });
         }
     }
