@@ -825,13 +825,30 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // largest and its RMS deviation alike (corrections the control's increments round the
     // wrong way), are not worth writing: the program goes out as it came, and says why.
     let (before, after) = (outcome.report.totals.before, outcome.report.totals.after);
-    if after.max_mm > before.max_mm && after.rms_mm > before.rms_mm {
+    // The program as written goes out only where `verify` of it against itself passes: the
+    // figures above measure it beside the edits, and where the bar assumed from both
+    // programs' cuts gives the edits a surface to probe, verify of the program alone may
+    // find none and measure its passes instead (`verify::check_written`).
+    let unchanged = (after.max_mm > before.max_mm && after.rms_mm > before.rms_mm)
+        .then(|| {
+            let mut reading = pipeline_settings(&resolved, &args.run, true);
+            reading.parse = printer::read_back_options(&again().ok()?.parsed.program);
+            let original = || again().map(|program| verify::Held::of(program, &tools));
+            verify::check_written(original, &bytes, &reading, &tools, (&model, measure, stock.as_ref())).ok()
+        })
+        .flatten()
+        .map(|unchanged| unchanged.deviation.after)
+        .filter(|unchanged| {
+            unchanged.max_mm <= args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine))
+        });
+    if let Some(unchanged) = unchanged {
+        outcome.report.totals.before = unchanged;
         messages.extend_from_slice(
             format!(
                 "compensate: {name}: written unchanged: its edits would leave the predicted part worse than the \
                  program as written (RMS {:.5} -> {:.5} mm, largest {:.5} -> {:.5} mm); predicted deviation (as \
                  verify measures it) RMS {:.5} mm, largest {:.5} mm\n",
-                before.rms_mm, after.rms_mm, before.max_mm, after.max_mm, before.rms_mm, before.max_mm,
+                before.rms_mm, after.rms_mm, before.max_mm, after.max_mm, unchanged.rms_mm, unchanged.max_mm,
             )
             .as_bytes(),
         );
