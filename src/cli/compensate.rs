@@ -823,13 +823,15 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     }
     // Edits that the check predicts leave the part worse than the program as it came, by its
     // largest and its RMS deviation alike (corrections the control's increments round the
-    // wrong way), are not worth writing: the program goes out as it came, and says why.
-    let (before, after) = (outcome.report.totals.before, outcome.report.totals.after);
-    // The program as written goes out only where `verify` of it against itself passes: the
-    // figures above measure it beside the edits, and where the bar assumed from both
-    // programs' cuts gives the edits a surface to probe, verify of the program alone may
-    // find none and measure its passes instead (`verify::check_written`).
-    let unchanged = (after.max_mm > before.max_mm && after.rms_mm > before.rms_mm)
+    // wrong way), are not worth writing: the program goes out as it came, and says why. The
+    // program as it came is measured as `verify` of it against itself measures it, the
+    // figures it would be written with: beside the edits, where the bar assumed from both
+    // programs' cuts gives only the edits a surface to probe, it measured nothing, while
+    // verify of it alone finds no surface and measures its passes (`verify::check_written`).
+    // It goes out only within the bound and better than the edits by both figures.
+    let after = outcome.report.totals.after;
+    let unchanged = (after.max_mm > outcome.report.totals.before.max_mm
+        && after.rms_mm > outcome.report.totals.before.rms_mm)
         .then(|| {
             let mut reading = pipeline_settings(&resolved, &args.run, true);
             reading.parse = printer::read_back_options(&again().ok()?.parsed.program);
@@ -838,17 +840,18 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         })
         .flatten()
         .map(|unchanged| unchanged.deviation.after)
-        .filter(|unchanged| {
-            unchanged.max_mm <= args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine))
+        .filter(|before| {
+            let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
+            before.max_mm <= bound && after.max_mm > before.max_mm && after.rms_mm > before.rms_mm
         });
-    if let Some(unchanged) = unchanged {
-        outcome.report.totals.before = unchanged;
+    if let Some(before) = unchanged {
+        outcome.report.totals.before = before;
         messages.extend_from_slice(
             format!(
                 "compensate: {name}: written unchanged: its edits would leave the predicted part worse than the \
                  program as written (RMS {:.5} -> {:.5} mm, largest {:.5} -> {:.5} mm); predicted deviation (as \
                  verify measures it) RMS {:.5} mm, largest {:.5} mm\n",
-                before.rms_mm, after.rms_mm, before.max_mm, after.max_mm, unchanged.rms_mm, unchanged.max_mm,
+                before.rms_mm, after.rms_mm, before.max_mm, after.max_mm, before.rms_mm, before.max_mm,
             )
             .as_bytes(),
         );
