@@ -420,9 +420,26 @@ impl<'p, 'src> Interpreter<'p, 'src> {
         }
         let blocks = self.program.blocks();
         let block_of = |start: u32| blocks.binary_search_by_key(&start, |b| b.span.start).ok();
+        // The moves the cycles make, as ranges in order that do not overlap (one cycle's may
+        // hold another's): whether move `k` is a cycle's.
+        let mut cycles: Vec<std::ops::Range<usize>> = self.expansions.iter().map(|e| e.moves.clone()).collect();
+        cycles.sort_unstable_by_key(|r| r.start);
+        cycles.dedup_by(|later, earlier| {
+            let overlaps = later.start < earlier.end;
+            if overlaps {
+                earlier.end = earlier.end.max(later.end);
+            }
+            overlaps
+        });
+        let in_cycle = |k: usize| {
+            let after = cycles.partition_point(|r| r.start <= k);
+            after.checked_sub(1).is_some_and(|last| cycles[last].contains(&k))
+        };
         for expansion in &mut self.expansions {
-            expansion.feed_read_after =
-                super::modal_feed_read(self.program, &toolpath.moves, expansion.moves.end, block_of);
+            let end = expansion.moves.end;
+            expansion.feed_read_after = super::modal_feed_read(self.program, &toolpath.moves, end, block_of);
+            expansion.motion_read_after =
+                super::modal_motion_read(self.program, &toolpath.moves, end, in_cycle, block_of);
         }
         crate::diagnostic::merge_repeats(&mut self.diagnostics);
         self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));

@@ -219,6 +219,7 @@ impl Interpreter<'_, '_> {
                 kept: None,
                 note: None,
                 feed_read_after: true,
+                motion_read_after: true,
             });
         }
         Flow::Next
@@ -388,6 +389,7 @@ impl Interpreter<'_, '_> {
                 kept: None,
                 note: None,
                 feed_read_after: true,
+                motion_read_after: true,
             });
         }
     }

@@ -233,6 +233,7 @@ pub(in crate::semantic) fn again(interp: &mut Interpreter<'_, '_>, index: usize,
         kept: Some(KEPT),
         note: None,
         feed_read_after: true,
+        motion_read_after: true,
     });
     interp.emitter.context.cycle = Span::SYNTHETIC;
     Flow::Next

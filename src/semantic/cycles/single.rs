@@ -103,6 +103,7 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         kept: None,
         note: None,
         feed_read_after: true,
+        motion_read_after: true,
     });
     Flow::Next
 }
