@@ -611,7 +611,11 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // and meets the bound with the least deviation (`fell_back`).
     let mut fit = args.fit.clone();
     let mut fell_back: Option<String> = None;
+    // Each try says its own warnings: only the last try's are kept (a cycle left as it is
+    // is said once, not once for every way of keeping cycles that was tried).
+    let said_before = messages.len();
     let (mut outcome, written, cycle_blocks) = loop {
+        messages.truncate(said_before);
         let program = match kept.take().map_or_else(&again, Ok) {
             Ok(program) => program,
             Err(diagnostics) => {
