@@ -30,7 +30,7 @@ pub(crate) mod written;
 pub use crate::error_model::sampling::{PathSample, sample_toolpath};
 pub use fit::{FitOptions, MovePoints, NominalShape, Segment, Strategy};
 pub use inverse::{Compensated, InverseOptions, compensate_samples, predict};
-pub use plan::Judged;
+pub use plan::{Judged, LeftAlone};
 pub use program::{CompensateOptions, Outcome, Paths, compensate_program};
 pub use rewrite::cycles::LeadChange;
 pub use rewrite::{

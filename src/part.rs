@@ -26,6 +26,7 @@
 //! visits only the rays of its box, and a run visits at most `removal::MAX_RAY_VISITS` rays:
 //! past that it stops with a note on the block where it stopped.
 
+pub mod clearance;
 pub(crate) mod dexel;
 pub(crate) mod removal;
 pub mod stock;

@@ -107,7 +107,7 @@ fuzz_target!(|data: &[u8]| {
         let words = verify::Words::of(ready.program(), &ready.lowered.expansions);
         Ok(verify::Held::from_toolpath(words, ready.valid(), &tools))
     };
-    let measure = (&model, verify::Measure::Part, None);
+    let measure = (&model, verify::Measure::Part, verify::PartFrom::default());
     let Ok(verify::Written { lost, .. }) = verify::check_written(original, &printed, &read_back, &tools, measure)
     else {
         return;

@@ -17,7 +17,7 @@ use clap::{Args, ValueEnum};
 
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
-use turnpass::compensation::verify::{self, Measure};
+use turnpass::compensation::verify::{self, Measure, PartFrom};
 use turnpass::compensation::{
     CompensateOptions, CycleForm, Judged, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
     THREAD_NOT_IN_PLACE, compensate_program,
@@ -25,6 +25,7 @@ use turnpass::compensation::{
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
 use turnpass::machine::StockSettings;
+use turnpass::part::clearance::Clearance;
 use turnpass::pipeline::Ready;
 use turnpass::printer;
 use turnpass::semantic::Machine;
@@ -224,13 +225,14 @@ impl FitArgs {
 
     /// `compensate` for writing: every edited block reported with `block_reports`, the
     /// profiles of cycles and the words of thread cycles compensated in place, or not, and
-    /// the rapids that need no correction left as written, or not (`in_place`); every thread
-    /// pass held to the bound where the check is `measure`d pass by pass.
+    /// the moves that need no correction left as written, or not (`in_place`; the feed moves
+    /// that keep clear of the finished part, `clearance`, only where the check measures the
+    /// part); every thread pass held to the bound where the check is `measure`d pass by pass.
     fn compensate_cycles(
         &self,
         program: &Ready<'_>,
         model: &ErrorModel,
-        (block_reports, measure): (bool, Measure),
+        (block_reports, measure, clearance): (bool, Measure, Option<&Clearance>),
         in_place: InPlace,
     ) -> Outcome {
         let options = CompensateOptions {
@@ -242,7 +244,11 @@ impl FitArgs {
             threads_in_place: in_place.threads,
             ..self.options(&program.machine)
         };
-        let judged = if in_place.air { Judged::EveryFeed } else { Judged::Every };
+        let judged = match (in_place.air, measure, clearance) {
+            (LeftAsWritten::Feeds, Measure::Part, Some(clearance)) => Judged::Shaping(clearance),
+            (LeftAsWritten::Feeds | LeftAsWritten::Rapids, ..) => Judged::EveryFeed,
+            (LeftAsWritten::None, ..) => Judged::Every,
+        };
         compensate_program(&program.parsed.program, &program.lowered, &program.machine, model, &options, judged)
     }
 }
@@ -339,11 +345,18 @@ struct Trial<'a> {
     tools: &'a ToolTable,
     measure: Measure,
     stock: Option<&'a StockSettings>,
+    clearance: Option<&'a Clearance>,
 }
 
 impl Trial<'_> {
     /// Programs of more moves than this are not compensated again with every strategy.
     const MAX_MOVES: usize = 100_000;
+
+    /// What the check's parts are cut from: the stock, and the finished part the clearance
+    /// of the feed moves was measured on (the original's nominal part, cut once).
+    fn part(&self) -> PartFrom<'_> {
+        PartFrom { stock: self.stock, finished: self.clearance.map(Clearance::finished) }
+    }
 
     /// The other strategy whose compensated program, read back and measured as the check
     /// before writing measures it, deviates least, with that deviation, mm; `None` for a
@@ -359,7 +372,8 @@ impl Trial<'_> {
             .filter(|&strategy| strategy != fit.strategy && (fit.step.is_none() || strategy == Strategy::Densify))
             .filter_map(|strategy| {
                 let other = FitArgs { strategy, ..fit.clone() };
-                let outcome = other.compensate_cycles(program, self.model, (false, self.measure), in_place);
+                let outcome =
+                    other.compensate_cycles(program, self.model, (false, self.measure, self.clearance), in_place);
                 if outcome.refused() {
                     return None;
                 }
@@ -369,7 +383,7 @@ impl Trial<'_> {
                     &written,
                     self.reading,
                     self.tools,
-                    (self.model, self.measure, self.stock),
+                    (self.model, self.measure, self.part()),
                 )
                 .ok()?;
                 Some((strategy.name(), checked.deviation.after.max_mm))
@@ -386,8 +400,17 @@ struct InPlace {
     profiles: bool,
     copies: bool,
     threads: bool,
-    /// The rapids that need no correction left as written (`plan::Judged`).
-    air: bool,
+    /// The moves that need no correction left as written (`plan::Judged`).
+    air: LeftAsWritten,
+}
+
+/// Which moves that need no correction are left as written (`plan::Judged`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum LeftAsWritten {
+    /// Rapids, and feed moves that keep clear of the finished part.
+    Feeds,
+    Rapids,
+    None,
 }
 
 /// Why the check before writing turned down each way of keeping cycles that was tried.
@@ -399,22 +422,27 @@ struct Because {
 }
 
 impl InPlace {
-    /// What to try after `outcome` (compensated so) missed the check: the profiles copied
-    /// for their finishing cycles if it edited one in place, else expanded if it copied one,
-    /// else the threads expanded if it edited one, else the rapids it left as written
-    /// corrected; `None` when nothing is left to try.
+    /// What to try after `outcome` (compensated so) missed the check: the feed moves it left
+    /// as written corrected if it left any, else the profiles copied for their finishing
+    /// cycles if it edited one in place, else expanded if it copied one, else the threads
+    /// expanded if it edited one, else the rapids it left as written corrected; `None` when
+    /// nothing is left to try.
     fn without(self, outcome: &Outcome) -> Option<InPlace> {
         let any = |form: fn(&CycleForm) -> bool| outcome.cycles.iter().any(|c| form(&c.form));
-        if self.profiles && any(|f| matches!(f, CycleForm::ProfileEdited { .. })) {
+        if self.air == LeftAsWritten::Feeds && outcome.left_alone.feeds > 0 {
+            // Before any cycle is given up: a cycle kept is worth more to the machinist than
+            // a roughing pass left as written.
+            Some(InPlace { air: LeftAsWritten::Rapids, ..self })
+        } else if self.profiles && any(|f| matches!(f, CycleForm::ProfileEdited { .. })) {
             Some(InPlace { profiles: false, ..self })
         } else if self.copies && any(|f| matches!(f, CycleForm::ProfileCopied { .. })) {
             Some(InPlace { copies: false, ..self })
         } else if self.threads && any(|f| matches!(f, CycleForm::WordsEdited { .. })) {
             Some(InPlace { threads: false, ..self })
-        } else if self.air && outcome.left_alone > 0 {
+        } else if self.air != LeftAsWritten::None && outcome.left_alone.rapids + outcome.left_alone.feeds > 0 {
             // The rapids left as written are corrected last: the model's play may still need
             // an end in the air corrected.
-            Some(InPlace { air: false, ..self })
+            Some(InPlace { air: LeftAsWritten::None, ..self })
         } else {
             None
         }
@@ -595,9 +623,13 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // cycle runs a compensated copy of the profile and the roughing the profile as written;
     // where that misses it too, they are expanded, and the report says why.
     let mut because = Because::default();
-    let mut in_place = InPlace { profiles: true, copies: true, threads: true, air: true };
+    let mut in_place = InPlace { profiles: true, copies: true, threads: true, air: LeftAsWritten::Feeds };
     let stock = args.stock.check(&resolved).stock;
     let measure = if args.passes { Measure::Passes } else { Measure::Part };
+    // The feed moves that cut no finished surface, on the part the check measures.
+    let clearance = (measure == Measure::Part)
+        .then(|| turnpass::part::clearance::clearance(program.valid(), &program.machine, stock.as_ref()))
+        .flatten();
     let tools = ToolTable::from_machine(&program.machine);
     // The original is analysed again where it is needed after its AST and moves went
     // (before the read-back of what is about to be written): its text and settings are the
@@ -623,7 +655,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 return Ok(FileResult::refused(1, messages, &name, &bytes, &diagnostics));
             }
         };
-        let mut outcome = fit.compensate_cycles(&program, &model, (args.report.is_some(), measure), in_place);
+        let mut outcome =
+            fit.compensate_cycles(&program, &model, (args.report.is_some(), measure, clearance.as_ref()), in_place);
         if outcome.refused()
             && let Some(next) = in_place.without(&outcome)
         {
@@ -668,7 +701,14 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         // dialect may have been in the blocks an edit replaced.
         let mut reading = pipeline_settings(&resolved, &args.run, true);
         reading.parse = printer::read_back_options(&program.parsed.program);
-        let trial = Trial { model: &model, reading: &reading, tools: &tools, measure, stock: stock.as_ref() };
+        let trial = Trial {
+            model: &model,
+            reading: &reading,
+            tools: &tools,
+            measure,
+            stock: stock.as_ref(),
+            clearance: clearance.as_ref(),
+        };
         let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
         let mut unreadable = FileResult::failed(1, Vec::new());
         // The original's AST and moves go before the read-back, which holds a second program;
@@ -681,7 +721,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             &written,
             &reading,
             &tools,
-            (&model, measure, stock.as_ref()),
+            (&model, measure, trial.part()),
         ) {
             Ok(verify::Written { deviation: figures, part, feed_change, lost, original }) => {
                 let block = |k: usize| if k < original.path.len() { original.path.source(k) } else { Span::new(0, 0) };

@@ -123,7 +123,7 @@ pub fn plot(args: PlotArgs) -> Result<ExitCode, CliError> {
             &written,
             &reading,
             &tools,
-            (&model, Measure::Part, part.stock.as_ref()),
+            (&model, Measure::Part, verify::PartFrom { stock: part.stock.as_ref(), finished: None }),
         );
         let measured = match checked.map(|written| written.part) {
             Ok(Some(measured)) => measured,

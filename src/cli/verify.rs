@@ -10,8 +10,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use turnpass::compensation::provenance::{Provenance, marks};
 
 use turnpass::compensation::verify::{
-    self, CutWords, Deviation, Held, Measure, Measured, PartDeviation, Side, WordCheck, check_feeds, check_words,
-    deviation_each, deviation_of, part_deviation_watched,
+    self, CutWords, Deviation, Held, Measure, Measured, PartDeviation, PartFrom, Side, WordCheck, check_feeds,
+    check_words, deviation_each, deviation_of, part_deviation_watched,
 };
 use turnpass::error_model::ErrorModel;
 use turnpass::pipeline::Ready;
@@ -548,7 +548,7 @@ pub fn checked(
                 (original_path, compensated_path),
                 model,
                 &sampling,
-                (machine, stock.as_ref()),
+                (machine, PartFrom { stock: stock.as_ref(), finished: None }),
                 progress,
             );
             if part.probed_nothing() {

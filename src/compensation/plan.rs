@@ -93,9 +93,9 @@ pub struct PlanInput<'a> {
     /// Whether each move's arcs prefer the radius form (`rewrite::MoveForms::radius`).
     pub radius: &'a [bool],
     pub tools: &'a ToolTable,
-    /// What the check before writing judges: rapids it does not are left as written
+    /// What the check before writing judges: moves it does not are left as written
     /// (`air.rs`).
-    pub judged: Judged,
+    pub judged: Judged<'a>,
 }
 
 /// Plan every move.
@@ -120,7 +120,7 @@ pub fn plan_range(
     grid_of: impl Fn(usize) -> Grid,
     options: &PlanOptions,
     plans: &mut Vec<MovePlan>,
-) -> (Xz, usize) {
+) -> (Xz, LeftAlone) {
     let toolpath = input.toolpath;
     let first = moves.start;
     let base = plans.len();
@@ -416,7 +416,7 @@ fn written_points(
 mod air;
 mod kept;
 mod nose_room;
-pub use air::Judged;
+pub use air::{Judged, LeftAlone};
 pub use kept::KeptPlans;
 
 #[cfg(test)]

@@ -20,7 +20,7 @@ use crate::toolpath::{Validated, Xz};
 
 use super::deviation::LocalPath;
 use super::fit::FitOptions;
-use super::plan::{Judged, PlanOptions};
+use super::plan::{Judged, LeftAlone, PlanOptions};
 use super::report::{Report, ReportInput};
 use super::rewrite;
 use crate::error_model::sampling::{PathSample, Sampling};
@@ -70,8 +70,8 @@ pub struct Outcome {
     pub edited: Vec<rewrite::EditedBlock>,
     /// What became of each cycle call.
     pub cycles: Vec<rewrite::CycleOutcome>,
-    /// The rapids left as written (`plan::Judged`).
-    pub left_alone: usize,
+    /// The moves left as written (`plan::Judged`).
+    pub left_alone: LeftAlone,
 }
 
 /// The paths of the compensation, one point per sample, for plotting.
@@ -111,7 +111,7 @@ pub fn sampling(fit: &FitOptions, model: &ErrorModel, reach: Xz) -> Sampling {
 }
 
 /// Compensate `program` (lowered with nose-radius compensation into `lowered`, its
-/// toolpath validated) on `machine` with `model`, leaving as written the rapids `judged`
+/// toolpath validated) on `machine` with `model`, leaving as written the moves `judged`
 /// does not judge (`plan::Judged`).
 pub fn compensate_program(
     program: &Program<'_>,
@@ -119,7 +119,7 @@ pub fn compensate_program(
     machine: &Machine,
     model: &ErrorModel,
     options: &CompensateOptions,
-    judged: Judged,
+    judged: Judged<'_>,
 ) -> Outcome {
     let toolpath = lowered.valid().toolpath();
     let lowered: &Lowered = lowered;
@@ -154,7 +154,7 @@ pub fn compensate_program(
             paths: Paths::default(),
             edited: Vec::new(),
             cycles: Vec::new(),
-            left_alone: 0,
+            left_alone: LeftAlone::default(),
         };
     }
     // The rewrite's tables: what can be written for each move, the runs of moves each edited

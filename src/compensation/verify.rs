@@ -19,7 +19,6 @@
 
 use crate::diagnostic::Diagnostic;
 use crate::error_model::ErrorModel;
-use crate::machine::StockSettings;
 use crate::pipeline::Settings;
 use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{Expansion, Machine};
@@ -42,7 +41,8 @@ mod part;
 mod tests;
 
 pub use part::{
-    Feature, PartDeviation, PartPoint, Probe, ThreadFigures, ThreadForm, part_deviation, part_deviation_watched,
+    Feature, PartDeviation, PartFrom, PartPoint, Probe, ThreadFigures, ThreadForm, part_deviation,
+    part_deviation_watched,
 };
 
 /// What `verify` measures: the finished part (by default, and `compensate`'s check), or the
@@ -246,8 +246,8 @@ pub struct Written {
 /// What `compensate` checks before it writes: `written`, the program it is about to write,
 /// read back as the control reads it (through `pipeline::analyse`, with the settings the
 /// original was read with) and measured against `original` by `turnpass verify`'s own
-/// computation on `measure`: the finished part (`part_deviation` from `stock`, none to
-/// assume it as `verify` does) or pass by pass (`deviation_of`), with `sampling`, so that
+/// computation on `measure`: the finished part (`part_deviation` from what `from` gives:
+/// no stock to assume it as `verify` does) or pass by pass (`deviation_of`), with `sampling`, so that
 /// the figures it reports are the ones verify finds, with verify's checks of the feed and
 /// spindle words (`check_feeds`) and of the other words of the original (`check_words`:
 /// the first one lost). The original is held (`original`) only once the read-back is held:
@@ -259,7 +259,7 @@ pub fn check_written(
     written: &[u8],
     reading: &Settings,
     tools: &ToolTable,
-    (model, measure, stock): (&ErrorModel, Measure, Option<&StockSettings>),
+    (model, measure, from): (&ErrorModel, Measure, PartFrom<'_>),
 ) -> Result<Written, Vec<Diagnostic>> {
     let read = match crate::pipeline::analyse(written, reading).ready() {
         Ok(read) => read,
@@ -283,7 +283,7 @@ pub fn check_written(
     let (original_path, written_path) = (&original.path, &written.path);
     match measure {
         Measure::Part => {
-            let part = part_deviation((original_path, written_path), model, &sampling, machine, stock);
+            let part = part_deviation((original_path, written_path), model, &sampling, machine, from);
             if part.probed_nothing() {
                 let deviation = deviation_of(original_path, written_path, model, &sampling, &|_, _| {});
                 return Ok(Written { deviation, part: None, feed_change, lost, original });

@@ -103,7 +103,7 @@ impl<'a> Removal<'a> {
 
     /// The shape of the tool of move `m` from `start`; a tool whose side the table does not
     /// give takes it from its first cut (`tool::Orientation`).
-    fn tool(&mut self, m: &Move, start: Xz) -> Rc<Tool> {
+    pub(super) fn tool(&mut self, m: &Move, start: Xz) -> Rc<Tool> {
         // A tool the table gives without a kind is taken as a threading insert where it cuts
         // a thread pass: each stamp leaves the insert's form, and a turning insert's core
         // (a slot of no width for a tip along an axis and no nose) leaves none.

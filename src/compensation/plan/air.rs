@@ -1,5 +1,6 @@
-//! Rapids left as written: compensation changes what shapes the part and leaves the rest
-//! of the program as the programmer wrote it (issue 25, "rapids ... are left alone").
+//! Moves left as written: compensation changes what shapes the part and leaves the rest of
+//! the program as the programmer wrote it (issue 25, "rapids, and moves that cut no finished
+//! surface, are left alone").
 //!
 //! A rapid shapes nothing either measure judges: only its end matters, and only where the
 //! next move starts from it. So a straight rapid whose next move is a rapid too, or that
@@ -9,55 +10,91 @@
 //! it still ends where it needs to. A rapid that ends where a feed move, a cycle or a thread
 //! starts is corrected: there the start is part of what is cut.
 //!
-//! A rapid is left alone only where the rapid after it is left alone too, or travels no axis
-//! the other way than it does from the corrected end: a reversal the inverse did not plan
-//! for, on the way to a cut, would take up play the model has there. Rapids of a cycle, and
-//! one whose next move begins with a jog of its own, are planned as before.
+//! Where the check before writing measures the finished part, a straight feed move whose
+//! whole tool keeps clear of the finished part (`part::clearance`) cuts no finished surface:
+//! a roughing pass a later pass cuts away, a retract or an approach in the air. It is left
+//! as written on the same terms as a rapid (the move after it is left too, or the program
+//! ends), and only where its path as written stays within half that clearance of its
+//! corrected one, so that the model's correction cannot carry it into the finished part. A
+//! move under nose-radius compensation is corrected still: the control offsets its corners
+//! with its neighbours', which are corrected. The move after the last one left, which starts
+//! the cut, is corrected, so a cut starts where it is planned to.
 //!
-//! Feed moves in the air (an approach, a roughing pass a later pass cuts away) are corrected
-//! still, as is a rapid's end where the cut after it starts along its line: which of them
-//! shape the finished part, and where a cut's start is clear of the material, needs the
-//! whole tool's shape against the part (the insert's body cuts too), which is not built.
+//! A move is left alone only where the move after it is left alone too, or travels no axis
+//! the other way than it does from the corrected end: a reversal the inverse did not plan
+//! for, on the way to a cut, would take up play the model has there. Moves of a cycle, and
+//! one whose next move begins with a jog of its own, are planned as before.
 
 use crate::toolpath::{Motion, Move, Toolpath, Xz};
 
-use super::super::fit::Segment;
+use super::super::fit::{Segment, distance_to_chord};
 use super::super::written;
 use super::MovePlan;
+use crate::part::clearance::Clearance;
+use crate::toolpath::Compensation;
 
 /// Which moves the check before writing judges, so that compensation must correct them.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Judged {
+#[derive(Debug, Clone, Copy)]
+pub enum Judged<'a> {
     /// Every move, rapids too: none is left as written.
     Every,
     /// Every feed move: rapids shape nothing judged (both measures judge only what is cut).
     EveryFeed,
+    /// The feed moves that come near the finished part: the part measure judges only the
+    /// finished part, and the others keep clear of it.
+    Shaping(&'a Clearance),
 }
 
-impl Judged {
-    fn judges(self, m: &Move) -> bool {
+impl Judged<'_> {
+    fn judges(self, m: &Move, index: usize) -> bool {
         match self {
             Judged::Every => true,
             Judged::EveryFeed => m.motion != Motion::Rapid,
+            Judged::Shaping(clearance) => {
+                m.motion != Motion::Rapid
+                    && !(m.motion == Motion::Feed && m.compensation == Compensation::Off && clearance.is_clear(index))
+            }
+        }
+    }
+
+    /// How far a feed move left as written may run from its corrected path, mm.
+    fn leeway(self) -> f64 {
+        match self {
+            Judged::Shaping(clearance) => clearance.by_mm() / 2.0,
+            Judged::Every | Judged::EveryFeed => 0.0,
         }
     }
 }
 
-/// Leave the rapids of `plans` (the plans of moves `first..`, each planned from the end of
-/// the one before) that need no correction as written (module documentation). Returns the
-/// number left as written.
+/// How many moves were left as written.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct LeftAlone {
+    pub rapids: usize,
+    pub feeds: usize,
+}
+
+impl std::ops::AddAssign for LeftAlone {
+    fn add_assign(&mut self, other: LeftAlone) {
+        self.rapids += other.rapids;
+        self.feeds += other.feeds;
+    }
+}
+
+/// Leave the moves of `plans` (the plans of moves `first..`, each planned from the end of
+/// the one before) that need no correction as written (module documentation). Returns how
+/// many were left as written.
 pub(super) fn leave_alone(
     plans: &mut [MovePlan],
     first: usize,
     toolpath: &Toolpath,
     writable: &[bool],
-    judged: Judged,
-) -> usize {
+    judged: Judged<'_>,
+) -> LeftAlone {
     let moves = toolpath.moves.get(first..first + plans.len()).unwrap_or_default();
     let free = |offset: usize| {
         let index = first + offset;
         let m = &moves[offset];
-        !judged.judges(m)
+        !judged.judges(m, index)
             && m.cycle.is_synthetic()
             && !m.threading
             && !m.is_arc()
@@ -66,60 +103,94 @@ pub(super) fn leave_alone(
     // The program's last moves end where they are programmed whatever follows them in the
     // piece: nothing starts from them.
     let ends_program = first + plans.len() >= toolpath.moves.len();
-    let mut left = 0;
-    // From the last move back: whether a move may end as written depends on the plan of the
-    // move after it, which is final by then.
-    let mut next: Option<(usize, bool)> = None;
+    // A dwell or a corner the control makes has no segments: the move after it starts where
+    // the one before ends. `next[k]` is the move after move `k` that is written.
+    let mut next: Vec<Option<usize>> = vec![None; plans.len()];
+    let mut left = vec![false; plans.len()];
+    let mut after = None;
     for offset in (0..plans.len()).rev() {
         if plans[offset].segments.is_empty() {
-            // A dwell or a corner the control makes: the move after it starts where the one
-            // before ends.
             continue;
         }
-        let after = next.replace((offset, false));
-        if !free(offset) {
-            continue;
-        }
-        let until = match after {
-            None if ends_program => plans.len() - 1,
-            None => continue,
-            Some((after, after_left)) => {
-                if !free(after) {
-                    // The next move cuts (or is a cycle's, a thread's): it starts at the
-                    // corrected end.
-                    continue;
-                }
-                // The rapid after ends where it is programmed, or corrected for the cut after
-                // it: it may start anywhere that leaves its travel as planned.
-                let corrected = plans[offset].end();
-                let next_plan = &plans[after];
-                let to = as_written(plans[offset].start, toolpath, first + offset);
-                let travel_kept = after_left
-                    || (!next_plan.lead_in
-                        && next_plan.jumps == 0
-                        && next_plan.segments.first().is_some_and(|s| same_directions(to, corrected, s.end())));
-                if !travel_kept {
-                    continue;
-                }
-                after
-            }
-        };
-        let to = as_written(plans[offset].start, toolpath, first + offset);
-        plans[offset] = MovePlan {
-            start: plans[offset].start,
-            segments: smallvec::smallvec![Segment::Line { end: to }],
-            changed: false,
-            jumps: 0,
-            lead_in: false,
-            words: smallvec::SmallVec::new(),
-        };
-        for plan in plans.iter_mut().take(until + 1).skip(offset + 1) {
-            plan.start = to;
-        }
-        next = Some((offset, true));
-        left += 1;
+        next[offset] = after;
+        // The next move cuts (or is a cycle's, a thread's): it starts at the corrected end.
+        left[offset] = free(offset) && after.map_or(ends_program, free);
+        after = Some(offset);
     }
-    left
+    // Each move left ends as its block puts it from where the one before ends, which is
+    // known only once the one before is decided: the moves that cannot be left so are
+    // dropped until every one left can.
+    let ends = loop {
+        let ends = written_ends(plans, &left, toolpath, first);
+        let mut dropped = false;
+        for offset in 0..plans.len() {
+            let Some((start, to)) = ends[offset] else { continue };
+            let holds = (moves[offset].motion == Motion::Rapid
+                || runs_off(&plans[offset], start, to) <= judged.leeway())
+                && next[offset].is_none_or(|after| left[after] || travel_kept(&plans[after], to, plans[offset].end()));
+            if !holds {
+                left[offset] = false;
+                dropped = true;
+            }
+        }
+        if !dropped {
+            break ends;
+        }
+    };
+    let mut count = LeftAlone::default();
+    let mut from: Option<Xz> = None;
+    for (offset, end) in ends.into_iter().enumerate() {
+        if let Some((start, to)) = end {
+            plans[offset] = MovePlan {
+                start,
+                segments: smallvec::smallvec![Segment::Line { end: to }],
+                changed: false,
+                jumps: 0,
+                lead_in: false,
+                words: smallvec::SmallVec::new(),
+            };
+            from = Some(to);
+            if moves[offset].motion == Motion::Rapid {
+                count.rapids += 1;
+            } else {
+                count.feeds += 1;
+            }
+        } else if let Some(to) = from {
+            // The moves after one left start where it ends, up to the next one written.
+            plans[offset].start = to;
+            if !plans[offset].segments.is_empty() {
+                from = None;
+            }
+        }
+    }
+    count
+}
+
+/// For each move `left`, where it starts and ends when its block runs as written: from where
+/// the move before it ends (as written, if that one is left too).
+fn written_ends(plans: &[MovePlan], left: &[bool], toolpath: &Toolpath, first: usize) -> Vec<Option<(Xz, Xz)>> {
+    let mut ends = vec![None; plans.len()];
+    let mut from: Option<Xz> = None;
+    for (offset, plan) in plans.iter().enumerate() {
+        if plan.segments.is_empty() {
+            continue;
+        }
+        if left[offset] {
+            let start = from.unwrap_or(plan.start);
+            let to = as_written(start, toolpath, first + offset);
+            ends[offset] = Some((start, to));
+            from = Some(to);
+        } else {
+            from = None;
+        }
+    }
+    ends
+}
+
+/// Whether the corrected move `next` may start from `to` instead of `corrected`: it leads in
+/// with no jog of its own, and travels no axis the other way from either.
+fn travel_kept(next: &MovePlan, to: Xz, corrected: Xz) -> bool {
+    !next.lead_in && next.jumps == 0 && next.segments.first().is_some_and(|s| same_directions(to, corrected, s.end()))
 }
 
 /// Where move `index` ends when its block runs as written from `start`: at its programmed
@@ -129,6 +200,13 @@ fn as_written(start: Xz, toolpath: &Toolpath, index: usize) -> Xz {
     let (from, to) = (written::contour_start(toolpath, index), toolpath.moves[index].contour);
     let axis = |from: f64, to: f64, start: f64| if from == to { start } else { to };
     Xz::new(axis(from.x, to.x, start.x), axis(from.z, to.z, start.z))
+}
+
+/// How far the straight move from `start` to `to` runs from `plan`'s path at most: from its
+/// end, and from each of its segments' ends.
+fn runs_off(plan: &MovePlan, start: Xz, to: Xz) -> f64 {
+    let ends = plan.segments.iter().map(|s| distance_to_chord(s.end(), start, to));
+    ends.fold(to.distance(plan.end()), f64::max)
 }
 
 /// Whether a move to `end` travels no axis the other way from `to` than from `corrected`:

@@ -36,7 +36,7 @@ use crate::toolpath::{Limits, Toolpath, Xz};
 
 use super::super::deviation::{LocalPath, Tally};
 use super::super::inverse::{Inverse, InverseOptions, Predictor, time_terms};
-use super::super::plan::{Judged, KeptPlans, MovePlan, PlanInput, PlanOptions, plan_range};
+use super::super::plan::{Judged, KeptPlans, LeftAlone, MovePlan, PlanInput, PlanOptions, plan_range};
 use super::super::report::RunFigures;
 use super::super::rewrite::{MotionBlocks, MoveRun};
 use super::super::{quantised, safety};
@@ -67,7 +67,7 @@ pub struct Context<'a> {
     /// The runs of moves (`rewrite::MotionBlocks::move_tables`).
     pub runs: Vec<MoveRun>,
     /// `PlanInput::judged`.
-    pub judged: Judged,
+    pub judged: Judged<'a>,
 }
 
 impl Context<'_> {
@@ -121,8 +121,8 @@ pub struct Streamed<'a, 'src> {
     /// Per move: some sample's correction exceeds the tolerance.
     pub needs: Vec<bool>,
     pub motion: MotionBlocks<'a, 'src>,
-    /// The rapids left as written (`plan::air`).
-    pub left_alone: usize,
+    /// The moves left as written (`plan::air`).
+    pub left_alone: LeftAlone,
 }
 
 /// What the round stage leaves.
@@ -278,11 +278,11 @@ fn solve(context: &Context<'_>, to_plan: &SyncSender<Piece>, reusable: &Receiver
 }
 
 /// Stage 2: plan the moves; returns how many were left as written.
-fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_round: &SyncSender<Piece>) -> usize {
+fn plan(context: &Context<'_>, planning: &Receiver<Piece>, to_round: &SyncSender<Piece>) -> LeftAlone {
     let toolpath = context.toolpath;
     let mut ranges = vec![0..0; toolpath.moves.len()];
     let mut at = toolpath.start;
-    let mut left_alone = 0;
+    let mut left_alone = LeftAlone::default();
     while let Ok(mut piece) = planning.recv() {
         piece.spread_ranges(&mut ranges);
         let mut plans = std::mem::take(&mut piece.plans);

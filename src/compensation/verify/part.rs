@@ -44,6 +44,7 @@ use crate::error_model::ErrorModel;
 use crate::error_model::sampling::{SAMPLE_STEP_MM, Sampling};
 use crate::geometry;
 use crate::machine::StockSettings;
+use crate::part::clearance::Finished;
 use crate::part::dexel::{Dexels, STOCK, Spans};
 use crate::part::removal::Removal;
 use crate::part::{Part, Stock};
@@ -171,16 +172,24 @@ pub struct ThreadForm {
 
 /// The part measure of `compensated` against `original` on `model` (see the module
 /// documentation), both held compact (`verify::compact`), sampled as `sampling` allows, on
-/// `machine`'s tools from `stock` (none: the bar `part::Stock::assumed` takes for the
-/// original).
+/// `machine`'s tools from what `from` gives.
 pub fn part_deviation(
     programs: (&CompactPath, &CompactPath),
     model: &ErrorModel,
     sampling: &Sampling,
     machine: &Machine,
-    stock: Option<&StockSettings>,
+    from: PartFrom<'_>,
 ) -> PartDeviation {
-    part_deviation_watched(programs, model, sampling, (machine, stock), &|_, _| {})
+    part_deviation_watched(programs, model, sampling, (machine, from), &|_, _| {})
+}
+
+/// What the part measure's parts are cut from: the stock (none: the bar `Stock::assumed`
+/// takes for the original), and the original's nominal part where it is cut already from
+/// that stock (`part::clearance`, which `compensate` cuts before it compensates).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PartFrom<'a> {
+    pub stock: Option<&'a StockSettings>,
+    pub finished: Option<&'a Finished>,
 }
 
 /// `part_deviation`, every predicted point shown to `watch` as the two programs are
@@ -189,14 +198,14 @@ pub fn part_deviation_watched(
     (original, compensated): (&CompactPath, &CompactPath),
     model: &ErrorModel,
     sampling: &Sampling,
-    (machine, stock): (&Machine, Option<&StockSettings>),
+    (machine, from): (&Machine, PartFrom<'_>),
     watch: &(dyn Fn(Side, &Measured) + Sync),
 ) -> PartDeviation {
     // The points the model puts the tool at are predicted along the compact paths, as the
     // pass measure predicts them, and the parts are cut along their moves' pieces
     // (`CompactPath::as_move`).
     let (original_compact, compensated_compact) = (original, compensated);
-    let stock = match stock {
+    let stock = match from.stock {
         Some(settings) => Some(Stock::from_settings(settings, machine)),
         None => Stock::assumed_from((0..original.len()).filter_map(|index| {
             let m = original.moves()[index];
@@ -227,7 +236,13 @@ pub fn part_deviation_watched(
     let block =
         |toolpath: &CompactPath, k: usize| if k < toolpath.len() { toolpath.source(k) } else { Span::new(0, 0) };
     let original_side = || {
-        let (nominal, nominal_stop) = cut(original, stock, machine, rays_for);
+        // The same cut, where it is made already: the same moves from the same stock on the
+        // same rays.
+        let given = from.finished.filter(|f| f.stock == stock && f.moves == rays_for);
+        let (nominal, nominal_stop) = match given {
+            Some(finished) => (finished.dexels.clone(), None),
+            None => cut(original, stock, machine, rays_for),
+        };
         let mut before = PieceCut::new(original, stock, machine, rays_for);
         let threads = predicted(original_compact, model, sampling, Side::Original, &mut |side, measured| {
             watch(side, &measured);

@@ -331,3 +331,49 @@ M30
     }
     assert_eq!(path.as_move(path.len()), None);
 }
+
+/// `compensate` cuts the original's nominal part once, for the clearance of its feed moves
+/// (`part::clearance`), and its check takes that part: the part measure finds the same
+/// figures from it as from its own cut of the original's compact path.
+#[test]
+fn the_finished_part_of_the_clearance_is_the_nominal_part_the_measure_cuts() {
+    let program = "\
+G21 G99
+G97 S800 M03
+T0101
+G00 X40. Z2.
+G01 X36. Z0. F0.2
+G01 Z-20.
+G03 X40. Z-23. R3.
+G00 X44.
+G00 X30.6 Z2.
+G01 X30.4 Z0. F0.2
+G02 X34. Z-2. R2.
+G01 Z-20.
+G00 X60.
+T0303
+G00 X32. Z5.
+G32 Z-15. F1.5
+G00 X40.
+G92 X29. Z-15. F1.5
+X28.5
+G00 X60. Z50.
+M30
+";
+    let (lowered, machine) = lower_program(program);
+    let tools = ToolTable::from_machine(&machine);
+    let path = super::compact(lowered.valid(), &tools);
+    let clearance = crate::part::clearance::clearance(lowered.valid(), &machine, None).expect("a bar is assumed");
+    assert!(clearance.count() > 0, "the first pass keeps clear of the finished part");
+    let model = ErrorModel {
+        tables: None,
+        effects: vec![Effect::ToolOffsetX(ToolOffsetX { d: 0.004, axis: X })],
+        start_min: 0.0,
+        control: None,
+    };
+    let sampling = Sampling::every_mm(0.254);
+    let measure = |finished| part_deviation((&path, &path), &model, &sampling, &machine, PartFrom { stock: None, finished });
+    let (own, given) = (measure(None), measure(Some(clearance.finished())));
+    assert!(own.deviation.before.max_mm > 0.001 && !own.threads.is_empty(), "{:?}", own.deviation);
+    assert_eq!(own, given);
+}

@@ -1,0 +1,165 @@
+//! Which feed moves keep clear of the finished part: the moves compensation may leave as
+//! written (issue 25, "moves that cut no finished surface are left alone").
+//!
+//! The finished part is the program's toolpath cut from the stock, as the part measure cuts
+//! its nominal part (same stock, same rays). A straight feed move keeps clear of it by
+//! [`CLEARANCE_MM`] where its whole tool (nose and insert, `tool.rs`), grown by that much
+//! and by the rays' spacing, meets no material of the finished part on any ray: the body
+//! cuts too, so the nose alone would not say it. Growing by the spacing covers material
+//! between two rays: a surface within the clearance of the sweep crosses a ray inside the
+//! grown sweep. The test is the finished part against each move, so it does not depend on
+//! which move the rays credit with a stretch of surface: a roughing pass that a later pass
+//! cuts away stays clear wherever the finishing pass leaves its allowance.
+//!
+//! Arcs and thread passes are not tested: compensation leaves only straight moves as
+//! written (`compensation/plan/air.rs`).
+
+use crate::machine::StockSettings;
+use crate::semantic::Machine;
+use crate::toolpath::{Motion, ValidToolpath};
+
+use super::Stock;
+use super::dexel::Dexels;
+use super::removal::Removal;
+use super::sweep::Sweep;
+
+/// How far a feed move's whole tool keeps from the finished part for it to cut no finished
+/// surface, mm: more than a model's corrections (micrometres to tens of them) and the
+/// allowance a roughing pass is usually left with on the radius no less than this.
+pub const CLEARANCE_MM: f64 = 0.1;
+
+/// The straight feed moves of a program that keep [`CLEARANCE_MM`] from its finished part.
+#[derive(Debug, Clone)]
+pub struct Clearance {
+    clear: Vec<bool>,
+    finished: Finished,
+}
+
+/// The finished part a program cuts as programmed, from `stock` on the rays a program of
+/// `moves` moves gets: the nominal part of the part measure, which it takes from here rather
+/// than cut it again (`compensation::verify::part`).
+#[derive(Debug, Clone)]
+pub struct Finished {
+    pub(crate) dexels: Dexels,
+    pub(crate) stock: Stock,
+    pub(crate) moves: usize,
+}
+
+impl Clearance {
+    /// Whether move `index` keeps clear of the finished part.
+    pub fn is_clear(&self, index: usize) -> bool {
+        self.clear.get(index).copied().unwrap_or(false)
+    }
+
+    /// How many moves keep clear.
+    pub fn count(&self) -> usize {
+        self.clear.iter().filter(|&&c| c).count()
+    }
+
+    /// The finished part the clearance is measured from.
+    pub fn finished(&self) -> &Finished {
+        &self.finished
+    }
+
+    /// The clearance every clear move keeps, mm.
+    pub fn by_mm(&self) -> f64 {
+        CLEARANCE_MM
+    }
+}
+
+/// The clearance of `toolpath`'s feed moves from the part it cuts on `machine` from `stock`
+/// (none: the bar `Stock::assumed` takes, as the part measure does). `None` where no stock
+/// can be assumed or the part model stops at its bound on work.
+pub fn clearance(toolpath: ValidToolpath<'_>, machine: &Machine, stock: Option<&StockSettings>) -> Option<Clearance> {
+    let toolpath = toolpath.toolpath();
+    let stock = match stock {
+        Some(settings) => Stock::from_settings(settings, machine),
+        None => Stock::assumed(toolpath)?,
+    };
+    let mut removal = Removal::new(stock, machine, toolpath.moves.len());
+    for (index, m) in toolpath.moves.iter().enumerate() {
+        removal.shape_move(toolpath.start_of(index), m, index)?;
+    }
+    removal.end_thread()?;
+    let grow = CLEARANCE_MM + removal.dexels.spacing;
+    let mut clear = vec![false; toolpath.moves.len()];
+    for (index, m) in toolpath.moves.iter().enumerate() {
+        if m.motion != Motion::Feed || m.threading {
+            continue;
+        }
+        let start = toolpath.start_of(index);
+        let tool = removal.tool(m, start);
+        let (c0, c1) = (tool.centre(start), tool.centre(m.end));
+        let sweep = Sweep::rounded(tool.placed(c0).chain(tool.placed(c1)), tool.nose + grow);
+        let (lo, hi) = sweep.bounds();
+        if !removal.dexels.may_meet(lo, hi) {
+            clear[index] = true;
+            continue;
+        }
+        let planned = removal.dexels.rays_crossed(&sweep);
+        if removal.visits + planned > super::removal::MAX_RAY_VISITS {
+            return None;
+        }
+        let met = removal.dexels.sweep_families(&sweep, index as u32, false, [true, false], None);
+        removal.visits += met.rays;
+        clear[index] = met.total <= 0.0;
+    }
+    let finished = Finished { dexels: removal.dexels, stock, moves: toolpath.moves.len() };
+    Some(Clearance { clear, finished })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dialect::{DialectChoice, GCodeSystem};
+    use crate::machine::{AxisPair, MachineSettings};
+    use crate::pipeline::{Settings, analyse};
+    use crate::semantic::LowerOptions;
+    use crate::syntax::ParseOptions;
+    use crate::toolpath::Xz;
+
+    fn clear_moves(source: &str) -> Vec<(usize, Xz)> {
+        let options = ParseOptions {
+            dialect: DialectChoice::Auto,
+            gcode_system: GCodeSystem::A,
+            machine_kind: None,
+            control: Default::default(),
+        };
+        let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), ..Default::default() };
+        let analysed = analyse(source.as_bytes(), &Settings::new(options, &settings, LowerOptions::new(false)));
+        let program = match analysed.ready() {
+            Ok(program) => program,
+            Err(analysed) => panic!("the test program does not lower cleanly: {:?}", analysed.diagnostics),
+        };
+        let toolpath = program.valid();
+        let found = clearance(toolpath, &program.machine, None).expect("a stock is assumed");
+        let moves = &toolpath.toolpath().moves;
+        (0..moves.len()).filter(|&k| found.is_clear(k)).map(|k| (k, moves[k].end)).collect()
+    }
+
+    #[test]
+    fn a_roughing_pass_above_the_finishing_pass_is_clear_and_the_finishing_pass_is_not() {
+        // Roughing at X44 (radius 22), finishing at X40 (radius 20): the roughing pass keeps
+        // 2 mm of the finished diameter, its retract at feed keeps clear too; the finishing
+        // pass and the face it climbs do not.
+        let clear = clear_moves(
+            "G18 G21 G40 G99\nT0101\nG97 S500 M03\nG00 X46. Z2.\nG01 X44. Z0.5 F0.3\nG01 Z-29.8\nG01 X46.\nG00 Z2.\n\
+             G00 X40. Z2.\nG01 Z-30. F0.1\nG01 X48.\nG00 X60. Z50.\nM30\n",
+        );
+        let ends: Vec<Xz> = clear.iter().map(|&(_, end)| end).collect();
+        assert!(ends.contains(&Xz::new(22.0, -29.8)), "the roughing pass: {ends:?}");
+        assert!(ends.contains(&Xz::new(23.0, -29.8)), "its retract: {ends:?}");
+        assert!(!ends.contains(&Xz::new(20.0, -30.0)), "the finishing pass: {ends:?}");
+        assert!(!ends.contains(&Xz::new(24.0, -30.0)), "the shoulder: {ends:?}");
+    }
+
+    #[test]
+    fn a_pass_closer_to_the_finished_surface_than_the_clearance_is_not_clear() {
+        // The roughing pass leaves 0.05 mm on the radius: it comes within the clearance.
+        let clear = clear_moves(
+            "G18 G21 G40 G99\nT0101\nG97 S500 M03\nG00 X46. Z2.\nG01 X40.1 Z0.5 F0.3\nG01 Z-29.8\nG01 X46.\nG00 Z2.\n\
+             G00 X40. Z2.\nG01 Z-30. F0.1\nG01 X48.\nG00 X60. Z50.\nM30\n",
+        );
+        assert!(!clear.iter().any(|&(_, end)| end == Xz::new(20.05, -29.8)), "{clear:?}");
+    }
+}
