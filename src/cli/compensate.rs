@@ -880,7 +880,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             let mut reading = pipeline_settings(&resolved, &args.run, true);
             reading.parse = printer::read_back_options(&again().ok()?.parsed.program);
             let original = || again().map(|program| verify::Held::of(program, &tools));
-            verify::check_written(original, &bytes, &reading, &tools, (&model, measure, stock.as_ref())).ok()
+            let part = PartFrom { stock: stock.as_ref(), finished: clearance.as_ref().map(Clearance::finished) };
+            verify::check_written(original, &bytes, &reading, &tools, (&model, measure, part)).ok()
         })
         .flatten()
         .map(|unchanged| unchanged.deviation.after)

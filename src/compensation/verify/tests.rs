@@ -372,7 +372,8 @@ M30
         control: None,
     };
     let sampling = Sampling::every_mm(0.254);
-    let measure = |finished| part_deviation((&path, &path), &model, &sampling, &machine, PartFrom { stock: None, finished });
+    let measure =
+        |finished| part_deviation((&path, &path), &model, &sampling, &machine, PartFrom { stock: None, finished });
     let (own, given) = (measure(None), measure(Some(clearance.finished())));
     assert!(own.deviation.before.max_mm > 0.001 && !own.threads.is_empty(), "{:?}", own.deviation);
     assert_eq!(own, given);
