@@ -26,18 +26,73 @@ fn tool(station: u32, nose: f64, tip: u8) -> ToolSettings {
     }
 }
 
-fn run_on(program: &str, tools: Vec<ToolSettings>, stock: Option<StockSettings>) -> (PartRun, Vec<Diagnostic>) {
+/// How the tests read a program: system A, home at X200 Z50, with `tools`.
+fn settings_with(tools: Vec<ToolSettings>) -> (ParseOptions, MachineSettings) {
     let options = ParseOptions {
         dialect: DialectChoice::Auto,
         gcode_system: GCodeSystem::A,
         machine_kind: None,
         control: Default::default(),
     };
-    let settings = MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), tool: tools, ..Default::default() };
+    (options, MachineSettings { home: Some(AxisPair { x: 200.0, z: 50.0 }), tool: tools, ..Default::default() })
+}
+
+fn run_on(program: &str, tools: Vec<ToolSettings>, stock: Option<StockSettings>) -> (PartRun, Vec<Diagnostic>) {
+    let (options, settings) = settings_with(tools);
     let settings = Settings::new(options, &settings, LowerOptions::new(false)).with_part(PartCheck { stock });
     let analysed = analyse(program.as_bytes(), &settings);
     let diagnostics = analysed.diagnostics.clone();
     (analysed.part.expect("the program lowers and validates"), diagnostics)
+}
+
+/// The moves of `program` (with `tools`, on an assumed bar) that keep clear of its finished
+/// part (`clearance.rs`), with their ends.
+fn clear_moves(program: &str, tools: Vec<ToolSettings>) -> Vec<Xz> {
+    let (options, settings) = settings_with(tools);
+    let analysed = analyse(program.as_bytes(), &Settings::new(options, &settings, LowerOptions::new(false)));
+    let program = match analysed.ready() {
+        Ok(program) => program,
+        Err(analysed) => panic!("the test program does not lower cleanly: {:?}", analysed.diagnostics),
+    };
+    let toolpath = program.valid();
+    let found = clearance::clearance(toolpath, &program.machine, None).expect("a bar is assumed");
+    let moves = &toolpath.toolpath().moves;
+    (0..moves.len()).filter(|&k| found.is_clear(k)).map(|k| moves[k].end).collect()
+}
+
+/// Roughing at X44 (radius 22) to Z-29.8 and out at feed, then finishing at X40 (radius 20)
+/// to Z-30 and up the shoulder; `rough_x` is the roughing pass's diameter.
+fn rough_and_finish(rough_x: &str) -> String {
+    format!(
+        "G18 G21 G40 G99\nT0101\nG97 S500 M03\nG00 X46. Z2.\nG01 X{rough_x} Z0.5 F0.3\nG01 Z-29.8\nG01 X46.\n\
+         G00 Z2.\nG00 X40. Z2.\nG01 Z-30. F0.1\nG01 X48.\nG00 X60. Z50.\nM30\n"
+    )
+}
+
+#[test]
+fn a_roughing_pass_above_the_finishing_pass_is_clear_and_the_finishing_pass_is_not() {
+    // The roughing pass keeps 2 mm of the finished diameter and its retract at feed keeps
+    // clear too; the finishing pass and the face it climbs do not.
+    let ends = clear_moves(&rough_and_finish("44."), vec![tool(1, 0.4, 3)]);
+    assert!(ends.contains(&Xz::new(22.0, -29.8)), "the roughing pass: {ends:?}");
+    assert!(ends.contains(&Xz::new(23.0, -29.8)), "its retract: {ends:?}");
+    assert!(!ends.contains(&Xz::new(20.0, -30.0)), "the finishing pass: {ends:?}");
+    assert!(!ends.contains(&Xz::new(24.0, -30.0)), "the shoulder: {ends:?}");
+}
+
+#[test]
+fn a_pass_closer_to_the_finished_surface_than_the_clearance_is_not_clear() {
+    // The roughing pass leaves 0.05 mm on the radius: it comes within the clearance.
+    let ends = clear_moves(&rough_and_finish("40.1"), vec![tool(1, 0.4, 3)]);
+    assert!(!ends.contains(&Xz::new(20.05, -29.8)), "{ends:?}");
+}
+
+#[test]
+fn a_tool_whose_side_the_table_does_not_give_keeps_clear_of_nothing() {
+    // The part model guesses its side from its first cut, which a boring bar facing out
+    // from its bore gets wrong: none of its moves is taken as clear.
+    assert!(!clear_moves(&rough_and_finish("44."), vec![tool(1, 0.4, 3)]).is_empty());
+    assert_eq!(clear_moves(&rough_and_finish("44."), vec![tool(1, 0.4, 0)]), Vec::new());
 }
 
 const BAR: StockSettings = StockSettings { diameter: 50.0, length: 60.0, front: Some(0.0), bore: None };
