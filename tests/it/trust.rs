@@ -384,9 +384,9 @@ mod generated {
     }
 
     /// The property allows a refusal; this holds refusals to a small share of the same inputs,
-    /// so that the property is not met by refusing. About one job in ten is refused on the
-    /// finished part (18, 24, 21 and 19 of 200 in four runs) and one in eight pass by pass
-    /// (25, 29, 26 and 20):
+    /// so that the property is not met by refusing. About one job in nine is refused on the
+    /// finished part (18, 24, 21, 19, 25 and 24 of 200 in six runs) and one in seven pass by
+    /// pass (25, 29, 26, 20, 32 and 25):
     /// a thread on a periodic screw error is cut as thread blocks of their own leads, and an
     /// element of compensation's own the nose cannot follow under G41/G42 is joined into its
     /// neighbours. Among what is left: take-up steps between arcs the tool runs inside of
