@@ -235,6 +235,81 @@ pub struct Expansion {
     /// What `expand` says of the blocks it writes for the call (how an OSP thread cycle's
     /// height reads), a note at the call.
     pub note: Option<crate::diagnostic::DiagnosticKind>,
+    /// Whether a move after the cycle reads the F it leaves in force (`after.f_word`,
+    /// [`modal_feed_read`]): where none does, the blocks written for it need not put that F
+    /// back (a lone `F0.1` before the closing rapid and `M30` is a block of no use).
+    /// Set once the program has run; true until then.
+    pub feed_read_after: bool,
+    /// Whether a move after the cycle runs under the motion code it leaves in force
+    /// (`after.motion`, [`modal_motion_read`]): where none does, the blocks written for it
+    /// need not put that code back (a lone `G1` before a tool change and a `G00` block).
+    /// Set once the program has run; true until then.
+    pub motion_read_after: bool,
+}
+
+/// Whether a move of `moves` from `from` on runs under the modal motion code in force there
+/// before a block or a cycle sets another: the first move other than a dwell, where its
+/// block writes no motion code (`G00`-`G03`, a thread move) and it is no cycle's
+/// (`in_cycle`: a cycle makes its moves by its own codes, and leaves its own in force).
+/// `block_of` finds a move's block by the start of its source; a move whose block is not
+/// found is taken to read it.
+pub(crate) fn modal_motion_read(
+    program: &Program<'_>,
+    moves: &[crate::toolpath::Move],
+    from: usize,
+    in_cycle: impl Fn(usize) -> bool,
+    block_of: impl Fn(u32) -> Option<usize>,
+) -> bool {
+    use crate::dialect::GFunction;
+    use crate::syntax::{CodeLetter, WordKind};
+    use crate::toolpath::Motion;
+    let tables = program.config().tables();
+    let Some(k) = (from..moves.len()).find(|&k| moves[k].motion != Motion::Dwell) else { return false };
+    if in_cycle(k) {
+        return false;
+    }
+    let Some(block) = block_of(moves[k].source.start) else { return true };
+    !program.words_of(program.block(block)).iter().any(|word| match word.kind {
+        WordKind::Code { letter: CodeLetter::G, code } => matches!(
+            tables.g(code).and_then(|g| g.function),
+            Some(GFunction::Rapid | GFunction::Linear | GFunction::Cw | GFunction::Ccw | GFunction::ThreadMove)
+        ),
+        _ => false,
+    })
+}
+
+/// Whether a move of `moves` from `from` on reads the modal F in force there before a block
+/// writes another: the first feed, arc or thread move whose block writes no `F` of its own
+/// (a thread move with its precise lead, Fanuc's `E`, reads no F and writes none: the moves
+/// after it are looked at). `block_of` finds a move's block by the start of its source; a
+/// move whose block is not found is taken to read it.
+pub(crate) fn modal_feed_read(
+    program: &Program<'_>,
+    moves: &[crate::toolpath::Move],
+    from: usize,
+    block_of: impl Fn(u32) -> Option<usize>,
+) -> bool {
+    use crate::dialect::Address;
+    use crate::syntax::WordKind;
+    use crate::toolpath::Motion;
+    let precise = program.config().tables().thread_lead.precise.map(|p| p.address);
+    for m in moves.iter().skip(from).filter(|m| !matches!(m.motion, Motion::Rapid | Motion::Dwell)) {
+        let Some(block) = block_of(m.source.start) else { return true };
+        let (mut writes_feed, mut precise_lead) = (false, false);
+        for word in program.words_of(program.block(block)) {
+            if let WordKind::Number { address, .. } | WordKind::Expr { address, .. } = word.kind {
+                writes_feed |= address == Address::F;
+                precise_lead |= m.threading && Some(address) == precise;
+            }
+        }
+        if writes_feed {
+            return false;
+        }
+        if !precise_lead {
+            return true;
+        }
+    }
+    false
 }
 
 /// The modal words a cycle leaves in force: the motion code (when it is a plain one; after

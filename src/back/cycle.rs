@@ -80,6 +80,12 @@ pub(crate) fn cycle_blocks(
         .collect();
     // The control goes on after the blocks the cycle consumed (its profile after the call).
     let next = GivenNext::after(program, &codes, expansion.block, |b| expansion.consumed.contains(&b));
+    // A motion code or an F no later move reads is not put back.
+    let next = GivenNext {
+        motion: next.motion || !expansion.motion_read_after,
+        feed: next.feed || !expansion.feed_read_after,
+        ..next
+    };
     if cycle.writer.restore(&mut cycle.modal, &expansion.after, next) {
         blocks.push(NewBlock::new(cycle.writer.take_words()));
     }

@@ -643,7 +643,11 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // and meets the bound with the least deviation (`fell_back`).
     let mut fit = args.fit.clone();
     let mut fell_back: Option<String> = None;
+    // Each try says its own warnings: only the last try's are kept (a cycle left as it is
+    // is said once, not once for every way of keeping cycles that was tried).
+    let said_before = messages.len();
     let (mut outcome, written, cycle_blocks) = loop {
+        messages.truncate(said_before);
         let program = match kept.take().map_or_else(&again, Ok) {
             Ok(program) => program,
             Err(diagnostics) => {
@@ -863,9 +867,30 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     }
     // Edits that the check predicts leave the part worse than the program as it came, by its
     // largest and its RMS deviation alike (corrections the control's increments round the
-    // wrong way), are not worth writing: the program goes out as it came, and says why.
-    let (before, after) = (outcome.report.totals.before, outcome.report.totals.after);
-    if after.max_mm > before.max_mm && after.rms_mm > before.rms_mm {
+    // wrong way), are not worth writing: the program goes out as it came, and says why. The
+    // program as it came is measured as `verify` of it against itself measures it, the
+    // figures it would be written with: beside the edits, where the bar assumed from both
+    // programs' cuts gives only the edits a surface to probe, it measured nothing, while
+    // verify of it alone finds no surface and measures its passes (`verify::check_written`).
+    // It goes out only within the bound and better than the edits by both figures.
+    let after = outcome.report.totals.after;
+    let unchanged = (after.max_mm > outcome.report.totals.before.max_mm
+        && after.rms_mm > outcome.report.totals.before.rms_mm)
+        .then(|| {
+            let mut reading = pipeline_settings(&resolved, &args.run, true);
+            reading.parse = printer::read_back_options(&again().ok()?.parsed.program);
+            let original = || again().map(|program| verify::Held::of(program, &tools));
+            let part = PartFrom { stock: stock.as_ref(), finished: clearance.as_ref().map(Clearance::finished) };
+            verify::check_written(original, &bytes, &reading, &tools, (&model, measure, part)).ok()
+        })
+        .flatten()
+        .map(|unchanged| unchanged.deviation.after)
+        .filter(|before| {
+            let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
+            before.max_mm <= bound && after.max_mm > before.max_mm && after.rms_mm > before.rms_mm
+        });
+    if let Some(before) = unchanged {
+        outcome.report.totals.before = before;
         messages.extend_from_slice(
             format!(
                 "compensate: {name}: written unchanged: its edits would leave the predicted part worse than the \

@@ -42,7 +42,6 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Lowered};
 use crate::source::Span;
 use crate::syntax::{Program, Statement};
-use crate::toolpath::Motion;
 
 use super::plan::{KeptPlans, MovePlan};
 use super::written;
@@ -571,21 +570,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         }
     }
 
-    /// Whether the first cut from move `from` on runs at the modal F: its block writes no
-    /// feed or lead word of its own.
+    /// Whether a move from move `from` on runs at the modal F (`semantic::modal_feed_read`).
     fn modal_feed_read_after(&self, from: usize) -> bool {
-        let moves = &self.lowered.toolpath.moves;
-        let Some(m) = moves.iter().skip(from).find(|m| m.cutting && !matches!(m.motion, Motion::Rapid | Motion::Dwell))
-        else {
-            return false;
-        };
-        let Some(block) = self.lookup.index(m.source.start) else { return true };
-        let precise = self.program.config().tables().thread_lead.precise.map(|p| p.address);
-        !self.program.words_of(self.program.block(block)).iter().any(|w| match w.kind {
-            crate::syntax::WordKind::Number { address, .. } | crate::syntax::WordKind::Expr { address, .. } => {
-                address == Address::F || (m.threading && Some(address) == precise)
-            }
-            _ => false,
+        crate::semantic::modal_feed_read(self.program, &self.lowered.toolpath.moves, from, |start| {
+            self.lookup.index(start)
         })
     }
 

@@ -226,6 +226,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             after: crate::semantic::ModalAfter::of(&interp.modal),
             kept,
             note,
+            feed_read_after: true,
+            motion_read_after: true,
         });
     } else {
         interp.cycle_memory.setup_block = Some((index, interp.modal_before_block));

@@ -418,6 +418,29 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                 mark.from_move = moved.range(mark.from_move..mark.from_move).start;
             }
         }
+        let blocks = self.program.blocks();
+        let block_of = |start: u32| blocks.binary_search_by_key(&start, |b| b.span.start).ok();
+        // The moves the cycles make, as ranges in order that do not overlap (one cycle's may
+        // hold another's): whether move `k` is a cycle's.
+        let mut cycles: Vec<std::ops::Range<usize>> = self.expansions.iter().map(|e| e.moves.clone()).collect();
+        cycles.sort_unstable_by_key(|r| r.start);
+        cycles.dedup_by(|later, earlier| {
+            let overlaps = later.start < earlier.end;
+            if overlaps {
+                earlier.end = earlier.end.max(later.end);
+            }
+            overlaps
+        });
+        let in_cycle = |k: usize| {
+            let after = cycles.partition_point(|r| r.start <= k);
+            after.checked_sub(1).is_some_and(|last| cycles[last].contains(&k))
+        };
+        for expansion in &mut self.expansions {
+            let end = expansion.moves.end;
+            expansion.feed_read_after = super::modal_feed_read(self.program, &toolpath.moves, end, block_of);
+            expansion.motion_read_after =
+                super::modal_motion_read(self.program, &toolpath.moves, end, in_cycle, block_of);
+        }
         crate::diagnostic::merge_repeats(&mut self.diagnostics);
         self.diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
         // A system variable read as 0 is said once, where the program first reads it.

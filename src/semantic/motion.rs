@@ -218,6 +218,8 @@ impl Interpreter<'_, '_> {
                 after: super::ModalAfter::of(&self.modal),
                 kept: None,
                 note: None,
+                feed_read_after: true,
+                motion_read_after: true,
             });
         }
         Flow::Next
@@ -386,6 +388,8 @@ impl Interpreter<'_, '_> {
                 after: super::ModalAfter::of(&corner.modal),
                 kept: None,
                 note: None,
+                feed_read_after: true,
+                motion_read_after: true,
             });
         }
     }

@@ -162,7 +162,8 @@ pub(super) fn profile_groups(
 /// cycle cuts only threads between rapids, and its call block writes only the words whose
 /// meaning is the final pass's end (`X`/`Z`, Fanuc's `U`/`W`) besides those that shape the
 /// passes before it (`F` the lead, `P`/`Q` the height and first depth of `G76`, `R` a
-/// `G76` finishing allowance or a taper that stays as written) and the sequence name,
+/// `G76` finishing allowance or a taper that stays as written; OSP's `D`, `U`, `H` and `B`
+/// of its compound thread cycle) and the sequence name,
 /// codes and comments. The final pass is the last thread move, and it runs along the axis
 /// (a thread chamfered out is written out instead); the passes before it move with it, as
 /// the control computes them from these words.
@@ -174,11 +175,20 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
     }
     let block = program.block(e.block);
     let words_fit = program.words_of(block).iter().all(|word| match word.kind {
-        WordKind::Number { address, .. } => {
-            matches!(address, Address::X | Address::Z | Address::F | Address::P | Address::Q | Address::R)
-                || (program.config().dialect == crate::dialect::Dialect::Fanuc
-                    && matches!(address, Address::U | Address::W))
-        }
+        WordKind::Number { address, .. } => match program.config().dialect {
+            crate::dialect::Dialect::Fanuc => matches!(
+                address,
+                Address::X | Address::Z | Address::U | Address::W | Address::F | Address::P | Address::Q | Address::R
+            ),
+            // OSP's compound thread cycle (`G71 X Z B D U H F`): the first depth `D`, the
+            // finishing allowance `U`, the thread height `H` and the infeed angle `B` shape the
+            // passes before the last from the final pass's `X` (grammar/osp.toml,
+            // `compound_thread_longitudinal`), as `G76`'s `P` and `Q` do on Fanuc.
+            crate::dialect::Dialect::Osp => matches!(
+                address,
+                Address::X | Address::Z | Address::F | Address::B | Address::D | Address::U | Address::H
+            ),
+        },
         WordKind::Expr { .. } => false,
         _ => true,
     });

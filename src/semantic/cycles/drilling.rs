@@ -232,6 +232,8 @@ pub(in crate::semantic) fn again(interp: &mut Interpreter<'_, '_>, index: usize,
         after: crate::semantic::ModalAfter::of(&interp.modal),
         kept: Some(KEPT),
         note: None,
+        feed_read_after: true,
+        motion_read_after: true,
     });
     interp.emitter.context.cycle = Span::SYNTHETIC;
     Flow::Next

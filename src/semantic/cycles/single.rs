@@ -102,6 +102,8 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         after: crate::semantic::ModalAfter::of(&interp.modal),
         kept: None,
         note: None,
+        feed_read_after: true,
+        motion_read_after: true,
     });
     Flow::Next
 }
