@@ -280,6 +280,18 @@ pub fn finish(
         for (k, e) in lowered.expansions.iter().enumerate() {
             let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
             let Some(pass) = cycles::thread_final_pass(program, lowered, e).filter(|_| alone) else { continue };
+            // A call that repeats the kept thread cycle call right before it (Fanuc's `G92`
+            // modal: a block of `X` alone) takes the axes it does not name from that call as
+            // written.
+            if let Some(before) = k.checked_sub(1).and_then(|j| lowered.expansions.get(j))
+                && before.moves.end == e.moves.start
+                && !chosen.get(k - 1).copied().unwrap_or(true)
+                && let Some(before_pass) = cycles::thread_final_pass(program, lowered, before)
+                && let Some([before_plan]) = plans.get(before_pass..before_pass + 1)
+            {
+                let grid = Grid::new(&lowered.coordinates_at(before_pass));
+                motion.inherited.insert(e.block, grid.point(before_plan.end()));
+            }
             // A cycle that cannot be written out (an OSP thread) is not chosen: its final pass
             // says whether it needs a correction.
             let expandable = cycles::expandable(program, lowered, e);
@@ -295,7 +307,11 @@ pub fn finish(
                 });
                 motion.write_profile(&[(e.block, pass..pass + 1)], plans);
                 chosen[k] = false;
-                threads.insert(e.block, change);
+                // A call whose words already hold its final pass (a repeated `G92` that takes
+                // the corrected Z from the call before) is kept as it is.
+                if !matches!(motion.first_runs.get(e.block), Some(FirstRun::AsWritten)) {
+                    threads.insert(e.block, change);
+                }
             } else if !expandable {
                 let span = program.block(e.block).span;
                 out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
@@ -487,6 +503,9 @@ pub struct MotionBlocks<'a, 'src> {
     /// Thread move blocks written as pieces after which the block's own `F` is written again
     /// (`BlockContext::restore_lead`).
     restore_lead: HashSet<usize>,
+    /// Kept thread cycle calls that repeat the call before them, with the end its final pass
+    /// runs to as written (`BlockContext::inherited`).
+    inherited: HashMap<usize, crate::back::grid::GridPoint>,
 }
 
 /// What a block's first run wrote.
@@ -567,6 +586,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             finishing: thread_pieces::finishing_passes(&lowered.toolpath),
             piece_leads: HashMap::new(),
             restore_lead: HashSet::new(),
+            inherited: HashMap::new(),
         }
     }
 
@@ -740,6 +760,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     lead: self.leads.get(&block),
                     piece_leads: self.piece_leads.get(&block).map_or(&[], Vec::as_slice),
                     restore_lead: self.restore_lead.contains(&block),
+                    inherited: self.inherited.get(&block).copied(),
                 };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
                 match (lowered.toolpath.moves.get(single), plans.get(single - first)) {

@@ -88,6 +88,11 @@ pub(super) struct BlockContext<'a, 'src> {
     /// After the pieces, the block's own lead word is written again on a block of its own:
     /// the pieces leave another `F` in force, and a later cut runs at the block's.
     pub restore_lead: bool,
+    /// For a thread cycle call that repeats the call before it (`G92 X22.7` after `G92 X23.2
+    /// Z-30. F2.`), the end that call's final pass runs to as written: the control takes
+    /// the axes the block does not name from it, so such an axis is written only where the
+    /// block's own final pass ends elsewhere.
+    pub inherited: Option<GridPoint>,
 }
 
 /// The words one lead is written with (`back::thread_lead::WrittenLead::words`).
@@ -183,14 +188,30 @@ impl BlockContext<'_, '_> {
         segment: &Segment,
         chosen: Option<ArcWords>,
     ) -> (Words, GridPoint) {
+        self.words_inheriting(form, (start, from), segment, chosen, None)
+    }
+
+    /// [`Self::words`], where the control takes an absolute axis the block does not name
+    /// from `inherited` (a repeated thread cycle call, `BlockContext::inherited`) rather than
+    /// from where the move starts.
+    fn words_inheriting(
+        &self,
+        form: &Form,
+        (start, from): (Xz, GridPoint),
+        segment: &Segment,
+        chosen: Option<ArcWords>,
+        inherited: Option<GridPoint>,
+    ) -> (Words, GridPoint) {
         let grid = &self.grid;
         let to = grid.point(segment.end());
         let mut out = Words::new();
         let axis = |absolute: bool, end: i64, begin: i64| if absolute { end } else { end - begin };
-        if form.x_named || to.x != from.x {
+        let held_x = inherited.filter(|_| form.x.1).map_or(from.x, |p| p.x);
+        let held_z = inherited.filter(|_| form.z.1).map_or(from.z, |p| p.z);
+        if form.x_named || to.x != held_x {
             out.push((Slot::X, axis(form.x.1, to.x, from.x)));
         }
-        if form.z_named || to.z != from.z {
+        if form.z_named || to.z != held_z {
             out.push((Slot::Z, axis(form.z.1, to.z, from.z)));
         }
         if let Segment::Arc { end, centre, ccw } = *segment {
@@ -295,7 +316,7 @@ impl BlockContext<'_, '_> {
         let (first, rest) = segments.split_first()?;
         let first_kind = segment_kind(first, original_kind);
         let original = self.original_words(&form, &coordinates, m, contour_start);
-        let (new, end) = self.words(&form, at, first, chosen.next().flatten());
+        let (new, end) = self.words_inheriting(&form, at, first, chosen.next().flatten(), self.inherited);
         let same_words = original.len() == new.len()
             && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
         if lead_words.is_none() && rest.is_empty() && first_kind == original_kind && same_words && self.lead.is_none() {

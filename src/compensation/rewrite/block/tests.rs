@@ -48,6 +48,7 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
         lead: None,
         piece_leads: &[],
         restore_lead: false,
+        inherited: None,
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
@@ -106,6 +107,7 @@ fn arc_as_lines(program: &str) -> Vec<String> {
         lead: None,
         piece_leads: &[],
         restore_lead: false,
+        inherited: None,
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
     let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
