@@ -339,21 +339,28 @@ fn plan_one(input: &PlanInput<'_>, piece: &Piece<'_>, options: &PlanOptions) -> 
     let mut segments = Segments::new();
     let mut from = at;
     let mut piece = 0;
+    let mut written_jumps = 0;
     for &(local, jump) in jumps {
         if local > piece {
             let part = MovePoints { start: from, points: &points[piece..local], nominal };
             segments.extend_from_slice(&choose_segments(&part, &options.fit));
             from = points[local - 1];
         }
+        let before = from;
         from = Xz::new(from.x + jump.x, from.z + jump.z);
-        segments.push(Segment::Line { end: from });
+        // A jump within an increment is no move the control can make: its block would
+        // repeat the point the one before ends at.
+        if grid.point(from) != grid.point(before) {
+            segments.push(Segment::Line { end: from });
+            written_jumps += 1;
+        }
         piece = local;
     }
     if piece < points.len() {
         let rest = MovePoints { start: from, points: &points[piece..], nominal };
         segments.extend_from_slice(&choose_segments(&rest, &options.fit));
     }
-    MovePlan { start: at, segments, changed: true, jumps: jumps.len(), lead_in: false, words: SmallVec::new() }
+    MovePlan { start: at, segments, changed: true, jumps: written_jumps, lead_in: false, words: SmallVec::new() }
 }
 
 /// Whether the programmed element (an arc about the contour's `centre`), started from
