@@ -870,7 +870,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // wrong way), are not worth writing: the program goes out as it came, and says why. The
     // program as it came is measured as `verify` of it against itself measures it, the
     // figures it would be written with: beside the edits, where the bar assumed from both
-    // programs' cuts gives only the edits a surface to probe, it measured nothing, while
+    // programs' cuts gives only the edits a surface to probe, it measures nothing, while
     // verify of it alone finds no surface and measures its passes (`verify::check_written`).
     // It goes out only within the bound and better than the edits by both figures.
     let after = outcome.report.totals.after;
