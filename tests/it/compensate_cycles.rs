@@ -171,6 +171,18 @@ struct LeadCase {
     expanded_lead: Option<String>,
 }
 
+/// `verify` of `program` against itself on `model` fails it: on the part its thread's flanks
+/// lie off by more than 0.002 mm, the lead error gathered along the thread. Its JSON, and its
+/// text for the snapshot.
+fn verify_fails_on_its_lead(name: &str, program: &str, model: &str) -> (serde_json::Value, String) {
+    let (code, stdout, stderr) = turnpass(&["verify", program, program, "--model", model, "--format", "json"]);
+    assert_eq!(code, 1, "{name}: verify passes a thread whose lead errs\n{stdout}{stderr}");
+    let verified: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert!(verified["deviation"]["after"]["max_mm"].as_f64().unwrap() > 0.002, "{name}: {verified}");
+    let (_, uncorrected, _) = turnpass(&["verify", program, program, "--model", model]);
+    (verified, uncorrected)
+}
+
 /// `tests/cases/compensate/cycles/leads.toml`: on a Z slide with a scale error the thread's
 /// lead errs, and its flanks on the part lie off by more than the bound where the thread
 /// ends. `verify` of the program against itself says so; `compensate` keeps the thread cycle
@@ -184,17 +196,10 @@ fn a_scale_error_along_the_thread_is_a_lead_error_compensate_corrects() {
     let cases: LeadCases = toml::from_str(&list).unwrap();
     let dir = tempfile::tempdir().unwrap();
     for case in &cases.case {
-        let (code, stdout, stderr) =
-            turnpass(&["verify", &case.program, &case.program, "--model", &case.model, "--format", "json"]);
-        assert_eq!(code, 1, "{}: verify passes a thread whose lead errs\n{stdout}{stderr}", case.name);
-        let verified: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-        let limit = 0.002;
-        // On the part the flanks lie off by the lead error gathered along the thread.
-        assert!(verified["deviation"]["after"]["max_mm"].as_f64().unwrap() > limit, "{}: {verified}", case.name);
+        let (verified, uncorrected) = verify_fails_on_its_lead(&case.name, &case.program, &case.model);
         let lead_before = verified["deviation"]["lead"]["before_mm"].as_f64().unwrap();
-        let (_, uncorrected, _) = turnpass(&["verify", &case.program, &case.program, "--model", &case.model]);
-        let out = dir.path().join(format!("{}.nc", case.name));
-        let report = dir.path().join(format!("{}.json", case.name));
+        let (out, report) =
+            (dir.path().join(format!("{}.nc", case.name)), dir.path().join(format!("{}.json", case.name)));
         let (out_text, report_text) = (out.to_string_lossy(), report.to_string_lossy());
         let mut args = vec!["compensate", &case.program, "--model", &case.model, "-o", &out_text];
         args.extend(["--report", "json", "--report-file", &report_text]);
@@ -289,14 +294,9 @@ fn a_periodic_screw_error_is_written_as_thread_blocks_of_their_own_leads() {
     let cases: CyclicLeadCases = toml::from_str(&list).unwrap();
     let dir = tempfile::tempdir().unwrap();
     for case in &cases.case {
-        let (code, stdout, stderr) =
-            turnpass(&["verify", &case.program, &case.program, "--model", &case.model, "--format", "json"]);
-        assert_eq!(code, 1, "{}: verify passes a thread whose lead errs\n{stdout}{stderr}", case.name);
-        let verified: serde_json::Value = serde_json::from_str(&stdout).unwrap();
-        assert!(verified["deviation"]["after"]["max_mm"].as_f64().unwrap() > 0.002, "{}: {verified}", case.name);
-        let (_, uncorrected, _) = turnpass(&["verify", &case.program, &case.program, "--model", &case.model]);
-        let out = dir.path().join(format!("{}.nc", case.name));
-        let report = dir.path().join(format!("{}.json", case.name));
+        let (_, uncorrected) = verify_fails_on_its_lead(&case.name, &case.program, &case.model);
+        let (out, report) =
+            (dir.path().join(format!("{}.nc", case.name)), dir.path().join(format!("{}.json", case.name)));
         let (out_text, report_text) = (out.to_string_lossy(), report.to_string_lossy());
         let args = ["compensate", &case.program, "--model", &case.model, "-o", &out_text];
         let (code, _, compensated) =
