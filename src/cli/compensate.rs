@@ -297,9 +297,13 @@ fn cycle_lines(
                 let last = profile.last().map_or(0, |&b| line(b));
                 format!("kept; its profile (lines {first}-{last}) is compensated in place")
             }
-            CycleForm::WordsEdited { lead: None } => "kept; its words carry the final pass's correction".to_string(),
-            CycleForm::WordsEdited { lead: Some(lead) } => {
-                format!("kept; its words carry the final pass's correction, and its lead {}", lead_said(lead))
+            CycleForm::WordsEdited { lead, single_pass } => {
+                // A single-pass call (`G92`) is one pass of the thread, not always the last.
+                let pass = if *single_pass { "its pass's" } else { "the final pass's" };
+                match lead {
+                    None => format!("kept; its words carry {pass} correction"),
+                    Some(lead) => format!("kept; its words carry {pass} correction, and its lead {}", lead_said(lead)),
+                }
             }
             CycleForm::RoughsOriginal => {
                 "kept; it roughs the profile as written, its finishing cycle runs a compensated copy".to_string()

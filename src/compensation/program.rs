@@ -162,6 +162,9 @@ pub fn compensate_program(
     let mut motion = rewrite::MotionBlocks::new(program, lowered, &tools);
     motion.model = Some(model);
     motion.thread_tolerance_mm = Some(options.fit.tolerance_mm);
+    if let Judged::Shaping(clearance) = judged {
+        motion.clearance = Some(clearance);
+    }
     if options.thread_pieces_every_pass {
         motion.every_thread_pass();
     }

@@ -39,10 +39,12 @@ use crate::dialect::Address;
 use crate::printer::style::{BlockArcWords, StyleTally};
 use crate::printer::{BlockWriter, Edits, ProgramStyle, WrittenText};
 use crate::semantic::nose_radius::ToolTable;
-use crate::semantic::{CoordinateMark, Lowered};
+use crate::semantic::{CoordinateMark, Expansion, Lowered};
 use crate::source::Span;
 use crate::syntax::{Program, Statement};
+use crate::toolpath::Xz;
 
+use super::fit::Segment;
 use super::plan::{KeptPlans, MovePlan};
 use super::written;
 
@@ -128,6 +130,9 @@ pub enum CycleForm {
     WordsEdited {
         #[serde(skip_serializing_if = "Option::is_none")]
         lead: Option<cycles::LeadChange>,
+        /// The call cuts one thread pass (`G92`, OSP's `G33`): its final pass is its only one.
+        #[serde(skip)]
+        single_pass: bool,
     },
     /// A roughing call that stays as written on the profile as written: the roughing follows
     /// the nominal profile and its allowance, while its finishing cycle runs a compensated
@@ -275,7 +280,9 @@ pub fn finish(
         }
     }
     // A thread cycle keeps its call, the final pass's correction in its own words.
-    let mut threads: HashMap<usize, Option<cycles::LeadChange>> = HashMap::new();
+    let mut threads: HashMap<usize, (Option<cycles::LeadChange>, bool)> = HashMap::new();
+    // The plan each kept call's final pass is written from, by its move.
+    let mut pass_plans: HashMap<usize, MovePlan> = HashMap::new();
     if choice.threads_in_place && !choice.expand_all {
         for (k, e) in lowered.expansions.iter().enumerate() {
             let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
@@ -287,7 +294,9 @@ pub fn finish(
                 && before.moves.end == e.moves.start
                 && !chosen.get(k - 1).copied().unwrap_or(true)
                 && let Some(before_pass) = cycles::thread_final_pass(program, lowered, before)
-                && let Some([before_plan]) = plans.get(before_pass..before_pass + 1)
+                && let Some(before_plan) = pass_plans
+                    .get(&before_pass)
+                    .or_else(|| plans.get(before_pass..before_pass + 1).and_then(<[MovePlan]>::first))
             {
                 let grid = Grid::new(&lowered.coordinates_at(before_pass));
                 motion.inherited.insert(e.block, grid.point(before_plan.end()));
@@ -299,18 +308,24 @@ pub fn finish(
             if !(chosen.get(k).copied().unwrap_or(false) || (!expandable && changed)) {
                 continue;
             }
-            if motion.thread_writable(e.block, pass, plans) {
+            if motion.thread_writable(e.block, pass, plans)
+                && let Some(plan) = motion.thread_pass_plan(e, pass, plans)
+            {
                 let lead = cycles::thread_lead(program, lowered, e.block, pass, model);
                 let change = lead.map(|(words, change)| {
                     motion.leads.insert(e.block, words);
                     change
                 });
-                motion.write_profile(&[(e.block, pass..pass + 1)], plans);
+                motion.write_thread_pass(e.block, pass, &plan);
+                pass_plans.insert(pass, plan);
                 chosen[k] = false;
                 // A call whose words already hold its final pass (a repeated `G92` that takes
                 // the corrected Z from the call before) is kept as it is.
                 if !matches!(motion.first_runs.get(e.block), Some(FirstRun::AsWritten)) {
-                    threads.insert(e.block, change);
+                    let moves = lowered.toolpath.moves.get(e.moves.clone()).unwrap_or_default();
+                    let passes =
+                        moves.iter().enumerate().filter(|&(n, m)| m.threading && (n == 0 || !moves[n - 1].threading));
+                    threads.insert(e.block, (change, passes.count() == 1));
                 }
             } else if !expandable {
                 let span = program.block(e.block).span;
@@ -346,8 +361,8 @@ pub fn finish(
             CycleForm::ProfileEdited { profile }
         } else if let Some(form) = copied.remove(&block) {
             form
-        } else if let Some(lead) = threads.remove(&block) {
-            CycleForm::WordsEdited { lead }
+        } else if let Some((lead, single_pass)) = threads.remove(&block) {
+            CycleForm::WordsEdited { lead, single_pass }
         } else if expanded_set.contains(&block) {
             let threads_cut = first_expansion
                 .get(&block)
@@ -506,6 +521,9 @@ pub struct MotionBlocks<'a, 'src> {
     /// Kept thread cycle calls that repeat the call before them, with the end its final pass
     /// runs to as written (`BlockContext::inherited`).
     inherited: HashMap<usize, crate::back::grid::GridPoint>,
+    /// Which feed moves keep clear of the finished part, where the check measures it
+    /// (`thread_pass_plan`).
+    pub clearance: Option<&'a crate::part::clearance::Clearance>,
 }
 
 /// What a block's first run wrote.
@@ -587,6 +605,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             piece_leads: HashMap::new(),
             restore_lead: HashSet::new(),
             inherited: HashMap::new(),
+            clearance: None,
         }
     }
 
@@ -831,6 +850,37 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     pub(super) fn thread_writable(&self, block: usize, pass: usize, plans: &KeptPlans) -> bool {
         let Some([plan]) = plans.get(pass..pass + 1) else { return false };
         plan.segments.len() == 1 && !plan.lead_in && matches!(self.first_runs.get(block), Some(FirstRun::NotYet))
+    }
+
+    /// The plan the words of a kept thread cycle's final pass `pass` (of the call `e`) are
+    /// written from: its plan, but at its diameter as written where the check measures the
+    /// finished part and every thread move of the call keeps clear of it (`part::clearance`):
+    /// an infeed pass that a deeper pass after it cuts away needs no micrometres (issue 25),
+    /// and a `G92` pass of `X` alone stays as written. Its other words (the end of the
+    /// thread, which a repeated call takes on) and its lead keep their correction.
+    pub(super) fn thread_pass_plan(&self, e: &Expansion, pass: usize, plans: &KeptPlans) -> Option<MovePlan> {
+        let [plan] = plans.get(pass..pass + 1)? else { return None };
+        let mut plan = plan.clone();
+        let moves = &self.lowered.toolpath.moves;
+        let Some(clearance) = self.clearance else { return Some(plan) };
+        let clear =
+            e.moves.clone().filter(|&k| moves.get(k).is_some_and(|m| m.threading)).all(|k| clearance.is_clear(k));
+        let nominal = moves.get(pass)?.contour;
+        let end = plan.end();
+        if clear && (end.x - nominal.x).abs() <= clearance.by_mm() / 2.0 {
+            let end = Xz::new(nominal.x, end.z);
+            let grid = Grid::new(&self.lowered.coordinates_at(pass));
+            plan.changed = grid.point(end) != grid.point(nominal);
+            plan.segments = smallvec::smallvec![Segment::Line { end }];
+        }
+        Some(plan)
+    }
+
+    /// Write the words of the kept thread cycle called at `block` for its final pass `pass`,
+    /// from `plan` (`thread_pass_plan`).
+    pub(super) fn write_thread_pass(&mut self, block: usize, pass: usize, plan: &MovePlan) {
+        let text = self.block_text(block, pass..pass + 1, std::slice::from_ref(plan));
+        self.settle(block, pass..pass + 1, text);
     }
 
     /// Write the profile blocks `blocks` in place, each from the moves a finishing cycle makes

@@ -14,8 +14,15 @@
 //! Only a tool whose side the tool table gives (its tip direction) is tested: the part model
 //! guesses the side of one it does not give from its first cut, and a boring bar taken for
 //! a turning tool leaves a finished part where its first pass runs, so that the pass that
-//! really finishes the bore would seem clear of it. Arcs and thread passes are not tested:
-//! compensation leaves only straight moves as written (`compensation/plan/air.rs`).
+//! really finishes the bore would seem clear of it. Arcs are not tested: compensation leaves
+//! only straight moves as written (`compensation/plan/air.rs`).
+//!
+//! A threading move is tested where it cuts: its insert at each stamp of the part model
+//! (`removal::ThreadStamps`, every whole spindle turn) and at its end. An infeed pass that
+//! the deeper passes after it cut away keeps clear of the finished thread where its form
+//! keeps the clearance from the thread's flanks (half its depth short of the final pass's,
+//! for a 60° form): compensation writes such a pass of a thread cycle at its diameter as
+//! written (`compensation/rewrite.rs`).
 
 use crate::machine::StockSettings;
 use crate::semantic::Machine;
@@ -23,8 +30,10 @@ use crate::toolpath::{Motion, ValidToolpath};
 
 use super::Stock;
 use super::dexel::Dexels;
-use super::removal::Removal;
+use super::removal::{MAX_RAY_VISITS, MAX_STAMPS_PER_MOVE, Removal, ThreadStamps};
 use super::sweep::Sweep;
+use super::tool::Tool;
+use crate::toolpath::Xz;
 
 /// How far a feed move's whole tool keeps from the finished part for it to cut no finished
 /// surface, mm: more than a model's corrections (micrometres to tens of them) and the
@@ -81,16 +90,35 @@ pub fn clearance(toolpath: ValidToolpath<'_>, machine: &Machine, stock: Option<&
     removal.end_thread()?;
     let grow = CLEARANCE_MM + removal.dexels.spacing;
     let mut clear = vec![false; toolpath.moves.len()];
+    // The spindle turns of the thread pass under way, whose stamps a threading move goes on.
+    let mut turns = 0.0;
     for (index, m) in toolpath.moves.iter().enumerate() {
-        if m.motion != Motion::Feed || m.threading {
+        let threading = m.threading && m.motion == Motion::Feed;
+        if !threading {
+            turns = 0.0;
+        }
+        if m.motion != Motion::Feed {
             continue;
         }
         let start = toolpath.start_of(index);
         let tool = removal.tool(m, start);
+        let (c0, c1) = (tool.centre(start), tool.centre(m.end));
+        if threading {
+            let Some(stamps) = ThreadStamps::along(turns, (c0, c1), start, m, &removal.stock) else { continue };
+            turns = stamps.turns_after;
+            if tool.oriented && stamps.count <= MAX_STAMPS_PER_MOVE {
+                // Every stamp, and the insert at the move's end, where the pass may stop.
+                let at = (0..stamps.count).map(|k| stamps.at(k)).chain(std::iter::once(c1));
+                match stamps_clear(&mut removal, &tool, at, grow, index) {
+                    Some(free) => clear[index] = free,
+                    None => return None,
+                }
+            }
+            continue;
+        }
         if !tool.oriented {
             continue;
         }
-        let (c0, c1) = (tool.centre(start), tool.centre(m.end));
         let sweep = Sweep::rounded(tool.placed(c0).chain(tool.placed(c1)), tool.nose + grow);
         let (lo, hi) = sweep.bounds();
         if !removal.dexels.may_meet(lo, hi) {
@@ -98,7 +126,7 @@ pub fn clearance(toolpath: ValidToolpath<'_>, machine: &Machine, stock: Option<&
             continue;
         }
         let planned = removal.dexels.rays_crossed(&sweep);
-        if removal.visits + planned > super::removal::MAX_RAY_VISITS {
+        if removal.visits + planned > MAX_RAY_VISITS {
             return None;
         }
         let met = removal.dexels.sweep_families(&sweep, index as u32, false, [true, false], None);
@@ -107,4 +135,32 @@ pub fn clearance(toolpath: ValidToolpath<'_>, machine: &Machine, stock: Option<&
     }
     let finished = Finished { dexels: removal.dexels, stock, moves: toolpath.moves.len() };
     Some(Clearance { clear, finished })
+}
+
+/// Whether the insert of `tool` at each nose centre of `at` (a threading move's stamps), grown
+/// by `grow`, meets no material of the finished part; None once the bound on work is passed.
+fn stamps_clear(
+    removal: &mut Removal<'_>,
+    tool: &Tool,
+    at: impl Iterator<Item = Xz>,
+    grow: f64,
+    index: usize,
+) -> Option<bool> {
+    for centre in at {
+        let sweep = Sweep::rounded(tool.placed(centre), tool.nose + grow);
+        let (lo, hi) = sweep.bounds();
+        if !removal.dexels.may_meet(lo, hi) {
+            continue;
+        }
+        let planned = removal.dexels.rays_crossed(&sweep);
+        if removal.visits + planned > MAX_RAY_VISITS {
+            return None;
+        }
+        let met = removal.dexels.sweep_families(&sweep, index as u32, false, [true, false], None);
+        removal.visits += met.rays;
+        if met.total > 0.0 {
+            return Some(false);
+        }
+    }
+    Some(true)
 }

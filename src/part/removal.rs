@@ -171,27 +171,21 @@ impl<'a> Removal<'a> {
         if m.threading && m.motion == Motion::Feed {
             let pass = self.thread.take();
             let turns = pass.as_ref().map_or(0.0, |p| p.turns);
-            let length = start.distance(m.end);
-            let lead = if m.rpm > 0.0 { m.feed / m.rpm } else { 0.0 };
             let mut stamped = pass.and_then(|p| p.stamped);
-            if lead > 0.0 && lead.is_finite() && length > 0.0 {
-                let (first, count) = stamps(turns, length, lead, start, m.end, &self.stock);
-                let at = |k: u64| {
-                    let s = (first + k as f64 - turns) * lead;
-                    Xz::new(c0.x + (c1.x - c0.x) * s / length, c0.z + (c1.z - c0.z) * s / length)
-                };
+            if let Some(stamps) = ThreadStamps::along(turns, (c0, c1), start, m, &self.stock) {
+                let count = stamps.count;
                 if count > 0 {
-                    let each = self.dexels.rays_crossed(&Sweep::rounded(tool.placed(at(0)), tool.nose)).max(1);
+                    let each = self.dexels.rays_crossed(&Sweep::rounded(tool.placed(stamps.at(0)), tool.nose)).max(1);
                     if count > MAX_STAMPS_PER_MOVE || self.visits + count * each > MAX_RAY_VISITS {
                         return None;
                     }
-                    stamped = Some(first + (count - 1) as f64);
+                    stamped = Some(stamps.first + (count - 1) as f64);
                 }
                 for k in 0..count {
-                    out.push(Sweep::rounded(tool.placed(at(k)), tool.nose));
+                    out.push(Sweep::rounded(tool.placed(stamps.at(k)), tool.nose));
                 }
                 let end = Sweep::rounded(tool.placed(c1), tool.nose);
-                self.thread = Some(ThreadPass { turns: turns + length / lead, stamped, end, index });
+                self.thread = Some(ThreadPass { turns: stamps.turns_after, stamped, end, index });
                 return Some(out);
             }
         }
@@ -347,6 +341,42 @@ fn reach_of_move(tool: &Tool, start: Xz, m: &Move, turn: Option<(f64, f64)>) -> 
     }
     let r = tool.nose;
     (Xz::new(lo.x + core_lo.x - r, lo.z + core_lo.z - r), Xz::new(hi.x + core_hi.x + r, hi.z + core_hi.z + r))
+}
+
+/// Where a thread pass's insert stamps its form along one threading move: its nose centre at
+/// every whole spindle turn from where the pass began (`stamps`).
+pub(super) struct ThreadStamps {
+    /// The first stamp's turn from the pass's start, and how many there are.
+    pub first: f64,
+    pub count: u64,
+    /// The turns the pass has made at the move's end.
+    pub turns_after: f64,
+    turns: f64,
+    lead: f64,
+    length: f64,
+    centres: (Xz, Xz),
+}
+
+impl ThreadStamps {
+    /// The stamps of the threading move `m` from `start`, the insert's nose centre running
+    /// from `centres.0` to `centres.1`, the pass having made `turns` turns before it. None
+    /// where the move has no lead or no length: it stamps nothing.
+    pub(super) fn along(turns: f64, centres: (Xz, Xz), start: Xz, m: &Move, stock: &Stock) -> Option<ThreadStamps> {
+        let length = start.distance(m.end);
+        let lead = if m.rpm > 0.0 { m.feed / m.rpm } else { 0.0 };
+        if !(lead > 0.0 && lead.is_finite() && length > 0.0) {
+            return None;
+        }
+        let (first, count) = stamps(turns, length, lead, start, m.end, stock);
+        Some(ThreadStamps { first, count, turns_after: turns + length / lead, turns, lead, length, centres })
+    }
+
+    /// The nose centre at stamp `k`.
+    pub(super) fn at(&self, k: u64) -> Xz {
+        let (c0, c1) = self.centres;
+        let s = (self.first + k as f64 - self.turns) * self.lead;
+        Xz::new(c0.x + (c1.x - c0.x) * s / self.length, c0.z + (c1.z - c0.z) * s / self.length)
+    }
 }
 
 /// Where a thread pass stamps its form along a move: at every whole spindle turn from where

@@ -95,6 +95,23 @@ fn a_tool_whose_side_the_table_does_not_give_keeps_clear_of_nothing() {
     assert_eq!(clear_moves(&rough_and_finish("44."), vec![tool(1, 0.4, 0)]), Vec::new());
 }
 
+#[test]
+fn a_thread_infeed_pass_half_the_clearance_deeper_than_the_final_is_not_clear() {
+    // Four passes of an M24x2 thread with a 60° insert, the last to X21.546: the flanks of
+    // a pass keep half its depth short of the final pass's from the finished thread's, so
+    // the passes 0.827 and 0.377 mm short on the radius keep clear and the one 0.077 mm
+    // short does not, nor does the final pass.
+    let mut threading = tool(1, 0.1, 8);
+    threading.kind = Some(crate::machine::ToolKind::Threading);
+    threading.angle = Some(60.0);
+    let program = "G18 G21 G40 G99\nT0101\nG97 S500 M03\nG00 X30. Z5.\nX23.2\nG32 Z-30. F2.\nG00 X30.\nZ5.\n\
+                   X22.3\nG32 Z-30.\nG00 X30.\nZ5.\nX21.7\nG32 Z-30.\nG00 X30.\nZ5.\nX21.546\nG32 Z-30.\n\
+                   G00 X30.\nZ5.\nG00 X60. Z50.\nM30\n";
+    let ends = clear_moves(program, vec![threading]);
+    let passes: Vec<Xz> = ends.iter().copied().filter(|end| end.z == -30.0).collect();
+    assert_eq!(passes, vec![Xz::new(11.6, -30.0), Xz::new(11.15, -30.0)], "{ends:?}");
+}
+
 const BAR: StockSettings = StockSettings { diameter: 50.0, length: 60.0, front: Some(0.0), bore: None };
 
 #[test]
