@@ -184,9 +184,10 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
             // finishing allowance `U`, the thread height `H` and the infeed angle `B` shape the
             // passes before the last from the final pass's `X` (grammar/osp.toml,
             // `compound_thread_longitudinal`), as `G76`'s `P` and `Q` do on Fanuc.
+            // The face cycle's allowance `W` runs along Z, as its passes' depths do.
             crate::dialect::Dialect::Osp => matches!(
                 address,
-                Address::X | Address::Z | Address::F | Address::B | Address::D | Address::U | Address::H
+                Address::X | Address::Z | Address::F | Address::B | Address::D | Address::U | Address::W | Address::H
             ),
         },
         WordKind::Expr { .. } => false,
@@ -195,11 +196,29 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
     if !words_fit {
         return None;
     }
-    // The last thread move, which must run along the axis: after a chamfer out of the
-    // thread the cycle's end words name the chamfer's end, not the final pass's.
+    // The last thread move, which must run along the thread (along X for a face thread):
+    // after a chamfer out of the thread the cycle's end words name the chamfer's end, not
+    // the final pass's.
     let last = e.moves.start + moves.iter().rposition(|m| m.threading)?;
     let (from, to) = (lowered.toolpath.start_of(last), lowered.toolpath.moves.get(last)?.end);
-    ((to.z - from.z).abs() > 2.0 * (to.x - from.x).abs()).then_some(last)
+    let (along, across) = if face_thread(program, block) {
+        ((to.x - from.x).abs(), (to.z - from.z).abs())
+    } else {
+        ((to.z - from.z).abs(), (to.x - from.x).abs())
+    };
+    (along > 2.0 * across).then_some(last)
+}
+
+/// Whether `block` calls a face thread cycle (OSP's `G72` and `G32`), whose thread runs along
+/// X: its `X` names where the thread ends and its `Z` the final pass's depth.
+fn face_thread(program: &Program<'_>, block: &crate::syntax::Block) -> bool {
+    use crate::dialect::GFunction;
+    let crate::syntax::Statement::Cycle(id) = block.statement else { return false };
+    let WordKind::Code { code, .. } = program.word(program.command(id).code_word).kind else { return false };
+    matches!(
+        program.config().tables().g(code).and_then(|g| g.function),
+        Some(GFunction::CompoundThreadFace | GFunction::ThreadSingleFace)
+    )
 }
 
 /// Whether after the Fanuc roughing call at `call` the program goes on after its `Q` block
