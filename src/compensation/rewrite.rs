@@ -853,11 +853,12 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     }
 
     /// The plan the words of a kept thread cycle's final pass `pass` (of the call `e`) are
-    /// written from: its plan, but at its diameter as written where the check measures the
-    /// finished part and every thread move of the call keeps clear of it (`part::clearance`):
-    /// an infeed pass that a deeper pass after it cuts away needs no micrometres (issue 25),
-    /// and a `G92` pass of `X` alone stays as written. Its other words (the end of the
-    /// thread, which a repeated call takes on) and its lead keep their correction.
+    /// written from: its plan, but at its depth as written (its diameter; its `Z` on a face
+    /// thread) where the check measures the finished part and every thread move of the call
+    /// keeps clear of it (`part::clearance`): an infeed pass that a deeper pass after it cuts
+    /// away needs no micrometres (issue 25), and a `G92` pass of `X` alone stays as written.
+    /// Its other words (the end of the thread, which a repeated call takes on) and its lead
+    /// keep their correction.
     pub(super) fn thread_pass_plan(&self, e: &Expansion, pass: usize, plans: &KeptPlans) -> Option<MovePlan> {
         let [plan] = plans.get(pass..pass + 1)? else { return None };
         let mut plan = plan.clone();
@@ -867,8 +868,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             e.moves.clone().filter(|&k| moves.get(k).is_some_and(|m| m.threading)).all(|k| clearance.is_clear(k));
         let nominal = moves.get(pass)?.contour;
         let end = plan.end();
-        if clear && (end.x - nominal.x).abs() <= clearance.by_mm() / 2.0 {
-            let end = Xz::new(nominal.x, end.z);
+        let face = cycles::face_thread(self.program, self.program.block(e.block));
+        let off = if face { end.z - nominal.z } else { end.x - nominal.x };
+        if clear && off.abs() <= clearance.by_mm() / 2.0 {
+            let end = if face { Xz::new(end.x, nominal.z) } else { Xz::new(nominal.x, end.z) };
             let grid = Grid::new(&self.lowered.coordinates_at(pass));
             plan.changed = grid.point(end) != grid.point(nominal);
             plan.segments = smallvec::smallvec![Segment::Line { end }];

@@ -13,7 +13,8 @@
 //!   the other corner's along Z, and up from there by the body's length: a rectangle with
 //!   rounded corners, as wide as the insert.
 //! - **Threading**: a V of the included angle, its apex at the nose centre, opening away
-//!   from the part; the reference point is the V's tip.
+//!   from the part: along X for a thread on a diameter, along Z for a thread on a face
+//!   (tips 7 and 5); the reference point is the V's tip.
 //!   A tool the table gives without a `kind` is one where it cuts a thread pass
 //!   (`removal::Removal::tool`): a thread is the insert's form stamped once per lead.
 //! - **Drill**: a rectangle of the drill's diameter on its axis, reaching back along +Z (its
@@ -121,16 +122,24 @@ impl Tool {
                 core.extend([Xz::new(0.0, from), Xz::new(0.0, to), Xz::new(up, to), Xz::new(up, from)]);
             }
             ToolKind::Threading => {
-                let up = match (settings.map(|t| t.tip), orientation) {
-                    (Some(6), _) => -1.0,
-                    (Some(8), _) => 1.0,
-                    (_, Orientation::Inside) => -1.0,
-                    (_, Orientation::Outside) => 1.0,
+                // The V opens away from its tip: along X for a thread on a diameter (tip 8
+                // outside, 6 inside), along Z for one on a face (tip 7 on a face toward the
+                // chuck, 5 on one facing away); otherwise the side the part model takes it on.
+                let opening = match (settings.map(|t| t.tip), orientation) {
+                    (Some(5..=8), _) => Xz::new(ax, az),
+                    (_, Orientation::Inside) => Xz::new(-1.0, 0.0),
+                    (_, Orientation::Outside) => Xz::new(1.0, 0.0),
                 };
-                centre_offset = Xz::new(nose * up, 0.0);
+                centre_offset = Xz::new(nose * opening.x, nose * opening.z);
                 let half = settings.and_then(|t| t.angle).unwrap_or(60.0).to_radians() / 2.0;
                 let wide = body * half.tan();
-                core.extend([Xz::new(0.0, 0.0), Xz::new(body * up, -wide), Xz::new(body * up, wide)]);
+                let across = Xz::new(opening.z * wide, opening.x * wide);
+                let (deep_x, deep_z) = (body * opening.x, body * opening.z);
+                core.extend([
+                    Xz::new(0.0, 0.0),
+                    Xz::new(deep_x - across.x, deep_z - across.z),
+                    Xz::new(deep_x + across.x, deep_z + across.z),
+                ]);
             }
             ToolKind::Drill => {
                 centre_offset = Xz::new(0.0, 0.0);

@@ -211,7 +211,7 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
 
 /// Whether `block` calls a face thread cycle (OSP's `G72` and `G32`), whose thread runs along
 /// X: its `X` names where the thread ends and its `Z` the final pass's depth.
-fn face_thread(program: &Program<'_>, block: &crate::syntax::Block) -> bool {
+pub(super) fn face_thread(program: &Program<'_>, block: &crate::syntax::Block) -> bool {
     use crate::dialect::GFunction;
     let crate::syntax::Statement::Cycle(id) = block.statement else { return false };
     let WordKind::Code { code, .. } = program.word(program.command(id).code_word).kind else { return false };
