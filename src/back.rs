@@ -20,4 +20,4 @@ pub(crate) mod grid;
 pub(crate) mod motion;
 pub(crate) mod thread_lead;
 
-pub(crate) use cycle::{CycleBlocks, carried_words, carry_traced, cycle_blocks};
+pub(crate) use cycle::{Axes, CycleBlocks, carried_words, carry_traced, cycle_blocks};

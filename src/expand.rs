@@ -7,7 +7,7 @@
 //! writes the blocks (`back::cycle_blocks`: coordinates back through the program's frame on
 //! its least increment, motion codes and F where they change, arcs in the program's form).
 
-use crate::back::{CycleBlocks, carried_words, carry_traced, cycle_blocks};
+use crate::back::{Axes, CycleBlocks, carried_words, carry_traced, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::printer::{Edits, NewBlock, ProgramStyle};
 use crate::semantic::Lowered;
@@ -38,7 +38,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Validated<Lowered>) -> (
             .and_then(|k| lowered.toolpath.moves.get(k))
             .map_or(Compensation::Off, |m| m.compensation);
         let shift = lowered.coordinates_at(expansion.moves.start).shift;
-        match cycle_blocks(program, expansion, (moves, &[]), start, compensation_before, shift, &style) {
+        match cycle_blocks(program, expansion, (moves, &[]), (start, Axes::Every), compensation_before, shift, &style) {
             CycleBlocks::Keep => {}
             CycleBlocks::Blocks(mut blocks) => {
                 let first = expansion.moves.start;

@@ -27,6 +27,16 @@ pub(crate) enum CycleBlocks {
     NotExpandable(&'static str),
 }
 
+/// Which axes the blocks written for a cycle's moves name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Axes {
+    /// Both, on every block: a cycle written out move by move.
+    Every,
+    /// Only those a straight move travels, as a profile is written by hand (a profile copy
+    /// for a finishing cycle).
+    Travelled,
+}
+
 /// Why a cycle whose thread moves are no single pass stays as it is.
 pub(crate) const THREAD_MOVES: &str = "its thread moves have no plain-block form in this dialect";
 
@@ -44,7 +54,7 @@ pub(crate) fn cycle_blocks(
     program: &Program<'_>,
     expansion: &Expansion,
     (moves, leads): (&[Move], &[Option<WrittenLead>]),
-    start: Xz,
+    (start, axes): (Xz, Axes),
     compensation_before: Compensation,
     shift: Xz,
     style: &ProgramStyle,
@@ -57,6 +67,10 @@ pub(crate) fn cycle_blocks(
     // (the cycle block's own S included, since the block is replaced).
     let modal = Modal::new(compensation_before, expansion.before.s_word);
     let grid = Grid::of(expansion.frame, shift);
+    let modal = match axes {
+        Axes::Every => modal,
+        Axes::Travelled => modal.writing_travelled_axes(grid.point(start)),
+    };
     let mut cycle = CycleWriter { writer: MotionWriter::new(codes, Vec::new()), modal, grid, style };
     if !codes.has_thread_move() && moves.iter().any(|m| m.threading) {
         // No thread move in this dialect: passes become single-pass cycle blocks, which copy

@@ -17,7 +17,7 @@ use crate::semantic::ModalAfter;
 use crate::syntax::{CodeLetter, Number, Program, WordId};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
-use super::grid::{ArcWords, Grid};
+use super::grid::{ArcWords, Grid, GridPoint};
 
 /// The motion a written block performs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -208,13 +208,22 @@ pub(crate) struct Modal {
     feed: Option<f64>,
     speed: Option<f64>,
     compensation: Compensation,
+    /// Where the last block ends, on the grid, where straight moves write only the axes
+    /// they travel (`Modal::writing_travelled_axes`); `None`: every block writes both.
+    at: Option<GridPoint>,
 }
 
 impl Modal {
     /// In force before the first block: `compensation`, and the spindle speed `speed` where
     /// one is (positive).
     pub(crate) fn new(compensation: Compensation, speed: f64) -> Modal {
-        Modal { motion: None, feed: None, speed: Some(speed).filter(|s| *s > 0.0), compensation }
+        Modal { motion: None, feed: None, speed: Some(speed).filter(|s| *s > 0.0), compensation, at: None }
+    }
+
+    /// The same, its straight moves writing only the axes they travel from `start` on (as a
+    /// profile is written by hand: `Z-30.` after `X24. Z-2.`); an arc writes both ends.
+    pub(crate) fn writing_travelled_axes(self, start: GridPoint) -> Modal {
+        Modal { at: Some(start), ..self }
     }
 }
 
@@ -281,7 +290,24 @@ impl<W: WordSink> MotionWriter<W> {
             modal.motion = Some((m.motion, m.threading));
         }
         let end = m.contour;
-        self.point(grid, end);
+        match modal.at {
+            Some(at) if !m.is_arc() => {
+                let on_grid = grid.point(end);
+                if on_grid.x != at.x {
+                    self.coordinate(grid, Address::X, on_grid.x);
+                }
+                // A move that travels neither axis on the grid still names one.
+                if on_grid.z != at.z || on_grid.x == at.x {
+                    self.coordinate(grid, Address::Z, on_grid.z);
+                }
+                modal.at = Some(on_grid);
+            }
+            Some(_) => {
+                self.point(grid, end);
+                modal.at = Some(grid.point(end));
+            }
+            None => self.point(grid, end),
+        }
         if m.is_arc() {
             // The words `compensate` predicts the control to run: the program's form where it
             // holds the arc after rounding, else the centre form.

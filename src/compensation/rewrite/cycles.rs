@@ -20,7 +20,7 @@ use std::ops::Range;
 
 use crate::back::motion::Codes;
 use crate::back::thread_lead::{ProgrammedLead, WrittenLead, spelled, written_lead};
-use crate::back::{CycleBlocks, carried_words, carry_traced, cycle_blocks};
+use crate::back::{Axes, CycleBlocks, carried_words, carry_traced, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::expand;
 use crate::printer::{Edits, NewBlock, NewWord, ProgramStyle};
@@ -354,24 +354,31 @@ pub(super) fn write(
         let (compensated, firsts) = compensated_moves(moves, cycle_plans, compensation_before);
         let (leads, lead_change) =
             expanded_leads(program, lowered, expansion, (&firsts, compensated.len()), model, &piece_leads);
-        let blocks =
-            match cycle_blocks(program, expansion, (&compensated, &leads), start, compensation_before, shift, style) {
-                CycleBlocks::Blocks(mut blocks) => {
-                    let at = |m: usize| firsts.get(m - range.start).copied().unwrap_or(compensated.len());
-                    carry_traced(
-                        program,
-                        &mut blocks,
-                        compensated.len(),
-                        expansion.traced.iter().map(|&(m, b)| (at(m), b)),
-                    );
-                    with_call_words(program, expansion.block, blocks)
-                }
-                CycleBlocks::Keep | CycleBlocks::NotExpandable(_) => {
-                    let span = program.block(expansion.block).span;
-                    diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
-                    continue;
-                }
-            };
+        let blocks = match cycle_blocks(
+            program,
+            expansion,
+            (&compensated, &leads),
+            (start, Axes::Every),
+            compensation_before,
+            shift,
+            style,
+        ) {
+            CycleBlocks::Blocks(mut blocks) => {
+                let at = |m: usize| firsts.get(m - range.start).copied().unwrap_or(compensated.len());
+                carry_traced(
+                    program,
+                    &mut blocks,
+                    compensated.len(),
+                    expansion.traced.iter().map(|&(m, b)| (at(m), b)),
+                );
+                with_call_words(program, expansion.block, blocks)
+            }
+            CycleBlocks::Keep | CycleBlocks::NotExpandable(_) => {
+                let span = program.block(expansion.block).span;
+                diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+                continue;
+            }
+        };
         match by_block.get(&expansion.block) {
             Some(previous) if *previous != blocks => {
                 if refused.insert(expansion.block) {
@@ -664,8 +671,9 @@ pub(super) fn profile_copy(
         first.checked_sub(1).and_then(|k| lowered.toolpath.moves.get(k)).map_or(Compensation::Off, |m| m.compensation);
     let shift = lowered.coordinates_at(first).shift;
     let (compensated, firsts) = compensated_moves(moves, copy_plans, compensation_before);
-    let mut blocks = match cycle_blocks(program, finish, (&compensated, &[]), start, compensation_before, shift, style)
-    {
+    // The copy names only the axes each move travels, as its profile does.
+    let from = (start, Axes::Travelled);
+    let mut blocks = match cycle_blocks(program, finish, (&compensated, &[]), from, compensation_before, shift, style) {
         CycleBlocks::Blocks(blocks) if !blocks.is_empty() => blocks,
         _ => return Err("its finishing pass has no plain-block form"),
     };
