@@ -22,9 +22,10 @@
 //!   profile cannot carry the correction in place (a take-up of the play that would be a
 //!   block of its own in the profile, a block that makes several moves, a block that also
 //!   runs as a plain block), the finishing cycle runs a compensated copy of it and the
-//!   roughing the profile as written (`cycles::profile_copy`). The others are expanded into
-//!   their compensated moves (`rewrite/cycles.rs`); cycles whose motion does not change stay
-//!   calls.
+//!   roughing the profile as written (`cycles::profile_copy`). A LAP continuous thread
+//!   (`G88`) keeps its call with the contour it threads along, its root, compensated in place
+//!   from the final pass (`cycles::root_blocks`). The others are expanded into their
+//!   compensated moves (`rewrite/cycles.rs`); cycles whose motion does not change stay calls.
 //! * Moves of other blocks (`G28`, `G53` returns) stay as programmed: they go to fixed
 //!   machine positions, not to points of the part.
 
@@ -280,6 +281,24 @@ pub fn finish(
                     }
                 }
             }
+        }
+    }
+    // A LAP continuous thread keeps its call, the final pass's correction in the blocks of
+    // its contour, the thread's root.
+    for e in &lowered.expansions {
+        let root = cycles::root_blocks(e);
+        let changed = root.iter().any(|(_, m)| plans.get(m.clone()).is_some_and(|p| p.iter().any(|p| p.changed)));
+        if !changed || choice.expand_all {
+            continue;
+        }
+        if choice.profiles_in_place && motion.profile_writable(&root, plans).is_ok() {
+            motion.write_profile(&root, plans);
+            let mut profile: Vec<usize> = root.iter().map(|&(b, _)| b).collect();
+            profile.sort_unstable();
+            in_place.insert(e.block, profile);
+        } else {
+            let span = program.block(e.block).span;
+            out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
         }
     }
     // A thread cycle keeps its call, the final pass's correction in its own words.
@@ -631,7 +650,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             // A thread cycle whose final pass its words can carry is planned like one that
             // can be written out (`finish` decides which it is).
             let expandable = cycles::expandable(program, lowered, expansion)
-                || cycles::thread_final_pass(program, lowered, expansion).is_some();
+                || cycles::thread_final_pass(program, lowered, expansion).is_some()
+                || !expansion.root.is_empty();
             for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
                 *w = expandable;
             }
@@ -825,7 +845,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     /// each writes at most one segment-writing move where any changes, none writes a take-up
     /// of the play (a backlash jump, a lead-in, a rapid in several segments), and
     /// none ran as a plain block. A take-up written into the profile would be a block of its
-    /// own there, which a roughing cycle roughs as part of the shape.
+    /// own there, which a roughing cycle roughs as part of the shape (and a LAP thread's
+    /// passes, which each approach the root on their own, never run).
     pub(super) fn profile_writable(
         &self,
         blocks: &[(usize, Range<usize>)],
