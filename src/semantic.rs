@@ -225,6 +225,13 @@ pub struct Expansion {
     /// `moves.end`, are the cycle's own: `G70`'s return to the start point); equal to
     /// `moves.start` where nothing is traced.
     pub traced_end: usize,
+    /// A LAP continuous thread (`G88`, `cycles/lap_thread.rs`): the blocks of the contour
+    /// its final pass runs on, the thread's root, each with the index of the move that pass
+    /// makes for it (the contour's last approach block with the rapid to the thread's start,
+    /// each thread element with its thread move). The passes before it are the control's
+    /// offsets of the same contour, so these blocks place every pass. Empty for any other
+    /// cycle, and where the final pass's moves do not match the contour's blocks one for one.
+    pub root: Vec<(usize, usize)>,
     pub moves: std::ops::Range<usize>,
     /// The modal words in force before the call, and after it: the expanded blocks must
     /// leave the latter behind so that the blocks after them run as before.

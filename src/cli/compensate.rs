@@ -20,7 +20,7 @@ use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::verify::{self, Measure, PartFrom};
 use turnpass::compensation::{
     CompensateOptions, CycleForm, Judged, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
-    THREAD_NOT_IN_PLACE, compensate_program,
+    PROFILE_TAKE_UP, THREAD_NOT_IN_PLACE, compensate_program,
 };
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
@@ -848,7 +848,9 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         (Some(a), Some(b)) => Some(format!("{a}; {b}")),
         (a, b) => a.clone().or_else(|| b.clone()),
     };
+    let take_up = because.copies.as_ref().map(|copies| format!("{PROFILE_TAKE_UP}; {copies}"));
     for (constant, reason) in [
+        (PROFILE_TAKE_UP, &take_up),
         (PROFILE_NOT_IN_PLACE, &because.profiles),
         (PROFILE_COPIED, &because.profiles),
         (PROFILE_NOT_COPIED, &neither),

@@ -18,10 +18,14 @@
 //! * **Cycles** whose motion changes stay calls where a finishing cycle runs their profile
 //!   (`G71`/`G72`/`G73` with `G70`, LAP `G85`/`G86` with `G87`): the profile blocks are
 //!   compensated word by word from the finishing pass's moves, as motion blocks are, and
-//!   the roughing, which the control computes from the profile, follows them. The others
-//!   are expanded into their compensated moves (`rewrite/cycles.rs`), and so are those whose
-//!   profile cannot carry the correction (a block that makes several moves, a block that
-//!   also runs as a plain block); cycles whose motion does not change stay calls.
+//!   the roughing, which the control computes from the profile, follows them. Where the
+//!   profile cannot carry the correction in place (a take-up of the play that would be a
+//!   block of its own in the profile, a block that makes several moves, a block that also
+//!   runs as a plain block), the finishing cycle runs a compensated copy of it and the
+//!   roughing the profile as written (`cycles::profile_copy`). A LAP continuous thread
+//!   (`G88`) keeps its call with the contour it threads along, its root, compensated in place
+//!   from the final pass (`cycles::root_blocks`). The others are expanded into their
+//!   compensated moves (`rewrite/cycles.rs`); cycles whose motion does not change stay calls.
 //! * Moves of other blocks (`G28`, `G53` returns) stay as programmed: they go to fixed
 //!   machine positions, not to points of the part.
 
@@ -42,7 +46,7 @@ use crate::semantic::nose_radius::ToolTable;
 use crate::semantic::{CoordinateMark, Expansion, Lowered};
 use crate::source::Span;
 use crate::syntax::{Program, Statement};
-use crate::toolpath::Xz;
+use crate::toolpath::{Motion, Xz};
 
 use super::fit::Segment;
 use super::plan::{KeptPlans, MovePlan};
@@ -172,6 +176,12 @@ pub const PROFILE_COPIED: &str = "its profile is not compensated in place";
 /// its finishing cycle (the caller that asked for it says why).
 pub const PROFILE_NOT_COPIED: &str = "its moves change, and its profile is neither compensated in place nor copied";
 
+/// Why a profile is not compensated in place where its compensated blocks take up the play
+/// (`MotionBlocks::profile_writable`); where its copy then misses the bound too and the
+/// cycles are expanded, the caller says why the copy does.
+pub const PROFILE_TAKE_UP: &str = "a block of its profile needs a take-up of the play written as a move of its own, \
+                                   which the roughing cycle would run as part of the profile";
+
 /// Why a thread cycle is expanded when its words are not compensated in place.
 pub const THREAD_NOT_IN_PLACE: &str = "its moves change, and its own words are not compensated in place";
 
@@ -209,14 +219,12 @@ pub fn finish(
     let mut to_copy: Vec<(cycles::ProfileGroup, &'static str)> = Vec::new();
     if (choice.profiles_in_place || choice.profiles_copied) && !choice.expand_all {
         for group in cycles::profile_groups(lowered, plans, &chosen, &groups) {
-            let writable = choice.profiles_in_place && motion.profile_writable(&group.blocks, plans);
-            if !writable {
-                let reason = if choice.profiles_in_place {
-                    "a block of its profile makes several moves that change (an automatic corner, a take-up of \
-                     the play), or also runs as a plain block: the profile cannot carry the correction"
-                } else {
-                    PROFILE_COPIED
-                };
+            let writable = if choice.profiles_in_place {
+                motion.profile_writable(&group.blocks, plans)
+            } else {
+                Err(PROFILE_COPIED)
+            };
+            if let Err(reason) = writable {
                 if choice.profiles_copied {
                     to_copy.push((group, reason));
                 } else {
@@ -277,6 +285,24 @@ pub fn finish(
                     }
                 }
             }
+        }
+    }
+    // A LAP continuous thread keeps its call, the final pass's correction in the blocks of
+    // its contour, the thread's root.
+    for e in &lowered.expansions {
+        let root = cycles::root_blocks(e);
+        let changed = root.iter().any(|(_, m)| plans.get(m.clone()).is_some_and(|p| p.iter().any(|p| p.changed)));
+        if !changed || choice.expand_all {
+            continue;
+        }
+        if choice.profiles_in_place && motion.profile_writable(&root, plans).is_ok() {
+            motion.write_profile(&root, plans);
+            let mut profile: Vec<usize> = root.iter().map(|&(b, _)| b).collect();
+            profile.sort_unstable();
+            in_place.insert(e.block, profile);
+        } else {
+            let span = program.block(e.block).span;
+            out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
         }
     }
     // A thread cycle keeps its call, the final pass's correction in its own words.
@@ -642,7 +668,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             // A thread cycle whose final pass its words can carry is planned like one that
             // can be written out (`finish` decides which it is).
             let expandable = cycles::expandable(program, lowered, expansion)
-                || cycles::thread_final_pass(program, lowered, expansion).is_some();
+                || cycles::thread_final_pass(program, lowered, expansion).is_some()
+                || !expansion.root.is_empty();
             for w in writable.get_mut(expansion.moves.clone()).unwrap_or_default() {
                 *w = expandable;
             }
@@ -832,16 +859,38 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     }
 
     /// Whether the profile blocks `blocks` (each with the moves a finishing cycle makes for
-    /// it) can each carry their moves' correction as a motion block does: each writes at
-    /// most one segment-writing move where any changes, and none ran as a plain block.
-    pub(super) fn profile_writable(&self, blocks: &[(usize, Range<usize>)], plans: &KeptPlans) -> bool {
-        blocks.iter().all(|(block, moves)| {
-            let Some(plans) = plans.get(moves.clone()) else { return false };
+    /// it) can each carry their moves' correction as a motion block does, and if not, why:
+    /// each writes at most one segment-writing move where any changes, none writes a take-up
+    /// of the play (a backlash jump, a lead-in, a rapid in several segments), and
+    /// none ran as a plain block. A take-up written into the profile would be a block of its
+    /// own there, which a roughing cycle roughs as part of the shape (and a LAP thread's
+    /// passes, which each approach the root on their own, never run).
+    pub(super) fn profile_writable(
+        &self,
+        blocks: &[(usize, Range<usize>)],
+        plans: &KeptPlans,
+    ) -> Result<(), &'static str> {
+        for (block, moves) in blocks {
+            let Some(plans) = plans.get(moves.clone()) else { return Err("its profile was not planned") };
             let (_, several, any_change) = Self::written_moves(moves.clone(), plans);
-            matches!(self.first_runs.get(*block), Some(FirstRun::NotYet))
-                && !(several && any_change)
-                && matches!(self.program.block(*block).statement, Statement::Motion)
-        })
+            // A rapid's take-up is a segment of its own (`plan::one_move`), not a counted jump.
+            let rapid = |k: usize| self.lowered.toolpath.moves.get(k).is_some_and(|m| m.motion == Motion::Rapid);
+            let take_up = moves
+                .clone()
+                .zip(plans)
+                .any(|(k, p)| p.changed && (p.jumps > 0 || p.lead_in || (rapid(k) && p.segments.len() > 1)));
+            if take_up {
+                return Err(PROFILE_TAKE_UP);
+            }
+            if !matches!(self.first_runs.get(*block), Some(FirstRun::NotYet))
+                || (several && any_change)
+                || !matches!(self.program.block(*block).statement, Statement::Motion)
+            {
+                return Err("a block of its profile makes several moves that change (an automatic corner), or also \
+                            runs as a plain block: the profile cannot carry the correction");
+            }
+        }
+        Ok(())
     }
 
     /// Whether the thread cycle called at `block` can carry the correction of its final

@@ -207,6 +207,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
     let setup = interp.cycle_setup.take();
     let traced = std::mem::take(&mut interp.cycle_traced);
     let traced_end = interp.cycle_traced_end.take().unwrap_or(first_move);
+    let root = std::mem::take(&mut interp.cycle_root);
     let before = match interp.cycle_memory.setup_block {
         Some((setup, before)) if setup < index && consumed.contains(&setup) => before,
         _ => interp.modal_before_block,
@@ -221,6 +222,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, id: CommandId)
             setup,
             traced,
             traced_end,
+            root,
             moves: first_move..interp.emitter.moves.len(),
             before,
             after: crate::semantic::ModalAfter::of(&interp.modal),

@@ -110,6 +110,8 @@ pub(super) struct Interpreter<'p, 'src> {
     pub cycle_traced: Vec<(usize, usize)>,
     /// The move after the traced profile's last (`Expansion::traced_end`).
     pub cycle_traced_end: Option<usize>,
+    /// The contour blocks that place a LAP continuous thread's final pass (`Expansion::root`).
+    pub cycle_root: Vec<(usize, usize)>,
     /// The number of diagnostics at which their repeats are merged next.
     merge_diagnostics_at: usize,
     /// The modal words in force before the block being executed (for `expand`, which
@@ -197,6 +199,7 @@ impl<'p, 'src> Interpreter<'p, 'src> {
             cycle_setup: None,
             cycle_traced: Vec::new(),
             cycle_traced_end: None,
+            cycle_root: Vec::new(),
             merge_diagnostics_at: MERGE_DIAGNOSTICS_EVERY,
             modal_before_block: super::ModalAfter { motion: None, f_word: 0.0, s_word: 0.0 },
             coordinates: Vec::new(),
@@ -413,6 +416,10 @@ impl<'p, 'src> Interpreter<'p, 'src> {
                     *first = moved.range(*first..*first).start;
                 }
                 expansion.traced_end = moved.range(expansion.traced_end..expansion.traced_end).start;
+                // A corner inserted in front of a root block's move is not that move.
+                for (m, _) in &mut expansion.root {
+                    *m = moved.range(*m..*m + 1).end - 1;
+                }
             }
             for mark in &mut self.coordinates {
                 mark.from_move = moved.range(mark.from_move..mark.from_move).start;

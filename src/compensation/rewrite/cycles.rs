@@ -191,6 +191,9 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
             ),
         },
         WordKind::Expr { .. } => false,
+        // A contour's name (`G88 N…`): the passes follow the contour, whose blocks, not the
+        // call's words, place the final pass (`root_blocks`).
+        WordKind::Label { .. } => false,
         _ => true,
     });
     if !words_fit {
@@ -219,6 +222,13 @@ pub(super) fn face_thread(program: &Program<'_>, block: &crate::syntax::Block) -
         program.config().tables().g(code).and_then(|g| g.function),
         Some(GFunction::CompoundThreadFace | GFunction::ThreadSingleFace)
     )
+}
+
+/// The contour blocks of a LAP continuous thread (`Expansion::root`), each with the move its
+/// final pass makes for it: they carry that pass's correction word by word, as a finishing
+/// cycle's profile blocks do, and the control offsets the passes before it from them.
+pub(super) fn root_blocks(e: &Expansion) -> Vec<(usize, Range<usize>)> {
+    e.root.iter().map(|&(m, block)| (block, m..m + 1)).collect()
 }
 
 /// Whether after the Fanuc roughing call at `call` the program goes on after its `Q` block

@@ -22,12 +22,15 @@
 //!   (`lap_contour.rs`): before or after the call, its name compared as text; right after
 //!   the call it belongs to the call (the flow continues after its `G80`, and `expand`
 //!   deletes it with the call), anywhere else it stays for other calls.
+//! - The final pass (depth `H`) runs on the contour itself: its moves are recorded with the
+//!   contour's blocks (`Expansion::root`), which `compensate` edits in place to correct the
+//!   finished thread while the call stays.
 
 use crate::diagnostic::DiagnosticKind;
 use crate::syntax::Command;
 
 use super::super::interpreter::{Flow, Interpreter};
-use super::super::profile::Shape;
+use super::super::profile::{Segment, Shape};
 use super::Call;
 use super::compound_thread::infeed_of;
 use super::lap_contour::{self, Direction};
@@ -65,7 +68,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let out = thread_pass::outward(axes, from, thread_start);
     let toward_start = if axes.along(thread_start) >= axes.along(thread_end) { 1.0 } else { -1.0 };
     let height = to_mm(infeed.height);
-    for pass in &infeed.plan.passes {
+    for (n, pass) in infeed.plan.passes.iter().enumerate() {
         let above_root = height - to_mm(pass.depth);
         let shift = pass.flank * above_root * infeed.flank_slope * toward_start;
         let points = root
@@ -78,10 +81,44 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
             .collect();
         let thread = Pass { axes, from, points, chamfer: None };
         for _ in 0..infeed.starts {
+            let first = interp.emitter.moves.len();
             thread.emit(interp, &modal, lead_mm);
+            if n + 1 == infeed.plan.passes.len() {
+                interp.cycle_root = root_blocks(interp, &profile.segments[..approach], elements, &thread, first);
+            }
         }
     }
     interp.report_zero_feed(span);
     contour.consume(interp);
     flow
+}
+
+/// The contour blocks that place the final pass `thread`, whose moves start at move `first`
+/// (`Expansion::root`): the last approach block with the rapid to the thread's start, each
+/// element's block with its thread move. Empty where the moves made are not one rapid and
+/// then one thread move per element (a pass that starts where the tool stands).
+fn root_blocks(
+    interp: &Interpreter<'_, '_>,
+    approach: &[Segment],
+    elements: &[Segment],
+    thread: &Pass,
+    first: usize,
+) -> Vec<(usize, usize)> {
+    let moves = thread.moves();
+    let made = interp.emitter.moves.len() - first;
+    let threads = moves.iter().skip(1).take_while(|m| m.threading).count();
+    let (Some(last_approach), Some(entry)) = (approach.last(), moves.first()) else { return Vec::new() };
+    if made != moves.len() || entry.threading || threads != elements.len() {
+        return Vec::new();
+    }
+    let blocks = interp.program.blocks();
+    let block_of = |segment: &Segment| blocks.partition_point(|b| b.span.start <= segment.source.start).checked_sub(1);
+    std::iter::once(last_approach)
+        .chain(elements)
+        .enumerate()
+        .map(|(k, segment)| block_of(segment).map(|block| (first + k, block)))
+        .collect::<Option<Vec<_>>>()
+        // One block, one move: a block that makes several elements cannot carry each its own.
+        .filter(|root| root.windows(2).all(|w| w[0].1 < w[1].1))
+        .unwrap_or_default()
 }
