@@ -109,10 +109,7 @@ pub fn clearance(toolpath: ValidToolpath<'_>, machine: &Machine, stock: Option<&
             if tool.oriented && stamps.count <= MAX_STAMPS_PER_MOVE {
                 // Every stamp, and the insert at the move's end, where the pass may stop.
                 let at = (0..stamps.count).map(|k| stamps.at(k)).chain(std::iter::once(c1));
-                match stamps_clear(&mut removal, &tool, at, grow, index) {
-                    Some(free) => clear[index] = free,
-                    None => return None,
-                }
+                clear[index] = stamps_clear(&mut removal, &tool, at, grow, index)?;
             }
             continue;
         }
@@ -120,18 +117,7 @@ pub fn clearance(toolpath: ValidToolpath<'_>, machine: &Machine, stock: Option<&
             continue;
         }
         let sweep = Sweep::rounded(tool.placed(c0).chain(tool.placed(c1)), tool.nose + grow);
-        let (lo, hi) = sweep.bounds();
-        if !removal.dexels.may_meet(lo, hi) {
-            clear[index] = true;
-            continue;
-        }
-        let planned = removal.dexels.rays_crossed(&sweep);
-        if removal.visits + planned > MAX_RAY_VISITS {
-            return None;
-        }
-        let met = removal.dexels.sweep_families(&sweep, index as u32, false, [true, false], None);
-        removal.visits += met.rays;
-        clear[index] = met.total <= 0.0;
+        clear[index] = meets_nothing(&mut removal, &sweep, index)?;
     }
     let finished = Finished { dexels: removal.dexels, stock, moves: toolpath.moves.len() };
     Some(Clearance { clear, finished })
@@ -148,19 +134,25 @@ fn stamps_clear(
 ) -> Option<bool> {
     for centre in at {
         let sweep = Sweep::rounded(tool.placed(centre), tool.nose + grow);
-        let (lo, hi) = sweep.bounds();
-        if !removal.dexels.may_meet(lo, hi) {
-            continue;
-        }
-        let planned = removal.dexels.rays_crossed(&sweep);
-        if removal.visits + planned > MAX_RAY_VISITS {
-            return None;
-        }
-        let met = removal.dexels.sweep_families(&sweep, index as u32, false, [true, false], None);
-        removal.visits += met.rays;
-        if met.total > 0.0 {
+        if !meets_nothing(removal, &sweep, index)? {
             return Some(false);
         }
     }
     Some(true)
+}
+
+/// Whether `sweep` (of move `index`) meets no material of the finished part; None once the
+/// bound on work is passed.
+fn meets_nothing(removal: &mut Removal<'_>, sweep: &Sweep, index: usize) -> Option<bool> {
+    let (lo, hi) = sweep.bounds();
+    if !removal.dexels.may_meet(lo, hi) {
+        return Some(true);
+    }
+    let planned = removal.dexels.rays_crossed(sweep);
+    if removal.visits + planned > MAX_RAY_VISITS {
+        return None;
+    }
+    let met = removal.dexels.sweep_families(sweep, index as u32, false, [true, false], None);
+    removal.visits += met.rays;
+    Some(met.total <= 0.0)
 }
