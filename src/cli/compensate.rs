@@ -262,7 +262,7 @@ fn cycle_blocks(
     let mut blocks: Vec<usize> = Vec::new();
     for cycle in cycles {
         blocks.push(cycle.block);
-        if let CycleForm::ProfileEdited { profile } | CycleForm::ProfileCopied { profile, .. } = &cycle.form {
+        if let CycleForm::ProfileEdited { profile, .. } | CycleForm::ProfileCopied { profile, .. } = &cycle.form {
             blocks.extend(profile.first().into_iter().chain(profile.last()));
         }
     }
@@ -292,10 +292,16 @@ fn cycle_lines(
         let text = String::from_utf8_lossy(span(cycle.block).text(bytes)).trim_end().to_string();
         let said = match &cycle.form {
             CycleForm::Kept => continue,
-            CycleForm::ProfileEdited { profile } => {
+            CycleForm::ProfileEdited { profile, lead } => {
                 let first = profile.first().map_or(0, |&b| line(b));
                 let last = profile.last().map_or(0, |&b| line(b));
-                format!("kept; its profile (lines {first}-{last}) is compensated in place")
+                match lead {
+                    None => format!("kept; its profile (lines {first}-{last}) is compensated in place"),
+                    Some(lead) => format!(
+                        "kept; its profile (lines {first}-{last}) is compensated in place, and its lead {}",
+                        lead_said(lead)
+                    ),
+                }
             }
             CycleForm::WordsEdited { lead, single_pass } => {
                 // A single-pass call (`G92`) is one pass of the thread, not always the last.

@@ -217,7 +217,8 @@ fn cycle_reports(input: &ReportInput<'_>) -> Vec<CycleReport> {
                     ("words_edited", Vec::new(), None)
                 }
                 CycleForm::RoughsOriginal => ("roughs_profile_as_written", Vec::new(), None),
-                CycleForm::ProfileEdited { profile } => {
+                CycleForm::ProfileEdited { profile, lead: change } => {
+                    lead.clone_from(change);
                     ("profile_edited", profile.iter().map(|&b| line(b)).collect(), None)
                 }
                 CycleForm::ProfileCopied { profile, copy: (first, last), reason } => {

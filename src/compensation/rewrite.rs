@@ -127,6 +127,10 @@ pub enum CycleForm {
     ProfileEdited {
         #[serde(skip)]
         profile: Vec<usize>,
+        /// Where it changes, the lead a LAP continuous thread's call is written with
+        /// (`cycles::thread_lead`).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        lead: Option<cycles::LeadChange>,
     },
     /// The call stays, its words carrying the correction of its final pass (a thread
     /// cycle: the final diameter and the end of the thread), and `lead`, where it changes,
@@ -289,10 +293,27 @@ pub fn finish(
     }
     // A LAP continuous thread keeps its call, the final pass's correction in the blocks of
     // its contour, the thread's root.
+    // Its lead is the call's own word, written for the slide to cut the programmed lead as a
+    // kept thread cycle's is (`cycles::thread_lead`).
+    let mut root_leads: HashMap<usize, cycles::LeadChange> = HashMap::new();
     for e in &lowered.expansions {
         let root = cycles::root_blocks(e);
+        if root.is_empty() || choice.expand_all {
+            continue;
+        }
         let changed = root.iter().any(|(_, m)| plans.get(m.clone()).is_some_and(|p| p.iter().any(|p| p.changed)));
-        if !changed || choice.expand_all {
+        // The lead from the final pass's longest thread move on the root: the lead words are
+        // chosen for the length they must hold the thread over.
+        let toolpath = &lowered.toolpath;
+        let length = |k: usize| toolpath.moves.get(k).map_or(0.0, |m| toolpath.start_of(k).distance(m.end));
+        let lead = e
+            .root
+            .iter()
+            .map(|&(m, _)| m)
+            .filter(|&k| toolpath.moves.get(k).is_some_and(|m| m.threading))
+            .max_by(|&a, &b| length(a).total_cmp(&length(b)))
+            .and_then(|pass| cycles::thread_lead(program, lowered, e.block, pass, model));
+        if !changed && lead.is_none() {
             continue;
         }
         if choice.profiles_in_place && motion.profile_writable(&root, plans).is_ok() {
@@ -300,6 +321,11 @@ pub fn finish(
             let mut profile: Vec<usize> = root.iter().map(|&(b, _)| b).collect();
             profile.sort_unstable();
             in_place.insert(e.block, profile);
+            if let Some((words, change)) = lead {
+                out.edits.replace(e.block, vec![cycles::with_lead(program, e.block, &words)]);
+                out.edited.push(EditedBlock { block: e.block, moves: e.moves.clone(), cycle: false });
+                root_leads.insert(e.block, change);
+            }
         } else {
             let span = program.block(e.block).span;
             out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
@@ -384,7 +410,7 @@ pub fn finish(
     calls.sort_unstable();
     for block in calls {
         let form = if let Some(profile) = in_place.remove(&block) {
-            CycleForm::ProfileEdited { profile }
+            CycleForm::ProfileEdited { profile, lead: root_leads.remove(&block) }
         } else if let Some(form) = copied.remove(&block) {
             form
         } else if let Some((lead, single_pass)) = threads.remove(&block) {

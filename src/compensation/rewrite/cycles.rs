@@ -231,6 +231,21 @@ pub(super) fn root_blocks(e: &Expansion) -> Vec<(usize, Range<usize>)> {
     e.root.iter().map(|&(m, block)| (block, m..m + 1)).collect()
 }
 
+/// The block `call` (a LAP continuous thread's) with its lead word written as `lead`'s
+/// words, every other word as written.
+pub(super) fn with_lead(program: &Program<'_>, call: usize, lead: &LeadWords) -> NewBlock {
+    let block = program.block(call);
+    let mut words = Vec::new();
+    for k in 0..program.words_of(block).len() {
+        if k == lead.at {
+            words.extend(lead.words.iter().map(|&(address, number)| NewWord::Number(address, number)));
+        } else {
+            words.push(NewWord::Copy(block.first_word + k as u32));
+        }
+    }
+    NewBlock::new(words)
+}
+
 /// Whether after the Fanuc roughing call at `call` the program goes on after its `Q` block
 /// (`Interpreter::after_profile`): `Q` names exactly one block, and it comes after the call.
 fn jumps_past_q(program: &Program<'_>, call: usize) -> bool {
