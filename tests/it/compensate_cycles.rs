@@ -26,6 +26,9 @@ struct Case {
     kept: Vec<String>,
     /// Lines the written program no longer holds as they were.
     edited: Vec<String>,
+    /// Lines the written program holds as given (an edit that changes only some words).
+    #[serde(default)]
+    written: Vec<String>,
     /// Compensate and verify pass by pass (`--passes`), not on the finished part.
     #[serde(default)]
     passes: bool,
@@ -63,6 +66,9 @@ fn cycles_stay_calls_and_what_is_written_verifies() {
         }
         for edited in &case.edited {
             assert!(!lines.contains(&edited.as_str()), "{}: `{edited}` is not compensated\n{written}", case.name);
+        }
+        for line in &case.written {
+            assert!(lines.contains(&line.as_str()), "{}: `{line}` is not written\n{written}", case.name);
         }
         let args = ["verify", &case.program, &out_text, "--model", &case.model, "--format", "json"];
         let (code, json, verify_stderr) = turnpass(&[&args[..], measure].concat());

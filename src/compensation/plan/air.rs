@@ -8,7 +8,10 @@
 //! change and home. Its correction is not carried by any later move: each move is planned
 //! from the samples of the inverse, which solves every point on its own, so the move after
 //! it still ends where it needs to. A rapid that ends where a feed move, a cycle or a thread
-//! starts is corrected: there the start is part of what is cut.
+//! starts is corrected: there the start is part of what is cut. It is corrected only along
+//! the axes the cut takes from it: where the next move is a rapid along an axis too (down to
+//! a thread's depth, a thread cycle's to its first pass), the rapid ends as written along
+//! that axis (`with_axes_left`).
 //!
 //! Where the check before writing measures the finished part, a straight feed move whose
 //! whole tool keeps clear of the finished part (`part::clearance`) cuts no finished surface:
@@ -137,10 +140,19 @@ pub(super) fn leave_alone(
             break ends;
         }
     };
+    let ends = with_axes_left(plans, &left, &next, ends, (toolpath, first), judged);
     let mut count = LeftAlone::default();
     let mut from: Option<Xz> = None;
     for (offset, end) in ends.into_iter().enumerate() {
-        if let Some((start, to)) = end {
+        if let Some(Ends { start, to, whole }) = end {
+            if !whole {
+                // Along the axes still corrected, the block is written as planned.
+                plans[offset].segments = smallvec::smallvec![Segment::Line { end: to }];
+                plans[offset].changed = to.distance(moves[offset].contour) > 1e-9;
+                plans[offset].words = smallvec::SmallVec::new();
+                from = Some(to);
+                continue;
+            }
             plans[offset] = MovePlan {
                 start,
                 segments: smallvec::smallvec![Segment::Line { end: to }],
@@ -164,6 +176,97 @@ pub(super) fn leave_alone(
         }
     }
     count
+}
+
+/// Where a move written from its block ends (`leave_alone`): wholly as written, or as
+/// written only along some axes (`with_axes_left`).
+#[derive(Debug, Clone, Copy)]
+struct Ends {
+    start: Xz,
+    to: Xz,
+    whole: bool,
+}
+
+/// `ends` (the moves left wholly as written) and the rapids left as written along the axes
+/// the move after them travels by a rapid of its own: a rapid's end along such an axis is
+/// only where the next rapid starts from, as that one's end is written in its own block
+/// (the rapid down to a thread's depth before a `G32`). A thread cycle's first move, its
+/// rapid to the first pass, counts along its depth axis only: the cycle takes nothing else
+/// from its start point along it than where to retract to between passes, in the air, while
+/// along the other axis it starts every pass there (the thread's `Z` start), which stays
+/// corrected. As for a whole move, the next move must travel that axis the same way from
+/// either end, with no jog of its own.
+fn with_axes_left(
+    plans: &[MovePlan],
+    left: &[bool],
+    next: &[Option<usize>],
+    ends: Vec<Option<(Xz, Xz)>>,
+    (toolpath, first): (&Toolpath, usize),
+    judged: Judged<'_>,
+) -> Vec<Option<Ends>> {
+    let moves = toolpath.moves.get(first..first + plans.len()).unwrap_or_default();
+    let mut out: Vec<Option<Ends>> =
+        ends.into_iter().map(|e| e.map(|(start, to)| Ends { start, to, whole: true })).collect();
+    for offset in 0..plans.len() {
+        let (m, plan) = (&moves[offset], &plans[offset]);
+        let Some(after) = next[offset] else { continue };
+        let (n, next_plan) = (&moves[after], &plans[after]);
+        let rapid = |m: &Move, index: usize| m.motion == Motion::Rapid && !judged.judges(m, first + index);
+        if left[offset]
+            || left[after]
+            || !rapid(m, offset)
+            || !rapid(n, after)
+            || !m.cycle.is_synthetic()
+            || plan.segments.len() != 1
+            || plan.jumps > 0
+            || plan.lead_in
+            || next_plan.jumps > 0
+            || next_plan.lead_in
+        {
+            continue;
+        }
+        let (from, to) = (written::contour_start(toolpath, first + after), n.contour);
+        let (along_x, along_z) = if n.cycle.is_synthetic() {
+            (from.x != to.x, from.z != to.z)
+        } else {
+            match thread_depth_axis(toolpath, first + after) {
+                Some(DepthAxis::X) => (from.x != to.x, false),
+                Some(DepthAxis::Z) => (false, from.z != to.z),
+                None => continue,
+            }
+        };
+        let corrected = plan.end();
+        let written = as_written(plan.start, toolpath, first + offset);
+        let end = Xz::new(if along_x { written.x } else { corrected.x }, if along_z { written.z } else { corrected.z });
+        let same_way = same_directions(end, corrected, plan.start);
+        if end.distance(corrected) <= 1e-9
+            || !same_way
+            || !next_plan.segments.first().is_some_and(|s| same_directions(end, corrected, s.end()))
+        {
+            continue;
+        }
+        out[offset] = Some(Ends { start: plan.start, to: end, whole: false });
+    }
+    out
+}
+
+/// The axis a thread cycle cuts its depth along.
+enum DepthAxis {
+    X,
+    Z,
+}
+
+/// Where move `index` is the first of a thread cycle's, the axis its passes cut their depth
+/// along (the one its first thread move travels less): the cycle returns to its start point
+/// along that axis only as a retract in the air. `None` for another cycle, whose passes may
+/// take their depth from the start point (a roughing cycle's depths of cut).
+fn thread_depth_axis(toolpath: &Toolpath, index: usize) -> Option<DepthAxis> {
+    let cycle = toolpath.moves.get(index)?.cycle;
+    let moves = toolpath.moves.get(index..)?.iter().take_while(|m| m.cycle == cycle);
+    let k = index + moves.take_while(|m| !m.threading).count();
+    let thread = toolpath.moves.get(k).filter(|m| m.threading && m.cycle == cycle)?;
+    let (from, to) = (written::contour_start(toolpath, k), thread.contour);
+    Some(if (to.x - from.x).abs() < (to.z - from.z).abs() { DepthAxis::X } else { DepthAxis::Z })
 }
 
 /// For each move `left`, where it starts and ends when its block runs as written: from where
