@@ -3,7 +3,9 @@
 //!
 //! A program is written only when it compensates cleanly: a program with errors, one the
 //! safety checks refuse, or one that carries a provenance comment (compensated already;
-//! `--force` to compensate it anyway) writes nothing and exits 1. What is written carries a
+//! `--force` to compensate it anyway) writes nothing and exits 1. A program whose edits the
+//! check before writing finds worse than the program as written, or past the bound the
+//! program as written meets, is written as it came (exit 0). What is written carries a
 //! provenance comment of its own (`compensation::provenance`). An output that would replace
 //! an input is refused before any work, unless `--force`. The `--report json` goes to
 //! standard output, which then holds the report alone, or into `--report-file`; when the
@@ -15,6 +17,7 @@ use std::process::ExitCode;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, ValueEnum};
 
+use turnpass::compensation::deviation::Figures;
 use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::verify::{self, Measure, PartFrom};
@@ -368,6 +371,28 @@ impl Trial<'_> {
         PartFrom { stock: self.stock, finished: self.clearance.map(Clearance::finished) }
     }
 
+    /// The program as it came (`bytes`, which `original` holds again), measured as `verify`
+    /// of it against itself measures it: beside the edits, where the bar assumed from both
+    /// programs' cuts gives only the edits a surface to probe, it measures nothing, while
+    /// verify of it alone finds no surface and measures its passes (`verify::check_written`).
+    /// Its figures only where that verify passes it: within `bound`, its part measured whole
+    /// and, measured pass by pass, its thread's lead within `bound`.
+    fn as_written(
+        &self,
+        original: impl FnOnce() -> Result<verify::Held, Vec<Diagnostic>>,
+        bytes: &[u8],
+        bound: f64,
+    ) -> Option<Figures> {
+        let checked =
+            verify::check_written(original, bytes, self.reading, self.tools, (self.model, self.measure, self.part()))
+                .ok()?;
+        let stopped = checked.part.as_ref().is_some_and(|part| part.incomplete().is_some());
+        let lead_off =
+            checked.deviation.lead.as_ref().is_some_and(|lead| lead.after_mm > bound && checked.part.is_none());
+        let figures = checked.deviation.after;
+        (figures.max_mm <= bound && !stopped && !lead_off).then_some(figures)
+    }
+
     /// The other strategy whose compensated program, read back and measured as the check
     /// before writing measures it, deviates least, with that deviation, mm; `None` for a
     /// long program (`MAX_MOVES`) or where no other strategy's program reads back.
@@ -472,6 +497,64 @@ impl InPlace {
             because.threads = Some(format!("with its words compensated in place and the cycle {why}"));
         }
     }
+}
+
+/// Why a program is written as it came.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Unchanged {
+    /// The edits would leave the predicted part worse than the program as written, by its
+    /// largest and its RMS deviation alike.
+    Worse,
+    /// The edits would miss the bound, which the program as written meets.
+    PastTheBound,
+}
+
+/// The program written as it came (`bytes`), and why: `before` the figures of the program
+/// as written, as verify of it against itself finds them (`Trial::as_written`), `after`
+/// those of the edits, as the check before writing found them. `outcome` is what the edits
+/// were; its report, with `--report json`, is that of the program as written.
+fn written_unchanged(
+    name: &str,
+    bytes: &[u8],
+    (why, bound): (Unchanged, f64),
+    (before, after): (Figures, Figures),
+    outcome: &mut Outcome,
+    mut messages: Vec<u8>,
+    json: bool,
+) -> FileResult {
+    let because = match why {
+        Unchanged::Worse => format!(
+            "its edits would leave the predicted part worse than the program as written (RMS {:.5} -> {:.5} mm, \
+             largest {:.5} -> {:.5} mm)",
+            before.rms_mm, after.rms_mm, before.max_mm, after.max_mm,
+        ),
+        Unchanged::PastTheBound => format!(
+            "compensated, it would miss the bound {bound:.5} mm (largest {:.5} mm, RMS {:.5} mm), which the program \
+             as written already meets (largest {:.5} mm, RMS {:.5} mm)",
+            after.max_mm, after.rms_mm, before.max_mm, before.rms_mm,
+        ),
+    };
+    messages.extend_from_slice(
+        format!(
+            "compensate: {name}: written unchanged: {because}; predicted deviation (as verify measures it) RMS {:.5} \
+             mm, largest {:.5} mm\n",
+            before.rms_mm, before.max_mm,
+        )
+        .as_bytes(),
+    );
+    outcome.report.totals.before = before;
+    let report = json.then(|| {
+        let because = match why {
+            Unchanged::Worse => "edits_worse",
+            Unchanged::PastTheBound => "edits_past_the_bound",
+        };
+        serde_json::json!({
+            "file": name,
+            "report": outcome.report.unchanged(),
+            "written_unchanged": { "because": because, "bound_mm": bound, "before": before, "after_edits": after },
+        })
+    });
+    FileResult { code: 0, messages, output: Some(bytes.to_vec()), report, errors: Vec::new() }
 }
 
 /// What compensating one file gave.
@@ -656,7 +739,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // Each try says its own warnings: only the last try's are kept (a cycle left as it is
     // is said once, not once for every way of keeping cycles that was tried).
     let said_before = messages.len();
-    let (mut outcome, written, cycle_blocks) = loop {
+    let (mut outcome, written, cycle_blocks, reading) = loop {
         messages.truncate(said_before);
         let program = match kept.take().map_or_else(&again, Ok) {
             Ok(program) => program,
@@ -831,6 +914,18 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
                 kept = Some(program);
                 continue;
             }
+            // A program whose edits miss the bound goes out as it came where the program as
+            // written meets it, as verify of it against itself finds: there is nothing to
+            // refuse.
+            if let DiagnosticKind::CompensationFailsCheck { .. } = diagnostic.kind
+                && let Some(before) =
+                    trial.as_written(|| again().map(|program| verify::Held::of(program, &tools)), &bytes, bound)
+            {
+                let after = outcome.report.totals.after;
+                let why = (Unchanged::PastTheBound, bound);
+                let json = args.report.is_some();
+                return Ok(written_unchanged(&name, &bytes, why, (before, after), &mut outcome, messages, json));
+            }
             let mut diagnostic = diagnostic;
             if let DiagnosticKind::CompensationFailsCheck { other_strategy, .. } = &mut diagnostic.kind
                 && moves <= Trial::MAX_MOVES
@@ -845,7 +940,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
             unreadable.add_errors(&name, &bytes, &[diagnostic]);
             return Ok(unreadable);
         }
-        break (outcome, written, blocks);
+        break (outcome, written, blocks, reading);
     };
     if let Some(said) = fell_back {
         messages.extend_from_slice(said.as_bytes());
@@ -881,45 +976,27 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // largest and its RMS deviation alike (corrections the control's increments round the
     // wrong way), are not worth writing: the program goes out as it came, and says why. The
     // program as it came is measured as `verify` of it against itself measures it, the
-    // figures it would be written with: beside the edits, where the bar assumed from both
-    // programs' cuts gives only the edits a surface to probe, it measures nothing, while
-    // verify of it alone finds no surface and measures its passes (`verify::check_written`).
-    // It goes out only within the bound and better than the edits by both figures.
+    // figures it would be written with (`Trial::as_written`). It goes out only within the
+    // bound and better than the edits by both figures.
     let after = outcome.report.totals.after;
+    let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
+    let trial = Trial {
+        model: &model,
+        reading: &reading,
+        tools: &tools,
+        measure,
+        stock: stock.as_ref(),
+        clearance: clearance.as_ref(),
+    };
     let unchanged = (after.max_mm > outcome.report.totals.before.max_mm
         && after.rms_mm > outcome.report.totals.before.rms_mm)
-        .then(|| {
-            let mut reading = pipeline_settings(&resolved, &args.run, true);
-            reading.parse = printer::read_back_options(&again().ok()?.parsed.program);
-            let original = || again().map(|program| verify::Held::of(program, &tools));
-            let part = PartFrom { stock: stock.as_ref(), finished: clearance.as_ref().map(Clearance::finished) };
-            verify::check_written(original, &bytes, &reading, &tools, (&model, measure, part)).ok()
-        })
+        .then(|| trial.as_written(|| again().map(|program| verify::Held::of(program, &tools)), &bytes, bound))
         .flatten()
-        .map(|unchanged| unchanged.deviation.after)
-        .filter(|before| {
-            let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
-            before.max_mm <= bound && after.max_mm > before.max_mm && after.rms_mm > before.rms_mm
-        });
+        .filter(|before| after.max_mm > before.max_mm && after.rms_mm > before.rms_mm);
     if let Some(before) = unchanged {
-        outcome.report.totals.before = before;
-        messages.extend_from_slice(
-            format!(
-                "compensate: {name}: written unchanged: its edits would leave the predicted part worse than the \
-                 program as written (RMS {:.5} -> {:.5} mm, largest {:.5} -> {:.5} mm); predicted deviation (as \
-                 verify measures it) RMS {:.5} mm, largest {:.5} mm\n",
-                before.rms_mm, after.rms_mm, before.max_mm, after.max_mm, before.rms_mm, before.max_mm,
-            )
-            .as_bytes(),
-        );
-        let report = args.report.map(|_| {
-            serde_json::json!({
-                "file": name,
-                "report": outcome.report.unchanged(),
-                "written_unchanged": { "before": before, "after_edits": after },
-            })
-        });
-        return Ok(FileResult { code: 0, messages, output: Some(bytes.to_vec()), report, errors: Vec::new() });
+        let json = args.report.is_some();
+        let why = (Unchanged::Worse, bound);
+        return Ok(written_unchanged(&name, &bytes, why, (before, after), &mut outcome, messages, json));
     }
     let totals = &outcome.report.totals;
     messages.extend_from_slice(
