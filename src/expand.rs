@@ -40,7 +40,7 @@ pub fn expansion_edits(program: &Program<'_>, lowered: &Validated<Lowered>) -> (
         let shift = lowered.coordinates_at(expansion.moves.start).shift;
         match cycle_blocks(program, expansion, (moves, &[]), (start, Axes::Every), compensation_before, shift, &style) {
             CycleBlocks::Keep => {}
-            CycleBlocks::Blocks(mut blocks) => {
+            CycleBlocks::Blocks(mut blocks, _) => {
                 let first = expansion.moves.start;
                 carry_traced(program, &mut blocks, moves.len(), expansion.traced.iter().map(|&(m, b)| (m - first, b)));
                 edits.replace(expansion.block, blocks);

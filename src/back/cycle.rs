@@ -14,15 +14,16 @@ use crate::syntax::{CodeLetter, Number, Program, WordKind};
 use crate::toolpath::{Compensation, Move, Xz};
 
 use super::grid::Grid;
-use super::motion::{Codes, GivenNext, Modal, MotionWriter};
+use super::motion::{Codes, GivenNext, Modal, MotionWriter, Restore};
 use super::thread_lead::WrittenLead;
 
 /// What a cycle call becomes.
 pub(crate) enum CycleBlocks {
     /// A single-pass thread cycle: it is one pass already; leave it.
     Keep,
-    /// The blocks that replace the call.
-    Blocks(Vec<NewBlock>),
+    /// The blocks that replace the call; where the last only puts back modal words the
+    /// blocks after the call run under, what it puts back (`MotionWriter::restore`).
+    Blocks(Vec<NewBlock>, Option<Restore>),
     /// It has no plain-block form (why); leave it.
     NotExpandable(&'static str),
 }
@@ -100,10 +101,12 @@ pub(crate) fn cycle_blocks(
         feed: next.feed || !expansion.feed_read_after,
         ..next
     };
-    if cycle.writer.restore(&mut cycle.modal, &expansion.after, next) {
-        blocks.push(NewBlock::new(cycle.writer.take_words()));
+    let restore = cycle.writer.restore(&mut cycle.modal, &expansion.after, next);
+    if restore.is_none() {
+        return CycleBlocks::Blocks(blocks, None);
     }
-    CycleBlocks::Blocks(blocks)
+    blocks.push(NewBlock::new(cycle.writer.take_words()));
+    CycleBlocks::Blocks(blocks, Some(restore))
 }
 
 /// Put the words of each profile block a cycle runs (`traced`: the block, and the index in

@@ -367,31 +367,59 @@ impl<W: WordSink> MotionWriter<W> {
     /// The words that put back the modal motion code, F and S the program has after a
     /// cycle (`after`), where the blocks written for it (`modal`) left others in force (a
     /// `G01 F0.25` from a roughing pass would otherwise carry into the blocks after the
-    /// call) and the block the control runs next does not give them itself (`next`);
-    /// whether there are any.
-    pub(crate) fn restore(&mut self, modal: &mut Modal, after: &ModalAfter, next: GivenNext) -> bool {
-        let mut any = false;
+    /// call) and the block the control runs next does not give them itself (`next`), as a
+    /// block of their own; what they are (`Restore::is_none`: none).
+    pub(crate) fn restore(&mut self, modal: &mut Modal, after: &ModalAfter, next: GivenNext) -> Restore {
+        let mut restore = Restore::default();
         if let Some(motion) = after.motion
             && !next.motion
             && modal.motion.is_some_and(|written| written != (motion, false))
         {
             // A dwell leaves no motion to put back, nor anything else.
-            let Some(kind) = Kind::of_motion(motion) else { return false };
-            self.motion(kind);
+            let Some(kind) = Kind::of_motion(motion) else { return restore };
+            restore.motion = Some(kind);
             modal.motion = Some((motion, false));
-            any = true;
         }
         if after.f_word > 0.0 && !next.feed && modal.feed.is_some_and(|f| f != after.f_word) {
-            self.out.number(Address::F, feed_number(after.f_word));
+            restore.feed = Some(feed_number(after.f_word));
             modal.feed = Some(after.f_word);
-            any = true;
         }
         if after.s_word > 0.0 && !next.speed && modal.speed.is_some_and(|s| s != after.s_word) {
-            self.out.number(Address::S, feed_number(after.s_word));
+            restore.speed = Some(feed_number(after.s_word));
             modal.speed = Some(after.s_word);
-            any = true;
         }
-        any
+        self.restored(restore);
+        restore
+    }
+
+    /// The words of `restore`, in the order a block writes them: the motion code, F, S.
+    pub(crate) fn restored(&mut self, restore: Restore) {
+        if let Some(kind) = restore.motion {
+            self.motion(kind);
+        }
+        if let Some(feed) = restore.feed {
+            self.out.number(Address::F, feed);
+        }
+        if let Some(speed) = restore.speed {
+            self.out.number(Address::S, speed);
+        }
+    }
+}
+
+/// Modal words put back after blocks that left others in force (an expanded cycle's, a move
+/// written in pieces), for the blocks after them: written on a block of their own, or
+/// carried by the block the control runs next (`compensation::rewrite`), which then writes
+/// them itself: no block only restores a modal word where the next one can say it.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Restore {
+    pub motion: Option<Kind>,
+    pub feed: Option<Number>,
+    pub speed: Option<Number>,
+}
+
+impl Restore {
+    pub(crate) fn is_none(&self) -> bool {
+        *self == Restore::default()
     }
 }
 
@@ -418,10 +446,7 @@ impl GivenNext {
         skipped: impl Fn(usize) -> bool,
     ) -> GivenNext {
         use crate::syntax::{Statement, WordKind};
-        let blocks = program.blocks();
-        let Some(next) =
-            (after + 1..blocks.len()).find(|&b| !skipped(b) && !matches!(program.block(b).statement, Statement::Empty))
-        else {
+        let Some(next) = Self::next_block(program, after, skipped) else {
             return GivenNext::default();
         };
         let block = program.block(next);
@@ -446,6 +471,14 @@ impl GivenNext {
             }
         }
         given
+    }
+
+    /// The block the control runs after `after`, passing over those `skipped` says and those
+    /// that run nothing (`after`).
+    pub(crate) fn next_block(program: &Program<'_>, after: usize, skipped: impl Fn(usize) -> bool) -> Option<usize> {
+        use crate::syntax::Statement;
+        (after + 1..program.blocks().len())
+            .find(|&b| !skipped(b) && !matches!(program.block(b).statement, Statement::Empty))
     }
 }
 

@@ -37,7 +37,7 @@ use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use crate::back::grid::Grid;
-use crate::back::motion::{Codes, MotionWriter};
+use crate::back::motion::{Codes, GivenNext, Kind, MotionWriter, Restore};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::Address;
 use crate::printer::style::{BlockArcWords, StyleTally};
@@ -393,8 +393,13 @@ pub fn finish(
     }
     let style = motion.writer.out.style();
     let pieces = motion.piece_settings();
-    let (expanded, mut expanded_leads) =
+    let (expanded, mut expanded_leads, restores) =
         cycles::write(program, lowered, (plans, model, pieces), &chosen, style, &mut out.edits, &mut out.diagnostics);
+    for cycles::CycleRestore { call, next, next_move, restore } in restores {
+        if let Some(next) = next {
+            motion.folds.push(Fold { after: RestoreAfter::Cycle(call), next, next_move, restore });
+        }
+    }
     // The first expansion of each call block (a call that runs several times has several).
     let mut first_expansion: HashMap<usize, usize> = HashMap::new();
     for (k, e) in lowered.expansions.iter().enumerate() {
@@ -453,7 +458,7 @@ pub fn finish(
         };
         out.cycles.push(CycleOutcome { block, form });
     }
-    motion.finish(&mut out);
+    motion.finish(&mut out, plans);
     out.edited.sort_by_key(|e| e.block);
     out.diagnostics.sort_by_key(|d| d.span.start);
     out
@@ -576,6 +581,55 @@ pub struct MotionBlocks<'a, 'src> {
     /// Which feed moves keep clear of the finished part, where the check measures it
     /// (`thread_pass_plan`).
     pub clearance: Option<&'a crate::part::clearance::Clearance>,
+    /// Blocks that run more than once (a subprogram's): none carries another's modal words.
+    repeated: HashSet<usize>,
+    /// Lone blocks of modal words the block after them may carry (`fold`).
+    folds: Vec<Fold>,
+    /// The block `block_text` writes carrying modal words, and which (`fold`).
+    carrying: Option<(usize, Restore)>,
+    /// How many of `folds` were handed to `next_moves_to_keep`.
+    folds_told: usize,
+}
+
+/// A block that only puts back modal words (`back::motion::Restore`), written after `after`,
+/// and the block the control runs next (`next`, its moves from `next_move`), which may
+/// carry them instead (`MotionBlocks::fold`).
+#[derive(Debug, Clone, Copy)]
+struct Fold {
+    after: RestoreAfter,
+    next: usize,
+    next_move: usize,
+    restore: Restore,
+}
+
+/// How many blocks an `F` put back is carried past (rapids) to the block that reads it.
+pub(crate) const FOLD_REACH: usize = 16;
+
+/// Which block carries a fold's words.
+enum Carrier {
+    /// This block, making these moves.
+    Block { block: usize, moves: Range<usize> },
+    /// None: a block gives its own before any reads them.
+    NoneNeeded,
+    /// None can: the lone block stays.
+    Nothing,
+}
+
+/// Where a block that only puts back modal words is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum RestoreAfter {
+    /// Last of an expanded cycle's blocks, which replace its call block.
+    Cycle(usize),
+    /// Last of the blocks a motion block is written as.
+    Block(usize),
+}
+
+impl RestoreAfter {
+    fn block(self) -> usize {
+        match self {
+            RestoreAfter::Cycle(block) | RestoreAfter::Block(block) => block,
+        }
+    }
 }
 
 /// What a block's first run wrote.
@@ -658,6 +712,10 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             restore_lead: HashSet::new(),
             inherited: HashMap::new(),
             clearance: None,
+            repeated: HashSet::new(),
+            folds: Vec::new(),
+            carrying: None,
+            folds_told: 0,
         }
     }
 
@@ -795,6 +853,14 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         self.settle(block, run.moves.clone(), text);
     }
 
+    /// The first move of each block that may carry the modal words a block written since
+    /// the last call leaves behind (`fold`), whose plans must be kept for it.
+    pub fn next_moves_to_keep(&mut self) -> impl Iterator<Item = usize> + '_ {
+        let new = self.folds.get(self.folds_told..).unwrap_or_default();
+        self.folds_told = self.folds.len();
+        new.iter().map(|f| f.next_move)
+    }
+
     /// The moves `moves` of `block` that write a segment (not dwells or corners the control
     /// makes): none, one, or several, and whether any changes.
     fn written_moves(moves: Range<usize>, plans: &[MovePlan]) -> (Option<usize>, bool, bool) {
@@ -812,7 +878,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     fn block_text(&mut self, block: usize, moves: Range<usize>, plans: &[MovePlan]) -> Option<WrittenText> {
         let (program, lowered, tools) = (self.program, self.lowered, self.tools);
         let first = moves.start;
-        let (single, several, any_change) = Self::written_moves(moves, plans);
+        let (single, several, any_change) = Self::written_moves(moves.clone(), plans);
         match single {
             None => None,
             Some(single) if !several => {
@@ -833,12 +899,20 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     piece_leads: self.piece_leads.get(&block).map_or(&[], Vec::as_slice),
                     restore_lead: self.restore_lead.contains(&block),
                     inherited: self.inherited.get(&block).copied(),
+                    carried: self.carrying.filter(|&(b, _)| b == block).map_or_else(Restore::default, |(_, r)| r),
                 };
                 let contour_start = written::contour_start(&lowered.toolpath, single);
-                match (lowered.toolpath.moves.get(single), plans.get(single - first)) {
-                    (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan, &mut self.writer),
-                    _ => None,
+                let (text, restore) = match (lowered.toolpath.moves.get(single), plans.get(single - first)) {
+                    (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan, &mut self.writer)?,
+                    _ => return None,
+                };
+                if !restore.is_none()
+                    && self.carrying.is_none()
+                    && let Some(next) = GivenNext::next_block(program, block, |_| false)
+                {
+                    self.folds.push(Fold { after: RestoreAfter::Block(block), next, next_move: moves.end, restore });
                 }
+                Some(text)
             }
             Some(_) if any_change => {
                 if self.refused.insert(block) {
@@ -859,6 +933,9 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     /// it, a later one is only compared with the first.
     fn settle(&mut self, block: usize, moves: Range<usize>, text: Option<WrittenText>) {
         let Some(first_run) = self.first_runs.get_mut(block) else { return };
+        if *first_run != FirstRun::NotYet {
+            self.repeated.insert(block);
+        }
         match (*first_run, text) {
             (FirstRun::NotYet, None) => *first_run = FirstRun::AsWritten,
             (FirstRun::NotYet, Some(text)) => {
@@ -971,9 +1048,98 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         }
     }
 
+    /// Where a block that only puts back modal words (`folds`) is followed by a plain motion
+    /// block the control runs next, which runs once and can carry them, that block writes
+    /// them (`N210 G01 X56.003` rather than `G01` and `N210 X56.003`) and the lone block
+    /// goes. An `F` alone goes on to the first block that reads it, past rapids, which read
+    /// none (`N100 G01 Z-2. F2.`, the rapids before it as written), and goes altogether where
+    /// such a block gives its own. A block the operator may skip (`/`) keeps them apart: the
+    /// words must be in force whichever runs.
+    fn fold(&mut self, edits: &mut Edits, plans: &KeptPlans) {
+        let mut folds = std::mem::take(&mut self.folds);
+        folds.sort_by_key(|f| f.after.block());
+        folds.dedup_by_key(|f| f.after);
+        for fold in folds {
+            let after = fold.after.block();
+            if self.unwritable(after) || self.skippable(after) {
+                continue;
+            }
+            match self.carrier(&fold) {
+                Carrier::Block { block, moves } => {
+                    let Some(next_plans) = plans.get(moves.clone()) else { continue };
+                    self.carrying = Some((block, fold.restore));
+                    let text = self.block_text(block, moves.clone(), next_plans);
+                    self.carrying = None;
+                    let Some(text) = text else { continue };
+                    match self.first_runs.get(block).copied() {
+                        Some(FirstRun::Replaced(k)) => self.replacements[k].1 = text,
+                        Some(_) => {
+                            self.first_runs[block] = FirstRun::Replaced(self.replacements.len());
+                            self.replacements.push((block, text));
+                            self.edited.push(EditedBlock { block, moves, cycle: false });
+                        }
+                        None => continue,
+                    }
+                }
+                Carrier::NoneNeeded => {}
+                Carrier::Nothing => continue,
+            }
+            match fold.after {
+                RestoreAfter::Cycle(call) => edits.drop_last_block(call),
+                RestoreAfter::Block(block) => {
+                    if let Some(FirstRun::Replaced(k)) = self.first_runs.get(block).copied() {
+                        self.replacements[k].1 = self.writer.out.without_last_block(self.replacements[k].1);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The block that carries `fold`'s words, and its moves (`fold`).
+    fn carrier(&self, fold: &Fold) -> Carrier {
+        let (program, moves) = (self.program, &self.lowered.toolpath.moves);
+        let restore = fold.restore;
+        let feed_alone = restore.feed.is_some() && restore.motion.is_none() && restore.speed.is_none();
+        let (mut block, mut first) = (fold.next, fold.next_move);
+        for _ in 0..FOLD_REACH {
+            if program.block(block).statement != Statement::Motion || self.skippable(block) {
+                return Carrier::Nothing;
+            }
+            let source = program.block(block).span.start;
+            let run = moves.get(first..).unwrap_or_default();
+            let end = first + run.iter().take_while(|m| m.source.start == source && m.cycle.is_synthetic()).count();
+            let Some(made) = moves.get(first..end).filter(|made| !made.is_empty()) else { return Carrier::Nothing };
+            if !(feed_alone && made.iter().all(|m| m.motion == Motion::Rapid)) {
+                if self.unwritable(block) || restore.motion.is_some_and(|kind| Kind::of(&made[0]) != kind) {
+                    return Carrier::Nothing;
+                }
+                return Carrier::Block { block, moves: first..end };
+            }
+            if GivenNext::after(program, &self.writer.codes, block, |_| false).feed {
+                return Carrier::NoneNeeded;
+            }
+            let Some(next) = GivenNext::next_block(program, block, |_| false) else { return Carrier::Nothing };
+            (block, first) = (next, end);
+        }
+        Carrier::Nothing
+    }
+
+    /// Whether `block` may not be written for one run alone: it runs more than once, or
+    /// was refused.
+    fn unwritable(&self, block: usize) -> bool {
+        self.repeated.contains(&block) || self.differing.contains(&block) || self.refused.contains(&block)
+    }
+
+    /// Whether the operator may skip `block` (`/`).
+    fn skippable(&self, block: usize) -> bool {
+        let words = self.program.words_of(self.program.block(block));
+        words.iter().any(|w| matches!(w.kind, crate::syntax::WordKind::BlockDelete { .. }))
+    }
+
     /// The edits of the motion blocks, after the cycles' in `out`.
-    fn finish(mut self, out: &mut Rewrite) {
+    fn finish(mut self, out: &mut Rewrite, plans: &KeptPlans) {
         let program = self.program;
+        self.fold(&mut out.edits, plans);
         out.diagnostics.append(&mut self.diagnostics);
         if !self.differing.is_empty() {
             let mut differing: Vec<usize> = self.differing.iter().copied().collect();

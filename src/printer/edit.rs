@@ -168,6 +168,14 @@ impl Edits {
         self.blocks.entry(index).or_default().before.push(block);
     }
 
+    /// Drop the last of the blocks that replace block `index` (a block whose words another
+    /// block now writes).
+    pub fn drop_last_block(&mut self, index: usize) {
+        if let Some(BlockEdit { replacement: Some(blocks), .. }) = self.blocks.get_mut(&index) {
+            blocks.pop();
+        }
+    }
+
     pub fn insert_after(&mut self, index: usize, block: NewBlock) {
         self.blocks.entry(index).or_default().after.push(block);
     }

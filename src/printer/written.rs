@@ -127,6 +127,17 @@ impl<'p, 'src> BlockWriter<'p, 'src> {
         self.line_start = true;
     }
 
+    /// `written` without its last block (one whose words the block after it now writes);
+    /// a replacement of one block is left as it is.
+    pub fn without_last_block(&self, written: WrittenText) -> WrittenText {
+        let ending = self.style.line_ending.as_bytes();
+        let text = written.of(&self.text);
+        match text.windows(ending.len()).rposition(|w| w == ending) {
+            Some(at) => WrittenText { start: written.start, end: written.start + at },
+            None => written,
+        }
+    }
+
     /// The text of a replacement this writer wrote.
     pub fn text(&self, written: WrittenText) -> &[u8] {
         written.of(&self.text)

@@ -155,7 +155,7 @@ pub(super) fn write(
             block.words = words;
         }
     }
-    CycleBlocks::Blocks(blocks)
+    CycleBlocks::Blocks(blocks, None)
 }
 
 /// The command of the cycle call block.

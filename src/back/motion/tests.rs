@@ -110,8 +110,10 @@ fn a_dwell_and_the_modal_words_of_written_blocks() {
         let after = ModalAfter { motion: Some(Motion::Rapid), f_word: 0.3, s_word: 1000.0 };
         // A next block that writes its own motion code and F needs neither put back.
         let given = super::GivenNext { motion: true, feed: true, speed: false };
-        assert!(!writer.restore(&mut modal.clone(), &after, given), "{dialect}");
-        assert!(writer.restore(&mut modal, &after, super::GivenNext::default()));
+        assert!(writer.restore(&mut modal.clone(), &after, given).is_none(), "{dialect}");
+        let restore = writer.restore(&mut modal, &after, super::GivenNext::default());
+        assert_eq!(restore.motion, Some(super::Kind::Rapid), "{dialect}");
+        assert_eq!(restore.feed, Some(Number::new(3, 1, true)), "{dialect}");
         assert_eq!(writer.take_words(), [code(0), number(Address::F, 3, 1)], "{dialect}");
     }
 }

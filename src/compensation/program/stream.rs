@@ -354,7 +354,7 @@ fn rewrite(
 ) -> KeptPlans {
     let mut plans = KeptPlans::default();
     let mut rewritten = 0;
-    let read_after = cycle_moves(context);
+    let mut read_after = cycle_moves(context);
     while let Ok(mut piece) = rewriting.recv() {
         // Every motion block's run that ends in this piece lies in it (`pieces`).
         while let Some(r) = context.runs.get(rewritten).filter(|r| r.moves.end <= piece.moves.end) {
@@ -362,6 +362,14 @@ fn rewrite(
             let last = r.moves.end - piece.moves.start;
             motion.add(r, piece.plans.get(first..last).unwrap_or_default());
             rewritten += 1;
+        }
+        // The block after one that leaves a block of modal words behind may carry them, once
+        // the stream has passed (`MotionBlocks::fold`): its plans are read then. It comes
+        // after the block, in this piece or a later one.
+        for next in motion.next_moves_to_keep() {
+            if let Some(read) = read_after.as_mut() {
+                mark_block_run(context.toolpath, next, read);
+            }
         }
         keep_plans(&mut piece.plans, piece.moves.start, read_after.as_deref(), &mut plans);
         // The solver may have finished: then the piece is dropped.
@@ -392,8 +400,32 @@ fn cycle_moves(context: &Context<'_>) -> Option<Vec<bool>> {
         if let Some(moves) = out.get_mut(expansion.moves.clone()) {
             moves.fill(true);
         }
+        // The block after the cycle may carry the modal words its written blocks put back
+        // (`MotionBlocks::fold`).
+        mark_block_run(context.toolpath, expansion.moves.end, &mut out);
     }
     Some(out)
+}
+
+/// Mark in `read` the moves from `first` on that a plain block makes, and where they are
+/// all rapids, the next block's, up to one that cuts (an `F` put back goes on past rapids
+/// to the block that reads it: `MotionBlocks::fold`).
+fn mark_block_run(toolpath: &Toolpath, mut first: usize, read: &mut [bool]) {
+    use crate::compensation::rewrite::FOLD_REACH;
+    for _ in 0..FOLD_REACH {
+        let Some(source) = toolpath.moves.get(first).filter(|m| m.cycle.is_synthetic()).map(|m| m.source) else {
+            return;
+        };
+        let run = toolpath.moves.get(first..).unwrap_or_default();
+        let run = &run[..run.iter().take_while(|m| m.source == source && m.cycle.is_synthetic()).count()];
+        for read in read.get_mut(first..first + run.len()).unwrap_or_default() {
+            *read = true;
+        }
+        if !run.iter().all(|m| m.motion == crate::toolpath::Motion::Rapid) {
+            return;
+        }
+        first += run.len();
+    }
 }
 
 /// What was measured at the sample before, for the stretch of path up to the next.

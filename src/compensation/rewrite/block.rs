@@ -12,7 +12,8 @@
 //! the others carry a motion code where it changes, and the coordinates. If the last one
 //! leaves a different motion code in force than the original block did, a block with that
 //! code alone restores it for the blocks that follow, unless the block the control runs
-//! next writes its own (`back::motion::GivenNext`).
+//! next writes its own (`back::motion::GivenNext`) or carries it (`BlockContext::carried`,
+//! `MotionBlocks::fold`): then that block writes the code among its own words.
 //!
 //! This module decides which words the block gets; they are written through the back end's
 //! writer (`back::motion::MotionWriter`): its codes from the dialect tables, its
@@ -21,7 +22,7 @@
 use smallvec::SmallVec;
 
 use crate::back::grid::{ArcWords, Grid, GridPoint};
-use crate::back::motion::{Codes, GivenNext, Kind, MotionWriter};
+use crate::back::motion::{Codes, GivenNext, Kind, MotionWriter, Restore};
 use crate::dialect::{Address, AddressKind, Dialect};
 use crate::printer::{BlockWriter, WrittenText};
 use crate::semantic::CoordinateMark;
@@ -93,6 +94,9 @@ pub(super) struct BlockContext<'a, 'src> {
     /// the axes the block does not name from it, so such an axis is written only where the
     /// block's own final pass ends elsewhere.
     pub inherited: Option<GridPoint>,
+    /// Modal words the blocks before it left out of force, which this block puts back
+    /// rather than a block of their own (`MotionBlocks::fold`): its motion code, F and S.
+    pub carried: Restore,
 }
 
 /// The words one lead is written with (`back::thread_lead::WrittenLead::words`).
@@ -281,16 +285,18 @@ impl BlockContext<'_, '_> {
     }
 
     /// Write the blocks that replace this block for one move and its plan to `out`, or
-    /// nothing (`None`) when the block already writes it.
+    /// nothing (`None`) when the block already writes it; with what its last block puts
+    /// back where that block only restores modal words for the blocks after it.
     pub(super) fn rewrite(
         &self,
         m: &Move,
         contour_start: Xz,
         plan: &MovePlan,
         out: &mut MotionWriter<BlockWriter<'_, '_>>,
-    ) -> Option<WrittenText> {
+    ) -> Option<(WrittenText, Restore)> {
         let start = self.grid.point(plan.start);
-        if !plan.changed && start == self.grid.point(contour_start) && self.lead.is_none() {
+        let carries = !self.carried.is_none();
+        if !plan.changed && start == self.grid.point(contour_start) && self.lead.is_none() && !carries {
             // The move is as programmed, from where the program puts it.
             return None;
         }
@@ -319,7 +325,13 @@ impl BlockContext<'_, '_> {
         let (new, end) = self.words_inheriting(&form, at, first, chosen.next().flatten(), self.inherited);
         let same_words = original.len() == new.len()
             && new.iter().all(|(slot, value)| original.iter().any(|(s, v)| s == slot && *v == Some(*value)));
-        if lead_words.is_none() && rest.is_empty() && first_kind == original_kind && same_words && self.lead.is_none() {
+        if lead_words.is_none()
+            && rest.is_empty()
+            && first_kind == original_kind
+            && same_words
+            && self.lead.is_none()
+            && !carries
+        {
             return None;
         }
         let mark = out.out.begin();
@@ -330,7 +342,7 @@ impl BlockContext<'_, '_> {
             }
             out.out.next_block();
         }
-        let code_changes = first_kind != original_kind || in_force != original_kind;
+        let code_changes = first_kind != original_kind || in_force != original_kind || self.carried.motion.is_some();
         self.first_block(&form, &coordinates, &new, &original, code_changes.then_some(first_kind), out);
         let mut kind = first_kind;
         at = (first.end(), end);
@@ -350,17 +362,30 @@ impl BlockContext<'_, '_> {
             }
             at = (segment.end(), end);
         }
-        if self.restore_lead
-            && let Some(lead) = self.lead
-        {
+        // The block's own lead (`restore_lead`) and motion code, put back for the blocks after
+        // it, on one block.
+        let lead = self.lead.filter(|_| self.restore_lead);
+        let motion = (kind != original_kind
+            && !GivenNext::after(self.program, &self.codes, self.block, |_| false).motion)
+            .then_some(original_kind);
+        let mut restore = Restore::default();
+        if lead.is_some() || motion.is_some() {
             out.out.next_block();
-            out.copy(self.program.block(self.block).first_word + lead.at as u32);
+            if let Some(kind) = motion {
+                out.motion(kind);
+                restore.motion = Some(kind);
+            }
+            if let Some(lead) = lead {
+                let at = self.program.block(self.block).first_word + lead.at as u32;
+                out.copy(at);
+                // An `F` written as an expression stays on the block of its own.
+                match self.program.word(at).kind {
+                    WordKind::Number { address: Address::F, number } => restore.feed = Some(number),
+                    _ => restore = Restore::default(),
+                }
+            }
         }
-        if kind != original_kind && !GivenNext::after(self.program, &self.codes, self.block, |_| false).motion {
-            out.out.next_block();
-            out.motion(original_kind);
-        }
-        Some(out.out.finish(mark))
+        Some((out.out.finish(mark), restore))
     }
 
     /// Write the block's own words with the first segment's coordinates, and the motion
@@ -437,6 +462,7 @@ impl BlockContext<'_, '_> {
                         written.push(slot);
                     }
                 }
+                out.restored(Restore { motion: None, ..self.carried });
             }
         }
         if last_coordinate.is_none() {
@@ -448,6 +474,7 @@ impl BlockContext<'_, '_> {
             for &(slot, value) in new {
                 self.write_coordinate(form, slot, value, out);
             }
+            out.restored(Restore { motion: None, ..self.carried });
         }
     }
 }

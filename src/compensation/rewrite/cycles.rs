@@ -19,6 +19,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::ops::Range;
 
 use crate::back::motion::Codes;
+use crate::back::motion::{GivenNext, Restore};
 use crate::back::thread_lead::{ProgrammedLead, WrittenLead, spelled, written_lead};
 use crate::back::{Axes, CycleBlocks, carried_words, carry_traced, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
@@ -307,9 +308,20 @@ fn compensated_moves(moves: &[Move], plans: &[MovePlan], compensation_before: Co
     (out, firsts)
 }
 
+/// A written cycle whose last block only puts back modal words, which the block the control
+/// runs after the call may carry instead (`MotionBlocks::fold`).
+pub(super) struct CycleRestore {
+    pub call: usize,
+    /// The block the control runs after the call, and its first move.
+    pub next: Option<usize>,
+    pub next_move: usize,
+    pub restore: Restore,
+}
+
 /// Write the chosen cycles into `edits`; problems go to `diagnostics`.
 /// With the written call blocks, the lead changes of those whose thread moves are written
-/// with a corrected lead (`expanded_leads`), by call block.
+/// with a corrected lead (`expanded_leads`), by call block, and the cycles whose last block
+/// only puts back modal words.
 pub(super) fn write(
     program: &Program<'_>,
     lowered: &Lowered,
@@ -318,7 +330,7 @@ pub(super) fn write(
     style: &ProgramStyle,
     edits: &mut Edits,
     diagnostics: &mut Vec<Diagnostic>,
-) -> (Vec<usize>, HashMap<usize, LeadChange>) {
+) -> (Vec<usize>, HashMap<usize, LeadChange>, Vec<CycleRestore>) {
     let calls: HashSet<usize> = lowered.expansions.iter().map(|e| e.block).collect();
     // The profile blocks whose words a written cycle carries (`back::carry_traced`).
     let traced: HashSet<usize> = lowered
@@ -334,6 +346,7 @@ pub(super) fn write(
     let mut refused = HashSet::new();
     let mut written = Vec::new();
     let mut lead_changes = HashMap::new();
+    let mut restores = Vec::new();
     for (expansion, _) in lowered.expansions.iter().zip(chosen).filter(|(_, chosen)| **chosen) {
         let range = expansion.moves.clone();
         let (Some(moves), Some(cycle_plans)) = (lowered.toolpath.moves.get(range.clone()), plans.get(range.clone()))
@@ -388,7 +401,11 @@ pub(super) fn write(
             shift,
             style,
         ) {
-            CycleBlocks::Blocks(mut blocks) => {
+            CycleBlocks::Blocks(mut blocks, restore) => {
+                if let Some(restore) = restore {
+                    let next = GivenNext::next_block(program, expansion.block, |b| expansion.consumed.contains(&b));
+                    restores.push(CycleRestore { call: expansion.block, next, next_move: range.end, restore });
+                }
                 let at = |m: usize| firsts.get(m - range.start).copied().unwrap_or(compensated.len());
                 carry_traced(
                     program,
@@ -430,7 +447,9 @@ pub(super) fn write(
     for (block, blocks) in by_block {
         edits.replace(block, blocks);
     }
-    (written, lead_changes)
+    // A call that runs more than once has one restore for each run; the block after it runs
+    // as often, and carries none (`MotionBlocks::fold`).
+    (written, lead_changes, restores)
 }
 
 /// The leads the thread moves of a cycle written out take for the slide to cut the
@@ -699,7 +718,7 @@ pub(super) fn profile_copy(
     // The copy names only the axes each move travels, as its profile does.
     let from = (start, Axes::Travelled);
     let mut blocks = match cycle_blocks(program, finish, (&compensated, &[]), from, compensation_before, shift, style) {
-        CycleBlocks::Blocks(blocks) if !blocks.is_empty() => blocks,
+        CycleBlocks::Blocks(blocks, _) if !blocks.is_empty() => blocks,
         _ => return Err("its finishing pass has no plain-block form"),
     };
     let at = |m: usize| firsts.get(m - first).copied().unwrap_or(compensated.len());

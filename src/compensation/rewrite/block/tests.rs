@@ -49,9 +49,10 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
         piece_leads: &[],
         restore_lead: false,
         inherited: None,
+        carried: Default::default(),
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
-    let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
+    let (text, _) = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
     edits.replace_written(writer.out, vec![(block, text)]);
     let text = print_string(program, &edits);
@@ -108,9 +109,10 @@ fn arc_as_lines(program: &str) -> Vec<String> {
         piece_leads: &[],
         restore_lead: false,
         inherited: None,
+        carried: Default::default(),
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
-    let text = context.rewrite(&m, start, &plan, &mut writer).unwrap();
+    let (text, _) = context.rewrite(&m, start, &plan, &mut writer).unwrap();
     let mut edits = Edits::new();
     edits.replace_written(writer.out, vec![(4, text)]);
     let text = print_string(program, &edits);
