@@ -3,7 +3,10 @@
 //! A correction is a few micrometres on a healthy machine. One larger than `--max-shift`
 //! means a wrong model (a table in inches read as mm, a sign turned over) or a program the
 //! model does not cover, and a program moved that far must not reach a machine unread. A
-//! commanded point outside the travel limits would stop the machine mid-cut. Both are
+//! commanded point outside the travel limits would stop the machine mid-cut: the control
+//! checks its stroke limits on the points the program commands, so the check takes the
+//! points as written (rounded to the increment), where a move left as written (a rapid to
+//! the reference point) commands exactly what it did. Both are
 //! errors on the block whose move has them (the cycle call for a cycle's moves), one per
 //! block, naming the worst point.
 
@@ -34,9 +37,10 @@ impl Check {
         Check { max_shift_mm, limits, shifts: BTreeMap::new(), outside: BTreeMap::new() }
     }
 
-    /// Check the next sample and its commanded point `c`, `shift` (`c.distance(s.nominal)`,
-    /// which the caller has measured already) from it.
-    pub fn add(&mut self, toolpath: &Toolpath, s: &PathSample, c: Xz, shift: f64) {
+    /// Check the next sample: `shift`, the inverse's correction there (the distance of its
+    /// commanded point from the sample's nominal one, which the caller has measured already),
+    /// and `written`, the point the written program commands there.
+    pub fn add(&mut self, toolpath: &Toolpath, s: &PathSample, written: Xz, shift: f64) {
         let Some(m) = toolpath.moves.get(s.move_index) else { return };
         let span = m.source;
         let shift = if shift.is_finite() { shift } else { f64::INFINITY };
@@ -45,9 +49,9 @@ impl Check {
             entry.1 = entry.1.max(shift);
         }
         if let Some(limits) = self.limits
-            && !inside(&limits, c)
+            && !inside(&limits, written)
         {
-            self.outside.entry(span.start).or_insert((span, c));
+            self.outside.entry(span.start).or_insert((span, written));
         }
     }
 

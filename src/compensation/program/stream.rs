@@ -452,12 +452,13 @@ fn measure(
     let tolerance = context.options.fit.tolerance_mm;
     let fresh = piece.fresh();
     let samples = piece.samples.get(fresh.clone()).unwrap_or_default();
-    let commanded = piece.commanded.get(fresh).unwrap_or_default();
-    let points = samples.iter().zip(commanded).zip(&piece.before).zip(&piece.after);
-    for (((s, c), &before), &after) in points {
+    let commanded = piece.commanded.get(fresh.clone()).unwrap_or_default();
+    let written = piece.rounded.get(fresh).unwrap_or_default();
+    let points = samples.iter().zip(commanded).zip(written).zip(&piece.before).zip(&piece.after);
+    for ((((s, c), w), &before), &after) in points {
         let weight = s.covers_mm / SAMPLE_STEP_MM;
         let correction = c.distance(s.nominal);
-        safety.add(context.toolpath, s, *c, correction);
+        safety.add(context.toolpath, s, *w, correction);
         let after = context.path.distance(s, after);
         let totals = &mut out.totals;
         totals.samples += 1;
