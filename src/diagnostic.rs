@@ -539,9 +539,12 @@ pub enum DiagnosticKind {
     CannotRewriteBlock {
         reason: &'static str,
     },
-    /// `compensate`: a cycle whose motion changes has no plain-block form in this dialect,
-    /// so it stays as programmed and its moves are not compensated.
-    CycleNotCompensated,
+    /// `compensate`: a cycle whose motion changes can neither carry the correction in its
+    /// own words nor be written out (`reason`), so it stays as programmed and its moves are
+    /// not compensated.
+    CycleNotCompensated {
+        reason: &'static str,
+    },
     /// `compensate`: the program carries a provenance comment, so it is a compensated
     /// program already; `model` is the model it names, when the comment reads.
     AlreadyCompensated {

@@ -231,7 +231,14 @@ fn unwritable_cycles(program: &Program<'_>, lowered: &Lowered, needs: &[bool], w
         }
         if needs.get(expansion.moves.clone()).is_some_and(|moves| moves.iter().any(|&n| n)) {
             let span = program.block(expansion.block).span;
-            out.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+            let threads =
+                lowered.toolpath.moves.get(expansion.moves.clone()).is_some_and(|m| m.iter().any(|m| m.threading));
+            let reason = match expansion.kept {
+                Some(reason) => reason,
+                None if threads => super::rewrite::THREAD_WORDS_NOT_FINAL,
+                None => "its moves have no plain-block form in this dialect",
+            };
+            out.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated { reason }, span));
         }
     }
     out

@@ -187,6 +187,22 @@ pub const PROFILE_TAKE_UP: &str = "a block of its profile needs a take-up of the
                                    which the roughing cycle would run as part of the profile";
 
 /// Why a thread cycle is expanded when its words are not compensated in place.
+/// Why a thread cycle stays as programmed (`cycle-not-compensated`) where its words do not
+/// name its final pass and its passes cannot be written out.
+pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a taper, a chamfer out of the \
+     thread, a lead change or several starts written in the call), and its thread passes have no plain-block form in \
+     this dialect";
+
+/// Why a thread cycle stays as programmed where its final pass needs a take-up of the play.
+const THREAD_TAKE_UP: &str = "its final pass needs more than one move (a take-up of the play), which its words \
+     cannot carry, and its thread passes have no plain-block form in this dialect";
+
+/// Why a LAP continuous thread (`G88`) stays as programmed where its root contour cannot
+/// carry the final pass's correction.
+const ROOT_NOT_WRITABLE: &str = "the blocks of its root contour cannot carry the final pass's correction (a take-up of \
+     the play written as a move of its own, which every pass would run as part of the thread, or a block that makes \
+     several moves or also runs as a plain block)";
+
 pub const THREAD_NOT_IN_PLACE: &str = "its moves change, and its own words are not compensated in place";
 
 /// How the rewrite treats the cycles whose moves change.
@@ -328,7 +344,8 @@ pub fn finish(
             }
         } else {
             let span = program.block(e.block).span;
-            out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+            let reason = ROOT_NOT_WRITABLE;
+            out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated { reason }, span));
         }
     }
     // A thread cycle keeps its call, the final pass's correction in its own words.
@@ -381,7 +398,8 @@ pub fn finish(
                 }
             } else if !expandable {
                 let span = program.block(e.block).span;
-                out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+                let reason = THREAD_TAKE_UP;
+                out.diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated { reason }, span));
             } else {
                 why.insert(
                     e.block,

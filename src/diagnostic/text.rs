@@ -715,10 +715,9 @@ impl DiagnosticKind {
                 hint: Some("write the block out for each time it runs (not in a subprogram or loop that runs it at \
                  different places), and without an automatic corner (`G75`/`G76`)".into()),
             },
-            CycleNotCompensated => Words {
+            CycleNotCompensated { reason } => Words {
                 code: "cycle-not-compensated",
-                message: "this cycle stays as programmed and is not compensated: its thread passes have \
-                                    no plain-block form in this dialect".into(),
+                message: format!("this cycle stays as programmed and is not compensated: {reason}").into(),
                 label: "not compensated".into(),
                 hint: Some("program the thread passes as single-pass cycle blocks".into()),
             },

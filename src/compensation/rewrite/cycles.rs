@@ -415,9 +415,18 @@ pub(super) fn write(
                 );
                 with_call_words(program, expansion.block, blocks)
             }
-            CycleBlocks::Keep | CycleBlocks::NotExpandable(_) => {
+            CycleBlocks::Keep | CycleBlocks::NotExpandable(_)
+                if expansion.moves.clone().any(|k| lowered.toolpath.moves.get(k).is_some_and(|m| m.threading)) =>
+            {
                 let span = program.block(expansion.block).span;
-                diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated, span));
+                let reason = super::THREAD_WORDS_NOT_FINAL;
+                diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated { reason }, span));
+                continue;
+            }
+            CycleBlocks::Keep => continue,
+            CycleBlocks::NotExpandable(reason) => {
+                let span = program.block(expansion.block).span;
+                diagnostics.push(Diagnostic::warning(DiagnosticKind::CycleNotCompensated { reason }, span));
                 continue;
             }
         };
