@@ -351,10 +351,18 @@ fn lead_said(lead: &turnpass::compensation::LeadChange) -> String {
     said
 }
 
-/// What a refused program is compensated again with, to find what would meet the bound.
+/// What a refused program is compensated again with, to find what would meet the bound,
+/// and what measures the program as written: the check, and the settings a written program
+/// is read back with.
 struct Trial<'a> {
-    model: &'a ErrorModel,
+    check: TrialCheck<'a>,
     reading: &'a turnpass::pipeline::Settings,
+}
+
+/// What every trial of one program checks against, whatever it reads the program back with.
+#[derive(Clone, Copy)]
+struct TrialCheck<'a> {
+    model: &'a ErrorModel,
     tools: &'a ToolTable,
     measure: Measure,
     stock: Option<&'a StockSettings>,
@@ -368,7 +376,7 @@ impl Trial<'_> {
     /// What the check's parts are cut from: the stock, and the finished part the clearance
     /// of the feed moves was measured on (the original's nominal part, cut once).
     fn part(&self) -> PartFrom<'_> {
-        PartFrom { stock: self.stock, finished: self.clearance.map(Clearance::finished) }
+        PartFrom { stock: self.check.stock, finished: self.check.clearance.map(Clearance::finished) }
     }
 
     /// The program as it came (`bytes`, which `original` holds again), measured as `verify`
@@ -383,9 +391,14 @@ impl Trial<'_> {
         bytes: &[u8],
         bound: f64,
     ) -> Option<Figures> {
-        let checked =
-            verify::check_written(original, bytes, self.reading, self.tools, (self.model, self.measure, self.part()))
-                .ok()?;
+        let checked = verify::check_written(
+            original,
+            bytes,
+            self.reading,
+            self.check.tools,
+            (self.check.model, self.check.measure, self.part()),
+        )
+        .ok()?;
         let stopped = checked.part.as_ref().is_some_and(|part| part.incomplete().is_some());
         let lead_off =
             checked.deviation.lead.as_ref().is_some_and(|lead| lead.after_mm > bound && checked.part.is_none());
@@ -401,14 +414,18 @@ impl Trial<'_> {
             return None;
         }
         let words = verify::Words::of(&program.parsed.program, &program.lowered.expansions);
-        let original = verify::Held::from_toolpath(words, program.valid(), self.tools);
+        let original = verify::Held::from_toolpath(words, program.valid(), self.check.tools);
         Strategy::ALL
             .into_iter()
             .filter(|&strategy| strategy != fit.strategy && (fit.step.is_none() || strategy == Strategy::Densify))
             .filter_map(|strategy| {
                 let other = FitArgs { strategy, ..fit.clone() };
-                let outcome =
-                    other.compensate_cycles(program, self.model, (false, self.measure, self.clearance), in_place);
+                let outcome = other.compensate_cycles(
+                    program,
+                    self.check.model,
+                    (false, self.check.measure, self.check.clearance),
+                    in_place,
+                );
                 if outcome.refused() {
                     return None;
                 }
@@ -417,8 +434,8 @@ impl Trial<'_> {
                     || Ok(original.clone()),
                     &written,
                     self.reading,
-                    self.tools,
-                    (self.model, self.measure, self.part()),
+                    self.check.tools,
+                    (self.check.model, self.check.measure, self.part()),
                 )
                 .ok()?;
                 Some((strategy.name(), checked.deviation.after.max_mm))
@@ -739,6 +756,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // Each try says its own warnings: only the last try's are kept (a cycle left as it is
     // is said once, not once for every way of keeping cycles that was tried).
     let said_before = messages.len();
+    let check =
+        TrialCheck { model: &model, tools: &tools, measure, stock: stock.as_ref(), clearance: clearance.as_ref() };
     let (mut outcome, written, cycle_blocks, reading) = loop {
         messages.truncate(said_before);
         let program = match kept.take().map_or_else(&again, Ok) {
@@ -794,14 +813,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         // dialect may have been in the blocks an edit replaced.
         let mut reading = pipeline_settings(&resolved, &args.run, true);
         reading.parse = printer::read_back_options(&program.parsed.program);
-        let trial = Trial {
-            model: &model,
-            reading: &reading,
-            tools: &tools,
-            measure,
-            stock: stock.as_ref(),
-            clearance: clearance.as_ref(),
-        };
+        let trial = Trial { check, reading: &reading };
         let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
         let mut unreadable = FileResult::failed(1, Vec::new());
         // The original's AST and moves go before the read-back, which holds a second program;
@@ -980,14 +992,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // bound and better than the edits by both figures.
     let after = outcome.report.totals.after;
     let bound = args.max_deviation.unwrap_or_else(|| verify::default_bound_mm(&machine));
-    let trial = Trial {
-        model: &model,
-        reading: &reading,
-        tools: &tools,
-        measure,
-        stock: stock.as_ref(),
-        clearance: clearance.as_ref(),
-    };
+    let trial = Trial { check, reading: &reading };
     let unchanged = (after.max_mm > outcome.report.totals.before.max_mm
         && after.rms_mm > outcome.report.totals.before.rms_mm)
         .then(|| trial.as_written(|| again().map(|program| verify::Held::of(program, &tools)), &bytes, bound))
