@@ -189,8 +189,8 @@ pub const PROFILE_TAKE_UP: &str = "a block of its profile needs a take-up of the
 /// Why a thread cycle is expanded when its words are not compensated in place.
 /// Why a thread cycle stays as programmed (`cycle-not-compensated`) where its words do not
 /// name its final pass and its passes cannot be written out.
-pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a taper, a chamfer out of the \
-     thread, a lead change or several starts written in the call), and its thread passes have no plain-block form in \
+pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a single-pass cycle's taper or \
+     start shift, a chamfer out of the thread, a lead change or several starts written in the call), and its thread passes have no plain-block form in \
      this dialect";
 
 /// Why a thread cycle stays as programmed where its final pass needs a take-up of the play.

@@ -185,11 +185,24 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
             // finishing allowance `U`, the thread height `H` and the infeed angle `B` shape the
             // passes before the last from the final pass's `X` (grammar/osp.toml,
             // `compound_thread_longitudinal`), as `G76`'s `P` and `Q` do on Fanuc.
-            // The face cycle's allowance `W` runs along Z, as its passes' depths do.
-            crate::dialect::Dialect::Osp => matches!(
-                address,
-                Address::X | Address::Z | Address::F | Address::B | Address::D | Address::U | Address::W | Address::H
-            ),
+            // The face cycle's allowance `W` runs along Z, as its passes' depths do. A taper
+            // (`I` across a longitudinal thread, `K` across a face thread, or the angle `A`)
+            // places every pass's start from its end, as Fanuc's `R` does: the end words
+            // carry the final pass's correction and the start moves with them.
+            crate::dialect::Dialect::Osp => {
+                matches!(
+                    address,
+                    Address::X
+                        | Address::Z
+                        | Address::F
+                        | Address::B
+                        | Address::D
+                        | Address::U
+                        | Address::W
+                        | Address::H
+                        | Address::A
+                ) || compound_taper(program, block, address)
+            }
         },
         WordKind::Expr { .. } => false,
         // A contour's name (`G88 N…`): the passes follow the contour, whose blocks, not the
@@ -211,6 +224,20 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
         ((to.z - from.z).abs(), (to.x - from.x).abs())
     };
     (along > 2.0 * across).then_some(last)
+}
+
+/// Whether `address` gives the taper of the OSP compound thread cycle `block` calls (`I` of
+/// `G71`, `K` of `G72`; grammar/osp.toml `compound_thread_*`), where the single-pass cycles'
+/// `I` and `K` shift the start.
+fn compound_taper(program: &Program<'_>, block: &crate::syntax::Block, address: crate::dialect::Address) -> bool {
+    use crate::dialect::{Address, GFunction};
+    let crate::syntax::Statement::Cycle(id) = block.statement else { return false };
+    let WordKind::Code { code, .. } = program.word(program.command(id).code_word).kind else { return false };
+    match program.config().tables().g(code).and_then(|g| g.function) {
+        Some(GFunction::CompoundThreadLongitudinal) => address == Address::I,
+        Some(GFunction::CompoundThreadFace) => address == Address::K,
+        _ => false,
+    }
 }
 
 /// Whether `block` calls a face thread cycle (OSP's `G72` and `G32`), whose thread runs along
