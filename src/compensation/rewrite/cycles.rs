@@ -231,9 +231,7 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
 /// `I` and `K` shift the start.
 fn compound_taper(program: &Program<'_>, block: &crate::syntax::Block, address: crate::dialect::Address) -> bool {
     use crate::dialect::{Address, GFunction};
-    let crate::syntax::Statement::Cycle(id) = block.statement else { return false };
-    let WordKind::Code { code, .. } = program.word(program.command(id).code_word).kind else { return false };
-    match program.config().tables().g(code).and_then(|g| g.function) {
+    match cycle_function(program, block) {
         Some(GFunction::CompoundThreadLongitudinal) => address == Address::I,
         Some(GFunction::CompoundThreadFace) => address == Address::K,
         _ => false,
@@ -244,12 +242,14 @@ fn compound_taper(program: &Program<'_>, block: &crate::syntax::Block, address: 
 /// X: its `X` names where the thread ends and its `Z` the final pass's depth.
 pub(super) fn face_thread(program: &Program<'_>, block: &crate::syntax::Block) -> bool {
     use crate::dialect::GFunction;
-    let crate::syntax::Statement::Cycle(id) = block.statement else { return false };
-    let WordKind::Code { code, .. } = program.word(program.command(id).code_word).kind else { return false };
-    matches!(
-        program.config().tables().g(code).and_then(|g| g.function),
-        Some(GFunction::CompoundThreadFace | GFunction::ThreadSingleFace)
-    )
+    matches!(cycle_function(program, block), Some(GFunction::CompoundThreadFace | GFunction::ThreadSingleFace))
+}
+
+/// The function of the cycle `block` calls, from the dialect's tables.
+fn cycle_function(program: &Program<'_>, block: &crate::syntax::Block) -> Option<crate::dialect::GFunction> {
+    let crate::syntax::Statement::Cycle(id) = block.statement else { return None };
+    let WordKind::Code { code, .. } = program.word(program.command(id).code_word).kind else { return None };
+    program.config().tables().g(code).and_then(|g| g.function)
 }
 
 /// The contour blocks of a LAP continuous thread (`Expansion::root`), each with the move its
