@@ -171,7 +171,7 @@ impl<'a> Removal<'a> {
         if m.threading && m.motion == Motion::Feed {
             let pass = self.thread.take();
             let turns = pass.as_ref().map_or(0.0, |p| p.turns);
-            let mut stamped = pass.and_then(|p| p.stamped);
+            let mut stamped = pass.as_ref().and_then(|p| p.stamped);
             if let Some(stamps) = ThreadStamps::along(turns, (c0, c1), start, m, &self.stock) {
                 let count = stamps.count;
                 if count > 0 {
@@ -188,6 +188,9 @@ impl<'a> Removal<'a> {
                 self.thread = Some(ThreadPass { turns: stamps.turns_after, stamped, end, index });
                 return Some(out);
             }
+            // A threading move of no length or no lead turns the spindle through no turn: the
+            // pass goes on as it was.
+            self.thread = pass.map(|p| ThreadPass { stamped, ..p });
         }
         if let Some(turn) = turn {
             let centre = tool.centre(m.centre);
@@ -295,6 +298,21 @@ impl<'a> Removal<'a> {
 }
 
 impl Removal<'_> {
+    /// The spindle turning `turns` times while the tool of the threading move `m` stands at
+    /// `at`, its cuts recorded as move `index`'s: the take-up of a drive's play inside a
+    /// thread pass, where the control's feed, locked to the spindle, goes on and the slide
+    /// has not moved yet. The tool cuts its form all round there, and the pass's later
+    /// stamps fall those turns later: the thread's start moves with the play. None once the
+    /// bound on work is passed.
+    pub fn stand_turning(&mut self, at: Xz, m: &Move, index: usize, turns: f64) -> Option<()> {
+        let tool = self.tool(m, at);
+        let form = Sweep::rounded(tool.placed(tool.centre(at)), tool.nose);
+        self.stamp(&form, index)?;
+        let turns = self.thread.as_ref().map_or(0.0, |p| p.turns) + turns.max(0.0);
+        self.thread = Some(ThreadPass { turns, stamped: Some(turns), end: form, index });
+        Some(())
+    }
+
     /// End the thread pass under way (before the next move, or when the program ends): a
     /// pass whose last stamp is short of its end stamps the insert's form there too. The
     /// part is a half-section at one spindle angle, where a pass stamps its form every lead;
@@ -310,11 +328,17 @@ impl Removal<'_> {
         if !short {
             return Some(());
         }
-        let planned = self.dexels.rays_crossed(&pass.end);
+        self.stamp(&pass.end, pass.index)
+    }
+
+    /// Remove what the insert's `form` covers, as move `index`'s cut. None once the bound on
+    /// work is passed.
+    fn stamp(&mut self, form: &Sweep, index: usize) -> Option<()> {
+        let planned = self.dexels.rays_crossed(form);
         if self.visits + planned > MAX_RAY_VISITS {
             return None;
         }
-        let taken = self.dexels.sweep_families(&pass.end, pass.index as u32, true, [true, false], None);
+        let taken = self.dexels.sweep_families(form, index as u32, true, [true, false], None);
         self.visits += taken.rays;
         Some(())
     }

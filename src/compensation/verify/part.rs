@@ -10,7 +10,8 @@
 //! predicted points of an arc with the mean of their radii about the programmed centre, and
 //! a thread pass stamped every lead at the points the model puts the tool when the spindle
 //! has turned a whole number of times (the lead of each piece scaled by its length on the
-//! model over its length as programmed). Between two samples the model is followed as
+//! model over its length as programmed; a piece the model does not move, a take-up of
+//! play, stands while the spindle turns its programmed stretch). Between two samples the model is followed as
 //! `verify`'s sampling allows (a tenth of half the least increment). The part model sweeps
 //! a line or an arc exactly, whole or in pieces, so the nominal part is cut along the
 //! original's own moves and the parts differ by the model alone. Each program is cut a move
@@ -391,7 +392,8 @@ impl Point {
 /// arc with the mean of their radii about the programmed centre, and a thread pass whose
 /// pieces each run at the lead that takes the spindle through the turns the piece's
 /// programmed stretch takes (the piece's length on the model over its length as
-/// programmed), so that a stamp falls where the model puts the tool at each whole turn.
+/// programmed), so that a stamp falls where the model puts the tool at each whole turn;
+/// a piece the model does not move stands while the spindle turns (`Removal::stand_turning`).
 /// Each piece's cuts are recorded as its move's.
 struct PieceCut<'a> {
     toolpath: &'a CompactPath,
@@ -487,9 +489,17 @@ impl<'a> PieceCut<'a> {
         if !m.threading {
             merge_straight_runs(start, &mut self.pieces);
         }
+        // A threading piece with a programmed stretch that the model does not move (a
+        // take-up of play) stands while the spindle turns the stretch's turns.
+        let lead = if m.threading && m.rpm > 0.0 { m.feed / m.rpm } else { 0.0 };
         let mut from = start;
-        for piece in &self.pieces {
-            if self.removal.shape_move(from, piece, index).is_none() {
+        for (k, piece) in self.pieces.iter().enumerate() {
+            let stands = programmed.get(k).filter(|&&p| p > 1e-9 && lead > 0.0 && piece.threading && from == piece.end);
+            let done = match stands {
+                Some(&stretch) => self.removal.stand_turning(from, piece, index, stretch / lead),
+                None => self.removal.shape_move(from, piece, index),
+            };
+            if done.is_none() {
                 self.stopped = Some(index);
                 return;
             }
@@ -677,14 +687,16 @@ fn probe(nominal: &Dexels, actual: &Dexels, separated_at: Option<f64>) -> Vec<Pr
                         // No material left on the ray: all of it is gone.
                         None => (-(span.hi.at - span.lo.at) * along.abs(), None),
                     };
-                    // A probe that passes an edge the model moved meets a surface beyond it:
-                    // the point is then as far from the actual part as its nearest surface.
-                    // A probe that passes an edge the model moved meets a surface beyond it,
-                    // far from the point: the point is at an edge of the actual part (its
-                    // nearest surface less than half as far as the probe went), where a probe
-                    // along the normal measures nothing, and is not probed.
-                    let at_edge = signed_mm.abs() > NEAREST_FROM_MM
-                        && nearest_surface(actual, at, signed_mm.abs().min(NEAREST_WITHIN_MM)) < signed_mm.abs() / 2.0;
+                    // A probe that passes an edge the model moved (a point a few µm from a
+                    // corner) meets a surface beyond it: the point is then as far from the
+                    // actual part as its nearest surface. Where that is less than half as far
+                    // as the probe went, the point is at an edge of the actual part, where a
+                    // probe along the normal measures nothing, and is not probed.
+                    let within = signed_mm.abs().min(NEAREST_WITHIN_MM);
+                    let nearest_mm =
+                        if signed_mm.abs() > NEAREST_FROM_MM { nearest_surface(actual, at, within) } else { within };
+                    let at_edge = nearest_mm < signed_mm.abs() / 2.0;
+                    let signed_mm = if nearest_mm < within { signed_mm.signum() * nearest_mm } else { signed_mm };
                     let nominal_by = (edge.by != STOCK).then_some(edge.by as usize);
                     // A face of the stock the nominal part keeps is probed only where the
                     // actual part cut it.
@@ -721,8 +733,10 @@ fn nearest_surface(part: &Dexels, p: Xz, within: f64) -> f64 {
     for along_z in [true, false] {
         let (rays, across, origin) =
             if along_z { (&part.along_z, p.x, part.x_lo) } else { (&part.along_x, p.z, part.z_lo) };
-        let first = ((across - within - origin) / part.spacing - 0.5).ceil().max(0.0);
-        let last = ((across + within - origin) / part.spacing - 0.5).floor();
+        // A ray's crossing stands for its tangent half a spacing either side across the rays.
+        let reach = within + part.spacing;
+        let first = ((across - reach - origin) / part.spacing - 0.5).ceil().max(0.0);
+        let last = ((across + reach - origin) / part.spacing - 0.5).floor();
         if !(first.is_finite() && last.is_finite()) || last < first {
             continue;
         }
@@ -731,9 +745,12 @@ fn nearest_surface(part: &Dexels, p: Xz, within: f64) -> f64 {
             let line = part.line(along_z, index);
             let along_p = if along_z { p.z } else { p.x };
             for span in spans {
-                for edge in [&span.lo, &span.hi] {
+                for (edge, high) in [(&span.lo, false), (&span.hi, true)] {
+                    // Neither the axis nor the bar's back end where no move cut it is a
+                    // surface (as `probe` takes them).
                     if (edge.at - along_p).abs() > best + part.spacing
                         || (!along_z && edge.by == STOCK && edge.at <= 1e-12)
+                        || (along_z && !high && edge.by == STOCK)
                     {
                         continue;
                     }
