@@ -61,7 +61,7 @@ pub(crate) fn written_lead(
     // The lead word's value is the length of `count` threads.
     let exact_word = exact * count;
     // The lead a word gives, per thread, and how far its error runs over the thread's turns.
-    let drift = |lead: f64| grid.frame.mm((lead - exact).abs()) * turns;
+    let drift = |lead: f64| drift_mm(grid, lead, exact, turns);
     // A lead written with the precise-lead word already takes that word's digits.
     let beyond = match table.precise {
         Some(precise) if precise.address == programmed.address => precise.decimals_beyond_increment,
@@ -85,6 +85,22 @@ pub(crate) fn written_lead(
     }
     let unheld_mm = Some(drift(lead)).filter(|&d| d > half_increment);
     Some(WrittenLead { words, lead, unheld_mm })
+}
+
+/// How far a thread `thread_mm` long cut at the lead the program writes (`programmed`) runs
+/// from one cut at `exact` (per thread, program units), mm, where that is more than half an
+/// increment; none where the lead as written holds (`written_lead` would round to it, or
+/// to a lead no better over the thread).
+pub(crate) fn written_drift_mm(grid: &Grid, programmed: ProgrammedLead, exact: f64, thread_mm: f64) -> Option<f64> {
+    let lead = programmed.written / programmed.count.unwrap_or(1.0);
+    let lead_mm = grid.frame.mm(lead);
+    let drift = drift_mm(grid, lead, exact, thread_mm / lead_mm);
+    (drift.is_nan() || drift > grid.length_mm(1) / 2.0).then_some(drift)
+}
+
+/// How far a lead `lead` runs from `exact` (per thread, program units) over `turns`, mm.
+fn drift_mm(grid: &Grid, lead: f64, exact: f64, turns: f64) -> f64 {
+    grid.frame.mm((lead - exact).abs()) * turns
 }
 
 /// The words as a program spells them (`E1.9998`, `F33.997 J17`).

@@ -189,9 +189,9 @@ pub const PROFILE_TAKE_UP: &str = "a block of its profile needs a take-up of the
 /// Why a thread cycle is expanded when its words are not compensated in place.
 /// Why a thread cycle stays as programmed (`cycle-not-compensated`) where its words do not
 /// name its final pass and its passes cannot be written out.
-pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a single-pass cycle's taper or \
-     start shift, a chamfer out of the thread, a lead change or several starts written in the call), and its thread passes have no plain-block form in \
-     this dialect";
+pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a chamfer out of the thread, a \
+     lead change or a count of threads written in the call), and its thread passes have no plain-block form in this \
+     dialect";
 
 /// Why a thread cycle stays as programmed where its final pass needs a take-up of the play.
 const THREAD_TAKE_UP: &str = "its final pass needs more than one move (a take-up of the play), which its words \
@@ -452,7 +452,7 @@ pub fn finish(
                 THREAD_NOT_IN_PLACE
             } else if threads_cut {
                 "its moves change, and its end words do not name its final pass (a thread chamfered out, a \
-                 taper or a start shift written in the block), so they cannot carry the correction"
+                 lead change or a count of threads written in the block), so they cannot carry the correction"
             } else if !choice.profiles_in_place && !choice.profiles_copied {
                 PROFILE_NOT_COPIED
             } else if !choice.profiles_in_place {

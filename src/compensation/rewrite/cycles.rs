@@ -20,7 +20,7 @@ use std::ops::Range;
 
 use crate::back::motion::Codes;
 use crate::back::motion::{GivenNext, Restore};
-use crate::back::thread_lead::{ProgrammedLead, WrittenLead, spelled, written_lead};
+use crate::back::thread_lead::{ProgrammedLead, WrittenLead, spelled, written_drift_mm, written_lead};
 use crate::back::{Axes, CycleBlocks, carried_words, carry_traced, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::expand;
@@ -160,14 +160,11 @@ pub(super) fn profile_groups(
 }
 
 /// The final pass of a thread cycle that can carry its correction in its own words: the
-/// cycle cuts only threads between rapids, and its call block writes only the words whose
-/// meaning is the final pass's end (`X`/`Z`, Fanuc's `U`/`W`) besides those that shape the
-/// passes before it (`F` the lead, `P`/`Q` the height and first depth of `G76`, `R` a
-/// `G76` finishing allowance or a taper that stays as written; OSP's `D`, `U`, `H` and `B`
-/// of its compound thread cycle) and the sequence name,
-/// codes and comments. The final pass is the last thread move, and it runs along the axis
-/// (a thread chamfered out is written out instead); the passes before it move with it, as
-/// the control computes them from these words.
+/// cycle cuts only threads between rapids, and its call block writes only words whose
+/// meaning is the final pass's end (`final_pass_role`) or shapes the passes before it from
+/// that end, besides the sequence name, codes and comments. The final pass is the last
+/// thread move, and it runs along the axis (a thread chamfered out is written out instead);
+/// the passes before it move with it, as the control computes them from these words.
 pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<usize> {
     use crate::dialect::Address;
     let moves = lowered.toolpath.moves.get(e.moves.clone())?;
@@ -175,34 +172,15 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
         return None;
     }
     let block = program.block(e.block);
-    let words_fit = program.words_of(block).iter().all(|word| match word.kind {
-        WordKind::Number { address, .. } => match program.config().dialect {
-            crate::dialect::Dialect::Fanuc => matches!(
-                address,
-                Address::X | Address::Z | Address::U | Address::W | Address::F | Address::P | Address::Q | Address::R
-            ),
-            // OSP's compound thread cycle (`G71 X Z B D U H F`): the first depth `D`, the
-            // finishing allowance `U`, the thread height `H` and the infeed angle `B` shape the
-            // passes before the last from the final pass's `X` (grammar/osp.toml,
-            // `compound_thread_longitudinal`), as `G76`'s `P` and `Q` do on Fanuc.
-            // The face cycle's allowance `W` runs along Z, as its passes' depths do. A taper
-            // (`I` across a longitudinal thread, `K` across a face thread, or the angle `A`)
-            // places every pass's start from its end, as Fanuc's `R` does: the end words
-            // carry the final pass's correction and the start moves with them.
-            crate::dialect::Dialect::Osp => {
-                matches!(
-                    address,
-                    Address::X
-                        | Address::Z
-                        | Address::F
-                        | Address::B
-                        | Address::D
-                        | Address::U
-                        | Address::W
-                        | Address::H
-                        | Address::A
-                ) || compound_taper(program, block, address)
-            }
+    let command = match block.statement {
+        crate::syntax::Statement::Cycle(id) => Some(program.command(id)),
+        _ => None,
+    };
+    let words_fit = program.words_of(block).iter().zip(block.word_ids()).all(|(word, id)| match word.kind {
+        WordKind::Number { address, .. } => match command {
+            Some(command) => command.params.iter().find(|p| p.word == id).is_some_and(|p| final_pass_role(p.role)),
+            // A modal repeat of the cycle (Fanuc's `G92` then `X` alone) writes its end.
+            None => matches!(address, Address::X | Address::Z | Address::U | Address::W),
         },
         WordKind::Expr { .. } => false,
         // A contour's name (`G88 N…`): the passes follow the contour, whose blocks, not the
@@ -226,16 +204,50 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
     (along > 2.0 * across).then_some(last)
 }
 
-/// Whether `address` gives the taper of the OSP compound thread cycle `block` calls (`I` of
-/// `G71`, `K` of `G72`; grammar/osp.toml `compound_thread_*`), where the single-pass cycles'
-/// `I` and `K` shift the start.
-fn compound_taper(program: &Program<'_>, block: &crate::syntax::Block, address: crate::dialect::Address) -> bool {
-    use crate::dialect::{Address, GFunction};
-    match cycle_function(program, block) {
-        Some(GFunction::CompoundThreadLongitudinal) => address == Address::I,
-        Some(GFunction::CompoundThreadFace) => address == Address::K,
-        _ => false,
-    }
+/// Whether a thread cycle's word of `role` leaves its end words naming the final pass's end
+/// (grammar/*.toml, the thread cycles' schemas), so that they carry its correction:
+///
+/// - the end (`X`/`Z`, Fanuc's `U`/`W`) is the final pass's;
+/// - the lead (`F`, Fanuc's `E`) is the thread's, written with the lead correction;
+/// - the height, first depth, minimum depth, finishing allowance, infeed angle, mode and
+///   pattern, and the tool angle (Fanuc's `G76` `P`/`Q`/`R` or Haas's `K`/`D`/`A`/`P`;
+///   OSP's `H`/`D`/`U`/`W`/`B`) place the passes before the last from the final pass;
+/// - a taper (Fanuc's `R`, Haas's `I`, OSP's `I`/`K`/`A`) places each pass's start from its
+///   end, and a start shift (OSP's single-pass `K`/`I`) from the tool's position, which the
+///   rapid before the cycle carries along the thread: both move with the end words;
+/// - the number of starts and a start's angle or phase turn the spindle and move nothing;
+/// - the speed and the tool select, and move nothing.
+///
+/// Not so: a chamfer out of the thread (`L`, whose pass ends off the axis), a lead change
+/// (`E` of OSP: the toolpath holds such a thread at its mean lead, so no check could judge a
+/// corrected one) and threads per inch (`J`, with which `F` is not the lead).
+fn final_pass_role(role: crate::dialect::Role) -> bool {
+    use crate::dialect::Role;
+    matches!(
+        role,
+        Role::EndX
+            | Role::EndZ
+            | Role::IncrementalX
+            | Role::IncrementalZ
+            | Role::Lead
+            | Role::ThreadHeight
+            | Role::FirstDepth
+            | Role::MinDepth
+            | Role::ThreadParameters
+            | Role::FinishAllowance
+            | Role::InfeedAngle
+            | Role::InfeedMode
+            | Role::InfeedPattern
+            | Role::ToolAngle
+            | Role::Taper
+            | Role::TaperAngle
+            | Role::StartShift
+            | Role::Starts
+            | Role::ShiftAngle
+            | Role::Phase
+            | Role::Speed
+            | Role::Tool
+    )
 }
 
 /// Whether `block` calls a face thread cycle (OSP's `G72` and `G32`), whose thread runs along
@@ -903,7 +915,8 @@ pub(super) fn thread_lead(
     use crate::dialect::{Address, Role};
     use crate::syntax::Statement;
     let block = program.block(block);
-    let table = program.config().tables().thread_lead;
+    let tables = program.config().tables();
+    let mut table = tables.thread_lead;
     // The lead word: a cycle's lead parameter, or a thread move's own `F` (or precise-lead
     // word); a thread move without one runs at the lead written before it.
     let (lead_id, command) = match block.statement {
@@ -921,6 +934,14 @@ pub(super) fn thread_lead(
         }
         _ => return None,
     };
+    // A cycle whose form has no precise-lead word (Haas's one-block `G76 X Z K D F`) writes
+    // its lead with the lead word alone.
+    let form = command.and_then(|c| tables.schema(c.schema).forms.get(c.form as usize));
+    if let (Some(form), Some(precise)) = (form, table.precise)
+        && form.role_of(precise.address).is_none()
+    {
+        table.precise = None;
+    }
     let WordKind::Number { address, number } = program.word(lead_id).kind else { return None };
     let at = usize::try_from(lead_id.checked_sub(block.first_word)?).ok()?;
     // With a count of threads (OSP `J`), the lead word is the length of that many threads.
@@ -942,6 +963,9 @@ pub(super) fn thread_lead(
     let written = number.to_f64();
     let programmed = ProgrammedLead { address, written, count: count_word.map(|_| count) };
     let thread_mm = lowered.toolpath.start_of(pass).distance(lowered.toolpath.moves.get(pass)?.end);
+    // A lead written with more digits than the table gives it (a program's `F0.07692308`)
+    // that holds the lead the slide needs over the thread stays as written.
+    written_drift_mm(&grid, programmed, written / count * ratio, thread_mm)?;
     let lead = written_lead(&table, &grid, programmed, written / count * ratio, thread_mm)?;
     let (words, unheld_mm, lead) = (lead.words, lead.unheld_mm, lead.lead);
     let old = written / count;
