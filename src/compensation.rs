@@ -34,6 +34,6 @@ pub use plan::{Judged, LeftAlone};
 pub use program::{CompensateOptions, Outcome, Paths, compensate_program};
 pub use rewrite::cycles::LeadChange;
 pub use rewrite::{
-    CycleForm, CycleOutcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE, PROFILE_TAKE_UP,
-    THREAD_NOT_IN_PLACE,
+    CycleForm, CycleOutcome, OTHER_NOT_AS_WRITTEN, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
+    PROFILE_TAKE_UP, THREAD_NOT_IN_PLACE,
 };

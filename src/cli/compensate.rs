@@ -22,8 +22,8 @@ use turnpass::compensation::fit::{FitOptions, Strategy};
 use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::verify::{self, Measure, PartFrom};
 use turnpass::compensation::{
-    CompensateOptions, CycleForm, Judged, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
-    PROFILE_TAKE_UP, THREAD_NOT_IN_PLACE, compensate_program,
+    CompensateOptions, CycleForm, Judged, OTHER_NOT_AS_WRITTEN, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED,
+    PROFILE_NOT_IN_PLACE, PROFILE_TAKE_UP, THREAD_NOT_IN_PLACE, compensate_program,
 };
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
@@ -181,6 +181,7 @@ impl FitArgs {
             profiles_in_place: true,
             profiles_copied: true,
             threads_in_place: true,
+            others_as_written: true,
             thread_pieces_every_pass: false,
             paths: false,
             block_reports: true,
@@ -245,6 +246,7 @@ impl FitArgs {
             profiles_in_place: in_place.profiles,
             profiles_copied: in_place.copies,
             threads_in_place: in_place.threads,
+            others_as_written: in_place.others,
             ..self.options(&program.machine)
         };
         let judged = match (in_place.air, measure, clearance) {
@@ -295,6 +297,10 @@ fn cycle_lines(
         let text = String::from_utf8_lossy(span(cycle.block).text(bytes)).trim_end().to_string();
         let said = match &cycle.form {
             CycleForm::Kept => continue,
+            CycleForm::LeftAsWritten => {
+                "kept as written: the part it cuts, with the blocks around it compensated, is within the bound"
+                    .to_string()
+            }
             CycleForm::ProfileEdited { profile, lead } => {
                 let first = profile.first().map_or(0, |&b| line(b));
                 let last = profile.last().map_or(0, |&b| line(b));
@@ -446,12 +452,13 @@ impl Trial<'_> {
 
 /// Which cycles keep their calls with a correction in place: those sharing a profile with a
 /// finishing cycle (the profile edited, or else copied for the finishing cycle), thread
-/// cycles (their words edited).
+/// cycles (their words edited); and whether the others stay as written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct InPlace {
     profiles: bool,
     copies: bool,
     threads: bool,
+    others: bool,
     /// The moves that need no correction left as written (`plan::Judged`).
     air: LeftAsWritten,
 }
@@ -471,11 +478,13 @@ struct Because {
     profiles: Option<String>,
     copies: Option<String>,
     threads: Option<String>,
+    others: Option<String>,
 }
 
 impl InPlace {
     /// What to try after `outcome` (compensated so) missed the check: the feed moves it left
-    /// as written corrected if it left any, else the profiles copied for their finishing
+    /// as written corrected if it left any, else the cycles it left as written expanded if
+    /// it left any, else the profiles copied for their finishing
     /// cycles if it edited one in place, else expanded if it copied one, else the threads
     /// expanded if it edited one, else the rapids it left as written corrected; `None` when
     /// nothing is left to try.
@@ -485,6 +494,9 @@ impl InPlace {
             // Before any cycle is given up: a cycle kept is worth more to the machinist than
             // a roughing pass left as written.
             Some(InPlace { air: LeftAsWritten::Rapids, ..self })
+        } else if self.others && any(|f| matches!(f, CycleForm::LeftAsWritten)) {
+            // A cycle left with no correction at all is the likeliest to miss.
+            Some(InPlace { others: false, ..self })
         } else if self.profiles && any(|f| matches!(f, CycleForm::ProfileEdited { .. })) {
             Some(InPlace { profiles: false, ..self })
         } else if self.copies && any(|f| matches!(f, CycleForm::ProfileCopied { .. })) {
@@ -512,6 +524,9 @@ impl InPlace {
         }
         if self.threads && !next.threads {
             because.threads = Some(format!("with its words compensated in place and the cycle {why}"));
+        }
+        if self.others && !next.others {
+            because.others = Some(format!("its moves change, and with it left as written and the other cycles {why}"));
         }
     }
 }
@@ -733,7 +748,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // cycle runs a compensated copy of the profile and the roughing the profile as written;
     // where that misses it too, they are expanded, and the report says why.
     let mut because = Because::default();
-    let mut in_place = InPlace { profiles: true, copies: true, threads: true, air: LeftAsWritten::Feeds };
+    let mut in_place = InPlace { profiles: true, copies: true, threads: true, others: true, air: LeftAsWritten::Feeds };
     let stock = args.stock.check(&resolved).stock;
     let measure = if args.passes { Measure::Passes } else { Measure::Part };
     // The feed moves that cut no finished surface, on the part the check measures.
@@ -968,6 +983,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         (PROFILE_COPIED, &because.profiles),
         (PROFILE_NOT_COPIED, &neither),
         (THREAD_NOT_IN_PLACE, &because.threads),
+        (OTHER_NOT_AS_WRITTEN, &because.others),
     ] {
         let Some(reason) = reason else { continue };
         for cycle in &mut outcome.report.cycles {

@@ -45,6 +45,9 @@ pub struct CompensateOptions {
     pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
+    /// Leave a cycle whose words carry no correction as written rather than expand it
+    /// (`rewrite::CycleChoice`).
+    pub others_as_written: bool,
     /// Write every thread pass whose lead error is not uniform along it as thread blocks of
     /// their own leads, not only the passes that shape the finished thread
     /// (`rewrite::thread_pieces`): `--passes` checks every pass.
@@ -192,6 +195,7 @@ pub fn compensate_program(
         profiles_in_place: options.profiles_in_place,
         profiles_copied: options.profiles_copied,
         threads_in_place: options.threads_in_place,
+        others_as_written: options.others_as_written,
     };
     let rewritten = rewrite::finish(program, lowered, &plans, choice, motion, model);
     diagnostics.extend(rewritten.diagnostics);

@@ -212,6 +212,7 @@ fn cycle_reports(input: &ReportInput<'_>) -> Vec<CycleReport> {
             let mut lead = None;
             let (outcome, profile_lines, reason) = match &c.form {
                 CycleForm::Kept => ("kept", Vec::new(), None),
+                CycleForm::LeftAsWritten => ("left_as_written", Vec::new(), None),
                 CycleForm::WordsEdited { lead: change, .. } => {
                     lead.clone_from(change);
                     ("words_edited", Vec::new(), None)

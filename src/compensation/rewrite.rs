@@ -121,6 +121,10 @@ pub struct CycleOutcome {
 pub enum CycleForm {
     /// The call stays as written, its moves need no correction.
     Kept,
+    /// The call stays as written though its moves take a correction: a cycle whose words
+    /// carry no correction (a single turning, facing or grooving cycle), whose part the
+    /// check before writing finds within the bound with the blocks around it compensated.
+    LeftAsWritten,
     /// The call stays as written and the profile it shares with a finishing cycle is
     /// compensated in place (its blocks, `profile`): the roughing follows it, as on the
     /// control.
@@ -186,7 +190,6 @@ pub const PROFILE_NOT_COPIED: &str = "its moves change, and its profile is neith
 pub const PROFILE_TAKE_UP: &str = "a block of its profile needs a take-up of the play written as a move of its own, \
                                    which the roughing cycle would run as part of the profile";
 
-/// Why a thread cycle is expanded when its words are not compensated in place.
 /// Why a thread cycle stays as programmed (`cycle-not-compensated`) where its words do not
 /// name its final pass and its passes cannot be written out.
 pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a chamfer out of the thread, a \
@@ -203,7 +206,13 @@ const ROOT_NOT_WRITABLE: &str = "the blocks of its root contour cannot carry the
      the play written as a move of its own, which every pass would run as part of the thread, or a block that makes \
      several moves or also runs as a plain block)";
 
+/// Why a thread cycle is expanded when its words are not compensated in place.
 pub const THREAD_NOT_IN_PLACE: &str = "its moves change, and its own words are not compensated in place";
+
+/// Why a cycle whose words carry no correction, and which shares no profile with a finishing
+/// cycle, is expanded when it is not left as written (the caller that asked for it says why).
+pub const OTHER_NOT_AS_WRITTEN: &str = "its moves change, no finishing cycle runs a profile of it, and it is not \
+     left as written";
 
 /// How the rewrite treats the cycles whose moves change.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -218,6 +227,9 @@ pub struct CycleChoice {
     pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
+    /// Leave a cycle as written whose words carry no correction, rather than expand it: the
+    /// check before writing judges it.
+    pub others_as_written: bool,
 }
 
 /// The edits, once every move is planned and every run of a motion block was given to
@@ -409,6 +421,17 @@ pub fn finish(
             }
         }
     }
+    // What is still to be expanded is a cycle whose words carry no correction: it stays as
+    // written where the caller asks for it, and the check judges the part it cuts.
+    let mut left: HashSet<usize> = HashSet::new();
+    if choice.others_as_written && !choice.expand_all {
+        for (k, e) in lowered.expansions.iter().enumerate() {
+            if chosen.get(k).copied().unwrap_or(false) {
+                chosen[k] = false;
+                left.insert(e.block);
+            }
+        }
+    }
     let style = motion.writer.out.style();
     let pieces = motion.piece_settings();
     let (expanded, mut expanded_leads, restores) =
@@ -457,6 +480,8 @@ pub fn finish(
                 PROFILE_NOT_COPIED
             } else if !choice.profiles_in_place {
                 PROFILE_NOT_IN_PLACE
+            } else if !choice.others_as_written {
+                OTHER_NOT_AS_WRITTEN
             } else {
                 "its moves change, and no finishing cycle runs a profile of it (a single cycle, a roughing cycle \
                  with no finishing cycle, a finishing cycle whose own moves cut)"
@@ -471,6 +496,8 @@ pub fn finish(
                 None => reason.to_string(),
             };
             CycleForm::Expanded { reason, lead }
+        } else if left.contains(&block) {
+            CycleForm::LeftAsWritten
         } else {
             CycleForm::Kept
         };
