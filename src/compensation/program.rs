@@ -45,8 +45,8 @@ pub struct CompensateOptions {
     pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
-    /// Leave a cycle whose words carry no correction as written rather than expand it
-    /// (`rewrite::CycleChoice`).
+    /// Leave as written a cycle whose correction neither its words nor a profile can carry,
+    /// rather than expand it (`rewrite::CycleChoice`).
     pub others_as_written: bool,
     /// Write every thread pass whose lead error is not uniform along it as thread blocks of
     /// their own leads, not only the passes that shape the finished thread

@@ -121,9 +121,10 @@ pub struct CycleOutcome {
 pub enum CycleForm {
     /// The call stays as written, its moves need no correction.
     Kept,
-    /// The call stays as written though its moves take a correction: a cycle whose words
-    /// carry no correction (a single turning, facing or grooving cycle), whose part the
-    /// check before writing finds within the bound with the blocks around it compensated.
+    /// The call stays as written though its moves take a correction that neither its words
+    /// nor a profile can carry (a single turning, facing or grooving cycle; a thread whose
+    /// final pass needs a take-up), where the check before writing finds the part within
+    /// the bound with the blocks around it compensated.
     LeftAsWritten,
     /// The call stays as written and the profile it shares with a finishing cycle is
     /// compensated in place (its blocks, `profile`): the roughing follows it, as on the
@@ -227,8 +228,8 @@ pub struct CycleChoice {
     pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
-    /// Leave a cycle as written whose words carry no correction, rather than expand it: the
-    /// check before writing judges it.
+    /// Leave as written a cycle whose correction neither its words nor a profile can carry,
+    /// rather than expand it: the check before writing judges it.
     pub others_as_written: bool,
 }
 
@@ -421,8 +422,9 @@ pub fn finish(
             }
         }
     }
-    // What is still to be expanded is a cycle whose words carry no correction: it stays as
-    // written where the caller asks for it, and the check judges the part it cuts.
+    // What is still to be expanded is a cycle whose correction neither its words nor a
+    // profile carries: it stays as written where the caller asks for it, and the check
+    // judges the part it cuts.
     let mut left: HashSet<usize> = HashSet::new();
     if choice.others_as_written && !choice.expand_all {
         for (k, e) in lowered.expansions.iter().enumerate() {
