@@ -193,9 +193,9 @@ pub const PROFILE_TAKE_UP: &str = "a block of its profile needs a take-up of the
 
 /// Why a thread cycle stays as programmed (`cycle-not-compensated`) where its words do not
 /// name its final pass and its passes cannot be written out.
-pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a chamfer out of the thread, a \
-     lead change or a count of threads written in the call), and its thread passes have no plain-block form in this \
-     dialect";
+pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a lead change or a count of \
+     threads written in the call, or a final pass that does not run along the thread), and its thread passes have no \
+     plain-block form in this dialect";
 
 /// Why a thread cycle stays as programmed where its final pass needs a take-up of the play.
 const THREAD_TAKE_UP: &str = "its final pass needs more than one move (a take-up of the play), which its words \
@@ -391,8 +391,15 @@ pub fn finish(
                 continue;
             }
             if motion.thread_writable(e.block, pass, plans)
-                && let Some(plan) = motion.thread_pass_plan(e, pass, plans)
+                && let Some(mut plan) = motion.thread_pass_plan(e, pass, plans)
             {
+                // A pass chamfered out: its end words lie the chamfer's length on.
+                let offset = cycles::end_words_offset(program, lowered, e, pass);
+                for segment in &mut plan.segments {
+                    if let Segment::Line { end } = segment {
+                        *end = Xz::new(end.x + offset.x, end.z + offset.z);
+                    }
+                }
                 let lead = cycles::thread_lead(program, lowered, e.block, pass, model);
                 let change = lead.map(|(words, change)| {
                     motion.leads.insert(e.block, words);
@@ -476,8 +483,9 @@ pub fn finish(
             } else if threads_cut && !choice.threads_in_place {
                 THREAD_NOT_IN_PLACE
             } else if threads_cut {
-                "its moves change, and its end words do not name its final pass (a thread chamfered out, a \
-                 lead change or a count of threads written in the block), so they cannot carry the correction"
+                "its moves change, and its end words do not name its final pass (a lead change or a count of \
+                 threads written in the block, a final pass that does not run along the thread, or incremental \
+                 end words with a chamfer out of it), so they cannot carry the correction"
             } else if !choice.profiles_in_place && !choice.profiles_copied {
                 PROFILE_NOT_COPIED
             } else if !choice.profiles_in_place {

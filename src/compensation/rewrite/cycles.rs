@@ -163,8 +163,10 @@ pub(super) fn profile_groups(
 /// cycle cuts only threads between rapids, and its call block writes only words whose
 /// meaning is the final pass's end (`final_pass_role`) or shapes the passes before it from
 /// that end, besides the sequence name, codes and comments. The final pass is the last
-/// thread move, and it runs along the axis (a thread chamfered out is written out instead);
-/// the passes before it move with it, as the control computes them from these words.
+/// thread move, which runs along the axis, or, where the pass is chamfered out of the
+/// thread, the move along the axis before the chamfer (`end_words_offset` says where the
+/// end words lie from its end); the passes before it move with it, as the control computes
+/// them from these words.
 pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<usize> {
     use crate::dialect::Address;
     let moves = lowered.toolpath.moves.get(e.moves.clone())?;
@@ -191,17 +193,48 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
     if !words_fit {
         return None;
     }
-    // The last thread move, which must run along the thread (along X for a face thread):
-    // after a chamfer out of the thread the cycle's end words name the chamfer's end, not
-    // the final pass's.
-    let last = e.moves.start + moves.iter().rposition(|m| m.threading)?;
-    let (from, to) = (lowered.toolpath.start_of(last), lowered.toolpath.moves.get(last)?.end);
-    let (along, across) = if face_thread(program, block) {
-        ((to.x - from.x).abs(), (to.z - from.z).abs())
-    } else {
-        ((to.z - from.z).abs(), (to.x - from.x).abs())
+    // The last thread move, which must run along the thread (along X for a face thread).
+    let face = face_thread(program, block);
+    let along_the_thread = |k: usize| {
+        let (from, to) = (lowered.toolpath.start_of(k), lowered.toolpath.moves[k].end);
+        let (along, across) = if face {
+            ((to.x - from.x).abs(), (to.z - from.z).abs())
+        } else {
+            ((to.z - from.z).abs(), (to.x - from.x).abs())
+        };
+        along > 2.0 * across
     };
-    (along > 2.0 * across).then_some(last)
+    let last = e.moves.start + moves.iter().rposition(|m| m.threading)?;
+    if along_the_thread(last) {
+        return Some(last);
+    }
+    // A chamfer out of the thread (Fanuc's `r` of `G76 P(m)(r)(a)`, OSP's `L` with `M23`):
+    // the move before it runs along the thread to where the chamfer starts, and the end
+    // words name the chamfer's end along the thread at that move's depth, a fixed step from
+    // its end that moves with it. Written absolute only: incremental end words count from
+    // the cycle's start point, not from that move.
+    let incremental = command.is_some_and(|c| {
+        c.params
+            .iter()
+            .any(|p| matches!(p.role, crate::dialect::Role::IncrementalX | crate::dialect::Role::IncrementalZ))
+    });
+    let before = last.checked_sub(1).filter(|&k| k >= e.moves.start)?;
+    let threads = lowered.toolpath.moves.get(before).is_some_and(|m| m.threading);
+    (threads && !incremental && along_the_thread(before)).then_some(before)
+}
+
+/// Where a kept thread call's end words lie from the end of its final pass `pass`
+/// (`thread_final_pass`): nowhere else where the pass runs along the thread to them; where
+/// it is chamfered out, at the chamfer's end along the thread, at the pass's depth.
+pub(super) fn end_words_offset(program: &Program<'_>, lowered: &Lowered, e: &Expansion, pass: usize) -> Xz {
+    let moves = &lowered.toolpath.moves;
+    let chamfer = (pass + 1 < e.moves.end).then(|| moves.get(pass + 1)).flatten().filter(|m| m.threading);
+    let (Some(chamfer), Some(along)) = (chamfer, moves.get(pass)) else { return Xz::default() };
+    if face_thread(program, program.block(e.block)) {
+        Xz::new(chamfer.end.x - along.end.x, 0.0)
+    } else {
+        Xz::new(0.0, chamfer.end.z - along.end.z)
+    }
 }
 
 /// Whether a thread cycle's word of `role` leaves its end words naming the final pass's end
@@ -216,11 +249,13 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
 ///   end, and a start shift (OSP's single-pass `K`/`I`) from the tool's position, which the
 ///   rapid before the cycle carries along the thread: both move with the end words;
 /// - the number of starts and a start's angle or phase turn the spindle and move nothing;
-/// - the speed and the tool select, and move nothing.
+/// - the speed and the tool select, and move nothing;
+/// - a chamfer out of the thread (OSP's `L`) ends each pass a fixed step from where it
+///   leaves the thread (`end_words_offset`).
 ///
-/// Not so: a chamfer out of the thread (`L`, whose pass ends off the axis), a lead change
-/// (`E` of OSP: the toolpath holds such a thread at its mean lead, so no check could judge a
-/// corrected one) and threads per inch (`J`, with which `F` is not the lead).
+/// Not so: a lead change (`E` of OSP: the toolpath holds such a thread at its mean lead, so
+/// no check could judge a corrected one) and threads per inch (`J`, with which `F` is not
+/// the lead).
 fn final_pass_role(role: crate::dialect::Role) -> bool {
     use crate::dialect::Role;
     matches!(
@@ -247,6 +282,7 @@ fn final_pass_role(role: crate::dialect::Role) -> bool {
             | Role::Phase
             | Role::Speed
             | Role::Tool
+            | Role::Chamfer
     )
 }
 
