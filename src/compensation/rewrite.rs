@@ -193,9 +193,9 @@ pub const PROFILE_TAKE_UP: &str = "a block of its profile needs a take-up of the
 
 /// Why a thread cycle stays as programmed (`cycle-not-compensated`) where its words do not
 /// name its final pass and its passes cannot be written out.
-pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a lead change or a count of \
-     threads written in the call, or a final pass that does not run along the thread), and its thread passes have no \
-     plain-block form in this dialect";
+pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a lead change written in the \
+     call, or a final pass that does not run along the thread), and its thread passes have no plain-block form in this \
+     dialect";
 
 /// Why a thread cycle stays as programmed where its final pass needs a take-up of the play.
 const THREAD_TAKE_UP: &str = "its final pass needs more than one move (a take-up of the play), which its words \
@@ -483,9 +483,9 @@ pub fn finish(
             } else if threads_cut && !choice.threads_in_place {
                 THREAD_NOT_IN_PLACE
             } else if threads_cut {
-                "its moves change, and its end words do not name its final pass (a lead change or a count of \
-                 threads written in the block, a final pass that does not run along the thread, or incremental \
-                 end words with a chamfer out of it), so they cannot carry the correction"
+                "its moves change, and its end words do not name its final pass (a lead change written in the \
+                 block, a final pass that does not run along the thread, or incremental end words with a chamfer \
+                 out of it), so they cannot carry the correction"
             } else if !choice.profiles_in_place && !choice.profiles_copied {
                 PROFILE_NOT_COPIED
             } else if !choice.profiles_in_place {

@@ -251,11 +251,13 @@ pub(super) fn end_words_offset(program: &Program<'_>, lowered: &Lowered, e: &Exp
 /// - the number of starts and a start's angle or phase turn the spindle and move nothing;
 /// - the speed and the tool select, and move nothing;
 /// - a chamfer out of the thread (OSP's `L`) ends each pass a fixed step from where it
-///   leaves the thread (`end_words_offset`).
+///   leaves the thread (`end_words_offset`);
+/// - a count of threads (OSP's `J`, with which `F` is the length of that many) is the lead
+///   word's, which `thread_lead` writes with it (as it writes a lead the slide needs as
+///   `F` over `J`).
 ///
 /// Not so: a lead change (`E` of OSP: the toolpath holds such a thread at its mean lead, so
-/// no check could judge a corrected one) and threads per inch (`J`, with which `F` is not
-/// the lead).
+/// no check could judge a corrected one).
 fn final_pass_role(role: crate::dialect::Role) -> bool {
     use crate::dialect::Role;
     matches!(
@@ -283,6 +285,7 @@ fn final_pass_role(role: crate::dialect::Role) -> bool {
             | Role::Speed
             | Role::Tool
             | Role::Chamfer
+            | Role::ThreadsPerInch
     )
 }
 
@@ -1016,8 +1019,13 @@ pub(super) fn thread_lead(
         }
         text
     };
-    let change =
-        LeadChange { from: from_text, to: spelled(&words), change_ppm: ppm(lead, old), unheld_mm, pieces: None };
+    // A count of threads the lead word is written over stays, and is said with it.
+    let mut to = spelled(&words);
+    if let Some(w) = count_word.filter(|_| words.len() == 1) {
+        to.push(' ');
+        to.push_str(&String::from_utf8_lossy(program.text(program.word(w).span)));
+    }
+    let change = LeadChange { from: from_text, to, change_ppm: ppm(lead, old), unheld_mm, pieces: None };
     Some((LeadWords { at, words }, change))
 }
 
