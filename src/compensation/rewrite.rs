@@ -391,15 +391,8 @@ pub fn finish(
                 continue;
             }
             if motion.thread_writable(e.block, pass, plans)
-                && let Some(mut plan) = motion.thread_pass_plan(e, pass, plans)
+                && let Some(plan) = motion.thread_pass_plan(e, pass, plans)
             {
-                // A pass chamfered out: its end words lie the chamfer's length on.
-                let offset = cycles::end_words_offset(program, lowered, e, pass);
-                for segment in &mut plan.segments {
-                    if let Segment::Line { end } = segment {
-                        *end = Xz::new(end.x + offset.x, end.z + offset.z);
-                    }
-                }
                 let lead = cycles::thread_lead(program, lowered, e.block, pass, model);
                 let change = lead.map(|(words, change)| {
                     motion.leads.insert(e.block, words);
@@ -1070,18 +1063,27 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         let [plan] = plans.get(pass..pass + 1)? else { return None };
         let mut plan = plan.clone();
         let moves = &self.lowered.toolpath.moves;
-        let Some(clearance) = self.clearance else { return Some(plan) };
-        let clear =
-            e.moves.clone().filter(|&k| moves.get(k).is_some_and(|m| m.threading)).all(|k| clearance.is_clear(k));
+        let clear = self.clearance.filter(|clearance| {
+            e.moves.clone().filter(|&k| moves.get(k).is_some_and(|m| m.threading)).all(|k| clearance.is_clear(k))
+        });
         let nominal = moves.get(pass)?.contour;
         let end = plan.end();
         let face = cycles::face_thread(self.program, self.program.block(e.block));
         let off = if face { end.z - nominal.z } else { end.x - nominal.x };
-        if clear && off.abs() <= clearance.by_mm() / 2.0 {
+        if let Some(clearance) = clear
+            && off.abs() <= clearance.by_mm() / 2.0
+        {
             let end = if face { Xz::new(end.x, nominal.z) } else { Xz::new(nominal.x, end.z) };
             let grid = Grid::new(&self.lowered.coordinates_at(pass));
             plan.changed = grid.point(end) != grid.point(nominal);
             plan.segments = smallvec::smallvec![Segment::Line { end }];
+        }
+        // A pass chamfered out: its end words lie the chamfer's length on.
+        let offset = cycles::end_words_offset(self.program, self.lowered, e, pass);
+        for segment in &mut plan.segments {
+            if let Segment::Line { end } = segment {
+                *end = Xz::new(end.x + offset.x, end.z + offset.z);
+            }
         }
         Some(plan)
     }
