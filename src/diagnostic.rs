@@ -662,6 +662,8 @@ pub enum DiagnosticKind {
     ThreadLeadNotPositive,
     /// A thread cycle whose thread has no length along its axis.
     ThreadOfNoLength,
+    /// A variable-lead thread whose lead shrinks to nothing before its end.
+    LeadShrinksToNothing,
     /// `G76 P(m)(r)(a)` digits, or a Haas `P`/`A`, outside what the control takes.
     ThreadParametersInvalid {
         word: String,

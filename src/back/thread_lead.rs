@@ -87,6 +87,19 @@ pub(crate) fn written_lead(
     Some(WrittenLead { words, lead, unheld_mm })
 }
 
+/// A variable lead's change word (`E` of OSP `G34`, `K` of Fanuc `G34`) written as `old`,
+/// for the change `exact` (program units per turn): at the digits it is written with, or the
+/// grid's where those are fewer; `None` where that gives `old` back or lies farther from
+/// `exact` than `old` does (the slide's correction is finer than the word's digits).
+pub(crate) fn written_change(grid: &Grid, old: Number, exact: f64) -> Option<Number> {
+    if !exact.is_finite() {
+        return None;
+    }
+    let value = rounded(exact, grid.places.max(old.scale));
+    let closer = (value.to_f64() - exact).abs() < (old.to_f64() - exact).abs();
+    (value.to_f64() != old.to_f64() && closer).then_some(value)
+}
+
 /// How far a thread `thread_mm` long cut at the lead the program writes (`programmed`) runs
 /// from one cut at `exact` (per thread, program units), mm, where that is more than half an
 /// increment; none where the lead as written holds (`written_lead` would round to it, or
@@ -154,9 +167,15 @@ mod tests {
             precise: Some(PreciseLead { address: Address::E, decimals_beyond_increment: 2 }),
             count: None,
             continuous: true,
+            change: Some(Address::K),
         };
-        let osp =
-            ThreadLead { decimals_beyond_increment: 0, precise: None, count: Some(Address::J), continuous: false };
+        let osp = ThreadLead {
+            decimals_beyond_increment: 0,
+            precise: None,
+            count: Some(Address::J),
+            continuous: false,
+            change: None,
+        };
         let neither = ThreadLead::default();
         let programmed = ProgrammedLead { address: Address::F, written: 2.0, count: None };
         // 100 ppm short over a 34 mm thread: 3.4 µm, more than half the 1 µm increment.
@@ -171,5 +190,18 @@ mod tests {
         // Over a short thread the plain word holds it.
         let short = written_lead(&fanuc, &grid(), programmed, exact, 4.0).unwrap();
         assert_eq!((spelled(&short).as_str(), short.unheld_mm), ("F2.", None));
+    }
+
+    #[test]
+    fn a_lead_change_is_written_at_its_own_digits_only_where_they_hold_the_correction_better() {
+        let written = |mantissa: i64, scale: u8| Number::new(mantissa, scale, true);
+        // `E0.02` 100 ppm short is 0.019998: three decimals give 0.020 back, no change.
+        assert_eq!(written_change(&grid(), written(2, 2), 0.02 * (1.0 - 100e-6)), None);
+        // `K0.5` 2000 ppm short is 0.499, which three decimals hold.
+        let change = written_change(&grid(), written(5, 1), 0.5 * (1.0 - 2000e-6)).unwrap();
+        assert_eq!(super::spelled(&[(Address::K, change)]), "K0.499");
+        // A change written with more decimals than the increment keeps them: `E0.01234`.
+        let change = written_change(&grid(), written(1234, 5), 0.01234 * (1.0 + 1000e-6)).unwrap();
+        assert_eq!(super::spelled(&[(Address::E, change)]), "E0.01235");
     }
 }

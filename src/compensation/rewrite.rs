@@ -193,9 +193,9 @@ pub const PROFILE_TAKE_UP: &str = "a block of its profile needs a take-up of the
 
 /// Why a thread cycle stays as programmed (`cycle-not-compensated`) where its words do not
 /// name its final pass and its passes cannot be written out.
-pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a lead change written in the \
-     call, or a final pass that does not run along the thread), and its thread passes have no plain-block form in this \
-     dialect";
+pub(crate) const THREAD_WORDS_NOT_FINAL: &str = "its words do not name its final pass (a word written as an \
+     expression, or a final pass that does not run along the thread), and its thread passes have no plain-block form \
+     in this dialect";
 
 /// Why a thread cycle stays as programmed where its final pass needs a take-up of the play.
 const THREAD_TAKE_UP: &str = "its final pass needs more than one move (a take-up of the play), which its words \
@@ -476,9 +476,9 @@ pub fn finish(
             } else if threads_cut && !choice.threads_in_place {
                 THREAD_NOT_IN_PLACE
             } else if threads_cut {
-                "its moves change, and its end words do not name its final pass (a lead change written in the \
-                 block, a final pass that does not run along the thread, or incremental end words with a chamfer \
-                 out of it), so they cannot carry the correction"
+                "its moves change, and its end words do not name its final pass (a word written as an \
+                 expression, a final pass that does not run along the thread, or incremental end words with a \
+                 chamfer out of it), so they cannot carry the correction"
             } else if !choice.profiles_in_place && !choice.profiles_copied {
                 PROFILE_NOT_COPIED
             } else if !choice.profiles_in_place {
@@ -848,9 +848,20 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         // a kept thread cycle's is (`cycles::thread_lead`); a finishing pass whose lead error
         // is not uniform along it, as thread blocks each with its own (`thread_pieces`).
         let mut own_plans: Option<Vec<MovePlan>> = None;
+        let threading = |k: &usize| lowered.toolpath.moves[*k].threading;
         if program.block(block).statement == Statement::ThreadMove
             && let Some(model) = self.model
-            && let Some(pass) = run.moves.clone().find(|&k| lowered.toolpath.moves[k].threading)
+            && run.moves.clone().filter(threading).nth(1).is_some()
+            && let Some(pass) = run.moves.clone().rfind(threading)
+        {
+            // A variable lead (one move a turn): its lead and change words are written for
+            // the whole pass (`cycles::thread_lead`), and no pieces of their own.
+            if let Some((words, _)) = cycles::thread_lead(program, lowered, block, pass, model) {
+                self.leads.insert(block, words);
+            }
+        } else if program.block(block).statement == Statement::ThreadMove
+            && let Some(model) = self.model
+            && let Some(pass) = run.moves.clone().find(threading)
         {
             let cut = self.piece_settings().zip(cycles::thread_move_lead(program, block)).and_then(
                 |(settings, (at, programmed))| {
@@ -875,7 +886,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     }
                 });
                 if let Some(first) = words.next() {
-                    self.leads.insert(block, cycles::LeadWords { at, words: first });
+                    self.leads.insert(block, cycles::LeadWords { at, words: first, change: None });
                 }
                 self.piece_leads.insert(block, words.collect());
                 // The block's `F` is the modal F of the blocks after it: where the pieces leave
@@ -926,7 +937,13 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     fn block_text(&mut self, block: usize, moves: Range<usize>, plans: &[MovePlan]) -> Option<WrittenText> {
         let (program, lowered, tools) = (self.program, self.lowered, self.tools);
         let first = moves.start;
-        let (single, several, any_change) = Self::written_moves(moves.clone(), plans);
+        let (mut single, mut several, any_change) = Self::written_moves(moves.clone(), plans);
+        // A variable lead's moves (one a turn) are the block's one thread move: its end words
+        // carry the last one's end, its lead words the rest (`add`).
+        let merged = several.then(|| Self::variable_lead_plan(lowered, moves.clone(), plans)).flatten();
+        if let Some((last, _, _)) = merged {
+            (single, several) = (Some(last), false);
+        }
         match single {
             None => None,
             Some(single) if !several => {
@@ -949,8 +966,13 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     inherited: self.inherited.get(&block).copied(),
                     carried: self.carrying.filter(|&(b, _)| b == block).map_or_else(Restore::default, |(_, r)| r),
                 };
-                let contour_start = written::contour_start(&lowered.toolpath, single);
-                let (text, restore) = match (lowered.toolpath.moves.get(single), plans.get(single - first)) {
+                let contour_start =
+                    written::contour_start(&lowered.toolpath, merged.as_ref().map_or(single, |&(_, from, _)| from));
+                let plan = match &merged {
+                    Some((_, _, plan)) => Some(plan),
+                    None => plans.get(single - first),
+                };
+                let (text, restore) = match (lowered.toolpath.moves.get(single), plan) {
                     (Some(m), Some(plan)) => context.rewrite(m, contour_start, plan, &mut self.writer)?,
                     _ => return None,
                 };
@@ -975,6 +997,30 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             }
             Some(_) => None,
         }
+    }
+
+    /// Where the moves `moves` (planned as `plans`) are the turns of one variable-lead thread
+    /// move (`cycles::pass_moves`), each planned as one line: the last, the first, and the
+    /// plan of the one move they make, from the first's start to the last's end.
+    fn variable_lead_plan(
+        lowered: &Lowered,
+        moves: Range<usize>,
+        plans: &[MovePlan],
+    ) -> Option<(usize, usize, MovePlan)> {
+        let last = moves.end.checked_sub(1)?;
+        let pass = cycles::pass_moves(lowered, last);
+        if *pass.start() != moves.start || moves.len() < 2 {
+            return None;
+        }
+        let one_line = |p: &MovePlan| p.segments.len() == 1 && p.jumps == 0 && !p.lead_in;
+        if !plans.iter().take(moves.len()).all(one_line) {
+            return None;
+        }
+        let (first_plan, last_plan) = (plans.first()?, plans.get(moves.len() - 1)?);
+        let mut plan = last_plan.clone();
+        plan.start = first_plan.start;
+        plan.changed = plans.iter().take(moves.len()).any(|p| p.changed);
+        Some((last, moves.start, plan))
     }
 
     /// Record one run of `block` (its moves `moves`) that writes `text`: a first run keeps

@@ -992,6 +992,16 @@ impl DiagnosticKind {
                 label: "lead".into(),
                 hint: Some("give the lead as a positive `F` (or `E`)".into()),
             },
+            LeadShrinksToNothing => Words {
+                code: "lead-shrinks-to-nothing",
+                message: "the thread's lead shrinks to nothing before its end: the control stops with an alarm \
+                 where it does"
+                    .into(),
+                label: "lead shrinks to nothing".into(),
+                hint: Some("make the lead change smaller, the thread shorter or the starting lead larger: a lead \
+                 that starts at L and shrinks by C every turn lasts L²/(2C) along the thread"
+                    .into()),
+            },
             ThreadOfNoLength => Words {
                 code: "thread-of-no-length",
                 message: "the thread has no length along its axis: each pass plunges to its depth and backs out \

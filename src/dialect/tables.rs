@@ -656,6 +656,10 @@ pub struct ThreadLead {
     /// its own lead (continuous thread cutting): a thread pass may be written as several.
     #[serde(default)]
     pub continuous: bool,
+    /// The word of a variable-lead thread move (Fanuc `G34`) that gives the lead's change
+    /// every spindle turn.
+    #[serde(default)]
+    pub change: Option<Address>,
 }
 
 /// A precise-lead word and the decimals it takes beyond the least increment's.

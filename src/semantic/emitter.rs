@@ -178,6 +178,61 @@ impl Emitter {
         self.push(modal, (Motion::Feed, to, NAN_POINT), Timing::Known { length, seconds }, true, true);
     }
 
+    /// A thread whose lead per turn starts at `lead_mm` and changes by `change_mm` every
+    /// spindle turn (`G34`/`G35`): one move per whole turn from the thread's start, each at
+    /// its own turn's lead, so that the tool is where the control puts it at every whole turn
+    /// (where the lead measure and the part model look) and every turn takes one turn of the
+    /// spindle. `turns` is how far the thread has turned when it reaches this move (a
+    /// chamfer goes on from the pass before it), and comes back as far as it has turned at
+    /// `to`. `None` where the lead shrinks to nothing before `to`: the rest is one move at
+    /// the last lead, and the caller says so.
+    pub fn varying_thread(
+        &mut self,
+        modal: &Modal,
+        to: Xz,
+        (lead_mm, change_mm): (f64, f64),
+        turns: &mut f64,
+    ) -> Option<()> {
+        let from = self.at;
+        let length = from.distance(to);
+        let lead_at = |n: f64| lead_mm + change_mm * n;
+        // The thread's advance over the turns from `n` to `n + f`.
+        let advance = |n: f64, f: f64| lead_at(n) * f + change_mm * f * f / 2.0;
+        let mut done = 0.0;
+        loop {
+            let n = *turns;
+            // The turns to the next whole turn, and the rest of the move.
+            let whole = (n + 1e-9).floor() + 1.0 - n;
+            let step = advance(n, whole);
+            if !(lead_at(n) > 0.0 && step > 0.0) {
+                self.thread(modal, to, lead_mm);
+                return None;
+            }
+            let rest = length - done;
+            if step >= rest - 1e-9 || self.is_full() {
+                // The last part turn: the turns `f` that advance `rest`.
+                let discriminant = lead_at(n) * lead_at(n) + 2.0 * change_mm * rest;
+                let f = if change_mm.abs() < 1e-15 {
+                    rest / lead_at(n)
+                } else if discriminant >= 0.0 {
+                    (discriminant.sqrt() - lead_at(n)) / change_mm
+                } else {
+                    self.thread(modal, to, lead_at(n));
+                    return None;
+                };
+                if rest > 1e-9 && f > 0.0 {
+                    self.thread(modal, to, rest / f);
+                    *turns = n + f;
+                }
+                return Some(());
+            }
+            done += step;
+            let t = done / length;
+            self.thread(modal, Xz::new(from.x + (to.x - from.x) * t, from.z + (to.z - from.z) * t), step / whole);
+            *turns = n + whole;
+        }
+    }
+
     /// An arc about `centre`.
     pub fn arc(&mut self, modal: &Modal, to: Xz, centre: Xz, ccw: bool, cutting: bool) {
         let motion = if ccw { Motion::Ccw } else { Motion::Cw };

@@ -13,6 +13,8 @@ pub enum MotionMode {
     Ccw,
     /// Fanuc `G32`/`G33`: a thread-cutting move.
     Thread,
+    /// Fanuc `G34`: a thread-cutting move whose lead changes by `K` every spindle turn.
+    VariableLeadThread,
     /// Fanuc single cycles repeat on later blocks that give new end points.
     TurningCycle,
     ThreadCycle,

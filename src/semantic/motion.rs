@@ -181,18 +181,30 @@ impl Interpreter<'_, '_> {
                     self.arc_to(to, words, ccw, span);
                 }
             }
-            MotionMode::Thread => {
+            MotionMode::Thread | MotionMode::VariableLeadThread => {
                 self.finish_corner();
                 let lead = self.address_value(words, Address::F).or(self.address_value(words, Address::E));
                 let lead =
                     lead.map(|v| self.modal.frame.feed_mm(v)).unwrap_or(self.modal.frame.feed_mm(self.modal.feed));
+                // Fanuc `G34 X Z F K`: the table's change word (`K`) is the lead's change every
+                // spindle turn, written in each block; a block without one cuts a constant lead.
+                let change = match (self.modal.motion, self.tables.thread_lead.change) {
+                    (MotionMode::VariableLeadThread, Some(address)) => {
+                        self.address_value(words, address).map_or(0.0, |k| self.modal.frame.feed_mm(k))
+                    }
+                    _ => 0.0,
+                };
                 if let Some(to) = axes.target {
                     if !self.emitter.at.is_finite() {
                         self.unknown_position(span);
                         self.emitter.arrive(to);
                     } else {
                         let modal = self.modal.clone();
-                        self.emitter.thread(&modal, to, lead);
+                        if change == 0.0 {
+                            self.emitter.thread(&modal, to, lead);
+                        } else if self.emitter.varying_thread(&modal, to, (lead, change), &mut 0.0).is_none() {
+                            self.error(DiagnosticKind::LeadShrinksToNothing, span);
+                        }
                         self.report_zero_feed(span);
                     }
                 }

@@ -446,13 +446,17 @@ impl BlockContext<'_, '_> {
                         code_written = true;
                     }
                 }
-                _ => match self.lead.filter(|lead| lead.at == k) {
-                    Some(lead) => {
+                _ => match self.lead {
+                    Some(lead) if lead.at == k => {
                         for &(address, number) in &lead.words {
                             out.out.number(address, number);
                         }
                     }
-                    None => out.copy(id),
+                    Some(super::cycles::LeadWords { change: Some((at, value)), .. }) if *at == k => match word.kind {
+                        WordKind::Number { address, .. } => out.out.number(address, *value),
+                        _ => out.copy(id),
+                    },
+                    _ => out.copy(id),
                 },
             }
             if last_coordinate == Some(k) {

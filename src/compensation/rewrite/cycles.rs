@@ -16,11 +16,11 @@
 //! A consumed block with a comment leaves the comment behind.
 
 use std::collections::{BTreeMap, HashMap, HashSet};
-use std::ops::Range;
+use std::ops::{Range, RangeInclusive};
 
 use crate::back::motion::Codes;
 use crate::back::motion::{GivenNext, Restore};
-use crate::back::thread_lead::{ProgrammedLead, WrittenLead, spelled, written_drift_mm, written_lead};
+use crate::back::thread_lead::{ProgrammedLead, WrittenLead, spelled, written_change, written_drift_mm, written_lead};
 use crate::back::{Axes, CycleBlocks, carried_words, carry_traced, cycle_blocks};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::expand;
@@ -254,10 +254,9 @@ pub(super) fn end_words_offset(program: &Program<'_>, lowered: &Lowered, e: &Exp
 ///   leaves the thread (`end_words_offset`);
 /// - a count of threads (OSP's `J`, with which `F` is the length of that many) is the lead
 ///   word's, which `thread_lead` writes with it (as it writes a lead the slide needs as
-///   `F` over `J`).
-///
-/// Not so: a lead change (`E` of OSP: the toolpath holds such a thread at its mean lead, so
-/// no check could judge a corrected one).
+///   `F` over `J`);
+/// - a lead change every turn (OSP's `E` of `G34`/`G35` and the compound cycles) is the
+///   lead's, which `thread_lead` scales with it.
 fn final_pass_role(role: crate::dialect::Role) -> bool {
     use crate::dialect::Role;
     matches!(
@@ -286,6 +285,7 @@ fn final_pass_role(role: crate::dialect::Role) -> bool {
             | Role::Tool
             | Role::Chamfer
             | Role::ThreadsPerInch
+            | Role::LeadChange
     )
 }
 
@@ -318,6 +318,10 @@ pub(super) fn with_lead(program: &Program<'_>, call: usize, lead: &LeadWords) ->
     for k in 0..program.words_of(block).len() {
         if k == lead.at {
             words.extend(lead.words.iter().map(|&(address, number)| NewWord::Number(address, number)));
+        } else if let Some((_, value)) = lead.change.filter(|&(at, _)| at == k)
+            && let WordKind::Number { address, .. } = program.word(block.first_word + k as u32).kind
+        {
+            words.push(NewWord::Number(address, value));
         } else {
             words.push(NewWord::Copy(block.first_word + k as u32));
         }
@@ -585,7 +589,7 @@ fn expanded_leads(
             let grid = crate::back::grid::Grid::new(&lowered.coordinates_at(k));
             let programmed = ProgrammedLead { address: crate::dialect::Address::F, written: m.f_word, count: None };
             let thread_mm = lowered.toolpath.start_of(k).distance(m.end);
-            pass = lead_ratio(lowered, k, model)
+            pass = lead_ratio(lowered, k..=k, model)
                 .and_then(|ratio| written_lead(&table, &grid, programmed, m.f_word * ratio, thread_mm))
                 .filter(|lead| lead.lead != m.f_word || lead.unheld_mm.is_some());
             last = pass.clone().map(|lead| (m.f_word, lead));
@@ -876,6 +880,9 @@ pub(super) fn profile_copy(
 pub(crate) struct LeadWords {
     pub at: usize,
     pub words: smallvec::SmallVec<[(crate::dialect::Address, crate::syntax::Number); 2]>,
+    /// A variable lead's change word (`E` of OSP `G34`/`G35`, `K` of Fanuc `G34`), where it
+    /// changes: its place among the block's words and its new value.
+    pub change: Option<(usize, crate::syntax::Number)>,
 }
 
 /// A thread cycle's lead as written and as compensation writes it.
@@ -996,22 +1003,44 @@ pub(super) fn thread_lead(
         Some(_) => return None,
         None => 1.0,
     };
-    let ratio = lead_ratio(lowered, pass, model)?;
+    let moves = pass_moves(lowered, pass);
+    let ratio = lead_ratio(lowered, moves.clone(), model)?;
     let mark = lowered.coordinates_at(pass);
     let grid = crate::back::grid::Grid::new(&mark);
     let written = number.to_f64();
     let programmed = ProgrammedLead { address, written, count: count_word.map(|_| count) };
-    let thread_mm = lowered.toolpath.start_of(pass).distance(lowered.toolpath.moves.get(pass)?.end);
+    let thread_mm = lowered.toolpath.start_of(*moves.start()).distance(lowered.toolpath.moves.get(pass)?.end);
+    // A variable lead's change every turn scales with the lead: the slide's travel over `n`
+    // turns, `F·n + E·n²/2`, is the programmed one times the ratio where both words are.
+    let change_word = match command {
+        Some(command) => command.param(Role::LeadChange),
+        None => table.change.and_then(|change| {
+            block
+                .word_ids()
+                .find(|&w| matches!(program.word(w).kind, WordKind::Number { address, .. } if address == change))
+        }),
+    };
+    let change = match change_word.map(|w| (w, program.word(w).kind)) {
+        Some((w, WordKind::Number { number, .. })) => written_change(&grid, number, number.to_f64() * ratio)
+            .and_then(|value| Some((usize::try_from(w.checked_sub(block.first_word)?).ok()?, value))),
+        Some(_) => return None,
+        None => None,
+    };
     // A lead written with more digits than the table gives it (a program's `F0.07692308`)
     // that holds the lead the slide needs over the thread stays as written.
-    written_drift_mm(&grid, programmed, written / count * ratio, thread_mm)?;
-    let lead = written_lead(&table, &grid, programmed, written / count * ratio, thread_mm)?;
+    let lead = match written_drift_mm(&grid, programmed, written / count * ratio, thread_mm) {
+        Some(_) => written_lead(&table, &grid, programmed, written / count * ratio, thread_mm)?,
+        None if change.is_some() => {
+            WrittenLead { words: smallvec::smallvec![(address, number)], lead: written / count, unheld_mm: None }
+        }
+        None => return None,
+    };
     let (words, unheld_mm, lead) = (lead.words, lead.unheld_mm, lead.lead);
     let old = written / count;
-    if lead == old && unheld_mm.is_none() {
+    if lead == old && unheld_mm.is_none() && change.is_none() {
         return None;
     }
-    let from_text = {
+    let mut from_text = {
         let mut text = String::from_utf8_lossy(program.text(program.word(lead_id).span)).into_owned();
         if let Some(w) = count_word {
             text.push(' ');
@@ -1025,22 +1054,61 @@ pub(super) fn thread_lead(
         to.push(' ');
         to.push_str(&String::from_utf8_lossy(program.text(program.word(w).span)));
     }
-    let change = LeadChange { from: from_text, to, change_ppm: ppm(lead, old), unheld_mm, pieces: None };
-    Some((LeadWords { at, words }, change))
+    if let (Some(w), Some((_, value))) = (change_word, change)
+        && let WordKind::Number { address: change_address, .. } = program.word(w).kind
+    {
+        from_text.push(' ');
+        from_text.push_str(&String::from_utf8_lossy(program.text(program.word(w).span)));
+        to.push(' ');
+        to.push_str(&spelled(&[(change_address, value)]));
+    }
+    let lead_change = LeadChange { from: from_text, to, change_ppm: ppm(lead, old), unheld_mm, pieces: None };
+    Some((LeadWords { at, words, change }, lead_change))
 }
 
-/// The programmed lead of thread move `pass` over the lead the slide needs to cut it on
-/// `model`: the nominal travel along the thread's axis over the travel the model predicts
-/// for it (the model's mean slope over the pass, from its start to its end at the times it
-/// runs: a slide 100 ppm long gets a lead 100 ppm short). The slope is the model's, not the
-/// written end words': those are rounded to the increment, which over a short thread would
-/// be tens of ppm.
-pub(super) fn lead_ratio(lowered: &Lowered, pass: usize, model: &crate::error_model::ErrorModel) -> Option<f64> {
-    let m = lowered.toolpath.moves.get(pass)?;
-    let (from, to) = (lowered.toolpath.start_of(pass), m.end);
+/// The programmed lead of the thread moves `moves` (one pass, along one line) over the lead
+/// the slide needs to cut them on `model`: the nominal travel along the thread's axis over
+/// the travel the model predicts for it (the model's mean slope over the pass, from its start
+/// to its end at the times it runs: a slide 100 ppm long gets a lead 100 ppm short). The
+/// slope is the model's, not the written end words': those are rounded to the increment,
+/// which over a short thread would be tens of ppm.
+pub(super) fn lead_ratio(
+    lowered: &Lowered,
+    moves: RangeInclusive<usize>,
+    model: &crate::error_model::ErrorModel,
+) -> Option<f64> {
+    let (first, last) = (*moves.start(), *moves.end());
+    let (m0, m) = (lowered.toolpath.moves.get(first)?, lowered.toolpath.moves.get(last)?);
+    let (from, to) = (lowered.toolpath.start_of(first), m.end);
     let along_z = (to.z - from.z).abs() >= (to.x - from.x).abs();
     let axis = |p: Xz| if along_z { p.z } else { p.x };
     let actual = |at: Xz, seconds: f64| super::thread_pieces::actual_on(model, m, from, at, seconds);
-    let ratio = (axis(to) - axis(from)) / (axis(actual(to, m.t_end)) - axis(actual(from, m.t_start)));
+    let ratio = (axis(to) - axis(from)) / (axis(actual(to, m.t_end)) - axis(actual(from, m0.t_start)));
     Some(ratio).filter(|r| r.is_finite() && *r > 0.0)
+}
+
+/// The thread moves of the pass that ends with thread move `pass`: it and the thread moves
+/// of its block right before it that run on along its line (a variable lead is one move a
+/// turn, `Emitter::varying_thread`).
+pub(super) fn pass_moves(lowered: &Lowered, pass: usize) -> RangeInclusive<usize> {
+    let toolpath = &lowered.toolpath;
+    let Some(m) = toolpath.moves.get(pass) else { return pass..=pass };
+    let (from, to) = (toolpath.start_of(pass), m.end);
+    let length = from.distance(to);
+    let mut first = pass;
+    while let Some(k) = first.checked_sub(1)
+        && let Some(before) = toolpath.moves.get(k)
+        && before.threading
+        && before.motion == Motion::Feed
+        && before.source == m.source
+        && length > 0.0
+    {
+        let (a, b) = (toolpath.start_of(k), before.end);
+        let across = ((b.x - a.x) * (to.z - from.z) - (b.z - a.z) * (to.x - from.x)) / length;
+        if across.abs() > 1e-6 * a.distance(b).max(1.0) {
+            break;
+        }
+        first = k;
+    }
+    first..=pass
 }

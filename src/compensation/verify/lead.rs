@@ -61,12 +61,12 @@ pub struct LeadFigures {
     pub worst_move: Option<usize>,
 }
 
-/// One pass measured: its first move, its lead along the axis per turn (signed, mm), and
-/// the predicted advance along the axis after each whole turn from its start (mm).
+/// One pass measured: its first move, and after each whole turn from its start the
+/// advance along the axis its moves program and the one predicted (mm, signed).
 #[derive(Debug, Clone, PartialEq)]
 struct PassLead {
     first_move: usize,
-    axial_lead: f64,
+    programmed: Vec<f64>,
     advances: Vec<f64>,
 }
 
@@ -87,19 +87,19 @@ pub fn figures(
     // thread cycle starts there), and a constant offset moves where the thread starts, not
     // its lead. Centred, the figure is how far a flank lies along the axis from where the
     // ideal thread puts it, the same kind of figure as the deviation it is bounded with.
-    let error = |pass: &PassLead, lead: f64| {
-        let errors = pass.advances.iter().enumerate().skip(1).map(|(n, advance)| advance - n as f64 * lead);
+    let error = |pass: &PassLead, programmed: &[f64]| {
+        let errors = pass.advances.iter().zip(programmed).skip(1).map(|(advance, programmed)| advance - programmed);
         let (low, high) = errors.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), e| (l.min(e), h.max(e)));
         if high >= low { (high - low) / 2.0 } else { 0.0 }
     };
-    let before_mm = before.iter().map(|p| error(p, p.axial_lead)).fold(0.0, f64::max);
+    let before_mm = before.iter().map(|p| error(p, &p.programmed)).fold(0.0, f64::max);
     let mut after_mm = 0.0;
     let mut worst_move = None;
     for (programmed, cut) in before.iter().zip(&after) {
         // Turns the original does not make are not its thread.
         let turns = cut.advances.len().min(programmed.advances.len());
         let cut = PassLead { advances: cut.advances[..turns].to_vec(), ..cut.clone() };
-        let e = error(&cut, programmed.axial_lead);
+        let e = error(&cut, &programmed.programmed);
         if worst_move.is_none() || e > after_mm {
             (after_mm, worst_move) = (e, Some(programmed.first_move));
         }
@@ -147,7 +147,6 @@ fn pass(program: &CompactPath, moves: &[(usize, f64)], points: &[(usize, f64, Xz
     if lead.is_nan() || lead <= 0.0 || length <= 0.0 {
         return None;
     }
-    let sign = (axis(end) - axis(start)).signum();
     let direction = Xz::new((end.x - start.x) / length, (end.z - start.z) / length);
     // The measured stretch: the first move and those that go on along its line (not a
     // chamfer out of the thread), their lengths and leads. A pass written as consecutive
@@ -189,8 +188,22 @@ fn pass(program: &CompactPath, moves: &[(usize, f64)], points: &[(usize, f64, Xz
         // The pass's start was not predicted (it starts the program): not measured.
         return None;
     }
-    let axial_lead = lead * sign * (axis(end) - axis(start)).abs() / length;
     let turns = (before + 1e-9).floor() as usize;
+    // Where the moves put the tool after each whole turn: each move turns the spindle its
+    // length over its own lead (a variable lead is one move per turn, `Emitter::varying_thread`).
+    let mut programmed = Vec::with_capacity(turns + 1);
+    let (mut m, mut turned) = (0, 0.0);
+    for n in 0..=turns {
+        let s = n as f64;
+        while let Some(&(_, len, lead)) = stretch.get(m).filter(|&&(_, len, lead)| turned + len / lead < s - 1e-9) {
+            turned += len / lead;
+            m += 1;
+        }
+        let Some(&(index, len, lead)) = stretch.get(m).or(stretch.last()) else { break };
+        let (a, b) = (program.start_of(index), program.moves().get(index)?.end);
+        let t = (s - turned) * lead / len;
+        programmed.push(axis(a) + (axis(b) - axis(a)) * t - axis(start));
+    }
     let mut advances = Vec::with_capacity(turns + 1);
     let mut j = 0;
     for n in 0..=turns {
@@ -208,7 +221,7 @@ fn pass(program: &CompactPath, moves: &[(usize, f64)], points: &[(usize, f64, Xz
         };
         advances.push(axis(p) - axis(p0));
     }
-    Some(PassLead { first_move: first, axial_lead, advances })
+    Some(PassLead { first_move: first, programmed, advances })
 }
 
 /// How far across the first move's line a thread move after it may run, per length, and

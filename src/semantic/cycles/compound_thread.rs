@@ -58,7 +58,6 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     if !axes.face {
         height_read_as_diameter(interp, command, &infeed, lead_mm);
     }
-    let lead = thread_pass::mean_lead(lead_mm, change, length);
     for pass in &infeed.plan.passes {
         let above_root = height - to_mm(pass.depth);
         let shift = pass.flank * above_root * infeed.flank_slope * toward_start;
@@ -73,7 +72,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
             chamfer,
         };
         for _ in 0..infeed.starts {
-            thread.emit(interp, &modal, lead);
+            let lasts = thread.emit(interp, &modal, (lead_mm, change));
+            thread_pass::report_lead_to_nothing(interp, lasts, span);
         }
     }
     interp.report_zero_feed(span);

@@ -82,7 +82,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
         let thread = Pass { axes, from, points, chamfer: None };
         for _ in 0..infeed.starts {
             let first = interp.emitter.moves.len();
-            thread.emit(interp, &modal, lead_mm);
+            thread.emit(interp, &modal, (lead_mm, 0.0));
             if n + 1 == infeed.plan.passes.len() {
                 interp.cycle_root = root_blocks(interp, &profile.segments[..approach], elements, &thread, first);
             }

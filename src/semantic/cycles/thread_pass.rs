@@ -110,16 +110,29 @@ impl Pass {
         out.moves
     }
 
-    /// Run the pass: rapids at the rapid rate, thread moves at `lead_mm` per revolution.
-    /// `modal` carries the F (the lead, program units) and S the moves record.
-    pub(in crate::semantic) fn emit(&self, interp: &mut Interpreter<'_, '_>, modal: &Modal, lead_mm: f64) {
+    /// Run the pass: rapids at the rapid rate, thread moves at `lead_mm` per revolution,
+    /// growing by `change_mm` every revolution from the pass's first thread move
+    /// (`G34`/`G35`: a chamfer goes on at the lead the thread reached). `modal` carries the F
+    /// (the lead, program units) and S the moves record. False where the lead shrinks to
+    /// nothing before the pass's end.
+    pub(in crate::semantic) fn emit(
+        &self,
+        interp: &mut Interpreter<'_, '_>,
+        modal: &Modal,
+        (lead_mm, change_mm): (f64, f64),
+    ) -> bool {
+        let mut turns = 0.0;
+        let mut lasts = true;
         for m in self.moves() {
-            if m.threading {
+            if !m.threading {
+                interp.emitter.rapid(modal, m.to);
+            } else if change_mm == 0.0 {
                 interp.emitter.thread(modal, m.to, lead_mm);
             } else {
-                interp.emitter.rapid(modal, m.to);
+                lasts &= interp.emitter.varying_thread(modal, m.to, (lead_mm, change_mm), &mut turns).is_some();
             }
         }
+        lasts
     }
 }
 
@@ -162,6 +175,14 @@ pub(in crate::semantic) fn lead_change(interp: &mut Interpreter<'_, '_>, command
     interp.param(command, Role::LeadChange).map_or(0.0, |e| interp.modal.frame.feed_mm(e))
 }
 
+/// An error where a pass's lead shrank to nothing before the thread's end: the control
+/// stops with an alarm there.
+pub(in crate::semantic) fn report_lead_to_nothing(interp: &mut Interpreter<'_, '_>, lasts: bool, span: Span) {
+    if !lasts {
+        interp.error(DiagnosticKind::LeadShrinksToNothing, span);
+    }
+}
+
 /// The chamfer at the thread's end while chamfering is on (`M23`): the call's `L`, else one
 /// lead; none when it is off.
 pub(in crate::semantic) fn chamfer(interp: &mut Interpreter<'_, '_>, command: &Command, lead_mm: f64) -> Option<f64> {
@@ -173,22 +194,6 @@ pub(in crate::semantic) fn chamfer(interp: &mut Interpreter<'_, '_>, command: &C
 /// thread for a longitudinal pass), −1 on the other side.
 pub fn outward(axes: Axes, from: Xz, end: Xz) -> f64 {
     if axes.depth(from) >= axes.depth(end) { 1.0 } else { -1.0 }
-}
-
-/// The lead per revolution that cuts `length` in the same time as a lead starting at
-/// `lead` and changing by `change` every revolution (`G34`/`G35`, `E`): the revolutions
-/// `n` solve `lead·n + change·n²/2 = length`. A lead that would shrink to nothing before
-/// the end keeps its starting value.
-pub fn mean_lead(lead: f64, change: f64, length: f64) -> f64 {
-    if change.abs() < 1e-12 || length <= 0.0 || lead <= 0.0 {
-        return lead;
-    }
-    let discriminant = lead * lead + 2.0 * change * length;
-    if discriminant < 0.0 {
-        return lead;
-    }
-    let revolutions = (discriminant.sqrt() - lead) / change;
-    if revolutions.is_finite() && revolutions > 0.0 { length / revolutions } else { lead }
 }
 
 #[cfg(test)]
@@ -219,14 +224,5 @@ mod tests {
             points,
             [(14.0, 5.0, false), (14.0, -18.5, true), (15.5, -20.0, true), (20.0, -20.0, false), (20.0, 5.0, false)]
         );
-    }
-
-    #[test]
-    fn the_mean_lead_of_a_growing_lead() {
-        // From 1 mm growing 0.1 mm a revolution, 10 revolutions cut 10 + 0.1·100/2 = 15 mm.
-        assert!((mean_lead(1.0, 0.1, 15.0) - 1.5).abs() < 1e-12);
-        assert_eq!(mean_lead(1.0, 0.0, 15.0), 1.0);
-        // A lead shrinking to zero before the end keeps its start value.
-        assert_eq!(mean_lead(1.0, -0.1, 100.0), 1.0);
     }
 }

@@ -20,7 +20,8 @@
 //! - `C` (the phase of one start of a multi-start thread) turns the spindle, not the
 //!   path: it changes no move.
 //! - `E` on `G34` makes the lead grow by |E| per revolution, on `G35` shrink by |E|; on
-//!   `G33` it is taken as written. The time of a pass uses the mean lead.
+//!   `G33` it is taken as written. Such a pass is one move per spindle turn, each at its
+//!   turn's lead (`Emitter::varying_thread`).
 //! - `F` and `S` belong to the cycle; after it, the feed and speed in force are the ones
 //!   before it.
 
@@ -50,7 +51,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     };
     let chamfer = thread_pass::chamfer(interp, command, lead_mm);
     let pass = Pass { axes, from, points: vec![axes.point(start_along, axes.depth(end) + taper), end], chamfer };
-    pass.emit(interp, &modal, thread_pass::mean_lead(lead_mm, change, length));
+    let lasts = pass.emit(interp, &modal, (lead_mm, change));
+    thread_pass::report_lead_to_nothing(interp, lasts, span);
     interp.report_zero_feed(span);
     Flow::Next
 }
