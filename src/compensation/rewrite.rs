@@ -365,6 +365,8 @@ pub fn finish(
     let mut threads: HashMap<usize, (Option<cycles::LeadChange>, bool)> = HashMap::new();
     // The plan each kept call's final pass is written from, by its move.
     let mut pass_plans: HashMap<usize, MovePlan> = HashMap::new();
+    // Where each thread call starts as written, by its expansion.
+    let mut call_starts: HashMap<usize, Xz> = HashMap::new();
     if choice.threads_in_place && !choice.expand_all {
         for (k, e) in lowered.expansions.iter().enumerate() {
             let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
@@ -383,6 +385,20 @@ pub fn finish(
                 let grid = Grid::new(&lowered.coordinates_at(before_pass));
                 motion.inherited.insert(e.block, grid.point(before_plan.end()));
             }
+            // Where the call starts as written: where the move before it leaves the tool, or
+            // right after a call that stays, where that call started (a cycle returns to its
+            // start point, whatever the plan of its last move says).
+            let after_call = k.checked_sub(1).filter(|&j| {
+                lowered.expansions.get(j).is_some_and(|before| before.moves.end == e.moves.start)
+                    && !chosen.get(j).copied().unwrap_or(true)
+            });
+            let Some(call_start) = after_call
+                .and_then(|j| call_starts.get(&j).copied())
+                .or_else(|| plans.get(e.moves.start..e.moves.start + 1)?.first().map(|p| p.start))
+            else {
+                continue;
+            };
+            call_starts.insert(k, call_start);
             // A cycle that cannot be written out (an OSP thread) is not chosen: its final pass
             // says whether it needs a correction.
             let expandable = cycles::expandable(program, lowered, e);
@@ -391,14 +407,14 @@ pub fn finish(
                 continue;
             }
             if motion.thread_writable(e.block, pass, plans)
-                && let Some(plan) = motion.thread_pass_plan(e, pass, plans)
+                && let Some(plan) = motion.thread_pass_plan(e, (call_start, pass), plans)
             {
                 let lead = cycles::thread_lead(program, lowered, e.block, pass, model);
                 let change = lead.map(|(words, change)| {
                     motion.leads.insert(e.block, words);
                     change
                 });
-                motion.write_thread_pass(e.block, pass, &plan);
+                motion.write_thread_pass(e.block, (e.moves.start, pass), &plan);
                 pass_plans.insert(pass, plan);
                 chosen[k] = false;
                 // A call whose words already hold its final pass (a repeated `G92` that takes
@@ -477,8 +493,8 @@ pub fn finish(
                 THREAD_NOT_IN_PLACE
             } else if threads_cut {
                 "its moves change, and its end words do not name its final pass (a word written as an \
-                 expression, a final pass that does not run along the thread, or incremental end words with a \
-                 chamfer out of it), so they cannot carry the correction"
+                 expression, or a final pass that does not run along the thread), so they cannot carry the \
+                 correction"
             } else if !choice.profiles_in_place && !choice.profiles_copied {
                 PROFILE_NOT_COPIED
             } else if !choice.profiles_in_place {
@@ -908,7 +924,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             }
         }
         let plans = own_plans.as_deref().unwrap_or(plans);
-        let text = self.block_text(block, run.moves.clone(), plans);
+        let text = self.block_text(block, run.moves.clone(), plans, None);
         self.settle(block, run.moves.clone(), text);
     }
 
@@ -934,7 +950,15 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
 
     /// The text `block` is written as for its moves `moves` (`plans` theirs), `None` where it
     /// writes them as it is or cannot carry them (refused with a diagnostic).
-    fn block_text(&mut self, block: usize, moves: Range<usize>, plans: &[MovePlan]) -> Option<WrittenText> {
+    /// `from`: the move whose start the block's words count from where it is not the move
+    /// they name (a thread cycle call's incremental end words count from its start point).
+    fn block_text(
+        &mut self,
+        block: usize,
+        moves: Range<usize>,
+        plans: &[MovePlan],
+        from: Option<usize>,
+    ) -> Option<WrittenText> {
         let (program, lowered, tools) = (self.program, self.lowered, self.tools);
         let first = moves.start;
         let (mut single, mut several, any_change) = Self::written_moves(moves.clone(), plans);
@@ -966,8 +990,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     inherited: self.inherited.get(&block).copied(),
                     carried: self.carrying.filter(|&(b, _)| b == block).map_or_else(Restore::default, |(_, r)| r),
                 };
-                let contour_start =
-                    written::contour_start(&lowered.toolpath, merged.as_ref().map_or(single, |&(_, from, _)| from));
+                let from = from.or(merged.as_ref().map(|&(_, from, _)| from)).unwrap_or(single);
+                let contour_start = written::contour_start(&lowered.toolpath, from);
                 let plan = match &merged {
                     Some((_, _, plan)) => Some(plan),
                     None => plans.get(single - first),
@@ -1105,7 +1129,12 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     /// away needs no micrometres (issue 25), and a `G92` pass of `X` alone stays as written.
     /// Its other words (the end of the thread, which a repeated call takes on) and its lead
     /// keep their correction.
-    pub(super) fn thread_pass_plan(&self, e: &Expansion, pass: usize, plans: &KeptPlans) -> Option<MovePlan> {
+    pub(super) fn thread_pass_plan(
+        &self,
+        e: &Expansion,
+        (start, pass): (Xz, usize),
+        plans: &KeptPlans,
+    ) -> Option<MovePlan> {
         let [plan] = plans.get(pass..pass + 1)? else { return None };
         let mut plan = plan.clone();
         let moves = &self.lowered.toolpath.moves;
@@ -1126,6 +1155,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         }
         // A pass chamfered out: its end words lie the chamfer's length on.
         let offset = cycles::end_words_offset(self.program, self.lowered, e, pass);
+        // Incremental end words count from the call's start point.
+        plan.start = start;
         for segment in &mut plan.segments {
             if let Segment::Line { end } = segment {
                 *end = Xz::new(end.x + offset.x, end.z + offset.z);
@@ -1136,8 +1167,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
 
     /// Write the words of the kept thread cycle called at `block` for its final pass `pass`,
     /// from `plan` (`thread_pass_plan`).
-    pub(super) fn write_thread_pass(&mut self, block: usize, pass: usize, plan: &MovePlan) {
-        let text = self.block_text(block, pass..pass + 1, std::slice::from_ref(plan));
+    pub(super) fn write_thread_pass(&mut self, block: usize, (call, pass): (usize, usize), plan: &MovePlan) {
+        let text = self.block_text(block, pass..pass + 1, std::slice::from_ref(plan), Some(call));
         self.settle(block, pass..pass + 1, text);
     }
 
@@ -1146,7 +1177,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     pub(super) fn write_profile(&mut self, blocks: &[(usize, Range<usize>)], plans: &KeptPlans) {
         for (block, moves) in blocks {
             let Some(plans) = plans.get(moves.clone()) else { continue };
-            let text = self.block_text(*block, moves.clone(), plans);
+            let text = self.block_text(*block, moves.clone(), plans, None);
             self.settle(*block, moves.clone(), text);
         }
     }
@@ -1171,7 +1202,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                 Carrier::Block { block, moves } => {
                     let Some(next_plans) = plans.get(moves.clone()) else { continue };
                     self.carrying = Some((block, fold.restore));
-                    let text = self.block_text(block, moves.clone(), next_plans);
+                    let text = self.block_text(block, moves.clone(), next_plans, None);
                     self.carrying = None;
                     let Some(text) = text else { continue };
                     match self.first_runs.get(block).copied() {

@@ -210,8 +210,10 @@ impl BlockContext<'_, '_> {
         let to = grid.point(segment.end());
         let mut out = Words::new();
         let axis = |absolute: bool, end: i64, begin: i64| if absolute { end } else { end - begin };
-        let held_x = inherited.filter(|_| form.x.1).map_or(from.x, |p| p.x);
-        let held_z = inherited.filter(|_| form.z.1).map_or(from.z, |p| p.z);
+        // An axis a repeated cycle call does not name ends where the call before it ended,
+        // absolute or incremental alike.
+        let held_x = inherited.map_or(from.x, |p| p.x);
+        let held_z = inherited.map_or(from.z, |p| p.z);
         if form.x_named || to.x != held_x {
             out.push((Slot::X, axis(form.x.1, to.x, from.x)));
         }

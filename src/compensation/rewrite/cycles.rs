@@ -211,16 +211,10 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
     // A chamfer out of the thread (Fanuc's `r` of `G76 P(m)(r)(a)`, OSP's `L` with `M23`):
     // the move before it runs along the thread to where the chamfer starts, and the end
     // words name the chamfer's end along the thread at that move's depth, a fixed step from
-    // its end that moves with it. Written absolute only: incremental end words count from
-    // the cycle's start point, not from that move.
-    let incremental = command.is_some_and(|c| {
-        c.params
-            .iter()
-            .any(|p| matches!(p.role, crate::dialect::Role::IncrementalX | crate::dialect::Role::IncrementalZ))
-    });
+    // its end that moves with it.
     let before = last.checked_sub(1).filter(|&k| k >= e.moves.start)?;
     let threads = lowered.toolpath.moves.get(before).is_some_and(|m| m.threading);
-    (threads && !incremental && along_the_thread(before)).then_some(before)
+    (threads && along_the_thread(before)).then_some(before)
 }
 
 /// Where a kept thread call's end words lie from the end of its final pass `pass`
