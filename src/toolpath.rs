@@ -99,6 +99,10 @@ pub struct Move {
     pub s_word: f64,
     /// Spindle speed, rpm.
     pub rpm: f64,
+    /// Where the spindle stands, in turns from its index, as a thread pass starts: the start
+    /// of a multi-start thread its pass cuts (OSP `Q` starts or `C`, Fanuc `G92 Q`); 0 for
+    /// one start and for every move that does not thread.
+    pub phase: f64,
     pub t_start: f64,
     pub t_end: f64,
     /// The block the move comes from; for a cycle, its call block.

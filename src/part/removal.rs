@@ -170,7 +170,9 @@ impl<'a> Removal<'a> {
         let (c0, c1) = (tool.centre(start), tool.centre(m.end));
         if m.threading && m.motion == Motion::Feed {
             let pass = self.thread.take();
-            let turns = pass.as_ref().map_or(0.0, |p| p.turns);
+            // A pass starts where the spindle stands from its index (`Move::phase`): the
+            // section at the index sees a later start's grooves that share of a turn on.
+            let turns = pass.as_ref().map_or(m.phase, |p| p.turns);
             let mut stamped = pass.as_ref().and_then(|p| p.stamped);
             if let Some(stamps) = ThreadStamps::along(turns, (c0, c1), start, m, &self.stock) {
                 let count = stamps.count;
@@ -308,7 +310,7 @@ impl Removal<'_> {
         let tool = self.tool(m, at);
         let form = Sweep::rounded(tool.placed(tool.centre(at)), tool.nose);
         self.stamp(&form, index)?;
-        let turns = self.thread.as_ref().map_or(0.0, |p| p.turns) + turns.max(0.0);
+        let turns = self.thread.as_ref().map_or(m.phase, |p| p.turns) + turns.max(0.0);
         self.thread = Some(ThreadPass { turns, stamped: Some(turns), end: form, index });
         Some(())
     }

@@ -44,6 +44,9 @@ pub struct Emitter {
     /// Rapid traverse rate of each axis, mm/min (X as the radial axis moves).
     pub rapid: Xz,
     pub context: Context,
+    /// The spindle's turns from its index at which the thread passes emitted now start
+    /// (`Move::phase`); a cycle sets it for the passes of one start and puts it back to 0.
+    pub thread_phase: f64,
     /// Set when a feed move had no usable feed: the caller reports it once per block.
     pub zero_feed: bool,
     /// Where the first move started.
@@ -74,6 +77,7 @@ impl Emitter {
             at: start,
             rapid,
             context: Context { source: Span::SYNTHETIC, cycle: Span::SYNTHETIC },
+            thread_phase: 0.0,
             zero_feed: false,
             first_start: None,
             compensated: false,
@@ -143,6 +147,7 @@ impl Emitter {
             f_word: modal.feed,
             s_word: modal.speed,
             rpm: modal.rpm_at(self.at.x),
+            phase: if threading { self.thread_phase } else { 0.0 },
             t_start,
             t_end,
             source: self.context.source,

@@ -293,6 +293,7 @@ impl Run<'_> {
             f_word: next.f_word,
             s_word: next.s_word,
             rpm: next.rpm,
+            phase: 0.0,
             t_start: 0.0,
             t_end: seconds,
             source: next.source,

@@ -73,9 +73,10 @@ pub struct CompactPath {
     /// move, mm (its feed over its spindle speed), in move order: the lead measure
     /// (`compensation::verify::lead`) reads them; a program without threads holds none.
     threads: Vec<(usize, f64)>,
-    /// Every move with `Move::threading` set, with its spindle speed (rpm), in move order:
-    /// the part model cuts a thread's form from them (`as_move`).
-    threading: Vec<(usize, f64)>,
+    /// Every move with `Move::threading` set, with its spindle speed (rpm) and phase
+    /// (`Move::phase`), in move order: the part model cuts a thread's form from them
+    /// (`as_move`).
+    threading: Vec<(usize, f64, f64)>,
     /// The block each move comes from (`Move::source`).
     sources: Vec<Span>,
     reach: Xz,
@@ -109,7 +110,7 @@ impl CompactPath {
                 threads.push((k, m.feed / m.rpm));
             }
             if m.threading {
-                threading.push((k, m.rpm));
+                threading.push((k, m.rpm, m.phase));
             }
             sources.push(m.source);
             moves.push(CompactMove {
@@ -136,7 +137,8 @@ impl CompactPath {
     /// and S words as NaN, feed per minute, and no cycle.
     pub fn as_move(&self, index: usize) -> Option<Move> {
         let m = self.moves.get(index)?;
-        let rpm = self.threading.binary_search_by_key(&index, |&(k, _)| k).ok().map(|k| self.threading[k].1);
+        let thread = self.threading.binary_search_by_key(&index, |&(k, ..)| k).ok().map(|k| self.threading[k]);
+        let rpm = thread.map(|(_, rpm, _)| rpm);
         Some(Move {
             motion: m.motion,
             compensation: m.compensation,
@@ -152,6 +154,7 @@ impl CompactPath {
             f_word: f64::NAN,
             s_word: f64::NAN,
             rpm: rpm.unwrap_or(0.0),
+            phase: thread.map_or(0.0, |(.., phase)| phase),
             t_start: m.t_start,
             t_end: m.t_end,
             source: self.source(index),

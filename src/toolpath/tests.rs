@@ -16,6 +16,7 @@ fn feed(end: Xz) -> Move {
         f_word: 100.0,
         s_word: 1000.0,
         rpm: 1000.0,
+        phase: 0.0,
         t_start: 0.0,
         t_end: 1.0,
         source: Span::new(0, 1),

@@ -90,6 +90,7 @@ fn a_dwell_and_the_modal_words_of_written_blocks() {
             f_word: 0.2,
             s_word: 1000.0,
             rpm: 1000.0,
+            phase: 0.0,
             t_start: 0.0,
             t_end: 1.5,
             source: crate::source::Span::SYNTHETIC,

@@ -18,7 +18,8 @@
 //! root, and with a flank mode its start moves along the thread's axis by
 //! `flank · (H − d)/2 · tan(B/2)`, so that successive passes walk down one flank (or
 //! alternate) to the centred last pass. Each depth is cut once per start, one start after
-//! the other (`Q`); the phase of a start turns the spindle and changes no move.
+//! the other (`Q`); the phase of a start turns the spindle and changes no move, only where
+//! its grooves fall (start `j` of `Q` begins `j/Q` of a turn on, `Move::phase`).
 //!
 //! Readings of the sources, and what this module does:
 //!
@@ -71,10 +72,13 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
             ],
             chamfer,
         };
-        for _ in 0..infeed.starts {
+        for start in 0..infeed.starts {
+            // The starts share the turn evenly: start `j` begins `j/Q` of a turn on.
+            interp.emitter.thread_phase = f64::from(start) / f64::from(infeed.starts);
             let lasts = thread.emit(interp, &modal, (lead_mm, change));
             thread_pass::report_lead_to_nothing(interp, lasts, span);
         }
+        interp.emitter.thread_phase = 0.0;
     }
     interp.report_zero_feed(span);
     Flow::Next

@@ -80,7 +80,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
             })
             .collect();
         let thread = Pass { axes, from, points, chamfer: None };
-        for _ in 0..infeed.starts {
+        for start in 0..infeed.starts {
+            interp.emitter.thread_phase = f64::from(start) / f64::from(infeed.starts);
             let first = interp.emitter.moves.len();
             thread.emit(interp, &modal, (lead_mm, 0.0));
             if n + 1 == infeed.plan.passes.len() {
@@ -88,6 +89,7 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
             }
         }
     }
+    interp.emitter.thread_phase = 0.0;
     interp.report_zero_feed(span);
     contour.consume(interp);
     flow

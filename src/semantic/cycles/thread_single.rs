@@ -17,8 +17,8 @@
 //! - `K` shifts the thread's start along its axis (signed, program units); the end stays
 //!   at `Z`. This is how a program shifts passes for flank infeed by hand.
 //! - The chamfer pulls out at 45°: as far away from the work as it runs along the axis.
-//! - `C` (the phase of one start of a multi-start thread) turns the spindle, not the
-//!   path: it changes no move.
+//! - `C` (the phase of one start of a multi-start thread, degrees) turns the spindle, not
+//!   the path: it changes no move, only where the pass's grooves fall (`Move::phase`).
 //! - `E` on `G34` makes the lead grow by |E| per revolution, on `G35` shrink by |E|; on
 //!   `G33` it is taken as written. Such a pass is one move per spindle turn, each at its
 //!   turn's lead (`Emitter::varying_thread`).
@@ -51,7 +51,10 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     };
     let chamfer = thread_pass::chamfer(interp, command, lead_mm);
     let pass = Pass { axes, from, points: vec![axes.point(start_along, axes.depth(end) + taper), end], chamfer };
+    // `C`, degrees, turns the spindle past its index before the pass starts.
+    interp.emitter.thread_phase = interp.param(command, Role::Phase).map_or(0.0, |c| (c / 360.0).rem_euclid(1.0));
     let lasts = pass.emit(interp, &modal, (lead_mm, change));
+    interp.emitter.thread_phase = 0.0;
     thread_pass::report_lead_to_nothing(interp, lasts, span);
     interp.report_zero_feed(span);
     Flow::Next

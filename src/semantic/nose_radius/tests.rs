@@ -211,6 +211,7 @@ fn emitted(from: Xz, motion: Motion, to: Xz, centre: Xz, compensation: Compensat
         f_word: 0.1,
         s_word: 1200.0,
         rpm: 1200.0,
+        phase: 0.0,
         t_start,
         t_end: *t,
         source: Span::new(0, 1),
