@@ -383,10 +383,20 @@ pub fn finish(
     let mut threads: HashMap<usize, (Option<cycles::LeadChange>, bool)> = HashMap::new();
     // The plan each kept call's final pass is written from, by its move.
     let mut pass_plans: HashMap<usize, MovePlan> = HashMap::new();
+    // The move after the last thread call's, and where that call started as written.
+    let mut chain: Option<(usize, Xz)> = None;
     if choice.threads_in_place && !choice.expand_all {
         for (k, e) in lowered.expansions.iter().enumerate() {
             let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
             let Some(pass) = cycles::thread_final_pass(program, lowered, e).filter(|_| alone) else { continue };
+            // Where the call starts as written: a repeat right after a call of the cycle where
+            // that call started (its last move returns there), any other where the move before
+            // it ends.
+            let start = match chain {
+                Some((next, start)) if next == e.moves.start => Some(start),
+                _ => plans.get(e.moves.start..e.moves.start + 1).and_then(<[MovePlan]>::first).map(|p| p.start),
+            };
+            chain = start.map(|start| (e.moves.end, start));
             // A call that repeats the kept thread cycle call right before it (Fanuc's `G92`
             // modal: a block of `X` alone) takes the axes it does not name from that call as
             // written.
@@ -409,7 +419,7 @@ pub fn finish(
                 continue;
             }
             if motion.thread_writable(e.block, pass, plans)
-                && let Some(plan) = motion.thread_pass_plan(e, pass, plans)
+                && let Some(plan) = motion.thread_pass_plan(e, (pass, start), plans)
             {
                 let lead = cycles::thread_lead(program, lowered, e.block, pass, model);
                 let change = lead.map(|(words, change)| {
@@ -1234,8 +1244,14 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
     /// keeps clear of it (`part::clearance`): an infeed pass that a deeper pass after it cuts
     /// away needs no micrometres (issue 25), and a `G92` pass of `X` alone stays as written.
     /// Its other words (the end of the thread, which a repeated call takes on) and its lead
-    /// keep their correction.
-    pub(super) fn thread_pass_plan(&self, e: &Expansion, pass: usize, plans: &KeptPlans) -> Option<MovePlan> {
+    /// keep their correction. It starts at `start`, the call's start point as written, where
+    /// its incremental end words count from.
+    pub(super) fn thread_pass_plan(
+        &self,
+        e: &Expansion,
+        (pass, start): (usize, Option<Xz>),
+        plans: &KeptPlans,
+    ) -> Option<MovePlan> {
         let [plan] = plans.get(pass..pass + 1)? else { return None };
         let mut plan = plan.clone();
         let moves = &self.lowered.toolpath.moves;
@@ -1253,6 +1269,11 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             let grid = Grid::new(&self.lowered.coordinates_at(pass));
             plan.changed = grid.point(end) != grid.point(nominal);
             plan.segments = smallvec::smallvec![Segment::Line { end }];
+        }
+        // Incremental end words (`U`, `W`) count from the cycle's start point (`start`), not
+        // from where the pass starts.
+        if let Some(start) = start {
+            plan.start = start;
         }
         // A pass chamfered out: its end words lie the chamfer's length on.
         let offset = cycles::end_words_offset(self.program, self.lowered, e, pass);

@@ -200,9 +200,9 @@ impl BlockContext<'_, '_> {
         self.words_inheriting(form, (start, from), segment, chosen, None)
     }
 
-    /// [`Self::words`], where the control takes an absolute axis the block does not name
-    /// from `inherited` (a repeated thread cycle call, `BlockContext::inherited`) rather than
-    /// from where the move starts.
+    /// [`Self::words`], where the control takes an axis the block does not name from
+    /// `inherited` (a repeated cycle call, `BlockContext::inherited`) rather than from where
+    /// the move starts.
     fn words_inheriting(
         &self,
         form: &Form,
@@ -215,8 +215,10 @@ impl BlockContext<'_, '_> {
         let to = grid.point(segment.end());
         let mut out = Words::new();
         let axis = |absolute: bool, end: i64, begin: i64| if absolute { end } else { end - begin };
-        let held_x = inherited.filter(|_| form.x.1).map_or(from.x, |p| p.x);
-        let held_z = inherited.filter(|_| form.z.1).map_or(from.z, |p| p.z);
+        // An axis the block does not name ends where the call before it ends, whichever way
+        // the block writes the axis it names.
+        let held_x = inherited.map_or(from.x, |p| p.x);
+        let held_z = inherited.map_or(from.z, |p| p.z);
         if form.x_named || to.x != held_x {
             out.push((Slot::X, axis(form.x.1, to.x, from.x)));
         }
