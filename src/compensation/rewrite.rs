@@ -644,10 +644,14 @@ fn keep_singles(
             in_force = Some(as_written_run);
             continue;
         }
-        // The cut starts where the last segment of its plan does (after a take-up of the
-        // play, in the air before the part).
-        let start =
-            plan.segments.len().checked_sub(2).and_then(|j| plan.segments.get(j)).map_or(plan.start, Segment::end);
+        // The cut starts where its plan's take-up of the play ends (a jump at the start of a
+        // straight move, in the air before the part), and runs straight to its end: where
+        // the plan follows the model in several lines, the words give their chord, which the
+        // check judges.
+        let start = match plan.jumps.min(plan.segments.len() - 1) {
+            0 => plan.start,
+            jumps => plan.segments[jumps - 1].end(),
+        };
         let at = grid.point(end);
         let written_end = grid.to_mm(at);
         let taper = grid.length(if cut.facing { start.z - written_end.z } else { start.x - written_end.x });
