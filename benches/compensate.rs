@@ -182,6 +182,7 @@ fn end_to_end(c: &mut Criterion) {
         profiles_in_place: true,
         profiles_copied: true,
         threads_in_place: true,
+        singles_in_place: true,
         others_as_written: false,
         thread_pieces_every_pass: false,
         paths: false,

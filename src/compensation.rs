@@ -35,5 +35,5 @@ pub use program::{CompensateOptions, Outcome, Paths, compensate_program};
 pub use rewrite::cycles::LeadChange;
 pub use rewrite::{
     CycleForm, CycleOutcome, OTHER_NOT_AS_WRITTEN, PROFILE_COPIED, PROFILE_NOT_COPIED, PROFILE_NOT_IN_PLACE,
-    PROFILE_TAKE_UP, THREAD_NOT_IN_PLACE,
+    PROFILE_TAKE_UP, SINGLE_NOT_IN_PLACE, THREAD_NOT_IN_PLACE,
 };

@@ -86,6 +86,7 @@ fuzz_target!(|data: &[u8]| {
         profiles_in_place: true,
         profiles_copied: true,
         threads_in_place: true,
+        singles_in_place: true,
         others_as_written: false,
         thread_pieces_every_pass: false,
         paths: false,

@@ -23,7 +23,7 @@ use turnpass::compensation::provenance::{self, Provenance};
 use turnpass::compensation::verify::{self, Measure, PartFrom};
 use turnpass::compensation::{
     CompensateOptions, CycleForm, Judged, OTHER_NOT_AS_WRITTEN, Outcome, PROFILE_COPIED, PROFILE_NOT_COPIED,
-    PROFILE_NOT_IN_PLACE, PROFILE_TAKE_UP, THREAD_NOT_IN_PLACE, compensate_program,
+    PROFILE_NOT_IN_PLACE, PROFILE_TAKE_UP, SINGLE_NOT_IN_PLACE, THREAD_NOT_IN_PLACE, compensate_program,
 };
 use turnpass::diagnostic::{Diagnostic, DiagnosticKind};
 use turnpass::error_model::ErrorModel;
@@ -181,6 +181,7 @@ impl FitArgs {
             profiles_in_place: true,
             profiles_copied: true,
             threads_in_place: true,
+            singles_in_place: true,
             others_as_written: true,
             thread_pieces_every_pass: false,
             paths: false,
@@ -246,6 +247,7 @@ impl FitArgs {
             profiles_in_place: in_place.profiles,
             profiles_copied: in_place.copies,
             threads_in_place: in_place.threads,
+            singles_in_place: in_place.singles,
             others_as_written: in_place.others,
             ..self.options(&program.machine)
         };
@@ -312,8 +314,8 @@ fn cycle_lines(
                     ),
                 }
             }
-            CycleForm::WordsEdited { lead, single_pass } => {
-                // A single-pass call (`G92`) is one pass of the thread, not always the last.
+            CycleForm::WordsEdited { lead, single_pass, .. } => {
+                // A single-pass call (`G92`, `G90`) is one pass, not always the last.
                 let pass = if *single_pass { "its pass's" } else { "the final pass's" };
                 match lead {
                     None => format!("kept; its words carry {pass} correction"),
@@ -452,12 +454,14 @@ impl Trial<'_> {
 
 /// Which cycles keep their calls with a correction in place: those sharing a profile with a
 /// finishing cycle (the profile edited, or else copied for the finishing cycle), thread
-/// cycles (their words edited); and whether the others stay as written.
+/// cycles and single turning and facing cycles (their words edited); and whether the others
+/// stay as written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct InPlace {
     profiles: bool,
     copies: bool,
     threads: bool,
+    singles: bool,
     others: bool,
     /// The moves that need no correction left as written (`plan::Judged`).
     air: LeftAsWritten,
@@ -478,13 +482,18 @@ struct Because {
     profiles: Option<String>,
     copies: Option<String>,
     threads: Option<String>,
+    /// With the single cycles' words compensated in place, and, where it was tried after,
+    /// with them left as written.
+    singles: Option<String>,
     others: Option<String>,
 }
 
 impl InPlace {
     /// What to try after `outcome` (compensated so) missed the check: the feed moves it left
     /// as written corrected if it left any, else the cycles it left as written expanded if
-    /// it left any, else the profiles copied for their finishing
+    /// it left any, else the single turning and facing cycles whose words it edited left as
+    /// written if it edited one (then expanded, as cycles left as written), else the
+    /// profiles copied for their finishing
     /// cycles if it edited one in place, else expanded if it copied one, else the threads
     /// expanded if it edited one, else the rapids it left as written corrected; `None` when
     /// nothing is left to try.
@@ -497,11 +506,15 @@ impl InPlace {
         } else if self.others && any(|f| matches!(f, CycleForm::LeftAsWritten)) {
             // A cycle left with no correction at all is the likeliest to miss.
             Some(InPlace { others: false, ..self })
+        } else if self.singles && any(|f| matches!(f, CycleForm::WordsEdited { thread: false, .. })) {
+            // Before a profile or a thread is given up: a single cycle's words carry every
+            // correction of its cut, but not of its move back out.
+            Some(InPlace { singles: false, ..self })
         } else if self.profiles && any(|f| matches!(f, CycleForm::ProfileEdited { .. })) {
             Some(InPlace { profiles: false, ..self })
         } else if self.copies && any(|f| matches!(f, CycleForm::ProfileCopied { .. })) {
             Some(InPlace { copies: false, ..self })
-        } else if self.threads && any(|f| matches!(f, CycleForm::WordsEdited { .. })) {
+        } else if self.threads && any(|f| matches!(f, CycleForm::WordsEdited { thread: true, .. })) {
             Some(InPlace { threads: false, ..self })
         } else if self.air != LeftAsWritten::None && outcome.left_alone.rapids + outcome.left_alone.feeds > 0 {
             // The rapids left as written are corrected last: the model's play may still need
@@ -525,8 +538,18 @@ impl InPlace {
         if self.threads && !next.threads {
             because.threads = Some(format!("with its words compensated in place and the cycle {why}"));
         }
+        if self.singles && !next.singles {
+            because.singles =
+                Some(format!("its moves change, and with its words compensated in place and the cycle {why}"));
+        }
         if self.others && !next.others {
             because.others = Some(format!("its moves change, and with it left as written and the other cycles {why}"));
+            // A single cycle whose words were edited before is left as written since.
+            if !self.singles
+                && let Some(singles) = &mut because.singles
+            {
+                singles.push_str(&format!("; with it left as written and the other cycles {why}"));
+            }
         }
     }
 }
@@ -748,7 +771,8 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
     // cycle runs a compensated copy of the profile and the roughing the profile as written;
     // where that misses it too, they are expanded, and the report says why.
     let mut because = Because::default();
-    let mut in_place = InPlace { profiles: true, copies: true, threads: true, others: true, air: LeftAsWritten::Feeds };
+    let mut in_place =
+        InPlace { profiles: true, copies: true, threads: true, singles: true, others: true, air: LeftAsWritten::Feeds };
     let stock = args.stock.check(&resolved).stock;
     let measure = if args.passes { Measure::Passes } else { Measure::Part };
     // The feed moves that cut no finished surface, on the part the check measures.
@@ -983,6 +1007,7 @@ pub fn compensate_file(path: &Path, args: &CompensateArgs) -> Result<FileResult,
         (PROFILE_COPIED, &because.profiles),
         (PROFILE_NOT_COPIED, &neither),
         (THREAD_NOT_IN_PLACE, &because.threads),
+        (SINGLE_NOT_IN_PLACE, &because.singles),
         (OTHER_NOT_AS_WRITTEN, &because.others),
     ] {
         let Some(reason) = reason else { continue };

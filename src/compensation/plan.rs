@@ -423,6 +423,7 @@ fn written_points(
 mod air;
 mod kept;
 mod nose_room;
+pub(crate) use air::{DepthAxis, single_cycle_axis};
 pub use air::{Judged, LeftAlone};
 pub use kept::KeptPlans;
 

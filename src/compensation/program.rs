@@ -45,6 +45,9 @@ pub struct CompensateOptions {
     pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
+    /// Compensate a single turning or facing cycle's cut in its own words rather than leave
+    /// it as written or expand it (`rewrite::CycleChoice`).
+    pub singles_in_place: bool,
     /// Leave as written a cycle whose correction neither its words nor a profile can carry,
     /// rather than expand it (`rewrite::CycleChoice`).
     pub others_as_written: bool,
@@ -195,6 +198,7 @@ pub fn compensate_program(
         profiles_in_place: options.profiles_in_place,
         profiles_copied: options.profiles_copied,
         threads_in_place: options.threads_in_place,
+        singles_in_place: options.singles_in_place,
         others_as_written: options.others_as_written,
     };
     let rewritten = rewrite::finish(program, lowered, &plans, choice, motion, model);

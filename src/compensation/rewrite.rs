@@ -24,8 +24,11 @@
 //!   runs as a plain block), the finishing cycle runs a compensated copy of it and the
 //!   roughing the profile as written (`cycles::profile_copy`). A LAP continuous thread
 //!   (`G88`) keeps its call with the contour it threads along, its root, compensated in place
-//!   from the final pass (`cycles::root_blocks`). The others are expanded into their
-//!   compensated moves (`rewrite/cycles.rs`); cycles whose motion does not change stay calls.
+//!   from the final pass (`cycles::root_blocks`). A thread cycle keeps its call with its end
+//!   and lead words written from its final pass (`cycles::thread_final_pass`), and a single
+//!   turning or facing cycle with its end words and taper written from its cut
+//!   (`keep_singles`). The others are left as written or expanded into their compensated
+//!   moves (`rewrite/cycles.rs`); cycles whose motion does not change stay calls.
 //! * Moves of other blocks (`G28`, `G53` returns) stay as programmed: they go to fixed
 //!   machine positions, not to points of the part.
 
@@ -36,7 +39,7 @@ pub(crate) mod thread_pieces;
 use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
-use crate::back::grid::Grid;
+use crate::back::grid::{Grid, GridPoint};
 use crate::back::motion::{Codes, GivenNext, Kind, MotionWriter, Restore};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
 use crate::dialect::Address;
@@ -122,9 +125,10 @@ pub enum CycleForm {
     /// The call stays as written, its moves need no correction.
     Kept,
     /// The call stays as written though its moves take a correction that neither its words
-    /// nor a profile can carry (a single turning, facing or grooving cycle; a thread whose
-    /// final pass needs a take-up), where the check before writing finds the part within
-    /// the bound with the blocks around it compensated.
+    /// nor a profile can carry (a grooving cycle; a single turning or facing cycle whose
+    /// words cannot name its cut, or whose cut needs none where its other moves do; a thread
+    /// whose final pass needs a take-up), where the check before writing finds the part
+    /// within the bound with the blocks around it compensated.
     LeftAsWritten,
     /// The call stays as written and the profile it shares with a finishing cycle is
     /// compensated in place (its blocks, `profile`): the roughing follows it, as on the
@@ -138,14 +142,20 @@ pub enum CycleForm {
         lead: Option<cycles::LeadChange>,
     },
     /// The call stays, its words carrying the correction of its final pass (a thread
-    /// cycle: the final diameter and the end of the thread), and `lead`, where it changes,
-    /// the lead the slide needs to cut the programmed one (`cycles::thread_lead`).
+    /// cycle: the final diameter and the end of the thread; a single turning or facing
+    /// cycle: the end of its cut and its taper), and `lead`, where it changes, the lead the
+    /// slide needs to cut the programmed one (`cycles::thread_lead`).
     WordsEdited {
         #[serde(skip_serializing_if = "Option::is_none")]
         lead: Option<cycles::LeadChange>,
-        /// The call cuts one thread pass (`G92`, OSP's `G33`): its final pass is its only one.
+        /// The call cuts one pass (`G92`, OSP's `G33`, `G90`, `G94`): its final pass is its
+        /// only one.
         #[serde(skip)]
         single_pass: bool,
+        /// The call cuts a thread (`CycleChoice::threads_in_place` keeps it so); else it is a
+        /// single turning or facing cycle (`CycleChoice::singles_in_place`).
+        #[serde(skip)]
+        thread: bool,
     },
     /// A roughing call that stays as written on the profile as written: the roughing follows
     /// the nominal profile and its allowance, while its finishing cycle runs a compensated
@@ -210,6 +220,11 @@ const ROOT_NOT_WRITABLE: &str = "the blocks of its root contour cannot carry the
 /// Why a thread cycle is expanded when its words are not compensated in place.
 pub const THREAD_NOT_IN_PLACE: &str = "its moves change, and its own words are not compensated in place";
 
+/// Why a single turning or facing cycle is expanded when its words are not compensated in
+/// place and it is not left as written (the caller that asked for it says why).
+pub const SINGLE_NOT_IN_PLACE: &str = "its moves change, its own words are not compensated in place, and it is not \
+     left as written";
+
 /// Why a cycle whose words carry no correction, and which shares no profile with a finishing
 /// cycle, is expanded when it is not left as written (the caller that asked for it says why).
 pub const OTHER_NOT_AS_WRITTEN: &str = "its moves change, no finishing cycle runs a profile of it, and it is not \
@@ -228,6 +243,9 @@ pub struct CycleChoice {
     pub profiles_copied: bool,
     /// Compensate a thread cycle's final pass in its own words rather than expand it.
     pub threads_in_place: bool,
+    /// Compensate a single turning or facing cycle's cut in its own words (its end and
+    /// taper) rather than leave it as written or expand it.
+    pub singles_in_place: bool,
     /// Leave as written a cycle whose correction neither its words nor a profile can carry,
     /// rather than expand it: the check before writing judges it.
     pub others_as_written: bool,
@@ -414,7 +432,7 @@ pub fn finish(
                     motion.leads.insert(e.block, words);
                     change
                 });
-                motion.write_thread_pass(e.block, (e.moves.start, pass), &plan);
+                motion.write_pass(e.block, (Some(e.moves.start), pass), &plan);
                 pass_plans.insert(pass, plan);
                 chosen[k] = false;
                 // A call whose words already hold its final pass (a repeated `G92` that takes
@@ -437,6 +455,13 @@ pub fn finish(
                 );
             }
         }
+    }
+    // A single turning or facing cycle keeps its call, its cut's correction in its own end
+    // words and taper; a modal repeat of it (`X` alone) takes what it does not name from the
+    // run before it as written.
+    let mut singles: HashSet<usize> = HashSet::new();
+    if choice.singles_in_place && !choice.expand_all {
+        singles = keep_singles(program, lowered, plans, (&mut chosen, &groups), choice, &mut motion);
     }
     // What is still to be expanded is a cycle whose correction neither its words nor a
     // profile carries: it stays as written where the caller asks for it, and the check
@@ -470,6 +495,10 @@ pub fn finish(
             out.edited.push(EditedBlock { block, moves: e.moves.clone(), cycle: true });
         }
     }
+    let single_cycle = |block: usize| {
+        let e = first_expansion.get(&block).and_then(|&k| lowered.expansions.get(k));
+        e.is_some_and(|e| cycles::single_cut(program, lowered, e).is_some())
+    };
     let mut calls: Vec<usize> = first_expansion.keys().copied().collect();
     calls.sort_unstable();
     for block in calls {
@@ -478,7 +507,9 @@ pub fn finish(
         } else if let Some(form) = copied.remove(&block) {
             form
         } else if let Some((lead, single_pass)) = threads.remove(&block) {
-            CycleForm::WordsEdited { lead, single_pass }
+            CycleForm::WordsEdited { lead, single_pass, thread: true }
+        } else if singles.contains(&block) {
+            CycleForm::WordsEdited { lead: None, single_pass: true, thread: false }
         } else if expanded_set.contains(&block) {
             let threads_cut = first_expansion
                 .get(&block)
@@ -495,6 +526,8 @@ pub fn finish(
                 "its moves change, and its end words do not name its final pass (a word written as an \
                  expression, or a final pass that does not run along the thread), so they cannot carry the \
                  correction"
+            } else if !choice.singles_in_place && single_cycle(block) {
+                SINGLE_NOT_IN_PLACE
             } else if !choice.profiles_in_place && !choice.profiles_copied {
                 PROFILE_NOT_COPIED
             } else if !choice.profiles_in_place {
@@ -526,6 +559,148 @@ pub fn finish(
     out.edited.sort_by_key(|e| e.block);
     out.diagnostics.sort_by_key(|d| d.span.start);
     out
+}
+
+/// What a single turning or facing cycle's run leaves in force as written, for a modal
+/// repeat of it right after (`keep_singles`).
+#[derive(Debug, Clone, Copy)]
+struct SingleInForce {
+    /// The move after the run's: a repeat's first.
+    next_move: usize,
+    facing: bool,
+    /// The end of its cut and its taper, on the grid, as the control runs them.
+    end: GridPoint,
+    taper: i64,
+    /// Its words were edited: a repeat after it that names not every axis runs elsewhere
+    /// than as written.
+    edited: bool,
+}
+
+/// Keep the single turning and facing cycles (`G90`, `G94`) whose cut's correction their
+/// words can carry (`cycles::single_cut`), with those words written from the plan of the
+/// cut (`MotionBlocks::write_pass`): `X` and `Z` its end, the taper `R` its start from that
+/// end where it differs from the one in force (the call's own, else none; a repeat's, the
+/// run's before it), added where the block writes none. A run whose whole feed moves keep
+/// clear of the finished part, and whose words as written end within half that clearance of
+/// the plan (a roughing pass), stays as written, as a thread's infeed pass does. The move
+/// back out of the cut ends at the start point, which no word of the call moves: the check
+/// before writing judges it with the rest. The calls kept with their words edited, by
+/// block; those kept as written are no longer `chosen`.
+fn keep_singles(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    plans: &KeptPlans,
+    (chosen, groups): (&mut [bool], &[usize]),
+    choice: CycleChoice,
+    motion: &mut MotionBlocks<'_, '_>,
+) -> HashSet<usize> {
+    let mut edited: HashSet<usize> = HashSet::new();
+    let mut in_force: Option<SingleInForce> = None;
+    for (k, e) in lowered.expansions.iter().enumerate() {
+        let before = in_force.take();
+        let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
+        let Some(cut) = cycles::single_cut(program, lowered, e).filter(|_| alone) else { continue };
+        // A repeat runs from the end and taper the run before it leaves in force.
+        let before = before.filter(|b| b.next_move == e.moves.start && b.facing == cut.facing && cut.repeat);
+        if cut.repeat && before.is_none() {
+            continue;
+        }
+        let grid = Grid::new(&lowered.coordinates_at(cut.cut));
+        let Some(m) = lowered.toolpath.moves.get(cut.cut) else { continue };
+        // Where the block as written ends the cut, and its taper: the axes it names as
+        // written, the others as the run before it leaves them.
+        let nominal = grid.point(m.contour);
+        let as_written = match before {
+            Some(b) => GridPoint {
+                x: if cut.names.0 { nominal.x } else { b.end.x },
+                z: if cut.names.1 { nominal.z } else { b.end.z },
+            },
+            None => nominal,
+        };
+        let taper_as_written = cut.taper.map_or(before.map_or(0, |b| b.taper), |(_, t)| t);
+        let as_written_run = SingleInForce {
+            next_move: e.moves.end,
+            facing: cut.facing,
+            end: as_written,
+            taper: taper_as_written,
+            edited: false,
+        };
+        let changed = chosen.get(k).copied().unwrap_or(false);
+        if !changed && !before.is_some_and(|b| b.edited) {
+            in_force = Some(as_written_run);
+            continue;
+        }
+        let Some(plan) = plans.get(cut.cut..cut.cut + 1).and_then(<[MovePlan]>::first) else { continue };
+        let (Some(&Segment::Line { end }), true) =
+            (plan.segments.last(), plan.segments.iter().all(|s| matches!(s, Segment::Line { .. })))
+        else {
+            continue;
+        };
+        if !matches!(motion.first_runs.get(e.block), Some(FirstRun::NotYet)) {
+            continue;
+        }
+        // A roughing pass: it cuts no finished surface, and stays as written.
+        let feeds_clear = motion.clearance.filter(|c| c.is_clear(cut.cut) && c.is_clear(cut.cut + 1));
+        if let Some(clearance) = feeds_clear
+            && grid.to_mm(as_written).distance(end) <= clearance.by_mm() / 2.0
+        {
+            if let Some(c) = chosen.get_mut(k) {
+                *c = false;
+            }
+            in_force = Some(as_written_run);
+            continue;
+        }
+        // The cut starts where its plan's take-up of the play ends (a jump at the start of a
+        // straight move, in the air before the part), and runs straight to its end: where
+        // the plan follows the model in several lines, the words give their chord, which the
+        // check judges.
+        let start = match plan.jumps.min(plan.segments.len() - 1) {
+            0 => plan.start,
+            jumps => plan.segments[jumps - 1].end(),
+        };
+        let at = grid.point(end);
+        let written_end = grid.to_mm(at);
+        let taper = grid.length(if cut.facing { start.z - written_end.z } else { start.x - written_end.x });
+        if let Some(b) = before {
+            motion.inherited.insert(e.block, b.end);
+        }
+        if taper != taper_as_written {
+            motion.tapers.insert(e.block, taper);
+        }
+        let plan = MovePlan {
+            start,
+            segments: smallvec::smallvec![Segment::Line { end }],
+            changed: true,
+            jumps: 0,
+            lead_in: false,
+            words: smallvec::SmallVec::new(),
+        };
+        motion.write_pass(e.block, (None, cut.cut), &plan);
+        if matches!(motion.first_runs.get(e.block), Some(FirstRun::Replaced(_))) {
+            if let Some(c) = chosen.get_mut(k) {
+                *c = false;
+            }
+            edited.insert(e.block);
+            in_force = Some(SingleInForce { end: at, taper, edited: true, ..as_written_run });
+        } else {
+            // Its words as written are those of its plan. Where its cut needs a correction
+            // they hold it (a repeat that takes the corrected end from the run before it):
+            // it is kept as it is. Where only the moves its words do not place change (the
+            // move back out), it is left as written, which the check judges, or expanded.
+            let Some(from) = lowered.toolpath.moves.get(cut.cut - 1) else { continue };
+            let nominal_taper =
+                grid.length(if cut.facing { from.contour.z - m.contour.z } else { from.contour.x - m.contour.x });
+            if (at != nominal || taper != nominal_taper)
+                && let Some(c) = chosen.get_mut(k)
+            {
+                *c = false;
+            }
+            if !chosen.get(k).copied().unwrap_or(false) || choice.others_as_written {
+                in_force = Some(as_written_run);
+            }
+        }
+    }
+    edited
 }
 
 /// A stretch of moves one edited block can write: the moves of one cycle call, or a run
@@ -641,7 +816,10 @@ pub struct MotionBlocks<'a, 'src> {
     restore_lead: HashSet<usize>,
     /// Kept thread cycle calls that repeat the call before them, with the end its final pass
     /// runs to as written (`BlockContext::inherited`).
-    inherited: HashMap<usize, crate::back::grid::GridPoint>,
+    inherited: HashMap<usize, GridPoint>,
+    /// Kept single cycle calls whose taper changes, with the taper their cut needs
+    /// (`BlockContext::taper`).
+    tapers: HashMap<usize, i64>,
     /// Which feed moves keep clear of the finished part, where the check measures it
     /// (`thread_pass_plan`).
     pub clearance: Option<&'a crate::part::clearance::Clearance>,
@@ -775,6 +953,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             piece_leads: HashMap::new(),
             restore_lead: HashSet::new(),
             inherited: HashMap::new(),
+            tapers: HashMap::new(),
             clearance: None,
             repeated: HashSet::new(),
             folds: Vec::new(),
@@ -988,6 +1167,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                     piece_leads: self.piece_leads.get(&block).map_or(&[], Vec::as_slice),
                     restore_lead: self.restore_lead.contains(&block),
                     inherited: self.inherited.get(&block).copied(),
+                    taper: self.tapers.get(&block).copied(),
                     carried: self.carrying.filter(|&(b, _)| b == block).map_or_else(Restore::default, |(_, r)| r),
                 };
                 let from = from.or(merged.as_ref().map(|&(_, from, _)| from)).unwrap_or(single);
@@ -1165,10 +1345,12 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         Some(plan)
     }
 
-    /// Write the words of the kept thread cycle called at `block` for its final pass `pass`,
-    /// from `plan` (`thread_pass_plan`).
-    pub(super) fn write_thread_pass(&mut self, block: usize, (call, pass): (usize, usize), plan: &MovePlan) {
-        let text = self.block_text(block, pass..pass + 1, std::slice::from_ref(plan), Some(call));
+    /// Write the words of the kept cycle called at `block` for its pass `pass`, from `plan`:
+    /// a thread cycle's final pass (`thread_pass_plan`), a single turning or facing cycle's
+    /// cut (`keep_singles`). `call`: the call's first move, where a thread call's incremental
+    /// end words count from.
+    pub(super) fn write_pass(&mut self, block: usize, (call, pass): (Option<usize>, usize), plan: &MovePlan) {
+        let text = self.block_text(block, pass..pass + 1, std::slice::from_ref(plan), call);
         self.settle(block, pass..pass + 1, text);
     }
 

@@ -149,6 +149,7 @@ impl Compensated {
             profiles_in_place: in_place,
             profiles_copied: in_place,
             threads_in_place: in_place,
+            singles_in_place: in_place,
             others_as_written: false,
             thread_pieces_every_pass: false,
             paths: false,

@@ -127,6 +127,7 @@ fn an_osp_finishing_call_runs_its_own_compensated_contour() {
         profiles_in_place: false,
         profiles_copied: true,
         threads_in_place: true,
+        singles_in_place: true,
         others_as_written: false,
         thread_pieces_every_pass: false,
         paths: false,

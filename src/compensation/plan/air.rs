@@ -10,8 +10,8 @@
 //! it still ends where it needs to. A rapid that ends where a feed move, a cycle or a thread
 //! starts is corrected: there the start is part of what is cut. It is corrected only along
 //! the axes the cut takes from it: where the next move is a rapid along an axis too (down to
-//! a thread's depth, a thread cycle's to its first pass), the rapid ends as written along
-//! that axis (`with_axes_left`).
+//! a thread's depth, a thread cycle's to its first pass, a single turning or facing cycle's
+//! to the start of its cut), the rapid ends as written along that axis (`with_axes_left`).
 //!
 //! Where the check before writing measures the finished part, a straight feed move whose
 //! whole tool keeps clear of the finished part (`part::clearance`) cuts no finished surface:
@@ -194,7 +194,8 @@ struct Ends {
 /// rapid to the first pass, counts along its depth axis only: the cycle takes nothing else
 /// from its start point along it than where to retract to between passes, in the air, while
 /// along the other axis it starts every pass there (the thread's `Z` start), which stays
-/// corrected. As for a whole move, the next move must travel that axis the same way from
+/// corrected; so does a single turning or facing cycle's, along the axis its move back out of
+/// the cut ends at the start point (`single_cycle_axis`). As for a whole move, the next move must travel that axis the same way from
 /// either end, with no jog of its own.
 fn with_axes_left(
     plans: &[MovePlan],
@@ -229,7 +230,7 @@ fn with_axes_left(
         let (along_x, along_z) = if n.cycle.is_synthetic() {
             (from.x != to.x, from.z != to.z)
         } else {
-            match thread_depth_axis(toolpath, first + after) {
+            match thread_depth_axis(toolpath, first + after).or_else(|| single_cycle_axis(toolpath, first + after)) {
                 Some(DepthAxis::X) => (from.x != to.x, false),
                 Some(DepthAxis::Z) => (false, from.z != to.z),
                 None => continue,
@@ -250,8 +251,10 @@ fn with_axes_left(
     out
 }
 
-/// The axis a thread cycle cuts its depth along.
-enum DepthAxis {
+/// The axis a thread cycle cuts its depth along, or a single turning or facing cycle runs
+/// its approach and its move back out along (`single_cycle_axis`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum DepthAxis {
     X,
     Z,
 }
@@ -267,6 +270,34 @@ fn thread_depth_axis(toolpath: &Toolpath, index: usize) -> Option<DepthAxis> {
     let thread = toolpath.moves.get(k).filter(|m| m.threading && m.cycle == cycle)?;
     let (from, to) = (written::contour_start(toolpath, k), thread.contour);
     Some(if (to.x - from.x).abs() < (to.z - from.z).abs() { DepthAxis::X } else { DepthAxis::Z })
+}
+
+/// Where move `index` is the first of a single turning or facing cycle's run (`G90`, `G94`:
+/// a rapid along one axis to where its cut starts, the cut, the feed back out along that axis
+/// to the start point, the rapid to it), that axis: the run takes from its start point along
+/// it only where its move back out ends, over the part, while along the other axis its cut
+/// starts there. `None` for any other run.
+pub(crate) fn single_cycle_axis(toolpath: &Toolpath, index: usize) -> Option<DepthAxis> {
+    let cycle = toolpath.moves.get(index)?.cycle;
+    let mut run = toolpath.moves.get(index..)?.iter().take_while(|m| m.cycle == cycle);
+    let (Some(approach), Some(cut), Some(out), Some(back), None) =
+        (run.next(), run.next(), run.next(), run.next(), run.next())
+    else {
+        return None;
+    };
+    let straight = |m: &Move, motion: Motion| m.motion == motion && !m.threading;
+    let kinds = [(approach, Motion::Rapid), (cut, Motion::Feed), (out, Motion::Feed), (back, Motion::Rapid)];
+    if !kinds.into_iter().all(|(m, motion)| straight(m, motion)) {
+        return None;
+    }
+    let start = toolpath.start_of(index);
+    let along_x = approach.end.z == start.z && out.end.z == cut.end.z && out.end.x == start.x;
+    let along_z = approach.end.x == start.x && out.end.x == cut.end.x && out.end.z == start.z;
+    match (along_x, along_z) {
+        (true, false) => Some(DepthAxis::X),
+        (false, true) => Some(DepthAxis::Z),
+        _ => None,
+    }
 }
 
 /// For each move `left`, where it starts and ends when its block runs as written: from where

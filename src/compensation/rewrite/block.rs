@@ -94,6 +94,11 @@ pub(super) struct BlockContext<'a, 'src> {
     /// the axes the block does not name from it, so such an axis is written only where the
     /// block's own final pass ends elsewhere.
     pub inherited: Option<GridPoint>,
+    /// For a kept single turning or facing cycle (`cycles::single_cut`), the taper its cut
+    /// needs (`R`, a count of the grid's lengths) where it differs from the one in force:
+    /// written in place of the block's taper word, or after its coordinates where it writes
+    /// none.
+    pub taper: Option<i64>,
     /// Modal words the blocks before it left out of force, which this block puts back
     /// rather than a block of their own (`MotionBlocks::fold`): its motion code, F and S.
     pub carried: Restore,
@@ -195,9 +200,9 @@ impl BlockContext<'_, '_> {
         self.words_inheriting(form, (start, from), segment, chosen, None)
     }
 
-    /// [`Self::words`], where the control takes an absolute axis the block does not name
-    /// from `inherited` (a repeated thread cycle call, `BlockContext::inherited`) rather than
-    /// from where the move starts.
+    /// [`Self::words`], where the control takes an axis the block does not name from
+    /// `inherited` (a repeated cycle call, `BlockContext::inherited`) rather than from where
+    /// the move starts.
     fn words_inheriting(
         &self,
         form: &Form,
@@ -298,7 +303,12 @@ impl BlockContext<'_, '_> {
     ) -> Option<(WrittenText, Restore)> {
         let start = self.grid.point(plan.start);
         let carries = !self.carried.is_none();
-        if !plan.changed && start == self.grid.point(contour_start) && self.lead.is_none() && !carries {
+        if !plan.changed
+            && start == self.grid.point(contour_start)
+            && self.lead.is_none()
+            && self.taper.is_none()
+            && !carries
+        {
             // The move is as programmed, from where the program puts it.
             return None;
         }
@@ -332,6 +342,7 @@ impl BlockContext<'_, '_> {
             && first_kind == original_kind
             && same_words
             && self.lead.is_none()
+            && self.taper.is_none()
             && !carries
         {
             return None;
@@ -409,6 +420,10 @@ impl BlockContext<'_, '_> {
         let mut ahead = coordinates.iter().peekable();
         let mut written: SmallVec<[Slot; 4]> = SmallVec::new();
         let mut code_written = false;
+        // A single cycle's taper goes in place of its `R`, or after its coordinates: once.
+        let has_taper_word = words.iter().any(|w| matches!(w.kind, WordKind::Number { address: Address::R, .. }));
+        let mut taper_written = false;
+        let mut taper = || (!std::mem::replace(&mut taper_written, true)).then_some(self.taper).flatten();
         let first = block.first_word;
         for (k, word) in words.iter().enumerate() {
             let id = first + k as u32;
@@ -448,6 +463,11 @@ impl BlockContext<'_, '_> {
                         code_written = true;
                     }
                 }
+                (WordKind::Number { address: Address::R, .. }, ..) if self.taper.is_some() => {
+                    if let Some(taper) = taper() {
+                        out.coordinate(&self.grid, Address::R, taper);
+                    }
+                }
                 _ => match self.lead {
                     Some(lead) if lead.at == k => {
                         for &(address, number) in &lead.words {
@@ -468,6 +488,9 @@ impl BlockContext<'_, '_> {
                         written.push(slot);
                     }
                 }
+                if !has_taper_word && let Some(taper) = taper() {
+                    out.coordinate(&self.grid, Address::R, taper);
+                }
                 out.restored(Restore { motion: None, ..self.carried });
             }
         }
@@ -479,6 +502,9 @@ impl BlockContext<'_, '_> {
             }
             for &(slot, value) in new {
                 self.write_coordinate(form, slot, value, out);
+            }
+            if let Some(taper) = taper() {
+                out.coordinate(&self.grid, Address::R, taper);
             }
             out.restored(Restore { motion: None, ..self.carried });
         }

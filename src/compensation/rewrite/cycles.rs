@@ -30,7 +30,7 @@ use crate::syntax::{CodeLetter, Program, WordId, WordKind};
 use crate::toolpath::{Compensation, Motion, Move, Xz};
 
 use super::super::fit::Segment;
-use super::super::plan::{KeptPlans, MovePlan};
+use super::super::plan::{DepthAxis, KeptPlans, MovePlan};
 use super::thread_pieces::{self, PieceSettings};
 
 /// Whether the moves of `expansion` can be written back: on a control with no thread move
@@ -229,6 +229,97 @@ pub(super) fn end_words_offset(program: &Program<'_>, lowered: &Lowered, e: &Exp
     } else {
         Xz::new(0.0, chamfer.end.z - along.end.z)
     }
+}
+
+/// A run of a Fanuc single turning (`G90`) or facing (`G94`) cycle whose words can carry its
+/// cut's correction (`single_cut`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct SingleCut {
+    /// The cut, the cycle's second move: along Z (along X when facing), from where the taper
+    /// puts its start to the end the call's `X` and `Z` name.
+    pub cut: usize,
+    /// A facing cycle: its cut runs along X, its taper `R` along Z.
+    pub facing: bool,
+    /// A block that repeats the cycle (`X` or `Z` alone, Fanuc's modal single cycles): the
+    /// axis it does not name and its taper, where it writes none, are the call's before it.
+    pub repeat: bool,
+    /// The block names `X`, and `Z`.
+    pub names: (bool, bool),
+    /// The taper the block writes (its `R`), as a count of the grid's lengths, and the place of
+    /// that word among the block's words.
+    pub taper: Option<(usize, i64)>,
+}
+
+/// The cut of a single turning or facing cycle's run `e` whose words can carry its
+/// correction: the run is the cycle's four moves (a rapid to the cut's start, the cut, the
+/// feed back out to the start point's diameter, or face, and the rapid to the start point),
+/// and its block writes only absolute end words (`X` and `Z` both, on a call), a taper `R`,
+/// the feed, speed and tool, besides the sequence name, codes and comments. The end words
+/// name the cut's end and the taper its start from that end, so both are the words'; the
+/// cut's start along the other axis is the tool's position before the call, and the move
+/// back out ends at the start point, neither of them words of the call.
+pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<SingleCut> {
+    use crate::dialect::{Address, AddressKind, GFunction, Role};
+    // The approach and the move back out travel one axis, the same one: X when turning.
+    let facing = match super::super::plan::single_cycle_axis(&lowered.toolpath, e.moves.start) {
+        Some(DepthAxis::X) if e.moves.len() == 4 => false,
+        Some(DepthAxis::Z) if e.moves.len() == 4 => true,
+        _ => return None,
+    };
+    let mark = lowered.coordinates_at(e.moves.start + 1);
+    let block = program.block(e.block);
+    let command = match block.statement {
+        crate::syntax::Statement::Cycle(id) => {
+            let function = if facing { GFunction::FacingCycle } else { GFunction::TurningCycle };
+            if cycle_function(program, block) != Some(function) {
+                return None;
+            }
+            Some(program.command(id))
+        }
+        crate::syntax::Statement::Motion => None,
+        _ => return None,
+    };
+    let (mut x, mut z, mut taper) = (false, false, None);
+    for (k, (word, id)) in program.words_of(block).iter().zip(block.word_ids()).enumerate() {
+        match word.kind {
+            WordKind::Number { address, number } => {
+                let role = match command {
+                    Some(command) => command.params.iter().find(|p| p.word == id).map(|p| p.role)?,
+                    // A modal repeat names its end, a taper and a feed by address, as
+                    // `semantic::cycles::single` reads them.
+                    None => match address {
+                        Address::X => Role::EndX,
+                        Address::Z => Role::EndZ,
+                        Address::R => Role::Taper,
+                        Address::F => Role::Feed,
+                        _ => return None,
+                    },
+                };
+                match role {
+                    Role::EndX => x = true,
+                    Role::EndZ => z = true,
+                    Role::Taper => {
+                        let tables = program.config().tables();
+                        let kind = || tables.address(address).map(|s| s.kind).or(Some(AddressKind::Length));
+                        taper = Some((k, crate::back::grid::Grid::new(&mark).literal_count(number, kind)));
+                    }
+                    Role::Feed | Role::Speed | Role::Tool => {}
+                    // Incremental end words count from the start point, not from the cut.
+                    _ => return None,
+                }
+            }
+            WordKind::Expr { .. } | WordKind::Label { .. } => return None,
+            _ => {}
+        }
+    }
+    let named = if command.is_some() { x && z } else { x || z };
+    (named && mark.absolute).then_some(SingleCut {
+        cut: e.moves.start + 1,
+        facing,
+        repeat: command.is_none(),
+        names: (x, z),
+        taper,
+    })
 }
 
 /// Whether a thread cycle's word of `role` leaves its end words naming the final pass's end

@@ -49,6 +49,7 @@ fn rewrite_arc(index: usize, end_by: Xz, centre_by: Xz) -> (String, crate::toolp
         piece_leads: &[],
         restore_lead: false,
         inherited: None,
+        taper: None,
         carried: Default::default(),
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
@@ -109,6 +110,7 @@ fn arc_as_lines(program: &str) -> Vec<String> {
         piece_leads: &[],
         restore_lead: false,
         inherited: None,
+        taper: None,
         carried: Default::default(),
     };
     let mut writer = MotionWriter::new(codes, BlockWriter::new(program));
