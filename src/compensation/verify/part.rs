@@ -805,8 +805,9 @@ fn threads(
     after: &Dexels,
     stock: Stock,
 ) -> Vec<ThreadFigures> {
-    // Each thread: its first and last block, tool, lead, and the box of its passes.
-    let mut blocks: Vec<(Span, Span, u16, f64, Xz, Xz)> = Vec::new();
+    // Each thread: its first and last block, tool, lead, the box of its passes, and the
+    // phases its passes start at (one per start, millionths of a turn).
+    let mut blocks: Vec<(Span, Span, u16, f64, Xz, Xz, Vec<i64>)> = Vec::new();
     let mut open = false;
     for (index, m) in (0..original.len()).filter_map(|index| Some((index, original.as_move(index)?))) {
         if !(m.threading && m.motion == Motion::Feed) || m.rpm <= 0.0 {
@@ -818,18 +819,24 @@ fn threads(
         let lo = Xz::new(start.x.min(m.end.x), start.z.min(m.end.z));
         let hi = Xz::new(start.x.max(m.end.x), start.z.max(m.end.z));
         let lead = m.feed / m.rpm;
+        // The starts of a multi-start thread: its passes' phases (`Move::phase`).
+        let phase = (m.phase * 1e6).round() as i64;
         match blocks.last_mut().filter(|b| open && b.2 == m.tool && (b.3 - lead).abs() <= 1e-9 * lead) {
             Some(b) => {
                 b.1 = m.source;
                 b.4 = Xz::new(b.4.x.min(lo.x), b.4.z.min(lo.z));
                 b.5 = Xz::new(b.5.x.max(hi.x), b.5.z.max(hi.z));
+                if !b.6.contains(&phase) {
+                    b.6.push(phase);
+                }
             }
-            None => blocks.push((m.source, m.source, m.tool, lead, lo, hi)),
+            None => blocks.push((m.source, m.source, m.tool, lead, lo, hi, vec![phase])),
         }
         open = true;
     }
     let mut out = Vec::new();
-    for (block, last_block, _, lead, lo, hi) in blocks {
+    for (block, last_block, _, lead, lo, hi, phases) in blocks {
+        let starts = phases.len().max(1) as f64;
         // Whole leads of full form: a lead in from each end of the threaded length on the bar.
         let (z0, z1) = (lo.z.max(stock.back) + lead, hi.z.min(stock.front) - lead);
         let leads = ((z1 - z0) / lead).floor();
@@ -838,11 +845,11 @@ fn threads(
         }
         let window = (z0, z0 + leads * lead);
         let band = (lo.x - lead, hi.x + lead);
-        let Some(nominal_form) = form(nominal, window, band, lead, None) else { continue };
+        let Some(nominal_form) = form(nominal, window, band, (lead, starts), None) else { continue };
         let pitch_radius = nominal_form.pitch_diameter_mm / 2.0;
-        let measure = |dexels: &Dexels| form(dexels, window, band, lead, Some(pitch_radius));
+        let measure = |dexels: &Dexels| form(dexels, window, band, (lead, starts), Some(pitch_radius));
         let mut nominal_form = nominal_form;
-        nominal_form.lead_mm = lead_at(nominal, window, pitch_radius, lead);
+        nominal_form.lead_mm = lead_at(nominal, window, pitch_radius, (lead, starts));
         out.push(ThreadFigures {
             block,
             last_block,
@@ -865,8 +872,15 @@ fn filled(spans: &Spans, window: (f64, f64)) -> f64 {
 /// The pitch diameter of the thread in `window` (whole leads) on the rays along Z between the
 /// radii of `band`: where the material fills half the window, interpolated between the two
 /// rays about it (the crossing nearest `near`, a pitch radius, when given), and the lead
-/// measured at the nominal pitch radius `near` where given.
-fn form(dexels: &Dexels, window: (f64, f64), band: (f64, f64), lead: f64, near: Option<f64>) -> Option<ThreadForm> {
+/// measured at the nominal pitch radius `near` where given; `lead`: the programmed lead and
+/// the thread's number of starts.
+fn form(
+    dexels: &Dexels,
+    window: (f64, f64),
+    band: (f64, f64),
+    lead: (f64, f64),
+    near: Option<f64>,
+) -> Option<ThreadForm> {
     let rays: Vec<(f64, f64)> = (0..dexels.along_z.len())
         .map(|i| (dexels.line(true, i).at, i))
         .filter(|(x, _)| *x >= band.0 && *x <= band.1)
@@ -891,8 +905,11 @@ fn form(dexels: &Dexels, window: (f64, f64), band: (f64, f64), lead: f64, near: 
 
 /// The lead of the thread in `window` on the ray along Z nearest `radius`: the slope of its
 /// grooves' centres (the middles of the gaps between material) against their count, by least
-/// squares; none with fewer than two grooves.
-fn lead_at(dexels: &Dexels, window: (f64, f64), radius: f64, lead: f64) -> Option<f64> {
+/// squares, times its number of starts (a groove every pitch); none with fewer than two
+/// grooves.
+fn lead_at(dexels: &Dexels, window: (f64, f64), radius: f64, (lead, starts): (f64, f64)) -> Option<f64> {
+    // A groove every pitch, a start's every lead: the slope over the grooves is the pitch.
+    let pitch = lead / starts;
     let index = ((radius - dexels.x_lo) / dexels.spacing - 0.5).round();
     let spans = dexels.along_z.get(usize::try_from(index as i64).ok()?)?;
     let centres: Vec<f64> = spans
@@ -904,10 +921,10 @@ fn lead_at(dexels: &Dexels, window: (f64, f64), radius: f64, lead: f64) -> Optio
         return None;
     }
     let first = centres[0];
-    let points: Vec<(f64, f64)> = centres.iter().map(|c| (((c - first) / lead).round(), *c)).collect();
+    let points: Vec<(f64, f64)> = centres.iter().map(|c| (((c - first) / pitch).round(), *c)).collect();
     let n = points.len() as f64;
     let (mk, mc) = (points.iter().map(|p| p.0).sum::<f64>() / n, points.iter().map(|p| p.1).sum::<f64>() / n);
     let sxx: f64 = points.iter().map(|p| (p.0 - mk) * (p.0 - mk)).sum();
     let sxy: f64 = points.iter().map(|p| (p.0 - mk) * (p.1 - mc)).sum();
-    (sxx > 0.0).then(|| sxy / sxx)
+    (sxx > 0.0).then(|| sxy / sxx * starts)
 }
