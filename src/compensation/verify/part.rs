@@ -795,6 +795,18 @@ fn features(original: &CompactPath, probes: &[Probed]) -> Vec<Feature> {
         .collect()
 }
 
+/// A thread of the original program: its first and last block, tool, lead, the box of its
+/// passes, and the phases its passes start at (one per start, millionths of a turn).
+struct ThreadRun {
+    block: Span,
+    last_block: Span,
+    tool: u16,
+    lead: f64,
+    lo: Xz,
+    hi: Xz,
+    phases: Vec<i64>,
+}
+
 /// The threads of `original` measured on each part: a thread is a run of threading moves of
 /// one tool and one lead, whatever moves between them do not cut (a thread cycle's passes, or
 /// a pass per block).
@@ -805,9 +817,7 @@ fn threads(
     after: &Dexels,
     stock: Stock,
 ) -> Vec<ThreadFigures> {
-    // Each thread: its first and last block, tool, lead, the box of its passes, and the
-    // phases its passes start at (one per start, millionths of a turn).
-    let mut blocks: Vec<(Span, Span, u16, f64, Xz, Xz, Vec<i64>)> = Vec::new();
+    let mut blocks: Vec<ThreadRun> = Vec::new();
     let mut open = false;
     for (index, m) in (0..original.len()).filter_map(|index| Some((index, original.as_move(index)?))) {
         if !(m.threading && m.motion == Motion::Feed) || m.rpm <= 0.0 {
@@ -821,21 +831,29 @@ fn threads(
         let lead = m.feed / m.rpm;
         // The starts of a multi-start thread: its passes' phases (`Move::phase`).
         let phase = (m.phase * 1e6).round() as i64;
-        match blocks.last_mut().filter(|b| open && b.2 == m.tool && (b.3 - lead).abs() <= 1e-9 * lead) {
+        match blocks.last_mut().filter(|b| open && b.tool == m.tool && (b.lead - lead).abs() <= 1e-9 * lead) {
             Some(b) => {
-                b.1 = m.source;
-                b.4 = Xz::new(b.4.x.min(lo.x), b.4.z.min(lo.z));
-                b.5 = Xz::new(b.5.x.max(hi.x), b.5.z.max(hi.z));
-                if !b.6.contains(&phase) {
-                    b.6.push(phase);
+                b.last_block = m.source;
+                b.lo = Xz::new(b.lo.x.min(lo.x), b.lo.z.min(lo.z));
+                b.hi = Xz::new(b.hi.x.max(hi.x), b.hi.z.max(hi.z));
+                if !b.phases.contains(&phase) {
+                    b.phases.push(phase);
                 }
             }
-            None => blocks.push((m.source, m.source, m.tool, lead, lo, hi, vec![phase])),
+            None => blocks.push(ThreadRun {
+                block: m.source,
+                last_block: m.source,
+                tool: m.tool,
+                lead,
+                lo,
+                hi,
+                phases: vec![phase],
+            }),
         }
         open = true;
     }
     let mut out = Vec::new();
-    for (block, last_block, _, lead, lo, hi, phases) in blocks {
+    for ThreadRun { block, last_block, lead, lo, hi, phases, .. } in blocks {
         let starts = phases.len().max(1) as f64;
         // Whole leads of full form: a lead in from each end of the threaded length on the bar.
         let (z0, z1) = (lo.z.max(stock.back) + lead, hi.z.min(stock.front) - lead);
