@@ -482,8 +482,8 @@ struct Because {
     profiles: Option<String>,
     copies: Option<String>,
     threads: Option<String>,
-    /// With the single cycles' words compensated in place, and, where it was tried after,
-    /// with them left as written.
+    /// Why the single cycles' words are not compensated in place, and, where leaving them as
+    /// written is tried next and misses too, why not that either.
     singles: Option<String>,
     others: Option<String>,
 }
@@ -544,7 +544,8 @@ impl InPlace {
         }
         if self.others && !next.others {
             because.others = Some(format!("its moves change, and with it left as written and the other cycles {why}"));
-            // A single cycle whose words were edited before is left as written since.
+            // A single cycle whose words are given up is left as written in this trial, so
+            // its reason says why that misses too.
             if !self.singles
                 && let Some(singles) = &mut because.singles
             {

@@ -585,7 +585,7 @@ struct SingleInForce {
 /// the plan (a roughing pass), stays as written, as a thread's infeed pass does. The move
 /// back out of the cut ends at the start point, which no word of the call moves: the check
 /// before writing judges it with the rest. The calls kept with their words edited, by
-/// block; those kept as written are no longer `chosen`.
+/// block; a call kept as written has its `chosen` cleared, so nothing expands it.
 fn keep_singles(
     program: &Program<'_>,
     lowered: &Lowered,

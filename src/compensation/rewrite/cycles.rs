@@ -1099,7 +1099,9 @@ pub(super) fn thread_lead(
     // turns, `F·n + E·n²/2`, is the programmed one times the ratio where both words are.
     let change_word = match command {
         Some(command) => command.param(Role::LeadChange),
-        None => table.change.and_then(|change| {
+        // A thread move's change word changes its lead only where it cuts a variable lead (one
+        // move a turn): a `G32` with a `K` is not a `G34`.
+        None => table.change.filter(|_| moves.start() < moves.end()).and_then(|change| {
             block
                 .word_ids()
                 .find(|&w| matches!(program.word(w).kind, WordKind::Number { address, .. } if address == change))
