@@ -88,25 +88,47 @@ pub enum Unwritable {
     Errors(Vec<Diagnostic>),
     /// It runs cleanly but cuts another number of moves than the original.
     OtherCuts { original: usize, written: usize },
+    /// Its `index`-th cutting move (from 1) ends `by_mm` from the original's, or threads
+    /// where the original's does not (or the other way round), or starts its thread at
+    /// another angle past the spindle's index.
+    OtherCut { index: usize, by_mm: f64 },
 }
+
+/// How far a cutting move of the expansion may end from the original's: the rounding of a
+/// cycle's computed points onto the program's grid, an inch program's least increment
+/// (0.0001 in) at most, with room for the diameter's halving.
+const CUT_END_TOLERANCE_MM: f64 = 0.003;
 
 /// What `expand` checks before it writes, as `compensate` checks what it writes
 /// (`compensation::verify::check_written`): `written`, a printing of `original`, read back
 /// with `reading` (the original's settings, its dialect and G-code system fixed:
 /// `printer::read_back_options`), lowered and validated, must run without an error and cut
-/// as many moves as the original. A coordinate past the digits the control reads, or a block
-/// that ran nowhere in the original and runs in the expansion, is found here, not on the
-/// control.
+/// the original's moves: as many, each ending where the original's does (to the grid), each
+/// thread pass starting at the original's angle. A coordinate past the digits the control
+/// reads, a block that ran nowhere in the original and runs in the expansion, or a start of a
+/// multi-start thread written without its angle, is found here, not on the control.
 pub fn check_written(
     original: &Validated<Lowered>,
     written: &[u8],
     reading: &crate::pipeline::Settings,
 ) -> Result<(), Unwritable> {
-    let cuts = |lowered: &Lowered| lowered.toolpath.moves.iter().filter(|m| m.cutting).count();
     match crate::pipeline::analyse(written, reading).ready() {
         Ok(read) => {
-            let (original, written) = (cuts(original), cuts(&read.lowered));
-            if original == written { Ok(()) } else { Err(Unwritable::OtherCuts { original, written }) }
+            let (original, written) = (&original.toolpath.moves, &read.lowered.toolpath.moves);
+            let cutting = |moves: &[crate::toolpath::Move]| moves.iter().filter(|m| m.cutting).count();
+            let (count, written_count) = (cutting(original), cutting(written));
+            if count != written_count {
+                return Err(Unwritable::OtherCuts { original: count, written: written_count });
+            }
+            let pairs = original.iter().filter(|m| m.cutting).zip(written.iter().filter(|m| m.cutting));
+            for (k, (a, b)) in pairs.enumerate() {
+                let by_mm = a.contour.distance(b.contour);
+                let turns_apart = (a.phase - b.phase).rem_euclid(1.0).min((b.phase - a.phase).rem_euclid(1.0));
+                if by_mm > CUT_END_TOLERANCE_MM || a.threading != b.threading || a.threading && turns_apart > 1e-6 {
+                    return Err(Unwritable::OtherCut { index: k + 1, by_mm });
+                }
+            }
+            Ok(())
         }
         Err(analysed) => {
             Err(Unwritable::Errors(analysed.diagnostics.into_iter().filter(Diagnostic::is_error).collect()))

@@ -82,6 +82,10 @@ pub(crate) fn cycle_blocks(
         }
         return thread_pass::write(program, expansion, moves, start, &mut cycle);
     }
+    // A pass that starts past the spindle's index needs the thread move's start-angle word.
+    if codes.start_angle.is_none() && moves.iter().any(|m| m.threading && m.phase != 0.0) {
+        return CycleBlocks::NotExpandable(THREAD_MOVES);
+    }
     let mut start = start;
     let mut blocks: Vec<NewBlock> = moves
         .iter()

@@ -86,6 +86,8 @@ pub(crate) struct Codes {
     pub chamfer_off: Option<u16>,
     /// The address of an arc's radius (`R`, OSP `L`).
     pub radius_address: Address,
+    /// The word of a thread move that starts it past the spindle's index (`Q`, 0.001°).
+    pub start_angle: Option<Address>,
 }
 
 impl Codes {
@@ -117,6 +119,7 @@ impl Codes {
             chamfer_on: tables.m_functions.thread_chamfer_on.first().copied(),
             chamfer_off: tables.m_functions.thread_chamfer_off.first().copied(),
             radius_address: if config.dialect == Dialect::Osp { Address::L } else { Address::R },
+            start_angle: tables.thread_move.start_angle,
         }
     }
 
@@ -285,6 +288,8 @@ impl<W: WordSink> MotionWriter<W> {
             }
             modal.compensation = m.compensation;
         }
+        // A thread move after any other starts a pass (a move after a thread move continues it).
+        let starts_thread = m.threading && modal.motion != Some((m.motion, true));
         if modal.motion != Some((m.motion, m.threading)) || m.is_arc() {
             self.motion(Kind::of(m));
             modal.motion = Some((m.motion, m.threading));
@@ -332,6 +337,12 @@ impl<W: WordSink> MotionWriter<W> {
                 modal.feed = Some(m.f_word);
             }
             None => {}
+        }
+        if starts_thread && let Some(address) = self.codes.start_angle {
+            let thousandths = start_angle_thousandths(m.phase);
+            if thousandths != 0 {
+                self.out.number(address, Number::new(thousandths, 0, false));
+            }
         }
         if m.s_word > 0.0 && modal.speed != Some(m.s_word) {
             self.out.number(Address::S, feed_number(m.s_word));
@@ -497,6 +508,12 @@ pub(crate) fn feed_number(value: f64) -> Number {
         scale += 1;
     }
     Number::new((value * 10f64.powi(scale as i32)).round() as i64, scale, true)
+}
+
+/// The start-angle word's count (0.001°) for a pass that starts `phase` turns past the
+/// spindle's index (`Move::phase`).
+pub(crate) fn start_angle_thousandths(phase: f64) -> i64 {
+    (phase.rem_euclid(1.0) * 360_000.0).round() as i64 % 360_000
 }
 
 #[cfg(test)]

@@ -102,6 +102,13 @@ pub fn expand(args: ExpandArgs) -> Result<ExitCode, CliError> {
             ));
             return Ok(ExitCode::from(1));
         }
+        Err(Unwritable::OtherCut { index, by_mm }) => {
+            streams::err_line(format_args!(
+                "expand: {name}: the expanded program's cutting move {index} ends {by_mm:.4} mm from the program's, or \
+                 threads otherwise; nothing is written (a defect of turnpass: please report it with the program)"
+            ));
+            return Ok(ExitCode::from(1));
+        }
     }
     write_output(args.output.as_deref(), &output)?;
     Ok(ExitCode::SUCCESS)

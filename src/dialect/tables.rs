@@ -613,6 +613,8 @@ struct RawDialect {
     increment_input: IncrementInput,
     #[serde(default)]
     thread_lead: ThreadLead,
+    #[serde(default)]
+    thread_move: ThreadMove,
     /// Keyed by the control's name (`haas`).
     #[serde(default)]
     control: BTreeMap<String, ControlRules>,
@@ -660,6 +662,16 @@ pub struct ThreadLead {
     /// every spindle turn.
     #[serde(default)]
     pub change: Option<Address>,
+}
+
+/// The words of a thread move block beyond its end and lead (`[thread_move]`).
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThreadMove {
+    /// The word that starts the thread at an angle past the spindle's one-turn signal, a
+    /// count of 0.001° (Fanuc-compatible `Q`): one start of a multi-start thread.
+    #[serde(default)]
+    pub start_angle: Option<Address>,
 }
 
 /// A precise-lead word and the decimals it takes beyond the least increment's.
@@ -727,6 +739,7 @@ pub struct Tables {
     pub machine_variables: MachineVariables,
     pub increment_input: IncrementInput,
     pub thread_lead: ThreadLead,
+    pub thread_move: ThreadMove,
     /// Lower-case letters read as upper-case ones (`[control.NAME] lower_case`).
     pub lower_case: bool,
     keywords: Vec<(String, KeywordInfo)>,
@@ -1009,6 +1022,7 @@ fn compile(config: DialectConfig) -> Tables {
         machine_variables: raw.machine_variables,
         increment_input: raw.increment_input,
         thread_lead: raw.thread_lead,
+        thread_move: raw.thread_move,
         lower_case: raw.control.get(config.control.name()).is_some_and(|rules| rules.lower_case),
         keywords,
         g_index,

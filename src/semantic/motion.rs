@@ -200,11 +200,18 @@ impl Interpreter<'_, '_> {
                         self.emitter.arrive(to);
                     } else {
                         let modal = self.modal.clone();
+                        // The start angle (`G32 Q`, 0.001°) places a pass's start; a move
+                        // continuing a thread keeps the spindle where the one before left it.
+                        let start_angle =
+                            self.tables.thread_move.start_angle.and_then(|a| self.address_value(words, a));
+                        self.emitter.thread_phase =
+                            start_angle.map_or(0.0, super::cycles::thread_pass::start_angle_turns);
                         if change == 0.0 {
                             self.emitter.thread(&modal, to, lead);
                         } else if self.emitter.varying_thread(&modal, to, (lead, change), &mut 0.0).is_none() {
                             self.error(DiagnosticKind::LeadShrinksToNothing, span);
                         }
+                        self.emitter.thread_phase = 0.0;
                         self.report_zero_feed(span);
                     }
                 }

@@ -68,6 +68,9 @@ pub fn moves_text(program: &turnpass::syntax::Program<'_>, toolpath: &Toolpath) 
         }
         if m.threading {
             out.push_str(" thread");
+            if m.phase != 0.0 {
+                let _ = write!(out, " phase{:.4}", m.phase);
+            }
         }
         out.push('\n');
     }
@@ -154,8 +157,9 @@ pub fn expand_and_compare(path: &Path, source: &[u8], settings: &MachineSettings
     // Expansion rounds to the least increment, and rapids of zero length vanish.
     let tolerance = machine.increment * machine.scale() * 1.01;
     // Each move's kind, end point, and the F and S words in force (as written), so that an
-    // expansion that leaves another feed or speed in force for later blocks shows.
-    let points = |t: &Toolpath| -> Vec<(Motion, bool, f64, f64, f64, f64)> {
+    // expansion that leaves another feed or speed in force for later blocks shows; a thread
+    // move's phase, so that a start of a multi-start thread written without its angle shows.
+    let points = |t: &Toolpath| -> Vec<(Motion, bool, f64, f64, f64, f64, f64)> {
         let mut out = Vec::new();
         let mut at = t.start;
         for m in &t.moves {
@@ -163,7 +167,7 @@ pub fn expand_and_compare(path: &Path, source: &[u8], settings: &MachineSettings
                 continue;
             }
             let f_word = if m.motion == Motion::Rapid { 0.0 } else { m.f_word };
-            out.push((m.motion, m.threading, m.end.x, m.end.z, f_word, m.s_word));
+            out.push((m.motion, m.threading, m.end.x, m.end.z, f_word, m.s_word, m.phase));
             at = m.end;
         }
         out
@@ -177,7 +181,8 @@ pub fn expand_and_compare(path: &Path, source: &[u8], settings: &MachineSettings
                 && (p.2 - q.2).abs() <= tolerance
                 && (p.3 - q.3).abs() <= tolerance
                 && (p.4 - q.4).abs() <= 1e-9
-                && (p.5 - q.5).abs() <= 1e-9,
+                && (p.5 - q.5).abs() <= 1e-9
+                && (p.6 - q.6).abs() <= 1e-6,
             "{}: move {i} differs after expansion: {p:?} vs {q:?}",
             path.display()
         );
@@ -195,5 +200,24 @@ fn simulate_cases() {
         insta::glob!("../cases/simulate", "**/*.nc", |path| {
             insta::assert_snapshot!(run_case(path));
         });
+    });
+}
+
+/// `expand`'s check before it writes (`expand::check_written`) compares each cutting move
+/// with the original's, its thread's start angle included: a printing of
+/// `simulate/fanuc/thread-start-angles.nc` that loses the start angles of its `G32` passes
+/// (tests/cases/expand-check/) cuts the same points, and the second starts recut the
+/// first's grooves. It is refused at the first such pass.
+#[test]
+fn expand_check_refuses_a_printing_that_loses_a_start_angle() {
+    let case = repo().join("tests/cases/simulate/fanuc/thread-start-angles.nc");
+    let plain = pipeline_settings(&settings_for(&case), false);
+    let source = std::fs::read(&case).unwrap();
+    let ready = analyse(&source, &plain).ready().expect("the case lowers");
+    let written =
+        std::fs::read(repo().join("tests/cases/expand-check/thread-start-angles-written-without-the-angles.nc"))
+            .unwrap();
+    with_snapshots("simulate", || {
+        insta::assert_debug_snapshot!(turnpass::expand::check_written(&ready.lowered, &written, &plain));
     });
 }

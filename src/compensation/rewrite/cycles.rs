@@ -181,8 +181,12 @@ pub(super) fn thread_final_pass(program: &Program<'_>, lowered: &Lowered, e: &Ex
     let words_fit = program.words_of(block).iter().zip(block.word_ids()).all(|(word, id)| match word.kind {
         WordKind::Number { address, .. } => match command {
             Some(command) => command.params.iter().find(|p| p.word == id).is_some_and(|p| final_pass_role(p.role)),
-            // A modal repeat of the cycle (Fanuc's `G92` then `X` alone) writes its end.
-            None => matches!(address, Address::X | Address::Z | Address::U | Address::W),
+            // A modal repeat of the cycle (Fanuc's `G92` then `X` alone) writes its end, and
+            // may write its start angle, which turns the spindle and moves nothing.
+            None => {
+                matches!(address, Address::X | Address::Z | Address::U | Address::W)
+                    || program.config().tables().thread_move.start_angle == Some(address)
+            }
         },
         WordKind::Expr { .. } => false,
         // A contour's name (`G88 N…`): the passes follow the contour, whose blocks, not the

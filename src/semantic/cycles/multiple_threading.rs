@@ -25,7 +25,8 @@
 //! are not in the machine settings: turnpass takes one finishing pass, no chamfer, a radial
 //! infeed (`a = 0`), no minimum depth and no allowance. The Haas form has no chamfer here:
 //! its size is Haas Setting 95 (and both corpus programs turn it off with `M24`). The Haas
-//! `Q`, the start angle of one start of a multi-start thread, does not change the path in XZ.
+//! `Q`, the start angle of one start of a multi-start thread (0.001°), does not change the
+//! path in XZ: it turns the spindle past its index before each pass (`Move::phase`).
 
 use crate::diagnostic::DiagnosticKind;
 use crate::dialect::Role;
@@ -245,9 +246,13 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     let saved = interp.modal.clone();
     // The lead is the F of the thread moves (what `expand` writes on its `G32` blocks).
     interp.modal.feed = lead;
+    // Haas's `Q`: every pass of this start begins that far past the spindle's index.
+    interp.emitter.thread_phase =
+        interp.param(command, Role::ShiftAngle).map_or(0.0, super::thread_pass::start_angle_turns);
     for pass in passes(&roughing, height, parameters.finishing_passes, infeed) {
         thread.cut(interp, pass);
     }
+    interp.emitter.thread_phase = 0.0;
     interp.modal = saved;
     interp.report_zero_feed(span);
     Flow::Next

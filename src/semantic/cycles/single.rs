@@ -52,7 +52,8 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     }
     interp.cycle_memory.single = Some(SingleCycleMemory { function, end, taper });
     interp.modal.motion = motion_mode(function);
-    cut(interp, index, function, start, end, taper);
+    let start_angle = interp.param(command, Role::ShiftAngle);
+    cut(interp, index, (function, start_angle), start, end, taper);
     Flow::Next
 }
 
@@ -89,7 +90,12 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         if axes.z_given { axes.target.map_or(memory.end.z, |t| t.z) } else { memory.end.z },
     );
     interp.cycle_memory.single = Some(SingleCycleMemory { end, taper, ..memory });
-    cut(interp, index, memory.function, start, end, taper);
+    // A thread's start angle is the block's own, as on the call: it is not kept.
+    let start_angle = match memory.function {
+        GFunction::ThreadCycle => interp.address_value(words, Address::Q),
+        _ => None,
+    };
+    cut(interp, index, (memory.function, start_angle), start, end, taper);
     interp.expansions.push(super::super::Expansion {
         block: index,
         frame: interp.modal.frame,
@@ -109,7 +115,16 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
     Flow::Next
 }
 
-fn cut(interp: &mut Interpreter<'_, '_>, index: usize, function: GFunction, start: Xz, end: Xz, taper: f64) {
+/// The cycle's four moves; a thread's (`G92`) starts `start_angle` (0.001°) past the
+/// spindle's index.
+fn cut(
+    interp: &mut Interpreter<'_, '_>,
+    index: usize,
+    (function, start_angle): (GFunction, Option<f64>),
+    start: Xz,
+    end: Xz,
+    taper: f64,
+) {
     let span = interp.program.block(index).span;
     if interp.known_position(span).is_none() {
         return;
@@ -129,7 +144,9 @@ fn cut(interp: &mut Interpreter<'_, '_>, index: usize, function: GFunction, star
         GFunction::ThreadCycle => {
             let lead = modal.frame.feed_mm(modal.feed);
             e.rapid(&modal, Xz::new(end.x + taper, start.z));
+            e.thread_phase = start_angle.map_or(0.0, super::thread_pass::start_angle_turns);
             e.thread(&modal, end, lead);
+            e.thread_phase = 0.0;
             e.rapid(&modal, Xz::new(start.x, end.z));
             e.rapid(&modal, start);
         }

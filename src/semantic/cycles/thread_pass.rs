@@ -175,6 +175,12 @@ pub(in crate::semantic) fn lead_change(interp: &mut Interpreter<'_, '_>, command
     interp.param(command, Role::LeadChange).map_or(0.0, |e| interp.modal.frame.feed_mm(e))
 }
 
+/// The spindle's turns past its index at which a thread starts, from a start-angle word's
+/// value (`value`): a count of 0.001° (Fanuc-compatible `G92`/`G32`/Haas `G76` `Q`).
+pub(in crate::semantic) fn start_angle_turns(value: f64) -> f64 {
+    (value / 360_000.0).rem_euclid(1.0)
+}
+
 /// An error where a pass's lead shrank to nothing before the thread's end: the control
 /// stops with an alarm there.
 pub(in crate::semantic) fn report_lead_to_nothing(interp: &mut Interpreter<'_, '_>, lasts: bool, span: Span) {
