@@ -265,7 +265,8 @@ fn block_reports(input: &ReportInput<'_>, lines: &LineIndex, edited: &[EditedBlo
             BlockReport {
                 line: lines.position(input.program.block(edited.block).span.start).0,
                 cycle: edited.cycle,
-                segments: plans.iter().map(|p| p.segments.len()).sum(),
+                // A variable lead's turns are written as the block's one move.
+                segments: if edited.one_move { 1 } else { plans.iter().map(|p| p.segments.len()).sum() },
                 max_correction_mm: nm(correction.max_mm),
                 rms_correction_mm: nm(correction.rms_mm),
                 arcs,

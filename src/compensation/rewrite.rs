@@ -73,6 +73,9 @@ pub struct EditedBlock {
     pub block: usize,
     pub moves: Range<usize>,
     pub cycle: bool,
+    /// Its moves are the turns of one variable-lead thread move (`Emitter::varying_thread`),
+    /// which it writes as the one move it is.
+    pub one_move: bool,
 }
 
 /// Per move, what can be written for it (`MotionBlocks::move_tables`).
@@ -317,7 +320,12 @@ pub fn finish(
                     }
                     out.edits.replace(copy.finish, vec![copy.call]);
                     if let Some(e) = lowered.expansions.iter().find(|e| e.block == copy.finish) {
-                        out.edited.push(EditedBlock { block: copy.finish, moves: e.moves.clone(), cycle: false });
+                        out.edited.push(EditedBlock {
+                            block: copy.finish,
+                            moves: e.moves.clone(),
+                            cycle: false,
+                            one_move: false,
+                        });
                     }
                     copied.insert(copy.rough, CycleForm::RoughsOriginal);
                     copied.insert(
@@ -370,7 +378,7 @@ pub fn finish(
             in_place.insert(e.block, profile);
             if let Some((words, change)) = lead {
                 out.edits.replace(e.block, vec![cycles::with_lead(program, e.block, &words)]);
-                out.edited.push(EditedBlock { block: e.block, moves: e.moves.clone(), cycle: false });
+                out.edited.push(EditedBlock { block: e.block, moves: e.moves.clone(), cycle: false, one_move: false });
                 root_leads.insert(e.block, change);
             }
         } else {
@@ -492,7 +500,7 @@ pub fn finish(
     let expanded_set: HashSet<usize> = expanded.iter().copied().collect();
     for block in expanded {
         if let Some(e) = first_expansion.get(&block).and_then(|&k| lowered.expansions.get(k)) {
-            out.edited.push(EditedBlock { block, moves: e.moves.clone(), cycle: true });
+            out.edited.push(EditedBlock { block, moves: e.moves.clone(), cycle: true, one_move: false });
         }
     }
     let single_cycle = |block: usize| {
@@ -798,6 +806,8 @@ pub struct MotionBlocks<'a, 'src> {
     differing: HashSet<usize>,
     /// Blocks refused with a diagnostic already (one per block).
     refused: HashSet<usize>,
+    /// Blocks whose moves are the turns of one variable-lead thread move, written as one.
+    one_move_blocks: HashSet<usize>,
     diagnostics: Vec<Diagnostic>,
     /// Kept thread cycles' lead words, by call block (`cycles::thread_lead`).
     leads: HashMap<usize, cycles::LeadWords>,
@@ -945,6 +955,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             first_runs,
             differing: HashSet::new(),
             refused: HashSet::new(),
+            one_move_blocks: HashSet::new(),
             diagnostics: Vec::new(),
             leads: HashMap::new(),
             model: None,
@@ -1146,6 +1157,7 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
         let merged = several.then(|| Self::variable_lead_plan(lowered, moves.clone(), plans)).flatten();
         if let Some((last, _, _)) = merged {
             (single, several) = (Some(last), false);
+            self.one_move_blocks.insert(block);
         }
         match single {
             None => None,
@@ -1239,7 +1251,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
             (FirstRun::NotYet, Some(text)) => {
                 *first_run = FirstRun::Replaced(self.replacements.len());
                 self.replacements.push((block, text));
-                self.edited.push(EditedBlock { block, moves, cycle: false });
+                let one_move = self.one_move_blocks.contains(&block);
+                self.edited.push(EditedBlock { block, moves, cycle: false, one_move });
             }
             (FirstRun::AsWritten, None) => {}
             (FirstRun::AsWritten, Some(text)) => {
@@ -1392,7 +1405,8 @@ impl<'a, 'src> MotionBlocks<'a, 'src> {
                         Some(_) => {
                             self.first_runs[block] = FirstRun::Replaced(self.replacements.len());
                             self.replacements.push((block, text));
-                            self.edited.push(EditedBlock { block, moves, cycle: false });
+                            let one_move = self.one_move_blocks.contains(&block);
+                            self.edited.push(EditedBlock { block, moves, cycle: false, one_move });
                         }
                         None => continue,
                     }
