@@ -243,8 +243,12 @@ pub(super) struct SingleCut {
     /// A block that repeats the cycle (`X` or `Z` alone, Fanuc's modal single cycles): the
     /// axis it does not name and its taper, where it writes none, are the call's before it.
     pub repeat: bool,
-    /// The block names `X`, and `Z`.
+    /// The block names `X` (or `U`), and `Z` (or `W`).
     pub names: (bool, bool),
+    /// The block writes `X`, and `Z`, incrementally (`U`/`W`, or `X`/`Z` under `G91`):
+    /// counted from the call's start point, where the tool stands before the call, and for
+    /// a repeat, where the run before it started (the cycle returns there).
+    pub incremental: (bool, bool),
     /// The taper the block writes (its `R`), as a count of the grid's lengths, and the place of
     /// that word among the block's words.
     pub taper: Option<(usize, i64)>,
@@ -253,11 +257,12 @@ pub(super) struct SingleCut {
 /// The cut of a single turning or facing cycle's run `e` whose words can carry its
 /// correction: the run is the cycle's four moves (a rapid to the cut's start, the cut, the
 /// feed back out to the start point's diameter, or face, and the rapid to the start point),
-/// and its block writes only absolute end words (`X` and `Z` both, on a call), a taper `R`,
-/// the feed, speed and tool, besides the sequence name, codes and comments. The end words
-/// name the cut's end and the taper its start from that end, so both are the words'; the
-/// cut's start along the other axis is the tool's position before the call, and the move
-/// back out ends at the start point, neither of them words of the call.
+/// and its block writes only end words (both axes, on a call), a taper `R`, the feed, speed
+/// and tool, besides the sequence name, codes and comments. The end words name the cut's
+/// end, absolute or counted from the start point (`U`/`W`, `G91`), and the taper its start
+/// from that end, so both are the words'; the cut's start along the other axis is the
+/// tool's position before the call, and the move back out ends at the start point, neither
+/// of them words of the call.
 pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<SingleCut> {
     use crate::dialect::{Address, AddressKind, GFunction, Role};
     // The approach and the move back out travel one axis, the same one: X when turning.
@@ -280,6 +285,7 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
         _ => return None,
     };
     let (mut x, mut z, mut taper) = (false, false, None);
+    let (mut x_incremental, mut z_incremental) = (!mark.absolute, !mark.absolute);
     for (k, (word, id)) in program.words_of(block).iter().zip(block.word_ids()).enumerate() {
         match word.kind {
             WordKind::Number { address, number } => {
@@ -290,6 +296,8 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
                     None => match address {
                         Address::X => Role::EndX,
                         Address::Z => Role::EndZ,
+                        Address::U => Role::IncrementalX,
+                        Address::W => Role::IncrementalZ,
                         Address::R => Role::Taper,
                         Address::F => Role::Feed,
                         _ => return None,
@@ -298,13 +306,14 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
                 match role {
                     Role::EndX => x = true,
                     Role::EndZ => z = true,
+                    Role::IncrementalX => (x, x_incremental) = (true, true),
+                    Role::IncrementalZ => (z, z_incremental) = (true, true),
                     Role::Taper => {
                         let tables = program.config().tables();
                         let kind = || tables.address(address).map(|s| s.kind).or(Some(AddressKind::Length));
                         taper = Some((k, crate::back::grid::Grid::new(&mark).literal_count(number, kind)));
                     }
                     Role::Feed | Role::Speed | Role::Tool => {}
-                    // Incremental end words count from the start point, not from the cut.
                     _ => return None,
                 }
             }
@@ -313,11 +322,12 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
         }
     }
     let named = if command.is_some() { x && z } else { x || z };
-    (named && mark.absolute).then_some(SingleCut {
+    named.then_some(SingleCut {
         cut: e.moves.start + 1,
         facing,
         repeat: command.is_none(),
         names: (x, z),
+        incremental: (x_incremental, z_incremental),
         taper,
     })
 }
