@@ -458,7 +458,8 @@ pub fn finish(
     }
     // A single turning or facing cycle keeps its call, its cut's correction in its own end
     // words and taper; a modal repeat of it (`X` alone) takes what it does not name from the
-    // run before it as written.
+    // run before it as written. A groove of one plunge keeps its call, its bottom's
+    // correction in its end words.
     let mut singles: HashSet<usize> = HashSet::new();
     if choice.singles_in_place && !choice.expand_all {
         singles = keep_singles(program, lowered, plans, (&mut chosen, &groups), choice, &mut motion);
@@ -497,7 +498,9 @@ pub fn finish(
     }
     let single_cycle = |block: usize| {
         let e = first_expansion.get(&block).and_then(|&k| lowered.expansions.get(k));
-        e.is_some_and(|e| cycles::single_cut(program, lowered, e).is_some())
+        e.is_some_and(|e| {
+            cycles::single_cut(program, lowered, e).is_some() || cycles::single_groove(program, lowered, e).is_some()
+        })
     };
     let mut calls: Vec<usize> = first_expansion.keys().copied().collect();
     calls.sort_unstable();
@@ -585,8 +588,9 @@ struct SingleInForce {
 /// part, and whose words as written end within half that clearance of the plan (a roughing
 /// pass), stays as written, as a thread's infeed pass does. The move
 /// back out of the cut ends at the start point, which no word of the call moves: the check
-/// before writing judges it with the rest. The calls kept with their words edited, by
-/// block; a call kept as written has its `chosen` cleared, so nothing expands it.
+/// before writing judges it with the rest. A groove of one plunge (`G75`) is kept the same
+/// way (`keep_groove`). The calls kept with their words edited, by block; a call kept as
+/// written has its `chosen` cleared, so nothing expands it.
 fn keep_singles(
     program: &Program<'_>,
     lowered: &Lowered,
@@ -604,7 +608,26 @@ fn keep_singles(
         // The run kept right before this one, which leaves its end and taper in force.
         let adjacent = in_force.take().filter(|b| b.next_move == e.moves.start);
         let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
-        let Some(cut) = cycles::single_cut(program, lowered, e).filter(|_| alone) else { continue };
+        let Some(cut) = cycles::single_cut(program, lowered, e).filter(|_| alone) else {
+            if chosen.get(k).copied().unwrap_or(false)
+                && alone
+                && let Some(groove) = cycles::single_groove(program, lowered, e)
+                && let Some(start) = written_start(program, lowered, plans, &returns, e)
+            {
+                if let Some(words_edited) = keep_groove(lowered, plans, (e, groove, start), motion) {
+                    if let Some(c) = chosen.get_mut(k) {
+                        *c = false;
+                    }
+                    if words_edited {
+                        edited.insert(e.block);
+                    }
+                }
+                if !chosen.get(k).copied().unwrap_or(false) || choice.others_as_written {
+                    returns.insert(e.moves.end, start);
+                }
+            }
+            continue;
+        };
         // A repeat runs from the end and taper the run before it leaves in force.
         let before = adjacent.filter(|b| b.facing == cut.facing && cut.repeat);
         if cut.repeat && before.is_none() {
@@ -721,6 +744,48 @@ fn keep_singles(
         }
     }
     edited
+}
+
+/// Keep a groove on a diameter of one plunge (`G75`) whose bottom's correction its end words
+/// can carry (`cycles::single_groove`), with `X` (or `U`) written from the plan of the feed
+/// that reaches the bottom, and `Z` (or `W`) where it names one, the call's start point's
+/// (`start`, as written), where the plunge runs: a `Z` elsewhere would step the groove into
+/// a second plunge. Incremental words count from that start point. The pecks before the
+/// bottom count from the start point too, and the move back out ends there: the check before
+/// writing judges them with the rest. `Some(true)` where its words are edited, `Some(false)`
+/// where its words as written already reach the bottom the plan corrects (`U` from a start
+/// point that moved with it): kept as it is; `None` where its words cannot carry it, or its
+/// bottom needs no correction (only the moves its words do not place change).
+fn keep_groove(
+    lowered: &Lowered,
+    plans: &KeptPlans,
+    (e, groove, start): (&Expansion, cycles::SingleGroove, Xz),
+    motion: &mut MotionBlocks<'_, '_>,
+) -> Option<bool> {
+    let plan = plans.get(groove.bottom..groove.bottom + 1).and_then(<[MovePlan]>::first)?;
+    let (Some(&Segment::Line { end }), true) =
+        (plan.segments.last(), plan.segments.iter().all(|s| matches!(s, Segment::Line { .. })))
+    else {
+        return None;
+    };
+    if !matches!(motion.first_runs.get(e.block), Some(FirstRun::NotYet)) {
+        return None;
+    }
+    let plan = MovePlan {
+        start,
+        segments: smallvec::smallvec![Segment::Line { end: Xz::new(end.x, start.z) }],
+        changed: true,
+        jumps: 0,
+        lead_in: false,
+        words: smallvec::SmallVec::new(),
+    };
+    motion.write_pass(e.block, (Some(e.moves.start), groove.bottom), &plan);
+    if matches!(motion.first_runs.get(e.block), Some(FirstRun::Replaced(_))) {
+        return Some(true);
+    }
+    let grid = Grid::new(&lowered.coordinates_at(groove.bottom));
+    let nominal = lowered.toolpath.moves.get(groove.bottom)?.contour;
+    (grid.point(end).x != grid.point(nominal).x).then_some(false)
 }
 
 /// Where the call `e` starts as written, which its incremental end words count from: where

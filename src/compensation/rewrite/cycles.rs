@@ -332,6 +332,72 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
     })
 }
 
+/// A Fanuc groove on a diameter (`G75`) of one plunge, whose end words can carry the
+/// correction of its bottom (`single_groove`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct SingleGroove {
+    /// The feed that reaches the bottom: the call's last feed move.
+    pub bottom: usize,
+}
+
+/// The bottom of a `G75` call `e` that plunges once (no step along Z: its end `Z` is its
+/// start point's, or left out) and whose words can carry that bottom's correction: its
+/// block writes only end words (`X` or `U` the bottom, `Z`/`W` the plunge's place), the
+/// peck, step and relief, and the feed, besides the sequence name, codes and comments.
+/// The pecks count from the start point and stop at the bottom, so only the last reaches
+/// the bottom, and it ends where the end words say; the plunge's place along Z, and so its
+/// walls, is the start point's, which the move before the call places. A groove of several plunges
+/// is not one: each plunge's bottom would need its own correction, and the call names one.
+pub(super) fn single_groove(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<SingleGroove> {
+    use crate::dialect::{GFunction, Role};
+    let block = program.block(e.block);
+    let crate::syntax::Statement::Cycle(id) = block.statement else { return None };
+    if cycle_function(program, block) != Some(GFunction::DiameterGrooving) {
+        return None;
+    }
+    let command = program.command(id);
+    let mut x = false;
+    for (word, id) in program.words_of(block).iter().zip(block.word_ids()) {
+        match word.kind {
+            WordKind::Number { .. } => match command.params.iter().find(|p| p.word == id)?.role {
+                Role::EndX | Role::IncrementalX => x = true,
+                Role::EndZ
+                | Role::IncrementalZ
+                | Role::PeckDepth
+                | Role::StepZ
+                | Role::BottomRelief
+                | Role::Feed
+                | Role::Speed
+                | Role::Tool => {}
+                _ => return None,
+            },
+            WordKind::Expr { .. } | WordKind::Label { .. } => return None,
+            _ => {}
+        }
+    }
+    let toolpath = &lowered.toolpath;
+    let moves = toolpath.moves.get(e.moves.clone())?;
+    let start = toolpath.start_of(e.moves.start);
+    // One plunge: every feed runs along X at the start point's Z.
+    let along_x = |k: usize, m: &Move| {
+        let from = super::super::written::contour_start(toolpath, k);
+        m.compensation == Compensation::Off && from.z == start.z && m.contour.z == start.z
+    };
+    let mut bottom = None;
+    for (k, m) in (e.moves.start..).zip(moves) {
+        if m.threading || m.is_arc() {
+            return None;
+        }
+        if m.motion == Motion::Feed {
+            if !along_x(k, m) {
+                return None;
+            }
+            bottom = Some(k);
+        }
+    }
+    x.then_some(SingleGroove { bottom: bottom? })
+}
+
 /// Whether a thread cycle's word of `role` leaves its end words naming the final pass's end
 /// (grammar/*.toml, the thread cycles' schemas), so that they carry its correction:
 ///
