@@ -466,7 +466,8 @@ pub fn finish(
     }
     // A single turning or facing cycle keeps its call, its cut's correction in its own end
     // words and taper; a modal repeat of it (`X` alone) takes what it does not name from the
-    // run before it as written.
+    // run before it as written. A groove of one plunge keeps its call, its bottom's
+    // correction in its end words.
     let mut singles: HashSet<usize> = HashSet::new();
     if choice.singles_in_place && !choice.expand_all {
         singles = keep_singles(program, lowered, plans, (&mut chosen, &groups), choice, &mut motion);
@@ -505,7 +506,9 @@ pub fn finish(
     }
     let single_cycle = |block: usize| {
         let e = first_expansion.get(&block).and_then(|&k| lowered.expansions.get(k));
-        e.is_some_and(|e| cycles::single_cut(program, lowered, e).is_some())
+        e.is_some_and(|e| {
+            cycles::single_cut(program, lowered, e).is_some() || cycles::single_groove(program, lowered, e).is_some()
+        })
     };
     let mut calls: Vec<usize> = first_expansion.keys().copied().collect();
     calls.sort_unstable();
@@ -586,14 +589,16 @@ struct SingleInForce {
 
 /// Keep the single turning and facing cycles (`G90`, `G94`) whose cut's correction their
 /// words can carry (`cycles::single_cut`), with those words written from the plan of the
-/// cut (`MotionBlocks::write_pass`): `X` and `Z` its end, the taper `R` its start from that
-/// end where it differs from the one in force (the call's own, else none; a repeat's, the
-/// run's before it), added where the block writes none. A run whose whole feed moves keep
-/// clear of the finished part, and whose words as written end within half that clearance of
-/// the plan (a roughing pass), stays as written, as a thread's infeed pass does. The move
+/// cut (`MotionBlocks::write_pass`): `X` and `Z` its end (`U` and `W` its end less the call's
+/// start point, `written_start`), the taper `R` its start from that end where it differs
+/// from the one in force (the call's own, else none; a repeat's, the run's before it), added
+/// where the block writes none. A run whose whole feed moves keep clear of the finished
+/// part, and whose words as written end within half that clearance of the plan (a roughing
+/// pass), stays as written, as a thread's infeed pass does. The move
 /// back out of the cut ends at the start point, which no word of the call moves: the check
-/// before writing judges it with the rest. The calls kept with their words edited, by
-/// block; a call kept as written has its `chosen` cleared, so nothing expands it.
+/// before writing judges it with the rest. A groove of one plunge (`G75`) is kept the same
+/// way (`keep_groove`). The calls kept with their words edited, by block; a call kept as
+/// written has its `chosen` cleared, so nothing expands it.
 fn keep_singles(
     program: &Program<'_>,
     lowered: &Lowered,
@@ -604,26 +609,58 @@ fn keep_singles(
 ) -> HashSet<usize> {
     let mut edited: HashSet<usize> = HashSet::new();
     let mut in_force: Option<SingleInForce> = None;
+    // Where each call that stays starts as written, by the move after its last: the
+    // control returns there, whatever the plan of its move back says.
+    let mut returns: HashMap<usize, Xz> = HashMap::new();
     for (k, e) in lowered.expansions.iter().enumerate() {
-        let before = in_force.take();
+        // The run kept right before this one, which leaves its end and taper in force.
+        let adjacent = in_force.take().filter(|b| b.next_move == e.moves.start);
         let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
-        let Some(cut) = cycles::single_cut(program, lowered, e).filter(|_| alone) else { continue };
+        let Some(cut) = cycles::single_cut(program, lowered, e).filter(|_| alone) else {
+            if chosen.get(k).copied().unwrap_or(false)
+                && alone
+                && let Some(groove) = cycles::single_groove(program, lowered, e)
+                && let Some(start) = written_start(program, lowered, plans, &returns, e)
+            {
+                if let Some(words_edited) = keep_groove(lowered, plans, (e, groove, start), motion) {
+                    if let Some(c) = chosen.get_mut(k) {
+                        *c = false;
+                    }
+                    if words_edited {
+                        edited.insert(e.block);
+                    }
+                }
+                if !chosen.get(k).copied().unwrap_or(false) || choice.others_as_written {
+                    returns.insert(e.moves.end, start);
+                }
+            }
+            continue;
+        };
         // A repeat runs from the end and taper the run before it leaves in force.
-        let before = before.filter(|b| b.next_move == e.moves.start && b.facing == cut.facing && cut.repeat);
+        let before = adjacent.filter(|b| b.facing == cut.facing && cut.repeat);
         if cut.repeat && before.is_none() {
             continue;
         }
+        // Where the call starts as written, which incremental end words count from.
+        let Some(call_start) = written_start(program, lowered, plans, &returns, e) else { continue };
         let grid = Grid::new(&lowered.coordinates_at(cut.cut));
         let Some(m) = lowered.toolpath.moves.get(cut.cut) else { continue };
         // Where the block as written ends the cut, and its taper: the axes it names as
-        // written, the others as the run before it leaves them.
+        // written (counted from the call's start point where they are incremental), the
+        // others as the run before it leaves them.
         let nominal = grid.point(m.contour);
-        let as_written = match before {
-            Some(b) => GridPoint {
-                x: if cut.names.0 { nominal.x } else { b.end.x },
-                z: if cut.names.1 { nominal.z } else { b.end.z },
-            },
-            None => nominal,
+        let (from, nominal_from) =
+            (grid.point(call_start), grid.point(written::contour_start(&lowered.toolpath, e.moves.start)));
+        let axis = |(named, incremental): (bool, bool),
+                    (end, from, nominal_from): (i64, i64, i64),
+                    held: Option<i64>| match held.filter(|_| !named) {
+            Some(held) => held,
+            None if incremental => from + end - nominal_from,
+            None => end,
+        };
+        let as_written = GridPoint {
+            x: axis((cut.names.0, cut.incremental.0), (nominal.x, from.x, nominal_from.x), before.map(|b| b.end.x)),
+            z: axis((cut.names.1, cut.incremental.1), (nominal.z, from.z, nominal_from.z), before.map(|b| b.end.z)),
         };
         let taper_as_written = cut.taper.map_or(before.map_or(0, |b| b.taper), |(_, t)| t);
         let as_written_run = SingleInForce {
@@ -636,6 +673,7 @@ fn keep_singles(
         let changed = chosen.get(k).copied().unwrap_or(false);
         if !changed && !before.is_some_and(|b| b.edited) {
             in_force = Some(as_written_run);
+            returns.insert(e.moves.end, call_start);
             continue;
         }
         let Some(plan) = plans.get(cut.cut..cut.cut + 1).and_then(<[MovePlan]>::first) else { continue };
@@ -656,6 +694,7 @@ fn keep_singles(
                 *c = false;
             }
             in_force = Some(as_written_run);
+            returns.insert(e.moves.end, call_start);
             continue;
         }
         // The cut starts where its plan's take-up of the play ends (a jump at the start of a
@@ -675,21 +714,24 @@ fn keep_singles(
         if taper != taper_as_written {
             motion.tapers.insert(e.block, taper);
         }
+        // The words count from the call's start point: incremental ones are the cut's end
+        // less it, absolute ones the end alone.
         let plan = MovePlan {
-            start,
+            start: call_start,
             segments: smallvec::smallvec![Segment::Line { end }],
             changed: true,
             jumps: 0,
             lead_in: false,
             words: smallvec::SmallVec::new(),
         };
-        motion.write_pass(e.block, (None, cut.cut), &plan);
+        motion.write_pass(e.block, (Some(e.moves.start), cut.cut), &plan);
         if matches!(motion.first_runs.get(e.block), Some(FirstRun::Replaced(_))) {
             if let Some(c) = chosen.get_mut(k) {
                 *c = false;
             }
             edited.insert(e.block);
             in_force = Some(SingleInForce { end: at, taper, edited: true, ..as_written_run });
+            returns.insert(e.moves.end, call_start);
         } else {
             // Its words as written are those of its plan. Where its cut needs a correction
             // they hold it (a repeat that takes the corrected end from the run before it):
@@ -705,10 +747,93 @@ fn keep_singles(
             }
             if !chosen.get(k).copied().unwrap_or(false) || choice.others_as_written {
                 in_force = Some(as_written_run);
+                returns.insert(e.moves.end, call_start);
             }
         }
     }
     edited
+}
+
+/// Keep a groove on a diameter of one plunge (`G75`) whose bottom's correction its end words
+/// can carry (`cycles::single_groove`), with `X` (or `U`) written from the plan of the feed
+/// that reaches the bottom, and `Z` (or `W`) where it names one, the call's start point's
+/// (`start`, as written), where the plunge runs: a `Z` elsewhere would step the groove into
+/// a second plunge. Incremental words count from that start point. The pecks before the
+/// bottom count from the start point too, and the move back out ends there: the check before
+/// writing judges them with the rest. `Some(true)` where its words are edited, `Some(false)`
+/// where its words as written already reach the bottom the plan corrects (`U` from a start
+/// point that moved with it): kept as it is; `None` where its words cannot carry it, or its
+/// bottom needs no correction (only the moves its words do not place change).
+fn keep_groove(
+    lowered: &Lowered,
+    plans: &KeptPlans,
+    (e, groove, start): (&Expansion, cycles::SingleGroove, Xz),
+    motion: &mut MotionBlocks<'_, '_>,
+) -> Option<bool> {
+    let plan = plans.get(groove.bottom..groove.bottom + 1).and_then(<[MovePlan]>::first)?;
+    let (Some(&Segment::Line { end }), true) =
+        (plan.segments.last(), plan.segments.iter().all(|s| matches!(s, Segment::Line { .. })))
+    else {
+        return None;
+    };
+    if !matches!(motion.first_runs.get(e.block), Some(FirstRun::NotYet)) {
+        return None;
+    }
+    let plan = MovePlan {
+        start,
+        segments: smallvec::smallvec![Segment::Line { end: Xz::new(end.x, start.z) }],
+        changed: true,
+        jumps: 0,
+        lead_in: false,
+        words: smallvec::SmallVec::new(),
+    };
+    motion.write_pass(e.block, (Some(e.moves.start), groove.bottom), &plan);
+    if matches!(motion.first_runs.get(e.block), Some(FirstRun::Replaced(_))) {
+        return Some(true);
+    }
+    let grid = Grid::new(&lowered.coordinates_at(groove.bottom));
+    let nominal = lowered.toolpath.moves.get(groove.bottom)?.contour;
+    (grid.point(end).x != grid.point(nominal).x).then_some(false)
+}
+
+/// Where the call `e` starts as written, which its incremental end words count from: where
+/// the moves before it leave the tool. That is the plan of its first move's start, unless a
+/// call that stays comes before it with only plain moves between (`returns`, by the move
+/// after its last: its start point, where the control returns whatever the plan of its move
+/// back says). Then it is that start point, each move between taking the tool along the
+/// axes its block names to its plan's end (`X`, `Z`) or by its plan's travel (`U`, `W`),
+/// and leaving it where it stands along the others.
+fn written_start(
+    program: &Program<'_>,
+    lowered: &Lowered,
+    plans: &KeptPlans,
+    returns: &HashMap<usize, Xz>,
+    e: &Expansion,
+) -> Option<Xz> {
+    let moves = &lowered.toolpath.moves;
+    let planned = plans.get(e.moves.start..e.moves.start + 1)?.first()?.start;
+    let mut first = e.moves.start;
+    while !returns.contains_key(&first)
+        && let Some(before) = first.checked_sub(1)
+        && moves.get(before).is_some_and(|m| m.cycle == Span::SYNTHETIC)
+    {
+        first = before;
+    }
+    let Some(&start) = returns.get(&first) else { return Some(planned) };
+    let mut at = start;
+    for k in first..e.moves.start {
+        let (plan, m) = (plans.get(k..k + 1)?.first()?, moves.get(k)?);
+        let block = program.blocks().binary_search_by_key(&m.source.start, |b| b.span.start).ok()?;
+        let [x, z] = block::named_axes(program, block, lowered.coordinates_at(k).absolute);
+        let end = plan.end();
+        let axis = |incremental: Option<bool>, start: f64, end: f64, at: f64| match incremental {
+            Some(true) => at + end - start,
+            Some(false) => end,
+            None => at,
+        };
+        at = Xz::new(axis(x, plan.start.x, end.x, at.x), axis(z, plan.start.z, end.z, at.z));
+    }
+    Some(at)
 }
 
 /// A stretch of moves one edited block can write: the moves of one cycle call, or a run

@@ -511,6 +511,32 @@ impl BlockContext<'_, '_> {
     }
 }
 
+/// The axes the motion block `block` names (`X`/`U`, `Z`/`W`; OSP's `A` with one of them
+/// places both), each with whether its word counts from where the move starts (`U`, `W`,
+/// or `X`, `Z` where the coordinates are not `absolute`); `None` for an axis it leaves
+/// where the tool stands.
+pub(super) fn named_axes(program: &Program<'_>, block: usize, absolute: bool) -> [Option<bool>; 2] {
+    let dialect = program.config().dialect;
+    let mut named = [None, None];
+    for word in program.words_of(program.block(block)) {
+        let address = match word.kind {
+            WordKind::Number { address, .. } | WordKind::Expr { address, .. } => address,
+            _ => continue,
+        };
+        let incremental = !absolute || matches!(address, Address::U | Address::W);
+        match slot(dialect, address, false) {
+            Some(Slot::X) => named[0] = Some(incremental),
+            Some(Slot::Z) => named[1] = Some(incremental),
+            Some(Slot::Angle) => {
+                named[0] = named[0].or(Some(incremental));
+                named[1] = named[1].or(Some(incremental));
+            }
+            _ => {}
+        }
+    }
+    named
+}
+
 /// Which coordinate the word at `address` gives in a block of `dialect` (`is_arc`: the
 /// block's move is an arc, where `R`/`L`, `I` and `K` place the centre).
 fn slot(dialect: Dialect, address: Address, is_arc: bool) -> Option<Slot> {

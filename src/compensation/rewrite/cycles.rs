@@ -247,8 +247,12 @@ pub(super) struct SingleCut {
     /// A block that repeats the cycle (`X` or `Z` alone, Fanuc's modal single cycles): the
     /// axis it does not name and its taper, where it writes none, are the call's before it.
     pub repeat: bool,
-    /// The block names `X`, and `Z`.
+    /// The block names `X` (or `U`), and `Z` (or `W`).
     pub names: (bool, bool),
+    /// The block writes `X`, and `Z`, incrementally (`U`/`W`, or `X`/`Z` under `G91`):
+    /// counted from the call's start point, where the tool stands before the call, and for
+    /// a repeat, where the run before it started (the cycle returns there).
+    pub incremental: (bool, bool),
     /// The taper the block writes (its `R`), as a count of the grid's lengths, and the place of
     /// that word among the block's words.
     pub taper: Option<(usize, i64)>,
@@ -257,11 +261,12 @@ pub(super) struct SingleCut {
 /// The cut of a single turning or facing cycle's run `e` whose words can carry its
 /// correction: the run is the cycle's four moves (a rapid to the cut's start, the cut, the
 /// feed back out to the start point's diameter, or face, and the rapid to the start point),
-/// and its block writes only absolute end words (`X` and `Z` both, on a call), a taper `R`,
-/// the feed, speed and tool, besides the sequence name, codes and comments. The end words
-/// name the cut's end and the taper its start from that end, so both are the words'; the
-/// cut's start along the other axis is the tool's position before the call, and the move
-/// back out ends at the start point, neither of them words of the call.
+/// and its block writes only end words (both axes, on a call), a taper `R`, the feed, speed
+/// and tool, besides the sequence name, codes and comments. The end words name the cut's
+/// end, absolute or counted from the start point (`U`/`W`, `G91`), and the taper its start
+/// from that end, so both are the words'; the cut's start along the other axis is the
+/// tool's position before the call, and the move back out ends at the start point, neither
+/// of them words of the call.
 pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<SingleCut> {
     use crate::dialect::{Address, AddressKind, GFunction, Role};
     // The approach and the move back out travel one axis, the same one: X when turning.
@@ -284,6 +289,7 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
         _ => return None,
     };
     let (mut x, mut z, mut taper) = (false, false, None);
+    let (mut x_incremental, mut z_incremental) = (!mark.absolute, !mark.absolute);
     for (k, (word, id)) in program.words_of(block).iter().zip(block.word_ids()).enumerate() {
         match word.kind {
             WordKind::Number { address, number } => {
@@ -294,6 +300,8 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
                     None => match address {
                         Address::X => Role::EndX,
                         Address::Z => Role::EndZ,
+                        Address::U => Role::IncrementalX,
+                        Address::W => Role::IncrementalZ,
                         Address::R => Role::Taper,
                         Address::F => Role::Feed,
                         _ => return None,
@@ -302,13 +310,14 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
                 match role {
                     Role::EndX => x = true,
                     Role::EndZ => z = true,
+                    Role::IncrementalX => (x, x_incremental) = (true, true),
+                    Role::IncrementalZ => (z, z_incremental) = (true, true),
                     Role::Taper => {
                         let tables = program.config().tables();
                         let kind = || tables.address(address).map(|s| s.kind).or(Some(AddressKind::Length));
                         taper = Some((k, crate::back::grid::Grid::new(&mark).literal_count(number, kind)));
                     }
                     Role::Feed | Role::Speed | Role::Tool => {}
-                    // Incremental end words count from the start point, not from the cut.
                     _ => return None,
                 }
             }
@@ -317,13 +326,80 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
         }
     }
     let named = if command.is_some() { x && z } else { x || z };
-    (named && mark.absolute).then_some(SingleCut {
+    named.then_some(SingleCut {
         cut: e.moves.start + 1,
         facing,
         repeat: command.is_none(),
         names: (x, z),
+        incremental: (x_incremental, z_incremental),
         taper,
     })
+}
+
+/// A Fanuc groove on a diameter (`G75`) of one plunge, whose end words can carry the
+/// correction of its bottom (`single_groove`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) struct SingleGroove {
+    /// The feed that reaches the bottom: the call's last feed move.
+    pub bottom: usize,
+}
+
+/// The bottom of a `G75` call `e` that plunges once (no step along Z: its end `Z` is its
+/// start point's, or left out) and whose words can carry that bottom's correction: its
+/// block writes only end words (`X` or `U` the bottom, `Z`/`W` the plunge's place), the
+/// peck, step and relief, and the feed, besides the sequence name, codes and comments.
+/// The pecks count from the start point and stop at the bottom, so only the last reaches
+/// the bottom, and it ends where the end words say; the plunge's place along Z, and so its
+/// walls, is the start point's, which the move before the call places. A groove of several plunges
+/// is not one: each plunge's bottom would need its own correction, and the call names one.
+pub(super) fn single_groove(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<SingleGroove> {
+    use crate::dialect::{GFunction, Role};
+    let block = program.block(e.block);
+    let crate::syntax::Statement::Cycle(id) = block.statement else { return None };
+    if cycle_function(program, block) != Some(GFunction::DiameterGrooving) {
+        return None;
+    }
+    let command = program.command(id);
+    let mut x = false;
+    for (word, id) in program.words_of(block).iter().zip(block.word_ids()) {
+        match word.kind {
+            WordKind::Number { .. } => match command.params.iter().find(|p| p.word == id)?.role {
+                Role::EndX | Role::IncrementalX => x = true,
+                Role::EndZ
+                | Role::IncrementalZ
+                | Role::PeckDepth
+                | Role::StepZ
+                | Role::BottomRelief
+                | Role::Feed
+                | Role::Speed
+                | Role::Tool => {}
+                _ => return None,
+            },
+            WordKind::Expr { .. } | WordKind::Label { .. } => return None,
+            _ => {}
+        }
+    }
+    let toolpath = &lowered.toolpath;
+    let moves = toolpath.moves.get(e.moves.clone())?;
+    let start = toolpath.start_of(e.moves.start);
+    // One plunge: every feed runs along X at the start point's Z.
+    let along_x = |k: usize, m: &Move| {
+        let from = super::super::written::contour_start(toolpath, k);
+        m.compensation == Compensation::Off && from.z == start.z && m.contour.z == start.z
+    };
+    let mut bottom = None;
+    for (k, m) in (e.moves.start..).zip(moves) {
+        if m.threading || m.is_arc() {
+            return None;
+        }
+        if m.motion == Motion::Feed {
+            if !along_x(k, m) {
+                return None;
+            }
+            bottom = Some(k);
+        }
+    }
+    x.then_some(SingleGroove { bottom: bottom? })
 }
 
 /// Whether a thread cycle's word of `role` leaves its end words naming the final pass's end
