@@ -801,6 +801,11 @@ pub enum DiagnosticKind {
         per_revolution: bool,
         inch: bool,
     },
+    /// A repeat of a `G92` thread whose call shifted its start angle (`Q`) writes none:
+    /// the angle is the block's own, so this pass starts at the spindle's index.
+    ThreadStartAngleNotKept {
+        degrees: f64,
+    },
     /// Fanuc system A: `G90` (`G94`) with no `X`/`Z` only selects the single cycle.
     CycleSelectedAlone {
         code: String,

@@ -1243,6 +1243,12 @@ impl DiagnosticKind {
                     }),
                 }
             }
+            ThreadStartAngleNotKept { degrees } => Words {
+                code: "thread-start-angle-not-kept",
+                message: format!("this repeat of the thread cycle writes no start angle: it starts at the spindle's index, not {degrees}° past it as the block before did").into(),
+                label: "no `Q`".into(),
+                hint: Some(format!("the start angle (`Q`) holds for its own block only; to cut this pass on the same start, write `Q{}` on it", (degrees * 1000.0).round()).into()),
+            },
             CycleSelectedAlone { code } => Words {
                 code: "cycle-selected",
                 message: format!("`{code}` with no `X`/`Z` selects its single cycle without running it; blocks with only `X`/`Z` after it run the cycle").into(),

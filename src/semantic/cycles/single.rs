@@ -13,6 +13,7 @@
 //! the start and the end of the cut). `G90` and `G94` return with a feed move 3; `G92` cuts
 //! move 2 as a thread (lead `F`) and retracts at rapid.
 
+use crate::diagnostic::DiagnosticKind;
 use crate::dialect::{Address, GFunction, Role};
 use crate::syntax::{Command, Word};
 use crate::toolpath::Xz;
@@ -26,6 +27,8 @@ pub struct SingleCycleMemory {
     pub function: GFunction,
     pub end: Xz,
     pub taper: f64,
+    /// The start angle the last thread run wrote (`Q`, 0.001°), which a repeat does not keep.
+    pub start_angle: Option<f64>,
 }
 
 pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Command, function: GFunction) -> Flow {
@@ -50,9 +53,9 @@ pub(super) fn run(interp: &mut Interpreter<'_, '_>, index: usize, command: &Comm
     if let Some(lead) = interp.param(command, Role::Lead) {
         interp.modal.feed = lead;
     }
-    interp.cycle_memory.single = Some(SingleCycleMemory { function, end, taper });
-    interp.modal.motion = motion_mode(function);
     let start_angle = interp.param(command, Role::ShiftAngle);
+    interp.cycle_memory.single = Some(SingleCycleMemory { function, end, taper, start_angle });
+    interp.modal.motion = motion_mode(function);
     cut(interp, index, (function, start_angle), start, end, taper);
     Flow::Next
 }
@@ -74,7 +77,8 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         _ => GFunction::FacingCycle,
     };
     let at = interp.emitter.at;
-    let memory = interp.cycle_memory.single.unwrap_or(SingleCycleMemory { function, end: at, taper: 0.0 });
+    let memory =
+        interp.cycle_memory.single.unwrap_or(SingleCycleMemory { function, end: at, taper: 0.0, start_angle: None });
     let block = *interp.program.block(index);
     interp.emitter.context = super::super::emitter::Context { source: block.span, cycle: block.span };
     let first_move = interp.emitter.moves.len();
@@ -89,12 +93,17 @@ pub(in crate::semantic) fn single_cycle_again(interp: &mut Interpreter<'_, '_>, 
         if axes.x_given { axes.target.map_or(memory.end.x, |t| t.x) } else { memory.end.x },
         if axes.z_given { axes.target.map_or(memory.end.z, |t| t.z) } else { memory.end.z },
     );
-    interp.cycle_memory.single = Some(SingleCycleMemory { end, taper, ..memory });
-    // A thread's start angle is the block's own, as on the call: it is not kept.
+    // A thread's start angle is the block's own, as on the call: it is not kept. A repeat
+    // that leaves out the one the run before it wrote cuts another start: said, as the
+    // programmer may have meant the same one.
     let start_angle = match memory.function {
         GFunction::ThreadCycle => interp.address_value(words, Address::Q),
         _ => None,
     };
+    if let (None, Some(before)) = (start_angle, memory.start_angle.filter(|q| q.rem_euclid(360_000.0) != 0.0)) {
+        interp.warning(DiagnosticKind::ThreadStartAngleNotKept { degrees: before / 1000.0 }, block.span);
+    }
+    interp.cycle_memory.single = Some(SingleCycleMemory { end, taper, start_angle, ..memory });
     cut(interp, index, (memory.function, start_angle), start, end, taper);
     interp.expansions.push(super::super::Expansion {
         block: index,
