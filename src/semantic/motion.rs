@@ -59,6 +59,33 @@ struct CornerRequest {
 }
 
 impl Interpreter<'_, '_> {
+    /// The start angle a thread move block writes (`G32 Q`, a count of 0.001°). The control
+    /// takes the word without a decimal point only: one written with a point is an error,
+    /// and the block starts at the spindle's index.
+    fn thread_start_angle(&mut self, words: &[Word]) -> Option<f64> {
+        let address = self.tables.thread_move.start_angle?;
+        let word = *words.iter().find(|w| word_address(w) == Some(address))?;
+        if let crate::syntax::WordKind::Number { number, .. } = word.kind
+            && number.has_point()
+        {
+            let unit = crate::dialect::IntegerUnit::AngleIncrements;
+            let code = self.tables.code_for(GFunction::ThreadMove).map_or_else(String::new, |c| c.display('G'));
+            let counted = crate::diagnostic::CountedWord {
+                command: format!("{code} (thread cutting)"),
+                address: address.name(),
+                written: format!("{}{}", address.name(), crate::syntax::spelling::plain(number)),
+                unit,
+                meant: crate::dialect::roles::meant(unit, number.to_f64(), None)
+                    .map(|(count, reading)| (format!("{}{count}", address.name()), reading)),
+                control: self.tables.config.control.name(),
+                elsewhere: None,
+            };
+            self.error(DiagnosticKind::IntegerExpected(Box::new(counted)), word.span);
+            return None;
+        }
+        self.word_value(&word)
+    }
+
     /// The end point of a block's `X Z U W` words (and OSP `A`).
     pub fn axis_target(&mut self, words: &[Word]) -> AxisTarget {
         let frame = self.modal.frame;
@@ -202,8 +229,7 @@ impl Interpreter<'_, '_> {
                         let modal = self.modal.clone();
                         // The start angle (`G32 Q`, 0.001°) places a pass's start; a move
                         // continuing a thread keeps the spindle where the one before left it.
-                        let start_angle =
-                            self.tables.thread_move.start_angle.and_then(|a| self.address_value(words, a));
+                        let start_angle = self.thread_start_angle(words);
                         self.emitter.thread_phase =
                             start_angle.map_or(0.0, super::cycles::thread_pass::start_angle_turns);
                         if change == 0.0 {
