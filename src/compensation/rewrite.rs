@@ -507,7 +507,7 @@ pub fn finish(
     let single_cycle = |block: usize| {
         let e = first_expansion.get(&block).and_then(|&k| lowered.expansions.get(k));
         e.is_some_and(|e| {
-            cycles::single_cut(program, lowered, e).is_some() || cycles::single_groove(program, lowered, e).is_some()
+            cycles::single_cut(program, lowered, e).is_some() || cycles::groove(program, lowered, e).is_some()
         })
     };
     let mut calls: Vec<usize> = first_expansion.keys().copied().collect();
@@ -596,9 +596,9 @@ struct SingleInForce {
 /// part, and whose words as written end within half that clearance of the plan (a roughing
 /// pass), stays as written, as a thread's infeed pass does. The move
 /// back out of the cut ends at the start point, which no word of the call moves: the check
-/// before writing judges it with the rest. A groove of one plunge (`G75`) is kept the same
-/// way (`keep_groove`). The calls kept with their words edited, by block; a call kept as
-/// written has its `chosen` cleared, so nothing expands it.
+/// before writing judges it with the rest. A groove (`G75`) whose plunges' bottoms one `X`
+/// can carry is kept the same way (`keep_groove`). The calls kept with their words edited,
+/// by block; a call kept as written has its `chosen` cleared, so nothing expands it.
 fn keep_singles(
     program: &Program<'_>,
     lowered: &Lowered,
@@ -619,10 +619,10 @@ fn keep_singles(
         let Some(cut) = cycles::single_cut(program, lowered, e).filter(|_| alone) else {
             if chosen.get(k).copied().unwrap_or(false)
                 && alone
-                && let Some(groove) = cycles::single_groove(program, lowered, e)
+                && let Some(groove) = cycles::groove(program, lowered, e)
                 && let Some(start) = written_start(program, lowered, plans, &returns, e)
             {
-                if let Some(words_edited) = keep_groove(lowered, plans, (e, groove, start), motion) {
+                if let Some(words_edited) = keep_groove(lowered, plans, (e, &groove, start), motion) {
                     if let Some(c) = chosen.get_mut(k) {
                         *c = false;
                     }
@@ -754,46 +754,61 @@ fn keep_singles(
     edited
 }
 
-/// Keep a groove on a diameter of one plunge (`G75`) whose bottom's correction its end words
-/// can carry (`cycles::single_groove`), with `X` (or `U`) written from the plan of the feed
-/// that reaches the bottom, and `Z` (or `W`) where it names one, the call's start point's
-/// (`start`, as written), where the plunge runs: a `Z` elsewhere would step the groove into
-/// a second plunge. Incremental words count from that start point. The pecks before the
-/// bottom count from the start point too, and the move back out ends there: the check before
-/// writing judges them with the rest. `Some(true)` where its words are edited, `Some(false)`
-/// where its words as written already reach the bottom the plan corrects (`U` from a start
-/// point that moved with it): kept as it is; `None` where its words cannot carry it, or its
-/// bottom needs no correction (only the moves its words do not place change).
+/// Keep a groove on a diameter (`G75`) whose bottoms' correction its end words can carry
+/// (`cycles::groove`), with `X` (or `U`) written from the plans of the feeds that reach the
+/// bottoms, where they all round to one `X` on the grid (the one word writes every plunge's
+/// bottom), and `Z` (or `W`) where it names one from the plan of the last plunge's bottom,
+/// which the control places at the end `Z` whatever the step `Q`: the groove's far wall. A
+/// groove of one plunge runs at its start point: its `Z` is the start point's (`start`, as
+/// written), since a `Z` elsewhere would step the groove into a second plunge. Incremental
+/// words count from that start point. The first plunge, and so the near wall, runs at the
+/// start point's Z, which the move before the call places; the plunges between step by `Q`
+/// as written, the pecks count from the start point, and the moves back out end there: the
+/// check before writing judges them with the rest. `Some(true)` where its words are
+/// edited, `Some(false)` where its words as written already reach the bottoms the plans
+/// correct (`U`/`W` from a start point that moved with them): kept as it is; `None` where
+/// its words cannot carry them (plans of two bottoms a grid step apart in X), or its
+/// bottoms need no correction (only the moves its words do not place change).
 fn keep_groove(
     lowered: &Lowered,
     plans: &KeptPlans,
-    (e, groove, start): (&Expansion, cycles::SingleGroove, Xz),
+    (e, groove, start): (&Expansion, &cycles::Groove, Xz),
     motion: &mut MotionBlocks<'_, '_>,
 ) -> Option<bool> {
-    let plan = plans.get(groove.bottom..groove.bottom + 1).and_then(<[MovePlan]>::first)?;
-    let (Some(&Segment::Line { end }), true) =
-        (plan.segments.last(), plan.segments.iter().all(|s| matches!(s, Segment::Line { .. })))
-    else {
+    let (&last, one_plunge) = (groove.bottoms.last()?, groove.bottoms.len() == 1);
+    let mut ends: Vec<Xz> = Vec::with_capacity(groove.bottoms.len());
+    for &bottom in &groove.bottoms {
+        let plan = plans.get(bottom..bottom + 1).and_then(<[MovePlan]>::first)?;
+        let (Some(&Segment::Line { end }), true) =
+            (plan.segments.last(), plan.segments.iter().all(|s| matches!(s, Segment::Line { .. })))
+        else {
+            return None;
+        };
+        ends.push(end);
+    }
+    let grid = Grid::new(&lowered.coordinates_at(last));
+    let x = grid.point(*ends.last()?).x;
+    if ends.iter().any(|&end| grid.point(end).x != x) {
         return None;
-    };
+    }
     if !matches!(motion.first_runs.get(e.block), Some(FirstRun::NotYet)) {
         return None;
     }
+    let end = *ends.last()?;
     let plan = MovePlan {
         start,
-        segments: smallvec::smallvec![Segment::Line { end: Xz::new(end.x, start.z) }],
+        segments: smallvec::smallvec![Segment::Line { end: Xz::new(end.x, if one_plunge { start.z } else { end.z }) }],
         changed: true,
         jumps: 0,
         lead_in: false,
         words: smallvec::SmallVec::new(),
     };
-    motion.write_pass(e.block, (Some(e.moves.start), groove.bottom), &plan);
+    motion.write_pass(e.block, (Some(e.moves.start), last), &plan);
     if matches!(motion.first_runs.get(e.block), Some(FirstRun::Replaced(_))) {
         return Some(true);
     }
-    let grid = Grid::new(&lowered.coordinates_at(groove.bottom));
-    let nominal = lowered.toolpath.moves.get(groove.bottom)?.contour;
-    (grid.point(end).x != grid.point(nominal).x).then_some(false)
+    let (planned, nominal) = (grid.point(end), grid.point(lowered.toolpath.moves.get(last)?.contour));
+    (planned.x != nominal.x || (!one_plunge && planned.z != nominal.z)).then_some(false)
 }
 
 /// Where the call `e` starts as written, which its incremental end words count from: where

@@ -336,23 +336,26 @@ pub(super) fn single_cut(program: &Program<'_>, lowered: &Lowered, e: &Expansion
     })
 }
 
-/// A Fanuc groove on a diameter (`G75`) of one plunge, whose end words can carry the
-/// correction of its bottom (`single_groove`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct SingleGroove {
-    /// The feed that reaches the bottom: the call's last feed move.
-    pub bottom: usize,
+/// A Fanuc groove on a diameter (`G75`) whose end words can carry the correction of its
+/// bottoms (`groove`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(super) struct Groove {
+    /// The feed that reaches each plunge's bottom (its last feed), in the order the plunges
+    /// run: one for a groove of one plunge, the last the plunge at the end `Z` (the groove's
+    /// far wall) for a wide groove.
+    pub bottoms: Vec<usize>,
 }
 
-/// The bottom of a `G75` call `e` that plunges once (no step along Z: its end `Z` is its
-/// start point's, or left out) and whose words can carry that bottom's correction: its
-/// block writes only end words (`X` or `U` the bottom, `Z`/`W` the plunge's place), the
-/// peck, step and relief, and the feed, besides the sequence name, codes and comments.
-/// The pecks count from the start point and stop at the bottom, so only the last reaches
-/// the bottom, and it ends where the end words say; the plunge's place along Z, and so its
-/// walls, is the start point's, which the move before the call places. A groove of several plunges
-/// is not one: each plunge's bottom would need its own correction, and the call names one.
-pub(super) fn single_groove(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<SingleGroove> {
+/// The plunges' bottoms of a `G75` call `e` whose words can carry their correction: its
+/// block writes only end words (`X` or `U` the bottom, `Z`/`W` the last plunge's place),
+/// the peck, step and relief, and the feed, besides the sequence name, codes and comments,
+/// and every feed runs along X. The pecks of a plunge count from the start point's X and
+/// stop at the bottom, so only the last reaches it, and it ends where `X` (or `U`) says.
+/// The first plunge runs at the start point's Z, which the move before the call places;
+/// the others step by `Q` from there, the last at the end `Z` (or `W`) whatever `Q`
+/// (`semantic/cycles/peck_grooving.rs`). The one `X` writes every plunge's bottom, so it
+/// carries their correction only where their plans agree on it (`keep_groove` asks).
+pub(super) fn groove(program: &Program<'_>, lowered: &Lowered, e: &Expansion) -> Option<Groove> {
     use crate::dialect::{GFunction, Role};
     let block = program.block(e.block);
     let crate::syntax::Statement::Cycle(id) = block.statement else { return None };
@@ -382,12 +385,14 @@ pub(super) fn single_groove(program: &Program<'_>, lowered: &Lowered, e: &Expans
     let toolpath = &lowered.toolpath;
     let moves = toolpath.moves.get(e.moves.clone())?;
     let start = toolpath.start_of(e.moves.start);
-    // One plunge: every feed runs along X at the start point's Z.
+    // Every feed runs along X, at one plunge's Z.
     let along_x = |k: usize, m: &Move| {
         let from = super::super::written::contour_start(toolpath, k);
-        m.compensation == Compensation::Off && from.z == start.z && m.contour.z == start.z
+        m.compensation == Compensation::Off && from.z == m.contour.z
     };
-    let mut bottom = None;
+    let mut bottoms: Vec<usize> = Vec::new();
+    // The last feed seen, and its plunge's Z.
+    let mut last: Option<(usize, f64)> = None;
     for (k, m) in (e.moves.start..).zip(moves) {
         if m.threading || m.is_arc() {
             return None;
@@ -396,10 +401,19 @@ pub(super) fn single_groove(program: &Program<'_>, lowered: &Lowered, e: &Expans
             if !along_x(k, m) {
                 return None;
             }
-            bottom = Some(k);
+            if let Some((bottom, z)) = last
+                && z != m.contour.z
+            {
+                bottoms.push(bottom);
+            }
+            last = Some((k, m.contour.z));
         }
     }
-    x.then_some(SingleGroove { bottom: bottom? })
+    let (bottom, _) = last?;
+    bottoms.push(bottom);
+    // The first plunge runs at the start point's Z.
+    let first = moves.get(bottoms.first()? - e.moves.start)?;
+    (x && first.contour.z == start.z).then_some(Groove { bottoms })
 }
 
 /// Whether a thread cycle's word of `role` leaves its end words naming the final pass's end
