@@ -613,7 +613,7 @@ fn keep_singles(
     // control returns there, whatever the plan of its move back says.
     let mut returns: HashMap<usize, Xz> = HashMap::new();
     for (k, e) in lowered.expansions.iter().enumerate() {
-        // The run kept right before this one, which leaves its end and taper in force.
+        // The kept run that ends where this one starts: its end and taper stay in force.
         let adjacent = in_force.take().filter(|b| b.next_move == e.moves.start);
         let alone = groups.iter().enumerate().all(|(j, &g)| j == k || g != groups[k]);
         let Some(cut) = cycles::single_cut(program, lowered, e).filter(|_| alone) else {
